@@ -1,0 +1,72 @@
+//! `vcnc check`: run programs and report only their alarms and warnings.
+
+use super::{Outcome, SetupError};
+use crate::setup::MachineArgs;
+use clap::{Args as ClapArgs, ValueEnum};
+use std::path::PathBuf;
+use vcnc::Alarm;
+
+/// Output format of the diagnostics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Format {
+    /// For people, like rustc.
+    Human,
+    /// One JSON document: `{"programs": [{"file", "ok", "alarms": [...]}]}`.
+    Json,
+}
+
+/// `vcnc check` arguments.
+#[derive(ClapArgs, Debug)]
+pub(crate) struct Args {
+    /// The programs.
+    #[arg(required = true)]
+    programs: Vec<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "human")]
+    format: Format,
+    #[command(flatten)]
+    machine: MachineArgs,
+}
+
+pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
+    let machine = args.machine.machine()?;
+    let options = args.machine.options()?;
+    let mut outcome = Outcome::Clean;
+    let mut reports = Vec::new();
+    for path in &args.programs {
+        let alarms: Vec<Alarm> = crate::program::open(path, &machine, options.clone())?.filter_map(Result::err).collect();
+        let failed = alarms.iter().any(Alarm::is_error);
+        if failed {
+            outcome = Outcome::Alarm;
+        }
+        match args.format {
+            Format::Human => {
+                crate::diagnostics::print_human(path, &alarms);
+                if !failed {
+                    eprintln!("{}: ok{}", path.display(), warning_count(&alarms));
+                }
+            }
+            Format::Json => {
+                let text = if alarms.is_empty() { Vec::new() } else { std::fs::read(path).unwrap_or_default() };
+                let list: Vec<_> = alarms.iter().map(|a| crate::diagnostics::to_json(path, &text, a)).collect();
+                reports.push(serde_json::json!({
+                    "file": path.display().to_string(),
+                    "ok": !failed,
+                    "alarms": list,
+                }));
+            }
+        }
+    }
+    if args.format == Format::Json {
+        println!("{}", serde_json::json!({ "programs": reports }));
+    }
+    Ok(outcome)
+}
+
+fn warning_count(alarms: &[Alarm]) -> String {
+    match alarms.len() {
+        0 => String::new(),
+        1 => " (1 warning)".to_string(),
+        n => format!(" ({n} warnings)"),
+    }
+}

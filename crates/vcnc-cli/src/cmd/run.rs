@@ -1,0 +1,146 @@
+//! `vcnc run`: run a program and print the summary a CNC programmer wants.
+
+use super::{Outcome, SetupError};
+use crate::setup::MachineArgs;
+use clap::{Args as ClapArgs, ValueEnum};
+use serde_json::json;
+use std::path::PathBuf;
+use vcnc::motion::EndKind;
+use vcnc::summary::{Extents, Summary};
+use vcnc::{Alarm, SegmentKind};
+
+/// Output format of the summary.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Format {
+    /// A table for people.
+    Human,
+    /// One JSON object.
+    Json,
+}
+
+/// `vcnc run` arguments.
+#[derive(ClapArgs, Debug)]
+pub(crate) struct Args {
+    /// The program.
+    program: PathBuf,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "human")]
+    format: Format,
+    #[command(flatten)]
+    machine: MachineArgs,
+}
+
+const ESTIMATE_NOTE: &str = "length / feed and rapid rates; acceleration and corners are not modelled yet";
+
+pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
+    let machine = args.machine.machine()?;
+    let options = args.machine.options()?;
+    let mut interpreter = crate::program::open(&args.program, &machine, options)?;
+    let mut summary = Summary::new(&machine);
+    let mut alarms: Vec<Alarm> = Vec::new();
+    let mut end = None;
+    for item in interpreter.by_ref() {
+        match item {
+            Ok(segment) => {
+                if let SegmentKind::End { kind } = segment.kind {
+                    end = Some(kind);
+                }
+                summary.add(&segment);
+            }
+            Err(alarm) => alarms.push(alarm),
+        }
+    }
+    let blocks = interpreter.blocks_executed();
+    let error = alarms.iter().find(|a| a.is_error());
+    let result = match (error, end) {
+        (Some(alarm), _) => format!("stopped by alarm {} at line {}", alarm.code, alarm.span.map_or(0, |s| s.line)),
+        (None, Some(EndKind::M02)) => "ended with M02".to_string(),
+        (None, Some(EndKind::M30)) => "ended with M30".to_string(),
+        (None, Some(EndKind::TapeMark)) => "ended at %".to_string(),
+        (None, _) => "ended at the end of the text (no M02/M30)".to_string(),
+    };
+    let warnings = alarms.iter().filter(|a| !a.is_error()).count();
+    match args.format {
+        Format::Human => {
+            print_human(args, &machine, &summary, blocks, &result, warnings);
+            crate::diagnostics::print_human(&args.program, &alarms);
+        }
+        Format::Json => {
+            let text = if alarms.is_empty() { Vec::new() } else { std::fs::read(&args.program).unwrap_or_default() };
+            let list: Vec<_> = alarms.iter().map(|a| crate::diagnostics::to_json(&args.program, &text, a)).collect();
+            let value = json!({
+                "file": args.program.display().to_string(),
+                "machine": machine.name,
+                "profile": machine.profile.name.as_str(),
+                "blocks": blocks,
+                "result": result,
+                "ok": error.is_none(),
+                "rapid": { "moves": summary.rapid_moves, "length_mm": summary.rapid_length, "seconds": summary.rapid_seconds },
+                "feed": { "moves": summary.feed_moves, "length_mm": summary.feed_length, "seconds": summary.feed_seconds,
+                          "untimed_moves": summary.untimed_moves },
+                "dwell_seconds": summary.dwell_seconds,
+                "estimated_seconds": summary.estimated_seconds(),
+                "estimate_method": ESTIMATE_NOTE,
+                "tools": summary.tools.iter().collect::<Vec<_>>(),
+                "tool_changes": summary.tool_changes,
+                "extents": { "machine": extents_json(&summary.machine_extents), "program": extents_json(&summary.work_extents),
+                             "cutting": extents_json(&summary.cutting_extents) },
+                "alarms": list,
+            });
+            println!("{value:#}");
+        }
+    }
+    Ok(if error.is_some() { Outcome::Alarm } else { Outcome::Clean })
+}
+
+fn print_human(args: &Args, machine: &vcnc::Machine, summary: &Summary, blocks: u64, result: &str, warnings: usize) {
+    println!("{}  ({}, {} profile)", args.program.display(), machine.name, machine.profile.name);
+    println!("  result            {result}{}", if warnings > 0 { format!(", {warnings} warning(s)") } else { String::new() });
+    println!("  blocks executed   {blocks}");
+    println!("  rapid             {:>7} moves  {:>12.3} mm", summary.rapid_moves, summary.rapid_length);
+    println!("  cutting           {:>7} moves  {:>12.3} mm", summary.feed_moves, summary.feed_length);
+    println!(
+        "  estimated time    {}  (rapid {:.1} s, cutting {:.1} s, dwell {:.1} s)",
+        clock(summary.estimated_seconds()),
+        summary.rapid_seconds,
+        summary.feed_seconds,
+        summary.dwell_seconds
+    );
+    println!("                    estimate: {ESTIMATE_NOTE}");
+    if summary.untimed_moves > 0 {
+        println!("                    {} cutting moves untimed (feed per revolution without S)", summary.untimed_moves);
+    }
+    let tools: Vec<String> = summary.tools.iter().map(|t| format!("T{t}")).collect();
+    println!(
+        "  tools             {}",
+        if tools.is_empty() { "none changed".to_string() } else { format!("{} ({} change{})", tools.join(" "), summary.tool_changes, if summary.tool_changes == 1 { "" } else { "s" }) }
+    );
+    println!("  extents machine   {}", extents_text(&summary.machine_extents));
+    println!("  extents program   {}", extents_text(&summary.work_extents));
+    println!("  extents cutting   {}", extents_text(&summary.cutting_extents));
+}
+
+fn clock(seconds: f64) -> String {
+    let total = seconds.max(0.0);
+    let hours = (total / 3600.0).floor();
+    let minutes = ((total - hours * 3600.0) / 60.0).floor();
+    let rest = total - hours * 3600.0 - minutes * 60.0;
+    format!("{}:{:02}:{:04.1}", hours as u64, minutes as u64, rest)
+}
+
+fn extents_text(e: &Extents) -> String {
+    if e.is_empty() {
+        return "no motion".to_string();
+    }
+    format!(
+        "X {:.3} .. {:.3}  Y {:.3} .. {:.3}  Z {:.3} .. {:.3}",
+        e.min[0], e.max[0], e.min[1], e.max[1], e.min[2], e.max[2]
+    )
+}
+
+fn extents_json(e: &Extents) -> serde_json::Value {
+    if e.is_empty() {
+        return serde_json::Value::Null;
+    }
+    json!({ "min": e.min, "max": e.max })
+}

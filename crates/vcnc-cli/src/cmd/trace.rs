@@ -1,0 +1,314 @@
+//! `vcnc trace`: the motion stream, one record per segment, in execution order.
+//!
+//! JSON lines carry `kind`, `line`, `file`, the end point `x y z` (and `a b c` when the machine
+//! has them) in machine coordinates, `f` in mm/min for cutting moves, `cx cy cz dir plane` for
+//! arcs, and `n` (sequence number) and `wx wy wz` (end point in program coordinates) as extras.
+//! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
+
+use super::{Outcome, SetupError};
+use crate::numbers::{push_decimal, push_unsigned};
+use crate::setup::MachineArgs;
+use clap::{Args as ClapArgs, ValueEnum};
+use std::io::Write;
+use std::path::PathBuf;
+use vcnc::motion::{EndKind, Feed, Move, SpindleState, StopKind};
+use vcnc::{Alarm, Axis, Segment, SegmentKind};
+
+/// Output format of the trace.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Format {
+    /// One JSON object per line.
+    Jsonl,
+    /// Comma-separated values with a header line.
+    Csv,
+}
+
+/// `vcnc trace` arguments.
+#[derive(ClapArgs, Debug)]
+pub(crate) struct Args {
+    /// The program.
+    program: PathBuf,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "jsonl")]
+    format: Format,
+    #[command(flatten)]
+    machine: MachineArgs,
+}
+
+pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
+    let machine = args.machine.machine()?;
+    let options = args.machine.options()?;
+    let interpreter = crate::program::open(&args.program, &machine, options)?;
+    let rotary: Vec<Axis> = [Axis::A, Axis::B, Axis::C].into_iter().filter(|a| machine.has_axis(*a)).collect();
+    let file_name = args.program.display().to_string();
+    let mut writer = Writer {
+        out: Vec::with_capacity(1 << 16),
+        file_json: serde_json::to_string(&file_name).unwrap_or_else(|_| "\"\"".into()),
+        file_csv: csv_field(&file_name),
+        rotary,
+    };
+    let stdout = std::io::stdout();
+    let mut stdout = stdout.lock();
+    let mut alarms: Vec<Alarm> = Vec::new();
+    let mut failed = false;
+    if args.format == Format::Csv {
+        writer.csv_header();
+    }
+    for item in interpreter {
+        match item {
+            Ok(segment) => match args.format {
+                Format::Jsonl => writer.jsonl(&segment),
+                Format::Csv => writer.csv(&segment),
+            },
+            Err(alarm) => {
+                failed |= alarm.is_error();
+                alarms.push(alarm);
+            }
+        }
+        if writer.out.len() >= 1 << 16 {
+            if stdout.write_all(&writer.out).is_err() {
+                return Ok(Outcome::Clean);
+            }
+            writer.out.clear();
+        }
+    }
+    let _ = stdout.write_all(&writer.out);
+    let _ = stdout.flush();
+    crate::diagnostics::print_human(&args.program, &alarms);
+    Ok(if failed { Outcome::Alarm } else { Outcome::Clean })
+}
+
+struct Writer {
+    out: Vec<u8>,
+    file_json: String,
+    file_csv: String,
+    rotary: Vec<Axis>,
+}
+
+/// The parts of a record, shared by both formats.
+struct Record<'a> {
+    kind: &'a str,
+    motion: Option<&'a Move>,
+    feed: Option<f64>,
+    arc: Option<([f64; 3], &'static str, &'static str)>,
+}
+
+fn record(segment: &Segment) -> Record<'_> {
+    let mut record = Record { kind: "", motion: segment.motion(), feed: None, arc: None };
+    record.kind = match &segment.kind {
+        SegmentKind::Rapid { .. } => "rapid",
+        SegmentKind::Line { feed, .. } => {
+            record.feed = feed_mm_per_min(feed, segment.length());
+            "feed"
+        }
+        SegmentKind::Arc { feed, center, direction, plane, .. } => {
+            record.feed = feed_mm_per_min(feed, segment.length());
+            record.arc = Some((center.xyz(), direction.as_str(), plane.as_str()));
+            "arc"
+        }
+        SegmentKind::Dwell { .. } => "dwell",
+        SegmentKind::ToolSelect { .. } => "tool_select",
+        SegmentKind::ToolChange { .. } => "tool_change",
+        SegmentKind::Spindle { .. } => "spindle",
+        SegmentKind::Coolant { .. } => "coolant",
+        SegmentKind::Stop { .. } => "stop",
+        SegmentKind::Auxiliary { .. } => "aux",
+        SegmentKind::End { .. } => "end",
+        _ => "other",
+    };
+    record
+}
+
+fn feed_mm_per_min(feed: &Feed, length: f64) -> Option<f64> {
+    feed.mm_per_min(length)
+}
+
+impl Writer {
+    fn key(&mut self, key: &str) {
+        self.out.extend_from_slice(b",\"");
+        self.out.extend_from_slice(key.as_bytes());
+        self.out.extend_from_slice(b"\":");
+    }
+
+    fn number(&mut self, key: &str, value: f64) {
+        self.key(key);
+        push_decimal(&mut self.out, value);
+    }
+
+    fn text(&mut self, key: &str, value: &str) {
+        self.key(key);
+        self.out.push(b'"');
+        self.out.extend_from_slice(value.as_bytes());
+        self.out.push(b'"');
+    }
+
+    fn jsonl(&mut self, segment: &Segment) {
+        let record = record(segment);
+        self.out.extend_from_slice(b"{\"kind\":\"");
+        self.out.extend_from_slice(record.kind.as_bytes());
+        self.out.extend_from_slice(b"\",\"line\":");
+        push_unsigned(&mut self.out, u64::from(segment.span.line));
+        self.out.extend_from_slice(b",\"file\":");
+        self.out.extend_from_slice(self.file_json.as_bytes());
+        if let Some(n) = segment.sequence {
+            self.key("n");
+            push_unsigned(&mut self.out, u64::from(n));
+        }
+        if let Some(motion) = record.motion {
+            let to = motion.to.0;
+            self.number("x", to[0]);
+            self.number("y", to[1]);
+            self.number("z", to[2]);
+            for axis in self.rotary.clone() {
+                let name = [axis.letter().to_ascii_lowercase()];
+                self.number(std::str::from_utf8(&name).unwrap_or("a"), to[axis.index()]);
+            }
+            if let Some(f) = record.feed {
+                self.number("f", f);
+            }
+            if let Some((center, dir, plane)) = record.arc {
+                self.number("cx", center[0]);
+                self.number("cy", center[1]);
+                self.number("cz", center[2]);
+                self.text("dir", dir);
+                self.text("plane", plane);
+            }
+            let work = motion.work_to();
+            self.number("wx", work[0]);
+            self.number("wy", work[1]);
+            self.number("wz", work[2]);
+        }
+        self.event_fields(&segment.kind);
+        self.out.extend_from_slice(b"}\n");
+    }
+
+    fn event_fields(&mut self, kind: &SegmentKind) {
+        match *kind {
+            SegmentKind::Dwell { seconds } => self.number("seconds", seconds),
+            SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => {
+                self.key("tool");
+                push_unsigned(&mut self.out, u64::from(tool));
+            }
+            SegmentKind::Spindle { state, speed } => {
+                self.text("state", spindle_name(state));
+                self.number("speed", speed);
+            }
+            SegmentKind::Coolant { on } => {
+                self.key("on");
+                self.out.extend_from_slice(if on { b"true" } else { b"false" });
+            }
+            SegmentKind::Stop { kind } => self.text("stop", stop_name(kind)),
+            SegmentKind::Auxiliary { code } => {
+                self.key("code");
+                push_unsigned(&mut self.out, u64::from(code));
+            }
+            SegmentKind::End { kind } => self.text("end", end_name(kind)),
+            _ => {}
+        }
+    }
+
+    fn csv_header(&mut self) {
+        self.out.extend_from_slice(b"kind,line,file,n,x,y,z");
+        for axis in self.rotary.clone() {
+            self.out.push(b',');
+            self.out.push(axis.letter().to_ascii_lowercase());
+        }
+        self.out.extend_from_slice(b",f,cx,cy,cz,dir,plane,wx,wy,wz,value\n");
+    }
+
+    fn csv(&mut self, segment: &Segment) {
+        let record = record(segment);
+        self.out.extend_from_slice(record.kind.as_bytes());
+        self.out.push(b',');
+        push_unsigned(&mut self.out, u64::from(segment.span.line));
+        self.out.push(b',');
+        self.out.extend_from_slice(self.file_csv.as_bytes());
+        self.out.push(b',');
+        if let Some(n) = segment.sequence {
+            push_unsigned(&mut self.out, u64::from(n));
+        }
+        let axes = 3 + self.rotary.len();
+        match record.motion {
+            Some(motion) => {
+                for i in [0, 1, 2].into_iter().chain(self.rotary.iter().map(|a| a.index())) {
+                    self.out.push(b',');
+                    push_decimal(&mut self.out, motion.to.0[i]);
+                }
+            }
+            None => self.out.extend(std::iter::repeat(b',').take(axes)),
+        }
+        self.out.push(b',');
+        if let Some(f) = record.feed {
+            push_decimal(&mut self.out, f);
+        }
+        match record.arc {
+            Some((center, dir, plane)) => {
+                for c in center {
+                    self.out.push(b',');
+                    push_decimal(&mut self.out, c);
+                }
+                self.out.extend_from_slice(format!(",{dir},{plane}").as_bytes());
+            }
+            None => self.out.extend_from_slice(b",,,,,"),
+        }
+        match record.motion {
+            Some(motion) => {
+                for w in &motion.work_to()[..3] {
+                    self.out.push(b',');
+                    push_decimal(&mut self.out, *w);
+                }
+            }
+            None => self.out.extend_from_slice(b",,,"),
+        }
+        self.out.push(b',');
+        self.out.extend_from_slice(csv_value(&segment.kind).as_bytes());
+        self.out.push(b'\n');
+    }
+}
+
+/// The one value of an event, for the CSV `value` column.
+fn csv_value(kind: &SegmentKind) -> String {
+    match *kind {
+        SegmentKind::Dwell { seconds } => seconds.to_string(),
+        SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => tool.to_string(),
+        SegmentKind::Spindle { state, speed } => format!("{} {speed}", spindle_name(state)),
+        SegmentKind::Coolant { on } => if on { "on" } else { "off" }.to_string(),
+        SegmentKind::Stop { kind } => stop_name(kind).to_string(),
+        SegmentKind::Auxiliary { code } => format!("M{code}"),
+        SegmentKind::End { kind } => end_name(kind).to_string(),
+        _ => String::new(),
+    }
+}
+
+fn spindle_name(state: SpindleState) -> &'static str {
+    match state {
+        SpindleState::Clockwise => "cw",
+        SpindleState::CounterClockwise => "ccw",
+        SpindleState::Stopped => "stop",
+        SpindleState::Oriented => "orient",
+    }
+}
+
+fn stop_name(kind: StopKind) -> &'static str {
+    match kind {
+        StopKind::Program => "program",
+        StopKind::Optional => "optional",
+    }
+}
+
+fn end_name(kind: EndKind) -> &'static str {
+    match kind {
+        EndKind::M02 => "m02",
+        EndKind::M30 => "m30",
+        EndKind::TapeMark => "tape_mark",
+        EndKind::EndOfText => "end_of_text",
+    }
+}
+
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}

@@ -1,0 +1,60 @@
+//! `vcnc`: run, check and trace NC programs on a virtual CNC milling controller.
+//!
+//! The binary parses arguments, calls one command, and turns its result into an exit code:
+//! 0 clean, 1 a program raised an alarm, 2 a usage or setup error.
+
+mod cmd;
+mod diagnostics;
+mod numbers;
+mod program;
+mod setup;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// A virtual CNC milling controller: runs FANUC-family ISO programs the way the control would.
+#[derive(Parser, Debug)]
+#[command(name = "vcnc", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a program and print what a CNC programmer wants to know: moves, lengths, time, extents, tools, alarms.
+    Run(cmd::run::Args),
+    /// Check programs and print only their alarms and warnings.
+    Check(cmd::check::Args),
+    /// Print the motion stream (machine coordinates) as JSON lines or CSV.
+    Trace(cmd::trace::Args),
+    /// Print the embedded default machine file, to copy and edit.
+    Machine,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(error) => {
+            let _ = error.print();
+            return if error.use_stderr() { ExitCode::from(2) } else { ExitCode::SUCCESS };
+        }
+    };
+    let result = match cli.command {
+        Command::Run(args) => cmd::run::run(&args),
+        Command::Check(args) => cmd::check::run(&args),
+        Command::Trace(args) => cmd::trace::run(&args),
+        Command::Machine => {
+            print!("{}", vcnc::machine::DEFAULT_MACHINE_TOML);
+            Ok(cmd::Outcome::Clean)
+        }
+    };
+    match result {
+        Ok(cmd::Outcome::Clean) => ExitCode::SUCCESS,
+        Ok(cmd::Outcome::Alarm) => ExitCode::from(1),
+        Err(error) => {
+            eprintln!("vcnc: {error}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,49 @@
+//! Options shared by every command: the machine, the profile, the panel switches.
+
+use clap::Args;
+use std::path::PathBuf;
+use vcnc::{Machine, Options, ProfileName};
+
+/// Machine and control options.
+#[derive(Args, Debug, Clone)]
+pub(crate) struct MachineArgs {
+    /// Machine file (TOML; `vcnc machine` prints the default to start from).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) machine: Option<PathBuf>,
+    /// Controller profile: fanuc, syntec, fanuc0m, mitsubishi or haas (default: the machine file's, else fanuc).
+    #[arg(long, value_name = "NAME")]
+    pub(crate) profile: Option<ProfileName>,
+    /// Turn block skip switch N on (1-9; repeatable): blocks starting with `/N` are skipped.
+    #[arg(long = "block-skip", value_name = "N", num_args = 0..=1, default_missing_value = "1")]
+    pub(crate) block_skip: Vec<u8>,
+}
+
+impl MachineArgs {
+    /// The machine to run on.
+    pub(crate) fn machine(&self) -> Result<Machine, String> {
+        let machine = match &self.machine {
+            Some(path) => {
+                let text = std::fs::read_to_string(path)
+                    .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
+                Machine::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?
+            }
+            None => Machine::default(),
+        };
+        match self.profile {
+            Some(name) => machine.with_profile(name).map_err(|e| e.to_string()),
+            None => Ok(machine),
+        }
+    }
+
+    /// The panel switches.
+    pub(crate) fn options(&self) -> Result<Options, String> {
+        let mut options = Options::default();
+        for &n in &self.block_skip {
+            if !(1..=9).contains(&n) {
+                return Err(format!("--block-skip {n}: switches are 1 to 9"));
+            }
+            options.block_skip[usize::from(n) - 1] = true;
+        }
+        Ok(options)
+    }
+}

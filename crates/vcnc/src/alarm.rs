@@ -1,0 +1,278 @@
+//! Alarms: what the control says when a program is wrong or uses what vcnc cannot run yet.
+//!
+//! An [`Alarm`] is plain data (code, severity, message, the span of the word that caused it,
+//! secondary labels, help). Every stage produces the same type; rendering for people or machines
+//! is the caller's business. Front ends never fail: they report an alarm and go on with the next
+//! block. The interpreter stops at the first alarm of severity [`Severity::Error`], exactly where
+//! the control would stop, and goes on after a [`Severity::Warning`].
+
+use crate::source::Span;
+use std::fmt;
+
+/// How serious an alarm is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Severity {
+    /// The control would run on, but the program probably does not do what its author meant.
+    Warning,
+    /// The control stops with an alarm at this block.
+    Error,
+}
+
+impl Severity {
+    /// The lower-case name used in text and JSON output.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Severity::Warning => "warning",
+            Severity::Error => "error",
+        }
+    }
+}
+
+/// The kind of an alarm. Each variant has a stable string id ([`AlarmCode::id`]) for JSON output
+/// and a short code for people ([`AlarmCode::code`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum AlarmCode {
+    /// A character that cannot start a word (e.g. `$` in an ISO block). Fix: remove it or put it
+    /// in a comment.
+    UnexpectedCharacter,
+    /// An address letter with no number after it (`X;`). FANUC: alarm PS0003-like "format error".
+    MissingValue,
+    /// A number that cannot be read (`X1.2.3`, too many digits).
+    BadNumber,
+    /// A `(` comment that is not closed before the end of the line.
+    UnclosedComment,
+    /// The same address twice in one block where the control allows it once (`X1. X2.`).
+    DuplicateAddress,
+    /// A decimal point in a word that takes whole numbers only (`H1.5`, `M3.5`).
+    DecimalPointNotAllowed,
+    /// A value outside the range the control accepts for that address.
+    ValueOutOfRange,
+    /// A G code that does not exist on this controller profile.
+    UnknownGCode,
+    /// Two G codes of the same modal group in one block, where the profile does not allow it.
+    SameGroupGCodes,
+    /// A code or construct the controller accepts but vcnc does not implement yet. The message
+    /// names it; the issue that will add it is in the help text.
+    NotSupportedYet,
+    /// A program in a dialect vcnc does not run yet (e.g. SINUMERIK).
+    DialectNotSupported,
+    /// A cutting move (G01/G02/G03) before any feed rate was programmed. FANUC alarm 011.
+    NoFeedRate,
+    /// A circular move with neither a radius (R) nor centre words (I J K).
+    ArcWithoutCenter,
+    /// A circular move whose end point is not on the circle through its start point: the
+    /// distances from the centre differ by more than the profile's arc tolerance. FANUC alarm 020.
+    ArcEndNotOnCircle,
+    /// A circular move with R smaller than half the distance between start and end.
+    ArcRadiusTooSmall,
+    /// An H or D offset number the tool table does not have.
+    OffsetNumberOutOfRange,
+    /// A work offset number that does not exist (G54.1 P0, P301 ...).
+    WorkOffsetOutOfRange,
+    /// A G10 block with an L number or word the profile does not accept.
+    BadDataInput,
+    /// An axis word for an axis the machine does not have.
+    AxisNotOnMachine,
+    /// A word that has no meaning in this block (e.g. R in a G00 block where nothing reads it).
+    WordNotAllowed,
+    /// A reference point number that does not exist (G30 P5).
+    ReferencePointOutOfRange,
+    /// G29 for an axis that no G28/G30 has given an intermediate point.
+    NoIntermediatePoint,
+    /// The program text ended without M02, M30 or `%`.
+    MissingProgramEnd,
+    /// A feed rate of zero or a negative feed rate.
+    BadFeedRate,
+    /// A dwell with a negative time.
+    BadDwell,
+    /// The program file could not be read.
+    ReadError,
+}
+
+impl AlarmCode {
+    /// The stable identifier used in JSON output (`snake_case`).
+    pub fn id(self) -> &'static str {
+        use AlarmCode::*;
+        match self {
+            UnexpectedCharacter => "unexpected_character",
+            MissingValue => "missing_value",
+            BadNumber => "bad_number",
+            UnclosedComment => "unclosed_comment",
+            DuplicateAddress => "duplicate_address",
+            DecimalPointNotAllowed => "decimal_point_not_allowed",
+            ValueOutOfRange => "value_out_of_range",
+            UnknownGCode => "unknown_g_code",
+            SameGroupGCodes => "same_group_g_codes",
+            NotSupportedYet => "not_supported_yet",
+            DialectNotSupported => "dialect_not_supported",
+            NoFeedRate => "no_feed_rate",
+            ArcWithoutCenter => "arc_without_center",
+            ArcEndNotOnCircle => "arc_end_not_on_circle",
+            ArcRadiusTooSmall => "arc_radius_too_small",
+            OffsetNumberOutOfRange => "offset_number_out_of_range",
+            WorkOffsetOutOfRange => "work_offset_out_of_range",
+            BadDataInput => "bad_data_input",
+            AxisNotOnMachine => "axis_not_on_machine",
+            WordNotAllowed => "word_not_allowed",
+            ReferencePointOutOfRange => "reference_point_out_of_range",
+            NoIntermediatePoint => "no_intermediate_point",
+            MissingProgramEnd => "missing_program_end",
+            BadFeedRate => "bad_feed_rate",
+            BadDwell => "bad_dwell",
+            ReadError => "read_error",
+        }
+    }
+
+    /// The short code shown to people, `V` and a number: stable across releases.
+    pub fn code(self) -> &'static str {
+        use AlarmCode::*;
+        match self {
+            UnexpectedCharacter => "V001",
+            MissingValue => "V002",
+            BadNumber => "V003",
+            UnclosedComment => "V004",
+            DuplicateAddress => "V005",
+            DecimalPointNotAllowed => "V006",
+            ValueOutOfRange => "V007",
+            UnknownGCode => "V010",
+            SameGroupGCodes => "V011",
+            NotSupportedYet => "V020",
+            DialectNotSupported => "V021",
+            NoFeedRate => "V030",
+            ArcWithoutCenter => "V031",
+            ArcEndNotOnCircle => "V032",
+            ArcRadiusTooSmall => "V033",
+            OffsetNumberOutOfRange => "V040",
+            WorkOffsetOutOfRange => "V041",
+            BadDataInput => "V042",
+            AxisNotOnMachine => "V043",
+            WordNotAllowed => "V044",
+            ReferencePointOutOfRange => "V045",
+            NoIntermediatePoint => "V046",
+            MissingProgramEnd => "V050",
+            BadFeedRate => "V051",
+            BadDwell => "V052",
+            ReadError => "V090",
+        }
+    }
+
+    /// Every code, in catalog order (for generated documentation).
+    pub const ALL: &'static [AlarmCode] = &[
+        AlarmCode::UnexpectedCharacter,
+        AlarmCode::MissingValue,
+        AlarmCode::BadNumber,
+        AlarmCode::UnclosedComment,
+        AlarmCode::DuplicateAddress,
+        AlarmCode::DecimalPointNotAllowed,
+        AlarmCode::ValueOutOfRange,
+        AlarmCode::UnknownGCode,
+        AlarmCode::SameGroupGCodes,
+        AlarmCode::NotSupportedYet,
+        AlarmCode::DialectNotSupported,
+        AlarmCode::NoFeedRate,
+        AlarmCode::ArcWithoutCenter,
+        AlarmCode::ArcEndNotOnCircle,
+        AlarmCode::ArcRadiusTooSmall,
+        AlarmCode::OffsetNumberOutOfRange,
+        AlarmCode::WorkOffsetOutOfRange,
+        AlarmCode::BadDataInput,
+        AlarmCode::AxisNotOnMachine,
+        AlarmCode::WordNotAllowed,
+        AlarmCode::ReferencePointOutOfRange,
+        AlarmCode::NoIntermediatePoint,
+        AlarmCode::MissingProgramEnd,
+        AlarmCode::BadFeedRate,
+        AlarmCode::BadDwell,
+        AlarmCode::ReadError,
+    ];
+}
+
+impl fmt::Display for AlarmCode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.code())
+    }
+}
+
+/// A secondary place an alarm points at (e.g. the call site of a subprogram).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Label {
+    /// Where.
+    pub span: Span,
+    /// What it has to do with the alarm.
+    pub message: String,
+}
+
+/// One alarm or warning, with the place that caused it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Alarm {
+    /// What kind of alarm.
+    pub code: AlarmCode,
+    /// Stop, or go on.
+    pub severity: Severity,
+    /// One line, no trailing period.
+    pub message: String,
+    /// The word (or block) that caused it; `None` only for whole-file problems.
+    pub span: Option<Span>,
+    /// Other places worth showing.
+    pub labels: Vec<Label>,
+    /// How to fix it, when there is something useful to say.
+    pub help: Option<String>,
+}
+
+impl Alarm {
+    /// An error alarm at `span`.
+    pub fn error(code: AlarmCode, span: Span, message: impl Into<String>) -> Alarm {
+        Alarm {
+            code,
+            severity: Severity::Error,
+            message: message.into(),
+            span: Some(span),
+            labels: Vec::new(),
+            help: None,
+        }
+    }
+
+    /// A warning at `span`.
+    pub fn warning(code: AlarmCode, span: Span, message: impl Into<String>) -> Alarm {
+        Alarm { severity: Severity::Warning, ..Alarm::error(code, span, message) }
+    }
+
+    /// "`what` is not supported yet", pointing at the code, with the issue that will add it.
+    pub fn not_supported(span: Span, what: &str, issue: Option<u32>) -> Alarm {
+        let alarm = Alarm::error(AlarmCode::NotSupportedYet, span, format!("{what} is not supported yet"));
+        match issue {
+            Some(n) => alarm.with_help(format!("planned in vcnc issue #{n}")),
+            None => alarm,
+        }
+    }
+
+    /// The same alarm with a help text.
+    pub fn with_help(mut self, help: impl Into<String>) -> Alarm {
+        self.help = Some(help.into());
+        self
+    }
+
+    /// The same alarm with one more secondary label.
+    pub fn with_label(mut self, span: Span, message: impl Into<String>) -> Alarm {
+        self.labels.push(Label { span, message: message.into() });
+        self
+    }
+
+    /// True when the run stops here.
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+}
+
+impl fmt::Display for Alarm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}[{}]: {}", self.severity.as_str(), self.code, self.message)?;
+        if let Some(span) = self.span {
+            write!(f, " (line {})", span.line)?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for Alarm {}

@@ -1,0 +1,169 @@
+//! Arc geometry: the centre of a G02/G03 from I J K or from R, checked as the control checks it.
+
+use crate::alarm::{Alarm, AlarmCode};
+use crate::motion::{ArcDirection, Plane};
+use crate::source::Span;
+
+/// How the arc was programmed, in machine mm.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum ArcSpec {
+    /// Centre offsets from the start along the plane's first and second axes.
+    Center { offset: (f64, f64), span: Span },
+    /// Signed radius: negative for more than 180 degrees.
+    Radius { radius: f64, span: Span },
+}
+
+/// The centre of an arc in the plane's (first, second) coordinates.
+///
+/// `start` and `end` are the plane coordinates of the arc's ends; `tolerance` is the largest
+/// accepted difference between start and end radius (FANUC parameter 3410).
+///
+/// # Errors
+/// [`AlarmCode::ArcEndNotOnCircle`] when the end is not on the circle of the centre form,
+/// [`AlarmCode::ArcRadiusTooSmall`] when R is shorter than half the chord.
+pub(crate) fn arc_center(
+    start: (f64, f64),
+    end: (f64, f64),
+    spec: ArcSpec,
+    direction: ArcDirection,
+    tolerance: f64,
+) -> Result<(f64, f64), Alarm> {
+    match spec {
+        ArcSpec::Center { offset, span } => {
+            let center = (start.0 + offset.0, start.1 + offset.1);
+            let r_start = offset.0.hypot(offset.1);
+            let r_end = (end.0 - center.0).hypot(end.1 - center.1);
+            if r_start == 0.0 {
+                return Err(Alarm::error(AlarmCode::ArcWithoutCenter, span, "arc centre is on its start point"));
+            }
+            if (r_end - r_start).abs() > tolerance {
+                return Err(Alarm::error(
+                    AlarmCode::ArcEndNotOnCircle,
+                    span,
+                    format!(
+                        "arc end point is not on the circle: radius {:.4} at the start, {:.4} at the end",
+                        r_start, r_end
+                    ),
+                )
+                .with_help(format!("the control accepts a difference of {tolerance} mm (FANUC alarm 020)")));
+            }
+            Ok(center)
+        }
+        ArcSpec::Radius { radius, span } => {
+            let (dx, dy) = (end.0 - start.0, end.1 - start.1);
+            let chord = dx.hypot(dy);
+            let r = radius.abs();
+            if chord == 0.0 {
+                return Err(Alarm::error(
+                    AlarmCode::ArcRadiusTooSmall,
+                    span,
+                    "an R arc needs an end point different from its start",
+                )
+                .with_help("program a full circle with I, J or K"));
+            }
+            let half = chord / 2.0;
+            let mut h2 = r * r - half * half;
+            if h2 < 0.0 {
+                // A radius short by rounding only (R written to fewer decimals than the end point)
+                // is taken as a half circle, as the controls do within their tolerance.
+                if half - r > tolerance {
+                    return Err(Alarm::error(
+                        AlarmCode::ArcRadiusTooSmall,
+                        span,
+                        format!("R{r:.4} is smaller than half the distance to the end point ({half:.4})"),
+                    ));
+                }
+                h2 = 0.0;
+            }
+            let h = h2.sqrt();
+            let mid = (start.0 + dx / 2.0, start.1 + dy / 2.0);
+            // Unit normal to the chord, to the left of the travel direction.
+            let left = (-dy / chord, dx / chord);
+            // Counter-clockwise arcs of less than 180 degrees have their centre on the left.
+            let mut side = match direction {
+                ArcDirection::CounterClockwise => 1.0,
+                ArcDirection::Clockwise => -1.0,
+            };
+            if radius < 0.0 {
+                side = -side;
+            }
+            Ok((mid.0 + side * h * left.0, mid.1 + side * h * left.1))
+        }
+    }
+}
+
+/// Plane coordinates (first, second) of a position.
+pub(crate) fn in_plane(plane: Plane, p: &[f64]) -> (f64, f64) {
+    let (a, b, _) = plane.axes();
+    (p[a], p[b])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    const SPAN: Span = Span { file: crate::source::FileId(0), start: 0, end: 0, line: 1 };
+
+    fn radius(r: f64) -> ArcSpec {
+        ArcSpec::Radius { radius: r, span: SPAN }
+    }
+
+    #[test]
+    fn positive_r_is_the_short_way_and_negative_r_the_long_way() {
+        let ccw = ArcDirection::CounterClockwise;
+        let c = arc_center((10.0, 0.0), (0.0, 10.0), radius(10.0), ccw, 0.01).unwrap();
+        assert!((c.0).abs() < 1e-12 && (c.1).abs() < 1e-12);
+        let c = arc_center((10.0, 0.0), (0.0, 10.0), radius(-10.0), ccw, 0.01).unwrap();
+        assert!((c.0 - 10.0).abs() < 1e-12 && (c.1 - 10.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn mitsubishi_r_example_centre_matches_the_manual() {
+        // spec/iso-fanuc0m-mitsubishi.md B.3: from X30 Y10 to X5 Y25 with R20.616 the centre is
+        // X9.9997 Y4.9994.
+        let c = arc_center((30.0, 10.0), (5.0, 25.0), radius(20.616), ArcDirection::CounterClockwise, 0.01).unwrap();
+        assert!((c.0 - 9.9997).abs() < 1e-3 && (c.1 - 4.9994).abs() < 1e-3, "{c:?}");
+    }
+
+    #[test]
+    fn end_point_off_the_circle_is_alarm_020() {
+        let spec = ArcSpec::Center { offset: (10.0, 0.0), span: SPAN };
+        let error = arc_center((0.0, 0.0), (10.0, 10.5), spec, ArcDirection::Clockwise, 0.01).unwrap_err();
+        assert_eq!(error.code, AlarmCode::ArcEndNotOnCircle);
+    }
+
+    #[test]
+    fn radius_too_small_is_an_alarm() {
+        let error =
+            arc_center((0.0, 0.0), (30.0, 0.0), radius(10.0), ArcDirection::Clockwise, 0.01).unwrap_err();
+        assert_eq!(error.code, AlarmCode::ArcRadiusTooSmall);
+    }
+
+    proptest! {
+        #[test]
+        fn r_arc_centres_are_at_r_from_both_ends(
+            sx in -500.0..500.0f64, sy in -500.0..500.0f64,
+            ex in -500.0..500.0f64, ey in -500.0..500.0f64,
+            extra in 0.0..300.0f64, long in any::<bool>(), cw in any::<bool>(),
+        ) {
+            let chord = (ex - sx).hypot(ey - sy);
+            prop_assume!(chord > 1e-3);
+            let r = chord / 2.0 + extra;
+            let r = if long { -r } else { r };
+            let direction = if cw { ArcDirection::Clockwise } else { ArcDirection::CounterClockwise };
+            let c = arc_center((sx, sy), (ex, ey), radius(r), direction, 0.01).unwrap();
+            let r_start = (sx - c.0).hypot(sy - c.1);
+            let r_end = (ex - c.0).hypot(ey - c.1);
+            prop_assert!((r_start - r.abs()).abs() < 1e-6 * r.abs().max(1.0));
+            prop_assert!((r_end - r.abs()).abs() < 1e-6 * r.abs().max(1.0));
+            // The swept angle is at most 180 degrees for positive R, at least 180 for negative R.
+            let a0 = (sy - c.1).atan2(sx - c.0);
+            let a1 = (ey - c.1).atan2(ex - c.0);
+            let mut sweep = if cw { a0 - a1 } else { a1 - a0 };
+            while sweep <= 0.0 { sweep += std::f64::consts::TAU; }
+            let pi = std::f64::consts::PI;
+            if long { prop_assert!(sweep >= pi - 1e-6); } else { prop_assert!(sweep <= pi + 1e-6); }
+        }
+    }
+}

@@ -1,0 +1,135 @@
+//! F S T M and G04: the functions that are events rather than geometry.
+//!
+//! Spindle, coolant and tool-change M codes run before the block's motion; M00, M01, M02 and M30
+//! after it. M codes the profile does not know are passed on to the machine as auxiliary events,
+//! as a real control passes them to its PLC.
+
+use super::decode::Command;
+use super::exec::{end_program, stop, Executor, Flow};
+use super::modal::{SpindleMode, Units};
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::Axis;
+use crate::motion::{EndKind, SegmentKind, SpindleState, StopKind};
+use crate::profile::DwellP;
+
+/// S and T.
+///
+/// # Errors
+/// A negative S.
+pub(crate) fn speed_and_tool(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+    if let Some(s) = cmd.s {
+        if s.number.value < 0.0 {
+            return Err(Alarm::error(AlarmCode::ValueOutOfRange, s.span, "spindle speed cannot be negative"));
+        }
+        exec.speed = s.number.value;
+        let running = matches!(exec.spindle, SpindleState::Clockwise | SpindleState::CounterClockwise);
+        let starts_here = cmd.m.iter().any(|m| matches!(m.number.value as u32, 3 | 4));
+        if running && !starts_here && exec.modal.spindle_mode == SpindleMode::Rpm {
+            out.push(cmd, SegmentKind::Spindle { state: exec.spindle, speed: exec.speed });
+        }
+    }
+    if let Some(t) = cmd.t {
+        exec.selected_tool = t.number.value as u32;
+        out.push(cmd, SegmentKind::ToolSelect { tool: exec.selected_tool });
+    }
+    Ok(())
+}
+
+/// M codes that act before the motion of the block.
+///
+/// # Errors
+/// Subprogram calls and returns (issue 3).
+pub(crate) fn before_motion(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+    for m in &cmd.m {
+        let code = m.number.value as u32;
+        if exec.profile.subprogram_m_codes.contains(&code) {
+            return Err(Alarm::not_supported(m.span, &format!("M{code:02} (subprogram call or return)"), Some(3)));
+        }
+        let kind = match code {
+            0 | 1 | 2 | 30 => continue,
+            3 => spindle(exec, SpindleState::Clockwise),
+            4 => spindle(exec, SpindleState::CounterClockwise),
+            5 => spindle(exec, SpindleState::Stopped),
+            19 => spindle(exec, SpindleState::Oriented),
+            6 => {
+                exec.tool_in_spindle = exec.selected_tool;
+                SegmentKind::ToolChange { tool: exec.selected_tool }
+            }
+            7 | 8 => SegmentKind::Coolant { on: true },
+            9 => SegmentKind::Coolant { on: false },
+            _ => SegmentKind::Auxiliary { code },
+        };
+        out.push(cmd, kind);
+    }
+    Ok(())
+}
+
+fn spindle(exec: &mut Executor, state: SpindleState) -> SegmentKind {
+    exec.spindle = state;
+    SegmentKind::Spindle { state, speed: exec.speed }
+}
+
+/// M00, M01, M02, M30 after the motion.
+///
+/// # Errors
+/// None yet.
+pub(crate) fn after_motion(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
+    for m in &cmd.m {
+        match m.number.value as u32 {
+            0 => stop(cmd, StopKind::Program, out),
+            1 => stop(cmd, StopKind::Optional, out),
+            2 => return Ok(end_program(exec, cmd, EndKind::M02, out)),
+            30 => return Ok(end_program(exec, cmd, EndKind::M30, out)),
+            _ => {}
+        }
+    }
+    Ok(Flow::Next)
+}
+
+/// G04: dwell for P (milliseconds, or as the profile reads it) or X (seconds with a decimal
+/// point, milliseconds without).
+///
+/// # Errors
+/// A decimal point in P where the control forbids it; a negative time.
+pub(crate) fn dwell(exec: &mut Executor, cmd: &Command, g04_order: usize, out: &mut Output) -> Result<(), Alarm> {
+    let seconds = if let Some(p) = cmd.p {
+        let n = p.number;
+        match exec.profile.dwell_p {
+            DwellP::MillisecondsStrict if n.decimal_point && n.value.fract() != 0.0 => {
+                return Err(Alarm::error(
+                    AlarmCode::DecimalPointNotAllowed,
+                    p.span,
+                    "G04 P is a whole number of milliseconds",
+                )
+                .with_help("write P1500 for 1.5 s, or X1.5"));
+            }
+            DwellP::MillisecondsStrict => n.value / 1000.0,
+            DwellP::MillisecondsTruncated => n.value.trunc() / 1000.0,
+            DwellP::SecondsWithPoint if n.decimal_point => n.value,
+            DwellP::SecondsWithPoint => n.value / 1000.0,
+        }
+    } else if let Some(x) = cmd.axes[Axis::X.index()] {
+        let n = x.number;
+        if exec.profile.dwell_x_before_g04_is_increments && x.order < g04_order && n.decimal_point {
+            // FANUC 0M (spec A.8): the X word was converted as a distance before G04 was read, so
+            // its count of least increments becomes milliseconds.
+            let increment = match exec.modal.units {
+                Units::Millimetres => exec.profile.increment_mm,
+                Units::Inches => exec.profile.increment_inch,
+            };
+            (n.value / increment).round() / 1000.0
+        } else if n.decimal_point {
+            n.value
+        } else {
+            n.value / 1000.0
+        }
+    } else {
+        0.0
+    };
+    if seconds < 0.0 {
+        return Err(Alarm::error(AlarmCode::BadDwell, cmd.span, "dwell time cannot be negative"));
+    }
+    out.push(cmd, SegmentKind::Dwell { seconds });
+    Ok(())
+}

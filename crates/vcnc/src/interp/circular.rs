@@ -1,0 +1,88 @@
+//! G02/G03: circular and helical interpolation in the selected plane.
+
+use super::arc::{arc_center, in_plane, ArcSpec};
+use super::decode::Command;
+use super::exec::Executor;
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::AXES;
+use crate::motion::{ArcDirection, MachinePos, SegmentKind};
+
+/// Moves along an arc from the current position to `target` (machine coordinates).
+///
+/// I J K are incremental from the start whatever G90/G91 says (spec 1.4, L297); R is negative for
+/// arcs over 180 degrees; with I J K and the end on the start the arc is a full circle. Axes
+/// outside the plane move linearly with the arc (helical interpolation).
+///
+/// # Errors
+/// No feed, no centre words, an end off the circle, or R too small.
+pub(crate) fn arc(
+    exec: &mut Executor,
+    cmd: &Command,
+    direction: ArcDirection,
+    target: [f64; AXES],
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let plane = exec.modal.plane;
+    let (a, b, _) = plane.axes();
+    let spec = if let Some(r) = cmd.r {
+        ArcSpec::Radius { radius: exec.length(&r), span: r.span }
+    } else {
+        let (ca, cb) = (cmd.center[a], cmd.center[b]);
+        let Some(span) = ca.or(cb).map(|v| v.span) else {
+            return Err(Alarm::error(
+                AlarmCode::ArcWithoutCenter,
+                cmd.span,
+                "circular move without R or centre words of the selected plane",
+            )
+            .with_help(format!("in {} give {} or R", plane_name(plane), centre_letters(plane))));
+        };
+        let offset = (ca.map_or(0.0, |v| exec.length(&v)), cb.map_or(0.0, |v| exec.length(&v)));
+        ArcSpec::Center { offset, span }
+    };
+    let feed = exec.cutting_feed(cmd)?;
+    let start = in_plane(plane, &exec.position);
+    let end = in_plane(plane, &target);
+    if let ArcSpec::Radius { span, .. } = spec {
+        if start == end {
+            // An R arc ending on its start is an arc of 0 degrees: the control does not move in
+            // the plane. Only the other axes (if any) move, in a straight line.
+            out.push_warning(Alarm::warning(
+                AlarmCode::ArcRadiusTooSmall,
+                span,
+                "an R arc that ends on its start point does not move (use I J K for a full circle)",
+            ));
+            if target != exec.position {
+                let motion = exec.move_to(target, cmd);
+                out.push(cmd, SegmentKind::Line { motion, feed });
+            }
+            return Ok(());
+        }
+    }
+    let center_plane = arc_center(start, end, spec, direction, exec.profile.arc_radius_tolerance)?;
+    let mut center = exec.position;
+    center[a] = center_plane.0;
+    center[b] = center_plane.1;
+    let motion = exec.move_to(target, cmd);
+    out.push(
+        cmd,
+        SegmentKind::Arc { motion, center: MachinePos(center), direction, plane, extra_turns: 0, feed },
+    );
+    Ok(())
+}
+
+fn plane_name(plane: crate::motion::Plane) -> &'static str {
+    match plane {
+        crate::motion::Plane::Xy => "G17",
+        crate::motion::Plane::Zx => "G18",
+        crate::motion::Plane::Yz => "G19",
+    }
+}
+
+fn centre_letters(plane: crate::motion::Plane) -> &'static str {
+    match plane {
+        crate::motion::Plane::Xy => "I and J",
+        crate::motion::Plane::Zx => "K and I",
+        crate::motion::Plane::Yz => "J and K",
+    }
+}

@@ -1,0 +1,96 @@
+//! One-shot coordinate codes: G92, G92.1, G52, G53.
+
+use super::decode::Command;
+use super::exec::Executor;
+use super::modal::DistanceMode;
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::{Axis, AXES};
+use crate::profile::Group;
+
+/// G92: the current position gets the programmed coordinates (named axes only); the shift moves
+/// every work coordinate system (spec 1.54, L4477-4497). FANUC cancels the G52 local offset of the
+/// named axes at the same time. `G92 S_` alone is the spindle speed clamp for G96.
+///
+/// # Errors
+/// None yet; fallible like every one-shot code.
+pub(crate) fn g92(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
+    let program = exec.program_position();
+    for axis in Axis::ALL {
+        let Some(value) = &cmd.axes[axis.index()] else { continue };
+        let i = axis.index();
+        let wanted = exec.axis_value(axis, value);
+        exec.frames.g92[i] += exec.frames.local[i] + (program[i] - wanted);
+        exec.frames.local[i] = 0.0;
+    }
+    Ok(true)
+}
+
+/// G92.1 (FANUC): the work coordinate system preset — the G92 and G52 shifts of the named axes
+/// (all axes when none is named) are cancelled. Syntec's G92.1 with K and R (a preset with
+/// rotation, spec 1.55) is a coordinate transformation of issue 5.
+///
+/// # Errors
+/// Not supported yet for Syntec's rotated form; an axis value other than 0.
+pub(crate) fn g92_1(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
+    if cmd.r.is_some() || cmd.center[2].is_some() {
+        let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
+        return Err(Alarm::not_supported(span, "G92.1 with rotation (K, R)", Some(5)));
+    }
+    let named = cmd.has_axis_words();
+    for axis in Axis::ALL {
+        let i = axis.index();
+        match &cmd.axes[i] {
+            Some(value) if value.number.value != 0.0 => {
+                return Err(Alarm::error(
+                    AlarmCode::ValueOutOfRange,
+                    value.span,
+                    "G92.1 presets to zero: write the axis with 0",
+                ));
+            }
+            Some(_) => {}
+            None if named => continue,
+            None => {}
+        }
+        exec.frames.g92[i] = 0.0;
+        exec.frames.local[i] = 0.0;
+    }
+    Ok(true)
+}
+
+/// G52: the local coordinate system's origin, in the work coordinate system, for the named axes
+/// (absolute whatever G90/G91 says; `G52 X0 Y0 Z0` cancels it; spec 1.30).
+///
+/// # Errors
+/// None yet.
+pub(crate) fn g52(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
+    for axis in Axis::ALL {
+        if let Some(value) = &cmd.axes[axis.index()] {
+            exec.frames.local[axis.index()] = exec.axis_value(axis, value);
+        }
+    }
+    Ok(true)
+}
+
+/// G53: a rapid to machine coordinates for the named axes, one block only (spec 1.31). The tool
+/// length vector is not applied (a retract with `G53 Z0` reaches machine Z0 with any tool). In G91
+/// G53 is an ordinary incremental move (Syntec, spec 1.31), so the block's motion runs instead.
+///
+/// # Errors
+/// None yet.
+pub(crate) fn g53(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<bool, Alarm> {
+    if exec.modal.distance == DistanceMode::Incremental {
+        return Ok(false);
+    }
+    let mut target: [f64; AXES] = exec.position;
+    for axis in Axis::ALL {
+        if let Some(value) = &cmd.axes[axis.index()] {
+            target[axis.index()] = exec.axis_value(axis, value);
+        }
+    }
+    if cmd.axes[Axis::Z.index()].is_some() {
+        exec.frames.length_vector = 0.0;
+    }
+    exec.rapid_to(target, cmd, out);
+    Ok(true)
+}

@@ -1,0 +1,310 @@
+//! Executing one decoded block, in the order the control executes its parts.
+//!
+//! Order within a block (FANUC M-series practice): modal G codes, F, S, T, M06, spindle and
+//! coolant M codes, G04, tool length compensation, one-shot coordinate codes (G10, G92, G92.1,
+//! G52, G28, G29, G30, G53), the motion, then program stops and ends (M00, M01, M02, M30).
+//! Each part is a function of its own module; this file only sequences them.
+
+use super::decode::{Command, Value};
+use super::frames::Frames;
+use super::modal::{FeedMode, LengthComp, ModalState, MotionMode, Units};
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::{Axis, Machine, WorkOffsetId, AXES};
+use crate::motion::{EndKind, Feed, MachinePos, Move, SegmentKind, SpindleState, StopKind};
+use crate::profile::{DecimalLess, GCode, Group, Profile};
+
+/// Everything the control remembers between blocks.
+#[derive(Clone, Debug)]
+pub(crate) struct Executor {
+    pub(crate) profile: Profile,
+    pub(crate) machine: Machine,
+    pub(crate) modal: ModalState,
+    pub(crate) frames: Frames,
+    /// Machine position of every axis.
+    pub(crate) position: [f64; AXES],
+    /// Last programmed F, converted to mm/min (G94), mm/rev (G95) or 1/min (G93).
+    pub(crate) feed: Option<f64>,
+    /// Last programmed S.
+    pub(crate) speed: f64,
+    pub(crate) spindle: SpindleState,
+    pub(crate) selected_tool: u32,
+    pub(crate) tool_in_spindle: u32,
+    /// The H number of the active length compensation.
+    pub(crate) length_offset_number: u32,
+    /// The G28/G30 intermediate point, program coordinates, per axis.
+    pub(crate) intermediate: [Option<f64>; AXES],
+    pub(crate) ended: bool,
+}
+
+/// What one block did to the flow of the program.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Flow {
+    /// Go on with the next block.
+    Next,
+    /// The program has ended.
+    End,
+}
+
+impl Executor {
+    pub(crate) fn new(machine: &Machine) -> Executor {
+        let profile = machine.profile.clone();
+        Executor {
+            modal: ModalState::power_on(&profile.power_on),
+            frames: Frames::new(machine),
+            position: machine.start,
+            feed: profile.default_feed,
+            speed: 0.0,
+            spindle: SpindleState::Stopped,
+            selected_tool: 0,
+            tool_in_spindle: 0,
+            length_offset_number: 0,
+            intermediate: [None; AXES],
+            ended: false,
+            profile,
+            machine: machine.clone(),
+        }
+    }
+
+    /// The current position in program coordinates.
+    pub(crate) fn program_position(&self) -> [f64; AXES] {
+        self.frames.to_program(self.modal.work_offset, &self.position)
+    }
+
+    /// Runs one block.
+    ///
+    /// # Errors
+    /// The alarm that stops the program at this block.
+    pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
+        self.apply_modal(cmd)?;
+        self.set_feed(cmd)?;
+        super::auxiliary::speed_and_tool(self, cmd, out)?;
+        super::auxiliary::before_motion(self, cmd, out)?;
+        let dwell = cmd.group(Group::NonModal).filter(|g| g.code == GCode::Dwell);
+        if let Some(g) = dwell {
+            super::auxiliary::dwell(self, cmd, g.order, out)?;
+        }
+        let length_changed = super::length::apply(self, cmd, out)?;
+        let consumed = match cmd.group(Group::NonModal).map(|g| g.code) {
+            Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
+            Some(GCode::SetCoordinates) => super::coords::g92(self, cmd)?,
+            Some(GCode::PresetCoordinates) => super::coords::g92_1(self, cmd)?,
+            Some(GCode::LocalCoordinates) => super::coords::g52(self, cmd)?,
+            Some(GCode::ReferenceReturn) => super::reference::g28(self, cmd, out)?,
+            Some(GCode::NthReferenceReturn) => super::reference::g30(self, cmd, out)?,
+            Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
+            Some(GCode::MachineCoordinates) => super::coords::g53(self, cmd, out)?,
+            Some(GCode::Dwell) => true,
+            _ => false,
+        };
+        if !consumed && (cmd.has_axis_words() || has_center_words(cmd)) {
+            self.motion(cmd, length_changed, out)?;
+        } else if length_changed && !consumed {
+            super::length::move_to_new_vector(self, cmd, out)?;
+        }
+        if self.modal.feed_mode == FeedMode::InverseTime {
+            // G93: F is not modal (spec 1.56): every cutting block needs its own.
+            self.feed = None;
+        }
+        super::auxiliary::after_motion(self, cmd, out)
+    }
+
+    fn apply_modal(&mut self, cmd: &Command) -> Result<(), Alarm> {
+        for g in cmd.g_codes() {
+            match g.code {
+                GCode::ExtendedWorkOffset => {
+                    let p = cmd.p.ok_or_else(|| {
+                        Alarm::error(AlarmCode::WorkOffsetOutOfRange, g.span, "G54.1 needs P (1 to the number of extended offsets)")
+                    })?;
+                    let n = p.number.whole().unwrap_or(-1);
+                    if n < 1 || n > i64::from(self.profile.g54_1_count) {
+                        return Err(Alarm::error(
+                            AlarmCode::WorkOffsetOutOfRange,
+                            p.span,
+                            format!("G54.1 P{n}: this control has P1 to P{}", self.profile.g54_1_count),
+                        ));
+                    }
+                    self.modal.work_offset = WorkOffsetId::Extended(n as u32);
+                }
+                GCode::FeedPerMinute | GCode::FeedPerRevolution | GCode::InverseTimeFeed => {
+                    let before = self.modal.feed_mode;
+                    self.modal.apply(g.code);
+                    if self.modal.feed_mode != before {
+                        // F means something else in the new mode; FANUC clears it.
+                        self.feed = match self.modal.feed_mode {
+                            FeedMode::PerMinute => self.profile.default_feed,
+                            _ => None,
+                        };
+                    }
+                }
+                code => self.modal.apply(code),
+            }
+        }
+        Ok(())
+    }
+
+    fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
+        let Some(f) = cmd.f else { return Ok(()) };
+        if f.number.value < 0.0 {
+            return Err(Alarm::error(AlarmCode::BadFeedRate, f.span, "feed rate cannot be negative"));
+        }
+        let value = match self.modal.feed_mode {
+            FeedMode::PerMinute | FeedMode::PerRevolution => f.number.value * self.modal.units.to_mm(),
+            FeedMode::InverseTime => f.number.value,
+        };
+        self.feed = Some(value);
+        Ok(())
+    }
+
+    /// A length word (axis, I J K, R, Q) converted to mm with the units and input rules in force.
+    pub(crate) fn length(&self, value: &Value) -> f64 {
+        let n = value.number;
+        let units = self.modal.units;
+        let raw = if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
+            match units {
+                Units::Millimetres => n.value * self.profile.increment_mm,
+                Units::Inches => n.value * self.profile.increment_inch,
+            }
+        } else {
+            n.value
+        };
+        raw * units.to_mm()
+    }
+
+    /// An axis word converted: mm for linear axes, degrees for rotary ones.
+    pub(crate) fn axis_value(&self, axis: Axis, value: &Value) -> f64 {
+        if axis.is_rotary() {
+            let n = value.number;
+            if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
+                n.value * self.profile.increment_deg
+            } else {
+                n.value
+            }
+        } else {
+            self.length(value)
+        }
+    }
+
+    /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
+    pub(crate) fn target_program(&self, cmd: &Command) -> [f64; AXES] {
+        let mut target = self.program_position();
+        for axis in Axis::ALL {
+            if let Some(value) = &cmd.axes[axis.index()] {
+                let v = self.axis_value(axis, value);
+                match self.modal.distance {
+                    super::modal::DistanceMode::Absolute => target[axis.index()] = v,
+                    super::modal::DistanceMode::Incremental => target[axis.index()] += v,
+                }
+            }
+        }
+        target
+    }
+
+    /// The tool length offset of the active compensation, mm (signed for G44).
+    pub(crate) fn active_length(&self) -> f64 {
+        let value = self
+            .machine
+            .tool_offsets
+            .get(&self.length_offset_number)
+            .map_or(0.0, |t| t.length + t.length_wear);
+        match self.modal.length_comp {
+            LengthComp::Off => 0.0,
+            LengthComp::Plus => value,
+            LengthComp::Minus => -value,
+        }
+    }
+
+    /// Machine coordinates for a program target; the length vector follows the compensation in
+    /// force when the block moves Z (or changes the compensation).
+    pub(crate) fn to_machine(&mut self, target: &[f64; AXES], moves_z: bool) -> [f64; AXES] {
+        if moves_z {
+            self.frames.length_vector = self.active_length();
+        }
+        self.frames.to_machine(self.modal.work_offset, target, self.frames.length_vector)
+    }
+
+    fn motion(&mut self, cmd: &Command, length_changed: bool, out: &mut Output) -> Result<(), Alarm> {
+        let target = self.target_program(cmd);
+        let moves_z = cmd.axes[Axis::Z.index()].is_some() || length_changed;
+        let machine_target = self.to_machine(&target, moves_z);
+        match self.modal.motion {
+            MotionMode::Rapid => {
+                self.rapid_to(machine_target, cmd, out);
+                Ok(())
+            }
+            MotionMode::Linear => {
+                let feed = self.cutting_feed(cmd)?;
+                let motion = self.move_to(machine_target, cmd);
+                out.push(cmd, SegmentKind::Line { motion, feed });
+                Ok(())
+            }
+            MotionMode::Arc(direction) => super::circular::arc(self, cmd, direction, machine_target, out),
+        }
+    }
+
+    /// A rapid to a machine position, recorded in the stream.
+    pub(crate) fn rapid_to(&mut self, to: [f64; AXES], cmd: &Command, out: &mut Output) {
+        if to == self.position {
+            return;
+        }
+        let per_axis = self.profile.rapid_path == crate::profile::RapidPath::PerAxis;
+        let motion = self.move_to(to, cmd);
+        out.push(cmd, SegmentKind::Rapid { motion, per_axis });
+    }
+
+    /// A [`Move`] from the current position to `to`; the position becomes `to`.
+    pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Move {
+        let from = MachinePos(self.position);
+        self.position = to;
+        let program = self.program_position();
+        Move {
+            from,
+            to: MachinePos(to),
+            path_mode: self.modal.path_mode,
+            exact_stop: cmd.exact_stop_once,
+            offset: std::array::from_fn(|i| to[i] - program[i]),
+        }
+    }
+
+    /// The feed of a cutting move in the mode in force.
+    ///
+    /// # Errors
+    /// [`AlarmCode::NoFeedRate`] when no F is in force (FANUC alarm 011).
+    pub(crate) fn cutting_feed(&self, cmd: &Command) -> Result<Feed, Alarm> {
+        let Some(f) = self.feed else {
+            let what = match self.modal.feed_mode {
+                FeedMode::InverseTime => "in G93 inverse-time mode every cutting block needs its own F",
+                _ => "cutting move before any feed rate (F) was programmed",
+            };
+            return Err(Alarm::error(AlarmCode::NoFeedRate, cmd.span, what)
+                .with_help("add an F word to this block or an earlier one (FANUC alarm 011)"));
+        };
+        if f == 0.0 {
+            return Err(Alarm::error(AlarmCode::NoFeedRate, cmd.f.map_or(cmd.span, |v| v.span), "feed rate is zero"));
+        }
+        Ok(match self.modal.feed_mode {
+            FeedMode::PerMinute => Feed::PerMinute(f),
+            FeedMode::PerRevolution => {
+                Feed::PerRevolution { per_revolution: f, rpm: (self.speed > 0.0).then_some(self.speed) }
+            }
+            FeedMode::InverseTime => Feed::InverseTime(f),
+        })
+    }
+}
+
+fn has_center_words(cmd: &Command) -> bool {
+    cmd.center.iter().any(Option::is_some) || cmd.r.is_some()
+}
+
+/// Ends the program with the given end code.
+pub(crate) fn end_program(exec: &mut Executor, cmd: &Command, kind: EndKind, out: &mut Output) -> Flow {
+    exec.ended = true;
+    out.push(cmd, SegmentKind::End { kind });
+    Flow::End
+}
+
+/// An M00/M01 stop.
+pub(crate) fn stop(cmd: &Command, kind: StopKind, out: &mut Output) {
+    out.push(cmd, SegmentKind::Stop { kind });
+}
+

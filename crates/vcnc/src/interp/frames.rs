@@ -1,0 +1,67 @@
+//! The coordinate chain: from program coordinates to machine coordinates.
+//!
+//! machine = program + local (G52) + G92 shift + work offset (G54 ...) + external offset
+//!           + tool length vector (Z only)
+//!
+//! (spec/iso-syntec-milling.md 0.1.3, seed L4493-4497.) The tool length vector is the offset
+//! actually applied to the machine position; it follows the modal G43/G44 value only when a block
+//! moves Z or changes the compensation, and a reference return on Z clears it (FANUC, spec A.26).
+
+use crate::machine::{Machine, WorkOffsetId, AXES};
+use std::collections::BTreeMap;
+
+/// Offsets that move the program's zero.
+#[derive(Clone, Debug)]
+pub(crate) struct Frames {
+    work_offsets: BTreeMap<WorkOffsetId, [f64; AXES]>,
+    /// The G92 shift.
+    pub g92: [f64; AXES],
+    /// The G52 local offset.
+    pub(crate) local: [f64; AXES],
+    /// The tool length offset applied to the Z position now.
+    pub(crate) length_vector: f64,
+}
+
+impl Frames {
+    pub(crate) fn new(machine: &Machine) -> Frames {
+        Frames {
+            work_offsets: machine.work_offsets.clone(),
+            g92: [0.0; AXES],
+            local: [0.0; AXES],
+            length_vector: 0.0,
+        }
+    }
+
+    /// The value of a work offset register.
+    pub(crate) fn work_offset(&self, id: WorkOffsetId) -> [f64; AXES] {
+        self.work_offsets.get(&id).copied().unwrap_or([0.0; AXES])
+    }
+
+    /// Sets one axis of a work offset register.
+    pub(crate) fn set_work_offset(&mut self, id: WorkOffsetId, axis: usize, value: f64) {
+        self.work_offsets.entry(id).or_insert([0.0; AXES])[axis] = value;
+    }
+
+    /// Everything between program and machine coordinates but the tool length, per axis.
+    pub(crate) fn shift(&self, active: WorkOffsetId) -> [f64; AXES] {
+        let work = self.work_offset(active);
+        let external = self.work_offset(WorkOffsetId::External);
+        std::array::from_fn(|i| work[i] + external[i] + self.g92[i] + self.local[i])
+    }
+
+    /// Program coordinates of a machine position, with the applied tool length vector.
+    pub(crate) fn to_program(&self, active: WorkOffsetId, machine: &[f64; AXES]) -> [f64; AXES] {
+        let shift = self.shift(active);
+        let mut program: [f64; AXES] = std::array::from_fn(|i| machine[i] - shift[i]);
+        program[2] -= self.length_vector;
+        program
+    }
+
+    /// Machine coordinates of a program position, with tool length vector `length`.
+    pub(crate) fn to_machine(&self, active: WorkOffsetId, program: &[f64; AXES], length: f64) -> [f64; AXES] {
+        let shift = self.shift(active);
+        let mut machine: [f64; AXES] = std::array::from_fn(|i| program[i] + shift[i]);
+        machine[2] += length;
+        machine
+    }
+}

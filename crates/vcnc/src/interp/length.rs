@@ -1,0 +1,53 @@
+//! G43/G44/G49: tool length compensation along Z.
+//!
+//! The H number selects an entry of the offset memory (geometry + wear). A block with G43/G44/G49
+//! or a new H and no Z word still moves Z by the change of offset, as if `G91 Z0` had been
+//! commanded (spec/iso-fanuc0m-mitsubishi.md B.12 note 1); H0 means an offset of zero.
+
+use super::decode::Command;
+use super::exec::Executor;
+use super::modal::{LengthComp, MotionMode};
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::motion::SegmentKind;
+use crate::profile::Group;
+
+/// Takes G43/G44/G49 and H from the block. Returns true when the applied length vector must
+/// change in this block.
+///
+/// # Errors
+/// [`AlarmCode::OffsetNumberOutOfRange`] for an H number the control does not have.
+pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Result<bool, Alarm> {
+    if let Some(h) = cmd.h {
+        let n = h.number.whole().unwrap_or(-1);
+        if n < 0 || n > i64::from(exec.profile.max_offset_number) {
+            return Err(Alarm::error(
+                AlarmCode::OffsetNumberOutOfRange,
+                h.span,
+                format!("H{n} is out of range: this control has H0 to H{}", exec.profile.max_offset_number),
+            ));
+        }
+        exec.length_offset_number = n as u32;
+    }
+    let changed = cmd.group(Group::LengthComp).is_some()
+        || (cmd.h.is_some() && exec.modal.length_comp != LengthComp::Off);
+    Ok(changed && (exec.active_length() - exec.frames.length_vector).abs() > 0.0)
+}
+
+/// Moves Z so that the program position stays where it is under the new offset.
+///
+/// # Errors
+/// None today; kept fallible for the feed check of a G01-mode offset move.
+pub(crate) fn move_to_new_vector(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+    let program = exec.program_position();
+    let target = exec.to_machine(&program, true);
+    match (exec.modal.motion, exec.feed) {
+        (MotionMode::Linear | MotionMode::Arc(_), Some(_)) => {
+            let feed = exec.cutting_feed(cmd)?;
+            let motion = exec.move_to(target, cmd);
+            out.push(cmd, SegmentKind::Line { motion, feed });
+        }
+        _ => exec.rapid_to(target, cmd, out),
+    }
+    Ok(())
+}

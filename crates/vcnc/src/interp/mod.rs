@@ -1,0 +1,241 @@
+//! The interpreter: pulls blocks from a program's text and yields the motion stream.
+//!
+//! [`Interpreter`] is an iterator of `Result<Segment, Alarm>`. It reads one line at a time,
+//! decodes each block (`decode`), and executes it (`exec`) in the control's order; the segments
+//! of a block go into a small queue that the iterator drains. Warnings come out as `Err` items and
+//! the run goes on; the first error is the last item. Memory does not grow with the program.
+//!
+//! The modules below follow the pipeline: decode, modal state, the coordinate chain (frames),
+//! the executor and the parts it calls (motion, tool length, coordinate codes, reference
+//! returns, data input, auxiliary functions).
+
+mod arc;
+mod auxiliary;
+mod circular;
+mod coords;
+mod data_input;
+mod decode;
+mod exec;
+mod frames;
+mod length;
+pub mod modal;
+mod reference;
+
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::Machine;
+use crate::motion::{EndKind, MachinePos, Segment, SegmentKind};
+use crate::source::{FileId, Span};
+use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
+use crate::syntax::lines::LineSource;
+use crate::syntax::{BlockKind, Dialect};
+use decode::Command;
+use exec::{Executor, Flow};
+use std::collections::VecDeque;
+
+pub use modal::ModalState;
+
+/// Run-time switches of the operator's panel.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// Block skip switches 1 to 9: a block starting with `/n` is skipped when switch n is on.
+    pub block_skip: [bool; 9],
+    /// The dialect of the program; SINUMERIK programs get one alarm saying it is not supported yet.
+    pub dialect: Dialect,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options { block_skip: [false; 9], dialect: Dialect::Iso }
+    }
+}
+
+/// The queue of what one block produced.
+#[derive(Debug, Default)]
+pub(crate) struct Output {
+    items: VecDeque<Result<Segment, Alarm>>,
+}
+
+impl Output {
+    /// Records a segment of the block `cmd`.
+    pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
+        self.items.push_back(Ok(Segment { kind, span: cmd.span, sequence: cmd.sequence }));
+    }
+
+    /// Records a warning.
+    pub(crate) fn push_warning(&mut self, alarm: Alarm) {
+        self.items.push_back(Err(alarm));
+    }
+}
+
+/// Interprets an ISO program: an iterator over its motion stream.
+pub struct Interpreter<S> {
+    source: S,
+    file: FileId,
+    syntax: SyntaxOptions,
+    options: Options,
+    exec: Executor,
+    blocks: LineBlocks,
+    cursor: usize,
+    command: Command,
+    out: Output,
+    done: bool,
+    started: bool,
+    last_span: Span,
+    blocks_executed: u64,
+}
+
+impl<S: LineSource> Interpreter<S> {
+    /// An interpreter for the program in `source` (file `file`) on `machine`.
+    pub fn new(source: S, file: FileId, machine: &Machine, options: Options) -> Interpreter<S> {
+        let exec = Executor::new(machine);
+        let mut interpreter = Interpreter {
+            source,
+            file,
+            syntax: machine.profile.syntax(),
+            exec,
+            blocks: LineBlocks::new(),
+            cursor: 0,
+            command: Command::default(),
+            out: Output::default(),
+            done: false,
+            started: false,
+            last_span: Span::new(file, 0, 0, 1),
+            blocks_executed: 0,
+            options,
+        };
+        if interpreter.options.dialect == Dialect::Sinumerik {
+            interpreter.out.push_warning(
+                Alarm {
+                    code: AlarmCode::DialectNotSupported,
+                    severity: crate::alarm::Severity::Error,
+                    message: "SINUMERIK programs are not supported yet".to_string(),
+                    span: None,
+                    labels: Vec::new(),
+                    help: Some("vcnc runs FANUC-family ISO programs today; SINUMERIK 840D/828D support is planned".into()),
+                },
+            );
+        }
+        interpreter
+    }
+
+    /// Blocks executed so far (skipped, empty and comment-only blocks not counted).
+    pub fn blocks_executed(&self) -> u64 {
+        self.blocks_executed
+    }
+
+    /// The machine position now.
+    pub fn position(&self) -> MachinePos {
+        MachinePos(self.exec.position)
+    }
+
+    /// The position now in the program's coordinates (what the control shows as "absolute").
+    pub fn program_position(&self) -> [f64; crate::machine::AXES] {
+        self.exec.program_position()
+    }
+
+    /// The modal state now.
+    pub fn modal(&self) -> &ModalState {
+        &self.exec.modal
+    }
+
+    /// Reads and runs until something is queued or the program is over.
+    fn step(&mut self) {
+        if self.cursor < self.blocks.as_slice().len() {
+            self.run_block();
+            return;
+        }
+        match self.source.next_line() {
+            Ok(Some(line)) => {
+                parse_line(line, self.file, &self.syntax, &mut self.blocks);
+                self.cursor = 0;
+            }
+            Ok(None) => self.end_of_text(),
+            Err(error) => {
+                self.out.push_warning(Alarm {
+                    code: AlarmCode::ReadError,
+                    severity: crate::alarm::Severity::Error,
+                    message: format!("cannot read the program: {error}"),
+                    span: None,
+                    labels: Vec::new(),
+                    help: None,
+                });
+                self.done = true;
+            }
+        }
+    }
+
+    fn end_of_text(&mut self) {
+        let span = self.last_span;
+        self.out.push_warning(
+            Alarm::warning(AlarmCode::MissingProgramEnd, span, "the program ends without M02, M30 or %")
+                .with_help("end the program with M30"),
+        );
+        self.out.items.push_back(Ok(Segment { kind: SegmentKind::End { kind: EndKind::EndOfText }, span, sequence: None }));
+        self.done = true;
+    }
+
+    fn run_block(&mut self) {
+        let block = &self.blocks.as_slice()[self.cursor];
+        self.cursor += 1;
+        for alarm in &block.alarms {
+            self.out.push_warning(alarm.clone());
+            if alarm.is_error() {
+                self.done = true;
+                return;
+            }
+        }
+        if let Some(level) = block.skip {
+            if self.options.block_skip[usize::from(level.clamp(1, 9)) - 1] {
+                return;
+            }
+        }
+        if block.kind == BlockKind::TapeMark {
+            if self.started {
+                let cmd = Command::at(block.span);
+                self.out.push(&cmd, SegmentKind::End { kind: EndKind::TapeMark });
+                self.done = true;
+            }
+            return;
+        }
+        if block.is_empty() {
+            return;
+        }
+        self.started = true;
+        self.last_span = block.span;
+        let machine = &self.exec.machine;
+        let decoded = decode::decode(block, &self.exec.profile, &|axis| machine.has_axis(axis), &mut self.command);
+        for warning in self.command.warnings.drain(..) {
+            self.out.push_warning(warning);
+        }
+        if let Err(alarm) = decoded {
+            self.out.push_warning(alarm);
+            self.done = true;
+            return;
+        }
+        self.blocks_executed += 1;
+        match self.exec.run(&self.command, &mut self.out) {
+            Ok(Flow::Next) => {}
+            Ok(Flow::End) => self.done = true,
+            Err(alarm) => {
+                self.out.push_warning(alarm);
+                self.done = true;
+            }
+        }
+    }
+}
+
+impl<S: LineSource> Iterator for Interpreter<S> {
+    type Item = Result<Segment, Alarm>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            if let Some(item) = self.out.items.pop_front() {
+                return Some(item);
+            }
+            if self.done {
+                return None;
+            }
+            self.step();
+        }
+    }
+}

@@ -1,0 +1,206 @@
+//! The modal state: one value per modal group, as the control keeps it between blocks.
+
+use crate::machine::WorkOffsetId;
+use crate::motion::{ArcDirection, PathMode, Plane};
+use crate::profile::{GCode, PowerOn};
+
+/// Group 01.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MotionMode {
+    /// G00.
+    Rapid,
+    /// G01.
+    Linear,
+    /// G02 / G03.
+    Arc(ArcDirection),
+}
+
+/// Group 03.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DistanceMode {
+    /// G90.
+    Absolute,
+    /// G91.
+    Incremental,
+}
+
+/// Group 06.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Units {
+    /// G21 (Syntec G71).
+    Millimetres,
+    /// G20 (Syntec G70).
+    Inches,
+}
+
+impl Units {
+    /// Millimetres per program unit.
+    pub fn to_mm(self) -> f64 {
+        match self {
+            Units::Millimetres => 1.0,
+            Units::Inches => 25.4,
+        }
+    }
+}
+
+/// Group 05.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FeedMode {
+    /// G94.
+    PerMinute,
+    /// G95.
+    PerRevolution,
+    /// G93.
+    InverseTime,
+}
+
+/// Group 08.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LengthComp {
+    /// G49.
+    Off,
+    /// G43.
+    Plus,
+    /// G44.
+    Minus,
+}
+
+/// Group 13.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SpindleMode {
+    /// G97.
+    Rpm,
+    /// G96.
+    SurfaceSpeed,
+}
+
+/// Group 10.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CycleReturn {
+    /// G98.
+    InitialLevel,
+    /// G99.
+    RLevel,
+}
+
+/// The modal state of the control: one field per modal group.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModalState {
+    /// Group 01.
+    pub motion: MotionMode,
+    /// Group 02.
+    pub plane: Plane,
+    /// Group 03.
+    pub distance: DistanceMode,
+    /// Group 05.
+    pub feed_mode: FeedMode,
+    /// Group 06.
+    pub units: Units,
+    /// Group 08.
+    pub length_comp: LengthComp,
+    /// Group 10.
+    pub cycle_return: CycleReturn,
+    /// Group 13.
+    pub spindle_mode: SpindleMode,
+    /// Group 14.
+    pub work_offset: WorkOffsetId,
+    /// Group 15.
+    pub path_mode: PathMode,
+}
+
+impl ModalState {
+    /// The state at power-on, from the profile's G codes.
+    pub fn power_on(power_on: &PowerOn) -> ModalState {
+        let mut state = ModalState {
+            motion: MotionMode::Rapid,
+            plane: Plane::Xy,
+            distance: DistanceMode::Absolute,
+            feed_mode: FeedMode::PerMinute,
+            units: Units::Millimetres,
+            length_comp: LengthComp::Off,
+            cycle_return: CycleReturn::InitialLevel,
+            spindle_mode: SpindleMode::Rpm,
+            work_offset: WorkOffsetId::Standard(1),
+            path_mode: PathMode::Continuous,
+        };
+        for code in [
+            power_on.motion,
+            power_on.plane,
+            power_on.distance,
+            power_on.units,
+            power_on.feed_mode,
+            power_on.work_offset,
+            power_on.path_mode,
+            power_on.cycle_return,
+        ] {
+            if let Some(g) = power_on_code(code) {
+                state.apply(g);
+            }
+        }
+        state
+    }
+
+    /// Sets the group of `code` to it. Codes of other kinds (one-shot, cancels of features that
+    /// are never on) change nothing here.
+    pub fn apply(&mut self, code: GCode) {
+        use GCode::*;
+        match code {
+            Rapid => self.motion = MotionMode::Rapid,
+            Linear => self.motion = MotionMode::Linear,
+            ArcClockwise => self.motion = MotionMode::Arc(ArcDirection::Clockwise),
+            ArcCounterClockwise => self.motion = MotionMode::Arc(ArcDirection::CounterClockwise),
+            PlaneXy => self.plane = Plane::Xy,
+            PlaneZx => self.plane = Plane::Zx,
+            PlaneYz => self.plane = Plane::Yz,
+            Absolute => self.distance = DistanceMode::Absolute,
+            Incremental => self.distance = DistanceMode::Incremental,
+            FeedPerMinute => self.feed_mode = FeedMode::PerMinute,
+            FeedPerRevolution => self.feed_mode = FeedMode::PerRevolution,
+            InverseTimeFeed => self.feed_mode = FeedMode::InverseTime,
+            Inch => self.units = Units::Inches,
+            Metric => self.units = Units::Millimetres,
+            LengthCompPlus => self.length_comp = LengthComp::Plus,
+            LengthCompMinus => self.length_comp = LengthComp::Minus,
+            LengthCompCancel => self.length_comp = LengthComp::Off,
+            ReturnToInitialLevel => self.cycle_return = CycleReturn::InitialLevel,
+            ReturnToRLevel => self.cycle_return = CycleReturn::RLevel,
+            ConstantSurfaceSpeed => self.spindle_mode = SpindleMode::SurfaceSpeed,
+            ConstantSpindleSpeed => self.spindle_mode = SpindleMode::Rpm,
+            WorkOffset(n) => self.work_offset = WorkOffsetId::Standard(n),
+            ExactStopMode => self.path_mode = PathMode::ExactStop,
+            AutomaticCornerOverride => self.path_mode = PathMode::CornerOverride,
+            TappingMode => self.path_mode = PathMode::Tapping,
+            ContinuousMode => self.path_mode = PathMode::Continuous,
+            ExtendedWorkOffset | Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
+            | NthReferenceReturn | CutterCompCancel | LocalCoordinates | MachineCoordinates | CycleCancel
+            | SetCoordinates | PresetCoordinates | PolarCancel | ScalingCancel | MirrorCancel | ModalMacroCancel
+            | RotationCancel | PolarInterpolationCancel => {}
+        }
+    }
+}
+
+/// The G code of a power-on setting, read without a profile (the codes are the same everywhere,
+/// but for Syntec's G70/G71).
+fn power_on_code(tenths: u32) -> Option<GCode> {
+    use GCode::*;
+    Some(match tenths {
+        0 => Rapid,
+        10 => Linear,
+        170 => PlaneXy,
+        180 => PlaneZx,
+        190 => PlaneYz,
+        900 => Absolute,
+        910 => Incremental,
+        200 | 700 => Inch,
+        210 | 710 => Metric,
+        930 => InverseTimeFeed,
+        940 => FeedPerMinute,
+        950 => FeedPerRevolution,
+        540..=590 if tenths % 10 == 0 => WorkOffset(((tenths - 530) / 10) as u8),
+        610 => ExactStopMode,
+        640 => ContinuousMode,
+        980 => ReturnToInitialLevel,
+        990 => ReturnToRLevel,
+        _ => return None,
+    })
+}

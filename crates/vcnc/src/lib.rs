@@ -1,0 +1,55 @@
+//! vcnc: a virtual CNC milling controller.
+//!
+//! vcnc runs NC part programs the way the control would: it reads the program text
+//! ([`syntax`]), interprets every block with the modal state, coordinate systems and offsets of
+//! the control ([`interp`]), and yields the canonical motion stream ([`motion`]) in machine
+//! coordinates, each segment tagged with the span of the block it came from. Problems are
+//! [`Alarm`]s with a code and a span, never panics.
+//!
+//! ```
+//! use vcnc::{interpret_str, Machine, Options, SegmentKind};
+//!
+//! let machine = Machine::default();
+//! let program = "G90 G21 G17\nG0 X10. Y5.\nG1 Z-1. F200.\nG2 X20. Y5. R5.\nM30\n";
+//! let mut arcs = 0;
+//! for item in interpret_str(program, &machine, Options::default()) {
+//!     let segment = item.expect("this program has no alarm");
+//!     if let SegmentKind::Arc { .. } = segment.kind {
+//!         arcs += 1;
+//!     }
+//! }
+//! assert_eq!(arcs, 1);
+//! ```
+//!
+//! The pipeline streams: the interpreter pulls one line at a time from a
+//! [`LineSource`](syntax::lines::LineSource), so a program of any length runs in constant memory.
+
+#![warn(missing_docs)]
+
+pub mod alarm;
+pub mod interp;
+pub mod machine;
+pub mod motion;
+pub mod profile;
+pub mod source;
+pub mod summary;
+pub mod syntax;
+
+pub use alarm::{Alarm, AlarmCode, Severity};
+pub use interp::{Interpreter, Options};
+pub use machine::{Axis, Machine};
+pub use motion::{Segment, SegmentKind};
+pub use profile::{Profile, ProfileName};
+pub use source::{FileId, Span};
+
+use syntax::lines::TextLines;
+
+/// Interprets a program held in memory, as file 0.
+pub fn interpret_str<'a>(text: &'a str, machine: &Machine, options: Options) -> Interpreter<TextLines<'a>> {
+    Interpreter::new(TextLines::new(text.as_bytes()), FileId(0), machine, options)
+}
+
+/// Interprets a program held in memory as bytes (Latin-1 comments are fine), as file 0.
+pub fn interpret_bytes<'a>(text: &'a [u8], machine: &Machine, options: Options) -> Interpreter<TextLines<'a>> {
+    Interpreter::new(TextLines::new(text), FileId(0), machine, options)
+}

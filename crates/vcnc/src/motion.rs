@@ -1,0 +1,315 @@
+//! The canonical motion stream: what the interpreter yields.
+//!
+//! Every [`Segment`] is in machine coordinates (mm, degrees) and carries the [`Span`] of the block
+//! it comes from. Consumers (trace output, planner, checks, simulation) need nothing else: no
+//! segment refers back to syntax, modal state or the profile.
+
+use crate::machine::AXES;
+use crate::source::Span;
+
+/// A position in machine coordinates: X Y Z in mm, A B C in degrees.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct MachinePos(pub [f64; AXES]);
+
+impl MachinePos {
+    /// X, Y, Z.
+    pub fn xyz(&self) -> [f64; 3] {
+        [self.0[0], self.0[1], self.0[2]]
+    }
+
+    /// Straight-line distance to `other` over the linear axes.
+    pub fn distance_xyz(&self, other: &MachinePos) -> f64 {
+        let d = |i: usize| other.0[i] - self.0[i];
+        (d(0) * d(0) + d(1) * d(1) + d(2) * d(2)).sqrt()
+    }
+}
+
+/// The plane of an arc.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Plane {
+    /// G17: X-Y, helix axis Z.
+    Xy,
+    /// G18: Z-X, helix axis Y.
+    Zx,
+    /// G19: Y-Z, helix axis X.
+    Yz,
+}
+
+impl Plane {
+    /// The axis indices (first, second, normal): for G18 the first axis is Z and the second X, so
+    /// that counter-clockwise is seen from +Y.
+    pub fn axes(self) -> (usize, usize, usize) {
+        match self {
+            Plane::Xy => (0, 1, 2),
+            Plane::Zx => (2, 0, 1),
+            Plane::Yz => (1, 2, 0),
+        }
+    }
+
+    /// `xy`, `zx` or `yz`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Plane::Xy => "xy",
+            Plane::Zx => "zx",
+            Plane::Yz => "yz",
+        }
+    }
+}
+
+/// Direction of an arc, seen from the positive end of the plane's normal axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ArcDirection {
+    /// G02.
+    Clockwise,
+    /// G03.
+    CounterClockwise,
+}
+
+impl ArcDirection {
+    /// `cw` or `ccw`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ArcDirection::Clockwise => "cw",
+            ArcDirection::CounterClockwise => "ccw",
+        }
+    }
+}
+
+/// How the feed of a cutting move was programmed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Feed {
+    /// G94: mm/min along the path.
+    PerMinute(f64),
+    /// G95: mm per spindle revolution, with the spindle speed in rpm when one was programmed.
+    PerRevolution {
+        /// mm/rev.
+        per_revolution: f64,
+        /// Spindle speed, rpm.
+        rpm: Option<f64>,
+    },
+    /// G93: the move takes 1/F minutes.
+    InverseTime(f64),
+}
+
+impl Feed {
+    /// The path speed in mm/min for a move of `length` mm, when it can be known.
+    pub fn mm_per_min(&self, length: f64) -> Option<f64> {
+        match *self {
+            Feed::PerMinute(f) => Some(f),
+            Feed::PerRevolution { per_revolution, rpm } => rpm.map(|s| per_revolution * s),
+            Feed::InverseTime(f) => Some(f * length),
+        }
+    }
+}
+
+/// The cutting mode in force for a motion (group 15 and G09), for the planner.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PathMode {
+    /// G64: continuous path, corners blended.
+    Continuous,
+    /// G61: exact stop at every block end.
+    ExactStop,
+    /// G62: automatic corner override.
+    CornerOverride,
+    /// G63: tapping mode (no override, no blending).
+    Tapping,
+}
+
+/// A motion in space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Move {
+    /// Where it starts.
+    pub from: MachinePos,
+    /// Where it ends.
+    pub to: MachinePos,
+    /// The cutting mode in force.
+    pub path_mode: PathMode,
+    /// G09 in this block, or an exact stop the control makes anyway (e.g. before a tool change).
+    pub exact_stop: bool,
+    /// Machine minus program coordinates at the end of the move (work offset, G92, G52 and tool
+    /// length together): `to - offset` is the end point in the program's coordinates.
+    pub offset: [f64; AXES],
+}
+
+impl Move {
+    /// The end point in program (work) coordinates.
+    pub fn work_to(&self) -> [f64; AXES] {
+        std::array::from_fn(|i| self.to.0[i] - self.offset[i])
+    }
+}
+
+/// Why the program stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StopKind {
+    /// M00.
+    Program,
+    /// M01.
+    Optional,
+}
+
+/// How the program ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EndKind {
+    /// M02.
+    M02,
+    /// M30.
+    M30,
+    /// A `%` tape mark after the program.
+    TapeMark,
+    /// The end of the text with no end code (a warning is raised too).
+    EndOfText,
+}
+
+/// The spindle's state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SpindleState {
+    /// M03.
+    Clockwise,
+    /// M04.
+    CounterClockwise,
+    /// M05.
+    Stopped,
+    /// M19: oriented stop.
+    Oriented,
+}
+
+/// What happened: a motion or an event.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SegmentKind {
+    /// G00 and the positioning moves of G28/G29/G30/G53.
+    Rapid {
+        /// The move.
+        motion: Move,
+        /// Each axis at its own rapid rate (dog-leg) rather than a straight line.
+        per_axis: bool,
+    },
+    /// G01.
+    Line {
+        /// The move.
+        motion: Move,
+        /// The programmed feed.
+        feed: Feed,
+    },
+    /// G02/G03, helical when the normal axis moves.
+    Arc {
+        /// The move.
+        motion: Move,
+        /// Centre, machine coordinates (its normal-axis value is the start's).
+        center: MachinePos,
+        /// Direction.
+        direction: ArcDirection,
+        /// Plane.
+        plane: Plane,
+        /// Full turns beyond the first (0 for an ordinary arc; a full circle has end = start and 0).
+        extra_turns: u32,
+        /// The programmed feed.
+        feed: Feed,
+    },
+    /// G04.
+    Dwell {
+        /// Seconds.
+        seconds: f64,
+    },
+    /// T: a tool is selected (prepared) for the next change.
+    ToolSelect {
+        /// Tool number.
+        tool: u32,
+    },
+    /// M06: the tool change itself.
+    ToolChange {
+        /// The tool put in the spindle (the last T selected).
+        tool: u32,
+    },
+    /// M03/M04/M05/M19 and S changes.
+    Spindle {
+        /// Direction or stop.
+        state: SpindleState,
+        /// Programmed speed, rpm (or m/min under G96).
+        speed: f64,
+    },
+    /// M07/M08/M09.
+    Coolant {
+        /// On or off.
+        on: bool,
+    },
+    /// M00/M01.
+    Stop {
+        /// Which stop.
+        kind: StopKind,
+    },
+    /// Another M code, passed to the machine (PLC).
+    Auxiliary {
+        /// The M number.
+        code: u32,
+    },
+    /// The end of the program.
+    End {
+        /// How it ended.
+        kind: EndKind,
+    },
+}
+
+/// One item of the motion stream.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Segment {
+    /// What happened.
+    pub kind: SegmentKind,
+    /// The block it comes from.
+    pub span: Span,
+    /// The block's sequence number (N), if it had one.
+    pub sequence: Option<u32>,
+}
+
+impl Segment {
+    /// The motion, for rapids, lines and arcs.
+    pub fn motion(&self) -> Option<&Move> {
+        match &self.kind {
+            SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } | SegmentKind::Arc { motion, .. } => {
+                Some(motion)
+            }
+            _ => None,
+        }
+    }
+
+    /// Path length in mm (arcs along the helix), 0 for events.
+    pub fn length(&self) -> f64 {
+        match &self.kind {
+            SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => {
+                motion.from.distance_xyz(&motion.to)
+            }
+            SegmentKind::Arc { motion, center, direction, plane, extra_turns, .. } => {
+                arc_length(motion, center, *direction, *plane, *extra_turns)
+            }
+            _ => 0.0,
+        }
+    }
+}
+
+/// The swept angle of an arc in radians (positive), including extra full turns.
+pub fn arc_sweep(motion: &Move, center: &MachinePos, direction: ArcDirection, plane: Plane, extra_turns: u32) -> f64 {
+    let (a, b, _) = plane.axes();
+    let start = (motion.from.0[a] - center.0[a], motion.from.0[b] - center.0[b]);
+    let end = (motion.to.0[a] - center.0[a], motion.to.0[b] - center.0[b]);
+    let angle_start = start.1.atan2(start.0);
+    let angle_end = end.1.atan2(end.0);
+    let mut sweep = match direction {
+        ArcDirection::CounterClockwise => angle_end - angle_start,
+        ArcDirection::Clockwise => angle_start - angle_end,
+    };
+    let tau = std::f64::consts::TAU;
+    // A full circle (end on start) sweeps 2 pi, never 0.
+    if sweep <= 1e-12 {
+        sweep += tau;
+    }
+    sweep + tau * f64::from(extra_turns)
+}
+
+fn arc_length(motion: &Move, center: &MachinePos, direction: ArcDirection, plane: Plane, extra_turns: u32) -> f64 {
+    let (a, b, n) = plane.axes();
+    let radius = (motion.from.0[a] - center.0[a]).hypot(motion.from.0[b] - center.0[b]);
+    let sweep = arc_sweep(motion, center, direction, plane, extra_turns);
+    let planar = radius * sweep;
+    let axial = motion.to.0[n] - motion.from.0[n];
+    planar.hypot(axial)
+}

@@ -1,0 +1,299 @@
+//! Controller profiles: what differs between the controls vcnc imitates, as data.
+//!
+//! A [`Profile`] holds the parameters and rules in which the FANUC-family controls differ:
+//! how numbers without a decimal point are read, which extended work offsets exist, what G10's
+//! L numbers mean, the dwell rules, the power-on modal state. Code asks the profile a question;
+//! it never asks which controller it is. The five built-in profiles are TOML files embedded in
+//! the library (`profile/*.toml`); a machine file can override any field.
+
+mod codes;
+
+pub use codes::{classify_g, GCode, GLookup, Group};
+
+use crate::syntax::iso::SyntaxOptions;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// The built-in profiles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ProfileName {
+    /// The FANUC-family common ground that CAM post-processors target (the default).
+    #[default]
+    Fanuc,
+    /// Syntec 900M/10/20-series milling (manual seed 000).
+    Syntec,
+    /// FANUC 0M (manual seed 001).
+    Fanuc0m,
+    /// Mitsubishi M-series (manual seed 003).
+    Mitsubishi,
+    /// FANUC plus the habits of Haas mills seen in real programs.
+    Haas,
+}
+
+impl ProfileName {
+    /// Every built-in profile.
+    pub const ALL: [ProfileName; 5] =
+        [ProfileName::Fanuc, ProfileName::Syntec, ProfileName::Fanuc0m, ProfileName::Mitsubishi, ProfileName::Haas];
+
+    /// The name used on the command line and in machine files.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ProfileName::Fanuc => "fanuc",
+            ProfileName::Syntec => "syntec",
+            ProfileName::Fanuc0m => "fanuc0m",
+            ProfileName::Mitsubishi => "mitsubishi",
+            ProfileName::Haas => "haas",
+        }
+    }
+
+    /// The embedded TOML text of the profile.
+    pub fn toml(self) -> &'static str {
+        match self {
+            ProfileName::Fanuc => include_str!("fanuc.toml"),
+            ProfileName::Syntec => include_str!("syntec.toml"),
+            ProfileName::Fanuc0m => include_str!("fanuc0m.toml"),
+            ProfileName::Mitsubishi => include_str!("mitsubishi.toml"),
+            ProfileName::Haas => include_str!("haas.toml"),
+        }
+    }
+}
+
+impl fmt::Display for ProfileName {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl FromStr for ProfileName {
+    type Err = String;
+    fn from_str(s: &str) -> Result<ProfileName, String> {
+        ProfileName::ALL
+            .into_iter()
+            .find(|p| p.as_str().eq_ignore_ascii_case(s))
+            .ok_or_else(|| format!("unknown profile `{s}` (expected one of fanuc, syntec, fanuc0m, mitsubishi, haas)"))
+    }
+}
+
+/// How a value without a decimal point is read for length and angle words.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DecimalLess {
+    /// In least input increments: `X20` is 0.020 mm (FANUC with parameter DPI = 0).
+    Increments,
+    /// In whole units: `X20` is 20 mm (FANUC with DPI = 1, pocket calculator input).
+    WholeUnits,
+}
+
+/// How `P` of G04 is read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DwellP {
+    /// Milliseconds; a decimal point is an alarm (FANUC).
+    MillisecondsStrict,
+    /// Milliseconds; a fraction is dropped (`P2.5` is 2 ms, Syntec manual L512).
+    MillisecondsTruncated,
+    /// Milliseconds without a decimal point, seconds with one (Haas, Mitsubishi).
+    SecondsWithPoint,
+}
+
+/// How G00 moves the axes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RapidPath {
+    /// All axes arrive together on a straight line (Syntec Pr411 = 0).
+    Linear,
+    /// Each axis at its own rapid rate: a dog-leg path (FANUC's classic positioning).
+    PerAxis,
+}
+
+/// What two G codes of one modal group in one block do.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SameGroupRule {
+    /// The last one written is effective (FANUC); vcnc warns.
+    LastWins,
+    /// An alarm.
+    Alarm,
+}
+
+/// What a G10 L number sets, for tool offsets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolOffsetField {
+    /// Tool length, geometry.
+    LengthGeometry,
+    /// Tool length, wear.
+    LengthWear,
+    /// Cutter radius (or diameter, per `radius_offsets_are_diameters`), geometry.
+    RadiusGeometry,
+    /// Cutter radius, wear.
+    RadiusWear,
+}
+
+/// One G10 L number for tool offsets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ToolOffsetL {
+    /// The L number.
+    pub l: u32,
+    /// What it sets.
+    pub field: ToolOffsetField,
+}
+
+/// The modal state at power-on and reset, as G codes in tenths (G17 is 170).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PowerOn {
+    /// G00 or G01.
+    pub motion: u32,
+    /// G17, G18 or G19.
+    pub plane: u32,
+    /// G90 or G91.
+    pub distance: u32,
+    /// G20 or G21 (G70 or G71 on Syntec).
+    pub units: u32,
+    /// G94 or G95.
+    pub feed_mode: u32,
+    /// G54 ... .
+    pub work_offset: u32,
+    /// G61 or G64.
+    pub path_mode: u32,
+    /// G98 or G99.
+    pub cycle_return: u32,
+}
+
+/// Everything about a controller that the interpreter asks.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Profile {
+    /// Which built-in profile this is (or started from).
+    pub name: ProfileName,
+    /// One line for people.
+    pub description: String,
+    /// `;` ends a block (true) or starts a comment (false).
+    pub semicolon_ends_block: bool,
+    /// `//` starts a comment to the end of the line.
+    pub slash_slash_comments: bool,
+    /// `:1234` is a program number.
+    pub colon_program_number: bool,
+    /// How lengths and angles without a decimal point are read.
+    pub decimal_less: DecimalLess,
+    /// Least input increment in millimetre mode, mm.
+    pub increment_mm: f64,
+    /// Least input increment in inch mode, inch.
+    pub increment_inch: f64,
+    /// Least input increment of rotary axes, degrees.
+    pub increment_deg: f64,
+    /// How G04 P is read.
+    pub dwell_p: DwellP,
+    /// FANUC 0M quirk (manual 001 L190-202): an X word written before G04 in the same block was
+    /// already converted as a distance, and that count of increments becomes milliseconds.
+    pub dwell_x_before_g04_is_increments: bool,
+    /// Syntec's G70/G71 select inch/metric (besides G20/G21).
+    pub g70_g71_units: bool,
+    /// Number of G54.1 Pn work offsets (0: G54.1 does not exist).
+    pub g54_1_count: u32,
+    /// Syntec's G59.1 ... G59.9 work offsets 7 to 15.
+    pub g59_x_offsets: bool,
+    /// Haas's G154 Pn selects the extended work offsets like G54.1 Pn.
+    #[serde(default)]
+    pub g154_extended_offsets: bool,
+    /// Mitsubishi's G12/G13 circle cutting exists.
+    #[serde(default)]
+    pub g12_g13_circle_cutting: bool,
+    /// The G10 L number that sets work offsets G54..G59 (P1..P6, P0 = external).
+    pub g10_work_l: u32,
+    /// The G10 L number that sets G54.1 work offsets (0: none).
+    pub g10_extended_work_l: u32,
+    /// The G10 L numbers that set tool offsets.
+    pub g10_tool_l: Vec<ToolOffsetL>,
+    /// A G10 tool offset block without L (`G10 P_ R_`) sets this field (FANUC 0M memory A).
+    #[serde(default)]
+    pub g10_tool_default: Option<ToolOffsetField>,
+    /// Cutter compensation values are diameters (Haas), not radii.
+    pub radius_offsets_are_diameters: bool,
+    /// Highest H/D offset number.
+    pub max_offset_number: u32,
+    /// G00 path shape.
+    pub rapid_path: RapidPath,
+    /// Two G codes of one group in a block.
+    pub same_group: SameGroupRule,
+    /// Feed used when G01/G02/G03 run before any F (None: alarm, as FANUC alarm 011).
+    #[serde(default)]
+    pub default_feed: Option<f64>,
+    /// Largest difference between start and end radius of an arc, mm (FANUC parameter 3410).
+    pub arc_radius_tolerance: f64,
+    /// G28 (and G30) without axis words sends every axis home (Haas); otherwise nothing moves.
+    #[serde(default)]
+    pub g28_without_axes_homes_all: bool,
+    /// Number of reference points (G28 is 1, G30 P2..Pn).
+    pub reference_points: u32,
+    /// M codes that are subprogram calls and returns on this control (run by issue 3's code).
+    pub subprogram_m_codes: Vec<u32>,
+    /// Power-on modal state.
+    pub power_on: PowerOn,
+}
+
+impl Profile {
+    /// A built-in profile.
+    pub fn builtin(name: ProfileName) -> Profile {
+        // The embedded profiles are tested to parse (tests below), so this cannot fail at run time.
+        toml::from_str(name.toml()).expect("embedded profile TOML is valid (checked by the profile tests)")
+    }
+
+    /// A built-in profile with fields replaced by those in `overrides` (a TOML table).
+    ///
+    /// # Errors
+    /// When `overrides` names a field the profile does not have, or gives it a value of the wrong type.
+    pub fn with_overrides(name: ProfileName, overrides: &toml::Table) -> Result<Profile, toml::de::Error> {
+        let mut base: toml::Table =
+            toml::from_str(name.toml()).expect("embedded profile TOML is valid (checked by the profile tests)");
+        for (key, value) in overrides {
+            base.insert(key.clone(), value.clone());
+        }
+        toml::from_str(&toml::to_string(&base).unwrap_or_default())
+    }
+
+    /// The character-level options of the ISO front end.
+    pub fn syntax(&self) -> SyntaxOptions {
+        SyntaxOptions {
+            semicolon_ends_block: self.semicolon_ends_block,
+            slash_slash_comments: self.slash_slash_comments,
+            colon_program_number: self.colon_program_number,
+        }
+    }
+}
+
+impl Default for Profile {
+    fn default() -> Profile {
+        Profile::builtin(ProfileName::Fanuc)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_profile_parses_and_names_itself() {
+        for name in ProfileName::ALL {
+            let profile = Profile::builtin(name);
+            assert_eq!(profile.name, name);
+        }
+    }
+
+    #[test]
+    fn overrides_replace_single_fields() {
+        let overrides: toml::Table = toml::from_str("rapid_path = \"per_axis\"").unwrap();
+        let profile = Profile::with_overrides(ProfileName::Syntec, &overrides).unwrap();
+        assert_eq!(profile.rapid_path, RapidPath::PerAxis);
+        assert!(profile.slash_slash_comments);
+    }
+
+    #[test]
+    fn unknown_override_fields_are_rejected() {
+        let overrides: toml::Table = toml::from_str("no_such_field = 1").unwrap();
+        assert!(Profile::with_overrides(ProfileName::Fanuc, &overrides).is_err());
+    }
+}

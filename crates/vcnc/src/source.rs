@@ -1,0 +1,102 @@
+//! Source files and positions in them.
+//!
+//! A [`Span`] names a byte range of one file and the 1-based line it starts on. Everything the
+//! interpreter produces (segments, alarms) carries the span of the words it came from, so a
+//! consumer can always point back at the program text. Columns are not stored: they are computed
+//! from the line's text only when a diagnostic is rendered.
+
+use std::fmt;
+
+/// Identifies one file among those an interpreter reads (the main program and, later, subprograms).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+pub struct FileId(pub u32);
+
+/// A byte range in one file, with the 1-based number of the line it starts on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    /// The file the range belongs to.
+    pub file: FileId,
+    /// Byte offset of the first byte.
+    pub start: u32,
+    /// Byte offset one past the last byte.
+    pub end: u32,
+    /// 1-based line number of `start`.
+    pub line: u32,
+}
+
+impl Span {
+    /// A span from `start` to `end` on `line` of `file`.
+    pub fn new(file: FileId, start: u32, end: u32, line: u32) -> Span {
+        Span { file, start, end, line }
+    }
+
+    /// The smallest span covering `self` and `other` (which must be in the same file).
+    pub fn to(self, other: Span) -> Span {
+        Span {
+            file: self.file,
+            start: self.start.min(other.start),
+            end: self.end.max(other.end),
+            line: self.line.min(other.line),
+        }
+    }
+
+    /// Length in bytes.
+    pub fn len(&self) -> u32 {
+        self.end.saturating_sub(self.start)
+    }
+
+    /// True when the span covers no byte.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl fmt::Display for Span {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}..{} (line {})", self.start, self.end, self.line)
+    }
+}
+
+/// A 1-based line and column, as shown to people.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LineColumn {
+    /// 1-based line number.
+    pub line: u32,
+    /// 1-based column, counted in characters of the line's text.
+    pub column: u32,
+}
+
+/// The 1-based line and column of byte `offset` in `text`.
+///
+/// Bytes that are not valid UTF-8 (Latin-1 comments) count as one column each.
+pub fn line_column(text: &[u8], offset: u32) -> LineColumn {
+    let offset = (offset as usize).min(text.len());
+    let before = &text[..offset];
+    let line_start = before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let line = before.iter().filter(|&&b| b == b'\n').count() as u32 + 1;
+    let column = before[line_start..].iter().filter(|&&b| (b & 0xC0) != 0x80).count() as u32 + 1;
+    LineColumn { line, column }
+}
+
+/// The text of the line containing byte `offset`, without its line end.
+pub fn line_text(text: &[u8], offset: u32) -> &[u8] {
+    let offset = (offset as usize).min(text.len());
+    let start = text[..offset].iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let end = text[offset..].iter().position(|&b| b == b'\n').map_or(text.len(), |i| offset + i);
+    let line = &text[start..end];
+    line.strip_suffix(b"\r").unwrap_or(line)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_and_column_count_from_one() {
+        let text = b"G0 X1\r\nG1 Y2\n";
+        assert_eq!(line_column(text, 0), LineColumn { line: 1, column: 1 });
+        assert_eq!(line_column(text, 10), LineColumn { line: 2, column: 4 });
+        assert_eq!(line_text(text, 10), b"G1 Y2");
+        assert_eq!(line_text(text, 2), b"G0 X1");
+    }
+}

@@ -1,0 +1,57 @@
+//! The ISO (FANUC-family) front end: lines of text into blocks of words.
+//!
+//! Reads what the controls of the manuals accept: `%` tape marks, `O`/`:` program numbers, `N`
+//! sequence numbers, `( )` comments (nested parentheses are tolerated, as real programs have
+//! them), `//` line comments where the profile uses them (Syntec), `/` and `/n` block skip, `;`
+//! or the line end as end of block, spaces anywhere between words and inside a word, addresses in
+//! upper or lower case, and extended addresses such as `F2=` and `S1=`.
+//!
+//! Custom Macro B (`#` variables, `[ ]` expressions, IF/WHILE/GOTO) is recognised and reported
+//! as not supported yet; the block carries that alarm.
+//!
+//! This module never decides what a word means: `X20` stays 20 with no decimal point.
+
+mod parser;
+
+pub use parser::{parse_line, SyntaxOptions};
+
+/// A reusable set of blocks: the blocks of one line, overwritten line after line so that reading
+/// does not allocate once the buffers have grown.
+#[derive(Debug, Default)]
+pub struct LineBlocks {
+    blocks: Vec<super::Block>,
+    len: usize,
+}
+
+impl LineBlocks {
+    /// An empty set.
+    pub fn new() -> LineBlocks {
+        LineBlocks::default()
+    }
+
+    /// The blocks of the last line read.
+    pub fn as_slice(&self) -> &[super::Block] {
+        &self.blocks[..self.len]
+    }
+
+    /// Forgets the blocks, keeping their allocations.
+    pub(crate) fn reset(&mut self) {
+        self.len = 0;
+    }
+
+    /// A cleared block at the end of the set.
+    pub(crate) fn push(&mut self) -> &mut super::Block {
+        if self.len == self.blocks.len() {
+            self.blocks.push(super::Block::new());
+        } else {
+            self.blocks[self.len].clear();
+        }
+        self.len += 1;
+        &mut self.blocks[self.len - 1]
+    }
+
+    /// Drops the last block (it turned out to be empty).
+    pub(crate) fn pop(&mut self) {
+        self.len = self.len.saturating_sub(1);
+    }
+}

@@ -1,0 +1,501 @@
+//! The ISO block reader: one line of bytes into blocks of words.
+
+use super::LineBlocks;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::source::{FileId, Span};
+use crate::syntax::lines::Line;
+use crate::syntax::{BlockKind, Number, Word};
+
+/// What varies between the ISO dialects at the level of characters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SyntaxOptions {
+    /// `;` ends a block (as the manuals print the end-of-block code). When false, `;` starts a
+    /// comment that runs to the end of the line.
+    pub semicolon_ends_block: bool,
+    /// `//` starts a comment that runs to the end of the line (Syntec).
+    pub slash_slash_comments: bool,
+    /// `:` at the start of a block is a program number (FANUC 0M ISO code).
+    pub colon_program_number: bool,
+}
+
+impl Default for SyntaxOptions {
+    fn default() -> SyntaxOptions {
+        SyntaxOptions { semicolon_ends_block: true, slash_slash_comments: false, colon_program_number: true }
+    }
+}
+
+/// Reads the blocks of one line into `out` (which is reset first).
+pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &mut LineBlocks) {
+    out.reset();
+    let mut reader = Reader { text: line.text, pos: 0, file, base: line.offset, line: line.number, options };
+    loop {
+        reader.skip_blanks();
+        if reader.at_end() {
+            break;
+        }
+        let block = out.push();
+        let ended = reader.read_block(block);
+        if block.is_empty() && block.skip.is_none() && block.alarms.is_empty() {
+            out.pop();
+        }
+        if ended == BlockEnd::Line {
+            break;
+        }
+    }
+}
+
+#[derive(PartialEq, Eq)]
+enum BlockEnd {
+    /// A `;` ended the block; more may follow on the line.
+    Semicolon,
+    /// The line ended (or the rest of it is a comment).
+    Line,
+}
+
+struct Reader<'a, 'o> {
+    text: &'a [u8],
+    pos: usize,
+    file: FileId,
+    base: u32,
+    line: u32,
+    options: &'o SyntaxOptions,
+}
+
+impl Reader<'_, '_> {
+    fn at_end(&self) -> bool {
+        self.pos >= self.text.len()
+    }
+
+    fn peek(&self) -> Option<u8> {
+        self.text.get(self.pos).copied()
+    }
+
+    fn peek_at(&self, ahead: usize) -> Option<u8> {
+        self.text.get(self.pos + ahead).copied()
+    }
+
+    fn span(&self, start: usize, end: usize) -> Span {
+        let at = |p: usize| self.base.saturating_add(u32::try_from(p).unwrap_or(u32::MAX));
+        Span::new(self.file, at(start), at(end), self.line)
+    }
+
+    fn skip_blanks(&mut self) {
+        while let Some(b) = self.peek() {
+            if matches!(b, b' ' | b'\t' | b'\x0c' | b'\x0b' | b'\r' | 0) {
+                self.pos += 1;
+            } else {
+                break;
+            }
+        }
+    }
+
+    /// Reads one block; returns how it ended.
+    fn read_block(&mut self, block: &mut crate::syntax::Block) -> BlockEnd {
+        let start = self.pos;
+        let end = self.read_items(block);
+        let mut stop = self.pos;
+        if end == BlockEnd::Semicolon {
+            stop -= 1;
+        }
+        block.span = self.span(start, stop.max(start));
+        end
+    }
+
+    fn read_items(&mut self, block: &mut crate::syntax::Block) -> BlockEnd {
+        loop {
+            self.skip_blanks();
+            let Some(byte) = self.peek() else { return BlockEnd::Line };
+            let at_block_start = block.words.is_empty() && block.skip.is_none();
+            match byte {
+                b';' if self.options.semicolon_ends_block => {
+                    self.pos += 1;
+                    return BlockEnd::Semicolon;
+                }
+                b';' => {
+                    self.note_comment(block, self.pos, self.text.len());
+                    self.pos = self.text.len();
+                    return BlockEnd::Line;
+                }
+                b'(' => self.read_comment(block),
+                b'/' if self.options.slash_slash_comments && self.peek_at(1) == Some(b'/') => {
+                    self.note_comment(block, self.pos, self.text.len());
+                    self.pos = self.text.len();
+                    return BlockEnd::Line;
+                }
+                b'/' if at_block_start => self.read_block_skip(block),
+                b'%' if at_block_start => {
+                    block.kind = BlockKind::TapeMark;
+                    self.pos = self.text.len();
+                    return BlockEnd::Line;
+                }
+                b':' if at_block_start && self.options.colon_program_number && self.peek_at(1) != Some(b'=') => {
+                    let start = self.pos;
+                    self.pos += 1;
+                    if !self.read_value(block, b'O', start) {
+                        return self.abandon(block);
+                    }
+                }
+                b'#' | b'[' => {
+                    let span = self.span(self.pos, self.pos + 1);
+                    block.alarms.push(macro_not_supported(span));
+                    return self.abandon(block);
+                }
+                b if b.is_ascii_alphabetic() => {
+                    if !self.read_word(block) {
+                        return self.abandon(block);
+                    }
+                }
+                _ => {
+                    let width = char_width(&self.text[self.pos..]);
+                    let span = self.span(self.pos, self.pos + width);
+                    let shown = String::from_utf8_lossy(&self.text[self.pos..self.pos + width]).into_owned();
+                    block.alarms.push(Alarm::error(
+                        AlarmCode::UnexpectedCharacter,
+                        span,
+                        format!("unexpected character `{}` in an ISO block", shown.escape_debug()),
+                    ));
+                    return self.abandon(block);
+                }
+            }
+        }
+    }
+
+    /// Skips the rest of a block that cannot be read, up to the next `;` or the line end.
+    fn abandon(&mut self, _block: &mut crate::syntax::Block) -> BlockEnd {
+        let mut depth = 0usize;
+        while let Some(b) = self.peek() {
+            self.pos += 1;
+            match b {
+                b'(' => depth += 1,
+                b')' => depth = depth.saturating_sub(1),
+                b';' if depth == 0 && self.options.semicolon_ends_block => return BlockEnd::Semicolon,
+                _ => {}
+            }
+        }
+        BlockEnd::Line
+    }
+
+    fn note_comment(&self, block: &mut crate::syntax::Block, start: usize, end: usize) {
+        if block.comment.is_none() {
+            block.comment = Some(self.span(start, end));
+        }
+    }
+
+    /// `( ... )`; nested parentheses are counted so that `(A (B) C)` is one comment.
+    fn read_comment(&mut self, block: &mut crate::syntax::Block) {
+        let start = self.pos;
+        let mut depth = 0usize;
+        while let Some(b) = self.peek() {
+            self.pos += 1;
+            match b {
+                b'(' => depth += 1,
+                b')' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        self.note_comment(block, start, self.pos);
+                        return;
+                    }
+                }
+                _ => {}
+            }
+        }
+        self.note_comment(block, start, self.pos);
+        block.alarms.push(Alarm::warning(
+            AlarmCode::UnclosedComment,
+            self.span(start, start + 1),
+            "comment is not closed before the end of the line",
+        ).with_help("add `)`; the control takes the rest of the line as comment"));
+    }
+
+    fn read_block_skip(&mut self, block: &mut crate::syntax::Block) {
+        self.pos += 1;
+        let mut level = 1u8;
+        if let Some(d @ b'1'..=b'9') = self.peek() {
+            // `/2` is block skip switch 2; a digit right after `/` belongs to the slash.
+            level = d - b'0';
+            self.pos += 1;
+        }
+        block.skip = Some(level);
+    }
+
+    /// An address letter and its value. Returns false when the block cannot be read further.
+    fn read_word(&mut self, block: &mut crate::syntax::Block) -> bool {
+        let start = self.pos;
+        let letter = self.text[self.pos].to_ascii_uppercase();
+        self.pos += 1;
+        match self.peek() {
+            Some(b) if b.is_ascii_alphabetic() => {
+                // Two letters in a row: a macro keyword (IF, GOTO, WHILE, SIN ...).
+                let end = self.text[start..]
+                    .iter()
+                    .position(|b| !b.is_ascii_alphabetic())
+                    .map_or(self.text.len(), |n| start + n);
+                let keyword = String::from_utf8_lossy(&self.text[start..end]).to_ascii_uppercase();
+                let span = self.span(start, end);
+                block.alarms.push(if is_macro_keyword(&keyword) {
+                    macro_not_supported(span)
+                } else {
+                    Alarm::error(AlarmCode::UnexpectedCharacter, span, format!("`{keyword}` is not an ISO word"))
+                        .with_help("an address is one letter followed by a number, e.g. `X10.`")
+                });
+                false
+            }
+            Some(b'#' | b'[') => {
+                let span = self.span(self.pos, self.pos + 1);
+                block.alarms.push(macro_not_supported(span));
+                false
+            }
+            _ => self.read_value(block, letter, start),
+        }
+    }
+
+    /// The number after an address letter (and the value of an extended address `F2=...`).
+    fn read_value(&mut self, block: &mut crate::syntax::Block, letter: u8, start: usize) -> bool {
+        let Some(first) = self.read_number(start, letter, block) else { return false };
+        self.skip_blanks();
+        let mut index = 0u8;
+        let mut number = first;
+        if self.peek() == Some(b'=') && self.peek_at(1) != Some(b'=') {
+            let simple_index = !first.decimal_point && !first.negative && (1.0..=9.0).contains(&first.value);
+            if !simple_index {
+                let span = self.span(self.pos, self.pos + 1);
+                block.alarms.push(macro_not_supported(span));
+                return false;
+            }
+            index = first.value as u8;
+            self.pos += 1;
+            let Some(value) = self.read_number(start, letter, block) else { return false };
+            number = value;
+        }
+        block.words.push(Word { letter, index, number, span: self.span(start, self.pos) });
+        true
+    }
+
+    /// True when the blanks at the cursor are followed by more of the same number: the controls
+    /// ignore spaces anywhere in a block, so `X1 2.5` is X12.5.
+    fn blank_inside_number(&self, decimal_point: bool) -> bool {
+        let rest = &self.text[self.pos..];
+        match rest.iter().find(|b| !matches!(b, b' ' | b'\t')) {
+            Some(b'0'..=b'9') => true,
+            Some(b'.') => !decimal_point,
+            _ => false,
+        }
+    }
+
+    /// `[+|-] digits [. digits]`, blanks allowed anywhere inside.
+    fn read_number(&mut self, word_start: usize, letter: u8, block: &mut crate::syntax::Block) -> Option<Number> {
+        self.skip_blanks();
+        let mut negative = false;
+        if let Some(sign @ (b'+' | b'-')) = self.peek() {
+            negative = sign == b'-';
+            self.pos += 1;
+            self.skip_blanks();
+        }
+        if let Some(b'#' | b'[') = self.peek() {
+            block.alarms.push(macro_not_supported(self.span(self.pos, self.pos + 1)));
+            return None;
+        }
+        let digits_start = self.pos;
+        let mut mantissa: u64 = 0;
+        let mut significant = 0u32;
+        let mut fraction_digits = 0i32;
+        let mut decimal_point = false;
+        let mut any_digit = false;
+        let mut overflow_digits = 0i32;
+        while let Some(b) = self.peek() {
+            match b {
+                b'0'..=b'9' => {
+                    any_digit = true;
+                    if significant < 18 {
+                        mantissa = mantissa * 10 + u64::from(b - b'0');
+                        if mantissa != 0 {
+                            significant += 1;
+                        }
+                        if decimal_point {
+                            fraction_digits += 1;
+                        }
+                    } else if !decimal_point {
+                        overflow_digits += 1;
+                    }
+                }
+                b'.' if !decimal_point => decimal_point = true,
+                b' ' | b'\t' if self.blank_inside_number(decimal_point) => {}
+                b'.' => {
+                    let span = self.span(word_start, self.pos + 1);
+                    block.alarms.push(Alarm::error(AlarmCode::BadNumber, span, "number has two decimal points"));
+                    return None;
+                }
+                _ => break,
+            }
+            self.pos += 1;
+        }
+        if !any_digit {
+            let span = self.span(word_start, self.pos.max(word_start + 1));
+            let message = if digits_start == self.pos && !decimal_point {
+                format!("address {} has no value", letter as char)
+            } else {
+                format!("address {} has no digits", letter as char)
+            };
+            block.alarms.push(Alarm::error(AlarmCode::MissingValue, span, message));
+            return None;
+        }
+        let magnitude = scale(mantissa, overflow_digits - fraction_digits);
+        let value = if negative { -magnitude } else { magnitude };
+        Some(Number { value, decimal_point, negative })
+    }
+}
+
+/// `mantissa * 10^exponent`, correctly rounded for the exponents a G-code number can have: the
+/// powers of ten up to 10^22 are exact in f64, so one multiplication or division rounds once.
+fn scale(mantissa: u64, exponent: i32) -> f64 {
+    const POWERS: [f64; 23] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18,
+        1e19, 1e20, 1e21, 1e22,
+    ];
+    let m = mantissa as f64;
+    if mantissa < (1u64 << 53) {
+        let e = exponent.unsigned_abs() as usize;
+        if e < POWERS.len() {
+            return if exponent < 0 { m / POWERS[e] } else { m * POWERS[e] };
+        }
+    }
+    format!("{mantissa}e{exponent}").parse().unwrap_or(f64::INFINITY)
+}
+
+fn char_width(bytes: &[u8]) -> usize {
+    let first = bytes.first().copied().unwrap_or(0);
+    let width = match first {
+        0xC0..=0xDF => 2,
+        0xE0..=0xEF => 3,
+        0xF0..=0xF7 => 4,
+        _ => 1,
+    };
+    if bytes.len() >= width && std::str::from_utf8(&bytes[..width]).is_ok() {
+        width
+    } else {
+        1
+    }
+}
+
+fn is_macro_keyword(word: &str) -> bool {
+    const KEYWORDS: &[&str] = &[
+        "IF", "THEN", "GOTO", "WHILE", "WH", "DO", "END", "EQ", "NE", "GT", "GE", "LT", "LE", "AND", "OR", "XOR",
+        "MOD", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "SQRT", "SQR", "ABS", "ROUND", "RND", "FIX", "FUP", "LN",
+        "EXP", "POW", "BIN", "BCD", "ELSE", "ELSIF", "ENDIF", "END_IF", "FOR", "TO", "BY", "REPEAT", "UNTIL",
+        "POPEN", "PCLOS", "DPRNT", "BPRNT", "SETVN",
+    ];
+    KEYWORDS.iter().any(|k| word.starts_with(k))
+}
+
+fn macro_not_supported(span: Span) -> Alarm {
+    Alarm::not_supported(span, "Custom Macro B (variables, expressions, IF/WHILE/GOTO)", Some(3))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::Block;
+
+    fn parse(text: &str) -> Vec<Block> {
+        parse_with(text, SyntaxOptions::default())
+    }
+
+    fn parse_with(text: &str, options: SyntaxOptions) -> Vec<Block> {
+        let mut out = LineBlocks::new();
+        let line = Line { text: text.as_bytes(), offset: 0, number: 1 };
+        parse_line(line, FileId(0), &options, &mut out);
+        out.as_slice().to_vec()
+    }
+
+    fn words(block: &Block) -> String {
+        block
+            .words
+            .iter()
+            .map(|w| {
+                let index = if w.index > 0 { format!("{}=", w.index) } else { String::new() };
+                let point = if w.number.decimal_point { "." } else { "" };
+                format!("{}{index}{}{point}", w.letter as char, w.number.value)
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    #[test]
+    fn words_without_spaces_are_split_at_letters() {
+        let blocks = parse("G1X0.0010Y-0.0010F300");
+        assert_eq!(words(&blocks[0]), "G1 X0.001. Y-0.001. F300");
+    }
+
+    #[test]
+    fn semicolons_end_blocks_and_comments_are_skipped() {
+        let blocks = parse("G90 G00 X90.0 (GO) Y40.0; G01 Z-5. F100;");
+        assert_eq!(blocks.len(), 2);
+        assert_eq!(words(&blocks[0]), "G90 G0 X90. Y40.");
+        assert_eq!(words(&blocks[1]), "G1 Z-5. F100");
+        assert_eq!(blocks[1].span.start, 26);
+    }
+
+    #[test]
+    fn spaces_between_address_sign_and_digits_are_ignored() {
+        assert_eq!(words(&parse("Y -20.")[0]), "Y-20.");
+        assert_eq!(words(&parse("X 1 2 .5")[0]), "X12.5.");
+    }
+
+    #[test]
+    fn nested_parentheses_stay_inside_the_comment() {
+        let blocks = parse("G0 (stock is (nominally) 3/8\") X1.");
+        assert_eq!(words(&blocks[0]), "G0 X1.");
+        assert!(blocks[0].alarms.is_empty());
+    }
+
+    #[test]
+    fn extended_addresses_take_their_index() {
+        assert_eq!(words(&parse("G81 F2=1000 S1=150")[0]), "G81 F2=1000 S1=150");
+    }
+
+    #[test]
+    fn slash_starts_block_skip_and_double_slash_a_syntec_comment() {
+        let syntec = SyntaxOptions { slash_slash_comments: true, ..SyntaxOptions::default() };
+        let blocks = parse_with("/2 G0 X1.; // move", syntec);
+        assert_eq!(blocks.len(), 1);
+        assert_eq!(blocks[0].skip, Some(2));
+        assert_eq!(words(&blocks[0]), "G0 X1.");
+    }
+
+    #[test]
+    fn negative_zero_keeps_its_sign() {
+        let blocks = parse("Y-0");
+        assert!(blocks[0].words[0].number.negative);
+    }
+
+    #[test]
+    fn percent_and_colon_program_numbers() {
+        assert_eq!(parse("%")[0].kind, BlockKind::TapeMark);
+        assert_eq!(words(&parse(":0097")[0]), "O97");
+    }
+
+    #[test]
+    fn macro_syntax_is_reported_as_not_supported_yet() {
+        let blocks = parse("#1=#2+1");
+        assert_eq!(blocks[0].alarms[0].code, AlarmCode::NotSupportedYet);
+        let blocks = parse("IF[#1GT2]GOTO5");
+        assert_eq!(blocks[0].alarms[0].code, AlarmCode::NotSupportedYet);
+        let blocks = parse("X[#1+2]");
+        assert_eq!(blocks[0].alarms[0].code, AlarmCode::NotSupportedYet);
+    }
+
+    #[test]
+    fn address_without_value_is_an_alarm_with_its_span() {
+        let blocks = parse("G0 X Y1.");
+        let alarm = &blocks[0].alarms[0];
+        assert_eq!(alarm.code, AlarmCode::MissingValue);
+        assert_eq!(alarm.span.unwrap().start, 3);
+    }
+
+    #[test]
+    fn numbers_round_once() {
+        assert_eq!(parse("X0.1")[0].words[0].number.value, 0.1);
+        assert_eq!(parse("X-1.833")[0].words[0].number.value, -1.833);
+        assert_eq!(parse("X123456789.123456789")[0].words[0].number.value, 123456789.12345679);
+    }
+}

@@ -1,0 +1,184 @@
+//! What a program says, before anyone decides what it means.
+//!
+//! The front ends turn program text into [`Block`]s of [`Word`]s, each carrying the [`Span`] it
+//! was read from. Syntax knows nothing of machines, profiles' modal groups or units: a number is
+//! kept as written (value, decimal point, sign) and the interpreter decides what it means.
+//! Front ends never fail: a block that cannot be read carries the alarm, and reading goes on with
+//! the next block.
+
+pub mod iso;
+pub mod lines;
+
+use crate::alarm::Alarm;
+use crate::source::Span;
+
+/// A number as written in a word: its value and how it was written.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Number {
+    /// The value as written, with no unit applied (`X25` is 25.0, `X25.` is 25.0).
+    pub value: f64,
+    /// True when the number was written with a decimal point: `X25` reads in least input
+    /// increments on most profiles, `X25.` in millimetres or inches.
+    pub decimal_point: bool,
+    /// True when written with a minus sign, also for `-0` (G45-G48 tell `Y0` from `Y-0`).
+    pub negative: bool,
+}
+
+impl Number {
+    /// The value as a code number in tenths (`54.1` is 541), if it has at most one decimal.
+    pub fn tenths(&self) -> Option<i32> {
+        let scaled = self.value * 10.0;
+        let rounded = scaled.round();
+        if (scaled - rounded).abs() < 1e-6 && rounded.abs() < 1e9 {
+            Some(rounded as i32)
+        } else {
+            None
+        }
+    }
+
+    /// The value as a whole number, if it is one.
+    pub fn whole(&self) -> Option<i64> {
+        let rounded = self.value.round();
+        if (self.value - rounded).abs() < 1e-9 && rounded.abs() < 9.0e15 {
+            Some(rounded as i64)
+        } else {
+            None
+        }
+    }
+}
+
+/// One address and its value: `X-12.5`, `G54.1`, `F2=1000`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Word {
+    /// The address letter, upper case (`b'X'`). Program numbers written `:1234` use `b'O'`.
+    pub letter: u8,
+    /// The index of an extended address (`F2=` has 2, `S1=` has 1); 0 for plain addresses.
+    pub index: u8,
+    /// The value as written.
+    pub number: Number,
+    /// Where the word stands.
+    pub span: Span,
+}
+
+/// What kind of block this is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BlockKind {
+    /// An ordinary block of words (possibly none: a comment-only or empty line).
+    Words,
+    /// A `%` tape mark.
+    TapeMark,
+}
+
+/// One block: the words between two ends of block, in the order written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Block {
+    /// The whole block, comments included.
+    pub span: Span,
+    /// The block-skip level when the block starts with `/` (1 for a bare `/`, n for `/n`).
+    pub skip: Option<u8>,
+    /// Ordinary words or a tape mark.
+    pub kind: BlockKind,
+    /// The words, in the order written (the sequence number `N` included).
+    pub words: Vec<Word>,
+    /// The span of the first comment, if any (program titles, operator messages).
+    pub comment: Option<Span>,
+    /// The problems found while reading the block; the block holds the words read before the first error.
+    pub alarms: Vec<Alarm>,
+}
+
+impl Block {
+    /// An empty block, ready to be filled by a front end.
+    pub fn new() -> Block {
+        Block {
+            span: Span::default(),
+            skip: None,
+            kind: BlockKind::Words,
+            words: Vec::new(),
+            comment: None,
+            alarms: Vec::new(),
+        }
+    }
+
+    /// Empties the block for reuse, keeping its allocation.
+    pub fn clear(&mut self) {
+        self.span = Span::default();
+        self.skip = None;
+        self.kind = BlockKind::Words;
+        self.words.clear();
+        self.comment = None;
+        self.alarms.clear();
+    }
+
+    /// The first word with this letter (and no extended index).
+    pub fn word(&self, letter: u8) -> Option<&Word> {
+        self.words.iter().find(|w| w.letter == letter && w.index == 0)
+    }
+
+    /// True when the block has no words and is not a tape mark.
+    pub fn is_empty(&self) -> bool {
+        self.kind == BlockKind::Words && self.words.is_empty()
+    }
+}
+
+impl Default for Block {
+    fn default() -> Block {
+        Block::new()
+    }
+}
+
+/// The program dialect a front end reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Dialect {
+    /// FANUC-family ISO G-code (FANUC, Syntec, Mitsubishi, Haas).
+    Iso,
+    /// SINUMERIK 840D sl / 828D.
+    Sinumerik,
+}
+
+/// Guesses the dialect of a program from its file name and first lines.
+///
+/// SINUMERIK programs are recognised by their `.MPF`/`.SPF` extension or by `%_N_..._MPF`
+/// headers, `PROC`, `DEF` and `;` comments at the start of a line followed by SINUMERIK words.
+pub fn detect_dialect(file_name: &str, head: &[u8]) -> Dialect {
+    let lower = file_name.to_ascii_lowercase();
+    if lower.ends_with(".mpf") || lower.ends_with(".spf") {
+        return Dialect::Sinumerik;
+    }
+    let head = &head[..head.len().min(4096)];
+    let text = String::from_utf8_lossy(head);
+    for line in text.lines().take(40) {
+        let line = line.trim_start();
+        let upper = line.to_ascii_uppercase();
+        if upper.starts_with("%_N_")
+            || upper.starts_with("PROC ")
+            || upper.starts_with("DEF ")
+            || upper.starts_with("EXTERN ")
+            || upper.contains("MSG(")
+            || upper.contains("MSG (\"")
+        {
+            return Dialect::Sinumerik;
+        }
+    }
+    Dialect::Iso
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn g_code_numbers_are_read_in_tenths() {
+        let n = |value| Number { value, decimal_point: true, negative: false };
+        assert_eq!(n(54.1).tenths(), Some(541));
+        assert_eq!(n(1.0).tenths(), Some(10));
+        assert_eq!(n(0.05).tenths(), None);
+    }
+
+    #[test]
+    fn sinumerik_programs_are_recognised_by_name_and_header() {
+        assert_eq!(detect_dialect("A.MPF", b"G0 X1"), Dialect::Sinumerik);
+        assert_eq!(detect_dialect("a.nc", b"%_N_TEST_MPF\n;$PATH=/x\n"), Dialect::Sinumerik);
+        assert_eq!(detect_dialect("a.nc", b"%\nO1000\nG0 X1.\n"), Dialect::Iso);
+    }
+}

@@ -1,0 +1,35 @@
+//! Developer tasks for vcnc: `cargo xtask <task>`.
+//!
+//! Tasks regenerate data that lives in the repository (reference traces recorded from LinuxCNC,
+//! generated tables); none of them is needed to build or test vcnc.
+
+mod record_lcnc;
+
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let Some(task) = args.first() else {
+        eprintln!("{USAGE}");
+        return ExitCode::from(2);
+    };
+    let result = match task.as_str() {
+        "record-lcnc" => record_lcnc::run(&args[1..]),
+        _ => {
+            eprintln!("unknown task `{task}`\n{USAGE}");
+            return ExitCode::from(2);
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+const USAGE: &str = "usage: cargo xtask <task>
+
+tasks:
+  record-lcnc   run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output";
