@@ -3,6 +3,7 @@
 //! Tasks regenerate data that lives in the repository (reference traces recorded from LinuxCNC,
 //! generated tables); none of them is needed to build or test vcnc.
 
+mod bench_program;
 mod record_lcnc;
 
 use std::process::ExitCode;
@@ -15,6 +16,7 @@ fn main() -> ExitCode {
     };
     let result = match task.as_str() {
         "record-lcnc" => record_lcnc::run(&args[1..]),
+        "bench-program" => bench_program::run(&args[1..]),
         _ => {
             eprintln!("unknown task `{task}`\n{USAGE}");
             return ExitCode::from(2);
@@ -32,4 +34,5 @@ fn main() -> ExitCode {
 const USAGE: &str = "usage: cargo xtask <task>
 
 tasks:
-  record-lcnc   run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output";
+  record-lcnc     run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output
+  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout";
