@@ -114,6 +114,7 @@ impl<S: LineSource> Interpreter<S> {
                     help: Some("vcnc runs FANUC-family ISO programs today; SINUMERIK 840D/828D support is planned".into()),
                 },
             );
+            interpreter.done = true;
         }
         interpreter
     }

@@ -43,3 +43,91 @@ pub fn run(text: &[u8], machine: &Machine, options: Options) -> Run {
     }
     Run { segments, alarms }
 }
+
+/// The motion stream as text, one segment per line, machine coordinates rounded to 1e-4:
+/// `rapid X10 Y5 Z5`, `line X.. F200`, `arc cw xy X.. C(15,5,-1)`, `dwell 2.5`, `tool 1` ...
+pub fn trace_text(segments: &[Segment]) -> String {
+    use vcnc::motion::Feed;
+    use vcnc::SegmentKind::*;
+    let num = |v: f64| {
+        let r = (v * 1e4).round() / 1e4;
+        let r = if r == 0.0 { 0.0 } else { r };
+        format!("{r}")
+    };
+    let pos = |p: &[f64; 6]| format!("X{} Y{} Z{}", num(p[0]), num(p[1]), num(p[2]));
+    let feed = |f: &Feed| match f {
+        Feed::PerMinute(v) => format!("F{}", num(*v)),
+        Feed::PerRevolution { per_revolution, .. } => format!("F{}/rev", num(*per_revolution)),
+        Feed::InverseTime(v) => format!("F1/{}min", num(*v)),
+    };
+    let mut lines = Vec::new();
+    for s in segments {
+        let line = match &s.kind {
+            Rapid { motion, .. } => format!("rapid {}", pos(&motion.to.0)),
+            Line { motion, feed: f } => format!("line {} {}", pos(&motion.to.0), feed(f)),
+            Arc { motion, center, direction, plane, feed: f, .. } => format!(
+                "arc {} {} {} C({},{},{}) {}",
+                direction.as_str(),
+                plane.as_str(),
+                pos(&motion.to.0),
+                num(center.0[0]),
+                num(center.0[1]),
+                num(center.0[2]),
+                feed(f)
+            ),
+            Dwell { seconds } => format!("dwell {}", num(*seconds)),
+            ToolSelect { tool } => format!("select T{tool}"),
+            ToolChange { tool } => format!("change T{tool}"),
+            Spindle { state, speed } => format!("spindle {state:?} {}", num(*speed)),
+            Coolant { on } => format!("coolant {}", if *on { "on" } else { "off" }),
+            Stop { kind } => format!("stop {kind:?}"),
+            Auxiliary { code } => format!("M{code}"),
+            End { kind } => format!("end {kind:?}"),
+            other => format!("{other:?}"),
+        };
+        lines.push(line);
+    }
+    lines.join("\n")
+}
+
+/// Runs `program` on the default machine with `profile` and returns its trace text; alarms are
+/// appended as `alarm <id> line <n>` lines.
+pub fn trace_with(profile: vcnc::ProfileName, program: &str) -> String {
+    let machine = Machine::default().with_profile(profile).unwrap();
+    trace_on(&machine, program)
+}
+
+/// Like [`trace_with`] on a given machine.
+pub fn trace_on(machine: &Machine, program: &str) -> String {
+    let run = run(program.as_bytes(), machine, Options::default());
+    let mut text = trace_text(&run.segments);
+    for alarm in &run.alarms {
+        if !text.is_empty() {
+            text.push('\n');
+        }
+        text.push_str(&format!("alarm {} line {}", alarm.code.id(), alarm.span.map_or(0, |s| s.line)));
+    }
+    text
+}
+
+/// Asserts the FANUC-profile trace of `program`.
+#[track_caller]
+pub fn check(program: &str, expected: &str) {
+    check_with(vcnc::ProfileName::Fanuc, program, expected);
+}
+
+/// Asserts the trace of `program` on `profile`.
+#[track_caller]
+pub fn check_with(profile: vcnc::ProfileName, program: &str, expected: &str) {
+    let actual = trace_with(profile, program);
+    let expected = expected.trim().lines().map(str::trim).collect::<Vec<_>>().join("\n");
+    assert_eq!(actual, expected, "\nprogram:\n{program}\nactual trace:\n{actual}\n");
+}
+
+/// Asserts the trace of `program` on `machine`.
+#[track_caller]
+pub fn check_on(machine: &Machine, program: &str, expected: &str) {
+    let actual = trace_on(machine, program);
+    let expected = expected.trim().lines().map(str::trim).collect::<Vec<_>>().join("\n");
+    assert_eq!(actual, expected, "\nprogram:\n{program}\nactual trace:\n{actual}\n");
+}

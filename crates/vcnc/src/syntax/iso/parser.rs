@@ -252,10 +252,13 @@ impl Reader<'_, '_> {
     /// The number after an address letter (and the value of an extended address `F2=...`).
     fn read_value(&mut self, block: &mut crate::syntax::Block, letter: u8, start: usize) -> bool {
         let Some(first) = self.read_number(start, letter, block) else { return false };
+        let end = self.pos;
         self.skip_blanks();
         let mut index = 0u8;
         let mut number = first;
-        if self.peek() == Some(b'=') && self.peek_at(1) != Some(b'=') {
+        if self.peek() != Some(b'=') || self.peek_at(1) == Some(b'=') {
+            self.pos = end;
+        } else {
             let simple_index = !first.decimal_point && !first.negative && (1.0..=9.0).contains(&first.value);
             if !simple_index {
                 let span = self.span(self.pos, self.pos + 1);
