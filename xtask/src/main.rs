@@ -4,6 +4,7 @@
 //! generated tables); none of them is needed to build or test vcnc.
 
 mod bench_program;
+mod readme;
 mod record_lcnc;
 
 use std::process::ExitCode;
@@ -17,6 +18,7 @@ fn main() -> ExitCode {
     let result = match task.as_str() {
         "record-lcnc" => record_lcnc::run(&args[1..]),
         "bench-program" => bench_program::run(&args[1..]),
+        "readme" => readme::run(&args[1..]),
         _ => {
             eprintln!("unknown task `{task}`\n{USAGE}");
             return ExitCode::from(2);
@@ -35,4 +37,5 @@ const USAGE: &str = "usage: cargo xtask <task>
 
 tasks:
   record-lcnc     run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output
+  readme          regenerate the supported-codes table in README.md
   bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout";

@@ -44,6 +44,11 @@ pub use source::{FileId, Span};
 
 use syntax::lines::TextLines;
 
+/// The README's Rust examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;
+
 /// Interprets a program held in memory, as file 0.
 pub fn interpret_str<'a>(text: &'a str, machine: &Machine, options: Options) -> Interpreter<TextLines<'a>> {
     Interpreter::new(TextLines::new(text.as_bytes()), FileId(0), machine, options)

@@ -20,7 +20,7 @@ fn a_code_planned_for_later_is_named_with_its_issue() {
         .find_map(Result::err)
         .unwrap();
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
-    assert_eq!(alarm.message, "G41 is not supported yet");
+    assert_eq!(alarm.message, "G41 (cutter compensation left) is not supported yet");
     assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #5"));
     assert_eq!(alarm.span.unwrap().line, 2);
     assert_eq!(alarm.severity, Severity::Error);

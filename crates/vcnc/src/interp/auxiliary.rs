@@ -11,7 +11,7 @@ use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Axis;
 use crate::motion::{EndKind, SegmentKind, SpindleState, StopKind};
-use crate::profile::DwellP;
+use crate::profile::{classify_m, DwellP, MCode, MLookup};
 
 /// S and T.
 ///
@@ -43,22 +43,24 @@ pub(crate) fn speed_and_tool(exec: &mut Executor, cmd: &Command, out: &mut Outpu
 pub(crate) fn before_motion(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
     for m in &cmd.m {
         let code = m.number.value as u32;
-        if exec.profile.subprogram_m_codes.contains(&code) {
-            return Err(Alarm::not_supported(m.span, &format!("M{code:02} (subprogram call or return)"), Some(3)));
-        }
-        let kind = match code {
-            0 | 1 | 2 | 30 => continue,
-            3 => spindle(exec, SpindleState::Clockwise),
-            4 => spindle(exec, SpindleState::CounterClockwise),
-            5 => spindle(exec, SpindleState::Stopped),
-            19 => spindle(exec, SpindleState::Oriented),
-            6 => {
-                exec.tool_in_spindle = exec.selected_tool;
-                SegmentKind::ToolChange { tool: exec.selected_tool }
+        let kind = match classify_m(code, &exec.profile) {
+            MLookup::NotSupported(issue) => {
+                return Err(Alarm::not_supported(m.span, &format!("M{code:02} (subprogram call or return)"), issue));
             }
-            7 | 8 => SegmentKind::Coolant { on: true },
-            9 => SegmentKind::Coolant { on: false },
-            _ => SegmentKind::Auxiliary { code },
+            MLookup::Machine => SegmentKind::Auxiliary { code },
+            MLookup::Known(known) => match known {
+                MCode::ProgramStop | MCode::OptionalStop | MCode::ProgramEnd | MCode::ProgramEndRewind => continue,
+                MCode::SpindleClockwise => spindle(exec, SpindleState::Clockwise),
+                MCode::SpindleCounterClockwise => spindle(exec, SpindleState::CounterClockwise),
+                MCode::SpindleStop => spindle(exec, SpindleState::Stopped),
+                MCode::SpindleOrientation => spindle(exec, SpindleState::Oriented),
+                MCode::ToolChange => {
+                    exec.tool_in_spindle = exec.selected_tool;
+                    SegmentKind::ToolChange { tool: exec.selected_tool }
+                }
+                MCode::CoolantOn => SegmentKind::Coolant { on: true },
+                MCode::CoolantOff => SegmentKind::Coolant { on: false },
+            },
         };
         out.push(cmd, kind);
     }
@@ -76,11 +78,11 @@ fn spindle(exec: &mut Executor, state: SpindleState) -> SegmentKind {
 /// None yet.
 pub(crate) fn after_motion(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
     for m in &cmd.m {
-        match m.number.value as u32 {
-            0 => stop(cmd, StopKind::Program, out),
-            1 => stop(cmd, StopKind::Optional, out),
-            2 => return Ok(end_program(exec, cmd, EndKind::M02, out)),
-            30 => return Ok(end_program(exec, cmd, EndKind::M30, out)),
+        match classify_m(m.number.value as u32, &exec.profile) {
+            MLookup::Known(MCode::ProgramStop) => stop(cmd, StopKind::Program, out),
+            MLookup::Known(MCode::OptionalStop) => stop(cmd, StopKind::Optional, out),
+            MLookup::Known(MCode::ProgramEnd) => return Ok(end_program(exec, cmd, EndKind::M02, out)),
+            MLookup::Known(MCode::ProgramEndRewind) => return Ok(end_program(exec, cmd, EndKind::M30, out)),
             _ => {}
         }
     }

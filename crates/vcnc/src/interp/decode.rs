@@ -7,7 +7,7 @@
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
-use crate::profile::{classify_g, GCode, GLookup, Group, Profile, SameGroupRule};
+use crate::profile::{classify_g, g_name, not_supported_description, GCode, GLookup, Group, Profile, SameGroupRule};
 use crate::source::Span;
 use crate::syntax::{Block, Number, Word};
 
@@ -113,15 +113,6 @@ fn group_slot(group: Group) -> usize {
     }
 }
 
-/// A G code number as people write it: `G01`, `G54.1`.
-pub(crate) fn g_name(tenths: i32) -> String {
-    if tenths % 10 == 0 {
-        format!("G{:02}", tenths / 10)
-    } else {
-        format!("G{:02}.{}", tenths / 10, tenths % 10)
-    }
-}
-
 /// Sorts the words of `block` into `out`.
 ///
 /// # Errors
@@ -215,7 +206,13 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
     };
     let code = match classify_g(tenths, profile) {
         GLookup::Known(code) => code,
-        GLookup::NotSupported(issue) => return Err(Alarm::not_supported(word.span, &g_name(tenths), issue)),
+        GLookup::NotSupported(issue) => {
+            let what = match not_supported_description(tenths, profile) {
+                Some(meaning) => format!("{} ({meaning})", g_name(tenths)),
+                None => g_name(tenths),
+            };
+            return Err(Alarm::not_supported(word.span, &what, issue));
+        }
         GLookup::Unknown => {
             return Err(Alarm::error(
                 AlarmCode::UnknownGCode,

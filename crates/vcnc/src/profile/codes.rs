@@ -144,6 +144,58 @@ pub enum GCode {
 }
 
 impl GCode {
+    /// What the code does, in a few words (for the generated code table).
+    pub fn description(self) -> &'static str {
+        use GCode::*;
+        match self {
+            Rapid => "rapid positioning",
+            Linear => "linear interpolation",
+            ArcClockwise => "circular/helical interpolation CW",
+            ArcCounterClockwise => "circular/helical interpolation CCW",
+            Dwell => "dwell",
+            ExactStopOnce => "exact stop, one block",
+            DataInput => "programmable data input (work and tool offsets)",
+            PlaneXy => "XY plane",
+            PlaneZx => "ZX plane",
+            PlaneYz => "YZ plane",
+            Inch => "inch input",
+            Metric => "metric input",
+            ReferenceReturn => "reference point return",
+            ReturnFromReference => "return from reference point",
+            NthReferenceReturn => "2nd/3rd/4th reference point return",
+            CutterCompCancel => "cutter compensation cancel",
+            LengthCompPlus => "tool length compensation +",
+            LengthCompMinus => "tool length compensation -",
+            LengthCompCancel => "tool length compensation cancel",
+            LocalCoordinates => "local coordinate system",
+            MachineCoordinates => "machine coordinate positioning",
+            WorkOffset(_) => "work coordinate system",
+            ExtendedWorkOffset => "extended work coordinate systems (P)",
+            ExactStopMode => "exact stop mode",
+            AutomaticCornerOverride => "automatic corner override mode",
+            TappingMode => "tapping mode",
+            ContinuousMode => "cutting (continuous) mode",
+            CycleCancel => "canned cycle cancel",
+            Absolute => "absolute programming",
+            Incremental => "incremental programming",
+            SetCoordinates => "coordinate system setting",
+            PresetCoordinates => "work coordinate system preset",
+            InverseTimeFeed => "inverse time feed",
+            FeedPerMinute => "feed per minute",
+            FeedPerRevolution => "feed per revolution",
+            ConstantSurfaceSpeed => "constant surface speed",
+            ConstantSpindleSpeed => "constant spindle speed",
+            ReturnToInitialLevel => "canned cycle return to initial level",
+            ReturnToRLevel => "canned cycle return to R level",
+            PolarCancel => "polar coordinate command cancel",
+            ScalingCancel => "scaling cancel",
+            MirrorCancel => "programmable mirror image cancel",
+            ModalMacroCancel => "modal macro call cancel",
+            RotationCancel => "coordinate rotation cancel",
+            PolarInterpolationCancel => "polar coordinate interpolation cancel",
+        }
+    }
+
     /// The modal group of the code.
     pub fn group(self) -> Group {
         use GCode::*;
@@ -181,6 +233,15 @@ pub enum GLookup {
     NotSupported(Option<u32>),
     /// A code this control does not have.
     Unknown,
+}
+
+/// A G code number as people write it: `G01`, `G54.1`.
+pub fn g_name(tenths: i32) -> String {
+    if tenths % 10 == 0 {
+        format!("G{:02}", tenths / 10)
+    } else {
+        format!("G{:02}.{}", tenths / 10, tenths % 10)
+    }
 }
 
 /// What G code `tenths` (G54.1 is 541) means on `profile`.
@@ -242,25 +303,210 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
     Known(known)
 }
 
-/// Codes that exist on the controls but are not run yet, with the issue that adds them.
-fn not_yet(tenths: i32, profile: &Profile) -> GLookup {
-    use GLookup::NotSupported;
+/// Codes the controls have that vcnc does not run yet: (code in tenths, the issue that adds it,
+/// what it does).
+const NOT_YET: &[(i32, Option<u32>, &str)] = &[
+    (50, Some(6), "high-speed high-precision mode"),
+    (51, Some(6), "path smoothing / AI contour control"),
+    (62, None, "NURBS interpolation"),
+    (70, None, "hypothetical axis interpolation"),
+    (71, None, "cylindrical interpolation"),
+    (80, Some(6), "look-ahead control"),
+    (121, Some(5), "polar coordinate interpolation"),
+    (160, Some(5), "polar coordinate command"),
+    (220, None, "stored stroke check on"),
+    (230, None, "stored stroke check off"),
+    (270, None, "reference position return check"),
+    (310, None, "skip function"),
+    (330, None, "thread cutting"),
+    (370, None, "automatic tool length measurement"),
+    (371, None, "automatic tool length measurement II"),
+    (410, Some(5), "cutter compensation left"),
+    (420, Some(5), "cutter compensation right"),
+    (434, None, "tool centre point control"),
+    (450, Some(5), "tool position offset +1"),
+    (460, Some(5), "tool position offset -1"),
+    (470, Some(5), "tool position offset +2"),
+    (480, Some(5), "tool position offset -2"),
+    (510, Some(5), "scaling"),
+    (511, Some(5), "programmable mirror image"),
+    (531, None, "tool axis direction control"),
+    (650, Some(3), "macro call"),
+    (660, Some(3), "modal macro call"),
+    (680, Some(5), "coordinate rotation"),
+    (682, None, "tilted working plane"),
+    (730, Some(4), "high-speed peck drilling cycle"),
+    (740, Some(4), "left-hand tapping cycle"),
+    (760, Some(4), "fine boring cycle"),
+    (810, Some(4), "drilling cycle"),
+    (820, Some(4), "drilling cycle with dwell"),
+    (830, Some(4), "peck drilling cycle"),
+    (840, Some(4), "tapping cycle"),
+    (850, Some(4), "boring cycle"),
+    (860, Some(4), "boring cycle, spindle stop"),
+    (870, Some(4), "back boring cycle"),
+    (880, Some(4), "boring cycle, manual retract"),
+    (890, Some(4), "boring cycle with dwell"),
+    (1201, None, "machining condition selection"),
+    (1340, Some(4), "bolt hole circle pattern"),
+    (1350, Some(4), "holes on a line at an angle"),
+    (1360, Some(4), "holes on an arc"),
+    (1371, Some(4), "grid hole pattern"),
+    (1870, Some(6), "smoothness / accuracy setting"),
+];
+
+/// Codes that exist only where a profile says so: (code, the profile's switch, issue, meaning).
+fn not_yet_on(tenths: i32, profile: &Profile) -> Option<(Option<u32>, &'static str)> {
     match tenths {
-        // Macro calls.
-        650 | 660 => NotSupported(Some(3)),
-        // Canned cycles and hole patterns.
-        730 | 740 | 760 | 810..=890 if tenths % 10 == 0 => NotSupported(Some(4)),
-        1340 | 1350 | 1360 | 1371 => NotSupported(Some(4)),
-        120 | 130 if profile.g12_g13_circle_cutting => NotSupported(Some(4)),
-        // Compensation and transformations.
-        410 | 420 | 450 | 460 | 470 | 480 | 510 | 511 | 680 | 160 | 121 => NotSupported(Some(5)),
-        // High-speed and smoothing modes.
-        50 | 51 | 80 | 1870 => NotSupported(Some(6)),
-        // Known codes with no issue planned yet.
-        62 | 70 | 71 | 220 | 230 | 270 | 310 | 330 | 370 | 371 | 434 | 531 | 682 | 1031 | 1030 | 1201
-        | 1430 => NotSupported(None),
-        _ => GLookup::Unknown,
+        120 if profile.g12_g13_circle_cutting => Some((Some(4), "circle cutting CW")),
+        130 if profile.g12_g13_circle_cutting => Some((Some(4), "circle cutting CCW")),
+        _ => NOT_YET.iter().find(|(code, _, _)| *code == tenths).map(|(_, issue, what)| (*issue, *what)),
     }
+}
+
+fn not_yet(tenths: i32, profile: &Profile) -> GLookup {
+    match not_yet_on(tenths, profile) {
+        Some((issue, _)) => GLookup::NotSupported(issue),
+        None => GLookup::Unknown,
+    }
+}
+
+/// What a G code vcnc does not run yet does on `profile`, for messages and tables.
+pub fn not_supported_description(tenths: i32, profile: &Profile) -> Option<&'static str> {
+    not_yet_on(tenths, profile).map(|(_, what)| what)
+}
+
+/// What an M code does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MCode {
+    /// M00.
+    ProgramStop,
+    /// M01.
+    OptionalStop,
+    /// M02.
+    ProgramEnd,
+    /// M30.
+    ProgramEndRewind,
+    /// M03.
+    SpindleClockwise,
+    /// M04.
+    SpindleCounterClockwise,
+    /// M05.
+    SpindleStop,
+    /// M19.
+    SpindleOrientation,
+    /// M06.
+    ToolChange,
+    /// M07, M08.
+    CoolantOn,
+    /// M09.
+    CoolantOff,
+}
+
+impl MCode {
+    /// What the code does, in a few words.
+    pub fn description(self) -> &'static str {
+        match self {
+            MCode::ProgramStop => "program stop",
+            MCode::OptionalStop => "optional stop",
+            MCode::ProgramEnd => "end of program",
+            MCode::ProgramEndRewind => "end of program, rewind",
+            MCode::SpindleClockwise => "spindle CW",
+            MCode::SpindleCounterClockwise => "spindle CCW",
+            MCode::SpindleStop => "spindle stop",
+            MCode::SpindleOrientation => "spindle orientation",
+            MCode::ToolChange => "tool change",
+            MCode::CoolantOn => "coolant on",
+            MCode::CoolantOff => "coolant off",
+        }
+    }
+}
+
+/// The answer of [`classify_m`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MLookup {
+    /// A code vcnc runs.
+    Known(MCode),
+    /// A code of the control that vcnc does not run yet, with the issue that adds it.
+    NotSupported(Option<u32>),
+    /// A code for the machine (its PLC): passed on as an auxiliary event.
+    Machine,
+}
+
+/// What M code `code` means on `profile`.
+pub fn classify_m(code: u32, profile: &Profile) -> MLookup {
+    if profile.subprogram_m_codes.contains(&code) {
+        return MLookup::NotSupported(Some(3));
+    }
+    MLookup::Known(match code {
+        0 => MCode::ProgramStop,
+        1 => MCode::OptionalStop,
+        2 => MCode::ProgramEnd,
+        30 => MCode::ProgramEndRewind,
+        3 => MCode::SpindleClockwise,
+        4 => MCode::SpindleCounterClockwise,
+        5 => MCode::SpindleStop,
+        19 => MCode::SpindleOrientation,
+        6 => MCode::ToolChange,
+        7 | 8 => MCode::CoolantOn,
+        9 => MCode::CoolantOff,
+        _ => return MLookup::Machine,
+    })
+}
+
+/// The table of codes and their support on each built-in profile, as Markdown (README.md
+/// embeds it; a test keeps the two equal, so the table cannot drift from the code).
+pub fn supported_codes_markdown() -> String {
+    use super::ProfileName;
+    let profiles: Vec<Profile> = ProfileName::ALL.iter().map(|n| Profile::builtin(*n)).collect();
+    let mut out = String::from("| code | meaning |");
+    for p in &profiles {
+        out.push_str(&format!(" {} |", p.name));
+    }
+    out.push_str("\n|---|---|");
+    out.push_str(&"---|".repeat(profiles.len()));
+    out.push('\n');
+    for tenths in 0..2000 {
+        let lookups: Vec<GLookup> = profiles.iter().map(|p| classify_g(tenths, p)).collect();
+        if lookups.iter().all(|l| *l == GLookup::Unknown) {
+            continue;
+        }
+        let meaning = lookups
+            .iter()
+            .find_map(|l| if let GLookup::Known(g) = l { Some(g.description()) } else { None })
+            .or_else(|| profiles.iter().find_map(|p| not_supported_description(tenths, p)))
+            .unwrap_or("");
+        out.push_str(&format!("| {} | {meaning} |", g_name(tenths)));
+        for lookup in &lookups {
+            match lookup {
+                GLookup::Known(_) => out.push_str(" yes |"),
+                GLookup::NotSupported(Some(issue)) => out.push_str(&format!(" planned (#{issue}) |")),
+                GLookup::NotSupported(None) => out.push_str(" not yet |"),
+                GLookup::Unknown => out.push_str(" - |"),
+            }
+        }
+        out.push('\n');
+    }
+    for code in 0..200 {
+        let lookups: Vec<MLookup> = profiles.iter().map(|p| classify_m(code, p)).collect();
+        if lookups.iter().all(|l| *l == MLookup::Machine) {
+            continue;
+        }
+        let meaning = lookups
+            .iter()
+            .find_map(|l| if let MLookup::Known(m) = l { Some(m.description()) } else { None })
+            .unwrap_or("subprogram call, return or interrupt");
+        out.push_str(&format!("| M{code:02} | {meaning} |"));
+        for lookup in &lookups {
+            out.push_str(match lookup {
+                MLookup::Known(_) => " yes |",
+                MLookup::NotSupported(_) => " planned (#3) |",
+                MLookup::Machine => " machine |",
+            });
+        }
+        out.push('\n');
+    }
+    out
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@
 
 mod codes;
 
-pub use codes::{classify_g, GCode, GLookup, Group};
+pub use codes::{classify_g, classify_m, g_name, not_supported_description, supported_codes_markdown, GCode, GLookup, Group, MCode, MLookup};
 
 use crate::syntax::iso::SyntaxOptions;
 use serde::{Deserialize, Serialize};
