@@ -1,14 +1,14 @@
 //! Opening a program file: dialect detection and a streaming line source.
 
 use std::fs::File;
-use std::io::{BufReader, Read};
+use std::io::Read;
 use std::path::Path;
 use vcnc::syntax::lines::ReaderLines;
 use vcnc::syntax::{detect_dialect, Dialect};
 use vcnc::{FileId, Interpreter, Machine, Options};
 
 /// A program being interpreted from a file.
-pub(crate) type FileInterpreter = Interpreter<ReaderLines<BufReader<File>>>;
+pub(crate) type FileInterpreter = Interpreter<ReaderLines<File>>;
 
 /// Opens `path` and starts interpreting it; the file is read as the interpreter goes.
 pub(crate) fn open(path: &Path, machine: &Machine, mut options: Options) -> Result<FileInterpreter, String> {
@@ -18,7 +18,7 @@ pub(crate) fn open(path: &Path, machine: &Machine, mut options: Options) -> Resu
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     options.dialect = detect_dialect(&name, &head);
     let file = File::open(path).map_err(|e| format!("cannot open {}: {e}", path.display()))?;
-    let lines = ReaderLines::new(BufReader::with_capacity(64 * 1024, file));
+    let lines = ReaderLines::new(file);
     Ok(Interpreter::new(lines, FileId(0), machine, options))
 }
 

@@ -2,7 +2,8 @@
 //!
 //! JSON lines carry `kind`, `line`, `file`, the end point `x y z` (and `a b c` when the machine
 //! has them) in machine coordinates, `f` in mm/min for cutting moves, `cx cy cz dir plane` for
-//! arcs, and `n` (sequence number) and `wx wy wz` (end point in program coordinates) as extras.
+//! arcs, and `n` (sequence number) and, with `--work`, `wx wy wz` (end point in program
+//! coordinates) as extras.
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
 
 use super::{Outcome, SetupError};
@@ -31,6 +32,9 @@ pub(crate) struct Args {
     /// Output format.
     #[arg(long, value_enum, default_value = "jsonl")]
     format: Format,
+    /// Add the end point in program (work) coordinates to every motion: `wx wy wz`.
+    #[arg(long)]
+    work: bool,
     #[command(flatten)]
     machine: MachineArgs,
 }
@@ -46,36 +50,68 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         file_json: serde_json::to_string(&file_name).unwrap_or_else(|_| "\"\"".into()),
         file_csv: csv_field(&file_name),
         rotary,
+        work: args.work,
     };
+    if args.format == Format::Csv {
+        writer.csv_header();
+    }
+    // The interpreter runs on its own thread and hands over segments in batches, so that reading
+    // and interpreting overlap with formatting and writing on a second core.
+    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Result<Segment, Alarm>>>(16);
+    let producer = std::thread::spawn(move || {
+        let mut batch = Vec::with_capacity(BATCH);
+        for item in interpreter {
+            batch.push(item);
+            if batch.len() == BATCH && sender.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH))).is_err() {
+                return;
+            }
+        }
+        let _ = sender.send(batch);
+    });
     let stdout = std::io::stdout();
     let mut stdout = stdout.lock();
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut failed = false;
-    if args.format == Format::Csv {
-        writer.csv_header();
-    }
-    for item in interpreter {
-        match item {
-            Ok(segment) => match args.format {
-                Format::Jsonl => writer.jsonl(&segment),
-                Format::Csv => writer.csv(&segment),
-            },
-            Err(alarm) => {
-                failed |= alarm.is_error();
-                alarms.push(alarm);
+    let mut broken_pipe = false;
+    for batch in receiver {
+        for item in &batch {
+            match item {
+                Ok(segment) => match args.format {
+                    Format::Jsonl => writer.jsonl(segment),
+                    Format::Csv => writer.csv(segment),
+                },
+                Err(alarm) => {
+                    failed |= alarm.is_error();
+                    alarms.push(alarm.clone());
+                }
             }
         }
         if writer.out.len() >= 1 << 16 {
             if stdout.write_all(&writer.out).is_err() {
-                return Ok(Outcome::Clean);
+                broken_pipe = true;
+                break;
             }
             writer.out.clear();
         }
     }
-    let _ = stdout.write_all(&writer.out);
-    let _ = stdout.flush();
+    if !broken_pipe {
+        let _ = stdout.write_all(&writer.out);
+        let _ = stdout.flush();
+    }
+    drop(stdout);
+    let _ = producer.join();
     crate::diagnostics::print_human(&args.program, &alarms);
     Ok(if failed { Outcome::Alarm } else { Outcome::Clean })
+}
+
+/// Segments per batch handed from the interpreter thread to the writer.
+const BATCH: usize = 2048;
+
+/// The bytes that introduce a JSON key after a previous field: `key!("x")` is `,"x":`.
+macro_rules! key {
+    ($name:literal) => {
+        concat!(",\"", $name, "\":").as_bytes()
+    };
 }
 
 struct Writer {
@@ -83,6 +119,7 @@ struct Writer {
     file_json: String,
     file_csv: String,
     rotary: Vec<Axis>,
+    work: bool,
 }
 
 /// The parts of a record, shared by both formats.
@@ -98,11 +135,11 @@ fn record(segment: &Segment) -> Record<'_> {
     record.kind = match &segment.kind {
         SegmentKind::Rapid { .. } => "rapid",
         SegmentKind::Line { feed, .. } => {
-            record.feed = feed_mm_per_min(feed, segment.length());
+            record.feed = feed_mm_per_min(feed, segment);
             "feed"
         }
         SegmentKind::Arc { feed, center, direction, plane, .. } => {
-            record.feed = feed_mm_per_min(feed, segment.length());
+            record.feed = feed_mm_per_min(feed, segment);
             record.arc = Some((center.xyz(), direction.as_str(), plane.as_str()));
             "arc"
         }
@@ -119,23 +156,29 @@ fn record(segment: &Segment) -> Record<'_> {
     record
 }
 
-fn feed_mm_per_min(feed: &Feed, length: f64) -> Option<f64> {
-    feed.mm_per_min(length)
+/// The path speed of a cutting move; the length is worked out only for inverse-time feeds.
+fn feed_mm_per_min(feed: &Feed, segment: &Segment) -> Option<f64> {
+    match feed {
+        Feed::PerMinute(f) => Some(*f),
+        _ => feed.mm_per_min(segment.length()),
+    }
 }
 
 impl Writer {
-    fn key(&mut self, key: &str) {
-        self.out.extend_from_slice(b",\"");
-        self.out.extend_from_slice(key.as_bytes());
-        self.out.extend_from_slice(b"\":");
+    /// Writes a key given as its full prefix, `,"x":` (see [`key!`]); inlined, so that the
+    /// constant prefix is copied without a call.
+    #[inline(always)]
+    fn key(&mut self, key: &'static [u8]) {
+        self.out.extend_from_slice(key);
     }
 
-    fn number(&mut self, key: &str, value: f64) {
+    #[inline(always)]
+    fn number(&mut self, key: &'static [u8], value: f64) {
         self.key(key);
         push_decimal(&mut self.out, value);
     }
 
-    fn text(&mut self, key: &str, value: &str) {
+    fn text(&mut self, key: &'static [u8], value: &str) {
         self.key(key);
         self.out.push(b'"');
         self.out.extend_from_slice(value.as_bytes());
@@ -151,32 +194,38 @@ impl Writer {
         self.out.extend_from_slice(b",\"file\":");
         self.out.extend_from_slice(self.file_json.as_bytes());
         if let Some(n) = segment.sequence {
-            self.key("n");
+            self.key(key!("n"));
             push_unsigned(&mut self.out, u64::from(n));
         }
         if let Some(motion) = record.motion {
             let to = motion.to.0;
-            self.number("x", to[0]);
-            self.number("y", to[1]);
-            self.number("z", to[2]);
+            self.number(key!("x"), to[0]);
+            self.number(key!("y"), to[1]);
+            self.number(key!("z"), to[2]);
             for axis in self.rotary.clone() {
-                let name = [axis.letter().to_ascii_lowercase()];
-                self.number(std::str::from_utf8(&name).unwrap_or("a"), to[axis.index()]);
+                let key: &'static [u8] = match axis {
+                    Axis::A => key!("a"),
+                    Axis::B => key!("b"),
+                    _ => key!("c"),
+                };
+                self.number(key, to[axis.index()]);
             }
             if let Some(f) = record.feed {
-                self.number("f", f);
+                self.number(key!("f"), f);
             }
             if let Some((center, dir, plane)) = record.arc {
-                self.number("cx", center[0]);
-                self.number("cy", center[1]);
-                self.number("cz", center[2]);
-                self.text("dir", dir);
-                self.text("plane", plane);
+                self.number(key!("cx"), center[0]);
+                self.number(key!("cy"), center[1]);
+                self.number(key!("cz"), center[2]);
+                self.text(key!("dir"), dir);
+                self.text(key!("plane"), plane);
             }
-            let work = motion.work_to();
-            self.number("wx", work[0]);
-            self.number("wy", work[1]);
-            self.number("wz", work[2]);
+            if self.work {
+                let work = motion.work_to();
+                self.number(key!("wx"), work[0]);
+                self.number(key!("wy"), work[1]);
+                self.number(key!("wz"), work[2]);
+            }
         }
         self.event_fields(&segment.kind);
         self.out.extend_from_slice(b"}\n");
@@ -184,25 +233,25 @@ impl Writer {
 
     fn event_fields(&mut self, kind: &SegmentKind) {
         match *kind {
-            SegmentKind::Dwell { seconds } => self.number("seconds", seconds),
+            SegmentKind::Dwell { seconds } => self.number(key!("seconds"), seconds),
             SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => {
-                self.key("tool");
+                self.key(key!("tool"));
                 push_unsigned(&mut self.out, u64::from(tool));
             }
             SegmentKind::Spindle { state, speed } => {
-                self.text("state", spindle_name(state));
-                self.number("speed", speed);
+                self.text(key!("state"), spindle_name(state));
+                self.number(key!("speed"), speed);
             }
             SegmentKind::Coolant { on } => {
-                self.key("on");
+                self.key(key!("on"));
                 self.out.extend_from_slice(if on { b"true" } else { b"false" });
             }
-            SegmentKind::Stop { kind } => self.text("stop", stop_name(kind)),
+            SegmentKind::Stop { kind } => self.text(key!("stop"), stop_name(kind)),
             SegmentKind::Auxiliary { code } => {
-                self.key("code");
+                self.key(key!("code"));
                 push_unsigned(&mut self.out, u64::from(code));
             }
-            SegmentKind::End { kind } => self.text("end", end_name(kind)),
+            SegmentKind::End { kind } => self.text(key!("end"), end_name(kind)),
             _ => {}
         }
     }
@@ -213,7 +262,11 @@ impl Writer {
             self.out.push(b',');
             self.out.push(axis.letter().to_ascii_lowercase());
         }
-        self.out.extend_from_slice(b",f,cx,cy,cz,dir,plane,wx,wy,wz,value\n");
+        self.out.extend_from_slice(if self.work {
+            b",f,cx,cy,cz,dir,plane,wx,wy,wz,value\n".as_slice()
+        } else {
+            b",f,cx,cy,cz,dir,plane,value\n".as_slice()
+        });
     }
 
     fn csv(&mut self, segment: &Segment) {
@@ -251,14 +304,16 @@ impl Writer {
             }
             None => self.out.extend_from_slice(b",,,,,"),
         }
-        match record.motion {
-            Some(motion) => {
-                for w in &motion.work_to()[..3] {
-                    self.out.push(b',');
-                    push_decimal(&mut self.out, *w);
+        if self.work {
+            match record.motion {
+                Some(motion) => {
+                    for w in &motion.work_to()[..3] {
+                        self.out.push(b',');
+                        push_decimal(&mut self.out, *w);
+                    }
                 }
+                None => self.out.extend_from_slice(b",,,"),
             }
-            None => self.out.extend_from_slice(b",,,"),
         }
         self.out.push(b',');
         self.out.extend_from_slice(csv_value(&segment.kind).as_bytes());

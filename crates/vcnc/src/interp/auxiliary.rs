@@ -18,18 +18,18 @@ use crate::profile::{classify_m, DwellP, MCode, MLookup};
 /// # Errors
 /// A negative S.
 pub(crate) fn speed_and_tool(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
-    if let Some(s) = cmd.s {
+    if let Some(s) = cmd.s() {
         if s.number.value < 0.0 {
             return Err(Alarm::error(AlarmCode::ValueOutOfRange, s.span, "spindle speed cannot be negative"));
         }
         exec.speed = s.number.value;
         let running = matches!(exec.spindle, SpindleState::Clockwise | SpindleState::CounterClockwise);
-        let starts_here = cmd.m.iter().any(|m| matches!(m.number.value as u32, 3 | 4));
+        let starts_here = cmd.m_codes().iter().any(|m| matches!(m.number.value as u32, 3 | 4));
         if running && !starts_here && exec.modal.spindle_mode == SpindleMode::Rpm {
             out.push(cmd, SegmentKind::Spindle { state: exec.spindle, speed: exec.speed });
         }
     }
-    if let Some(t) = cmd.t {
+    if let Some(t) = cmd.t() {
         exec.selected_tool = t.number.value as u32;
         out.push(cmd, SegmentKind::ToolSelect { tool: exec.selected_tool });
     }
@@ -41,7 +41,7 @@ pub(crate) fn speed_and_tool(exec: &mut Executor, cmd: &Command, out: &mut Outpu
 /// # Errors
 /// Subprogram calls and returns (issue 3).
 pub(crate) fn before_motion(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
-    for m in &cmd.m {
+    for m in cmd.m_codes() {
         let code = m.number.value as u32;
         let kind = match classify_m(code, &exec.profile) {
             MLookup::NotSupported(issue) => {
@@ -77,7 +77,7 @@ fn spindle(exec: &mut Executor, state: SpindleState) -> SegmentKind {
 /// # Errors
 /// None yet.
 pub(crate) fn after_motion(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
-    for m in &cmd.m {
+    for m in cmd.m_codes() {
         match classify_m(m.number.value as u32, &exec.profile) {
             MLookup::Known(MCode::ProgramStop) => stop(cmd, StopKind::Program, out),
             MLookup::Known(MCode::OptionalStop) => stop(cmd, StopKind::Optional, out),
@@ -95,7 +95,7 @@ pub(crate) fn after_motion(exec: &mut Executor, cmd: &Command, out: &mut Output)
 /// # Errors
 /// A decimal point in P where the control forbids it; a negative time.
 pub(crate) fn dwell(exec: &mut Executor, cmd: &Command, g04_order: usize, out: &mut Output) -> Result<(), Alarm> {
-    let seconds = if let Some(p) = cmd.p {
+    let seconds = if let Some(p) = cmd.p() {
         let n = p.number;
         match exec.profile.dwell_p {
             DwellP::MillisecondsStrict if n.decimal_point && n.value.fract() != 0.0 => {
@@ -111,7 +111,7 @@ pub(crate) fn dwell(exec: &mut Executor, cmd: &Command, g04_order: usize, out: &
             DwellP::SecondsWithPoint if n.decimal_point => n.value,
             DwellP::SecondsWithPoint => n.value / 1000.0,
         }
-    } else if let Some(x) = cmd.axes[Axis::X.index()] {
+    } else if let Some(x) = cmd.axis(Axis::X.index()) {
         let n = x.number;
         if exec.profile.dwell_x_before_g04_is_increments && x.order < g04_order && n.decimal_point {
             // FANUC 0M (spec A.8): the X word was converted as a distance before G04 was read, so

@@ -25,10 +25,10 @@ pub(crate) fn arc(
 ) -> Result<(), Alarm> {
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
-    let spec = if let Some(r) = cmd.r {
+    let spec = if let Some(r) = cmd.r() {
         ArcSpec::Radius { radius: exec.length(&r), span: r.span }
     } else {
-        let (ca, cb) = (cmd.center[a], cmd.center[b]);
+        let (ca, cb) = (cmd.center(a), cmd.center(b));
         let Some(span) = ca.or(cb).map(|v| v.span) else {
             return Err(Alarm::error(
                 AlarmCode::ArcWithoutCenter,

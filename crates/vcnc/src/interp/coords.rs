@@ -17,11 +17,12 @@ use crate::profile::Group;
 pub(crate) fn g92(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     let program = exec.program_position();
     for axis in Axis::ALL {
-        let Some(value) = &cmd.axes[axis.index()] else { continue };
+        let Some(value) = &cmd.axis(axis.index()) else { continue };
         let i = axis.index();
         let wanted = exec.axis_value(axis, value);
-        exec.frames.g92[i] += exec.frames.local[i] + (program[i] - wanted);
-        exec.frames.local[i] = 0.0;
+        let g92 = exec.frames.g92(i) + exec.frames.local(i) + (program[i] - wanted);
+        exec.frames.set_g92(i, g92);
+        exec.frames.set_local(i, 0.0);
     }
     Ok(true)
 }
@@ -33,14 +34,14 @@ pub(crate) fn g92(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
 /// # Errors
 /// Not supported yet for Syntec's rotated form; an axis value other than 0.
 pub(crate) fn g92_1(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
-    if cmd.r.is_some() || cmd.center[2].is_some() {
+    if cmd.r().is_some() || cmd.center(2).is_some() {
         let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
         return Err(Alarm::not_supported(span, "G92.1 with rotation (K, R)", Some(5)));
     }
     let named = cmd.has_axis_words();
     for axis in Axis::ALL {
         let i = axis.index();
-        match &cmd.axes[i] {
+        match &cmd.axis(i) {
             Some(value) if value.number.value != 0.0 => {
                 return Err(Alarm::error(
                     AlarmCode::ValueOutOfRange,
@@ -52,8 +53,8 @@ pub(crate) fn g92_1(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
             None if named => continue,
             None => {}
         }
-        exec.frames.g92[i] = 0.0;
-        exec.frames.local[i] = 0.0;
+        exec.frames.set_g92(i, 0.0);
+        exec.frames.set_local(i, 0.0);
     }
     Ok(true)
 }
@@ -65,8 +66,9 @@ pub(crate) fn g92_1(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
 /// None yet.
 pub(crate) fn g52(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     for axis in Axis::ALL {
-        if let Some(value) = &cmd.axes[axis.index()] {
-            exec.frames.local[axis.index()] = exec.axis_value(axis, value);
+        if let Some(value) = &cmd.axis(axis.index()) {
+            let local = exec.axis_value(axis, value);
+            exec.frames.set_local(axis.index(), local);
         }
     }
     Ok(true)
@@ -84,11 +86,11 @@ pub(crate) fn g53(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
     }
     let mut target: [f64; AXES] = exec.position;
     for axis in Axis::ALL {
-        if let Some(value) = &cmd.axes[axis.index()] {
+        if let Some(value) = &cmd.axis(axis.index()) {
             target[axis.index()] = exec.axis_value(axis, value);
         }
     }
-    if cmd.axes[Axis::Z.index()].is_some() {
+    if cmd.axis(Axis::Z.index()).is_some() {
         exec.frames.length_vector = 0.0;
     }
     exec.rapid_to(target, cmd, out);

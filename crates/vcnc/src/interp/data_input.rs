@@ -19,7 +19,7 @@ use crate::profile::{Group, ToolOffsetField};
 /// [`AlarmCode::WorkOffsetOutOfRange`] and [`AlarmCode::OffsetNumberOutOfRange`] for bad P.
 pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     let g10_span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
-    let l = cmd.l.and_then(|l| l.number.whole());
+    let l = cmd.l().and_then(|l| l.number.whole());
     let profile = &exec.profile;
     if let Some(l) = l {
         if l == i64::from(profile.g10_work_l) {
@@ -38,7 +38,7 @@ pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
         None => profile.g10_tool_default,
     };
     let Some(field) = field else {
-        let span = cmd.l.map_or(g10_span, |v| v.span);
+        let span = cmd.l().map_or(g10_span, |v| v.span);
         let message = match l {
             Some(l) => format!("G10 L{l} is not a data input this {} control accepts", profile.name),
             None => "G10 needs an L number".to_string(),
@@ -50,7 +50,7 @@ pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
 }
 
 fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm> {
-    let Some(p) = cmd.p else { return Ok(exec.modal.work_offset) };
+    let Some(p) = cmd.p() else { return Ok(exec.modal.work_offset) };
     let n = p.number.whole().unwrap_or(-1);
     let highest = if exec.profile.g59_x_offsets { 15 } else { 6 };
     match n {
@@ -65,7 +65,7 @@ fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm
 }
 
 fn extended_offset(exec: &Executor, cmd: &Command, span: crate::source::Span) -> Result<WorkOffsetId, Alarm> {
-    let Some(p) = cmd.p else { return Ok(exec.modal.work_offset) };
+    let Some(p) = cmd.p() else { return Ok(exec.modal.work_offset) };
     let n = p.number.whole().unwrap_or(-1);
     if n < 1 || n > i64::from(exec.profile.g54_1_count) {
         return Err(Alarm::error(
@@ -81,7 +81,7 @@ fn extended_offset(exec: &Executor, cmd: &Command, span: crate::source::Span) ->
 fn set_work_offset(exec: &mut Executor, cmd: &Command, id: WorkOffsetId) {
     let current = exec.frames.work_offset(id);
     for axis in Axis::ALL {
-        let Some(value) = &cmd.axes[axis.index()] else { continue };
+        let Some(value) = &cmd.axis(axis.index()) else { continue };
         let v = exec.axis_value(axis, value);
         let new = match exec.modal.distance {
             DistanceMode::Absolute => v,
@@ -97,8 +97,8 @@ fn set_tool_offset(
     field: ToolOffsetField,
     span: crate::source::Span,
 ) -> Result<(), Alarm> {
-    let p = required(cmd.p, span, "G10 for a tool offset needs P (the offset number)")?;
-    let r = required(cmd.r, span, "G10 for a tool offset needs R (the value)")?;
+    let p = required(cmd.p(), span, "G10 for a tool offset needs P (the offset number)")?;
+    let r = required(cmd.r(), span, "G10 for a tool offset needs R (the value)")?;
     let n = p.number.whole().unwrap_or(-1);
     if n < 1 || n > i64::from(exec.profile.max_offset_number) {
         return Err(Alarm::error(

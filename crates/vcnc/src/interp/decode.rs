@@ -6,7 +6,7 @@
 //! executor converts them with the units in force.
 
 use crate::alarm::{Alarm, AlarmCode};
-use crate::machine::{Axis, AXES};
+use crate::machine::Axis;
 use crate::profile::{classify_g, g_name, not_supported_description, GCode, GLookup, Group, Profile, SameGroupRule};
 use crate::source::Span;
 use crate::syntax::{Block, Number, Word};
@@ -31,29 +31,23 @@ pub(crate) struct GWord {
 /// Number of modal-group slots (see [`group_slot`]).
 const GROUP_SLOTS: usize = 19;
 
-/// The block, sorted.
+/// The block, sorted. Storage is compact (indexes into two short lists) because a command is
+/// cleared and refilled for every block: clearing costs a few dozen bytes, not kilobytes.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Command {
     pub(crate) span: Span,
     pub(crate) sequence: Option<u32>,
-    pub(crate) program_number: Option<Value>,
-    /// One G code per group slot (the last one written wins).
-    groups: [Option<GWord>; GROUP_SLOTS],
     /// G09 in the block.
     pub(crate) exact_stop_once: bool,
-    pub(crate) axes: [Option<Value>; AXES],
-    /// I, J, K.
-    pub(crate) center: [Option<Value>; 3],
-    pub(crate) r: Option<Value>,
-    pub(crate) f: Option<Value>,
-    pub(crate) s: Option<Value>,
-    pub(crate) t: Option<Value>,
-    pub(crate) h: Option<Value>,
-    pub(crate) d: Option<Value>,
-    pub(crate) p: Option<Value>,
-    pub(crate) q: Option<Value>,
-    pub(crate) l: Option<Value>,
-    pub(crate) m: Vec<Value>,
+    /// Per address letter A-Z: 1 + index into `values`, 0 when absent (G, M and N are kept apart).
+    letters: [u8; 26],
+    /// Bit i set when the axis word of axis index i is present.
+    axis_mask: u8,
+    values: Vec<Value>,
+    /// Per group slot: 1 + index into `g_words`, 0 when absent (the last code written wins).
+    groups: [u8; GROUP_SLOTS],
+    g_words: Vec<GWord>,
+    m: Vec<Value>,
     /// Warnings found while decoding (the block still runs).
     pub(crate) warnings: Vec<Alarm>,
 }
@@ -61,12 +55,65 @@ pub(crate) struct Command {
 impl Command {
     /// The G code of a group, if the block has one.
     pub(crate) fn group(&self, group: Group) -> Option<GWord> {
-        self.groups[group_slot(group)]
+        match self.groups[group_slot(group)] {
+            0 => None,
+            i => Some(self.g_words[usize::from(i) - 1]),
+        }
     }
 
-    /// Every G code of the block, one per group, in group order.
+    /// Every G code of the block in force, one per group, in the order written.
     pub(crate) fn g_codes(&self) -> impl Iterator<Item = GWord> + '_ {
-        self.groups.iter().flatten().copied()
+        // A code overridden by a later one of its group is not in force.
+        self.g_words
+            .iter()
+            .enumerate()
+            .filter(|(i, g)| usize::from(self.groups[group_slot(g.code.group())]) == i + 1)
+            .map(|(_, g)| *g)
+    }
+
+    /// The value of an address letter (`b'R'`), if the block has it.
+    pub(crate) fn word(&self, letter: u8) -> Option<Value> {
+        match self.letters.get(usize::from(letter.wrapping_sub(b'A'))).copied().unwrap_or(0) {
+            0 => None,
+            i => Some(self.values[usize::from(i) - 1]),
+        }
+    }
+
+    /// The axis word of axis index `i` (X Y Z A B C).
+    pub(crate) fn axis(&self, i: usize) -> Option<Value> {
+        self.word(b"XYZABC"[i])
+    }
+
+    /// The centre word I, J or K for axis index 0, 1 or 2.
+    pub(crate) fn center(&self, i: usize) -> Option<Value> {
+        self.word(b"IJK"[i])
+    }
+
+    pub(crate) fn r(&self) -> Option<Value> {
+        self.word(b'R')
+    }
+    pub(crate) fn f(&self) -> Option<Value> {
+        self.word(b'F')
+    }
+    pub(crate) fn s(&self) -> Option<Value> {
+        self.word(b'S')
+    }
+    pub(crate) fn t(&self) -> Option<Value> {
+        self.word(b'T')
+    }
+    pub(crate) fn h(&self) -> Option<Value> {
+        self.word(b'H')
+    }
+    pub(crate) fn p(&self) -> Option<Value> {
+        self.word(b'P')
+    }
+    pub(crate) fn l(&self) -> Option<Value> {
+        self.word(b'L')
+    }
+
+    /// The M codes in the order written.
+    pub(crate) fn m_codes(&self) -> &[Value] {
+        &self.m
     }
 
     /// An empty command standing for the block at `span`.
@@ -76,16 +123,54 @@ impl Command {
 
     /// True when any axis word is present.
     pub(crate) fn has_axis_words(&self) -> bool {
-        self.axes.iter().any(Option::is_some)
+        self.axis_mask != 0
     }
 
-    /// Clears the command for reuse.
+    /// The axes whose words are present, in axis order.
+    pub(crate) fn axes_present(&self) -> impl Iterator<Item = Axis> + '_ {
+        Axis::ALL.into_iter().filter(|a| self.axis_mask & (1 << a.index()) != 0)
+    }
+
+    /// True when I, J, K or R is present.
+    pub(crate) fn has_center_words(&self) -> bool {
+        (0..3).any(|i| self.center(i).is_some()) || self.r().is_some()
+    }
+
+    /// Clears the command for reuse, keeping its allocations.
     pub(crate) fn clear(&mut self) {
-        let mut m = std::mem::take(&mut self.m);
-        let mut warnings = std::mem::take(&mut self.warnings);
-        m.clear();
-        warnings.clear();
-        *self = Command { m, warnings, ..Command::default() };
+        self.span = Span::default();
+        self.sequence = None;
+        self.exact_stop_once = false;
+        self.letters = [0; 26];
+        self.axis_mask = 0;
+        self.values.clear();
+        self.groups = [0; GROUP_SLOTS];
+        self.g_words.clear();
+        self.m.clear();
+        self.warnings.clear();
+    }
+
+    /// Records the value of an address letter.
+    ///
+    /// # Errors
+    /// [`AlarmCode::DuplicateAddress`] when the letter was already written in the block.
+    fn set(&mut self, word: &Word, value: Value) -> Result<(), Alarm> {
+        let slot = usize::from(word.letter - b'A');
+        if self.letters[slot] != 0 {
+            let previous = self.values[usize::from(self.letters[slot]) - 1];
+            return Err(Alarm::error(
+                AlarmCode::DuplicateAddress,
+                word.span,
+                format!("address {} appears twice in the block", word.letter as char),
+            )
+            .with_label(previous.span, "first written here"));
+        }
+        self.values.push(value);
+        self.letters[slot] = u8::try_from(self.values.len()).unwrap_or(u8::MAX);
+        if let Some(axis) = Axis::from_letter(word.letter) {
+            self.axis_mask |= 1 << axis.index();
+        }
+        Ok(())
     }
 }
 
@@ -140,7 +225,7 @@ pub(crate) fn decode(
             }
             b'O' => {
                 whole(word)?;
-                set_once(&mut out.program_number, value, word)?;
+                out.set(word, value)?;
             }
             b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' => {
                 let axis = Axis::from_letter(word.letter).expect("letter matched as an axis above");
@@ -152,31 +237,31 @@ pub(crate) fn decode(
                     )
                     .with_help("add the axis to the machine file (`[axes.a]` ...) or remove the word"));
                 }
-                set_once(&mut out.axes[axis.index()], value, word)?;
+                out.set(word, value)?;
             }
-            b'I' => set_once(&mut out.center[0], value, word)?,
-            b'J' => set_once(&mut out.center[1], value, word)?,
-            b'K' => set_once(&mut out.center[2], value, word)?,
-            b'R' => set_once(&mut out.r, value, word)?,
-            b'F' if word.index == 0 => set_once(&mut out.f, value, word)?,
-            b'S' if word.index == 0 => set_once(&mut out.s, value, word)?,
+            b'I' => out.set(word, value)?,
+            b'J' => out.set(word, value)?,
+            b'K' => out.set(word, value)?,
+            b'R' => out.set(word, value)?,
+            b'F' if word.index == 0 => out.set(word, value)?,
+            b'S' if word.index == 0 => out.set(word, value)?,
             b'T' => {
                 whole(word)?;
-                set_once(&mut out.t, value, word)?;
+                out.set(word, value)?;
             }
             b'H' => {
                 whole(word)?;
-                set_once(&mut out.h, value, word)?;
+                out.set(word, value)?;
             }
             b'D' => {
                 whole(word)?;
-                set_once(&mut out.d, value, word)?;
+                out.set(word, value)?;
             }
-            b'P' => set_once(&mut out.p, value, word)?,
-            b'Q' => set_once(&mut out.q, value, word)?,
+            b'P' => out.set(word, value)?,
+            b'Q' => out.set(word, value)?,
             b'L' => {
                 whole(word)?;
-                set_once(&mut out.l, value, word)?;
+                out.set(word, value)?;
             }
             b'F' | b'S' => {
                 return Err(Alarm::not_supported(
@@ -227,7 +312,7 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
     }
     let slot = group_slot(code.group());
     let new = GWord { code, span: word.span, order };
-    if let Some(previous) = out.groups[slot] {
+    if let Some(previous) = out.group(code.group()) {
         if previous.code != code {
             let message = format!("two G codes of one modal group in a block: {} wins", g_name(tenths));
             match profile.same_group {
@@ -248,20 +333,8 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
             }
         }
     }
-    out.groups[slot] = Some(new);
-    Ok(())
-}
-
-fn set_once(slot: &mut Option<Value>, value: Value, word: &Word) -> Result<(), Alarm> {
-    if let Some(previous) = slot {
-        return Err(Alarm::error(
-            AlarmCode::DuplicateAddress,
-            word.span,
-            format!("address {} appears twice in the block", word.letter as char),
-        )
-        .with_label(previous.span, "first written here"));
-    }
-    *slot = Some(value);
+    out.g_words.push(new);
+    out.groups[slot] = u8::try_from(out.g_words.len()).unwrap_or(u8::MAX);
     Ok(())
 }
 

@@ -49,9 +49,12 @@ pub(crate) enum Flow {
 impl Executor {
     pub(crate) fn new(machine: &Machine) -> Executor {
         let profile = machine.profile.clone();
+        let modal = ModalState::power_on(&profile.power_on);
+        let mut frames = Frames::new(machine);
+        frames.select(modal.work_offset);
         Executor {
-            modal: ModalState::power_on(&profile.power_on),
-            frames: Frames::new(machine),
+            modal,
+            frames,
             position: machine.start,
             feed: profile.default_feed,
             speed: 0.0,
@@ -68,7 +71,7 @@ impl Executor {
 
     /// The current position in program coordinates.
     pub(crate) fn program_position(&self) -> [f64; AXES] {
-        self.frames.to_program(self.modal.work_offset, &self.position)
+        self.frames.to_program(&self.position)
     }
 
     /// Runs one block.
@@ -113,7 +116,7 @@ impl Executor {
         for g in cmd.g_codes() {
             match g.code {
                 GCode::ExtendedWorkOffset => {
-                    let p = cmd.p.ok_or_else(|| {
+                    let p = cmd.p().ok_or_else(|| {
                         Alarm::error(AlarmCode::WorkOffsetOutOfRange, g.span, "G54.1 needs P (1 to the number of extended offsets)")
                     })?;
                     let n = p.number.whole().unwrap_or(-1);
@@ -140,11 +143,12 @@ impl Executor {
                 code => self.modal.apply(code),
             }
         }
+        self.frames.select(self.modal.work_offset);
         Ok(())
     }
 
     fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
-        let Some(f) = cmd.f else { return Ok(()) };
+        let Some(f) = cmd.f() else { return Ok(()) };
         if f.number.value < 0.0 {
             return Err(Alarm::error(AlarmCode::BadFeedRate, f.span, "feed rate cannot be negative"));
         }
@@ -188,8 +192,8 @@ impl Executor {
     /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
     pub(crate) fn target_program(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.program_position();
-        for axis in Axis::ALL {
-            if let Some(value) = &cmd.axes[axis.index()] {
+        for axis in cmd.axes_present() {
+            if let Some(value) = &cmd.axis(axis.index()) {
                 let v = self.axis_value(axis, value);
                 match self.modal.distance {
                     super::modal::DistanceMode::Absolute => target[axis.index()] = v,
@@ -220,12 +224,12 @@ impl Executor {
         if moves_z {
             self.frames.length_vector = self.active_length();
         }
-        self.frames.to_machine(self.modal.work_offset, target, self.frames.length_vector)
+        self.frames.to_machine(target, self.frames.length_vector)
     }
 
     fn motion(&mut self, cmd: &Command, length_changed: bool, out: &mut Output) -> Result<(), Alarm> {
         let target = self.target_program(cmd);
-        let moves_z = cmd.axes[Axis::Z.index()].is_some() || length_changed;
+        let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;
         let machine_target = self.to_machine(&target, moves_z);
         match self.modal.motion {
             MotionMode::Rapid => {
@@ -256,13 +260,12 @@ impl Executor {
     pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Move {
         let from = MachinePos(self.position);
         self.position = to;
-        let program = self.program_position();
         Move {
             from,
             to: MachinePos(to),
             path_mode: self.modal.path_mode,
             exact_stop: cmd.exact_stop_once,
-            offset: std::array::from_fn(|i| to[i] - program[i]),
+            offset: self.frames.offset(),
         }
     }
 
@@ -280,7 +283,7 @@ impl Executor {
                 .with_help("add an F word to this block or an earlier one (FANUC alarm 011)"));
         };
         if f == 0.0 {
-            return Err(Alarm::error(AlarmCode::NoFeedRate, cmd.f.map_or(cmd.span, |v| v.span), "feed rate is zero"));
+            return Err(Alarm::error(AlarmCode::NoFeedRate, cmd.f().map_or(cmd.span, |v| v.span), "feed rate is zero"));
         }
         Ok(match self.modal.feed_mode {
             FeedMode::PerMinute => Feed::PerMinute(f),
@@ -293,7 +296,7 @@ impl Executor {
 }
 
 fn has_center_words(cmd: &Command) -> bool {
-    cmd.center.iter().any(Option::is_some) || cmd.r.is_some()
+    cmd.has_center_words()
 }
 
 /// Ends the program with the given end code.

@@ -15,21 +15,44 @@ use std::collections::BTreeMap;
 pub(crate) struct Frames {
     work_offsets: BTreeMap<WorkOffsetId, [f64; AXES]>,
     /// The G92 shift.
-    pub g92: [f64; AXES],
+    g92: [f64; AXES],
     /// The G52 local offset.
-    pub(crate) local: [f64; AXES],
+    local: [f64; AXES],
     /// The tool length offset applied to the Z position now.
     pub(crate) length_vector: f64,
+    /// The work coordinate system in use (kept equal to the modal state's by the executor).
+    active: WorkOffsetId,
+    /// Work + external + G92 + G52 of `active`: every block needs it and it changes only when an
+    /// offset does, so it is recomputed then.
+    shift: [f64; AXES],
 }
 
 impl Frames {
     pub(crate) fn new(machine: &Machine) -> Frames {
-        Frames {
+        let mut frames = Frames {
             work_offsets: machine.work_offsets.clone(),
             g92: [0.0; AXES],
             local: [0.0; AXES],
             length_vector: 0.0,
+            active: WorkOffsetId::Standard(1),
+            shift: [0.0; AXES],
+        };
+        frames.recompute();
+        frames
+    }
+
+    /// Selects the work coordinate system in use.
+    pub(crate) fn select(&mut self, active: WorkOffsetId) {
+        if active != self.active {
+            self.active = active;
+            self.recompute();
         }
+    }
+
+    fn recompute(&mut self) {
+        let work = self.work_offset(self.active);
+        let external = self.work_offset(WorkOffsetId::External);
+        self.shift = std::array::from_fn(|i| work[i] + external[i] + self.g92[i] + self.local[i]);
     }
 
     /// The value of a work offset register.
@@ -40,26 +63,49 @@ impl Frames {
     /// Sets one axis of a work offset register.
     pub(crate) fn set_work_offset(&mut self, id: WorkOffsetId, axis: usize, value: f64) {
         self.work_offsets.entry(id).or_insert([0.0; AXES])[axis] = value;
+        self.recompute();
     }
 
-    /// Everything between program and machine coordinates but the tool length, per axis.
-    pub(crate) fn shift(&self, active: WorkOffsetId) -> [f64; AXES] {
-        let work = self.work_offset(active);
-        let external = self.work_offset(WorkOffsetId::External);
-        std::array::from_fn(|i| work[i] + external[i] + self.g92[i] + self.local[i])
+    /// The G92 shift of an axis.
+    pub(crate) fn g92(&self, axis: usize) -> f64 {
+        self.g92[axis]
+    }
+
+    /// Sets the G92 shift of an axis.
+    pub(crate) fn set_g92(&mut self, axis: usize, value: f64) {
+        self.g92[axis] = value;
+        self.recompute();
+    }
+
+    /// The G52 local offset of an axis.
+    pub(crate) fn local(&self, axis: usize) -> f64 {
+        self.local[axis]
+    }
+
+    /// Sets the G52 local offset of an axis.
+    pub(crate) fn set_local(&mut self, axis: usize, value: f64) {
+        self.local[axis] = value;
+        self.recompute();
+    }
+
+    /// Machine minus program coordinates now: the shift and the applied tool length vector.
+    pub(crate) fn offset(&self) -> [f64; AXES] {
+        let mut offset = self.shift;
+        offset[2] += self.length_vector;
+        offset
     }
 
     /// Program coordinates of a machine position, with the applied tool length vector.
-    pub(crate) fn to_program(&self, active: WorkOffsetId, machine: &[f64; AXES]) -> [f64; AXES] {
-        let shift = self.shift(active);
+    pub(crate) fn to_program(&self, machine: &[f64; AXES]) -> [f64; AXES] {
+        let shift = &self.shift;
         let mut program: [f64; AXES] = std::array::from_fn(|i| machine[i] - shift[i]);
         program[2] -= self.length_vector;
         program
     }
 
     /// Machine coordinates of a program position, with tool length vector `length`.
-    pub(crate) fn to_machine(&self, active: WorkOffsetId, program: &[f64; AXES], length: f64) -> [f64; AXES] {
-        let shift = self.shift(active);
+    pub(crate) fn to_machine(&self, program: &[f64; AXES], length: f64) -> [f64; AXES] {
+        let shift = &self.shift;
         let mut machine: [f64; AXES] = std::array::from_fn(|i| program[i] + shift[i]);
         machine[2] += length;
         machine

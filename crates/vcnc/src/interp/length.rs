@@ -18,7 +18,7 @@ use crate::profile::Group;
 /// # Errors
 /// [`AlarmCode::OffsetNumberOutOfRange`] for an H number the control does not have.
 pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Result<bool, Alarm> {
-    if let Some(h) = cmd.h {
+    if let Some(h) = cmd.h() {
         let n = h.number.whole().unwrap_or(-1);
         if n < 0 || n > i64::from(exec.profile.max_offset_number) {
             return Err(Alarm::error(
@@ -30,7 +30,7 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
         exec.length_offset_number = n as u32;
     }
     let changed = cmd.group(Group::LengthComp).is_some()
-        || (cmd.h.is_some() && exec.modal.length_comp != LengthComp::Off);
+        || (cmd.h().is_some() && exec.modal.length_comp != LengthComp::Off);
     Ok(changed && (exec.active_length() - exec.frames.length_vector).abs() > 0.0)
 }
 

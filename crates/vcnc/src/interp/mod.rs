@@ -49,10 +49,11 @@ impl Default for Options {
     }
 }
 
-/// The queue of what one block produced.
+/// The queue of what one block produced. Alarms are boxed in the queue so that the common
+/// item, a segment, moves as few bytes as possible.
 #[derive(Debug, Default)]
 pub(crate) struct Output {
-    items: VecDeque<Result<Segment, Alarm>>,
+    items: VecDeque<Result<Segment, Box<Alarm>>>,
 }
 
 impl Output {
@@ -61,9 +62,9 @@ impl Output {
         self.items.push_back(Ok(Segment { kind, span: cmd.span, sequence: cmd.sequence }));
     }
 
-    /// Records a warning.
+    /// Records an alarm (a warning, or the error that ends the run).
     pub(crate) fn push_warning(&mut self, alarm: Alarm) {
-        self.items.push_back(Err(alarm));
+        self.items.push_back(Err(Box::new(alarm)));
     }
 }
 
@@ -231,7 +232,7 @@ impl<S: LineSource> Iterator for Interpreter<S> {
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             if let Some(item) = self.out.items.pop_front() {
-                return Some(item);
+                return Some(item.map_err(|alarm| *alarm));
             }
             if self.done {
                 return None;

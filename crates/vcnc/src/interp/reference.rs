@@ -27,7 +27,7 @@ pub(crate) fn g28(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
 /// [`AlarmCode::ReferencePointOutOfRange`] for a P the machine does not have.
 pub(crate) fn g30(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<bool, Alarm> {
     let count = exec.machine.reference_points.len();
-    let n = match cmd.p {
+    let n = match cmd.p() {
         None => 2,
         Some(p) => {
             let n = p.number.whole().unwrap_or(0);
@@ -64,12 +64,12 @@ fn reference_return(exec: &mut Executor, cmd: &Command, n: usize, out: &mut Outp
         return Ok(true);
     }
     let intermediate = exec.target_program(cmd);
-    let moves_z = cmd.axes[Axis::Z.index()].is_some();
+    let moves_z = cmd.axis(Axis::Z.index()).is_some();
     let via = exec.to_machine(&intermediate, moves_z);
     exec.rapid_to(via, cmd, out);
     let mut home = exec.position;
     for axis in Axis::ALL {
-        if cmd.axes[axis.index()].is_some() {
+        if cmd.axis(axis.index()).is_some() {
             exec.intermediate[axis.index()] = Some(intermediate[axis.index()]);
             home[axis.index()] = reference[axis.index()];
         }
@@ -91,7 +91,7 @@ pub(crate) fn g29(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
     let mut target = via;
     for axis in Axis::ALL {
         let i = axis.index();
-        let Some(value) = &cmd.axes[i] else { continue };
+        let Some(value) = &cmd.axis(i) else { continue };
         let Some(mid) = exec.intermediate[i] else {
             return Err(Alarm::error(
                 AlarmCode::NoIntermediatePoint,
@@ -106,7 +106,7 @@ pub(crate) fn g29(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
             DistanceMode::Incremental => mid + v,
         };
     }
-    let moves_z = cmd.axes[Axis::Z.index()].is_some();
+    let moves_z = cmd.axis(Axis::Z.index()).is_some();
     let via_machine = exec.to_machine(&via, moves_z);
     exec.rapid_to(via_machine, cmd, out);
     let target_machine = exec.to_machine(&target, moves_z);

@@ -6,7 +6,7 @@
 //! constant memory. Line ends (`\n`, `\r\n`) are stripped; bytes are passed on as they are
 //! (comments may be Latin-1).
 
-use std::io::{self, BufRead};
+use std::io::{self, Read};
 
 /// One line of program text.
 #[derive(Clone, Copy, Debug)]
@@ -61,36 +61,81 @@ impl LineSource for TextLines<'_> {
     }
 }
 
-/// Lines read from a buffered reader, one buffer reused for every line.
+/// Lines read from any reader through one buffer that is reused for every line: a line is
+/// handed out as a slice of the buffer, never copied (a line longer than the buffer grows it).
 #[derive(Debug)]
 pub struct ReaderLines<R> {
     reader: R,
     buffer: Vec<u8>,
+    /// The unread bytes are `buffer[start..end]`.
+    start: usize,
+    end: usize,
+    /// File offset of `buffer[start]`.
     offset: u64,
     number: u32,
+    eof: bool,
 }
 
-impl<R: BufRead> ReaderLines<R> {
-    /// Lines of `reader`.
+impl<R: Read> ReaderLines<R> {
+    /// Lines of `reader` (it need not be buffered: this reads in large blocks).
     pub fn new(reader: R) -> ReaderLines<R> {
-        ReaderLines { reader, buffer: Vec::with_capacity(256), offset: 0, number: 0 }
+        ReaderLines { reader, buffer: vec![0; 256 * 1024], start: 0, end: 0, offset: 0, number: 0, eof: false }
+    }
+
+    /// Moves the unread bytes to the front and reads more; false when nothing more came.
+    fn refill(&mut self) -> io::Result<bool> {
+        if self.eof {
+            return Ok(false);
+        }
+        self.buffer.copy_within(self.start..self.end, 0);
+        self.end -= self.start;
+        self.start = 0;
+        if self.end == self.buffer.len() {
+            let grown = self.buffer.len() * 2;
+            self.buffer.resize(grown, 0);
+        }
+        loop {
+            match self.reader.read(&mut self.buffer[self.end..]) {
+                Ok(0) => {
+                    self.eof = true;
+                    return Ok(false);
+                }
+                Ok(n) => {
+                    self.end += n;
+                    return Ok(true);
+                }
+                Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+                Err(e) => return Err(e),
+            }
+        }
     }
 }
 
-impl<R: BufRead> LineSource for ReaderLines<R> {
+impl<R: Read> LineSource for ReaderLines<R> {
     fn next_line(&mut self) -> io::Result<Option<Line<'_>>> {
-        self.buffer.clear();
-        let read = self.reader.read_until(b'\n', &mut self.buffer)?;
-        if read == 0 {
-            return Ok(None);
-        }
-        let start = self.offset;
-        self.offset += read as u64;
+        let mut searched = 0;
+        let newline = loop {
+            if let Some(i) = memchr_newline(&self.buffer[self.start + searched..self.end]) {
+                break Some(self.start + searched + i);
+            }
+            searched = self.end - self.start;
+            if !self.refill()? {
+                break None;
+            }
+        };
+        let (line_end, next) = match newline {
+            Some(i) => (i, i + 1),
+            None if self.start < self.end => (self.end, self.end),
+            None => return Ok(None),
+        };
+        let line_start = self.start;
+        let file_offset = self.offset;
+        self.offset += (next - line_start) as u64;
+        self.start = next;
         self.number += 1;
-        let mut line = self.buffer.as_slice();
-        line = line.strip_suffix(b"\n").unwrap_or(line);
-        line = line.strip_suffix(b"\r").unwrap_or(line);
-        Ok(Some(Line { text: line, offset: clamp_offset(start as usize), number: self.number }))
+        let line = &self.buffer[line_start..line_end];
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        Ok(Some(Line { text: line, offset: clamp_offset(usize::try_from(file_offset).unwrap_or(usize::MAX)), number: self.number }))
     }
 }
 
@@ -114,6 +159,37 @@ mod tests {
             lines.push((String::from_utf8_lossy(line.text).into_owned(), line.offset, line.number));
         }
         lines
+    }
+
+    /// A reader that hands out at most `chunk` bytes per read, to cross buffer boundaries.
+    struct Trickle<'a> {
+        data: &'a [u8],
+        chunk: usize,
+    }
+
+    impl Read for Trickle<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+            let n = self.chunk.min(buf.len()).min(self.data.len());
+            buf[..n].copy_from_slice(&self.data[..n]);
+            self.data = &self.data[n..];
+            Ok(n)
+        }
+    }
+
+    #[test]
+    fn lines_longer_than_the_buffer_and_split_reads_come_out_whole() {
+        let mut text = Vec::new();
+        for i in 0..2000 {
+            text.extend_from_slice(format!("G1 X{i}.\r\n").as_bytes());
+        }
+        text.extend(std::iter::repeat(b'X').take(600 * 1024));
+        text.extend_from_slice(b"\nM30");
+        let a = collect(&mut TextLines::new(&text));
+        let b = collect(&mut ReaderLines::new(Trickle { data: &text, chunk: 7 }));
+        let c = collect(&mut ReaderLines::new(&text[..]));
+        assert_eq!(a, b);
+        assert_eq!(a, c);
+        assert_eq!(a.len(), 2002);
     }
 
     #[test]

@@ -298,6 +298,21 @@ impl Reader<'_, '_> {
             block.alarms.push(macro_not_supported(self.span(self.pos, self.pos + 1)));
             return None;
         }
+        if let Some((number, end)) = fast_number(&self.text[self.pos..], negative) {
+            self.pos += end;
+            return Some(number);
+        }
+        self.read_digits(word_start, letter, negative, block)
+    }
+
+    /// The digits of a number in every form: blanks inside, more than 18 digits, errors.
+    fn read_digits(
+        &mut self,
+        word_start: usize,
+        letter: u8,
+        negative: bool,
+        block: &mut crate::syntax::Block,
+    ) -> Option<Number> {
         let digits_start = self.pos;
         let mut mantissa: u64 = 0;
         let mut significant = 0u32;
@@ -346,6 +361,43 @@ impl Reader<'_, '_> {
         let value = if negative { -magnitude } else { magnitude };
         Some(Number { value, decimal_point, negative })
     }
+}
+
+/// The common case of [`Reader::read_number`]: `digits [. digits]` with at most 18 digits and
+/// nothing after it that could continue the number (a blank followed by more digits, a second
+/// point). Returns the number and the bytes it took; `None` sends the caller to the general path,
+/// which gives the same value (checked by the tests).
+fn fast_number(bytes: &[u8], negative: bool) -> Option<(Number, usize)> {
+    let mut mantissa: u64 = 0;
+    let mut i = 0;
+    while let Some(&b @ b'0'..=b'9') = bytes.get(i) {
+        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
+        i += 1;
+    }
+    let integer_digits = i;
+    let mut fraction_digits = 0;
+    let decimal_point = bytes.get(i) == Some(&b'.');
+    if decimal_point {
+        i += 1;
+        while let Some(&b @ b'0'..=b'9') = bytes.get(i) {
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
+            i += 1;
+            fraction_digits += 1;
+        }
+    }
+    let digits = integer_digits + fraction_digits;
+    if digits == 0 || digits > 18 || bytes.get(i) == Some(&b'.') {
+        return None;
+    }
+    if matches!(bytes.get(i), Some(b' ' | b'\t')) {
+        // Blanks inside a number are ignored (`X1 2.5`): only a blank before the next word ends it.
+        let next = bytes[i..].iter().find(|b| !matches!(b, b' ' | b'\t'));
+        if matches!(next, Some(b'0'..=b'9' | b'.')) {
+            return None;
+        }
+    }
+    let magnitude = scale(mantissa, -(fraction_digits as i32));
+    Some((Number { value: if negative { -magnitude } else { magnitude }, decimal_point, negative }, i))
 }
 
 /// `mantissa * 10^exponent`, correctly rounded for the exponents a G-code number can have: the
@@ -493,6 +545,20 @@ mod tests {
         let alarm = &blocks[0].alarms[0];
         assert_eq!(alarm.code, AlarmCode::MissingValue);
         assert_eq!(alarm.span.unwrap().start, 3);
+    }
+
+    #[test]
+    fn the_fast_and_the_general_number_paths_agree() {
+        for text in ["0", "1.", ".5", "1.833", "123456.789", "0.0010", "000012", "99999.9999", "1.000000000000001"] {
+            for negative in [false, true] {
+                let (fast, _) = fast_number(text.as_bytes(), negative).unwrap();
+                let options = SyntaxOptions::default();
+                let mut reader =
+                    Reader { text: text.as_bytes(), pos: 0, file: FileId(0), base: 0, line: 1, options: &options };
+                let general = reader.read_digits(0, b'X', negative, &mut Block::new()).unwrap();
+                assert_eq!(fast, general, "{text}");
+            }
+        }
     }
 
     #[test]
