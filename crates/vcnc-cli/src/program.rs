@@ -3,14 +3,15 @@
 use std::fs::File;
 use std::io::Read;
 use std::path::Path;
-use vcnc::syntax::lines::ReaderLines;
+use vcnc::syntax::source::BackgroundParser;
 use vcnc::syntax::{detect_dialect, Dialect};
 use vcnc::{FileId, Interpreter, Machine, Options};
 
 /// A program being interpreted from a file.
-pub(crate) type FileInterpreter = Interpreter<ReaderLines<File>>;
+pub(crate) type FileInterpreter = Interpreter<BackgroundParser>;
 
-/// Opens `path` and starts interpreting it; the file is read as the interpreter goes.
+/// Opens `path` and starts interpreting it; the file is read and parsed on a thread of its own,
+/// a few hundred lines ahead of the interpreter.
 pub(crate) fn open(path: &Path, machine: &Machine, mut options: Options) -> Result<FileInterpreter, String> {
     let mut head = Vec::with_capacity(4096);
     let file = File::open(path).map_err(|e| format!("cannot open {}: {e}", path.display()))?;
@@ -18,8 +19,8 @@ pub(crate) fn open(path: &Path, machine: &Machine, mut options: Options) -> Resu
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     options.dialect = detect_dialect(&name, &head);
     let file = File::open(path).map_err(|e| format!("cannot open {}: {e}", path.display()))?;
-    let lines = ReaderLines::new(file);
-    Ok(Interpreter::new(lines, FileId(0), machine, options))
+    let blocks = BackgroundParser::spawn(file, FileId(0), machine.profile.syntax());
+    Ok(Interpreter::from_blocks(blocks, FileId(0), machine, options))
 }
 
 /// The dialect a file would be read in.

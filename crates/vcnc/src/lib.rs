@@ -43,6 +43,7 @@ pub use profile::{Profile, ProfileName};
 pub use source::{FileId, Span};
 
 use syntax::lines::TextLines;
+use syntax::source::ParsedLines;
 
 /// The README's Rust examples, compiled and run as doctests.
 #[cfg(doctest)]
@@ -50,11 +51,11 @@ use syntax::lines::TextLines;
 pub struct ReadmeDoctests;
 
 /// Interprets a program held in memory, as file 0.
-pub fn interpret_str<'a>(text: &'a str, machine: &Machine, options: Options) -> Interpreter<TextLines<'a>> {
+pub fn interpret_str<'a>(text: &'a str, machine: &Machine, options: Options) -> Interpreter<ParsedLines<TextLines<'a>>> {
     Interpreter::new(TextLines::new(text.as_bytes()), FileId(0), machine, options)
 }
 
 /// Interprets a program held in memory as bytes (Latin-1 comments are fine), as file 0.
-pub fn interpret_bytes<'a>(text: &'a [u8], machine: &Machine, options: Options) -> Interpreter<TextLines<'a>> {
+pub fn interpret_bytes<'a>(text: &'a [u8], machine: &Machine, options: Options) -> Interpreter<ParsedLines<TextLines<'a>>> {
     Interpreter::new(TextLines::new(text), FileId(0), machine, options)
 }

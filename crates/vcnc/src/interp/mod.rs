@@ -25,8 +25,8 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Machine;
 use crate::motion::{EndKind, MachinePos, Segment, SegmentKind};
 use crate::source::{FileId, Span};
-use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
 use crate::syntax::lines::LineSource;
+use crate::syntax::source::{BlockSource, ParsedLines};
 use crate::syntax::{BlockKind, Dialect};
 use decode::Command;
 use exec::{Executor, Flow};
@@ -69,13 +69,10 @@ impl Output {
 }
 
 /// Interprets an ISO program: an iterator over its motion stream.
-pub struct Interpreter<S> {
-    source: S,
-    file: FileId,
-    syntax: SyntaxOptions,
+pub struct Interpreter<B> {
+    source: B,
     options: Options,
     exec: Executor,
-    blocks: LineBlocks,
     cursor: usize,
     command: Command,
     out: Output,
@@ -85,16 +82,23 @@ pub struct Interpreter<S> {
     blocks_executed: u64,
 }
 
-impl<S: LineSource> Interpreter<S> {
-    /// An interpreter for the program in `source` (file `file`) on `machine`.
-    pub fn new(source: S, file: FileId, machine: &Machine, options: Options) -> Interpreter<S> {
+impl<S: LineSource> Interpreter<ParsedLines<S>> {
+    /// An interpreter for the program in `source` (file `file`) on `machine`; lines are parsed
+    /// as they are needed.
+    pub fn new(source: S, file: FileId, machine: &Machine, options: Options) -> Interpreter<ParsedLines<S>> {
+        let blocks = ParsedLines::new(source, file, machine.profile.syntax());
+        Interpreter::from_blocks(blocks, file, machine, options)
+    }
+}
+
+impl<B: BlockSource> Interpreter<B> {
+    /// An interpreter for the blocks of `source` (file `file`) on `machine`; the source must
+    /// parse with `machine.profile.syntax()`.
+    pub fn from_blocks(source: B, file: FileId, machine: &Machine, options: Options) -> Interpreter<B> {
         let exec = Executor::new(machine);
         let mut interpreter = Interpreter {
             source,
-            file,
-            syntax: machine.profile.syntax(),
             exec,
-            blocks: LineBlocks::new(),
             cursor: 0,
             command: Command::default(),
             out: Output::default(),
@@ -142,16 +146,13 @@ impl<S: LineSource> Interpreter<S> {
 
     /// Reads and runs until something is queued or the program is over.
     fn step(&mut self) {
-        if self.cursor < self.blocks.as_slice().len() {
+        if self.cursor < self.source.blocks().len() {
             self.run_block();
             return;
         }
-        match self.source.next_line() {
-            Ok(Some(line)) => {
-                parse_line(line, self.file, &self.syntax, &mut self.blocks);
-                self.cursor = 0;
-            }
-            Ok(None) => self.end_of_text(),
+        match self.source.advance() {
+            Ok(true) => self.cursor = 0,
+            Ok(false) => self.end_of_text(),
             Err(error) => {
                 self.out.push_warning(Alarm {
                     code: AlarmCode::ReadError,
@@ -177,7 +178,7 @@ impl<S: LineSource> Interpreter<S> {
     }
 
     fn run_block(&mut self) {
-        let block = &self.blocks.as_slice()[self.cursor];
+        let block = &self.source.blocks()[self.cursor];
         self.cursor += 1;
         for alarm in &block.alarms {
             self.out.push_warning(alarm.clone());
@@ -226,7 +227,7 @@ impl<S: LineSource> Interpreter<S> {
     }
 }
 
-impl<S: LineSource> Iterator for Interpreter<S> {
+impl<B: BlockSource> Iterator for Interpreter<B> {
     type Item = Result<Segment, Alarm>;
 
     fn next(&mut self) -> Option<Self::Item> {

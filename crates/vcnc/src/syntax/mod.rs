@@ -8,6 +8,7 @@
 
 pub mod iso;
 pub mod lines;
+pub mod source;
 
 use crate::alarm::Alarm;
 use crate::source::Span;

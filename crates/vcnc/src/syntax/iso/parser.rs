@@ -369,35 +369,41 @@ impl Reader<'_, '_> {
 /// which gives the same value (checked by the tests).
 fn fast_number(bytes: &[u8], negative: bool) -> Option<(Number, usize)> {
     let mut mantissa: u64 = 0;
-    let mut i = 0;
-    while let Some(&b @ b'0'..=b'9') = bytes.get(i) {
-        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
-        i += 1;
-    }
-    let integer_digits = i;
-    let mut fraction_digits = 0;
-    let decimal_point = bytes.get(i) == Some(&b'.');
-    if decimal_point {
-        i += 1;
-        while let Some(&b @ b'0'..=b'9') = bytes.get(i) {
+    let mut digits = 0u32;
+    let mut fraction_digits = 0i32;
+    let mut decimal_point = false;
+    let mut consumed = bytes.len();
+    for (i, &b) in bytes.iter().enumerate() {
+        if b.is_ascii_digit() {
             mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
-            i += 1;
-            fraction_digits += 1;
+            digits += 1;
+            fraction_digits += i32::from(decimal_point);
+        } else if b == b'.' && !decimal_point {
+            decimal_point = true;
+        } else {
+            consumed = i;
+            break;
         }
     }
-    let digits = integer_digits + fraction_digits;
-    if digits == 0 || digits > 18 || bytes.get(i) == Some(&b'.') {
+    if digits == 0 || digits > 18 {
         return None;
     }
-    if matches!(bytes.get(i), Some(b' ' | b'\t')) {
-        // Blanks inside a number are ignored (`X1 2.5`): only a blank before the next word ends it.
-        let next = bytes[i..].iter().find(|b| !matches!(b, b' ' | b'\t'));
-        if matches!(next, Some(b'0'..=b'9' | b'.')) {
-            return None;
+    let rest = &bytes[consumed..];
+    match rest.first() {
+        Some(b'.') => return None,
+        Some(b' ' | b'\t') => {
+            // Blanks inside a number are ignored (`X1 2.5`): only a blank before the next word
+            // ends it.
+            let next = rest.iter().find(|b| !matches!(b, b' ' | b'\t'));
+            if matches!(next, Some(b'0'..=b'9' | b'.')) {
+                return None;
+            }
         }
+        _ => {}
     }
-    let magnitude = scale(mantissa, -(fraction_digits as i32));
-    Some((Number { value: if negative { -magnitude } else { magnitude }, decimal_point, negative }, i))
+    let magnitude = scale(mantissa, -fraction_digits);
+    let value = if negative { -magnitude } else { magnitude };
+    Some((Number { value, decimal_point, negative }, consumed))
 }
 
 /// `mantissa * 10^exponent`, correctly rounded for the exponents a G-code number can have: the

@@ -1,0 +1,195 @@
+//! Where the interpreter gets its blocks: a [`BlockSource`] hands them out one line at a time.
+//!
+//! [`ParsedLines`] reads and parses on demand, on the caller's thread. [`BackgroundParser`] reads
+//! and parses on a thread of its own, a few hundred lines ahead, so that a consumer with a second
+//! core spends its time interpreting; both give the same blocks (checked by the tests).
+
+use super::iso::{parse_line, LineBlocks, SyntaxOptions};
+use super::lines::{LineSource, ReaderLines};
+use super::Block;
+use crate::source::FileId;
+use std::io::{self, Read};
+use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::thread::JoinHandle;
+
+/// Blocks of a program, one line's worth at a time.
+pub trait BlockSource {
+    /// Moves to the next line; false at the end of the text.
+    ///
+    /// # Errors
+    /// Whatever reading the text reports.
+    fn advance(&mut self) -> io::Result<bool>;
+
+    /// The blocks of the current line (empty before the first `advance`).
+    fn blocks(&self) -> &[Block];
+}
+
+/// Lines from a [`LineSource`], parsed as they are asked for.
+#[derive(Debug)]
+pub struct ParsedLines<L> {
+    lines: L,
+    file: FileId,
+    syntax: SyntaxOptions,
+    blocks: LineBlocks,
+}
+
+impl<L: LineSource> ParsedLines<L> {
+    /// Parses the lines of `lines` (file `file`) with the character rules `syntax`.
+    pub fn new(lines: L, file: FileId, syntax: SyntaxOptions) -> ParsedLines<L> {
+        ParsedLines { lines, file, syntax, blocks: LineBlocks::new() }
+    }
+}
+
+impl<L: LineSource> BlockSource for ParsedLines<L> {
+    fn advance(&mut self) -> io::Result<bool> {
+        match self.lines.next_line()? {
+            Some(line) => {
+                parse_line(line, self.file, &self.syntax, &mut self.blocks);
+                Ok(true)
+            }
+            None => {
+                self.blocks.reset();
+                Ok(false)
+            }
+        }
+    }
+
+    fn blocks(&self) -> &[Block] {
+        self.blocks.as_slice()
+    }
+}
+
+/// Lines per batch handed from the parser thread.
+const BATCH: usize = 256;
+
+/// What the parser thread sends: a batch of parsed lines, or the error that stopped it.
+type Batch = io::Result<Vec<LineBlocks>>;
+
+/// Lines read and parsed on a background thread.
+#[derive(Debug)]
+pub struct BackgroundParser {
+    batches: Receiver<Batch>,
+    recycle: SyncSender<Vec<LineBlocks>>,
+    batch: Vec<LineBlocks>,
+    index: usize,
+    thread: Option<JoinHandle<()>>,
+    empty: LineBlocks,
+}
+
+impl BackgroundParser {
+    /// Starts reading `reader` (file `file`) on a new thread.
+    pub fn spawn<R: Read + Send + 'static>(reader: R, file: FileId, syntax: SyntaxOptions) -> BackgroundParser {
+        let (send_batch, batches) = sync_channel::<Batch>(8);
+        let (recycle, recycled) = sync_channel::<Vec<LineBlocks>>(16);
+        let thread = std::thread::spawn(move || {
+            let mut lines = ReaderLines::new(reader);
+            loop {
+                let mut batch = recycled.try_recv().unwrap_or_else(|_| Vec::with_capacity(BATCH));
+                let mut filled = 0;
+                let mut spare = std::mem::take(&mut batch);
+                while filled < BATCH {
+                    match lines.next_line() {
+                        Ok(Some(line)) => {
+                            if spare.len() <= filled {
+                                spare.push(LineBlocks::new());
+                            }
+                            parse_line(line, file, &syntax, &mut spare[filled]);
+                            filled += 1;
+                        }
+                        Ok(None) => break,
+                        Err(error) => {
+                            let _ = send_batch.send(Err(error));
+                            return;
+                        }
+                    }
+                }
+                spare.truncate(filled);
+                let last = filled < BATCH;
+                if (filled > 0 && send_batch.send(Ok(spare)).is_err()) || last {
+                    return;
+                }
+            }
+        });
+        BackgroundParser {
+            batches,
+            recycle,
+            batch: Vec::new(),
+            index: 0,
+            thread: Some(thread),
+            empty: LineBlocks::new(),
+        }
+    }
+}
+
+impl BlockSource for BackgroundParser {
+    fn advance(&mut self) -> io::Result<bool> {
+        self.index += 1;
+        if self.index < self.batch.len() {
+            return Ok(true);
+        }
+        let done = std::mem::take(&mut self.batch);
+        if !done.is_empty() {
+            let _ = self.recycle.try_send(done);
+        }
+        match self.batches.recv() {
+            Ok(Ok(batch)) => {
+                self.batch = batch;
+                self.index = 0;
+                Ok(!self.batch.is_empty())
+            }
+            Ok(Err(error)) => Err(error),
+            Err(_) => Ok(false),
+        }
+    }
+
+    fn blocks(&self) -> &[Block] {
+        self.batch.get(self.index).map_or(self.empty.as_slice(), LineBlocks::as_slice)
+    }
+}
+
+impl Drop for BackgroundParser {
+    fn drop(&mut self) {
+        // Dropping the receiver makes the parser thread's next send fail, so it ends.
+        let (_, receiver) = sync_channel(0);
+        drop(std::mem::replace(&mut self.batches, receiver));
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::lines::TextLines;
+
+    fn collect(source: &mut dyn BlockSource) -> Vec<Vec<Block>> {
+        let mut lines = Vec::new();
+        while source.advance().unwrap() {
+            lines.push(source.blocks().to_vec());
+        }
+        lines
+    }
+
+    #[test]
+    fn background_and_on_demand_parsing_give_the_same_blocks() {
+        let mut text = String::new();
+        for i in 0..2000 {
+            text.push_str(&format!("N{i} G1 X{i}. Y-{i}.5 (C) ; G0 Z1.\n"));
+        }
+        text.push_str("#1=2\nM30");
+        let syntax = SyntaxOptions::default();
+        let a = collect(&mut ParsedLines::new(TextLines::new(text.as_bytes()), FileId(0), syntax));
+        let b = collect(&mut BackgroundParser::spawn(std::io::Cursor::new(text.into_bytes()), FileId(0), syntax));
+        assert_eq!(a.len(), 2002);
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn dropping_a_background_parser_early_ends_its_thread() {
+        let text = "G1 X1.\n".repeat(100_000);
+        let mut parser = BackgroundParser::spawn(std::io::Cursor::new(text.into_bytes()), FileId(0), SyntaxOptions::default());
+        assert!(parser.advance().unwrap());
+        drop(parser);
+    }
+}
