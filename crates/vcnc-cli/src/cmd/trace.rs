@@ -57,7 +57,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     }
     // The interpreter runs on its own thread and hands over segments in batches, so that reading
     // and interpreting overlap with formatting and writing on a second core.
-    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Result<Segment, Alarm>>>(16);
+    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Result<Segment, Alarm>>>(4);
     let producer = std::thread::spawn(move || {
         let mut batch = Vec::with_capacity(BATCH);
         for item in interpreter {
@@ -105,7 +105,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
 }
 
 /// Segments per batch handed from the interpreter thread to the writer.
-const BATCH: usize = 2048;
+const BATCH: usize = 1024;
 
 /// The bytes that introduce a JSON key after a previous field: `key!("x")` is `,"x":`.
 macro_rules! key {
