@@ -1,0 +1,114 @@
+//! End-to-end tests of the `vcnc` binary: exit codes, output formats, diagnostics.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn vcnc(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_vcnc")).args(args).env("NO_COLOR", "1").output().expect("vcnc runs")
+}
+
+fn example() -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/bracket.nc").display().to_string()
+}
+
+fn temp_program(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("vcnc-cli-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn run_summarises_the_bundled_example() {
+    let out = vcnc(&["run", &example()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("ended with M30"), "{text}");
+    assert!(text.contains("blocks executed   35"), "{text}");
+    assert!(text.contains("T1 (1 change)"), "{text}");
+}
+
+#[test]
+fn run_json_is_one_object_with_the_totals() {
+    let out = vcnc(&["run", "--format", "json", &example()]);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["ok"], true);
+    assert_eq!(value["blocks"], 35);
+    assert!(value["feed"]["length_mm"].as_f64().unwrap() > 400.0);
+}
+
+#[test]
+fn check_exits_0_when_clean_1_on_an_alarm_and_2_on_misuse() {
+    assert_eq!(vcnc(&["check", &example()]).status.code(), Some(0));
+    let bad = temp_program("bad.nc", "G0 X1.\nG1 X2.\nM30\n");
+    let out = vcnc(&["check", &bad]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("error[V030]"), "{stderr}");
+    assert!(stderr.contains("bad.nc:2:1"), "{stderr}");
+    assert!(stderr.contains("G1 X2."), "{stderr}");
+    assert_eq!(vcnc(&["check"]).status.code(), Some(2));
+    assert_eq!(vcnc(&["check", "--profile", "nonsense", &example()]).status.code(), Some(2));
+    assert_eq!(vcnc(&["check", "/no/such/file.nc"]).status.code(), Some(2));
+}
+
+#[test]
+fn check_json_lists_alarms_with_line_and_column() {
+    let bad = temp_program("bad2.nc", "G0 X1.\n  G41 D1 X5.\nM30\n");
+    let out = vcnc(&["check", "--format", "json", &bad]);
+    assert_eq!(out.status.code(), Some(1));
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let alarm = &value["programs"][0]["alarms"][0];
+    assert_eq!(alarm["id"], "not_supported_yet");
+    assert_eq!(alarm["line"], 2);
+    assert_eq!(alarm["column"], 3);
+    assert_eq!(alarm["severity"], "error");
+}
+
+#[test]
+fn trace_jsonl_has_the_documented_fields() {
+    let program = temp_program("arc.nc", "G0 X10.\nG2 X0 Y10. R10. F100.\nM30\n");
+    let out = vcnc(&["trace", &program]);
+    assert!(out.status.success());
+    let lines: Vec<serde_json::Value> =
+        String::from_utf8(out.stdout).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines[0]["kind"], "rapid");
+    assert_eq!(lines[0]["x"], 10);
+    assert_eq!(lines[1]["kind"], "arc");
+    assert_eq!(lines[1]["line"], 2);
+    assert_eq!(lines[1]["f"], 100);
+    assert_eq!(lines[1]["dir"], "cw");
+    assert_eq!(lines[1]["plane"], "xy");
+    // Clockwise the short way from (10, 0) to (0, 10): the centre is (10, 10).
+    assert_eq!(lines[1]["cx"], 10);
+    assert_eq!(lines[1]["cy"], 10);
+    assert_eq!(lines[2]["kind"], "end");
+    assert!(lines[1]["file"].as_str().unwrap().ends_with("arc.nc"));
+}
+
+#[test]
+fn trace_csv_has_a_header_and_a_row_per_segment() {
+    let program = temp_program("line.nc", "G1 X1. F10.\nM30\n");
+    let out = vcnc(&["trace", "--format", "csv", "--work", &program]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("kind,line,file,n,x,y,z,f,cx,cy,cz,dir,plane,wx,wy,wz,value"));
+    assert!(lines.next().unwrap().starts_with("feed,1,"));
+}
+
+#[test]
+fn machine_prints_a_file_that_loads_back() {
+    let out = vcnc(&["machine"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let path = temp_program("machine.toml", &text);
+    assert_eq!(vcnc(&["check", "--machine", &path, &example()]).status.code(), Some(0));
+}
+
+#[test]
+fn sinumerik_programs_are_named_as_not_supported_yet() {
+    let program = temp_program("PART.MPF", "G0 X=10\nM30\n");
+    let out = vcnc(&["check", &program]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8(out.stderr).unwrap().contains("SINUMERIK programs are not supported yet"));
+}
