@@ -34,6 +34,10 @@ fn machine_for(name: &str) -> Machine {
         // made for reads numbers without a decimal point as whole units (FANUC parameter DPI = 1).
         machine.profile.decimal_less = vcnc::profile::DecimalLess::WholeUnits;
     }
+    if name.starts_with("kiely_") {
+        // Hand-written for a Haas set to inch (setting 9): the programs never say G20.
+        machine.profile.power_on.units = 200;
+    }
     machine
 }
 
