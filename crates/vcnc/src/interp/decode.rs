@@ -206,7 +206,7 @@ fn group_slot(group: Group) -> usize {
 pub(crate) fn decode(
     block: &Block,
     profile: &Profile,
-    has_axis: &dyn Fn(Axis) -> bool,
+    machine_axes: &[bool; crate::machine::AXES],
     out: &mut Command,
 ) -> Result<(), Alarm> {
     out.clear();
@@ -229,7 +229,7 @@ pub(crate) fn decode(
             }
             b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' => {
                 let axis = Axis::from_letter(word.letter).expect("letter matched as an axis above");
-                if !has_axis(axis) {
+                if !machine_axes[axis.index()] {
                     return Err(Alarm::error(
                         AlarmCode::AxisNotOnMachine,
                         word.span,

@@ -35,6 +35,8 @@ pub(crate) struct Executor {
     /// The G28/G30 intermediate point, program coordinates, per axis.
     pub(crate) intermediate: [Option<f64>; AXES],
     pub(crate) ended: bool,
+    /// Which axes the machine has, by axis index.
+    pub(crate) machine_axes: [bool; AXES],
 }
 
 /// What one block did to the flow of the program.
@@ -64,6 +66,7 @@ impl Executor {
             length_offset_number: 0,
             intermediate: [None; AXES],
             ended: false,
+            machine_axes: std::array::from_fn(|i| machine.axes[i].is_some()),
             profile,
             machine: machine.clone(),
         }

@@ -205,8 +205,7 @@ impl<B: BlockSource> Interpreter<B> {
         }
         self.started = true;
         self.last_span = block.span;
-        let machine = &self.exec.machine;
-        let decoded = decode::decode(block, &self.exec.profile, &|axis| machine.has_axis(axis), &mut self.command);
+        let decoded = decode::decode(block, &self.exec.profile, &self.exec.machine_axes, &mut self.command);
         for warning in self.command.warnings.drain(..) {
             self.out.push_warning(warning);
         }

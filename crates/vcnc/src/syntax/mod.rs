@@ -29,9 +29,13 @@ impl Number {
     /// The value as a code number in tenths (`54.1` is 541), if it has at most one decimal.
     pub fn tenths(&self) -> Option<i32> {
         let scaled = self.value * 10.0;
-        let rounded = scaled.round();
-        if (scaled - rounded).abs() < 1e-6 && rounded.abs() < 1e9 {
-            Some(rounded as i32)
+        if !(scaled.abs() < 1e9) {
+            return None;
+        }
+        // Rounded by a cast (no call to libm's `round`): G numbers are read for every block.
+        let rounded = (scaled + if scaled < 0.0 { -0.5 } else { 0.5 }) as i32;
+        if (scaled - f64::from(rounded)).abs() < 1e-6 {
+            Some(rounded)
         } else {
             None
         }

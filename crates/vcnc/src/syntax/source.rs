@@ -62,6 +62,9 @@ impl<L: LineSource> BlockSource for ParsedLines<L> {
 /// Lines per batch handed from the parser thread.
 const BATCH: usize = 256;
 
+/// Batches in circulation between the parser thread and the interpreter.
+const POOL: usize = 6;
+
 /// What the parser thread sends: a batch of parsed lines, or the error that stopped it.
 type Batch = io::Result<Vec<LineBlocks>>;
 
@@ -79,21 +82,24 @@ pub struct BackgroundParser {
 impl BackgroundParser {
     /// Starts reading `reader` (file `file`) on a new thread.
     pub fn spawn<R: Read + Send + 'static>(reader: R, file: FileId, syntax: SyntaxOptions) -> BackgroundParser {
-        let (send_batch, batches) = sync_channel::<Batch>(8);
-        let (recycle, recycled) = sync_channel::<Vec<LineBlocks>>(16);
+        // A fixed pool of batches goes round between the two threads: the parser waits for an
+        // empty one, so memory stays bounded and the parsed blocks' buffers are reused.
+        let (send_batch, batches) = sync_channel::<Batch>(POOL);
+        let (recycle, recycled) = sync_channel::<Vec<LineBlocks>>(POOL);
+        for _ in 0..POOL {
+            let _ = recycle.try_send(Vec::with_capacity(BATCH));
+        }
         let thread = std::thread::spawn(move || {
             let mut lines = ReaderLines::new(reader);
-            loop {
-                let mut batch = recycled.try_recv().unwrap_or_else(|_| Vec::with_capacity(BATCH));
+            while let Ok(mut batch) = recycled.recv() {
                 let mut filled = 0;
-                let mut spare = std::mem::take(&mut batch);
                 while filled < BATCH {
                     match lines.next_line() {
                         Ok(Some(line)) => {
-                            if spare.len() <= filled {
-                                spare.push(LineBlocks::new());
+                            if batch.len() <= filled {
+                                batch.push(LineBlocks::new());
                             }
-                            parse_line(line, file, &syntax, &mut spare[filled]);
+                            parse_line(line, file, &syntax, &mut batch[filled]);
                             filled += 1;
                         }
                         Ok(None) => break,
@@ -103,9 +109,9 @@ impl BackgroundParser {
                         }
                     }
                 }
-                spare.truncate(filled);
+                batch.truncate(filled);
                 let last = filled < BATCH;
-                if (filled > 0 && send_batch.send(Ok(spare)).is_err()) || last {
+                if (filled > 0 && send_batch.send(Ok(batch)).is_err()) || last {
                     return;
                 }
             }
@@ -128,7 +134,7 @@ impl BlockSource for BackgroundParser {
             return Ok(true);
         }
         let done = std::mem::take(&mut self.batch);
-        if !done.is_empty() {
+        if done.capacity() > 0 {
             let _ = self.recycle.try_send(done);
         }
         match self.batches.recv() {
@@ -149,9 +155,11 @@ impl BlockSource for BackgroundParser {
 
 impl Drop for BackgroundParser {
     fn drop(&mut self) {
-        // Dropping the receiver makes the parser thread's next send fail, so it ends.
+        // Dropping both ends makes the parser thread's next send or receive fail, so it ends.
         let (_, receiver) = sync_channel(0);
         drop(std::mem::replace(&mut self.batches, receiver));
+        let (sender, _) = sync_channel(0);
+        drop(std::mem::replace(&mut self.recycle, sender));
         if let Some(thread) = self.thread.take() {
             let _ = thread.join();
         }
