@@ -23,6 +23,9 @@ pub(crate) fn arc(
     target: [f64; AXES],
     out: &mut Output,
 ) -> Result<(), Alarm> {
+    if let (Some(l), true) = (cmd.l(), exec.profile.arc_l_is_spiral) {
+        return Err(Alarm::not_supported(l.span, "spiral and conical interpolation (G02/G03 with L)", None));
+    }
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
     let spec = if let Some(r) = cmd.r() {

@@ -199,6 +199,9 @@ pub struct Profile {
     /// Haas's G154 Pn selects the extended work offsets like G54.1 Pn.
     #[serde(default)]
     pub g154_extended_offsets: bool,
+    /// L in a G02/G03 block is the number of turns of a spiral (Syntec, spec 1.6).
+    #[serde(default)]
+    pub arc_l_is_spiral: bool,
     /// Mitsubishi's G12/G13 circle cutting exists.
     #[serde(default)]
     pub g12_g13_circle_cutting: bool,
