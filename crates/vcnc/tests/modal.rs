@@ -213,3 +213,19 @@ fn semicolons_end_blocks_and_syntec_double_slash_comments() {
         line X0 Y0 Z0 F1000
         end M30");
 }
+
+#[test]
+fn batches_give_the_same_stream_as_the_iterator() {
+    let program = "G0 X1.\nG1 X2. F100.\nG4 P10\nG2 X4. R1.\nG0 G1 X5.\nM30\n";
+    let machine = vcnc::Machine::default();
+    let one_by_one: Vec<_> = vcnc::interpret_str(program, &machine, vcnc::Options::default()).collect();
+    for size in [1, 2, 3, 100] {
+        let mut interpreter = vcnc::interpret_str(program, &machine, vcnc::Options::default());
+        let mut batched = Vec::new();
+        let mut batch = Vec::new();
+        while interpreter.next_batch(&mut batch, size) {
+            batched.append(&mut batch);
+        }
+        assert_eq!(batched, one_by_one, "batch size {size}");
+    }
+}

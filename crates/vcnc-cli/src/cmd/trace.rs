@@ -58,15 +58,13 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     // The interpreter runs on its own thread and hands over segments in batches, so that reading
     // and interpreting overlap with formatting and writing on a second core.
     let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Result<Segment, Alarm>>>(4);
-    let producer = std::thread::spawn(move || {
-        let mut batch = Vec::with_capacity(BATCH);
-        for item in interpreter {
-            batch.push(item);
-            if batch.len() == BATCH && sender.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH))).is_err() {
-                return;
-            }
+    let mut interpreter = interpreter;
+    let producer = std::thread::spawn(move || loop {
+        let mut batch = Vec::with_capacity(BATCH + 16);
+        let more = interpreter.next_batch(&mut batch, BATCH);
+        if !more || sender.send(batch).is_err() {
+            return;
         }
-        let _ = sender.send(batch);
     });
     let stdout = std::io::stdout();
     let mut stdout = stdout.lock();

@@ -144,6 +144,22 @@ impl<B: BlockSource> Interpreter<B> {
         &self.exec.modal
     }
 
+    /// Appends the next items of the stream to `out` until it holds at least `at_least` items
+    /// or the program is over; returns false when nothing more will come. The same items as
+    /// [`Iterator::next`] gives, with fewer moves: consumers of long streams use this.
+    pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
+        loop {
+            out.extend(self.out.items.drain(..).map(|item| item.map_err(|alarm| *alarm)));
+            if self.done {
+                return !out.is_empty();
+            }
+            if out.len() >= at_least {
+                return true;
+            }
+            self.step();
+        }
+    }
+
     /// Reads and runs until something is queued or the program is over.
     fn step(&mut self) {
         if self.cursor < self.source.blocks().len() {
