@@ -57,7 +57,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     }
     // The interpreter runs on its own thread and hands over segments in batches, so that reading
     // and interpreting overlap with formatting and writing on a second core.
-    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Result<Segment, Alarm>>>(4);
+    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Result<Segment, Alarm>>>(16);
     let mut interpreter = interpreter;
     let producer = std::thread::spawn(move || loop {
         let mut batch = Vec::with_capacity(BATCH + 16);

@@ -63,7 +63,7 @@ impl<L: LineSource> BlockSource for ParsedLines<L> {
 const BATCH: usize = 256;
 
 /// Batches in circulation between the parser thread and the interpreter.
-const POOL: usize = 6;
+const POOL: usize = 16;
 
 /// What the parser thread sends: a batch of parsed lines, or the error that stopped it.
 type Batch = io::Result<Vec<LineBlocks>>;

@@ -141,7 +141,7 @@ impl Reader<'_, '_> {
                     return self.abandon(block);
                 }
                 b if b.is_ascii_alphabetic() => {
-                    if !self.read_word(block) {
+                    if !self.read_plain_word(block) && !self.read_word(block) {
                         return self.abandon(block);
                     }
                 }
@@ -216,6 +216,27 @@ impl Reader<'_, '_> {
             self.pos += 1;
         }
         block.skip = Some(level);
+    }
+
+    /// The common word, a letter right before its number (`X-12.5`), read in one step; false
+    /// (nothing consumed) for every other form, which [`Reader::read_word`] reads.
+    fn read_plain_word(&mut self, block: &mut crate::syntax::Block) -> bool {
+        let start = self.pos;
+        let rest = &self.text[start + 1..];
+        let (negative, sign) = match rest.first() {
+            Some(b'-') => (true, 1),
+            Some(b'+') => (false, 1),
+            _ => (false, 0),
+        };
+        let Some((number, length)) = fast_number(&rest[sign..], negative) else { return false };
+        let end = start + 1 + sign + length;
+        if self.text.get(end) == Some(&b'=') {
+            return false;
+        }
+        let letter = self.text[start].to_ascii_uppercase();
+        block.words.push(Word { letter, index: 0, number, span: self.span(start, end) });
+        self.pos = end;
+        true
     }
 
     /// An address letter and its value. Returns false when the block cannot be read further.
