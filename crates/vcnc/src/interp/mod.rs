@@ -30,7 +30,6 @@ use crate::syntax::source::{BlockSource, ParsedLines};
 use crate::syntax::{BlockKind, Dialect};
 use decode::Command;
 use exec::{Executor, Flow};
-use std::collections::VecDeque;
 
 pub use modal::ModalState;
 
@@ -49,22 +48,22 @@ impl Default for Options {
     }
 }
 
-/// The queue of what one block produced. Alarms are boxed in the queue so that the common
-/// item, a segment, moves as few bytes as possible.
+/// The queue of what the blocks produced and nobody has taken yet: a few items for
+/// [`Iterator::next`], or the caller's whole batch for [`Interpreter::next_batch`].
 #[derive(Debug, Default)]
 pub(crate) struct Output {
-    items: VecDeque<Result<Segment, Box<Alarm>>>,
+    items: Vec<Result<Segment, Alarm>>,
 }
 
 impl Output {
     /// Records a segment of the block `cmd`.
     pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
-        self.items.push_back(Ok(Segment { kind, span: cmd.span, sequence: cmd.sequence }));
+        self.items.push(Ok(Segment { kind, span: cmd.span, sequence: cmd.sequence }));
     }
 
     /// Records an alarm (a warning, or the error that ends the run).
     pub(crate) fn push_warning(&mut self, alarm: Alarm) {
-        self.items.push_back(Err(Box::new(alarm)));
+        self.items.push(Err(alarm));
     }
 }
 
@@ -148,16 +147,15 @@ impl<B: BlockSource> Interpreter<B> {
     /// or the program is over; returns false when nothing more will come. The same items as
     /// [`Iterator::next`] gives, with fewer moves: consumers of long streams use this.
     pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
-        loop {
-            out.extend(self.out.items.drain(..).map(|item| item.map_err(|alarm| *alarm)));
-            if self.done {
-                return !out.is_empty();
-            }
-            if out.len() >= at_least {
-                return true;
-            }
+        // The executor writes straight into the caller's vector: no item is moved twice.
+        let leftover = std::mem::take(&mut self.out.items);
+        out.extend(leftover);
+        std::mem::swap(&mut self.out.items, out);
+        while !self.done && self.out.items.len() < at_least {
             self.step();
         }
+        std::mem::swap(&mut self.out.items, out);
+        !out.is_empty()
     }
 
     /// Reads and runs until something is queued or the program is over.
@@ -189,7 +187,7 @@ impl<B: BlockSource> Interpreter<B> {
             Alarm::warning(AlarmCode::MissingProgramEnd, span, "the program ends without M02, M30 or %")
                 .with_help("end the program with M30"),
         );
-        self.out.items.push_back(Ok(Segment { kind: SegmentKind::End { kind: EndKind::EndOfText }, span, sequence: None }));
+        self.out.items.push(Ok(Segment { kind: SegmentKind::End { kind: EndKind::EndOfText }, span, sequence: None }));
         self.done = true;
     }
 
@@ -247,8 +245,9 @@ impl<B: BlockSource> Iterator for Interpreter<B> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if let Some(item) = self.out.items.pop_front() {
-                return Some(item.map_err(|alarm| *alarm));
+            if !self.out.items.is_empty() {
+                // The queue holds one block's items at most, so taking the first is cheap.
+                return Some(self.out.items.remove(0));
             }
             if self.done {
                 return None;
