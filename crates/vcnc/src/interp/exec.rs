@@ -223,7 +223,7 @@ impl Executor {
 
     /// Machine coordinates for a program target; the length vector follows the compensation in
     /// force when the block moves Z (or changes the compensation).
-    pub(crate) fn to_machine(&mut self, target: &[f64; AXES], moves_z: bool) -> [f64; AXES] {
+    pub(crate) fn machine_target(&mut self, target: &[f64; AXES], moves_z: bool) -> [f64; AXES] {
         if moves_z {
             self.frames.length_vector = self.active_length();
         }
@@ -233,7 +233,7 @@ impl Executor {
     fn motion(&mut self, cmd: &Command, length_changed: bool, out: &mut Output) -> Result<(), Alarm> {
         let target = self.target_program(cmd);
         let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;
-        let machine_target = self.to_machine(&target, moves_z);
+        let machine_target = self.machine_target(&target, moves_z);
         match self.modal.motion {
             MotionMode::Rapid => {
                 self.rapid_to(machine_target, cmd, out);

@@ -40,7 +40,7 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
 /// None today; kept fallible for the feed check of a G01-mode offset move.
 pub(crate) fn move_to_new_vector(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
     let program = exec.program_position();
-    let target = exec.to_machine(&program, true);
+    let target = exec.machine_target(&program, true);
     match (exec.modal.motion, exec.feed) {
         (MotionMode::Linear | MotionMode::Arc(_), Some(_)) => {
             let feed = exec.cutting_feed(cmd)?;

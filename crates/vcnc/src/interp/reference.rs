@@ -65,7 +65,7 @@ fn reference_return(exec: &mut Executor, cmd: &Command, n: usize, out: &mut Outp
     }
     let intermediate = exec.target_program(cmd);
     let moves_z = cmd.axis(Axis::Z.index()).is_some();
-    let via = exec.to_machine(&intermediate, moves_z);
+    let via = exec.machine_target(&intermediate, moves_z);
     exec.rapid_to(via, cmd, out);
     let mut home = exec.position;
     for axis in Axis::ALL {
@@ -107,9 +107,9 @@ pub(crate) fn g29(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
         };
     }
     let moves_z = cmd.axis(Axis::Z.index()).is_some();
-    let via_machine = exec.to_machine(&via, moves_z);
+    let via_machine = exec.machine_target(&via, moves_z);
     exec.rapid_to(via_machine, cmd, out);
-    let target_machine = exec.to_machine(&target, moves_z);
+    let target_machine = exec.machine_target(&target, moves_z);
     exec.rapid_to(target_machine, cmd, out);
     Ok(true)
 }

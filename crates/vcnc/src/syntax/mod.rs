@@ -29,7 +29,8 @@ impl Number {
     /// The value as a code number in tenths (`54.1` is 541), if it has at most one decimal.
     pub fn tenths(&self) -> Option<i32> {
         let scaled = self.value * 10.0;
-        if !(scaled.abs() < 1e9) {
+        // NaN fails this test too.
+        if scaled.abs() >= 1e9 || scaled.is_nan() {
             return None;
         }
         // Rounded by a cast (no call to libm's `round`): G numbers are read for every block.
