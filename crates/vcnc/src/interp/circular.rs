@@ -56,7 +56,7 @@ pub(crate) fn arc(
                 "an R arc that ends on its start point does not move (use I J K for a full circle)",
             ));
             if target != exec.position {
-                let motion = exec.move_to(target, cmd);
+                let motion = exec.move_to(target, cmd)?;
                 out.push(cmd, SegmentKind::Line { motion, feed });
             }
             return Ok(());
@@ -66,7 +66,8 @@ pub(crate) fn arc(
     let mut center = exec.position;
     center[a] = center_plane.0;
     center[b] = center_plane.1;
-    let motion = exec.move_to(target, cmd);
+    super::exec::check_position(&center, cmd)?;
+    let motion = exec.move_to(target, cmd)?;
     out.push(
         cmd,
         SegmentKind::Arc { motion, center: MachinePos(center), direction, plane, extra_turns: 0, feed },

@@ -212,6 +212,13 @@ pub(crate) fn decode(
     out.clear();
     out.span = block.span;
     for (order, word) in block.words.iter().enumerate() {
+        if word.number.value.abs() > profile.max_word_value {
+            return Err(Alarm::error(
+                AlarmCode::ValueOutOfRange,
+                word.span,
+                format!("{} is out of range: the control reads values up to {}", word.letter as char, profile.max_word_value),
+            ));
+        }
         let value = Value { number: word.number, span: word.span, order };
         match word.letter {
             b'G' => decode_g(word, order, profile, out)?,

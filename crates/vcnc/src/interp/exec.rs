@@ -235,13 +235,10 @@ impl Executor {
         let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;
         let machine_target = self.machine_target(&target, moves_z);
         match self.modal.motion {
-            MotionMode::Rapid => {
-                self.rapid_to(machine_target, cmd, out);
-                Ok(())
-            }
+            MotionMode::Rapid => self.rapid_to(machine_target, cmd, out),
             MotionMode::Linear => {
                 let feed = self.cutting_feed(cmd)?;
-                let motion = self.move_to(machine_target, cmd);
+                let motion = self.move_to(machine_target, cmd)?;
                 out.push(cmd, SegmentKind::Line { motion, feed });
                 Ok(())
             }
@@ -250,26 +247,35 @@ impl Executor {
     }
 
     /// A rapid to a machine position, recorded in the stream.
-    pub(crate) fn rapid_to(&mut self, to: [f64; AXES], cmd: &Command, out: &mut Output) {
+    ///
+    /// # Errors
+    /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range.
+    pub(crate) fn rapid_to(&mut self, to: [f64; AXES], cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
         if to == self.position {
-            return;
+            return Ok(());
         }
         let per_axis = self.profile.rapid_path == crate::profile::RapidPath::PerAxis;
-        let motion = self.move_to(to, cmd);
+        let motion = self.move_to(to, cmd)?;
         out.push(cmd, SegmentKind::Rapid { motion, per_axis });
+        Ok(())
     }
 
     /// A [`Move`] from the current position to `to`; the position becomes `to`.
-    pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Move {
+    ///
+    /// # Errors
+    /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range (incremental
+    /// moves and offsets add up; the control refuses what it cannot represent).
+    pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Result<Move, Alarm> {
+        check_position(&to, cmd)?;
         let from = MachinePos(self.position);
         self.position = to;
-        Move {
+        Ok(Move {
             from,
             to: MachinePos(to),
             path_mode: self.modal.path_mode,
             exact_stop: cmd.exact_stop_once,
             offset: self.frames.offset(),
-        }
+        })
     }
 
     /// The feed of a cutting move in the mode in force.
@@ -300,6 +306,22 @@ impl Executor {
 
 fn has_center_words(cmd: &Command) -> bool {
     cmd.has_center_words()
+}
+
+/// The largest machine coordinate vcnc accepts, mm or degrees: far beyond any machine, far
+/// inside what f64 holds exactly to a micrometre.
+pub(crate) const POSITION_LIMIT: f64 = 1.0e9;
+
+/// Refuses a position no control can reach.
+///
+/// # Errors
+/// [`AlarmCode::ValueOutOfRange`] when a coordinate is not finite or beyond [`POSITION_LIMIT`].
+pub(crate) fn check_position(position: &[f64], cmd: &Command) -> Result<(), Alarm> {
+    if position.iter().all(|v| v.abs() <= POSITION_LIMIT) {
+        return Ok(());
+    }
+    Err(Alarm::error(AlarmCode::ValueOutOfRange, cmd.span, "the position is beyond the control's range")
+        .with_help(format!("coordinates are limited to ±{POSITION_LIMIT:e} mm")))
 }
 
 /// Ends the program with the given end code.

@@ -44,10 +44,10 @@ pub(crate) fn move_to_new_vector(exec: &mut Executor, cmd: &Command, out: &mut O
     match (exec.modal.motion, exec.feed) {
         (MotionMode::Linear | MotionMode::Arc(_), Some(_)) => {
             let feed = exec.cutting_feed(cmd)?;
-            let motion = exec.move_to(target, cmd);
+            let motion = exec.move_to(target, cmd)?;
             out.push(cmd, SegmentKind::Line { motion, feed });
         }
-        _ => exec.rapid_to(target, cmd, out),
+        _ => exec.rapid_to(target, cmd, out)?,
     }
     Ok(())
 }

@@ -53,7 +53,7 @@ fn reference_return(exec: &mut Executor, cmd: &Command, n: usize, out: &mut Outp
                 target[axis.index()] = reference[axis.index()];
             }
             exec.frames.length_vector = 0.0;
-            exec.rapid_to(target, cmd, out);
+            exec.rapid_to(target, cmd, out)?;
         } else {
             let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
             out.push_warning(
@@ -66,7 +66,7 @@ fn reference_return(exec: &mut Executor, cmd: &Command, n: usize, out: &mut Outp
     let intermediate = exec.target_program(cmd);
     let moves_z = cmd.axis(Axis::Z.index()).is_some();
     let via = exec.machine_target(&intermediate, moves_z);
-    exec.rapid_to(via, cmd, out);
+    exec.rapid_to(via, cmd, out)?;
     let mut home = exec.position;
     for axis in Axis::ALL {
         if cmd.axis(axis.index()).is_some() {
@@ -77,7 +77,7 @@ fn reference_return(exec: &mut Executor, cmd: &Command, n: usize, out: &mut Outp
     if moves_z {
         exec.frames.length_vector = 0.0;
     }
-    exec.rapid_to(home, cmd, out);
+    exec.rapid_to(home, cmd, out)?;
     Ok(true)
 }
 
@@ -108,8 +108,8 @@ pub(crate) fn g29(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
     }
     let moves_z = cmd.axis(Axis::Z.index()).is_some();
     let via_machine = exec.machine_target(&via, moves_z);
-    exec.rapid_to(via_machine, cmd, out);
+    exec.rapid_to(via_machine, cmd, out)?;
     let target_machine = exec.machine_target(&target, moves_z);
-    exec.rapid_to(target_machine, cmd, out);
+    exec.rapid_to(target_machine, cmd, out)?;
     Ok(true)
 }

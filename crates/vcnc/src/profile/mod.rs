@@ -216,6 +216,9 @@ pub struct Profile {
     pub g10_tool_default: Option<ToolOffsetField>,
     /// Cutter compensation values are diameters (Haas), not radii.
     pub radius_offsets_are_diameters: bool,
+    /// Largest magnitude of any value as written (`X99999999` ...): the control's digit limit.
+    #[serde(default = "default_max_word_value")]
+    pub max_word_value: f64,
     /// Highest H/D offset number.
     pub max_offset_number: u32,
     /// G00 path shape.
@@ -236,6 +239,11 @@ pub struct Profile {
     pub subprogram_m_codes: Vec<u32>,
     /// Power-on modal state.
     pub power_on: PowerOn,
+}
+
+fn default_max_word_value() -> f64 {
+    // Nine digits before the point: FANUC's widest input format.
+    999_999_999.0
 }
 
 impl Profile {
