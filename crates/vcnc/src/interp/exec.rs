@@ -236,6 +236,8 @@ impl Executor {
         let machine_target = self.machine_target(&target, moves_z);
         match self.modal.motion {
             MotionMode::Rapid => self.rapid_to(machine_target, cmd, out),
+            // A line that ends where it starts moves nothing (and needs no feed).
+            MotionMode::Linear if machine_target == self.position => Ok(()),
             MotionMode::Linear => {
                 let feed = self.cutting_feed(cmd)?;
                 let motion = self.move_to(machine_target, cmd)?;
