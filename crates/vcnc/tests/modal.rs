@@ -229,3 +229,16 @@ fn batches_give_the_same_stream_as_the_iterator() {
         assert_eq!(batched, one_by_one, "batch size {size}");
     }
 }
+
+#[test]
+fn fanuc_0m_runs_only_the_last_of_two_m_codes_in_a_block() {
+    // spec/iso-fanuc0m-mitsubishi.md A.15, example fanuc0m/06: M03 is ignored, M08 runs.
+    check_with(Fanuc0m, "S600 M03 M08\nM30", "
+        coolant on
+        end M30
+        alarm word_not_allowed line 1");
+    check("S600 M03 M08\nM30", "
+        spindle Clockwise 600
+        coolant on
+        end M30");
+}

@@ -224,6 +224,17 @@ pub(crate) fn decode(
             b'G' => decode_g(word, order, profile, out)?,
             b'M' => {
                 whole(word)?;
+                if out.m.len() >= profile.m_codes_per_block as usize && !out.m.is_empty() {
+                    let dropped = out.m.remove(0);
+                    out.warnings.push(
+                        Alarm::warning(
+                            AlarmCode::WordNotAllowed,
+                            dropped.span,
+                            format!("this control runs {} M code(s) per block: this one is ignored", profile.m_codes_per_block),
+                        )
+                        .with_label(word.span, "the later M code that runs"),
+                    );
+                }
                 out.m.push(value);
             }
             b'N' => {

@@ -216,6 +216,10 @@ pub struct Profile {
     pub g10_tool_default: Option<ToolOffsetField>,
     /// Cutter compensation values are diameters (Haas), not radii.
     pub radius_offsets_are_diameters: bool,
+    /// M codes a block may hold; when a block has more, only the last ones run (FANUC 0M: one,
+    /// spec A.15 and example fanuc0m/06).
+    #[serde(default = "default_m_codes_per_block")]
+    pub m_codes_per_block: u32,
     /// Largest magnitude of any value as written (`X99999999` ...): the control's digit limit.
     #[serde(default = "default_max_word_value")]
     pub max_word_value: f64,
@@ -239,6 +243,10 @@ pub struct Profile {
     pub subprogram_m_codes: Vec<u32>,
     /// Power-on modal state.
     pub power_on: PowerOn,
+}
+
+fn default_m_codes_per_block() -> u32 {
+    3
 }
 
 fn default_max_word_value() -> f64 {
