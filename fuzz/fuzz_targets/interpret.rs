@@ -1,0 +1,108 @@
+//! Fuzz target: arbitrary bytes through the whole interpreter, on every built-in profile.
+//!
+//! Properties (a broken one is a crash, and libFuzzer keeps the input):
+//! - no panic, and the run ends: at most `ITEMS_PER_BYTE` items per input byte (plus a few),
+//!   since a block takes at least one byte and yields only a handful of items; libFuzzer's
+//!   `-timeout` catches a single `next()` that never returns;
+//! - nothing comes out after the first error alarm;
+//! - every alarm has a span (in-memory ISO text has no whole-file problems), its span and its
+//!   labels' spans lie inside the input (`start <= end <= len`), and its message is one line;
+//! - every segment's span lies inside the input and all its numbers are finite.
+//!
+//! `VCNC_FUZZ_ALLOW_NONFINITE=1` skips the last check, so that a long run can look for other
+//! bugs while the known overflow of huge numbers is open (see README.md).
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use std::sync::OnceLock;
+use vcnc::motion::{Feed, Move};
+use vcnc::{interpret_bytes, Alarm, Machine, Options, ProfileName, Segment, SegmentKind, Span};
+
+const ITEMS_PER_BYTE: usize = 8;
+const ITEMS_ALWAYS: usize = 16;
+
+struct Setup {
+    machines: Vec<(ProfileName, Machine)>,
+    allow_nonfinite: bool,
+}
+
+fn setup() -> &'static Setup {
+    static SETUP: OnceLock<Setup> = OnceLock::new();
+    SETUP.get_or_init(|| Setup {
+        machines: ProfileName::ALL
+            .iter()
+            .map(|&p| (p, Machine::default().with_profile(p).expect("built-in profiles fit the default machine")))
+            .collect(),
+        allow_nonfinite: std::env::var_os("VCNC_FUZZ_ALLOW_NONFINITE").is_some_and(|v| v != "0"),
+    })
+}
+
+fuzz_target!(|data: &[u8]| {
+    let setup = setup();
+    let len = u32::try_from(data.len()).expect("libFuzzer inputs are small");
+    let limit = ITEMS_PER_BYTE * data.len() + ITEMS_ALWAYS;
+    for (profile, machine) in &setup.machines {
+        let mut items = 0usize;
+        let mut error: Option<Alarm> = None;
+        for item in interpret_bytes(data, machine, Options::default()).take(limit + 1) {
+            items += 1;
+            assert!(items <= limit, "{}: the run did not end within {limit} items", profile.as_str());
+            assert!(error.is_none(), "{}: {item:?} came after the error {error:?}", profile.as_str());
+            match item {
+                Ok(segment) => check_segment(&segment, len, setup.allow_nonfinite),
+                Err(alarm) => {
+                    check_alarm(&alarm, len);
+                    if alarm.is_error() {
+                        error = Some(alarm);
+                    }
+                }
+            }
+        }
+    }
+});
+
+fn check_span(span: Span, len: u32, what: &dyn std::fmt::Debug) {
+    assert!(span.start <= span.end && span.end <= len, "span {span} of {what:?} is outside the input of {len} bytes");
+}
+
+fn check_alarm(alarm: &Alarm, len: u32) {
+    let span = alarm.span.unwrap_or_else(|| panic!("alarm without a span: {alarm:?}"));
+    check_span(span, len, alarm);
+    for label in &alarm.labels {
+        check_span(label.span, len, alarm);
+    }
+    assert!(!alarm.message.is_empty() && !alarm.message.contains('\n'), "alarm message is not one line: {alarm:?}");
+}
+
+fn check_segment(segment: &Segment, len: u32, allow_nonfinite: bool) {
+    check_span(segment.span, len, segment);
+    if allow_nonfinite {
+        return;
+    }
+    let finite = match &segment.kind {
+        SegmentKind::Rapid { motion, .. } => move_is_finite(motion),
+        SegmentKind::Line { motion, feed } => move_is_finite(motion) && feed_is_finite(feed),
+        SegmentKind::Arc { motion, center, feed, .. } => {
+            move_is_finite(motion) && all_finite(&center.0) && feed_is_finite(feed)
+        }
+        SegmentKind::Dwell { seconds } => seconds.is_finite(),
+        SegmentKind::Spindle { speed, .. } => speed.is_finite(),
+        _ => true,
+    };
+    assert!(finite, "segment with a number that is not finite: {segment:?}");
+}
+
+fn all_finite(values: &[f64]) -> bool {
+    values.iter().all(|v| v.is_finite())
+}
+
+fn move_is_finite(motion: &Move) -> bool {
+    all_finite(&motion.from.0) && all_finite(&motion.to.0) && all_finite(&motion.offset)
+}
+
+fn feed_is_finite(feed: &Feed) -> bool {
+    match *feed {
+        Feed::PerMinute(f) | Feed::InverseTime(f) => f.is_finite(),
+        Feed::PerRevolution { per_revolution, rpm } => per_revolution.is_finite() && rpm.map_or(true, f64::is_finite),
+    }
+}
