@@ -31,7 +31,14 @@ fn setup() -> &'static Setup {
     SETUP.get_or_init(|| Setup {
         machines: ProfileName::ALL
             .iter()
-            .map(|&p| (p, Machine::default().with_profile(p).expect("built-in profiles fit the default machine")))
+            .map(|&p| {
+                (
+                    p,
+                    Machine::default()
+                        .with_profile(p)
+                        .expect("built-in profiles fit the default machine"),
+                )
+            })
             .collect(),
         allow_nonfinite: std::env::var_os("VCNC_FUZZ_ALLOW_NONFINITE").is_some_and(|v| v != "0"),
     })
@@ -46,8 +53,16 @@ fuzz_target!(|data: &[u8]| {
         let mut error: Option<Alarm> = None;
         for item in interpret_bytes(data, machine, Options::default()).take(limit + 1) {
             items += 1;
-            assert!(items <= limit, "{}: the run did not end within {limit} items", profile.as_str());
-            assert!(error.is_none(), "{}: {item:?} came after the error {error:?}", profile.as_str());
+            assert!(
+                items <= limit,
+                "{}: the run did not end within {limit} items",
+                profile.as_str()
+            );
+            assert!(
+                error.is_none(),
+                "{}: {item:?} came after the error {error:?}",
+                profile.as_str()
+            );
             match item {
                 Ok(segment) => check_segment(&segment, len, setup.allow_nonfinite),
                 Err(alarm) => {
@@ -62,16 +77,24 @@ fuzz_target!(|data: &[u8]| {
 });
 
 fn check_span(span: Span, len: u32, what: &dyn std::fmt::Debug) {
-    assert!(span.start <= span.end && span.end <= len, "span {span} of {what:?} is outside the input of {len} bytes");
+    assert!(
+        span.start <= span.end && span.end <= len,
+        "span {span} of {what:?} is outside the input of {len} bytes"
+    );
 }
 
 fn check_alarm(alarm: &Alarm, len: u32) {
-    let span = alarm.span.unwrap_or_else(|| panic!("alarm without a span: {alarm:?}"));
+    let span = alarm
+        .span
+        .unwrap_or_else(|| panic!("alarm without a span: {alarm:?}"));
     check_span(span, len, alarm);
     for label in &alarm.labels {
         check_span(label.span, len, alarm);
     }
-    assert!(!alarm.message.is_empty() && !alarm.message.contains('\n'), "alarm message is not one line: {alarm:?}");
+    assert!(
+        !alarm.message.is_empty() && !alarm.message.contains('\n'),
+        "alarm message is not one line: {alarm:?}"
+    );
 }
 
 fn check_segment(segment: &Segment, len: u32, allow_nonfinite: bool) {
@@ -82,14 +105,20 @@ fn check_segment(segment: &Segment, len: u32, allow_nonfinite: bool) {
     let finite = match &segment.kind {
         SegmentKind::Rapid { motion, .. } => move_is_finite(motion),
         SegmentKind::Line { motion, feed } => move_is_finite(motion) && feed_is_finite(feed),
-        SegmentKind::Arc { motion, center, feed, .. } => {
-            move_is_finite(motion) && all_finite(&center.0) && feed_is_finite(feed)
-        }
+        SegmentKind::Arc {
+            motion,
+            center,
+            feed,
+            ..
+        } => move_is_finite(motion) && all_finite(&center.0) && feed_is_finite(feed),
         SegmentKind::Dwell { seconds } => seconds.is_finite(),
         SegmentKind::Spindle { speed, .. } => speed.is_finite(),
         _ => true,
     };
-    assert!(finite, "segment with a number that is not finite: {segment:?}");
+    assert!(
+        finite,
+        "segment with a number that is not finite: {segment:?}"
+    );
 }
 
 fn all_finite(values: &[f64]) -> bool {
@@ -103,6 +132,9 @@ fn move_is_finite(motion: &Move) -> bool {
 fn feed_is_finite(feed: &Feed) -> bool {
     match *feed {
         Feed::PerMinute(f) | Feed::InverseTime(f) => f.is_finite(),
-        Feed::PerRevolution { per_revolution, rpm } => per_revolution.is_finite() && rpm.map_or(true, f64::is_finite),
+        Feed::PerRevolution {
+            per_revolution,
+            rpm,
+        } => per_revolution.is_finite() && rpm.map_or(true, f64::is_finite),
     }
 }

@@ -37,20 +37,37 @@ fuzz_target!(|data: &[u8]| {
     for syntax in syntaxes() {
         let mut lines = TextLines::new(data);
         let mut previous_end = 0usize;
-        while let Some(line) = lines.next_line().expect("in-memory text cannot fail to read") {
+        while let Some(line) = lines
+            .next_line()
+            .expect("in-memory text cannot fail to read")
+        {
             let start = line.offset as usize;
             let end = start + line.text.len();
-            assert!(start >= previous_end && end <= len, "line {} at {start}..{end} is outside 0..{len}", line.number);
-            assert_eq!(&data[start..end], line.text, "line {} is not the text at its offset", line.number);
+            assert!(
+                start >= previous_end && end <= len,
+                "line {} at {start}..{end} is outside 0..{len}",
+                line.number
+            );
+            assert_eq!(
+                &data[start..end],
+                line.text,
+                "line {} is not the text at its offset",
+                line.number
+            );
             previous_end = end;
             parse_line(line, FileId(0), syntax, &mut blocks);
             let inside = |span: Span, what: &dyn std::fmt::Debug| {
                 assert!(
-                    start as u32 <= span.start && span.start <= span.end && span.end as usize <= end,
+                    start as u32 <= span.start
+                        && span.start <= span.end
+                        && span.end as usize <= end,
                     "span {span} of {what:?} is outside line {} ({start}..{end}) with {syntax:?}",
                     line.number
                 );
-                assert_eq!(span.line, line.number, "span {span} of {what:?} names the wrong line");
+                assert_eq!(
+                    span.line, line.number,
+                    "span {span} of {what:?} names the wrong line"
+                );
             };
             for block in blocks.as_slice() {
                 inside(block.span, block);
@@ -62,18 +79,32 @@ fuzz_target!(|data: &[u8]| {
                         "word {word:?} is outside its block {}",
                         block.span
                     );
-                    assert!(word.span.start >= word_end, "word {word:?} overlaps the word before it");
-                    assert!(word.span.start < word.span.end, "word {word:?} has an empty span");
-                    assert!(word.letter.is_ascii_uppercase(), "word {word:?} has no upper-case letter");
+                    assert!(
+                        word.span.start >= word_end,
+                        "word {word:?} overlaps the word before it"
+                    );
+                    assert!(
+                        word.span.start < word.span.end,
+                        "word {word:?} has an empty span"
+                    );
+                    assert!(
+                        word.letter.is_ascii_uppercase(),
+                        "word {word:?} has no upper-case letter"
+                    );
                     word_end = word.span.end;
                 }
                 if let Some(comment) = block.comment {
                     inside(comment, block);
                 }
                 for alarm in &block.alarms {
-                    let span = alarm.span.unwrap_or_else(|| panic!("front-end alarm without a span: {alarm:?}"));
+                    let span = alarm
+                        .span
+                        .unwrap_or_else(|| panic!("front-end alarm without a span: {alarm:?}"));
                     inside(span, alarm);
-                    assert!(!alarm.message.is_empty() && !alarm.message.contains('\n'), "{alarm:?}");
+                    assert!(
+                        !alarm.message.is_empty() && !alarm.message.contains('\n'),
+                        "{alarm:?}"
+                    );
                 }
             }
         }

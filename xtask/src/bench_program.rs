@@ -14,7 +14,10 @@ const DEFAULT_BLOCKS: usize = 400_000;
 pub(crate) fn run(args: &[String]) -> Result<(), String> {
     let blocks = match args {
         [] => DEFAULT_BLOCKS,
-        [count] => count.replace('_', "").parse().map_err(|_| format!("`{count}` is not a number of blocks"))?,
+        [count] => count
+            .replace('_', "")
+            .parse()
+            .map_err(|_| format!("`{count}` is not a number of blocks"))?,
         _ => return Err("usage: cargo xtask bench-program [BLOCKS]".into()),
     };
     let stdout = std::io::stdout();

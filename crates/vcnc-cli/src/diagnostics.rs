@@ -48,7 +48,12 @@ pub(crate) fn print_human(path: &Path, alarms: &[Alarm]) {
     let writer = StandardStream::stderr(color);
     let config = Config::default();
     for alarm in alarms {
-        let _ = term::emit(&mut writer.lock(), &config, &file, &to_codespan(alarm, bytes.len()));
+        let _ = term::emit(
+            &mut writer.lock(),
+            &config,
+            &file,
+            &to_codespan(alarm, bytes.len()),
+        );
     }
 }
 

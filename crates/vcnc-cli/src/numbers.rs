@@ -22,7 +22,11 @@ pub(crate) fn push_decimal(out: &mut Vec<u8>, value: f64) {
         return;
     }
     // Round half away from zero without a call to libm's `round`.
-    let micro = if scaled >= 0.0 { (scaled + 0.5) as i64 } else { (scaled - 0.5) as i64 };
+    let micro = if scaled >= 0.0 {
+        (scaled + 0.5) as i64
+    } else {
+        (scaled - 0.5) as i64
+    };
     if micro == 0 {
         out.push(b'0');
         return;

@@ -4,11 +4,18 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 fn vcnc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vcnc")).args(args).env("NO_COLOR", "1").output().expect("vcnc runs")
+    Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("vcnc runs")
 }
 
 fn example() -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/bracket.nc").display().to_string()
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/bracket.nc")
+        .display()
+        .to_string()
 }
 
 fn temp_program(name: &str, text: &str) -> String {
@@ -22,7 +29,11 @@ fn temp_program(name: &str, text: &str) -> String {
 #[test]
 fn run_summarises_the_bundled_example() {
     let out = vcnc(&["run", &example()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("ended with M30"), "{text}");
     assert!(text.contains("blocks executed   35"), "{text}");
@@ -49,7 +60,12 @@ fn check_exits_0_when_clean_1_on_an_alarm_and_2_on_misuse() {
     assert!(stderr.contains("bad.nc:2:1"), "{stderr}");
     assert!(stderr.contains("G1 X2."), "{stderr}");
     assert_eq!(vcnc(&["check"]).status.code(), Some(2));
-    assert_eq!(vcnc(&["check", "--profile", "nonsense", &example()]).status.code(), Some(2));
+    assert_eq!(
+        vcnc(&["check", "--profile", "nonsense", &example()])
+            .status
+            .code(),
+        Some(2)
+    );
     assert_eq!(vcnc(&["check", "/no/such/file.nc"]).status.code(), Some(2));
 }
 
@@ -71,8 +87,11 @@ fn trace_jsonl_has_the_documented_fields() {
     let program = temp_program("arc.nc", "G0 X10.\nG2 X0 Y10. R10. F100.\nM30\n");
     let out = vcnc(&["trace", &program]);
     assert!(out.status.success());
-    let lines: Vec<serde_json::Value> =
-        String::from_utf8(out.stdout).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let lines: Vec<serde_json::Value> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
     assert_eq!(lines[0]["kind"], "rapid");
     assert_eq!(lines[0]["x"], 10);
     assert_eq!(lines[1]["kind"], "arc");
@@ -93,7 +112,10 @@ fn trace_csv_has_a_header_and_a_row_per_segment() {
     let out = vcnc(&["trace", "--format", "csv", "--work", &program]);
     let text = String::from_utf8(out.stdout).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("kind,line,file,n,x,y,z,f,cx,cy,cz,dir,plane,wx,wy,wz,value"));
+    assert_eq!(
+        lines.next(),
+        Some("kind,line,file,n,x,y,z,f,cx,cy,cz,dir,plane,wx,wy,wz,value")
+    );
     assert!(lines.next().unwrap().starts_with("feed,1,"));
 }
 
@@ -102,7 +124,12 @@ fn machine_prints_a_file_that_loads_back() {
     let out = vcnc(&["machine"]);
     let text = String::from_utf8(out.stdout).unwrap();
     let path = temp_program("machine.toml", &text);
-    assert_eq!(vcnc(&["check", "--machine", &path, &example()]).status.code(), Some(0));
+    assert_eq!(
+        vcnc(&["check", "--machine", &path, &example()])
+            .status
+            .code(),
+        Some(0)
+    );
 }
 
 #[test]
@@ -110,5 +137,7 @@ fn sinumerik_programs_are_named_as_not_supported_yet() {
     let program = temp_program("PART.MPF", "G0 X=10\nM30\n");
     let out = vcnc(&["check", &program]);
     assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8(out.stderr).unwrap().contains("SINUMERIK programs are not supported yet"));
+    assert!(String::from_utf8(out.stderr)
+        .unwrap()
+        .contains("SINUMERIK programs are not supported yet"));
 }

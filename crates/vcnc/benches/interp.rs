@@ -36,7 +36,10 @@ const BATCH: usize = 1024;
 fn interp(c: &mut Criterion) {
     let machine = Machine::default();
     let mut group = c.benchmark_group("interp");
-    group.sample_size(10).warm_up_time(Duration::from_secs(2)).measurement_time(Duration::from_secs(8));
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(2))
+        .measurement_time(Duration::from_secs(8));
     for blocks in SIZES {
         let text = cam_program::program(blocks);
         group.throughput(Throughput::Elements(blocks as u64));
@@ -50,7 +53,10 @@ fn interp(c: &mut Criterion) {
 fn interp_jsonl(c: &mut Criterion) {
     let machine = Machine::default();
     let mut group = c.benchmark_group("interp_jsonl");
-    group.sample_size(10).warm_up_time(Duration::from_secs(2)).measurement_time(Duration::from_secs(8));
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(2))
+        .measurement_time(Duration::from_secs(8));
     for blocks in SIZES {
         let text = cam_program::program(blocks);
         group.throughput(Throughput::Elements(blocks as u64));
@@ -81,7 +87,10 @@ fn trace_bytes(text: &str, machine: &Machine) -> usize {
     loop {
         let more = interpreter.next_batch(&mut batch, BATCH);
         for item in batch.drain(..) {
-            jsonl(&mut out, &item.expect("the benchmark program runs without alarms"));
+            jsonl(
+                &mut out,
+                &item.expect("the benchmark program runs without alarms"),
+            );
         }
         if out.len() >= 1 << 16 || !more {
             written += black_box(&out).len();
@@ -98,9 +107,17 @@ fn jsonl(out: &mut Vec<u8>, segment: &Segment) {
     let (kind, feed, arc) = match &segment.kind {
         SegmentKind::Rapid { .. } => ("rapid", None, None),
         SegmentKind::Line { feed, .. } => ("feed", Some(feed), None),
-        SegmentKind::Arc { feed, center, direction, plane, .. } => {
-            ("arc", Some(feed), Some((center.xyz(), direction.as_str(), plane.as_str())))
-        }
+        SegmentKind::Arc {
+            feed,
+            center,
+            direction,
+            plane,
+            ..
+        } => (
+            "arc",
+            Some(feed),
+            Some((center.xyz(), direction.as_str(), plane.as_str())),
+        ),
         _ => ("event", None, None),
     };
     out.extend_from_slice(b"{\"kind\":\"");
@@ -109,9 +126,11 @@ fn jsonl(out: &mut Vec<u8>, segment: &Segment) {
     numbers::push_unsigned(out, u64::from(segment.span.line));
     out.extend_from_slice(b",\"file\":\"/tmp/p400k.nc\"");
     if let Some(motion) = segment.motion() {
-        for (key, value) in
-            [(&b",\"x\":"[..], motion.to.0[0]), (b",\"y\":", motion.to.0[1]), (b",\"z\":", motion.to.0[2])]
-        {
+        for (key, value) in [
+            (&b",\"x\":"[..], motion.to.0[0]),
+            (b",\"y\":", motion.to.0[1]),
+            (b",\"z\":", motion.to.0[2]),
+        ] {
             out.extend_from_slice(key);
             numbers::push_decimal(out, value);
         }
@@ -120,7 +139,11 @@ fn jsonl(out: &mut Vec<u8>, segment: &Segment) {
             numbers::push_decimal(out, f);
         }
         if let Some((center, dir, plane)) = arc {
-            for (key, value) in [(&b",\"cx\":"[..], center[0]), (b",\"cy\":", center[1]), (b",\"cz\":", center[2])] {
+            for (key, value) in [
+                (&b",\"cx\":"[..], center[0]),
+                (b",\"cy\":", center[1]),
+                (b",\"cz\":", center[2]),
+            ] {
                 out.extend_from_slice(key);
                 numbers::push_decimal(out, value);
             }

@@ -235,12 +235,19 @@ impl Alarm {
 
     /// A warning at `span`.
     pub fn warning(code: AlarmCode, span: Span, message: impl Into<String>) -> Alarm {
-        Alarm { severity: Severity::Warning, ..Alarm::error(code, span, message) }
+        Alarm {
+            severity: Severity::Warning,
+            ..Alarm::error(code, span, message)
+        }
     }
 
     /// "`what` is not supported yet", pointing at the code, with the issue that will add it.
     pub fn not_supported(span: Span, what: &str, issue: Option<u32>) -> Alarm {
-        let alarm = Alarm::error(AlarmCode::NotSupportedYet, span, format!("{what} is not supported yet"));
+        let alarm = Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            format!("{what} is not supported yet"),
+        );
         match issue {
             Some(n) => alarm.with_help(format!("planned in vcnc issue #{n}")),
             None => alarm,
@@ -255,7 +262,10 @@ impl Alarm {
 
     /// The same alarm with one more secondary label.
     pub fn with_label(mut self, span: Span, message: impl Into<String>) -> Alarm {
-        self.labels.push(Label { span, message: message.into() });
+        self.labels.push(Label {
+            span,
+            message: message.into(),
+        });
         self
     }
 
@@ -267,7 +277,13 @@ impl Alarm {
 
 impl fmt::Display for Alarm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}[{}]: {}", self.severity.as_str(), self.code, self.message)?;
+        write!(
+            f,
+            "{}[{}]: {}",
+            self.severity.as_str(),
+            self.code,
+            self.message
+        )?;
         if let Some(span) = self.span {
             write!(f, " (line {})", span.line)?;
         }

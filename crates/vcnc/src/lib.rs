@@ -51,11 +51,19 @@ use syntax::source::ParsedLines;
 pub struct ReadmeDoctests;
 
 /// Interprets a program held in memory, as file 0.
-pub fn interpret_str<'a>(text: &'a str, machine: &Machine, options: Options) -> Interpreter<ParsedLines<TextLines<'a>>> {
+pub fn interpret_str<'a>(
+    text: &'a str,
+    machine: &Machine,
+    options: Options,
+) -> Interpreter<ParsedLines<TextLines<'a>>> {
     Interpreter::new(TextLines::new(text.as_bytes()), FileId(0), machine, options)
 }
 
 /// Interprets a program held in memory as bytes (Latin-1 comments are fine), as file 0.
-pub fn interpret_bytes<'a>(text: &'a [u8], machine: &Machine, options: Options) -> Interpreter<ParsedLines<TextLines<'a>>> {
+pub fn interpret_bytes<'a>(
+    text: &'a [u8],
+    machine: &Machine,
+    options: Options,
+) -> Interpreter<ParsedLines<TextLines<'a>>> {
     Interpreter::new(TextLines::new(text), FileId(0), machine, options)
 }

@@ -207,10 +207,14 @@ impl WorkOffsetId {
         }
         if let Some(rest) = key.strip_prefix("G59.") {
             let n: u8 = rest.parse().ok()?;
-            return (1..=9).contains(&n).then_some(WorkOffsetId::Standard(6 + n));
+            return (1..=9)
+                .contains(&n)
+                .then_some(WorkOffsetId::Standard(6 + n));
         }
         let n: u8 = key.strip_prefix('G')?.parse().ok()?;
-        (54..=59).contains(&n).then_some(WorkOffsetId::Standard(n - 53))
+        (54..=59)
+            .contains(&n)
+            .then_some(WorkOffsetId::Standard(n - 53))
     }
 
     /// The G code that selects it, for people.
@@ -258,9 +262,13 @@ impl Machine {
         for (letter, config) in file.axes {
             let axis = single_letter(&letter)
                 .and_then(Axis::from_letter)
-                .ok_or_else(|| MachineError::Invalid(format!("unknown axis `{letter}` (expected x y z a b c)")))?;
+                .ok_or_else(|| {
+                    MachineError::Invalid(format!("unknown axis `{letter}` (expected x y z a b c)"))
+                })?;
             if config.min > config.max {
-                return Err(MachineError::Invalid(format!("axis {letter}: min is above max")));
+                return Err(MachineError::Invalid(format!(
+                    "axis {letter}: min is above max"
+                )));
             }
             axes[axis.index()] = Some(config);
         }
@@ -271,16 +279,25 @@ impl Machine {
                 .parse()
                 .ok()
                 .filter(|n| (1..=count).contains(n))
-                .ok_or_else(|| MachineError::Invalid(format!("reference point `{key}`: expected 1 to {count}")))?;
+                .ok_or_else(|| {
+                    MachineError::Invalid(format!("reference point `{key}`: expected 1 to {count}"))
+                })?;
             reference_points[n - 1] = values.to_array();
         }
         let mut work_offsets = BTreeMap::new();
         for (key, values) in &file.work_offsets {
-            let id = WorkOffsetId::parse(key)
-                .ok_or_else(|| MachineError::Invalid(format!("work offset `{key}`: expected G54..G59, G54.1 Pn or external")))?;
+            let id = WorkOffsetId::parse(key).ok_or_else(|| {
+                MachineError::Invalid(format!(
+                    "work offset `{key}`: expected G54..G59, G54.1 Pn or external"
+                ))
+            })?;
             work_offsets.insert(id, values.to_array());
         }
-        let tool_offsets = file.tool_offsets.into_iter().map(|t| (t.number, t)).collect();
+        let tool_offsets = file
+            .tool_offsets
+            .into_iter()
+            .map(|t| (t.number, t))
+            .collect();
         Ok(Machine {
             name: file.name,
             profile,
@@ -317,7 +334,8 @@ impl Machine {
 impl Default for Machine {
     fn default() -> Machine {
         // The embedded file is checked by a unit test, so this cannot fail at run time.
-        Machine::from_toml(DEFAULT_MACHINE_TOML).expect("the embedded default machine is valid (checked by tests)")
+        Machine::from_toml(DEFAULT_MACHINE_TOML)
+            .expect("the embedded default machine is valid (checked by tests)")
     }
 }
 
@@ -344,9 +362,18 @@ mod tests {
     #[test]
     fn work_offset_keys_name_every_register() {
         assert_eq!(WorkOffsetId::parse("G54"), Some(WorkOffsetId::Standard(1)));
-        assert_eq!(WorkOffsetId::parse("g59.9"), Some(WorkOffsetId::Standard(15)));
-        assert_eq!(WorkOffsetId::parse("G54.1 P12"), Some(WorkOffsetId::Extended(12)));
-        assert_eq!(WorkOffsetId::parse("external"), Some(WorkOffsetId::External));
+        assert_eq!(
+            WorkOffsetId::parse("g59.9"),
+            Some(WorkOffsetId::Standard(15))
+        );
+        assert_eq!(
+            WorkOffsetId::parse("G54.1 P12"),
+            Some(WorkOffsetId::Extended(12))
+        );
+        assert_eq!(
+            WorkOffsetId::parse("external"),
+            Some(WorkOffsetId::External)
+        );
         assert_eq!(WorkOffsetId::parse("G60"), None);
     }
 

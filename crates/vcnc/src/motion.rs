@@ -96,7 +96,10 @@ impl Feed {
     pub fn mm_per_min(&self, length: f64) -> Option<f64> {
         match *self {
             Feed::PerMinute(f) => Some(f),
-            Feed::PerRevolution { per_revolution, rpm } => rpm.map(|s| per_revolution * s),
+            Feed::PerRevolution {
+                per_revolution,
+                rpm,
+            } => rpm.map(|s| per_revolution * s),
             Feed::InverseTime(f) => Some(f * length),
         }
     }
@@ -265,9 +268,9 @@ impl Segment {
     /// The motion, for rapids, lines and arcs.
     pub fn motion(&self) -> Option<&Move> {
         match &self.kind {
-            SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } | SegmentKind::Arc { motion, .. } => {
-                Some(motion)
-            }
+            SegmentKind::Rapid { motion, .. }
+            | SegmentKind::Line { motion, .. }
+            | SegmentKind::Arc { motion, .. } => Some(motion),
             _ => None,
         }
     }
@@ -278,18 +281,32 @@ impl Segment {
             SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => {
                 motion.from.distance_xyz(&motion.to)
             }
-            SegmentKind::Arc { motion, center, direction, plane, extra_turns, .. } => {
-                arc_length(motion, center, *direction, *plane, *extra_turns)
-            }
+            SegmentKind::Arc {
+                motion,
+                center,
+                direction,
+                plane,
+                extra_turns,
+                ..
+            } => arc_length(motion, center, *direction, *plane, *extra_turns),
             _ => 0.0,
         }
     }
 }
 
 /// The swept angle of an arc in radians (positive), including extra full turns.
-pub fn arc_sweep(motion: &Move, center: &MachinePos, direction: ArcDirection, plane: Plane, extra_turns: u32) -> f64 {
+pub fn arc_sweep(
+    motion: &Move,
+    center: &MachinePos,
+    direction: ArcDirection,
+    plane: Plane,
+    extra_turns: u32,
+) -> f64 {
     let (a, b, _) = plane.axes();
-    let start = (motion.from.0[a] - center.0[a], motion.from.0[b] - center.0[b]);
+    let start = (
+        motion.from.0[a] - center.0[a],
+        motion.from.0[b] - center.0[b],
+    );
     let end = (motion.to.0[a] - center.0[a], motion.to.0[b] - center.0[b]);
     let angle_start = start.1.atan2(start.0);
     let angle_end = end.1.atan2(end.0);
@@ -305,7 +322,13 @@ pub fn arc_sweep(motion: &Move, center: &MachinePos, direction: ArcDirection, pl
     sweep + tau * f64::from(extra_turns)
 }
 
-fn arc_length(motion: &Move, center: &MachinePos, direction: ArcDirection, plane: Plane, extra_turns: u32) -> f64 {
+fn arc_length(
+    motion: &Move,
+    center: &MachinePos,
+    direction: ArcDirection,
+    plane: Plane,
+    extra_turns: u32,
+) -> f64 {
     let (a, b, n) = plane.axes();
     let radius = (motion.from.0[a] - center.0[a]).hypot(motion.from.0[b] - center.0[b]);
     let sweep = arc_sweep(motion, center, direction, plane, extra_turns);

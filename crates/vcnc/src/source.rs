@@ -27,7 +27,12 @@ pub struct Span {
 impl Span {
     /// A span from `start` to `end` on `line` of `file`.
     pub fn new(file: FileId, start: u32, end: u32, line: u32) -> Span {
-        Span { file, start, end, line }
+        Span {
+            file,
+            start,
+            end,
+            line,
+        }
     }
 
     /// The smallest span covering `self` and `other` (which must be in the same file).
@@ -72,17 +77,30 @@ pub struct LineColumn {
 pub fn line_column(text: &[u8], offset: u32) -> LineColumn {
     let offset = (offset as usize).min(text.len());
     let before = &text[..offset];
-    let line_start = before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let line_start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
     let line = before.iter().filter(|&&b| b == b'\n').count() as u32 + 1;
-    let column = before[line_start..].iter().filter(|&&b| (b & 0xC0) != 0x80).count() as u32 + 1;
+    let column = before[line_start..]
+        .iter()
+        .filter(|&&b| (b & 0xC0) != 0x80)
+        .count() as u32
+        + 1;
     LineColumn { line, column }
 }
 
 /// The text of the line containing byte `offset`, without its line end.
 pub fn line_text(text: &[u8], offset: u32) -> &[u8] {
     let offset = (offset as usize).min(text.len());
-    let start = text[..offset].iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
-    let end = text[offset..].iter().position(|&b| b == b'\n').map_or(text.len(), |i| offset + i);
+    let start = text[..offset]
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    let end = text[offset..]
+        .iter()
+        .position(|&b| b == b'\n')
+        .map_or(text.len(), |i| offset + i);
     let line = &text[start..end];
     line.strip_suffix(b"\r").unwrap_or(line)
 }

@@ -17,7 +17,10 @@ pub struct Extents {
 
 impl Extents {
     fn empty() -> Extents {
-        Extents { min: [f64::INFINITY; 3], max: [f64::NEG_INFINITY; 3] }
+        Extents {
+            min: [f64::INFINITY; 3],
+            max: [f64::NEG_INFINITY; 3],
+        }
     }
 
     fn add(&mut self, p: [f64; 3]) {
@@ -68,7 +71,8 @@ pub struct Summary {
 impl Summary {
     /// An empty summary for a run on `machine`.
     pub fn new(machine: &Machine) -> Summary {
-        let rapid_rates = std::array::from_fn(|i| machine.axes[i].as_ref().map_or(f64::INFINITY, |a| a.rapid));
+        let rapid_rates =
+            std::array::from_fn(|i| machine.axes[i].as_ref().map_or(f64::INFINITY, |a| a.rapid));
         Summary {
             rapid_moves: 0,
             feed_moves: 0,
@@ -113,12 +117,23 @@ impl Summary {
                 self.time_cut(feed.mm_per_min(length), length);
                 self.extend(motion, None, true);
             }
-            SegmentKind::Arc { motion, feed, center, direction, plane, extra_turns } => {
+            SegmentKind::Arc {
+                motion,
+                feed,
+                center,
+                direction,
+                plane,
+                extra_turns,
+            } => {
                 self.feed_moves += 1;
                 self.feed_length += length;
                 self.time_cut(feed.mm_per_min(length), length);
                 let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
-                self.extend(motion, Some((center.xyz(), *direction, *plane, sweep)), true);
+                self.extend(
+                    motion,
+                    Some((center.xyz(), *direction, *plane, sweep)),
+                    true,
+                );
             }
             SegmentKind::Dwell { seconds } => self.dwell_seconds += seconds,
             SegmentKind::ToolChange { tool } => {
@@ -136,7 +151,12 @@ impl Summary {
         }
     }
 
-    fn extend(&mut self, motion: &Move, arc: Option<([f64; 3], ArcDirection, Plane, f64)>, cutting: bool) {
+    fn extend(
+        &mut self,
+        motion: &Move,
+        arc: Option<([f64; 3], ArcDirection, Plane, f64)>,
+        cutting: bool,
+    ) {
         let offset = [motion.offset[0], motion.offset[1], motion.offset[2]];
         let mut points = vec![motion.from.xyz(), motion.to.xyz()];
         if let Some((center, direction, plane, sweep)) = arc {

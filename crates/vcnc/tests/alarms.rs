@@ -16,11 +16,18 @@ fn first_alarm(program: &str) -> (AlarmCode, u32, String, String) {
 
 #[test]
 fn a_code_planned_for_later_is_named_with_its_issue() {
-    let alarm = interpret_str("G0 X1.\nG41 D1 X5.\n", &Machine::default(), Options::default())
-        .find_map(Result::err)
-        .unwrap();
+    let alarm = interpret_str(
+        "G0 X1.\nG41 D1 X5.\n",
+        &Machine::default(),
+        Options::default(),
+    )
+    .find_map(Result::err)
+    .unwrap();
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
-    assert_eq!(alarm.message, "G41 (cutter compensation left) is not supported yet");
+    assert_eq!(
+        alarm.message,
+        "G41 (cutter compensation left) is not supported yet"
+    );
     assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #5"));
     assert_eq!(alarm.span.unwrap().line, 2);
     assert_eq!(alarm.severity, Severity::Error);
@@ -29,7 +36,10 @@ fn a_code_planned_for_later_is_named_with_its_issue() {
 #[test]
 fn a_g_code_the_control_does_not_have_is_unknown() {
     let (code, line, text, message) = first_alarm("G1 X1. F1.\nG07.5 X1.\n");
-    assert_eq!((code, line, text.as_str()), (AlarmCode::UnknownGCode, 2, "G07.5"));
+    assert_eq!(
+        (code, line, text.as_str()),
+        (AlarmCode::UnknownGCode, 2, "G07.5")
+    );
     assert_eq!(message, "G07.5 does not exist on the fanuc profile");
 }
 
@@ -60,7 +70,10 @@ fn an_arc_without_centre_words_is_an_alarm() {
 #[test]
 fn an_r_too_small_for_the_chord_is_an_alarm() {
     let (code, _, text, _) = first_alarm("G2 X30. R10. F100.\n");
-    assert_eq!((code, text.as_str()), (AlarmCode::ArcRadiusTooSmall, "R10."));
+    assert_eq!(
+        (code, text.as_str()),
+        (AlarmCode::ArcRadiusTooSmall, "R10.")
+    );
 }
 
 #[test]
@@ -72,13 +85,19 @@ fn a_cut_before_any_feed_is_fanuc_alarm_011() {
 #[test]
 fn custom_macro_b_is_not_supported_yet() {
     let (code, line, text, _) = first_alarm("G0 X1.\n#100=5\n");
-    assert_eq!((code, line, text.as_str()), (AlarmCode::NotSupportedYet, 2, "#"));
+    assert_eq!(
+        (code, line, text.as_str()),
+        (AlarmCode::NotSupportedYet, 2, "#")
+    );
 }
 
 #[test]
 fn an_h_number_beyond_the_offset_memory_is_an_alarm() {
     let (code, _, text, _) = first_alarm("G43 H999 Z1.\n");
-    assert_eq!((code, text.as_str()), (AlarmCode::OffsetNumberOutOfRange, "H999"));
+    assert_eq!(
+        (code, text.as_str()),
+        (AlarmCode::OffsetNumberOutOfRange, "H999")
+    );
 }
 
 #[test]
@@ -89,7 +108,10 @@ fn a_bad_g10_l_number_is_an_alarm() {
 
 #[test]
 fn sinumerik_programs_get_one_clear_alarm() {
-    let options = Options { dialect: vcnc::syntax::Dialect::Sinumerik, ..Options::default() };
+    let options = Options {
+        dialect: vcnc::syntax::Dialect::Sinumerik,
+        ..Options::default()
+    };
     let items: Vec<_> = interpret_str("G0 X=10\n", &Machine::default(), options).collect();
     assert_eq!(items.len(), 1);
     let alarm = items[0].as_ref().unwrap_err();
@@ -98,7 +120,12 @@ fn sinumerik_programs_get_one_clear_alarm() {
 
 #[test]
 fn nothing_comes_after_an_error() {
-    let items: Vec<_> = interpret_str("G0 X1.\nG1 X2.\nG0 X3.\n", &Machine::default(), Options::default()).collect();
+    let items: Vec<_> = interpret_str(
+        "G0 X1.\nG1 X2.\nG0 X3.\n",
+        &Machine::default(),
+        Options::default(),
+    )
+    .collect();
     assert_eq!(items.len(), 2);
     assert!(items[1].is_err());
 }

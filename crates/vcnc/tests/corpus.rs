@@ -55,16 +55,25 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
     let mut failures = Vec::new();
     let mut total = 0;
     for folder in ["fanuc", "large", "sinumerik"] {
-        let mut files: Vec<_> = std::fs::read_dir(corpus.join(folder)).unwrap().map(|e| e.unwrap().path()).collect();
+        let mut files: Vec<_> = std::fs::read_dir(corpus.join(folder))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
         files.sort();
         for path in files {
             total += 1;
             let name = path.file_name().unwrap().to_string_lossy().into_owned();
             let text = std::fs::read(&path).unwrap();
             let machine = machine_for(&name);
-            let options = Options { dialect: detect_dialect(&name, &text), ..Options::default() };
+            let options = Options {
+                dialect: detect_dialect(&name, &text),
+                ..Options::default()
+            };
             let run = common::run(&text, &machine, options.clone());
-            let ended = run.segments.iter().any(|s| matches!(s.kind, SegmentKind::End { .. }));
+            let ended = run
+                .segments
+                .iter()
+                .any(|s| matches!(s.kind, SegmentKind::End { .. }));
             match run.error() {
                 None if ended => counts.ran_to_end += 1,
                 None => failures.push(format!("{folder}/{name}: no end and no alarm")),
@@ -75,7 +84,10 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
                     counts.dialect += 1;
                 }
                 Some(alarm) if alarm.code == AlarmCode::NotSupportedYet => {
-                    *counts.not_supported_yet.entry(alarm.message.clone()).or_default() += 1;
+                    *counts
+                        .not_supported_yet
+                        .entry(alarm.message.clone())
+                        .or_default() += 1;
                 }
                 Some(alarm) => failures.push(format!(
                     "{folder}/{name}:{}: {alarm}",
@@ -93,6 +105,10 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
     for (message, n) in &counts.not_supported_yet {
         println!("  stopped, {message}: {n}");
     }
-    assert!(failures.is_empty(), "corpus programs with unexpected results:\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "corpus programs with unexpected results:\n{}",
+        failures.join("\n")
+    );
     assert_eq!(total, 48, "the corpus has 48 programs (MANIFEST.md)");
 }

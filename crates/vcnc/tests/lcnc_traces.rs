@@ -24,7 +24,9 @@ fn data_dir() -> PathBuf {
 /// The standalone `rs274` reads its tool table in inches, so lengths are converted to mm.
 fn machine_with_tool_table(dir: &Path) -> Machine {
     let mut machine = Machine::default();
-    let Ok(table) = std::fs::read_to_string(dir.join("tool.tbl")) else { return machine };
+    let Ok(table) = std::fs::read_to_string(dir.join("tool.tbl")) else {
+        return machine;
+    };
     for line in table.lines() {
         let line = line.split(';').next().unwrap_or("");
         let mut number = None;
@@ -38,7 +40,14 @@ fn machine_with_tool_table(dir: &Path) -> Machine {
             }
         }
         if let Some(number) = number {
-            machine.tool_offsets.insert(number, ToolOffset { number, length, ..ToolOffset::default() });
+            machine.tool_offsets.insert(
+                number,
+                ToolOffset {
+                    number,
+                    length,
+                    ..ToolOffset::default()
+                },
+            );
         }
     }
     machine
@@ -61,21 +70,35 @@ fn vcnc_motions(text: &str, machine: &Machine) -> Result<Vec<Motion>, String> {
     }
     let mut motions = Vec::new();
     for segment in &run.segments {
-        let Some(motion) = segment.motion() else { continue };
+        let Some(motion) = segment.motion() else {
+            continue;
+        };
         if motion.from == motion.to && !matches!(segment.kind, SegmentKind::Arc { .. }) {
             continue;
         }
         let (kind, center, feed) = match segment.kind {
             SegmentKind::Rapid { .. } => ("rapid", None, None),
             SegmentKind::Line { feed, .. } => ("feed", None, feed_of(&feed, segment.length())),
-            SegmentKind::Arc { center, direction, plane, feed, .. } => (
+            SegmentKind::Arc {
+                center,
+                direction,
+                plane,
+                feed,
+                ..
+            } => (
                 "arc",
                 Some((center.xyz(), direction == ArcDirection::Clockwise, plane)),
                 feed_of(&feed, segment.length()),
             ),
             _ => continue,
         };
-        motions.push(Motion { line: segment.span.line, kind, to: motion.to.xyz(), center, feed });
+        motions.push(Motion {
+            line: segment.span.line,
+            kind,
+            to: motion.to.xyz(),
+            center,
+            feed,
+        });
     }
     Ok(motions)
 }
@@ -98,7 +121,12 @@ fn close(a: [f64; 3], b: [f64; 3]) -> bool {
 }
 
 /// Compares one program; returns the differences.
-fn compare(name: &str, ours: &[Motion], theirs: &[CanonMove], previous_end: [f64; 3]) -> Vec<String> {
+fn compare(
+    name: &str,
+    ours: &[Motion],
+    theirs: &[CanonMove],
+    previous_end: [f64; 3],
+) -> Vec<String> {
     let mut problems = Vec::new();
     let mut last = previous_end;
     let theirs: Vec<&CanonMove> = theirs
@@ -112,30 +140,52 @@ fn compare(name: &str, ours: &[Motion], theirs: &[CanonMove], previous_end: [f64
         })
         .collect();
     if ours.len() != theirs.len() {
-        problems.push(format!("{name}: vcnc has {} motions, LinuxCNC {}", ours.len(), theirs.len()));
+        problems.push(format!(
+            "{name}: vcnc has {} motions, LinuxCNC {}",
+            ours.len(),
+            theirs.len()
+        ));
     }
     for (k, (a, b)) in ours.iter().zip(&theirs).enumerate() {
         let at = format!("{name} motion {} (vcnc line {})", k + 1, a.line);
         // The fixtures give every block an N word equal to its line number (0: none).
         if b.line != 0 && b.line != a.line {
-            problems.push(format!("{at}: LinuxCNC made this motion at line {}", b.line));
+            problems.push(format!(
+                "{at}: LinuxCNC made this motion at line {}",
+                b.line
+            ));
         }
         if a.kind != canon_kind(b) {
-            problems.push(format!("{at}: vcnc {} vs LinuxCNC {}", a.kind, canon_kind(b)));
+            problems.push(format!(
+                "{at}: vcnc {} vs LinuxCNC {}",
+                a.kind,
+                canon_kind(b)
+            ));
             break;
         }
         if !close(a.to, b.to) {
             problems.push(format!("{at}: end {:?} vs LinuxCNC {:?}", a.to, b.to));
         }
         match (&b.kind, &a.center) {
-            (CanonKind::Arc { center, clockwise, plane, turns: _ }, Some((c, cw, p))) => {
+            (
+                CanonKind::Arc {
+                    center,
+                    clockwise,
+                    plane,
+                    turns: _,
+                },
+                Some((c, cw, p)),
+            ) => {
                 let plane_ok = matches!(
                     (plane, p),
-                    (CanonPlane::Xy, Plane::Xy) | (CanonPlane::Zx, Plane::Zx) | (CanonPlane::Yz, Plane::Yz)
+                    (CanonPlane::Xy, Plane::Xy)
+                        | (CanonPlane::Zx, Plane::Zx)
+                        | (CanonPlane::Yz, Plane::Yz)
                 );
                 // The centre's normal-axis value is not meaningful (helices): compare the plane axes.
                 let (i, j, _) = p.axes();
-                let centre_ok = (c[i] - center[i]).abs() <= TOLERANCE && (c[j] - center[j]).abs() <= TOLERANCE;
+                let centre_ok =
+                    (c[i] - center[i]).abs() <= TOLERANCE && (c[j] - center[j]).abs() <= TOLERANCE;
                 if !plane_ok || *cw != *clockwise || !centre_ok {
                     problems.push(format!(
                         "{at}: arc centre {c:?} cw {cw} {p:?} vs LinuxCNC {center:?} cw {clockwise} {plane:?}"
@@ -171,8 +221,10 @@ fn vcnc_matches_linuxcnc_on_the_common_iso_subset() {
     for path in &programs {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         let text = std::fs::read_to_string(path).unwrap();
-        let canon_text = std::fs::read_to_string(path.with_extension("canon"))
-            .unwrap_or_else(|_| panic!("{name}: no recorded .canon (run `cargo xtask record-lcnc`)"));
+        let canon_text =
+            std::fs::read_to_string(path.with_extension("canon")).unwrap_or_else(|_| {
+                panic!("{name}: no recorded .canon (run `cargo xtask record-lcnc`)")
+            });
         let theirs = match parse_canon(&canon_text) {
             Ok(moves) => moves,
             Err(e) => {
@@ -189,9 +241,22 @@ fn vcnc_matches_linuxcnc_on_the_common_iso_subset() {
         };
         motions += ours.len();
         compared += 1;
-        problems.extend(compare(&name, &ours, &theirs, machine.start[..3].try_into().unwrap()));
+        problems.extend(compare(
+            &name,
+            &ours,
+            &theirs,
+            machine.start[..3].try_into().unwrap(),
+        ));
     }
     println!("LinuxCNC reference traces: {compared} programs, {motions} motions compared");
-    assert!(problems.is_empty(), "{} differences:\n{}", problems.len(), problems.join("\n"));
-    assert!(compared >= 60, "at least 60 reference programs are expected, found {compared}");
+    assert!(
+        problems.is_empty(),
+        "{} differences:\n{}",
+        problems.len(),
+        problems.join("\n")
+    );
+    assert!(
+        compared >= 60,
+        "at least 60 reference programs are expected, found {compared}"
+    );
 }

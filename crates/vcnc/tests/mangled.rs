@@ -46,7 +46,10 @@ fn check_run(text: &[u8], machine: &Machine) -> Result<Stats, String> {
     for item in interpret_bytes(text, machine, Options::default()).take(limit + 1) {
         stats.items += 1;
         if stats.items > limit {
-            return Err(format!("the run did not end within {limit} items for {} bytes", text.len()));
+            return Err(format!(
+                "the run did not end within {limit} items for {} bytes",
+                text.len()
+            ));
         }
         if let Some(error) = &error_seen {
             return Err(format!("{item:?} came after the error alarm {error:?}"));
@@ -69,16 +72,24 @@ fn check_span(span: Span, len: u32, what: &str) -> Result<(), String> {
     if span.start <= span.end && span.end <= len {
         Ok(())
     } else {
-        Err(format!("{what} span {span} is not inside the text of {len} bytes"))
+        Err(format!(
+            "{what} span {span} is not inside the text of {len} bytes"
+        ))
     }
 }
 
 fn check_alarm(alarm: &Alarm, len: u32) -> Result<(), String> {
     // In-memory ISO text can neither fail to read nor be SINUMERIK: every alarm has a place.
-    let span = alarm.span.ok_or_else(|| format!("alarm without a span: {alarm:?}"))?;
+    let span = alarm
+        .span
+        .ok_or_else(|| format!("alarm without a span: {alarm:?}"))?;
     check_span(span, len, &format!("alarm {}", alarm.code.id()))?;
     for label in &alarm.labels {
-        check_span(label.span, len, &format!("a label of alarm {}", alarm.code.id()))?;
+        check_span(
+            label.span,
+            len,
+            &format!("a label of alarm {}", alarm.code.id()),
+        )?;
     }
     if alarm.message.is_empty() || alarm.message.contains('\n') {
         return Err(format!("alarm message is not one line: {alarm:?}"));
@@ -91,9 +102,12 @@ fn check_segment(segment: &Segment, len: u32) -> Result<(), String> {
     let finite = match &segment.kind {
         SegmentKind::Rapid { motion, .. } => move_is_finite(motion),
         SegmentKind::Line { motion, feed } => move_is_finite(motion) && feed_is_finite(feed),
-        SegmentKind::Arc { motion, center, feed, .. } => {
-            move_is_finite(motion) && all_finite(&center.0) && feed_is_finite(feed)
-        }
+        SegmentKind::Arc {
+            motion,
+            center,
+            feed,
+            ..
+        } => move_is_finite(motion) && all_finite(&center.0) && feed_is_finite(feed),
         SegmentKind::Dwell { seconds } => seconds.is_finite(),
         SegmentKind::Spindle { speed, .. } => speed.is_finite(),
         _ => true,
@@ -101,7 +115,9 @@ fn check_segment(segment: &Segment, len: u32) -> Result<(), String> {
     if finite {
         Ok(())
     } else {
-        Err(format!("segment with a number that is not finite: {segment:?}"))
+        Err(format!(
+            "segment with a number that is not finite: {segment:?}"
+        ))
     }
 }
 
@@ -116,7 +132,10 @@ fn move_is_finite(motion: &Move) -> bool {
 fn feed_is_finite(feed: &Feed) -> bool {
     match *feed {
         Feed::PerMinute(f) | Feed::InverseTime(f) => f.is_finite(),
-        Feed::PerRevolution { per_revolution, rpm } => per_revolution.is_finite() && rpm.map_or(true, f64::is_finite),
+        Feed::PerRevolution {
+            per_revolution,
+            rpm,
+        } => per_revolution.is_finite() && rpm.map_or(true, f64::is_finite),
     }
 }
 
@@ -124,7 +143,14 @@ fn feed_is_finite(feed: &Feed) -> bool {
 fn machines() -> Vec<(ProfileName, Machine)> {
     ProfileName::ALL
         .iter()
-        .map(|&p| (p, Machine::default().with_profile(p).expect("built-in profiles fit the default machine")))
+        .map(|&p| {
+            (
+                p,
+                Machine::default()
+                    .with_profile(p)
+                    .expect("built-in profiles fit the default machine"),
+            )
+        })
         .collect()
 }
 
@@ -154,8 +180,14 @@ fn check_everywhere(text: &[u8], machines: &[(ProfileName, Machine)]) -> Result<
                 Err(format!("panic: {message}"))
             }
         };
-        let stats =
-            result.map_err(|e| format!("{} on the {} profile, input `{}`", e, profile.as_str(), shown(text)))?;
+        let stats = result.map_err(|e| {
+            format!(
+                "{} on the {} profile, input `{}`",
+                e,
+                profile.as_str(),
+                shown(text)
+            )
+        })?;
         total.items += stats.items;
         total.errors += stats.errors;
     }
@@ -166,7 +198,10 @@ fn check_everywhere(text: &[u8], machines: &[(ProfileName, Machine)]) -> Result<
 #[track_caller]
 fn check_all(inputs: &[Vec<u8>]) {
     let machines = machines();
-    let failures: Vec<String> = inputs.iter().filter_map(|text| check_everywhere(text, &machines).err()).collect();
+    let failures: Vec<String> = inputs
+        .iter()
+        .filter_map(|text| check_everywhere(text, &machines).err())
+        .collect();
     assert!(
         failures.is_empty(),
         "{} of {} inputs break a property:\n{}",
@@ -427,11 +462,34 @@ fn nasty_words() -> Vec<Vec<u8>> {
             inputs.push(b(&format!("G1 F100. {letter}-{value}\nX1.\nM30")));
         }
         for block in [
-            "G1 X1. F", "G93 G1 X1. F", "G95 S1000 M3 G1 X1. F", "S", "G4 P", "G4 X", "G2 X1. R", "G2 X1. I",
-            "G3 X1. Y1. J", "G10 L2 P1 X", "G10 L20 P1 X", "G10 L10 P1 R", "G10 L11 P1 R", "G10 L12 P1 R",
-            "G10 L13 P1 R", "G92 X", "G52 X", "G28 X", "G30 X", "G53 X", "G20 X", "G68 R", "G51 P", "G16 X",
+            "G1 X1. F",
+            "G93 G1 X1. F",
+            "G95 S1000 M3 G1 X1. F",
+            "S",
+            "G4 P",
+            "G4 X",
+            "G2 X1. R",
+            "G2 X1. I",
+            "G3 X1. Y1. J",
+            "G10 L2 P1 X",
+            "G10 L20 P1 X",
+            "G10 L10 P1 R",
+            "G10 L11 P1 R",
+            "G10 L12 P1 R",
+            "G10 L13 P1 R",
+            "G92 X",
+            "G52 X",
+            "G28 X",
+            "G30 X",
+            "G53 X",
+            "G20 X",
+            "G68 R",
+            "G51 P",
+            "G16 X",
         ] {
-            inputs.push(b(&format!("{block}{value}\nG43 H1 G1 X1. Y1. Z1. F100.\nG2 X2. R1.\nM30")));
+            inputs.push(b(&format!(
+                "{block}{value}\nG43 H1 G1 X1. Y1. Z1. F100.\nG2 X2. R1.\nM30"
+            )));
         }
     }
     inputs
@@ -453,7 +511,20 @@ fn every_byte_and_pair() -> Vec<Vec<u8>> {
 /// The same word again and again, on one line and on many.
 fn repeated_words() -> Vec<Vec<u8>> {
     let mut inputs = Vec::new();
-    for word in ["G1", "X1.", "G0 X1.", "M3", "N1", "G91 X1.", "(x)", "/", "%", "G2 X1. R1. F1.", "T1 M6", "F1."] {
+    for word in [
+        "G1",
+        "X1.",
+        "G0 X1.",
+        "M3",
+        "N1",
+        "G91 X1.",
+        "(x)",
+        "/",
+        "%",
+        "G2 X1. R1. F1.",
+        "T1 M6",
+        "F1.",
+    ] {
         inputs.push(word.repeat(5_000).into_bytes());
         inputs.push(format!("{word}\n").repeat(5_000).into_bytes());
         inputs.push(format!("{word};").repeat(5_000).into_bytes());
@@ -487,9 +558,15 @@ fn deeply_repeated_words_end_with_a_bounded_stream() {
 fn a_lone_address_or_stray_character_is_an_error_that_ends_the_run() {
     // The checker proves nothing if nothing raises alarms: these must stop with an error.
     let machines = machines();
-    for text in ["X-", "G", "N", "O", "X1.2.3", "#1=2", "[", "IF", "G0 X1. $", "XX"] {
+    for text in [
+        "X-", "G", "N", "O", "X1.2.3", "#1=2", "[", "IF", "G0 X1. $", "XX",
+    ] {
         let stats = check_everywhere(text.as_bytes(), &machines).unwrap();
-        assert_eq!(stats.errors, machines.len(), "`{text}` stops with one error on every profile");
+        assert_eq!(
+            stats.errors,
+            machines.len(),
+            "`{text}` stops with one error on every profile"
+        );
     }
 }
 
@@ -582,7 +659,8 @@ fn seed_examples() -> Vec<(String, Vec<u8>)> {
     let examples = common::shared_dir().join("spec/examples");
     let mut files = Vec::new();
     for folder in ["syntec", "fanuc0m", "mitsubishi"] {
-        let entries = std::fs::read_dir(examples.join(folder)).unwrap_or_else(|e| panic!("reading {folder}: {e}"));
+        let entries = std::fs::read_dir(examples.join(folder))
+            .unwrap_or_else(|e| panic!("reading {folder}: {e}"));
         for entry in entries {
             let path = entry.unwrap().path();
             let name = format!("{folder}/{}", path.file_name().unwrap().to_string_lossy());
@@ -596,7 +674,11 @@ fn seed_examples() -> Vec<(String, Vec<u8>)> {
 #[test]
 fn seeded_mutations_of_the_seed_examples_end_with_spans_inside_the_text() {
     let files = seed_examples();
-    assert!(files.len() >= 50, "expected the ISO seed examples, found {} files", files.len());
+    assert!(
+        files.len() >= 50,
+        "expected the ISO seed examples, found {} files",
+        files.len()
+    );
     let machines = machines();
     let mut rng = XorShift(0x9E37_79B9_7F4A_7C15);
     let mut failures = Vec::new();
@@ -615,7 +697,12 @@ fn seeded_mutations_of_the_seed_examples_end_with_spans_inside_the_text() {
             }
         }
     }
-    assert!(failures.is_empty(), "{} of {runs} runs break a property:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {runs} runs break a property:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 #[test]
@@ -637,14 +724,19 @@ fn the_mutation_generator_is_deterministic() {
 fn gcode_like() -> impl Strategy<Value = Vec<u8>> {
     let piece = prop_oneof![
         prop::sample::select(vec![
-            "G0", "G1", "G2", "G3", "G4", "G17", "G18", "G19", "G20", "G21", "G28", "G30", "G40", "G43", "G49", "G52",
-            "G53", "G54", "G54.1", "G80", "G81", "G90", "G91", "G92", "G94", "G95", "M3", "M5", "M6", "M30", "X", "Y",
-            "Z", "A", "I", "J", "K", "R", "F", "P", "L", "H", "D", "S", "T", "N", "O", "Q", "E", "-", ".", " ", ";",
-            "\n", "\r\n", "(", ")", "/", "%", ":", "=", "#", "[",
+            "G0", "G1", "G2", "G3", "G4", "G17", "G18", "G19", "G20", "G21", "G28", "G30", "G40",
+            "G43", "G49", "G52", "G53", "G54", "G54.1", "G80", "G81", "G90", "G91", "G92", "G94",
+            "G95", "M3", "M5", "M6", "M30", "X", "Y", "Z", "A", "I", "J", "K", "R", "F", "P", "L",
+            "H", "D", "S", "T", "N", "O", "Q", "E", "-", ".", " ", ";", "\n", "\r\n", "(", ")",
+            "/", "%", ":", "=", "#", "[",
         ])
         .prop_map(|s: &str| s.as_bytes().to_vec()),
         (-100_000i64..100_000, 0u32..5).prop_map(|(n, point)| {
-            let text = if point == 0 { format!("{n}") } else { format!("{}", n as f64 / 10f64.powi(point as i32)) };
+            let text = if point == 0 {
+                format!("{n}")
+            } else {
+                format!("{}", n as f64 / 10f64.powi(point as i32))
+            };
             text.into_bytes()
         }),
         any::<u8>().prop_map(|byte| vec![byte]),
@@ -666,10 +758,17 @@ fn check_front_end(text: &[u8]) -> Result<(), String> {
             let number = line.number;
             parse_line(line, vcnc::FileId(0), &syntax, &mut blocks);
             let inside = |span: Span, what: &str| {
-                if start <= span.start && span.start <= span.end && span.end <= end && span.line == number {
+                if start <= span.start
+                    && span.start <= span.end
+                    && span.end <= end
+                    && span.line == number
+                {
                     Ok(())
                 } else {
-                    Err(format!("{what} span {span} is not inside line {number} ({start}..{end}) on {}", name.as_str()))
+                    Err(format!(
+                        "{what} span {span} is not inside line {number} ({start}..{end}) on {}",
+                        name.as_str()
+                    ))
                 }
             };
             for block in blocks.as_slice() {
@@ -684,7 +783,10 @@ fn check_front_end(text: &[u8]) -> Result<(), String> {
                     inside(comment, "comment")?;
                 }
                 for alarm in &block.alarms {
-                    inside(alarm.span.ok_or("front-end alarm without a span")?, alarm.code.id())?;
+                    inside(
+                        alarm.span.ok_or("front-end alarm without a span")?,
+                        alarm.code.id(),
+                    )?;
                 }
             }
         }
@@ -728,7 +830,12 @@ proptest! {
 fn check_stops_with_an_alarm(text: &str) {
     let machines = machines();
     let stats = check_everywhere(text.as_bytes(), &machines).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(stats.errors, machines.len(), "`{}` stops with an error alarm on every profile", shown(text.as_bytes()));
+    assert_eq!(
+        stats.errors,
+        machines.len(),
+        "`{}` stops with an error alarm on every profile",
+        shown(text.as_bytes())
+    );
 }
 
 /// `1` followed by `zeros` zeros and a decimal point: a finite number near the top of f64.

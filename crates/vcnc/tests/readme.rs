@@ -4,8 +4,13 @@
 fn readme_code_table_matches_the_code() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md");
     let text = std::fs::read_to_string(&path).unwrap();
-    let start = text.find("<!-- codes:start -->\n").expect("README has the codes section") + 21;
-    let end = text.find("<!-- codes:end -->").expect("README has the codes section end");
+    let start = text
+        .find("<!-- codes:start -->\n")
+        .expect("README has the codes section")
+        + 21;
+    let end = text
+        .find("<!-- codes:end -->")
+        .expect("README has the codes section end");
     assert_eq!(
         &text[start..end],
         vcnc::profile::supported_codes_markdown(),

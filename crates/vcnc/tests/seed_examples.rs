@@ -72,10 +72,18 @@ impl Example {
         }
         for (number, length) in &self.tool_lengths {
             let number: u32 = number.parse().expect("tool_lengths keys are numbers");
-            machine.tool_offsets.insert(number, ToolOffset { number, length: *length, ..ToolOffset::default() });
+            machine.tool_offsets.insert(
+                number,
+                ToolOffset {
+                    number,
+                    length: *length,
+                    ..ToolOffset::default()
+                },
+            );
         }
         for (key, offset) in &self.work_offsets {
-            let id = WorkOffsetId::parse(key).unwrap_or_else(|| panic!("{}: bad work offset key {key}", self.name()));
+            let id = WorkOffsetId::parse(key)
+                .unwrap_or_else(|| panic!("{}: bad work offset key {key}", self.name()));
             let mut values = [0.0; 6];
             for (i, v) in offset.axes() {
                 values[i] = v.unwrap_or(0.0);
@@ -101,7 +109,10 @@ impl Example {
             Some(lines) => {
                 let all: Vec<&str> = text.lines().collect();
                 for &n in lines {
-                    program.push_str(all.get(n - 1).unwrap_or_else(|| panic!("{}: no line {n}", self.name())));
+                    program.push_str(
+                        all.get(n - 1)
+                            .unwrap_or_else(|| panic!("{}: no line {n}", self.name())),
+                    );
                     program.push('\n');
                 }
             }
@@ -122,13 +133,21 @@ fn manual_examples_reach_their_expected_positions() {
     let mut files: Vec<_> = std::fs::read_dir(&data)
         .unwrap()
         .map(|e| e.unwrap().path())
-        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("seed_examples"))
+        .filter(|p| {
+            p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("seed_examples")
+        })
         .collect();
     files.sort();
-    let mut table = Table { example: Vec::new() };
+    let mut table = Table {
+        example: Vec::new(),
+    };
     for file in &files {
         let text = std::fs::read_to_string(file).unwrap();
-        let part: Table = toml::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        let part: Table =
+            toml::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
         table.example.extend(part.example);
     }
     let mut failures = Vec::new();
@@ -136,7 +155,8 @@ fn manual_examples_reach_their_expected_positions() {
     let mut stale_skips = Vec::new();
     for example in &table.example {
         let path = examples_dir.join(&example.file);
-        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let text =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let program = example.program(&text);
         let run = common::run(program.as_bytes(), &example.machine(), Options::default());
         let fail = |what: String| format!("{} (manual {}): {what}", example.name(), example.source);
@@ -153,21 +173,37 @@ fn manual_examples_reach_their_expected_positions() {
             continue;
         }
         let tolerance = example.tolerance.unwrap_or(0.001);
-        let motions: Vec<_> = run.segments.iter().filter_map(|s| s.motion().map(|m| m.to.0)).collect();
-        let last = motions.last().copied().unwrap_or_else(|| example.machine().start);
+        let motions: Vec<_> = run
+            .segments
+            .iter()
+            .filter_map(|s| s.motion().map(|m| m.to.0))
+            .collect();
+        let last = motions
+            .last()
+            .copied()
+            .unwrap_or_else(|| example.machine().start);
         if let Some(end) = example.end {
             asserted += 1;
             for (i, expected) in end.axes() {
                 if let Some(expected) = expected {
                     if !close(last[i], expected, tolerance) {
-                        failures.push(fail(format!("end {} is {:.4}, expected {expected}", "XYZ".as_bytes()[i] as char, last[i])));
+                        failures.push(fail(format!(
+                            "end {} is {:.4}, expected {expected}",
+                            "XYZ".as_bytes()[i] as char,
+                            last[i]
+                        )));
                     }
                 }
             }
         }
         if let Some(points) = &example.points {
             if points.len() != motions.len() {
-                failures.push(fail(format!("{} motions, expected {}: {:?}", motions.len(), points.len(), motions)));
+                failures.push(fail(format!(
+                    "{} motions, expected {}: {:?}",
+                    motions.len(),
+                    points.len(),
+                    motions
+                )));
             } else {
                 for (k, (point, actual)) in points.iter().zip(&motions).enumerate() {
                     for (i, expected) in point.axes() {
@@ -188,35 +224,63 @@ fn manual_examples_reach_their_expected_positions() {
         let total = |rapid: bool| -> f64 {
             run.segments
                 .iter()
-                .filter(|s| matches!(s.kind, SegmentKind::Rapid { .. }) == rapid && s.motion().is_some())
+                .filter(|s| {
+                    matches!(s.kind, SegmentKind::Rapid { .. }) == rapid && s.motion().is_some()
+                })
                 .map(|s| s.length())
                 .sum()
         };
         if let Some(expected) = example.feed_length {
             if !close(total(false), expected, tolerance.max(0.001)) {
-                failures.push(fail(format!("feed length {:.4}, expected {expected}", total(false))));
+                failures.push(fail(format!(
+                    "feed length {:.4}, expected {expected}",
+                    total(false)
+                )));
             }
         }
         if let Some(expected) = example.rapid_length {
             if !close(total(true), expected, tolerance.max(0.001)) {
-                failures.push(fail(format!("rapid length {:.4}, expected {expected}", total(true))));
+                failures.push(fail(format!(
+                    "rapid length {:.4}, expected {expected}",
+                    total(true)
+                )));
             }
         }
         if let Some(expected) = example.dwell_seconds {
             let dwell: f64 = run
                 .segments
                 .iter()
-                .map(|s| if let SegmentKind::Dwell { seconds } = s.kind { seconds } else { 0.0 })
+                .map(|s| {
+                    if let SegmentKind::Dwell { seconds } = s.kind {
+                        seconds
+                    } else {
+                        0.0
+                    }
+                })
                 .sum();
             if !close(dwell, expected, 1e-6) {
                 failures.push(fail(format!("dwell {dwell} s, expected {expected}")));
             }
         }
     }
-    println!("seed examples: {} entries, {asserted} end positions asserted", table.example.len());
+    println!(
+        "seed examples: {} entries, {asserted} end positions asserted",
+        table.example.len()
+    );
     if !stale_skips.is_empty() {
-        println!("skipped entries that now run (remove their skip): {}", stale_skips.join(", "));
+        println!(
+            "skipped entries that now run (remove their skip): {}",
+            stale_skips.join(", ")
+        );
     }
-    assert!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
-    assert!(asserted >= 20, "at least 20 examples must assert their end position, {asserted} do");
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    assert!(
+        asserted >= 20,
+        "at least 20 examples must assert their end position, {asserted} do"
+    );
 }

@@ -34,7 +34,9 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let mut outcome = Outcome::Clean;
     let mut reports = Vec::new();
     for path in &args.programs {
-        let alarms: Vec<Alarm> = crate::program::open(path, &machine, options.clone())?.filter_map(Result::err).collect();
+        let alarms: Vec<Alarm> = crate::program::open(path, &machine, options.clone())?
+            .filter_map(Result::err)
+            .collect();
         let failed = alarms.iter().any(Alarm::is_error);
         if failed {
             outcome = Outcome::Alarm;
@@ -47,8 +49,15 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
                 }
             }
             Format::Json => {
-                let text = if alarms.is_empty() { Vec::new() } else { std::fs::read(path).unwrap_or_default() };
-                let list: Vec<_> = alarms.iter().map(|a| crate::diagnostics::to_json(path, &text, a)).collect();
+                let text = if alarms.is_empty() {
+                    Vec::new()
+                } else {
+                    std::fs::read(path).unwrap_or_default()
+                };
+                let list: Vec<_> = alarms
+                    .iter()
+                    .map(|a| crate::diagnostics::to_json(path, &text, a))
+                    .collect();
                 reports.push(serde_json::json!({
                     "file": path.display().to_string(),
                     "ok": !failed,

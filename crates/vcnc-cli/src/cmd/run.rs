@@ -30,7 +30,8 @@ pub(crate) struct Args {
     machine: MachineArgs,
 }
 
-const ESTIMATE_NOTE: &str = "length / feed and rapid rates; acceleration and corners are not modelled yet";
+const ESTIMATE_NOTE: &str =
+    "length / feed and rapid rates; acceleration and corners are not modelled yet";
 
 pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let machine = args.machine.machine()?;
@@ -53,7 +54,11 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let blocks = interpreter.blocks_executed();
     let error = alarms.iter().find(|a| a.is_error());
     let result = match (error, end) {
-        (Some(alarm), _) => format!("stopped by alarm {} at line {}", alarm.code, alarm.span.map_or(0, |s| s.line)),
+        (Some(alarm), _) => format!(
+            "stopped by alarm {} at line {}",
+            alarm.code,
+            alarm.span.map_or(0, |s| s.line)
+        ),
         (None, Some(EndKind::M02)) => "ended with M02".to_string(),
         (None, Some(EndKind::M30)) => "ended with M30".to_string(),
         (None, Some(EndKind::TapeMark)) => "ended at %".to_string(),
@@ -66,8 +71,15 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             crate::diagnostics::print_human(&args.program, &alarms);
         }
         Format::Json => {
-            let text = if alarms.is_empty() { Vec::new() } else { std::fs::read(&args.program).unwrap_or_default() };
-            let list: Vec<_> = alarms.iter().map(|a| crate::diagnostics::to_json(&args.program, &text, a)).collect();
+            let text = if alarms.is_empty() {
+                Vec::new()
+            } else {
+                std::fs::read(&args.program).unwrap_or_default()
+            };
+            let list: Vec<_> = alarms
+                .iter()
+                .map(|a| crate::diagnostics::to_json(&args.program, &text, a))
+                .collect();
             let value = json!({
                 "file": args.program.display().to_string(),
                 "machine": machine.name,
@@ -90,15 +102,44 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             println!("{value:#}");
         }
     }
-    Ok(if error.is_some() { Outcome::Alarm } else { Outcome::Clean })
+    Ok(if error.is_some() {
+        Outcome::Alarm
+    } else {
+        Outcome::Clean
+    })
 }
 
-fn print_human(args: &Args, machine: &vcnc::Machine, summary: &Summary, blocks: u64, result: &str, warnings: usize) {
-    println!("{}  ({}, {} profile)", args.program.display(), machine.name, machine.profile.name);
-    println!("  result            {result}{}", if warnings > 0 { format!(", {warnings} warning(s)") } else { String::new() });
+fn print_human(
+    args: &Args,
+    machine: &vcnc::Machine,
+    summary: &Summary,
+    blocks: u64,
+    result: &str,
+    warnings: usize,
+) {
+    println!(
+        "{}  ({}, {} profile)",
+        args.program.display(),
+        machine.name,
+        machine.profile.name
+    );
+    println!(
+        "  result            {result}{}",
+        if warnings > 0 {
+            format!(", {warnings} warning(s)")
+        } else {
+            String::new()
+        }
+    );
     println!("  blocks executed   {blocks}");
-    println!("  rapid             {:>7} moves  {:>12.3} mm", summary.rapid_moves, summary.rapid_length);
-    println!("  cutting           {:>7} moves  {:>12.3} mm", summary.feed_moves, summary.feed_length);
+    println!(
+        "  rapid             {:>7} moves  {:>12.3} mm",
+        summary.rapid_moves, summary.rapid_length
+    );
+    println!(
+        "  cutting           {:>7} moves  {:>12.3} mm",
+        summary.feed_moves, summary.feed_length
+    );
     println!(
         "  estimated time    {}  (rapid {:.1} s, cutting {:.1} s, dwell {:.1} s)",
         clock(summary.estimated_seconds()),
@@ -108,16 +149,37 @@ fn print_human(args: &Args, machine: &vcnc::Machine, summary: &Summary, blocks: 
     );
     println!("                    estimate: {ESTIMATE_NOTE}");
     if summary.untimed_moves > 0 {
-        println!("                    {} cutting moves untimed (feed per revolution without S)", summary.untimed_moves);
+        println!(
+            "                    {} cutting moves untimed (feed per revolution without S)",
+            summary.untimed_moves
+        );
     }
     let tools: Vec<String> = summary.tools.iter().map(|t| format!("T{t}")).collect();
     println!(
         "  tools             {}",
-        if tools.is_empty() { "none changed".to_string() } else { format!("{} ({} change{})", tools.join(" "), summary.tool_changes, if summary.tool_changes == 1 { "" } else { "s" }) }
+        if tools.is_empty() {
+            "none changed".to_string()
+        } else {
+            format!(
+                "{} ({} change{})",
+                tools.join(" "),
+                summary.tool_changes,
+                if summary.tool_changes == 1 { "" } else { "s" }
+            )
+        }
     );
-    println!("  extents machine   {}", extents_text(&summary.machine_extents));
-    println!("  extents program   {}", extents_text(&summary.work_extents));
-    println!("  extents cutting   {}", extents_text(&summary.cutting_extents));
+    println!(
+        "  extents machine   {}",
+        extents_text(&summary.machine_extents)
+    );
+    println!(
+        "  extents program   {}",
+        extents_text(&summary.work_extents)
+    );
+    println!(
+        "  extents cutting   {}",
+        extents_text(&summary.cutting_extents)
+    );
 }
 
 fn clock(seconds: f64) -> String {

@@ -43,11 +43,17 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let machine = args.machine.machine()?;
     let options = args.machine.options()?;
     let interpreter = crate::program::open(&args.program, &machine, options)?;
-    let rotary: Vec<Axis> = [Axis::A, Axis::B, Axis::C].into_iter().filter(|a| machine.has_axis(*a)).collect();
+    let rotary: Vec<Axis> = [Axis::A, Axis::B, Axis::C]
+        .into_iter()
+        .filter(|a| machine.has_axis(*a))
+        .collect();
     let file_name = args.program.display().to_string();
     let mut writer = Writer {
         out: Vec::with_capacity(1 << 16),
-        file_json: format!(",\"file\":{}", serde_json::to_string(&file_name).unwrap_or_else(|_| "\"\"".into())),
+        file_json: format!(
+            ",\"file\":{}",
+            serde_json::to_string(&file_name).unwrap_or_else(|_| "\"\"".into())
+        ),
         file_csv: csv_field(&file_name),
         rotary,
         work: args.work,
@@ -109,7 +115,11 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     drop(recycle);
     let _ = producer.join();
     crate::diagnostics::print_human(&args.program, &alarms);
-    Ok(if failed { Outcome::Alarm } else { Outcome::Clean })
+    Ok(if failed {
+        Outcome::Alarm
+    } else {
+        Outcome::Clean
+    })
 }
 
 /// Segments per batch handed from the interpreter thread to the writer.
@@ -142,14 +152,25 @@ struct Record<'a> {
 }
 
 fn record(segment: &Segment) -> Record<'_> {
-    let mut record = Record { kind: "", motion: segment.motion(), feed: None, arc: None };
+    let mut record = Record {
+        kind: "",
+        motion: segment.motion(),
+        feed: None,
+        arc: None,
+    };
     record.kind = match &segment.kind {
         SegmentKind::Rapid { .. } => "rapid",
         SegmentKind::Line { feed, .. } => {
             record.feed = feed_mm_per_min(feed, segment);
             "feed"
         }
-        SegmentKind::Arc { feed, center, direction, plane, .. } => {
+        SegmentKind::Arc {
+            feed,
+            center,
+            direction,
+            plane,
+            ..
+        } => {
             record.feed = feed_mm_per_min(feed, segment);
             record.arc = Some((center.xyz(), direction.as_str(), plane.as_str()));
             "arc"
@@ -275,7 +296,8 @@ impl Writer {
             }
             SegmentKind::Coolant { on } => {
                 self.key(key!("on"));
-                self.out.extend_from_slice(if on { b"true" } else { b"false" });
+                self.out
+                    .extend_from_slice(if on { b"true" } else { b"false" });
             }
             SegmentKind::Stop { kind } => self.text(key!("stop"), stop_name(kind)),
             SegmentKind::Auxiliary { code } => {
@@ -314,7 +336,10 @@ impl Writer {
         let axes = 3 + self.rotary.len();
         match record.motion {
             Some(motion) => {
-                for i in [0, 1, 2].into_iter().chain(self.rotary.iter().map(|a| a.index())) {
+                for i in [0, 1, 2]
+                    .into_iter()
+                    .chain(self.rotary.iter().map(|a| a.index()))
+                {
                     self.out.push(b',');
                     push_decimal(&mut self.out, motion.to.0[i]);
                 }
@@ -331,7 +356,8 @@ impl Writer {
                     self.out.push(b',');
                     push_decimal(&mut self.out, c);
                 }
-                self.out.extend_from_slice(format!(",{dir},{plane}").as_bytes());
+                self.out
+                    .extend_from_slice(format!(",{dir},{plane}").as_bytes());
             }
             None => self.out.extend_from_slice(b",,,,,"),
         }
@@ -347,7 +373,8 @@ impl Writer {
             }
         }
         self.out.push(b',');
-        self.out.extend_from_slice(csv_value(&segment.kind).as_bytes());
+        self.out
+            .extend_from_slice(csv_value(&segment.kind).as_bytes());
         self.out.push(b'\n');
     }
 }

@@ -25,7 +25,14 @@ const MAX_STEP: i64 = 6_000;
 /// Arc radii, micrometres.
 const RADII: (i64, i64) = (2_000, 20_000);
 /// Pythagorean triples (a, b, c): a^2 + b^2 = c^2.
-const TRIPLES: [(i64, i64, i64); 6] = [(3, 4, 5), (5, 12, 13), (8, 15, 17), (7, 24, 25), (20, 21, 29), (12, 35, 37)];
+const TRIPLES: [(i64, i64, i64); 6] = [
+    (3, 4, 5),
+    (5, 12, 13),
+    (8, 15, 17),
+    (7, 24, 25),
+    (20, 21, 29),
+    (12, 35, 37),
+];
 
 const HEADER: &str = "%\nO1000\nG21 G17 G90 G94 G54\nT1 M06\nS8000 M03\nG00 X0. Y0. Z5.\nG43 H1 Z5.\nG01 Z-1. F1500.\n";
 const FOOTER: &str = "G00 Z5.\nM05\nM30\n%\n";
@@ -41,7 +48,13 @@ pub(crate) fn program(blocks: usize) -> String {
 /// Writes the program of `blocks` motion blocks to `out`.
 pub(crate) fn write_program<W: Write>(out: &mut W, blocks: usize) -> io::Result<()> {
     out.write_all(HEADER.as_bytes())?;
-    let mut tool = Tool { x: 0, y: 0, vx: 3_000, vy: 2_000, random: Random(0x5EED_CAFE_F00D_0001) };
+    let mut tool = Tool {
+        x: 0,
+        y: 0,
+        vx: 3_000,
+        vy: 2_000,
+        random: Random(0x5EED_CAFE_F00D_0001),
+    };
     for block in 1..=blocks {
         if block % 10 == 0 {
             tool.arc(out)?;
@@ -89,7 +102,13 @@ impl Tool {
             }
         };
         let clockwise = self.random.between(0, 1) == 0;
-        write!(out, "{} X{} Y{}", if clockwise { "G02" } else { "G03" }, Mm(ex), Mm(ey))?;
+        write!(
+            out,
+            "{} X{} Y{}",
+            if clockwise { "G02" } else { "G03" },
+            Mm(ex),
+            Mm(ey)
+        )?;
         if self.random.between(0, 1) == 0 {
             // The cross product of (start - centre) and (end - centre) says on which side the end
             // lies: R is negative when the arc sweeps more than half a circle.
@@ -165,8 +184,20 @@ impl Random {
 
     /// One of the twelve vectors of length c on the triple's grid: (±a, ±b), (±b, ±a), (±c, 0), (0, ±c).
     fn vector(&mut self, (a, b, c): (i64, i64, i64)) -> (i64, i64) {
-        let vectors =
-            [(a, b), (-a, b), (a, -b), (-a, -b), (b, a), (-b, a), (b, -a), (-b, -a), (c, 0), (-c, 0), (0, c), (0, -c)];
+        let vectors = [
+            (a, b),
+            (-a, b),
+            (a, -b),
+            (-a, -b),
+            (b, a),
+            (-b, a),
+            (b, -a),
+            (-b, -a),
+            (c, 0),
+            (-c, 0),
+            (0, c),
+            (0, -c),
+        ];
         vectors[self.between(0, 11) as usize]
     }
 }

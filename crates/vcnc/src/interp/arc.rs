@@ -34,7 +34,11 @@ pub(crate) fn arc_center(
             let r_start = offset.0.hypot(offset.1);
             let r_end = (end.0 - center.0).hypot(end.1 - center.1);
             if r_start == 0.0 {
-                return Err(Alarm::error(AlarmCode::ArcWithoutCenter, span, "arc centre is on its start point"));
+                return Err(Alarm::error(
+                    AlarmCode::ArcWithoutCenter,
+                    span,
+                    "arc centre is on its start point",
+                ));
             }
             if (r_end - r_start).abs() > tolerance {
                 return Err(Alarm::error(
@@ -103,10 +107,18 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    const SPAN: Span = Span { file: crate::source::FileId(0), start: 0, end: 0, line: 1 };
+    const SPAN: Span = Span {
+        file: crate::source::FileId(0),
+        start: 0,
+        end: 0,
+        line: 1,
+    };
 
     fn radius(r: f64) -> ArcSpec {
-        ArcSpec::Radius { radius: r, span: SPAN }
+        ArcSpec::Radius {
+            radius: r,
+            span: SPAN,
+        }
     }
 
     #[test]
@@ -122,21 +134,47 @@ mod tests {
     fn mitsubishi_r_example_centre_matches_the_manual() {
         // spec/iso-fanuc0m-mitsubishi.md B.3: from X30 Y10 to X5 Y25 with R20.616 the centre is
         // X9.9997 Y4.9994.
-        let c = arc_center((30.0, 10.0), (5.0, 25.0), radius(20.616), ArcDirection::CounterClockwise, 0.01).unwrap();
-        assert!((c.0 - 9.9997).abs() < 1e-3 && (c.1 - 4.9994).abs() < 1e-3, "{c:?}");
+        let c = arc_center(
+            (30.0, 10.0),
+            (5.0, 25.0),
+            radius(20.616),
+            ArcDirection::CounterClockwise,
+            0.01,
+        )
+        .unwrap();
+        assert!(
+            (c.0 - 9.9997).abs() < 1e-3 && (c.1 - 4.9994).abs() < 1e-3,
+            "{c:?}"
+        );
     }
 
     #[test]
     fn end_point_off_the_circle_is_alarm_020() {
-        let spec = ArcSpec::Center { offset: (10.0, 0.0), span: SPAN };
-        let error = arc_center((0.0, 0.0), (10.0, 10.5), spec, ArcDirection::Clockwise, 0.01).unwrap_err();
+        let spec = ArcSpec::Center {
+            offset: (10.0, 0.0),
+            span: SPAN,
+        };
+        let error = arc_center(
+            (0.0, 0.0),
+            (10.0, 10.5),
+            spec,
+            ArcDirection::Clockwise,
+            0.01,
+        )
+        .unwrap_err();
         assert_eq!(error.code, AlarmCode::ArcEndNotOnCircle);
     }
 
     #[test]
     fn radius_too_small_is_an_alarm() {
-        let error =
-            arc_center((0.0, 0.0), (30.0, 0.0), radius(10.0), ArcDirection::Clockwise, 0.01).unwrap_err();
+        let error = arc_center(
+            (0.0, 0.0),
+            (30.0, 0.0),
+            radius(10.0),
+            ArcDirection::Clockwise,
+            0.01,
+        )
+        .unwrap_err();
         assert_eq!(error.code, AlarmCode::ArcRadiusTooSmall);
     }
 

@@ -17,21 +17,46 @@ use crate::profile::{classify_m, DwellP, MCode, MLookup};
 ///
 /// # Errors
 /// A negative S.
-pub(crate) fn speed_and_tool(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+pub(crate) fn speed_and_tool(
+    exec: &mut Executor,
+    cmd: &Command,
+    out: &mut Output,
+) -> Result<(), Alarm> {
     if let Some(s) = cmd.s() {
         if s.number.value < 0.0 {
-            return Err(Alarm::error(AlarmCode::ValueOutOfRange, s.span, "spindle speed cannot be negative"));
+            return Err(Alarm::error(
+                AlarmCode::ValueOutOfRange,
+                s.span,
+                "spindle speed cannot be negative",
+            ));
         }
         exec.speed = s.number.value;
-        let running = matches!(exec.spindle, SpindleState::Clockwise | SpindleState::CounterClockwise);
-        let starts_here = cmd.m_codes().iter().any(|m| matches!(m.number.value as u32, 3 | 4));
+        let running = matches!(
+            exec.spindle,
+            SpindleState::Clockwise | SpindleState::CounterClockwise
+        );
+        let starts_here = cmd
+            .m_codes()
+            .iter()
+            .any(|m| matches!(m.number.value as u32, 3 | 4));
         if running && !starts_here && exec.modal.spindle_mode == SpindleMode::Rpm {
-            out.push(cmd, SegmentKind::Spindle { state: exec.spindle, speed: exec.speed });
+            out.push(
+                cmd,
+                SegmentKind::Spindle {
+                    state: exec.spindle,
+                    speed: exec.speed,
+                },
+            );
         }
     }
     if let Some(t) = cmd.t() {
         exec.selected_tool = t.number.value as u32;
-        out.push(cmd, SegmentKind::ToolSelect { tool: exec.selected_tool });
+        out.push(
+            cmd,
+            SegmentKind::ToolSelect {
+                tool: exec.selected_tool,
+            },
+        );
     }
     Ok(())
 }
@@ -40,23 +65,36 @@ pub(crate) fn speed_and_tool(exec: &mut Executor, cmd: &Command, out: &mut Outpu
 ///
 /// # Errors
 /// Subprogram calls and returns (issue 3).
-pub(crate) fn before_motion(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+pub(crate) fn before_motion(
+    exec: &mut Executor,
+    cmd: &Command,
+    out: &mut Output,
+) -> Result<(), Alarm> {
     for m in cmd.m_codes() {
         let code = m.number.value as u32;
         let kind = match classify_m(code, &exec.profile) {
             MLookup::NotSupported(issue) => {
-                return Err(Alarm::not_supported(m.span, &format!("M{code:02} (subprogram call or return)"), issue));
+                return Err(Alarm::not_supported(
+                    m.span,
+                    &format!("M{code:02} (subprogram call or return)"),
+                    issue,
+                ));
             }
             MLookup::Machine => SegmentKind::Auxiliary { code },
             MLookup::Known(known) => match known {
-                MCode::ProgramStop | MCode::OptionalStop | MCode::ProgramEnd | MCode::ProgramEndRewind => continue,
+                MCode::ProgramStop
+                | MCode::OptionalStop
+                | MCode::ProgramEnd
+                | MCode::ProgramEndRewind => continue,
                 MCode::SpindleClockwise => spindle(exec, SpindleState::Clockwise),
                 MCode::SpindleCounterClockwise => spindle(exec, SpindleState::CounterClockwise),
                 MCode::SpindleStop => spindle(exec, SpindleState::Stopped),
                 MCode::SpindleOrientation => spindle(exec, SpindleState::Oriented),
                 MCode::ToolChange => {
                     exec.tool_in_spindle = exec.selected_tool;
-                    SegmentKind::ToolChange { tool: exec.selected_tool }
+                    SegmentKind::ToolChange {
+                        tool: exec.selected_tool,
+                    }
                 }
                 MCode::CoolantOn => SegmentKind::Coolant { on: true },
                 MCode::CoolantOff => SegmentKind::Coolant { on: false },
@@ -69,20 +107,31 @@ pub(crate) fn before_motion(exec: &mut Executor, cmd: &Command, out: &mut Output
 
 fn spindle(exec: &mut Executor, state: SpindleState) -> SegmentKind {
     exec.spindle = state;
-    SegmentKind::Spindle { state, speed: exec.speed }
+    SegmentKind::Spindle {
+        state,
+        speed: exec.speed,
+    }
 }
 
 /// M00, M01, M02, M30 after the motion.
 ///
 /// # Errors
 /// None yet.
-pub(crate) fn after_motion(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
+pub(crate) fn after_motion(
+    exec: &mut Executor,
+    cmd: &Command,
+    out: &mut Output,
+) -> Result<Flow, Alarm> {
     for m in cmd.m_codes() {
         match classify_m(m.number.value as u32, &exec.profile) {
             MLookup::Known(MCode::ProgramStop) => stop(cmd, StopKind::Program, out),
             MLookup::Known(MCode::OptionalStop) => stop(cmd, StopKind::Optional, out),
-            MLookup::Known(MCode::ProgramEnd) => return Ok(end_program(exec, cmd, EndKind::M02, out)),
-            MLookup::Known(MCode::ProgramEndRewind) => return Ok(end_program(exec, cmd, EndKind::M30, out)),
+            MLookup::Known(MCode::ProgramEnd) => {
+                return Ok(end_program(exec, cmd, EndKind::M02, out))
+            }
+            MLookup::Known(MCode::ProgramEndRewind) => {
+                return Ok(end_program(exec, cmd, EndKind::M30, out))
+            }
             _ => {}
         }
     }
@@ -94,7 +143,12 @@ pub(crate) fn after_motion(exec: &mut Executor, cmd: &Command, out: &mut Output)
 ///
 /// # Errors
 /// A decimal point in P where the control forbids it; a negative time.
-pub(crate) fn dwell(exec: &mut Executor, cmd: &Command, g04_order: usize, out: &mut Output) -> Result<(), Alarm> {
+pub(crate) fn dwell(
+    exec: &mut Executor,
+    cmd: &Command,
+    g04_order: usize,
+    out: &mut Output,
+) -> Result<(), Alarm> {
     let seconds = if let Some(p) = cmd.p() {
         let n = p.number;
         match exec.profile.dwell_p {
@@ -130,7 +184,11 @@ pub(crate) fn dwell(exec: &mut Executor, cmd: &Command, g04_order: usize, out: &
         0.0
     };
     if seconds < 0.0 {
-        return Err(Alarm::error(AlarmCode::BadDwell, cmd.span, "dwell time cannot be negative"));
+        return Err(Alarm::error(
+            AlarmCode::BadDwell,
+            cmd.span,
+            "dwell time cannot be negative",
+        ));
     }
     out.push(cmd, SegmentKind::Dwell { seconds });
     Ok(())

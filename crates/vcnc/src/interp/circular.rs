@@ -24,12 +24,19 @@ pub(crate) fn arc(
     out: &mut Output,
 ) -> Result<(), Alarm> {
     if let (Some(l), true) = (cmd.l(), exec.profile.arc_l_is_spiral) {
-        return Err(Alarm::not_supported(l.span, "spiral and conical interpolation (G02/G03 with L)", None));
+        return Err(Alarm::not_supported(
+            l.span,
+            "spiral and conical interpolation (G02/G03 with L)",
+            None,
+        ));
     }
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
     let spec = if let Some(r) = cmd.r() {
-        ArcSpec::Radius { radius: exec.length(&r), span: r.span }
+        ArcSpec::Radius {
+            radius: exec.length(&r),
+            span: r.span,
+        }
     } else {
         let (ca, cb) = (cmd.center(a), cmd.center(b));
         let Some(span) = ca.or(cb).map(|v| v.span) else {
@@ -38,9 +45,16 @@ pub(crate) fn arc(
                 cmd.span,
                 "circular move without R or centre words of the selected plane",
             )
-            .with_help(format!("in {} give {} or R", plane_name(plane), centre_letters(plane))));
+            .with_help(format!(
+                "in {} give {} or R",
+                plane_name(plane),
+                centre_letters(plane)
+            )));
         };
-        let offset = (ca.map_or(0.0, |v| exec.length(&v)), cb.map_or(0.0, |v| exec.length(&v)));
+        let offset = (
+            ca.map_or(0.0, |v| exec.length(&v)),
+            cb.map_or(0.0, |v| exec.length(&v)),
+        );
         ArcSpec::Center { offset, span }
     };
     let feed = exec.cutting_feed(cmd)?;
@@ -62,7 +76,13 @@ pub(crate) fn arc(
             return Ok(());
         }
     }
-    let center_plane = arc_center(start, end, spec, direction, exec.profile.arc_radius_tolerance)?;
+    let center_plane = arc_center(
+        start,
+        end,
+        spec,
+        direction,
+        exec.profile.arc_radius_tolerance,
+    )?;
     let mut center = exec.position;
     center[a] = center_plane.0;
     center[b] = center_plane.1;
@@ -70,7 +90,14 @@ pub(crate) fn arc(
     let motion = exec.move_to(target, cmd)?;
     out.push(
         cmd,
-        SegmentKind::Arc { motion, center: MachinePos(center), direction, plane, extra_turns: 0, feed },
+        SegmentKind::Arc {
+            motion,
+            center: MachinePos(center),
+            direction,
+            plane,
+            extra_turns: 0,
+            feed,
+        },
     );
     Ok(())
 }

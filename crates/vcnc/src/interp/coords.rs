@@ -17,7 +17,9 @@ use crate::profile::Group;
 pub(crate) fn g92(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     let program = exec.program_position();
     for axis in Axis::ALL {
-        let Some(value) = &cmd.axis(axis.index()) else { continue };
+        let Some(value) = &cmd.axis(axis.index()) else {
+            continue;
+        };
         let i = axis.index();
         let wanted = exec.axis_value(axis, value);
         let g92 = exec.frames.g92(i) + exec.frames.local(i) + (program[i] - wanted);
@@ -36,7 +38,11 @@ pub(crate) fn g92(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
 pub(crate) fn g92_1(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     if cmd.r().is_some() || cmd.center(2).is_some() {
         let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
-        return Err(Alarm::not_supported(span, "G92.1 with rotation (K, R)", Some(5)));
+        return Err(Alarm::not_supported(
+            span,
+            "G92.1 with rotation (K, R)",
+            Some(5),
+        ));
     }
     let named = cmd.has_axis_words();
     for axis in Axis::ALL {

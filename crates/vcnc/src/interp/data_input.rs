@@ -34,13 +34,20 @@ pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
         }
     }
     let field = match l {
-        Some(l) => profile.g10_tool_l.iter().find(|t| i64::from(t.l) == l).map(|t| t.field),
+        Some(l) => profile
+            .g10_tool_l
+            .iter()
+            .find(|t| i64::from(t.l) == l)
+            .map(|t| t.field),
         None => profile.g10_tool_default,
     };
     let Some(field) = field else {
         let span = cmd.l().map_or(g10_span, |v| v.span);
         let message = match l {
-            Some(l) => format!("G10 L{l} is not a data input this {} control accepts", profile.name),
+            Some(l) => format!(
+                "G10 L{l} is not a data input this {} control accepts",
+                profile.name
+            ),
             None => "G10 needs an L number".to_string(),
         };
         return Err(Alarm::error(AlarmCode::BadDataInput, span, message));
@@ -50,7 +57,9 @@ pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
 }
 
 fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm> {
-    let Some(p) = cmd.p() else { return Ok(exec.modal.work_offset) };
+    let Some(p) = cmd.p() else {
+        return Ok(exec.modal.work_offset);
+    };
     let n = p.number.whole().unwrap_or(-1);
     let highest = if exec.profile.g59_x_offsets { 15 } else { 6 };
     match n {
@@ -59,19 +68,31 @@ fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm
         _ => Err(Alarm::error(
             AlarmCode::WorkOffsetOutOfRange,
             p.span,
-            format!("G10 L{} P{n}: work offsets are P0 (external) to P{highest}", exec.profile.g10_work_l),
+            format!(
+                "G10 L{} P{n}: work offsets are P0 (external) to P{highest}",
+                exec.profile.g10_work_l
+            ),
         )),
     }
 }
 
-fn extended_offset(exec: &Executor, cmd: &Command, span: crate::source::Span) -> Result<WorkOffsetId, Alarm> {
-    let Some(p) = cmd.p() else { return Ok(exec.modal.work_offset) };
+fn extended_offset(
+    exec: &Executor,
+    cmd: &Command,
+    span: crate::source::Span,
+) -> Result<WorkOffsetId, Alarm> {
+    let Some(p) = cmd.p() else {
+        return Ok(exec.modal.work_offset);
+    };
     let n = p.number.whole().unwrap_or(-1);
     if n < 1 || n > i64::from(exec.profile.g54_1_count) {
         return Err(Alarm::error(
             AlarmCode::WorkOffsetOutOfRange,
             p.span,
-            format!("P{n}: this control has G54.1 P1 to P{}", exec.profile.g54_1_count),
+            format!(
+                "P{n}: this control has G54.1 P1 to P{}",
+                exec.profile.g54_1_count
+            ),
         )
         .with_label(span, "in this G10"));
     }
@@ -81,7 +102,9 @@ fn extended_offset(exec: &Executor, cmd: &Command, span: crate::source::Span) ->
 fn set_work_offset(exec: &mut Executor, cmd: &Command, id: WorkOffsetId) {
     let current = exec.frames.work_offset(id);
     for axis in Axis::ALL {
-        let Some(value) = &cmd.axis(axis.index()) else { continue };
+        let Some(value) = &cmd.axis(axis.index()) else {
+            continue;
+        };
         let v = exec.axis_value(axis, value);
         let new = match exec.modal.distance {
             DistanceMode::Absolute => v,
@@ -97,14 +120,21 @@ fn set_tool_offset(
     field: ToolOffsetField,
     span: crate::source::Span,
 ) -> Result<(), Alarm> {
-    let p = required(cmd.p(), span, "G10 for a tool offset needs P (the offset number)")?;
+    let p = required(
+        cmd.p(),
+        span,
+        "G10 for a tool offset needs P (the offset number)",
+    )?;
     let r = required(cmd.r(), span, "G10 for a tool offset needs R (the value)")?;
     let n = p.number.whole().unwrap_or(-1);
     if n < 1 || n > i64::from(exec.profile.max_offset_number) {
         return Err(Alarm::error(
             AlarmCode::OffsetNumberOutOfRange,
             p.span,
-            format!("offset number {n} is out of range 1 to {}", exec.profile.max_offset_number),
+            format!(
+                "offset number {n} is out of range 1 to {}",
+                exec.profile.max_offset_number
+            ),
         ));
     }
     let value = exec.length(&r);
@@ -123,6 +153,10 @@ fn set_tool_offset(
     Ok(())
 }
 
-fn required(value: Option<Value>, span: crate::source::Span, message: &str) -> Result<Value, Alarm> {
+fn required(
+    value: Option<Value>,
+    span: crate::source::Span,
+    message: &str,
+) -> Result<Value, Alarm> {
     value.ok_or_else(|| Alarm::error(AlarmCode::BadDataInput, span, message))
 }

@@ -7,7 +7,9 @@
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Axis;
-use crate::profile::{classify_g, g_name, not_supported_description, GCode, GLookup, Group, Profile, SameGroupRule};
+use crate::profile::{
+    classify_g, g_name, not_supported_description, GCode, GLookup, Group, Profile, SameGroupRule,
+};
 use crate::source::Span;
 use crate::syntax::{Block, Number, Word};
 
@@ -73,7 +75,12 @@ impl Command {
 
     /// The value of an address letter (`b'R'`), if the block has it.
     pub(crate) fn word(&self, letter: u8) -> Option<Value> {
-        match self.letters.get(usize::from(letter.wrapping_sub(b'A'))).copied().unwrap_or(0) {
+        match self
+            .letters
+            .get(usize::from(letter.wrapping_sub(b'A')))
+            .copied()
+            .unwrap_or(0)
+        {
             0 => None,
             i => Some(self.values[usize::from(i) - 1]),
         }
@@ -118,7 +125,10 @@ impl Command {
 
     /// An empty command standing for the block at `span`.
     pub(crate) fn at(span: Span) -> Command {
-        Command { span, ..Command::default() }
+        Command {
+            span,
+            ..Command::default()
+        }
     }
 
     /// True when any axis word is present.
@@ -128,7 +138,9 @@ impl Command {
 
     /// The axes whose words are present, in axis order.
     pub(crate) fn axes_present(&self) -> impl Iterator<Item = Axis> + '_ {
-        Axis::ALL.into_iter().filter(|a| self.axis_mask & (1 << a.index()) != 0)
+        Axis::ALL
+            .into_iter()
+            .filter(|a| self.axis_mask & (1 << a.index()) != 0)
     }
 
     /// True when I, J, K or R is present.
@@ -216,10 +228,17 @@ pub(crate) fn decode(
             return Err(Alarm::error(
                 AlarmCode::ValueOutOfRange,
                 word.span,
-                format!("{} is out of range: the control reads values up to {}", word.letter as char, profile.max_word_value),
+                format!(
+                    "{} is out of range: the control reads values up to {}",
+                    word.letter as char, profile.max_word_value
+                ),
             ));
         }
-        let value = Value { number: word.number, span: word.span, order };
+        let value = Value {
+            number: word.number,
+            span: word.span,
+            order,
+        };
         match word.letter {
             b'G' => decode_g(word, order, profile, out)?,
             b'M' => {
@@ -230,7 +249,10 @@ pub(crate) fn decode(
                         Alarm::warning(
                             AlarmCode::WordNotAllowed,
                             dropped.span,
-                            format!("this control runs {} M code(s) per block: this one is ignored", profile.m_codes_per_block),
+                            format!(
+                                "this control runs {} M code(s) per block: this one is ignored",
+                                profile.m_codes_per_block
+                            ),
                         )
                         .with_label(word.span, "the later M code that runs"),
                     );
@@ -253,7 +275,9 @@ pub(crate) fn decode(
                         word.span,
                         format!("the machine has no {} axis", word.letter as char),
                     )
-                    .with_help("add the axis to the machine file (`[axes.a]` ...) or remove the word"));
+                    .with_help(
+                        "add the axis to the machine file (`[axes.a]` ...) or remove the word",
+                    ));
                 }
                 out.set(word, value)?;
             }
@@ -296,7 +320,11 @@ pub(crate) fn decode(
                 ));
             }
             other => {
-                return Err(Alarm::not_supported(word.span, &format!("address {}", other as char), None));
+                return Err(Alarm::not_supported(
+                    word.span,
+                    &format!("address {}", other as char),
+                    None,
+                ));
             }
         }
     }
@@ -305,7 +333,11 @@ pub(crate) fn decode(
 
 fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> Result<(), Alarm> {
     let Some(tenths) = word.number.tenths().filter(|t| *t >= 0) else {
-        return Err(Alarm::error(AlarmCode::UnknownGCode, word.span, format!("G{} is not a G code", word.number.value)));
+        return Err(Alarm::error(
+            AlarmCode::UnknownGCode,
+            word.span,
+            format!("G{} is not a G code", word.number.value),
+        ));
     };
     let code = match classify_g(tenths, profile) {
         GLookup::Known(code) => code,
@@ -320,7 +352,11 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
             return Err(Alarm::error(
                 AlarmCode::UnknownGCode,
                 word.span,
-                format!("{} does not exist on the {} profile", g_name(tenths), profile.name),
+                format!(
+                    "{} does not exist on the {} profile",
+                    g_name(tenths),
+                    profile.name
+                ),
             ))
         }
     };
@@ -329,10 +365,17 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
         return Ok(());
     }
     let slot = group_slot(code.group());
-    let new = GWord { code, span: word.span, order };
+    let new = GWord {
+        code,
+        span: word.span,
+        order,
+    };
     if let Some(previous) = out.group(code.group()) {
         if previous.code != code {
-            let message = format!("two G codes of one modal group in a block: {} wins", g_name(tenths));
+            let message = format!(
+                "two G codes of one modal group in a block: {} wins",
+                g_name(tenths)
+            );
             match profile.same_group {
                 SameGroupRule::LastWins if code.group() != crate::profile::Group::NonModal => {
                     out.warnings.push(

@@ -86,7 +86,9 @@ impl Executor {
         self.set_feed(cmd)?;
         super::auxiliary::speed_and_tool(self, cmd, out)?;
         super::auxiliary::before_motion(self, cmd, out)?;
-        let dwell = cmd.group(Group::NonModal).filter(|g| g.code == GCode::Dwell);
+        let dwell = cmd
+            .group(Group::NonModal)
+            .filter(|g| g.code == GCode::Dwell);
         if let Some(g) = dwell {
             super::auxiliary::dwell(self, cmd, g.order, out)?;
         }
@@ -120,14 +122,21 @@ impl Executor {
             match g.code {
                 GCode::ExtendedWorkOffset => {
                     let p = cmd.p().ok_or_else(|| {
-                        Alarm::error(AlarmCode::WorkOffsetOutOfRange, g.span, "G54.1 needs P (1 to the number of extended offsets)")
+                        Alarm::error(
+                            AlarmCode::WorkOffsetOutOfRange,
+                            g.span,
+                            "G54.1 needs P (1 to the number of extended offsets)",
+                        )
                     })?;
                     let n = p.number.whole().unwrap_or(-1);
                     if n < 1 || n > i64::from(self.profile.g54_1_count) {
                         return Err(Alarm::error(
                             AlarmCode::WorkOffsetOutOfRange,
                             p.span,
-                            format!("G54.1 P{n}: this control has P1 to P{}", self.profile.g54_1_count),
+                            format!(
+                                "G54.1 P{n}: this control has P1 to P{}",
+                                self.profile.g54_1_count
+                            ),
                         ));
                     }
                     self.modal.work_offset = WorkOffsetId::Extended(n as u32);
@@ -153,10 +162,16 @@ impl Executor {
     fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
         let Some(f) = cmd.f() else { return Ok(()) };
         if f.number.value < 0.0 {
-            return Err(Alarm::error(AlarmCode::BadFeedRate, f.span, "feed rate cannot be negative"));
+            return Err(Alarm::error(
+                AlarmCode::BadFeedRate,
+                f.span,
+                "feed rate cannot be negative",
+            ));
         }
         let value = match self.modal.feed_mode {
-            FeedMode::PerMinute | FeedMode::PerRevolution => f.number.value * self.modal.units.to_mm(),
+            FeedMode::PerMinute | FeedMode::PerRevolution => {
+                f.number.value * self.modal.units.to_mm()
+            }
             FeedMode::InverseTime => f.number.value,
         };
         self.feed = Some(value);
@@ -230,7 +245,12 @@ impl Executor {
         self.frames.to_machine(target, self.frames.length_vector)
     }
 
-    fn motion(&mut self, cmd: &Command, length_changed: bool, out: &mut Output) -> Result<(), Alarm> {
+    fn motion(
+        &mut self,
+        cmd: &Command,
+        length_changed: bool,
+        out: &mut Output,
+    ) -> Result<(), Alarm> {
         let target = self.target_program(cmd);
         let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;
         let machine_target = self.machine_target(&target, moves_z);
@@ -244,7 +264,9 @@ impl Executor {
                 out.push(cmd, SegmentKind::Line { motion, feed });
                 Ok(())
             }
-            MotionMode::Arc(direction) => super::circular::arc(self, cmd, direction, machine_target, out),
+            MotionMode::Arc(direction) => {
+                super::circular::arc(self, cmd, direction, machine_target, out)
+            }
         }
     }
 
@@ -252,7 +274,12 @@ impl Executor {
     ///
     /// # Errors
     /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range.
-    pub(crate) fn rapid_to(&mut self, to: [f64; AXES], cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+    pub(crate) fn rapid_to(
+        &mut self,
+        to: [f64; AXES],
+        cmd: &Command,
+        out: &mut Output,
+    ) -> Result<(), Alarm> {
         if to == self.position {
             return Ok(());
         }
@@ -287,20 +314,27 @@ impl Executor {
     pub(crate) fn cutting_feed(&self, cmd: &Command) -> Result<Feed, Alarm> {
         let Some(f) = self.feed else {
             let what = match self.modal.feed_mode {
-                FeedMode::InverseTime => "in G93 inverse-time mode every cutting block needs its own F",
+                FeedMode::InverseTime => {
+                    "in G93 inverse-time mode every cutting block needs its own F"
+                }
                 _ => "cutting move before any feed rate (F) was programmed",
             };
             return Err(Alarm::error(AlarmCode::NoFeedRate, cmd.span, what)
                 .with_help("add an F word to this block or an earlier one (FANUC alarm 011)"));
         };
         if f == 0.0 {
-            return Err(Alarm::error(AlarmCode::NoFeedRate, cmd.f().map_or(cmd.span, |v| v.span), "feed rate is zero"));
+            return Err(Alarm::error(
+                AlarmCode::NoFeedRate,
+                cmd.f().map_or(cmd.span, |v| v.span),
+                "feed rate is zero",
+            ));
         }
         Ok(match self.modal.feed_mode {
             FeedMode::PerMinute => Feed::PerMinute(f),
-            FeedMode::PerRevolution => {
-                Feed::PerRevolution { per_revolution: f, rpm: (self.speed > 0.0).then_some(self.speed) }
-            }
+            FeedMode::PerRevolution => Feed::PerRevolution {
+                per_revolution: f,
+                rpm: (self.speed > 0.0).then_some(self.speed),
+            },
             FeedMode::InverseTime => Feed::InverseTime(f),
         })
     }
@@ -322,12 +356,21 @@ pub(crate) fn check_position(position: &[f64], cmd: &Command) -> Result<(), Alar
     if position.iter().all(|v| v.abs() <= POSITION_LIMIT) {
         return Ok(());
     }
-    Err(Alarm::error(AlarmCode::ValueOutOfRange, cmd.span, "the position is beyond the control's range")
-        .with_help(format!("coordinates are limited to ±{POSITION_LIMIT:e} mm")))
+    Err(Alarm::error(
+        AlarmCode::ValueOutOfRange,
+        cmd.span,
+        "the position is beyond the control's range",
+    )
+    .with_help(format!("coordinates are limited to ±{POSITION_LIMIT:e} mm")))
 }
 
 /// Ends the program with the given end code.
-pub(crate) fn end_program(exec: &mut Executor, cmd: &Command, kind: EndKind, out: &mut Output) -> Flow {
+pub(crate) fn end_program(
+    exec: &mut Executor,
+    cmd: &Command,
+    kind: EndKind,
+    out: &mut Output,
+) -> Flow {
     exec.ended = true;
     out.push(cmd, SegmentKind::End { kind });
     Flow::End
@@ -337,4 +380,3 @@ pub(crate) fn end_program(exec: &mut Executor, cmd: &Command, kind: EndKind, out
 pub(crate) fn stop(cmd: &Command, kind: StopKind, out: &mut Output) {
     out.push(cmd, SegmentKind::Stop { kind });
 }
-

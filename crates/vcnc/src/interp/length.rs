@@ -24,7 +24,10 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
             return Err(Alarm::error(
                 AlarmCode::OffsetNumberOutOfRange,
                 h.span,
-                format!("H{n} is out of range: this control has H0 to H{}", exec.profile.max_offset_number),
+                format!(
+                    "H{n} is out of range: this control has H0 to H{}",
+                    exec.profile.max_offset_number
+                ),
             ));
         }
         exec.length_offset_number = n as u32;
@@ -38,7 +41,11 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
 ///
 /// # Errors
 /// None today; kept fallible for the feed check of a G01-mode offset move.
-pub(crate) fn move_to_new_vector(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+pub(crate) fn move_to_new_vector(
+    exec: &mut Executor,
+    cmd: &Command,
+    out: &mut Output,
+) -> Result<(), Alarm> {
     let program = exec.program_position();
     let target = exec.machine_target(&program, true);
     match (exec.modal.motion, exec.feed) {

@@ -44,7 +44,10 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Options {
-        Options { block_skip: [false; 9], dialect: Dialect::Iso }
+        Options {
+            block_skip: [false; 9],
+            dialect: Dialect::Iso,
+        }
     }
 }
 
@@ -58,7 +61,11 @@ pub(crate) struct Output {
 impl Output {
     /// Records a segment of the block `cmd`.
     pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
-        self.items.push(Ok(Segment { kind, span: cmd.span, sequence: cmd.sequence }));
+        self.items.push(Ok(Segment {
+            kind,
+            span: cmd.span,
+            sequence: cmd.sequence,
+        }));
     }
 
     /// Records an alarm (a warning, or the error that ends the run).
@@ -84,7 +91,12 @@ pub struct Interpreter<B> {
 impl<S: LineSource> Interpreter<ParsedLines<S>> {
     /// An interpreter for the program in `source` (file `file`) on `machine`; lines are parsed
     /// as they are needed.
-    pub fn new(source: S, file: FileId, machine: &Machine, options: Options) -> Interpreter<ParsedLines<S>> {
+    pub fn new(
+        source: S,
+        file: FileId,
+        machine: &Machine,
+        options: Options,
+    ) -> Interpreter<ParsedLines<S>> {
         let blocks = ParsedLines::new(source, file, machine.profile.syntax());
         Interpreter::from_blocks(blocks, file, machine, options)
     }
@@ -93,7 +105,12 @@ impl<S: LineSource> Interpreter<ParsedLines<S>> {
 impl<B: BlockSource> Interpreter<B> {
     /// An interpreter for the blocks of `source` (file `file`) on `machine`; the source must
     /// parse with `machine.profile.syntax()`.
-    pub fn from_blocks(source: B, file: FileId, machine: &Machine, options: Options) -> Interpreter<B> {
+    pub fn from_blocks(
+        source: B,
+        file: FileId,
+        machine: &Machine,
+        options: Options,
+    ) -> Interpreter<B> {
         let exec = Executor::new(machine);
         let mut interpreter = Interpreter {
             source,
@@ -184,10 +201,20 @@ impl<B: BlockSource> Interpreter<B> {
     fn end_of_text(&mut self) {
         let span = self.last_span;
         self.out.push_warning(
-            Alarm::warning(AlarmCode::MissingProgramEnd, span, "the program ends without M02, M30 or %")
-                .with_help("end the program with M30"),
+            Alarm::warning(
+                AlarmCode::MissingProgramEnd,
+                span,
+                "the program ends without M02, M30 or %",
+            )
+            .with_help("end the program with M30"),
         );
-        self.out.items.push(Ok(Segment { kind: SegmentKind::End { kind: EndKind::EndOfText }, span, sequence: None }));
+        self.out.items.push(Ok(Segment {
+            kind: SegmentKind::End {
+                kind: EndKind::EndOfText,
+            },
+            span,
+            sequence: None,
+        }));
         self.done = true;
     }
 
@@ -209,7 +236,12 @@ impl<B: BlockSource> Interpreter<B> {
         if block.kind == BlockKind::TapeMark {
             if self.started {
                 let cmd = Command::at(block.span);
-                self.out.push(&cmd, SegmentKind::End { kind: EndKind::TapeMark });
+                self.out.push(
+                    &cmd,
+                    SegmentKind::End {
+                        kind: EndKind::TapeMark,
+                    },
+                );
                 self.done = true;
             }
             return;
@@ -219,7 +251,12 @@ impl<B: BlockSource> Interpreter<B> {
         }
         self.started = true;
         self.last_span = block.span;
-        let decoded = decode::decode(block, &self.exec.profile, &self.exec.machine_axes, &mut self.command);
+        let decoded = decode::decode(
+            block,
+            &self.exec.profile,
+            &self.exec.machine_axes,
+            &mut self.command,
+        );
         for warning in self.command.warnings.drain(..) {
             self.out.push_warning(warning);
         }

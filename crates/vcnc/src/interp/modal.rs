@@ -171,10 +171,25 @@ impl ModalState {
             AutomaticCornerOverride => self.path_mode = PathMode::CornerOverride,
             TappingMode => self.path_mode = PathMode::Tapping,
             ContinuousMode => self.path_mode = PathMode::Continuous,
-            ExtendedWorkOffset | Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
-            | NthReferenceReturn | CutterCompCancel | LocalCoordinates | MachineCoordinates | CycleCancel
-            | SetCoordinates | PresetCoordinates | PolarCancel | ScalingCancel | MirrorCancel | ModalMacroCancel
-            | RotationCancel | PolarInterpolationCancel => {}
+            ExtendedWorkOffset
+            | Dwell
+            | ExactStopOnce
+            | DataInput
+            | ReferenceReturn
+            | ReturnFromReference
+            | NthReferenceReturn
+            | CutterCompCancel
+            | LocalCoordinates
+            | MachineCoordinates
+            | CycleCancel
+            | SetCoordinates
+            | PresetCoordinates
+            | PolarCancel
+            | ScalingCancel
+            | MirrorCancel
+            | ModalMacroCancel
+            | RotationCancel
+            | PolarInterpolationCancel => {}
         }
     }
 }

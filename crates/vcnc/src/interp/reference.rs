@@ -44,8 +44,18 @@ pub(crate) fn g30(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
     reference_return(exec, cmd, n, out)
 }
 
-fn reference_return(exec: &mut Executor, cmd: &Command, n: usize, out: &mut Output) -> Result<bool, Alarm> {
-    let reference = exec.machine.reference_points.get(n - 1).copied().unwrap_or([0.0; AXES]);
+fn reference_return(
+    exec: &mut Executor,
+    cmd: &Command,
+    n: usize,
+    out: &mut Output,
+) -> Result<bool, Alarm> {
+    let reference = exec
+        .machine
+        .reference_points
+        .get(n - 1)
+        .copied()
+        .unwrap_or([0.0; AXES]);
     if !cmd.has_axis_words() {
         if exec.profile.g28_without_axes_homes_all {
             let mut target = exec.position;
@@ -57,8 +67,12 @@ fn reference_return(exec: &mut Executor, cmd: &Command, n: usize, out: &mut Outp
         } else {
             let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
             out.push_warning(
-                Alarm::warning(AlarmCode::WordNotAllowed, span, "reference return without axis words moves no axis")
-                    .with_help("name the axes to send home, e.g. `G91 G28 Z0`"),
+                Alarm::warning(
+                    AlarmCode::WordNotAllowed,
+                    span,
+                    "reference return without axis words moves no axis",
+                )
+                .with_help("name the axes to send home, e.g. `G91 G28 Z0`"),
             );
         }
         return Ok(true);
@@ -96,7 +110,10 @@ pub(crate) fn g29(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
             return Err(Alarm::error(
                 AlarmCode::NoIntermediatePoint,
                 value.span,
-                format!("G29 {}: no G28 or G30 has set an intermediate point for this axis", axis.letter() as char),
+                format!(
+                    "G29 {}: no G28 or G30 has set an intermediate point for this axis",
+                    axis.letter() as char
+                ),
             ));
         };
         via[i] = mid;

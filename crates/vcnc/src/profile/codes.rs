@@ -213,13 +213,16 @@ impl GCode {
             ModalMacroCancel => Group::ModalMacro,
             ConstantSurfaceSpeed | ConstantSpindleSpeed => Group::SpindleMode,
             WorkOffset(_) | ExtendedWorkOffset => Group::WorkOffset,
-            ExactStopMode | AutomaticCornerOverride | TappingMode | ContinuousMode => Group::PathMode,
+            ExactStopMode | AutomaticCornerOverride | TappingMode | ContinuousMode => {
+                Group::PathMode
+            }
             RotationCancel => Group::Rotation,
             PolarCancel => Group::Polar,
             PolarInterpolationCancel => Group::PolarInterpolation,
             MirrorCancel => Group::Mirror,
-            Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference | NthReferenceReturn
-            | LocalCoordinates | MachineCoordinates | SetCoordinates | PresetCoordinates => Group::NonModal,
+            Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
+            | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
+            | PresetCoordinates => Group::NonModal,
         }
     }
 }
@@ -360,7 +363,10 @@ fn not_yet_on(tenths: i32, profile: &Profile) -> Option<(Option<u32>, &'static s
     match tenths {
         120 if profile.g12_g13_circle_cutting => Some((Some(4), "circle cutting CW")),
         130 if profile.g12_g13_circle_cutting => Some((Some(4), "circle cutting CCW")),
-        _ => NOT_YET.iter().find(|(code, _, _)| *code == tenths).map(|(_, issue, what)| (*issue, *what)),
+        _ => NOT_YET
+            .iter()
+            .find(|(code, _, _)| *code == tenths)
+            .map(|(_, issue, what)| (*issue, *what)),
     }
 }
 
@@ -458,7 +464,10 @@ pub fn classify_m(code: u32, profile: &Profile) -> MLookup {
 /// embeds it; a test keeps the two equal, so the table cannot drift from the code).
 pub fn supported_codes_markdown() -> String {
     use super::ProfileName;
-    let profiles: Vec<Profile> = ProfileName::ALL.iter().map(|n| Profile::builtin(*n)).collect();
+    let profiles: Vec<Profile> = ProfileName::ALL
+        .iter()
+        .map(|n| Profile::builtin(*n))
+        .collect();
     let mut out = String::from("| code | meaning |");
     for p in &profiles {
         out.push_str(&format!(" {} |", p.name));
@@ -473,14 +482,26 @@ pub fn supported_codes_markdown() -> String {
         }
         let meaning = lookups
             .iter()
-            .find_map(|l| if let GLookup::Known(g) = l { Some(g.description()) } else { None })
-            .or_else(|| profiles.iter().find_map(|p| not_supported_description(tenths, p)))
+            .find_map(|l| {
+                if let GLookup::Known(g) = l {
+                    Some(g.description())
+                } else {
+                    None
+                }
+            })
+            .or_else(|| {
+                profiles
+                    .iter()
+                    .find_map(|p| not_supported_description(tenths, p))
+            })
             .unwrap_or("");
         out.push_str(&format!("| {} | {meaning} |", g_name(tenths)));
         for lookup in &lookups {
             match lookup {
                 GLookup::Known(_) => out.push_str(" yes |"),
-                GLookup::NotSupported(Some(issue)) => out.push_str(&format!(" planned (#{issue}) |")),
+                GLookup::NotSupported(Some(issue)) => {
+                    out.push_str(&format!(" planned (#{issue}) |"))
+                }
                 GLookup::NotSupported(None) => out.push_str(" not yet |"),
                 GLookup::Unknown => out.push_str(" - |"),
             }
@@ -494,7 +515,13 @@ pub fn supported_codes_markdown() -> String {
         }
         let meaning = lookups
             .iter()
-            .find_map(|l| if let MLookup::Known(m) = l { Some(m.description()) } else { None })
+            .find_map(|l| {
+                if let MLookup::Known(m) = l {
+                    Some(m.description())
+                } else {
+                    None
+                }
+            })
             .unwrap_or("subprogram call, return or interrupt");
         out.push_str(&format!("| M{code:02} | {meaning} |"));
         for lookup in &lookups {
@@ -517,12 +544,24 @@ mod tests {
     #[test]
     fn work_offsets_map_to_their_numbers() {
         let fanuc = Profile::builtin(ProfileName::Fanuc);
-        assert_eq!(classify_g(540, &fanuc), GLookup::Known(GCode::WorkOffset(1)));
-        assert_eq!(classify_g(590, &fanuc), GLookup::Known(GCode::WorkOffset(6)));
-        assert_eq!(classify_g(541, &fanuc), GLookup::Known(GCode::ExtendedWorkOffset));
+        assert_eq!(
+            classify_g(540, &fanuc),
+            GLookup::Known(GCode::WorkOffset(1))
+        );
+        assert_eq!(
+            classify_g(590, &fanuc),
+            GLookup::Known(GCode::WorkOffset(6))
+        );
+        assert_eq!(
+            classify_g(541, &fanuc),
+            GLookup::Known(GCode::ExtendedWorkOffset)
+        );
         assert_eq!(classify_g(591, &fanuc), GLookup::Unknown);
         let syntec = Profile::builtin(ProfileName::Syntec);
-        assert_eq!(classify_g(599, &syntec), GLookup::Known(GCode::WorkOffset(15)));
+        assert_eq!(
+            classify_g(599, &syntec),
+            GLookup::Known(GCode::WorkOffset(15))
+        );
         assert_eq!(classify_g(710, &syntec), GLookup::Known(GCode::Metric));
         assert_eq!(classify_g(710, &fanuc), GLookup::Unknown);
     }

@@ -8,7 +8,10 @@
 
 mod codes;
 
-pub use codes::{classify_g, classify_m, g_name, not_supported_description, supported_codes_markdown, GCode, GLookup, Group, MCode, MLookup};
+pub use codes::{
+    classify_g, classify_m, g_name, not_supported_description, supported_codes_markdown, GCode,
+    GLookup, Group, MCode, MLookup,
+};
 
 use crate::syntax::iso::SyntaxOptions;
 use serde::{Deserialize, Serialize};
@@ -34,8 +37,13 @@ pub enum ProfileName {
 
 impl ProfileName {
     /// Every built-in profile.
-    pub const ALL: [ProfileName; 5] =
-        [ProfileName::Fanuc, ProfileName::Syntec, ProfileName::Fanuc0m, ProfileName::Mitsubishi, ProfileName::Haas];
+    pub const ALL: [ProfileName; 5] = [
+        ProfileName::Fanuc,
+        ProfileName::Syntec,
+        ProfileName::Fanuc0m,
+        ProfileName::Mitsubishi,
+        ProfileName::Haas,
+    ];
 
     /// The name used on the command line and in machine files.
     pub fn as_str(self) -> &'static str {
@@ -258,16 +266,20 @@ impl Profile {
     /// A built-in profile.
     pub fn builtin(name: ProfileName) -> Profile {
         // The embedded profiles are tested to parse (tests below), so this cannot fail at run time.
-        toml::from_str(name.toml()).expect("embedded profile TOML is valid (checked by the profile tests)")
+        toml::from_str(name.toml())
+            .expect("embedded profile TOML is valid (checked by the profile tests)")
     }
 
     /// A built-in profile with fields replaced by those in `overrides` (a TOML table).
     ///
     /// # Errors
     /// When `overrides` names a field the profile does not have, or gives it a value of the wrong type.
-    pub fn with_overrides(name: ProfileName, overrides: &toml::Table) -> Result<Profile, toml::de::Error> {
-        let mut base: toml::Table =
-            toml::from_str(name.toml()).expect("embedded profile TOML is valid (checked by the profile tests)");
+    pub fn with_overrides(
+        name: ProfileName,
+        overrides: &toml::Table,
+    ) -> Result<Profile, toml::de::Error> {
+        let mut base: toml::Table = toml::from_str(name.toml())
+            .expect("embedded profile TOML is valid (checked by the profile tests)");
         for (key, value) in overrides {
             base.insert(key.clone(), value.clone());
         }

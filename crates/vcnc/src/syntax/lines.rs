@@ -39,7 +39,11 @@ pub struct TextLines<'a> {
 impl<'a> TextLines<'a> {
     /// Lines of `text`.
     pub fn new(text: &'a [u8]) -> TextLines<'a> {
-        TextLines { text, position: 0, number: 0 }
+        TextLines {
+            text,
+            position: 0,
+            number: 0,
+        }
     }
 }
 
@@ -57,7 +61,11 @@ impl LineSource for TextLines<'_> {
         self.position += advance;
         self.number += 1;
         let line = line.strip_suffix(b"\r").unwrap_or(line);
-        Ok(Some(Line { text: line, offset: clamp_offset(start), number: self.number }))
+        Ok(Some(Line {
+            text: line,
+            offset: clamp_offset(start),
+            number: self.number,
+        }))
     }
 }
 
@@ -79,7 +87,15 @@ pub struct ReaderLines<R> {
 impl<R: Read> ReaderLines<R> {
     /// Lines of `reader` (it need not be buffered: this reads in large blocks).
     pub fn new(reader: R) -> ReaderLines<R> {
-        ReaderLines { reader, buffer: vec![0; 256 * 1024], start: 0, end: 0, offset: 0, number: 0, eof: false }
+        ReaderLines {
+            reader,
+            buffer: vec![0; 256 * 1024],
+            start: 0,
+            end: 0,
+            offset: 0,
+            number: 0,
+            eof: false,
+        }
     }
 
     /// Moves the unread bytes to the front and reads more; false when nothing more came.
@@ -135,7 +151,11 @@ impl<R: Read> LineSource for ReaderLines<R> {
         self.number += 1;
         let line = &self.buffer[line_start..line_end];
         let line = line.strip_suffix(b"\r").unwrap_or(line);
-        Ok(Some(Line { text: line, offset: clamp_offset(usize::try_from(file_offset).unwrap_or(usize::MAX)), number: self.number }))
+        Ok(Some(Line {
+            text: line,
+            offset: clamp_offset(usize::try_from(file_offset).unwrap_or(usize::MAX)),
+            number: self.number,
+        }))
     }
 }
 
@@ -148,14 +168,19 @@ fn memchr_newline(bytes: &[u8]) -> Option<usize> {
     let mut chunks = bytes.chunks_exact(8);
     let mut base = 0;
     for chunk in chunks.by_ref() {
-        let word = u64::from_le_bytes(chunk.try_into().expect("chunks_exact gives 8 bytes")) ^ NEWLINES;
+        let word =
+            u64::from_le_bytes(chunk.try_into().expect("chunks_exact gives 8 bytes")) ^ NEWLINES;
         let found = word.wrapping_sub(ONES) & !word & HIGHS;
         if found != 0 {
             return Some(base + (found.trailing_zeros() / 8) as usize);
         }
         base += 8;
     }
-    chunks.remainder().iter().position(|&b| b == b'\n').map(|i| base + i)
+    chunks
+        .remainder()
+        .iter()
+        .position(|&b| b == b'\n')
+        .map(|i| base + i)
 }
 
 /// Offsets are kept in u32 (spans are small); past 4 GiB they saturate, which only blurs the
@@ -171,7 +196,11 @@ mod tests {
     fn collect(source: &mut dyn LineSource) -> Vec<(String, u32, u32)> {
         let mut lines = Vec::new();
         while let Some(line) = source.next_line().unwrap() {
-            lines.push((String::from_utf8_lossy(line.text).into_owned(), line.offset, line.number));
+            lines.push((
+                String::from_utf8_lossy(line.text).into_owned(),
+                line.offset,
+                line.number,
+            ));
         }
         lines
     }
@@ -200,7 +229,10 @@ mod tests {
         text.extend(std::iter::repeat(b'X').take(600 * 1024));
         text.extend_from_slice(b"\nM30");
         let a = collect(&mut TextLines::new(&text));
-        let b = collect(&mut ReaderLines::new(Trickle { data: &text, chunk: 7 }));
+        let b = collect(&mut ReaderLines::new(Trickle {
+            data: &text,
+            chunk: 7,
+        }));
         let c = collect(&mut ReaderLines::new(&text[..]));
         assert_eq!(a, b);
         assert_eq!(a, c);
@@ -223,7 +255,10 @@ mod tests {
             }
         }
         assert_eq!(memchr_newline(&[0x8a, b'\n']), Some(1));
-        assert_eq!(memchr_newline(&[0x0b, 0x8a, 0x0a, 0, 0, 0, 0, 0, 0]), Some(2));
+        assert_eq!(
+            memchr_newline(&[0x0b, 0x8a, 0x0a, 0, 0, 0, 0, 0, 0]),
+            Some(2)
+        );
     }
 
     #[test]

@@ -117,7 +117,9 @@ impl Block {
 
     /// The first word with this letter (and no extended index).
     pub fn word(&self, letter: u8) -> Option<&Word> {
-        self.words.iter().find(|w| w.letter == letter && w.index == 0)
+        self.words
+            .iter()
+            .find(|w| w.letter == letter && w.index == 0)
     }
 
     /// True when the block has no words and is not a tape mark.
@@ -175,7 +177,11 @@ mod tests {
 
     #[test]
     fn g_code_numbers_are_read_in_tenths() {
-        let n = |value| Number { value, decimal_point: true, negative: false };
+        let n = |value| Number {
+            value,
+            decimal_point: true,
+            negative: false,
+        };
         assert_eq!(n(54.1).tenths(), Some(541));
         assert_eq!(n(1.0).tenths(), Some(10));
         assert_eq!(n(0.05).tenths(), None);
@@ -184,7 +190,10 @@ mod tests {
     #[test]
     fn sinumerik_programs_are_recognised_by_name_and_header() {
         assert_eq!(detect_dialect("A.MPF", b"G0 X1"), Dialect::Sinumerik);
-        assert_eq!(detect_dialect("a.nc", b"%_N_TEST_MPF\n;$PATH=/x\n"), Dialect::Sinumerik);
+        assert_eq!(
+            detect_dialect("a.nc", b"%_N_TEST_MPF\n;$PATH=/x\n"),
+            Dialect::Sinumerik
+        );
         assert_eq!(detect_dialect("a.nc", b"%\nO1000\nG0 X1.\n"), Dialect::Iso);
     }
 }

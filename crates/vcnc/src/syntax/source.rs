@@ -36,7 +36,12 @@ pub struct ParsedLines<L> {
 impl<L: LineSource> ParsedLines<L> {
     /// Parses the lines of `lines` (file `file`) with the character rules `syntax`.
     pub fn new(lines: L, file: FileId, syntax: SyntaxOptions) -> ParsedLines<L> {
-        ParsedLines { lines, file, syntax, blocks: LineBlocks::new() }
+        ParsedLines {
+            lines,
+            file,
+            syntax,
+            blocks: LineBlocks::new(),
+        }
     }
 }
 
@@ -81,7 +86,11 @@ pub struct BackgroundParser {
 
 impl BackgroundParser {
     /// Starts reading `reader` (file `file`) on a new thread.
-    pub fn spawn<R: Read + Send + 'static>(reader: R, file: FileId, syntax: SyntaxOptions) -> BackgroundParser {
+    pub fn spawn<R: Read + Send + 'static>(
+        reader: R,
+        file: FileId,
+        syntax: SyntaxOptions,
+    ) -> BackgroundParser {
         // A fixed pool of batches goes round between the two threads: the parser waits for an
         // empty one, so memory stays bounded and the parsed blocks' buffers are reused.
         let (send_batch, batches) = sync_channel::<Batch>(POOL);
@@ -149,7 +158,9 @@ impl BlockSource for BackgroundParser {
     }
 
     fn blocks(&self) -> &[Block] {
-        self.batch.get(self.index).map_or(self.empty.as_slice(), LineBlocks::as_slice)
+        self.batch
+            .get(self.index)
+            .map_or(self.empty.as_slice(), LineBlocks::as_slice)
     }
 }
 
@@ -187,8 +198,16 @@ mod tests {
         }
         text.push_str("#1=2\nM30");
         let syntax = SyntaxOptions::default();
-        let a = collect(&mut ParsedLines::new(TextLines::new(text.as_bytes()), FileId(0), syntax));
-        let b = collect(&mut BackgroundParser::spawn(std::io::Cursor::new(text.into_bytes()), FileId(0), syntax));
+        let a = collect(&mut ParsedLines::new(
+            TextLines::new(text.as_bytes()),
+            FileId(0),
+            syntax,
+        ));
+        let b = collect(&mut BackgroundParser::spawn(
+            std::io::Cursor::new(text.into_bytes()),
+            FileId(0),
+            syntax,
+        ));
         assert_eq!(a.len(), 2002);
         assert_eq!(a, b);
     }
@@ -196,7 +215,11 @@ mod tests {
     #[test]
     fn dropping_a_background_parser_early_ends_its_thread() {
         let text = "G1 X1.\n".repeat(100_000);
-        let mut parser = BackgroundParser::spawn(std::io::Cursor::new(text.into_bytes()), FileId(0), SyntaxOptions::default());
+        let mut parser = BackgroundParser::spawn(
+            std::io::Cursor::new(text.into_bytes()),
+            FileId(0),
+            SyntaxOptions::default(),
+        );
         assert!(parser.advance().unwrap());
         drop(parser);
     }

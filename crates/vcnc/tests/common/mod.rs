@@ -65,7 +65,14 @@ pub fn trace_text(segments: &[Segment]) -> String {
         let line = match &s.kind {
             Rapid { motion, .. } => format!("rapid {}", pos(&motion.to.0)),
             Line { motion, feed: f } => format!("line {} {}", pos(&motion.to.0), feed(f)),
-            Arc { motion, center, direction, plane, feed: f, .. } => format!(
+            Arc {
+                motion,
+                center,
+                direction,
+                plane,
+                feed: f,
+                ..
+            } => format!(
                 "arc {} {} {} C({},{},{}) {}",
                 direction.as_str(),
                 plane.as_str(),
@@ -105,7 +112,11 @@ pub fn trace_on(machine: &Machine, program: &str) -> String {
         if !text.is_empty() {
             text.push('\n');
         }
-        text.push_str(&format!("alarm {} line {}", alarm.code.id(), alarm.span.map_or(0, |s| s.line)));
+        text.push_str(&format!(
+            "alarm {} line {}",
+            alarm.code.id(),
+            alarm.span.map_or(0, |s| s.line)
+        ));
     }
     text
 }
@@ -120,14 +131,30 @@ pub fn check(program: &str, expected: &str) {
 #[track_caller]
 pub fn check_with(profile: vcnc::ProfileName, program: &str, expected: &str) {
     let actual = trace_with(profile, program);
-    let expected = expected.trim().lines().map(str::trim).collect::<Vec<_>>().join("\n");
-    assert_eq!(actual, expected, "\nprogram:\n{program}\nactual trace:\n{actual}\n");
+    let expected = expected
+        .trim()
+        .lines()
+        .map(str::trim)
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_eq!(
+        actual, expected,
+        "\nprogram:\n{program}\nactual trace:\n{actual}\n"
+    );
 }
 
 /// Asserts the trace of `program` on `machine`.
 #[track_caller]
 pub fn check_on(machine: &Machine, program: &str, expected: &str) {
     let actual = trace_on(machine, program);
-    let expected = expected.trim().lines().map(str::trim).collect::<Vec<_>>().join("\n");
-    assert_eq!(actual, expected, "\nprogram:\n{program}\nactual trace:\n{actual}\n");
+    let expected = expected
+        .trim()
+        .lines()
+        .map(str::trim)
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_eq!(
+        actual, expected,
+        "\nprogram:\n{program}\nactual trace:\n{actual}\n"
+    );
 }

@@ -20,14 +20,25 @@ pub struct SyntaxOptions {
 
 impl Default for SyntaxOptions {
     fn default() -> SyntaxOptions {
-        SyntaxOptions { semicolon_ends_block: true, slash_slash_comments: false, colon_program_number: true }
+        SyntaxOptions {
+            semicolon_ends_block: true,
+            slash_slash_comments: false,
+            colon_program_number: true,
+        }
     }
 }
 
 /// Reads the blocks of one line into `out` (which is reset first).
 pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &mut LineBlocks) {
     out.reset();
-    let mut reader = Reader { text: line.text, pos: 0, file, base: line.offset, line: line.number, options };
+    let mut reader = Reader {
+        text: line.text,
+        pos: 0,
+        file,
+        base: line.offset,
+        line: line.number,
+        options,
+    };
     loop {
         reader.skip_blanks();
         if reader.at_end() {
@@ -75,7 +86,10 @@ impl Reader<'_, '_> {
     }
 
     fn span(&self, start: usize, end: usize) -> Span {
-        let at = |p: usize| self.base.saturating_add(u32::try_from(p).unwrap_or(u32::MAX));
+        let at = |p: usize| {
+            self.base
+                .saturating_add(u32::try_from(p).unwrap_or(u32::MAX))
+        };
         Span::new(self.file, at(start), at(end), self.line)
     }
 
@@ -104,7 +118,9 @@ impl Reader<'_, '_> {
     fn read_items(&mut self, block: &mut crate::syntax::Block) -> BlockEnd {
         loop {
             self.skip_blanks();
-            let Some(byte) = self.peek() else { return BlockEnd::Line };
+            let Some(byte) = self.peek() else {
+                return BlockEnd::Line;
+            };
             let at_block_start = block.words.is_empty() && block.skip.is_none();
             match byte {
                 b';' if self.options.semicolon_ends_block => {
@@ -128,7 +144,10 @@ impl Reader<'_, '_> {
                     self.pos = self.text.len();
                     return BlockEnd::Line;
                 }
-                b':' if at_block_start && self.options.colon_program_number && self.peek_at(1) != Some(b'=') => {
+                b':' if at_block_start
+                    && self.options.colon_program_number
+                    && self.peek_at(1) != Some(b'=') =>
+                {
                     let start = self.pos;
                     self.pos += 1;
                     if !self.read_value(block, b'O', start) {
@@ -148,11 +167,15 @@ impl Reader<'_, '_> {
                 _ => {
                     let width = char_width(&self.text[self.pos..]);
                     let span = self.span(self.pos, self.pos + width);
-                    let shown = String::from_utf8_lossy(&self.text[self.pos..self.pos + width]).into_owned();
+                    let shown = String::from_utf8_lossy(&self.text[self.pos..self.pos + width])
+                        .into_owned();
                     block.alarms.push(Alarm::error(
                         AlarmCode::UnexpectedCharacter,
                         span,
-                        format!("unexpected character `{}` in an ISO block", shown.escape_debug()),
+                        format!(
+                            "unexpected character `{}` in an ISO block",
+                            shown.escape_debug()
+                        ),
                     ));
                     return self.abandon(block);
                 }
@@ -168,7 +191,9 @@ impl Reader<'_, '_> {
             match b {
                 b'(' => depth += 1,
                 b')' => depth = depth.saturating_sub(1),
-                b';' if depth == 0 && self.options.semicolon_ends_block => return BlockEnd::Semicolon,
+                b';' if depth == 0 && self.options.semicolon_ends_block => {
+                    return BlockEnd::Semicolon
+                }
                 _ => {}
             }
         }
@@ -200,11 +225,14 @@ impl Reader<'_, '_> {
             }
         }
         self.note_comment(block, start, self.pos);
-        block.alarms.push(Alarm::warning(
-            AlarmCode::UnclosedComment,
-            self.span(start, start + 1),
-            "comment is not closed before the end of the line",
-        ).with_help("add `)`; the control takes the rest of the line as comment"));
+        block.alarms.push(
+            Alarm::warning(
+                AlarmCode::UnclosedComment,
+                self.span(start, start + 1),
+                "comment is not closed before the end of the line",
+            )
+            .with_help("add `)`; the control takes the rest of the line as comment"),
+        );
     }
 
     fn read_block_skip(&mut self, block: &mut crate::syntax::Block) {
@@ -228,13 +256,20 @@ impl Reader<'_, '_> {
             Some(b'+') => (false, 1),
             _ => (false, 0),
         };
-        let Some((number, length)) = fast_number(&rest[sign..], negative) else { return false };
+        let Some((number, length)) = fast_number(&rest[sign..], negative) else {
+            return false;
+        };
         let end = start + 1 + sign + length;
         if self.text.get(end) == Some(&b'=') {
             return false;
         }
         let letter = self.text[start].to_ascii_uppercase();
-        block.words.push(Word { letter, index: 0, number, span: self.span(start, end) });
+        block.words.push(Word {
+            letter,
+            index: 0,
+            number,
+            span: self.span(start, end),
+        });
         self.pos = end;
         true
     }
@@ -256,8 +291,12 @@ impl Reader<'_, '_> {
                 block.alarms.push(if is_macro_keyword(&keyword) {
                     macro_not_supported(span)
                 } else {
-                    Alarm::error(AlarmCode::UnexpectedCharacter, span, format!("`{keyword}` is not an ISO word"))
-                        .with_help("an address is one letter followed by a number, e.g. `X10.`")
+                    Alarm::error(
+                        AlarmCode::UnexpectedCharacter,
+                        span,
+                        format!("`{keyword}` is not an ISO word"),
+                    )
+                    .with_help("an address is one letter followed by a number, e.g. `X10.`")
                 });
                 false
             }
@@ -272,7 +311,9 @@ impl Reader<'_, '_> {
 
     /// The number after an address letter (and the value of an extended address `F2=...`).
     fn read_value(&mut self, block: &mut crate::syntax::Block, letter: u8, start: usize) -> bool {
-        let Some(first) = self.read_number(start, letter, block) else { return false };
+        let Some(first) = self.read_number(start, letter, block) else {
+            return false;
+        };
         let end = self.pos;
         self.skip_blanks();
         let mut index = 0u8;
@@ -280,7 +321,8 @@ impl Reader<'_, '_> {
         if self.peek() != Some(b'=') || self.peek_at(1) == Some(b'=') {
             self.pos = end;
         } else {
-            let simple_index = !first.decimal_point && !first.negative && (1.0..=9.0).contains(&first.value);
+            let simple_index =
+                !first.decimal_point && !first.negative && (1.0..=9.0).contains(&first.value);
             if !simple_index {
                 let span = self.span(self.pos, self.pos + 1);
                 block.alarms.push(macro_not_supported(span));
@@ -288,10 +330,17 @@ impl Reader<'_, '_> {
             }
             index = first.value as u8;
             self.pos += 1;
-            let Some(value) = self.read_number(start, letter, block) else { return false };
+            let Some(value) = self.read_number(start, letter, block) else {
+                return false;
+            };
             number = value;
         }
-        block.words.push(Word { letter, index, number, span: self.span(start, self.pos) });
+        block.words.push(Word {
+            letter,
+            index,
+            number,
+            span: self.span(start, self.pos),
+        });
         true
     }
 
@@ -307,7 +356,12 @@ impl Reader<'_, '_> {
     }
 
     /// `[+|-] digits [. digits]`, blanks allowed anywhere inside.
-    fn read_number(&mut self, word_start: usize, letter: u8, block: &mut crate::syntax::Block) -> Option<Number> {
+    fn read_number(
+        &mut self,
+        word_start: usize,
+        letter: u8,
+        block: &mut crate::syntax::Block,
+    ) -> Option<Number> {
         self.skip_blanks();
         let mut negative = false;
         if let Some(sign @ (b'+' | b'-')) = self.peek() {
@@ -316,7 +370,9 @@ impl Reader<'_, '_> {
             self.skip_blanks();
         }
         if let Some(b'#' | b'[') = self.peek() {
-            block.alarms.push(macro_not_supported(self.span(self.pos, self.pos + 1)));
+            block
+                .alarms
+                .push(macro_not_supported(self.span(self.pos, self.pos + 1)));
             return None;
         }
         if let Some((number, end)) = fast_number(&self.text[self.pos..], negative) {
@@ -361,7 +417,11 @@ impl Reader<'_, '_> {
                 b' ' | b'\t' if self.blank_inside_number(decimal_point) => {}
                 b'.' => {
                     let span = self.span(word_start, self.pos + 1);
-                    block.alarms.push(Alarm::error(AlarmCode::BadNumber, span, "number has two decimal points"));
+                    block.alarms.push(Alarm::error(
+                        AlarmCode::BadNumber,
+                        span,
+                        "number has two decimal points",
+                    ));
                     return None;
                 }
                 _ => break,
@@ -375,12 +435,18 @@ impl Reader<'_, '_> {
             } else {
                 format!("address {} has no digits", letter as char)
             };
-            block.alarms.push(Alarm::error(AlarmCode::MissingValue, span, message));
+            block
+                .alarms
+                .push(Alarm::error(AlarmCode::MissingValue, span, message));
             return None;
         }
         let magnitude = scale(mantissa, overflow_digits - fraction_digits);
         let value = if negative { -magnitude } else { magnitude };
-        Some(Number { value, decimal_point, negative })
+        Some(Number {
+            value,
+            decimal_point,
+            negative,
+        })
     }
 }
 
@@ -424,24 +490,37 @@ fn fast_number(bytes: &[u8], negative: bool) -> Option<(Number, usize)> {
     }
     let magnitude = scale(mantissa, -fraction_digits);
     let value = if negative { -magnitude } else { magnitude };
-    Some((Number { value, decimal_point, negative }, consumed))
+    Some((
+        Number {
+            value,
+            decimal_point,
+            negative,
+        },
+        consumed,
+    ))
 }
 
 /// `mantissa * 10^exponent`, correctly rounded for the exponents a G-code number can have: the
 /// powers of ten up to 10^22 are exact in f64, so one multiplication or division rounds once.
 fn scale(mantissa: u64, exponent: i32) -> f64 {
     const POWERS: [f64; 23] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18,
-        1e19, 1e20, 1e21, 1e22,
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
     ];
     let m = mantissa as f64;
     if mantissa < (1u64 << 53) {
         let e = exponent.unsigned_abs() as usize;
         if e < POWERS.len() {
-            return if exponent < 0 { m / POWERS[e] } else { m * POWERS[e] };
+            return if exponent < 0 {
+                m / POWERS[e]
+            } else {
+                m * POWERS[e]
+            };
         }
     }
-    format!("{mantissa}e{exponent}").parse().unwrap_or(f64::INFINITY)
+    format!("{mantissa}e{exponent}")
+        .parse()
+        .unwrap_or(f64::INFINITY)
 }
 
 fn char_width(bytes: &[u8]) -> usize {
@@ -461,16 +540,21 @@ fn char_width(bytes: &[u8]) -> usize {
 
 fn is_macro_keyword(word: &str) -> bool {
     const KEYWORDS: &[&str] = &[
-        "IF", "THEN", "GOTO", "WHILE", "WH", "DO", "END", "EQ", "NE", "GT", "GE", "LT", "LE", "AND", "OR", "XOR",
-        "MOD", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "SQRT", "SQR", "ABS", "ROUND", "RND", "FIX", "FUP", "LN",
-        "EXP", "POW", "BIN", "BCD", "ELSE", "ELSIF", "ENDIF", "END_IF", "FOR", "TO", "BY", "REPEAT", "UNTIL",
-        "POPEN", "PCLOS", "DPRNT", "BPRNT", "SETVN",
+        "IF", "THEN", "GOTO", "WHILE", "WH", "DO", "END", "EQ", "NE", "GT", "GE", "LT", "LE",
+        "AND", "OR", "XOR", "MOD", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "SQRT", "SQR",
+        "ABS", "ROUND", "RND", "FIX", "FUP", "LN", "EXP", "POW", "BIN", "BCD", "ELSE", "ELSIF",
+        "ENDIF", "END_IF", "FOR", "TO", "BY", "REPEAT", "UNTIL", "POPEN", "PCLOS", "DPRNT",
+        "BPRNT", "SETVN",
     ];
     KEYWORDS.iter().any(|k| word.starts_with(k))
 }
 
 fn macro_not_supported(span: Span) -> Alarm {
-    Alarm::not_supported(span, "Custom Macro B (variables, expressions, IF/WHILE/GOTO)", Some(3))
+    Alarm::not_supported(
+        span,
+        "Custom Macro B (variables, expressions, IF/WHILE/GOTO)",
+        Some(3),
+    )
 }
 
 #[cfg(test)]
@@ -484,7 +568,11 @@ mod tests {
 
     fn parse_with(text: &str, options: SyntaxOptions) -> Vec<Block> {
         let mut out = LineBlocks::new();
-        let line = Line { text: text.as_bytes(), offset: 0, number: 1 };
+        let line = Line {
+            text: text.as_bytes(),
+            offset: 0,
+            number: 1,
+        };
         parse_line(line, FileId(0), &options, &mut out);
         out.as_slice().to_vec()
     }
@@ -494,7 +582,11 @@ mod tests {
             .words
             .iter()
             .map(|w| {
-                let index = if w.index > 0 { format!("{}=", w.index) } else { String::new() };
+                let index = if w.index > 0 {
+                    format!("{}=", w.index)
+                } else {
+                    String::new()
+                };
                 let point = if w.number.decimal_point { "." } else { "" };
                 format!("{}{index}{}{point}", w.letter as char, w.number.value)
             })
@@ -537,7 +629,10 @@ mod tests {
 
     #[test]
     fn slash_starts_block_skip_and_double_slash_a_syntec_comment() {
-        let syntec = SyntaxOptions { slash_slash_comments: true, ..SyntaxOptions::default() };
+        let syntec = SyntaxOptions {
+            slash_slash_comments: true,
+            ..SyntaxOptions::default()
+        };
         let blocks = parse_with("/2 G0 X1.; // move", syntec);
         assert_eq!(blocks.len(), 1);
         assert_eq!(blocks[0].skip, Some(2));
@@ -576,13 +671,31 @@ mod tests {
 
     #[test]
     fn the_fast_and_the_general_number_paths_agree() {
-        for text in ["0", "1.", ".5", "1.833", "123456.789", "0.0010", "000012", "99999.9999", "1.000000000000001"] {
+        for text in [
+            "0",
+            "1.",
+            ".5",
+            "1.833",
+            "123456.789",
+            "0.0010",
+            "000012",
+            "99999.9999",
+            "1.000000000000001",
+        ] {
             for negative in [false, true] {
                 let (fast, _) = fast_number(text.as_bytes(), negative).unwrap();
                 let options = SyntaxOptions::default();
-                let mut reader =
-                    Reader { text: text.as_bytes(), pos: 0, file: FileId(0), base: 0, line: 1, options: &options };
-                let general = reader.read_digits(0, b'X', negative, &mut Block::new()).unwrap();
+                let mut reader = Reader {
+                    text: text.as_bytes(),
+                    pos: 0,
+                    file: FileId(0),
+                    base: 0,
+                    line: 1,
+                    options: &options,
+                };
+                let general = reader
+                    .read_digits(0, b'X', negative, &mut Block::new())
+                    .unwrap();
                 assert_eq!(fast, general, "{text}");
             }
         }
@@ -592,6 +705,9 @@ mod tests {
     fn numbers_round_once() {
         assert_eq!(parse("X0.1")[0].words[0].number.value, 0.1);
         assert_eq!(parse("X-1.833")[0].words[0].number.value, -1.833);
-        assert_eq!(parse("X123456789.123456789")[0].words[0].number.value, 123456789.12345679);
+        assert_eq!(
+            parse("X123456789.123456789")[0].words[0].number.value,
+            123456789.12345679
+        );
     }
 }
