@@ -126,11 +126,9 @@ pub(crate) fn after_motion(
         match classify_m(m.number.value as u32, &exec.profile) {
             MLookup::Known(MCode::ProgramStop) => stop(cmd, StopKind::Program, out),
             MLookup::Known(MCode::OptionalStop) => stop(cmd, StopKind::Optional, out),
-            MLookup::Known(MCode::ProgramEnd) => {
-                return Ok(end_program(exec, cmd, EndKind::M02, out))
-            }
+            MLookup::Known(MCode::ProgramEnd) => return Ok(end_program(cmd, EndKind::M02, out)),
             MLookup::Known(MCode::ProgramEndRewind) => {
-                return Ok(end_program(exec, cmd, EndKind::M30, out))
+                return Ok(end_program(cmd, EndKind::M30, out))
             }
             _ => {}
         }

@@ -34,7 +34,6 @@ pub(crate) struct Executor {
     pub(crate) length_offset_number: u32,
     /// The G28/G30 intermediate point, program coordinates, per axis.
     pub(crate) intermediate: [Option<f64>; AXES],
-    pub(crate) ended: bool,
     /// Which axes the machine has, by axis index.
     pub(crate) machine_axes: [bool; AXES],
 }
@@ -65,7 +64,6 @@ impl Executor {
             tool_in_spindle: 0,
             length_offset_number: 0,
             intermediate: [None; AXES],
-            ended: false,
             machine_axes: std::array::from_fn(|i| machine.axes[i].is_some()),
             profile,
             machine: machine.clone(),
@@ -365,13 +363,7 @@ pub(crate) fn check_position(position: &[f64], cmd: &Command) -> Result<(), Alar
 }
 
 /// Ends the program with the given end code.
-pub(crate) fn end_program(
-    exec: &mut Executor,
-    cmd: &Command,
-    kind: EndKind,
-    out: &mut Output,
-) -> Flow {
-    exec.ended = true;
+pub(crate) fn end_program(cmd: &Command, kind: EndKind, out: &mut Output) -> Flow {
     out.push(cmd, SegmentKind::End { kind });
     Flow::End
 }

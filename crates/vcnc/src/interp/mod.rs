@@ -155,6 +155,11 @@ impl<B: BlockSource> Interpreter<B> {
         self.exec.program_position()
     }
 
+    /// The tool in the spindle (the last T put there by M06; 0 before any change).
+    pub fn tool_in_spindle(&self) -> u32 {
+        self.exec.tool_in_spindle
+    }
+
     /// The modal state now.
     pub fn modal(&self) -> &ModalState {
         &self.exec.modal
