@@ -130,16 +130,10 @@ pub fn check(program: &str, expected: &str) {
 /// Asserts the trace of `program` on `profile`.
 #[track_caller]
 pub fn check_with(profile: vcnc::ProfileName, program: &str, expected: &str) {
-    let actual = trace_with(profile, program);
-    let expected = expected
-        .trim()
-        .lines()
-        .map(str::trim)
-        .collect::<Vec<_>>()
-        .join("\n");
-    assert_eq!(
-        actual, expected,
-        "\nprogram:\n{program}\nactual trace:\n{actual}\n"
+    check_on(
+        &Machine::default().with_profile(profile).unwrap(),
+        program,
+        expected,
     );
 }
 
