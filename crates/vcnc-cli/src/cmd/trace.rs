@@ -7,7 +7,7 @@
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
 
 use super::{Outcome, SetupError};
-use crate::numbers::{push_decimal, push_unsigned};
+use crate::numbers::{OutBuffer, Remembered};
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
@@ -49,7 +49,8 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         .collect();
     let file_name = args.program.display().to_string();
     let mut writer = Writer {
-        out: Vec::with_capacity(1 << 16),
+        out: OutBuffer::new(1 << 16),
+        memory: [Remembered::default(); 7],
         file_json: format!(
             ",\"file\":{}",
             serde_json::to_string(&file_name).unwrap_or_else(|_| "\"\"".into())
@@ -98,8 +99,8 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             }
         }
         let _ = recycle.try_send(batch);
-        if writer.out.len() >= 1 << 16 {
-            if stdout.write_all(&writer.out).is_err() {
+        if writer.out.is_full() {
+            if stdout.write_all(writer.out.as_bytes()).is_err() {
                 broken_pipe = true;
                 break;
             }
@@ -107,7 +108,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         }
     }
     if !broken_pipe {
-        let _ = stdout.write_all(&writer.out);
+        let _ = stdout.write_all(writer.out.as_bytes());
         let _ = stdout.flush();
     }
     drop(stdout);
@@ -136,7 +137,9 @@ macro_rules! key {
 }
 
 struct Writer {
-    out: Vec<u8>,
+    out: OutBuffer,
+    /// The text of the last x y z a b c and f written: most records repeat some of them.
+    memory: [Remembered; 7],
     file_json: String,
     file_csv: String,
     rotary: Vec<Axis>,
@@ -224,46 +227,54 @@ impl Writer {
     /// constant prefix is copied without a call.
     #[inline(always)]
     fn key(&mut self, key: &'static [u8]) {
-        self.out.extend_from_slice(key);
+        self.out.put(key);
     }
 
     #[inline(always)]
     fn number(&mut self, key: &'static [u8], value: f64) {
         self.key(key);
-        push_decimal(&mut self.out, value);
+        self.out.decimal(value);
+    }
+
+    /// A number of field `slot` (0 to 5: the axes, 6: the feed), whose text is remembered.
+    #[inline(always)]
+    fn field(&mut self, key: &'static [u8], slot: usize, value: f64) {
+        self.key(key);
+        self.out.remembered(&mut self.memory[slot], value);
     }
 
     fn text(&mut self, key: &'static [u8], value: &str) {
         self.key(key);
-        self.out.push(b'"');
-        self.out.extend_from_slice(value.as_bytes());
-        self.out.push(b'"');
+        self.out.byte(b'"');
+        self.out.put(value.as_bytes());
+        self.out.byte(b'"');
     }
 
     fn jsonl(&mut self, segment: &Segment) {
         let record = record(segment);
-        self.out.extend_from_slice(json_head(record.kind));
-        push_unsigned(&mut self.out, u64::from(segment.span.line));
-        self.out.extend_from_slice(self.file_json.as_bytes());
+        self.out.put(json_head(record.kind));
+        self.out.unsigned(u64::from(segment.span.line));
+        self.out.put(self.file_json.as_bytes());
         if let Some(n) = segment.sequence {
             self.key(key!("n"));
-            push_unsigned(&mut self.out, u64::from(n));
+            self.out.unsigned(u64::from(n));
         }
         if let Some(motion) = record.motion {
             let to = motion.to.0;
-            self.number(key!("x"), to[0]);
-            self.number(key!("y"), to[1]);
-            self.number(key!("z"), to[2]);
-            for axis in self.rotary.clone() {
+            self.field(key!("x"), 0, to[0]);
+            self.field(key!("y"), 1, to[1]);
+            self.field(key!("z"), 2, to[2]);
+            for i in 0..self.rotary.len() {
+                let axis = self.rotary[i];
                 let key: &'static [u8] = match axis {
                     Axis::A => key!("a"),
                     Axis::B => key!("b"),
                     _ => key!("c"),
                 };
-                self.number(key, to[axis.index()]);
+                self.field(key, axis.index(), to[axis.index()]);
             }
             if let Some(f) = record.feed {
-                self.number(key!("f"), f);
+                self.field(key!("f"), 6, f);
             }
             if let Some((center, dir, plane)) = record.arc {
                 self.number(key!("cx"), center[0]);
@@ -280,7 +291,7 @@ impl Writer {
             }
         }
         self.event_fields(&segment.kind);
-        self.out.extend_from_slice(b"}\n");
+        self.out.put(b"}\n");
     }
 
     fn event_fields(&mut self, kind: &SegmentKind) {
@@ -288,7 +299,7 @@ impl Writer {
             SegmentKind::Dwell { seconds } => self.number(key!("seconds"), seconds),
             SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => {
                 self.key(key!("tool"));
-                push_unsigned(&mut self.out, u64::from(tool));
+                self.out.unsigned(u64::from(tool));
             }
             SegmentKind::Spindle { state, speed } => {
                 self.text(key!("state"), spindle_name(state));
@@ -296,13 +307,12 @@ impl Writer {
             }
             SegmentKind::Coolant { on } => {
                 self.key(key!("on"));
-                self.out
-                    .extend_from_slice(if on { b"true" } else { b"false" });
+                self.out.put(if on { b"true" } else { b"false" });
             }
             SegmentKind::Stop { kind } => self.text(key!("stop"), stop_name(kind)),
             SegmentKind::Auxiliary { code } => {
                 self.key(key!("code"));
-                push_unsigned(&mut self.out, u64::from(code));
+                self.out.unsigned(u64::from(code));
             }
             SegmentKind::End { kind } => self.text(key!("end"), end_name(kind)),
             _ => {}
@@ -310,12 +320,12 @@ impl Writer {
     }
 
     fn csv_header(&mut self) {
-        self.out.extend_from_slice(b"kind,line,file,n,x,y,z");
-        for axis in self.rotary.clone() {
-            self.out.push(b',');
-            self.out.push(axis.letter().to_ascii_lowercase());
+        self.out.put(b"kind,line,file,n,x,y,z");
+        for i in 0..self.rotary.len() {
+            self.out.byte(b',');
+            self.out.byte(self.rotary[i].letter().to_ascii_lowercase());
         }
-        self.out.extend_from_slice(if self.work {
+        self.out.put(if self.work {
             b",f,cx,cy,cz,dir,plane,wx,wy,wz,value\n".as_slice()
         } else {
             b",f,cx,cy,cz,dir,plane,value\n".as_slice()
@@ -324,14 +334,14 @@ impl Writer {
 
     fn csv(&mut self, segment: &Segment) {
         let record = record(segment);
-        self.out.extend_from_slice(record.kind.as_bytes());
-        self.out.push(b',');
-        push_unsigned(&mut self.out, u64::from(segment.span.line));
-        self.out.push(b',');
-        self.out.extend_from_slice(self.file_csv.as_bytes());
-        self.out.push(b',');
+        self.out.put(record.kind.as_bytes());
+        self.out.byte(b',');
+        self.out.unsigned(u64::from(segment.span.line));
+        self.out.byte(b',');
+        self.out.put(self.file_csv.as_bytes());
+        self.out.byte(b',');
         if let Some(n) = segment.sequence {
-            push_unsigned(&mut self.out, u64::from(n));
+            self.out.unsigned(u64::from(n));
         }
         let axes = 3 + self.rotary.len();
         match record.motion {
@@ -340,42 +350,40 @@ impl Writer {
                     .into_iter()
                     .chain(self.rotary.iter().map(|a| a.index()))
                 {
-                    self.out.push(b',');
-                    push_decimal(&mut self.out, motion.to.0[i]);
+                    self.out.byte(b',');
+                    self.out.remembered(&mut self.memory[i], motion.to.0[i]);
                 }
             }
-            None => self.out.extend(std::iter::repeat(b',').take(axes)),
+            None => (0..axes).for_each(|_| self.out.byte(b',')),
         }
-        self.out.push(b',');
+        self.out.byte(b',');
         if let Some(f) = record.feed {
-            push_decimal(&mut self.out, f);
+            self.out.remembered(&mut self.memory[6], f);
         }
         match record.arc {
             Some((center, dir, plane)) => {
                 for c in center {
-                    self.out.push(b',');
-                    push_decimal(&mut self.out, c);
+                    self.out.byte(b',');
+                    self.out.decimal(c);
                 }
-                self.out
-                    .extend_from_slice(format!(",{dir},{plane}").as_bytes());
+                self.out.put(format!(",{dir},{plane}").as_bytes());
             }
-            None => self.out.extend_from_slice(b",,,,,"),
+            None => self.out.put(b",,,,,"),
         }
         if self.work {
             match record.motion {
                 Some(motion) => {
                     for w in &motion.work_to()[..3] {
-                        self.out.push(b',');
-                        push_decimal(&mut self.out, *w);
+                        self.out.byte(b',');
+                        self.out.decimal(*w);
                     }
                 }
-                None => self.out.extend_from_slice(b",,,"),
+                None => self.out.put(b",,,"),
             }
         }
-        self.out.push(b',');
-        self.out
-            .extend_from_slice(csv_value(&segment.kind).as_bytes());
-        self.out.push(b'\n');
+        self.out.byte(b',');
+        self.out.put(csv_value(&segment.kind).as_bytes());
+        self.out.byte(b'\n');
     }
 }
 
