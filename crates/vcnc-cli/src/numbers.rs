@@ -23,8 +23,7 @@ const SHORT: usize = 24;
 #[inline(always)]
 fn write_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
     let scaled = value * 1e6;
-    // Also false for NaN.
-    if !(scaled.abs() < 9.0e15) {
+    if scaled.is_nan() || scaled.abs() >= 9.0e15 {
         return None;
     }
     // Round half away from zero without a call to libm's `round`.
