@@ -81,7 +81,8 @@ fn count_segments(text: &str, machine: &Machine) -> usize {
 /// Interprets the program in batches and writes its JSON-lines trace; returns the bytes written.
 fn trace_bytes(text: &str, machine: &Machine) -> usize {
     let mut interpreter = interpret_str(text, machine, Options::default());
-    let mut out = Vec::with_capacity(1 << 17);
+    let mut out = numbers::OutBuffer::new(1 << 16);
+    let mut memory = [numbers::Remembered::default(); 4];
     let mut batch = Vec::with_capacity(BATCH + 16);
     let mut written = 0;
     loop {
@@ -89,11 +90,12 @@ fn trace_bytes(text: &str, machine: &Machine) -> usize {
         for item in batch.drain(..) {
             jsonl(
                 &mut out,
+                &mut memory,
                 &item.expect("the benchmark program runs without alarms"),
             );
         }
-        if out.len() >= 1 << 16 || !more {
-            written += black_box(&out).len();
+        if out.is_full() || !more {
+            written += black_box(out.as_bytes()).len();
             out.clear();
         }
         if !more {
@@ -102,8 +104,9 @@ fn trace_bytes(text: &str, machine: &Machine) -> usize {
     }
 }
 
-/// One `vcnc trace` record: the fields the command writes for motions; events get their kind only.
-fn jsonl(out: &mut Vec<u8>, segment: &Segment) {
+/// One `vcnc trace` record: the fields the command writes for motions (x y z and f with their
+/// texts remembered, as the command does); events get their kind only.
+fn jsonl(out: &mut numbers::OutBuffer, memory: &mut [numbers::Remembered; 4], segment: &Segment) {
     let (kind, feed, arc) = match &segment.kind {
         SegmentKind::Rapid { .. } => ("rapid", None, None),
         SegmentKind::Line { feed, .. } => ("feed", Some(feed), None),
@@ -120,23 +123,22 @@ fn jsonl(out: &mut Vec<u8>, segment: &Segment) {
         ),
         _ => ("event", None, None),
     };
-    out.extend_from_slice(b"{\"kind\":\"");
-    out.extend_from_slice(kind.as_bytes());
-    out.extend_from_slice(b"\",\"line\":");
-    numbers::push_unsigned(out, u64::from(segment.span.line));
-    out.extend_from_slice(b",\"file\":\"/tmp/p400k.nc\"");
+    out.put(b"{\"kind\":\"");
+    out.put(kind.as_bytes());
+    out.put(b"\",\"line\":");
+    out.unsigned(u64::from(segment.span.line));
+    out.put(b",\"file\":\"/tmp/p400k.nc\"");
     if let Some(motion) = segment.motion() {
-        for (key, value) in [
-            (&b",\"x\":"[..], motion.to.0[0]),
-            (b",\"y\":", motion.to.0[1]),
-            (b",\"z\":", motion.to.0[2]),
-        ] {
-            out.extend_from_slice(key);
-            numbers::push_decimal(out, value);
+        for (slot, key) in [&b",\"x\":"[..], b",\"y\":", b",\"z\":"]
+            .into_iter()
+            .enumerate()
+        {
+            out.put(key);
+            out.remembered(&mut memory[slot], motion.to.0[slot]);
         }
         if let Some(f) = feed.and_then(|feed| per_minute(feed, segment)) {
-            out.extend_from_slice(b",\"f\":");
-            numbers::push_decimal(out, f);
+            out.put(b",\"f\":");
+            out.remembered(&mut memory[3], f);
         }
         if let Some((center, dir, plane)) = arc {
             for (key, value) in [
@@ -144,17 +146,17 @@ fn jsonl(out: &mut Vec<u8>, segment: &Segment) {
                 (b",\"cy\":", center[1]),
                 (b",\"cz\":", center[2]),
             ] {
-                out.extend_from_slice(key);
-                numbers::push_decimal(out, value);
+                out.put(key);
+                out.decimal(value);
             }
-            out.extend_from_slice(b",\"dir\":\"");
-            out.extend_from_slice(dir.as_bytes());
-            out.extend_from_slice(b"\",\"plane\":\"");
-            out.extend_from_slice(plane.as_bytes());
-            out.push(b'"');
+            out.put(b",\"dir\":\"");
+            out.put(dir.as_bytes());
+            out.put(b"\",\"plane\":\"");
+            out.put(plane.as_bytes());
+            out.byte(b'"');
         }
     }
-    out.extend_from_slice(b"}\n");
+    out.put(b"}\n");
 }
 
 fn per_minute(feed: &Feed, segment: &Segment) -> Option<f64> {

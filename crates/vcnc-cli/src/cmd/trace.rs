@@ -124,10 +124,10 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
 }
 
 /// Segments per batch handed from the interpreter thread to the writer.
-const BATCH: usize = 1024;
+const BATCH: usize = 4096;
 
 /// Batch buffers in circulation between the two threads.
-const POOL: usize = 8;
+const POOL: usize = 4;
 
 /// The bytes that introduce a JSON key after a previous field: `key!("x")` is `,"x":`.
 macro_rules! key {
@@ -148,24 +148,38 @@ struct Writer {
 
 /// The parts of a record, shared by both formats.
 struct Record<'a> {
-    kind: &'a str,
+    /// The kind's name (CSV).
+    kind: &'static str,
+    /// The start of the kind's JSON object, up to the `line` key.
+    head: &'static [u8],
     motion: Option<&'a Move>,
     feed: Option<f64>,
     arc: Option<([f64; 3], &'static str, &'static str)>,
 }
 
+/// A kind's name and the start of its JSON object, both written once here.
+macro_rules! kind {
+    ($kind:literal) => {
+        (
+            $kind,
+            concat!("{\"kind\":\"", $kind, "\",\"line\":").as_bytes(),
+        )
+    };
+}
+
 fn record(segment: &Segment) -> Record<'_> {
     let mut record = Record {
         kind: "",
+        head: b"",
         motion: segment.motion(),
         feed: None,
         arc: None,
     };
-    record.kind = match &segment.kind {
-        SegmentKind::Rapid { .. } => "rapid",
+    (record.kind, record.head) = match &segment.kind {
+        SegmentKind::Rapid { .. } => kind!("rapid"),
         SegmentKind::Line { feed, .. } => {
             record.feed = feed_mm_per_min(feed, segment);
-            "feed"
+            kind!("feed")
         }
         SegmentKind::Arc {
             feed,
@@ -176,45 +190,21 @@ fn record(segment: &Segment) -> Record<'_> {
         } => {
             record.feed = feed_mm_per_min(feed, segment);
             record.arc = Some((center.xyz(), direction.as_str(), plane.as_str()));
-            "arc"
+            kind!("arc")
         }
-        SegmentKind::Dwell { .. } => "dwell",
-        SegmentKind::ToolSelect { .. } => "tool_select",
-        SegmentKind::ToolChange { .. } => "tool_change",
-        SegmentKind::Spindle { .. } => "spindle",
-        SegmentKind::Coolant { .. } => "coolant",
-        SegmentKind::Stop { .. } => "stop",
-        SegmentKind::Auxiliary { .. } => "aux",
-        SegmentKind::End { .. } => "end",
-        _ => "other",
+        SegmentKind::Dwell { .. } => kind!("dwell"),
+        SegmentKind::ToolSelect { .. } => kind!("tool_select"),
+        SegmentKind::ToolChange { .. } => kind!("tool_change"),
+        SegmentKind::Spindle { .. } => kind!("spindle"),
+        SegmentKind::Coolant { .. } => kind!("coolant"),
+        SegmentKind::Stop { .. } => kind!("stop"),
+        SegmentKind::Auxiliary { .. } => kind!("aux"),
+        SegmentKind::End { .. } => kind!("end"),
+        _ => kind!("other"),
     };
     record
 }
 
-/// The start of a JSON record up to the line number: one copy instead of three.
-fn json_head(kind: &str) -> &'static [u8] {
-    macro_rules! head {
-        ($kind:literal) => {
-            concat!("{\"kind\":\"", $kind, "\",\"line\":").as_bytes()
-        };
-    }
-    match kind {
-        "rapid" => head!("rapid"),
-        "feed" => head!("feed"),
-        "arc" => head!("arc"),
-        "dwell" => head!("dwell"),
-        "tool_select" => head!("tool_select"),
-        "tool_change" => head!("tool_change"),
-        "spindle" => head!("spindle"),
-        "coolant" => head!("coolant"),
-        "stop" => head!("stop"),
-        "aux" => head!("aux"),
-        "end" => head!("end"),
-        _ => head!("other"),
-    }
-}
-
-/// The path speed of a cutting move; the length is worked out only for inverse-time feeds.
 fn feed_mm_per_min(feed: &Feed, segment: &Segment) -> Option<f64> {
     match feed {
         Feed::PerMinute(f) => Some(*f),
@@ -252,7 +242,7 @@ impl Writer {
 
     fn jsonl(&mut self, segment: &Segment) {
         let record = record(segment);
-        self.out.put(json_head(record.kind));
+        self.out.put(record.head);
         self.out.unsigned(u64::from(segment.span.line));
         self.out.put(self.file_json.as_bytes());
         if let Some(n) = segment.sequence {

@@ -65,10 +65,10 @@ impl<L: LineSource> BlockSource for ParsedLines<L> {
 }
 
 /// Lines per batch handed from the parser thread.
-const BATCH: usize = 256;
+const BATCH: usize = 1024;
 
 /// Batches in circulation between the parser thread and the interpreter.
-const POOL: usize = 16;
+const POOL: usize = 4;
 
 /// What the parser thread sends: a batch of parsed lines, or the error that stopped it.
 type Batch = io::Result<Vec<LineBlocks>>;

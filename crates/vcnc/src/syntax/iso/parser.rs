@@ -31,6 +31,15 @@ impl Default for SyntaxOptions {
 /// Reads the blocks of one line into `out` (which is reset first).
 pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &mut LineBlocks) {
     out.reset();
+    if parse_plain_line(line, file, out) {
+        return;
+    }
+    out.reset();
+    parse_any_line(line, file, options, out);
+}
+
+/// Reads the blocks of any line, character by character.
+fn parse_any_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &mut LineBlocks) {
     let mut reader = Reader {
         text: line.text,
         pos: 0,
@@ -53,6 +62,60 @@ pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &m
             break;
         }
     }
+}
+
+/// The common line of a CAM program, read in one pass: one block of plain words (`X-12.5`, a
+/// letter right before its number), separated by blanks, nothing else. Returns false for every
+/// other line (comments, `;`, `/`, `%`, `#`, extended addresses, blanks inside numbers, alarms),
+/// which [`parse_line`] then reads the general way: the blocks are the same either way (checked
+/// by a differential test).
+#[inline(always)]
+fn parse_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> bool {
+    let text = line.text;
+    let is_blank = |b: &u8| matches!(b, b' ' | b'\t' | b'\x0c' | b'\x0b' | b'\r' | 0);
+    let Some(start) = text.iter().position(|b| !is_blank(b)) else {
+        return false;
+    };
+    let span = |from: usize, to: usize| {
+        let at = |p: usize| {
+            line.offset
+                .saturating_add(u32::try_from(p).unwrap_or(u32::MAX))
+        };
+        Span::new(file, at(from), at(to), line.number)
+    };
+    let block = out.push();
+    let mut pos = start;
+    while pos < text.len() {
+        let letter = text[pos];
+        if !letter.is_ascii_alphabetic() {
+            return false;
+        }
+        let (negative, sign) = match text.get(pos + 1) {
+            Some(b'-') => (true, 1),
+            Some(b'+') => (false, 1),
+            _ => (false, 0),
+        };
+        let number_start = pos + 1 + sign;
+        let Some((number, length)) = fast_number(&text[number_start..], negative) else {
+            return false;
+        };
+        let end = number_start + length;
+        if text.get(end) == Some(&b'=') {
+            return false;
+        }
+        block.words.push(Word {
+            letter: letter.to_ascii_uppercase(),
+            index: 0,
+            number,
+            span: span(pos, end),
+        });
+        pos = end;
+        while pos < text.len() && is_blank(&text[pos]) {
+            pos += 1;
+        }
+    }
+    block.span = span(start, text.len());
+    true
 }
 
 #[derive(PartialEq, Eq)]
@@ -454,41 +517,40 @@ impl Reader<'_, '_> {
 /// nothing after it that could continue the number (a blank followed by more digits, a second
 /// point). Returns the number and the bytes it took; `None` sends the caller to the general path,
 /// which gives the same value (checked by the tests).
+#[inline(always)]
 fn fast_number(bytes: &[u8], negative: bool) -> Option<(Number, usize)> {
-    let mut mantissa: u64 = 0;
-    let mut digits = 0u32;
-    let mut fraction_digits = 0i32;
-    let mut decimal_point = false;
-    let mut consumed = bytes.len();
-    for (i, &b) in bytes.iter().enumerate() {
-        if b.is_ascii_digit() {
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
-            digits += 1;
-            fraction_digits += i32::from(decimal_point);
-        } else if b == b'.' && !decimal_point {
-            decimal_point = true;
-        } else {
-            consumed = i;
-            break;
-        }
+    let (mut mantissa, mut rest) = digit_run(0, bytes);
+    let mut digits = bytes.len() - rest.len();
+    let decimal_point = rest.first() == Some(&b'.');
+    let mut fraction_digits = 0;
+    if decimal_point {
+        let after_point = &rest[1..];
+        (mantissa, rest) = digit_run(mantissa, after_point);
+        fraction_digits = after_point.len() - rest.len();
+        digits += fraction_digits;
     }
+    let i = bytes.len() - rest.len();
     if digits == 0 || digits > 18 {
         return None;
     }
-    let rest = &bytes[consumed..];
-    match rest.first() {
+    match bytes.get(i) {
         Some(b'.') => return None,
         Some(b' ' | b'\t') => {
             // Blanks inside a number are ignored (`X1 2.5`): only a blank before the next word
             // ends it.
-            let next = rest.iter().find(|b| !matches!(b, b' ' | b'\t'));
+            let next = bytes[i..].iter().find(|b| !matches!(b, b' ' | b'\t'));
             if matches!(next, Some(b'0'..=b'9' | b'.')) {
                 return None;
             }
         }
         _ => {}
     }
-    let magnitude = scale(mantissa, -fraction_digits);
+    // At most 18 digits: the mantissa is below 2^53 only up to 15 digits, so `scale` checks.
+    let magnitude = if mantissa < (1u64 << 53) {
+        mantissa as f64 / POWERS_OF_TEN[fraction_digits]
+    } else {
+        scale(mantissa, -(fraction_digits as i32))
+    };
     let value = if negative { -magnitude } else { magnitude };
     Some((
         Number {
@@ -496,17 +558,35 @@ fn fast_number(bytes: &[u8], negative: bool) -> Option<(Number, usize)> {
             decimal_point,
             negative,
         },
-        consumed,
+        i,
     ))
 }
+
+/// Reads the digits at the start of `bytes` into `mantissa` (wrapping: the caller refuses more
+/// than 18 digits); returns it and the bytes after the digits.
+#[inline(always)]
+fn digit_run(mut mantissa: u64, mut bytes: &[u8]) -> (u64, &[u8]) {
+    while let [byte, rest @ ..] = bytes {
+        let digit = byte.wrapping_sub(b'0');
+        if digit > 9 {
+            break;
+        }
+        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(digit));
+        bytes = rest;
+    }
+    (mantissa, bytes)
+}
+
+/// The powers of ten that are exact in f64.
+const POWERS_OF_TEN: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
 
 /// `mantissa * 10^exponent`, correctly rounded for the exponents a G-code number can have: the
 /// powers of ten up to 10^22 are exact in f64, so one multiplication or division rounds once.
 fn scale(mantissa: u64, exponent: i32) -> f64 {
-    const POWERS: [f64; 23] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-        1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-    ];
+    const POWERS: [f64; 23] = POWERS_OF_TEN;
     let m = mantissa as f64;
     if mantissa < (1u64 << 53) {
         let e = exponent.unsigned_abs() as usize;
@@ -684,20 +764,90 @@ mod tests {
         ] {
             for negative in [false, true] {
                 let (fast, _) = fast_number(text.as_bytes(), negative).unwrap();
-                let options = SyntaxOptions::default();
-                let mut reader = Reader {
-                    text: text.as_bytes(),
-                    pos: 0,
-                    file: FileId(0),
-                    base: 0,
-                    line: 1,
-                    options: &options,
-                };
-                let general = reader
-                    .read_digits(0, b'X', negative, &mut Block::new())
-                    .unwrap();
-                assert_eq!(fast, general, "{text}");
+                assert_eq!(Some(fast), general_number(text, negative), "{text}");
             }
+        }
+    }
+
+    /// A number read by the general digit reader.
+    fn general_number(text: &str, negative: bool) -> Option<Number> {
+        let options = SyntaxOptions::default();
+        let mut reader = Reader {
+            text: text.as_bytes(),
+            pos: 0,
+            file: FileId(0),
+            base: 0,
+            line: 1,
+            options: &options,
+        };
+        reader.read_digits(0, b'X', negative, &mut Block::new())
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn the_fast_path_reads_what_the_general_path_reads(
+            whole in "[0-9]{0,12}",
+            point in proptest::bool::ANY,
+            fraction in "[0-9]{0,9}",
+            negative in proptest::bool::ANY,
+        ) {
+            let text = if point { format!("{whole}.{fraction}") } else { whole.clone() };
+            let general = general_number(&text, negative);
+            match fast_number(text.as_bytes(), negative) {
+                Some((fast, length)) => {
+                    proptest::prop_assert_eq!(Some(fast), general);
+                    proptest::prop_assert_eq!(length, text.len());
+                }
+                None => proptest::prop_assert!(general.is_none() || text.len() > 18),
+            }
+        }
+    }
+
+    /// Every line through the general reader alone.
+    fn parse_general(text: &str) -> Vec<Block> {
+        let line = Line {
+            text: text.as_bytes(),
+            offset: 7,
+            number: 3,
+        };
+        let mut out = LineBlocks::new();
+        parse_any_line(line, FileId(1), &SyntaxOptions::default(), &mut out);
+        out.as_slice().to_vec()
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn plain_lines_read_the_same_on_both_paths(
+            text in "[ \t]{0,2}([GXYZIJKRFSMNgx][-+]?[0-9]{0,4}[.]?[0-9]{0,4}[ \t=;(#]{0,2}){0,6}",
+        ) {
+            let line = Line { text: text.as_bytes(), offset: 7, number: 3 };
+            let mut out = LineBlocks::new();
+            parse_line(line, FileId(1), &SyntaxOptions::default(), &mut out);
+            proptest::prop_assert_eq!(out.as_slice().to_vec(), parse_general(&text));
+        }
+    }
+
+    #[test]
+    fn plain_and_general_lines_agree_on_examples() {
+        for text in [
+            "G01 X54.808 Y30.491 Z-1.288",
+            "G02 X51.438 Y26.151 R11.700  \r",
+            "  g1x1y2",
+            "X1 2.5",
+            "N10 G1 X1. (comment)",
+            "F2=100",
+            "G1 X+.5 Y-0. Z",
+            "",
+            "   ",
+        ] {
+            let line = Line {
+                text: text.as_bytes(),
+                offset: 7,
+                number: 3,
+            };
+            let mut out = LineBlocks::new();
+            parse_line(line, FileId(1), &SyntaxOptions::default(), &mut out);
+            assert_eq!(out.as_slice().to_vec(), parse_general(text), "{text:?}");
         }
     }
 
