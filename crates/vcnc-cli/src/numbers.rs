@@ -110,8 +110,9 @@ impl Default for Remembered {
     }
 }
 
-/// Room that is always free at the end of an [`OutBuffer`] after a [`OutBuffer::put`]: more than
-/// any record needs apart from its variable texts (file names), which `put` makes room for.
+/// Room that is always free at the end of an [`OutBuffer`] after a [`OutBuffer::put`] or
+/// [`OutBuffer::start_record`]: more than any record needs apart from its variable texts (file
+/// names), which `put` and `start_record` make room for.
 const SLACK: usize = 4096;
 
 /// Where a trace's text is assembled before it is written out in large pieces.
@@ -161,6 +162,23 @@ impl OutBuffer {
         }
         self.bytes[self.len..end].copy_from_slice(text);
         self.len = end;
+    }
+
+    /// Makes room for a record of at most [`SLACK`] bytes plus `long` bytes of variable text:
+    /// the record's pieces are then written with the `*_in_record` methods, which do not check.
+    #[inline(always)]
+    pub(crate) fn start_record(&mut self, long: usize) {
+        if self.len + long + SLACK > self.bytes.len() {
+            self.grow_to(self.len + long + SLACK);
+        }
+    }
+
+    /// Appends bytes inside a record started with [`OutBuffer::start_record`] (a slice index
+    /// panics, never writes out of bounds, if the record is longer than it said).
+    #[inline(always)]
+    pub(crate) fn put_in_record(&mut self, text: &[u8]) {
+        self.bytes[self.len..self.len + text.len()].copy_from_slice(text);
+        self.len += text.len();
     }
 
     /// Appends one byte.

@@ -217,7 +217,7 @@ impl Writer {
     /// constant prefix is copied without a call.
     #[inline(always)]
     fn key(&mut self, key: &'static [u8]) {
-        self.out.put(key);
+        self.out.put_in_record(key);
     }
 
     #[inline(always)]
@@ -236,15 +236,16 @@ impl Writer {
     fn text(&mut self, key: &'static [u8], value: &str) {
         self.key(key);
         self.out.byte(b'"');
-        self.out.put(value.as_bytes());
+        self.out.put_in_record(value.as_bytes());
         self.out.byte(b'"');
     }
 
     fn jsonl(&mut self, segment: &Segment) {
         let record = record(segment);
-        self.out.put(record.head);
+        self.out.start_record(self.file_json.len());
+        self.out.put_in_record(record.head);
         self.out.unsigned(u64::from(segment.span.line));
-        self.out.put(self.file_json.as_bytes());
+        self.out.put_in_record(self.file_json.as_bytes());
         if let Some(n) = segment.sequence {
             self.key(key!("n"));
             self.out.unsigned(u64::from(n));
@@ -281,7 +282,7 @@ impl Writer {
             }
         }
         self.event_fields(&segment.kind);
-        self.out.put(b"}\n");
+        self.out.put_in_record(b"}\n");
     }
 
     fn event_fields(&mut self, kind: &SegmentKind) {
@@ -297,7 +298,7 @@ impl Writer {
             }
             SegmentKind::Coolant { on } => {
                 self.key(key!("on"));
-                self.out.put(if on { b"true" } else { b"false" });
+                self.out.put_in_record(if on { b"true" } else { b"false" });
             }
             SegmentKind::Stop { kind } => self.text(key!("stop"), stop_name(kind)),
             SegmentKind::Auxiliary { code } => {

@@ -138,9 +138,13 @@ impl Command {
 
     /// The axes whose words are present, in axis order.
     pub(crate) fn axes_present(&self) -> impl Iterator<Item = Axis> + '_ {
-        Axis::ALL
-            .into_iter()
-            .filter(|a| self.axis_mask & (1 << a.index()) != 0)
+        // The set bits of the mask, lowest first: no test for the absent axes.
+        let mut mask = self.axis_mask;
+        std::iter::from_fn(move || {
+            let index = mask.trailing_zeros() as usize;
+            mask &= mask.wrapping_sub(1);
+            Axis::ALL.get(index).copied()
+        })
     }
 
     /// True when I, J, K or R is present.
