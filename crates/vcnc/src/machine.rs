@@ -36,12 +36,12 @@ impl Axis {
     pub const ALL: [Axis; AXES] = [Axis::X, Axis::Y, Axis::Z, Axis::A, Axis::B, Axis::C];
 
     /// Index into position arrays.
-    pub fn index(self) -> usize {
+    pub const fn index(self) -> usize {
         self as usize
     }
 
     /// The address letter.
-    pub fn letter(self) -> u8 {
+    pub const fn letter(self) -> u8 {
         b"XYZABC"[self.index()]
     }
 

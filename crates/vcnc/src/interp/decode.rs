@@ -147,6 +147,11 @@ impl Command {
         })
     }
 
+    /// True when S, T or an M code is present: the block has auxiliary functions to run.
+    pub(crate) fn has_auxiliary_words(&self) -> bool {
+        !self.m.is_empty() || self.s().is_some() || self.t().is_some()
+    }
+
     /// True when I, J, K or R is present.
     pub(crate) fn has_center_words(&self) -> bool {
         (0..3).any(|i| self.center(i).is_some()) || self.r().is_some()
@@ -183,12 +188,23 @@ impl Command {
         }
         self.values.push(value);
         self.letters[slot] = u8::try_from(self.values.len()).unwrap_or(u8::MAX);
-        if let Some(axis) = Axis::from_letter(word.letter) {
-            self.axis_mask |= 1 << axis.index();
-        }
+        self.axis_mask |= AXIS_BIT[slot];
         Ok(())
     }
 }
+
+/// The axis-mask bit of each address letter A-Z (0 for letters that are not axes): a table, not
+/// a `match`, because this runs for every word.
+const AXIS_BIT: [u8; 26] = {
+    let mut bits = [0u8; 26];
+    let mut i = 0;
+    while i < Axis::ALL.len() {
+        let axis = Axis::ALL[i];
+        bits[(axis.letter() - b'A') as usize] = 1 << axis.index();
+        i += 1;
+    }
+    bits
+};
 
 fn group_slot(group: Group) -> usize {
     match group {
@@ -243,8 +259,27 @@ pub(crate) fn decode(
             span: word.span,
             order,
         };
+        // Axis words and G codes are most of every program: test for them before the `match`,
+        // whose jump table mispredicts when letters alternate word after word.
+        let slot = usize::from(word.letter.wrapping_sub(b'A'));
+        if AXIS_BIT.get(slot).is_some_and(|bit| *bit != 0) {
+            let index = AXIS_BIT[slot].trailing_zeros() as usize;
+            if !machine_axes[index] {
+                return Err(Alarm::error(
+                    AlarmCode::AxisNotOnMachine,
+                    word.span,
+                    format!("the machine has no {} axis", word.letter as char),
+                )
+                .with_help("add the axis to the machine file (`[axes.a]` ...) or remove the word"));
+            }
+            out.set(word, value)?;
+            continue;
+        }
+        if word.letter == b'G' {
+            decode_g(word, order, profile, out)?;
+            continue;
+        }
         match word.letter {
-            b'G' => decode_g(word, order, profile, out)?,
             b'M' => {
                 whole(word)?;
                 if out.m.len() >= profile.m_codes_per_block as usize && !out.m.is_empty() {
@@ -269,20 +304,6 @@ pub(crate) fn decode(
             }
             b'O' => {
                 whole(word)?;
-                out.set(word, value)?;
-            }
-            b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' => {
-                let axis = Axis::from_letter(word.letter).expect("letter matched as an axis above");
-                if !machine_axes[axis.index()] {
-                    return Err(Alarm::error(
-                        AlarmCode::AxisNotOnMachine,
-                        word.span,
-                        format!("the machine has no {} axis", word.letter as char),
-                    )
-                    .with_help(
-                        "add the axis to the machine file (`[axes.a]` ...) or remove the word",
-                    ));
-                }
                 out.set(word, value)?;
             }
             b'I' => out.set(word, value)?,

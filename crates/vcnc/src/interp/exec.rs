@@ -82,16 +82,16 @@ impl Executor {
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.apply_modal(cmd)?;
         self.set_feed(cmd)?;
-        super::auxiliary::speed_and_tool(self, cmd, out)?;
-        super::auxiliary::before_motion(self, cmd, out)?;
-        let dwell = cmd
-            .group(Group::NonModal)
-            .filter(|g| g.code == GCode::Dwell);
-        if let Some(g) = dwell {
+        if cmd.has_auxiliary_words() {
+            super::auxiliary::speed_and_tool(self, cmd, out)?;
+            super::auxiliary::before_motion(self, cmd, out)?;
+        }
+        let non_modal = cmd.group(Group::NonModal);
+        if let Some(g) = non_modal.filter(|g| g.code == GCode::Dwell) {
             super::auxiliary::dwell(self, cmd, g.order, out)?;
         }
         let length_changed = super::length::apply(self, cmd, out)?;
-        let consumed = match cmd.group(Group::NonModal).map(|g| g.code) {
+        let consumed = match non_modal.map(|g| g.code) {
             Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
             Some(GCode::SetCoordinates) => super::coords::g92(self, cmd)?,
             Some(GCode::PresetCoordinates) => super::coords::g92_1(self, cmd)?,
@@ -112,7 +112,11 @@ impl Executor {
             // G93: F is not modal (spec 1.56): every cutting block needs its own.
             self.feed = None;
         }
-        super::auxiliary::after_motion(self, cmd, out)
+        if cmd.has_auxiliary_words() {
+            super::auxiliary::after_motion(self, cmd, out)
+        } else {
+            Ok(Flow::Next)
+        }
     }
 
     fn apply_modal(&mut self, cmd: &Command) -> Result<(), Alarm> {
@@ -208,13 +212,12 @@ impl Executor {
     /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
     pub(crate) fn target_program(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.program_position();
+        let incremental = self.modal.distance == super::modal::DistanceMode::Incremental;
         for axis in cmd.axes_present() {
             if let Some(value) = &cmd.axis(axis.index()) {
                 let v = self.axis_value(axis, value);
-                match self.modal.distance {
-                    super::modal::DistanceMode::Absolute => target[axis.index()] = v,
-                    super::modal::DistanceMode::Incremental => target[axis.index()] += v,
-                }
+                let i = axis.index();
+                target[i] = if incremental { target[i] + v } else { v };
             }
         }
         target
