@@ -270,7 +270,9 @@ pub(crate) fn decode(
                     word.span,
                     format!("the machine has no {} axis", word.letter as char),
                 )
-                .with_help("add the axis to the machine file (`[axes.a]` ...) or remove the word"));
+                .with_help(
+                    "add the axis to the machine file (`[axes.a]` ...) or remove the word",
+                ));
             }
             out.set(word, value)?;
             continue;

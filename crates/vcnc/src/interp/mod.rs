@@ -12,6 +12,7 @@
 mod arc;
 mod auxiliary;
 mod circular;
+mod comp;
 mod coords;
 mod data_input;
 mod decode;
