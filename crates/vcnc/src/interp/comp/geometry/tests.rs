@@ -307,28 +307,15 @@ fn distance_to(element: &Element, point: V2) -> f64 {
             let t = ((point - start).dot(d) / d.dot(d)).clamp(0.0, 1.0);
             point.distance(start + d * t)
         }
-        Element::Arc {
-            start,
-            end,
-            center,
-            ccw,
-        } => {
+        Element::Arc { start, center, .. } => {
             let radius = start.distance(center);
-            let angle = |v: V2| v.y.atan2(v.x);
-            let a0 = angle(start - center);
-            let a1 = angle(end - center);
-            let a = angle(point - center);
-            let tau = std::f64::consts::TAU;
-            let sweep = |from: f64, to: f64| (to - from).rem_euclid(tau);
-            let inside = if ccw {
-                sweep(a0, a) <= sweep(a0, a1)
-            } else {
-                sweep(a, a0) <= sweep(a1, a0)
-            };
-            if inside {
+            let on_circle = center + (point - center).unit() * radius;
+            if element.spans(on_circle) {
                 (point.distance(center) - radius).abs()
             } else {
-                point.distance(start).min(point.distance(end))
+                point
+                    .distance(element.start())
+                    .min(point.distance(element.end()))
             }
         }
     }
