@@ -28,7 +28,9 @@ pub(crate) fn open(
         .unwrap_or_default();
     options.dialect = detect_dialect(&name, &head);
     let file = File::open(path).map_err(|e| format!("cannot open {}: {e}", path.display()))?;
-    let blocks = BackgroundParser::spawn(file, FileId(0), machine.profile.syntax());
+    let length = file.metadata().map_or(0, |m| m.len());
+    let blocks =
+        BackgroundParser::spawn_expecting(file, FileId(0), machine.profile.syntax(), length);
     Ok(Interpreter::from_blocks(
         blocks,
         FileId(0),

@@ -91,12 +91,32 @@ impl BackgroundParser {
         file: FileId,
         syntax: SyntaxOptions,
     ) -> BackgroundParser {
+        BackgroundParser::spawn_expecting(reader, file, syntax, 0)
+    }
+
+    /// Starts reading `reader` (file `file`), which holds about `expected_bytes` bytes, on a new
+    /// thread. For a long program the buffers of the parsed lines are made at once, here on the
+    /// caller's thread: made line by line on the parser's thread, they grew that thread's heap
+    /// one page at a time (hundreds of system calls on a 400,000-line program). A short program
+    /// gets only what it needs.
+    pub fn spawn_expecting<R: Read + Send + 'static>(
+        reader: R,
+        file: FileId,
+        syntax: SyntaxOptions,
+        expected_bytes: u64,
+    ) -> BackgroundParser {
         // A fixed pool of batches goes round between the two threads: the parser waits for an
         // empty one, so memory stays bounded and the parsed blocks' buffers are reused.
         let (send_batch, batches) = sync_channel::<Batch>(POOL);
         let (recycle, recycled) = sync_channel::<Vec<LineBlocks>>(POOL);
+        // Lines are rarely shorter than 16 bytes in a program worth reading ahead.
+        let mut made_now = usize::try_from(expected_bytes / 16).unwrap_or(usize::MAX);
         for _ in 0..POOL {
-            let _ = recycle.try_send(Vec::with_capacity(BATCH));
+            let lines = made_now.min(BATCH);
+            made_now -= lines;
+            let mut batch = Vec::with_capacity(BATCH);
+            batch.extend((0..lines).map(|_| LineBlocks::with_room(8)));
+            let _ = recycle.try_send(batch);
         }
         let thread = std::thread::spawn(move || {
             let mut lines = ReaderLines::new(reader);

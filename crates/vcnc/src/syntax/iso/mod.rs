@@ -29,6 +29,17 @@ impl LineBlocks {
         LineBlocks::default()
     }
 
+    /// An empty set with room for one block of up to `words` words: what most lines need, so
+    /// that a pool of these made up front does not allocate while lines are read.
+    pub fn with_room(words: usize) -> LineBlocks {
+        let mut block = super::Block::new();
+        block.words.reserve(words);
+        LineBlocks {
+            blocks: vec![block],
+            len: 0,
+        }
+    }
+
     /// The blocks of the last line read.
     pub fn as_slice(&self) -> &[super::Block] {
         &self.blocks[..self.len]
