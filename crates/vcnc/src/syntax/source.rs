@@ -223,13 +223,18 @@ mod tests {
             FileId(0),
             syntax,
         ));
-        let b = collect(&mut BackgroundParser::spawn(
-            std::io::Cursor::new(text.into_bytes()),
-            FileId(0),
-            syntax,
-        ));
         assert_eq!(a.len(), 2002);
-        assert_eq!(a, b);
+        // Pools made as lines come, made up front for more lines than the text has, and made up
+        // front for fewer.
+        for expected_bytes in [0, 1 << 30, 10_000] {
+            let b = collect(&mut BackgroundParser::spawn_expecting(
+                std::io::Cursor::new(text.clone().into_bytes()),
+                FileId(0),
+                syntax,
+                expected_bytes,
+            ));
+            assert_eq!(a, b, "expecting {expected_bytes} bytes");
+        }
     }
 
     #[test]
