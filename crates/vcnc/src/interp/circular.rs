@@ -51,10 +51,14 @@ pub(crate) fn arc(
                 centre_letters(plane)
             )));
         };
-        let offset = (
+        let mut offset = (
             ca.map_or(0.0, |v| exec.length(&v)),
             cb.map_or(0.0, |v| exec.length(&v)),
         );
+        if let Some(rotation) = &exec.frames.rotation {
+            // I J K are a vector in the programmed (unrotated) coordinates.
+            offset = rotation.vector(offset);
+        }
         ArcSpec::Center { offset, span }
     };
     let feed = exec.cutting_feed(cmd)?;

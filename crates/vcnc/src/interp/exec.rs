@@ -91,18 +91,39 @@ impl Executor {
             super::auxiliary::dwell(self, cmd, g.order, out)?;
         }
         let length_changed = super::length::apply(self, cmd, out)?;
-        let consumed = match non_modal.map(|g| g.code) {
-            Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
-            Some(GCode::SetCoordinates) => super::coords::g92(self, cmd)?,
-            Some(GCode::PresetCoordinates) => super::coords::g92_1(self, cmd)?,
-            Some(GCode::LocalCoordinates) => super::coords::g52(self, cmd)?,
-            Some(GCode::ReferenceReturn) => super::reference::g28(self, cmd, out)?,
-            Some(GCode::NthReferenceReturn) => super::reference::g30(self, cmd, out)?,
-            Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
-            Some(GCode::MachineCoordinates) => super::coords::g53(self, cmd, out)?,
-            Some(GCode::Dwell) => true,
-            _ => false,
-        };
+        let rotation = cmd.group(Group::Rotation).map(|g| g.code);
+        if self.frames.rotation.is_some()
+            && matches!(
+                non_modal.map(|g| g.code),
+                Some(GCode::SetCoordinates | GCode::PresetCoordinates)
+            )
+        {
+            let span = non_modal.map_or(cmd.span, |g| g.span);
+            return Err(Alarm::not_supported(
+                span,
+                "G92 while coordinate rotation (G68) is on",
+                Some(5),
+            ));
+        }
+        match rotation {
+            Some(GCode::Rotate) => super::rotation::g68(self, cmd)?,
+            Some(GCode::RotationCancel) => super::rotation::g69(self),
+            _ => {}
+        }
+        // The axis words of a G68 block are its centre.
+        let consumed = rotation == Some(GCode::Rotate)
+            || match non_modal.map(|g| g.code) {
+                Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
+                Some(GCode::SetCoordinates) => super::coords::g92(self, cmd)?,
+                Some(GCode::PresetCoordinates) => super::coords::g92_1(self, cmd)?,
+                Some(GCode::LocalCoordinates) => super::coords::g52(self, cmd)?,
+                Some(GCode::ReferenceReturn) => super::reference::g28(self, cmd, out)?,
+                Some(GCode::NthReferenceReturn) => super::reference::g30(self, cmd, out)?,
+                Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
+                Some(GCode::MachineCoordinates) => super::coords::g53(self, cmd, out)?,
+                Some(GCode::Dwell) => true,
+                _ => false,
+            };
         if !consumed && (cmd.has_axis_words() || has_center_words(cmd)) {
             self.motion(cmd, length_changed, out)?;
         } else if length_changed && !consumed {
@@ -152,6 +173,20 @@ impl Executor {
                             FeedMode::PerMinute => self.profile.default_feed,
                             _ => None,
                         };
+                    }
+                }
+                GCode::PlaneXy | GCode::PlaneZx | GCode::PlaneYz
+                    if self.frames.rotation.is_some() =>
+                {
+                    let before = self.modal.plane;
+                    self.modal.apply(g.code);
+                    if self.modal.plane != before {
+                        return Err(Alarm::error(
+                            AlarmCode::WordNotAllowed,
+                            g.span,
+                            "the plane cannot change while coordinate rotation (G68) is on",
+                        )
+                        .with_help("cancel the rotation with G69 first"));
                     }
                 }
                 code => self.modal.apply(code),

@@ -1,7 +1,10 @@
 //! The coordinate chain: from program coordinates to machine coordinates.
 //!
-//! machine = program + local (G52) + G92 shift + work offset (G54 ...) + external offset
-//!           + tool length vector (Z only)
+//! machine = rotation(program) + local (G52) + G92 shift + work offset (G54 ...)
+//!           + external offset + tool length vector (Z only)
+//!
+//! The rotation (G68) turns the programmed coordinates about a centre in the plane that was
+//! selected when it was programmed; everything else is a translation.
 //!
 //! (spec/iso-syntec-milling.md 0.1.3, seed L4493-4497.) The tool length vector is the offset
 //! actually applied to the machine position; it follows the modal G43/G44 value only when a block
@@ -25,6 +28,61 @@ pub(crate) struct Frames {
     /// Work + external + G92 + G52 of `active`: every block needs it and it changes only when an
     /// offset does, so it is recomputed then.
     shift: [f64; AXES],
+    /// G68, while it is on.
+    pub(crate) rotation: Option<Rotation>,
+}
+
+/// G68: a rotation of program coordinates in a plane, about a centre (spec 1.37:
+/// p' = c + Rot(R) (p - c), positive angles counter-clockwise seen from the plane's normal).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Rotation {
+    /// The plane's first and second axis (as `Plane::axes` orders them).
+    pub(crate) axes: (usize, usize),
+    /// The centre, program coordinates of the two axes.
+    pub(crate) center: (f64, f64),
+    /// The angle, degrees.
+    pub(crate) degrees: f64,
+    cos: f64,
+    sin: f64,
+}
+
+impl Rotation {
+    pub(crate) fn new(axes: (usize, usize), center: (f64, f64), degrees: f64) -> Rotation {
+        // Quarter turns exactly: a program rotated by 90 degrees ends on round numbers.
+        let turn = degrees.rem_euclid(360.0);
+        let (sin, cos) = if turn == 0.0 {
+            (0.0, 1.0)
+        } else if turn == 90.0 {
+            (1.0, 0.0)
+        } else if turn == 180.0 {
+            (0.0, -1.0)
+        } else if turn == 270.0 {
+            (-1.0, 0.0)
+        } else {
+            degrees.to_radians().sin_cos()
+        };
+        Rotation {
+            axes,
+            center,
+            degrees,
+            cos,
+            sin,
+        }
+    }
+
+    /// A vector (an arc's centre offset I J K) turned by the rotation.
+    pub(crate) fn vector(&self, (x, y): (f64, f64)) -> (f64, f64) {
+        (x * self.cos - y * self.sin, x * self.sin + y * self.cos)
+    }
+
+    /// Turns `point` about the centre; `sin` is the rotation's own for the forward turn and its
+    /// negative for the inverse.
+    fn turn(&self, point: &mut [f64; AXES], sin: f64) {
+        let (a, b) = self.axes;
+        let (x, y) = (point[a] - self.center.0, point[b] - self.center.1);
+        point[a] = self.center.0 + x * self.cos - y * sin;
+        point[b] = self.center.1 + x * sin + y * self.cos;
+    }
 }
 
 impl Frames {
@@ -36,6 +94,7 @@ impl Frames {
             length_vector: 0.0,
             active: WorkOffsetId::Standard(1),
             shift: [0.0; AXES],
+            rotation: None,
         };
         frames.recompute();
         frames
@@ -100,13 +159,20 @@ impl Frames {
         let shift = &self.shift;
         let mut program: [f64; AXES] = std::array::from_fn(|i| machine[i] - shift[i]);
         program[2] -= self.length_vector;
+        if let Some(rotation) = &self.rotation {
+            rotation.turn(&mut program, -rotation.sin);
+        }
         program
     }
 
     /// Machine coordinates of a program position, with tool length vector `length`.
     pub(crate) fn to_machine(&self, program: &[f64; AXES], length: f64) -> [f64; AXES] {
         let shift = &self.shift;
-        let mut machine: [f64; AXES] = std::array::from_fn(|i| program[i] + shift[i]);
+        let mut turned = *program;
+        if let Some(rotation) = &self.rotation {
+            rotation.turn(&mut turned, rotation.sin);
+        }
+        let mut machine: [f64; AXES] = std::array::from_fn(|i| turned[i] + shift[i]);
         machine[2] += length;
         machine
     }

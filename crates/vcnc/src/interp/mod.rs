@@ -21,6 +21,7 @@ mod frames;
 mod length;
 pub mod modal;
 mod reference;
+mod rotation;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Machine;

@@ -189,6 +189,7 @@ impl ModalState {
             | MirrorCancel
             | ModalMacroCancel
             | RotationCancel
+            | Rotate
             | PolarInterpolationCancel => {}
         }
     }

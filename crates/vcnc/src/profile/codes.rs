@@ -139,6 +139,8 @@ pub enum GCode {
     ModalMacroCancel,
     /// G69.
     RotationCancel,
+    /// G68: coordinate rotation in the selected plane.
+    Rotate,
     /// G13.1.
     PolarInterpolationCancel,
 }
@@ -192,6 +194,7 @@ impl GCode {
             MirrorCancel => "programmable mirror image cancel",
             ModalMacroCancel => "modal macro call cancel",
             RotationCancel => "coordinate rotation cancel",
+            Rotate => "coordinate rotation",
             PolarInterpolationCancel => "polar coordinate interpolation cancel",
         }
     }
@@ -216,7 +219,7 @@ impl GCode {
             ExactStopMode | AutomaticCornerOverride | TappingMode | ContinuousMode => {
                 Group::PathMode
             }
-            RotationCancel => Group::Rotation,
+            RotationCancel | Rotate => Group::Rotation,
             PolarCancel => Group::Polar,
             PolarInterpolationCancel => Group::PolarInterpolation,
             MirrorCancel => Group::Mirror,
@@ -288,6 +291,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         630 => TappingMode,
         640 => ContinuousMode,
         670 => ModalMacroCancel,
+        680 => Rotate,
         690 => RotationCancel,
         800 => CycleCancel,
         900 => Absolute,
@@ -336,7 +340,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (531, None, "tool axis direction control"),
     (650, Some(3), "macro call"),
     (660, Some(3), "modal macro call"),
-    (680, Some(5), "coordinate rotation"),
     (682, None, "tilted working plane"),
     (730, Some(4), "high-speed peck drilling cycle"),
     (740, Some(4), "left-hand tapping cycle"),

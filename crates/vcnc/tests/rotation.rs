@@ -1,0 +1,241 @@
+//! G68/G69 coordinate rotation: hand-checked moves, and a program rotated by the code against
+//! the same program rotated by hand (spec iso-syntec-milling.md 1.37).
+
+mod common;
+
+use common::{check, run};
+use proptest::prelude::*;
+use vcnc::{interpret_str, Machine, Options, SegmentKind};
+
+#[test]
+fn a_square_turned_a_quarter_turn_about_the_origin() {
+    check(
+        "G90 G17 G0 X0 Y0\nG68 X0 Y0 R90.\nG1 X10. F100.\nY10.\nX0\nG69\nX5.\nM30",
+        "
+        line X0 Y10 Z0 F100
+        line X-10 Y10 Z0 F100
+        line X-10 Y0 Z0 F100
+        line X5 Y0 Z0 F100
+        end M30",
+    );
+}
+
+#[test]
+fn the_centre_is_absolute_and_defaults_to_the_current_position() {
+    // About (10,10) by 45 degrees: (20,10) goes to (10 + 10 cos 45, 10 + 10 sin 45).
+    check(
+        "G90 G0 X0 Y0\nG68 X10. Y10. R45.\nG1 X20. Y10. F100.\nM30",
+        "
+        line X17.0711 Y17.0711 Z0 F100
+        end M30",
+    );
+    // No centre words: about the current position (5,0).
+    check(
+        "G90 G0 X5. Y0\nG68 R90.\nG1 X10. F100.\nM30",
+        "
+        rapid X5 Y0 Z0
+        line X5 Y5 Z0 F100
+        end M30",
+    );
+}
+
+#[test]
+fn incremental_moves_turn_with_the_rotation() {
+    check(
+        "G90 G0 X30. Y0\nG68 X0 Y0 R90.\nG91 G1 X10. F100.\nY10.\nM30",
+        "
+        rapid X30 Y0 Z0
+        line X30 Y10 Z0 F100
+        line X20 Y10 Z0 F100
+        end M30",
+    );
+}
+
+#[test]
+fn an_incremental_angle_adds_to_the_rotation_in_force() {
+    // 30 degrees, then G91 R60: 90 degrees in all. In G90 a second G68 replaces the angle: the
+    // position (0,10) reads (0,-10) turned back by 180, so X10 goes to (10,-10), turned (-10,10).
+    check(
+        "G90 G0 X0 Y0\nG68 X0 Y0 R30.\nG91 G68 R60.\nG90 G1 X10. F100.\nG68 X0 Y0 R180.\nX10.\nM30",
+        "
+        line X0 Y10 Z0 F100
+        line X-10 Y10 Z0 F100
+        end M30",
+    );
+}
+
+#[test]
+fn arcs_turn_with_their_centre_offsets() {
+    // The tool at (0,-10) reads (-10,0) in the system turned by 90 degrees; the arc's centre is
+    // (-10,0) + (0,10) there, (-10,-10) on the machine, and its end (0,10) is (-10,0).
+    check(
+        "G90 G0 X0 Y-10.\nG68 X0 Y0 R90.\nG3 X0 Y10. I0 J10. F100.\nM30",
+        "
+        rapid X0 Y-10 Z0
+        arc ccw xy X-10 Y0 Z0 C(-10,-10,0) F100
+        end M30",
+    );
+}
+
+#[test]
+fn the_g68_block_does_not_move() {
+    check(
+        "G90 G0 X1. Y2.\nG68 X50. Y50. R10.\nG69\nM30",
+        "
+        rapid X1 Y2 Z0
+        end M30",
+    );
+}
+
+#[test]
+fn the_plane_cannot_change_while_rotated_and_g92_is_refused() {
+    check(
+        "G17 G68 X0 Y0 R10.\nG18\nM30",
+        "alarm word_not_allowed line 2",
+    );
+    check(
+        "G68 X0 Y0 R10.\nG92 X0 Y0\nM30",
+        "alarm not_supported_yet line 2",
+    );
+}
+
+#[test]
+fn the_reported_position_is_the_programmed_one() {
+    let machine = Machine::default();
+    let mut interpreter = interpret_str(
+        "G90 G0 X0 Y0\nG68 X0 Y0 R90.\nG1 X10. Y5. F100.\nM30",
+        &machine,
+        Options::default(),
+    );
+    for item in interpreter.by_ref() {
+        let segment = item.unwrap();
+        if let SegmentKind::Line { motion, .. } = segment.kind {
+            assert!((motion.to.0[0] + 5.0).abs() < 1e-12);
+            assert!((motion.to.0[1] - 10.0).abs() < 1e-12);
+        }
+    }
+    let position = interpreter.program_position();
+    assert!((position[0] - 10.0).abs() < 1e-12 && (position[1] - 5.0).abs() < 1e-12);
+}
+
+/// One move of a generated contour: a line to a point, or an arc about a centre to a point on
+/// its circle.
+#[derive(Clone, Debug)]
+enum Step {
+    Line(f64, f64),
+    Arc {
+        ccw: bool,
+        center: (f64, f64),
+        angle: f64,
+    },
+}
+
+fn step() -> impl Strategy<Value = Step> {
+    prop_oneof![
+        (-100.0f64..100.0, -100.0f64..100.0).prop_map(|(x, y)| Step::Line(x, y)),
+        (
+            proptest::bool::ANY,
+            -50.0f64..50.0,
+            -50.0f64..50.0,
+            0.3f64..2.5
+        )
+            .prop_map(|(ccw, dx, dy, angle)| Step::Arc {
+                ccw,
+                center: (dx, dy),
+                angle
+            }),
+    ]
+}
+
+/// The program text of `steps` from the origin, every point passed through `turn` (a rotation
+/// done by hand, or none); arcs are written with I J, their ends computed on the circle. It
+/// starts with a rapid to `start` (machine), then `header`.
+fn program(
+    steps: &[Step],
+    turn: &dyn Fn(f64, f64) -> (f64, f64),
+    start: (f64, f64),
+    header: &str,
+) -> String {
+    let mut text = format!(
+        "G90 G17 G0 X{:.9} Y{:.9}\n{header}G1 F500.\n",
+        start.0, start.1
+    );
+    let (mut x, mut y) = (0.0f64, 0.0f64);
+    for step in steps {
+        match *step {
+            Step::Line(nx, ny) => {
+                let (tx, ty) = turn(nx, ny);
+                text.push_str(&format!("G1 X{tx:.9} Y{ty:.9}\n"));
+                (x, y) = (nx, ny);
+            }
+            Step::Arc { ccw, center, angle } => {
+                let (cx, cy) = (x + center.0, y + center.1);
+                let start = (y - cy).atan2(x - cx);
+                let radius = (x - cx).hypot(y - cy);
+                let end = if ccw { start + angle } else { start - angle };
+                let (nx, ny) = (cx + radius * end.cos(), cy + radius * end.sin());
+                let (tx, ty) = turn(nx, ny);
+                let (sx, sy) = turn(x, y);
+                let (tcx, tcy) = turn(cx, cy);
+                text.push_str(&format!(
+                    "G{} X{tx:.9} Y{ty:.9} I{:.9} J{:.9}\n",
+                    if ccw { 3 } else { 2 },
+                    tcx - sx,
+                    tcy - sy
+                ));
+                (x, y) = (nx, ny);
+            }
+        }
+    }
+    text.push_str("M30\n");
+    text
+}
+
+/// Every motion's end point and arc centre, machine X Y.
+fn points(text: &str) -> Vec<(f64, f64)> {
+    let result = run(text.as_bytes(), &Machine::default(), Options::default());
+    assert!(result.alarms.is_empty(), "{:?}\n{text}", result.alarms);
+    let mut points = Vec::new();
+    for segment in &result.segments {
+        if let Some(motion) = segment.motion() {
+            points.push((motion.to.0[0], motion.to.0[1]));
+        }
+        if let SegmentKind::Arc { center, .. } = segment.kind {
+            points.push((center.0[0], center.0[1]));
+        }
+    }
+    points
+}
+
+proptest! {
+    /// G68 about (cx, cy) by a random angle gives the machine path of the same program with
+    /// every point rotated by hand.
+    #[test]
+    fn rotating_by_code_is_rotating_by_hand(
+        steps in proptest::collection::vec(step(), 1..12),
+        cx in -50.0f64..50.0,
+        cy in -50.0f64..50.0,
+        degrees in -360.0f64..360.0,
+    ) {
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        let by_hand = move |x: f64, y: f64| {
+            (cx + (x - cx) * cos - (y - cy) * sin, cy + (x - cx) * sin + (y - cy) * cos)
+        };
+        let none = |x: f64, y: f64| (x, y);
+        // Both start where the origin of the rotated program is.
+        let start = by_hand(0.0, 0.0);
+        let coded = program(
+            &steps,
+            &none,
+            start,
+            &format!("G68 X{cx:.9} Y{cy:.9} R{degrees:.9}\n"),
+        );
+        let turned = program(&steps, &by_hand, start, "");
+        let a = points(&coded);
+        let b = points(&turned);
+        prop_assert_eq!(a.len(), b.len());
+        for (p, q) in a.iter().zip(&b) {
+            prop_assert!((p.0 - q.0).abs() < 1e-6 && (p.1 - q.1).abs() < 1e-6, "{:?} {:?}", p, q);
+        }
+    }
+}
