@@ -3,7 +3,8 @@
 
 mod common;
 
-use common::{check, run};
+use common::check;
+use common::contour::{assert_coded_is_by_hand, step};
 use proptest::prelude::*;
 use vcnc::{interpret_str, Machine, Options, SegmentKind};
 
@@ -118,95 +119,6 @@ fn the_reported_position_is_the_programmed_one() {
     assert!((position[0] - 10.0).abs() < 1e-12 && (position[1] - 5.0).abs() < 1e-12);
 }
 
-/// One move of a generated contour: a line to a point, or an arc about a centre to a point on
-/// its circle.
-#[derive(Clone, Debug)]
-enum Step {
-    Line(f64, f64),
-    Arc {
-        ccw: bool,
-        center: (f64, f64),
-        angle: f64,
-    },
-}
-
-fn step() -> impl Strategy<Value = Step> {
-    prop_oneof![
-        (-100.0f64..100.0, -100.0f64..100.0).prop_map(|(x, y)| Step::Line(x, y)),
-        (
-            proptest::bool::ANY,
-            -50.0f64..50.0,
-            -50.0f64..50.0,
-            0.3f64..2.5
-        )
-            .prop_map(|(ccw, dx, dy, angle)| Step::Arc {
-                ccw,
-                center: (dx, dy),
-                angle
-            }),
-    ]
-}
-
-/// The program text of `steps` from the origin, every point passed through `turn` (a rotation
-/// done by hand, or none); arcs are written with I J, their ends computed on the circle. It
-/// starts with a rapid to `start` (machine), then `header`.
-fn program(
-    steps: &[Step],
-    turn: &dyn Fn(f64, f64) -> (f64, f64),
-    start: (f64, f64),
-    header: &str,
-) -> String {
-    let mut text = format!(
-        "G90 G17 G0 X{:.9} Y{:.9}\n{header}G1 F500.\n",
-        start.0, start.1
-    );
-    let (mut x, mut y) = (0.0f64, 0.0f64);
-    for step in steps {
-        match *step {
-            Step::Line(nx, ny) => {
-                let (tx, ty) = turn(nx, ny);
-                text.push_str(&format!("G1 X{tx:.9} Y{ty:.9}\n"));
-                (x, y) = (nx, ny);
-            }
-            Step::Arc { ccw, center, angle } => {
-                let (cx, cy) = (x + center.0, y + center.1);
-                let start = (y - cy).atan2(x - cx);
-                let radius = (x - cx).hypot(y - cy);
-                let end = if ccw { start + angle } else { start - angle };
-                let (nx, ny) = (cx + radius * end.cos(), cy + radius * end.sin());
-                let (tx, ty) = turn(nx, ny);
-                let (sx, sy) = turn(x, y);
-                let (tcx, tcy) = turn(cx, cy);
-                text.push_str(&format!(
-                    "G{} X{tx:.9} Y{ty:.9} I{:.9} J{:.9}\n",
-                    if ccw { 3 } else { 2 },
-                    tcx - sx,
-                    tcy - sy
-                ));
-                (x, y) = (nx, ny);
-            }
-        }
-    }
-    text.push_str("M30\n");
-    text
-}
-
-/// Every motion's end point and arc centre, machine X Y.
-fn points(text: &str) -> Vec<(f64, f64)> {
-    let result = run(text.as_bytes(), &Machine::default(), Options::default());
-    assert!(result.alarms.is_empty(), "{:?}\n{text}", result.alarms);
-    let mut points = Vec::new();
-    for segment in &result.segments {
-        if let Some(motion) = segment.motion() {
-            points.push((motion.to.0[0], motion.to.0[1]));
-        }
-        if let SegmentKind::Arc { center, .. } = segment.kind {
-            points.push((center.0[0], center.0[1]));
-        }
-    }
-    points
-}
-
 proptest! {
     /// G68 about (cx, cy) by a random angle gives the machine path of the same program with
     /// every point rotated by hand.
@@ -221,21 +133,7 @@ proptest! {
         let by_hand = move |x: f64, y: f64| {
             (cx + (x - cx) * cos - (y - cy) * sin, cy + (x - cx) * sin + (y - cy) * cos)
         };
-        let none = |x: f64, y: f64| (x, y);
-        // Both start where the origin of the rotated program is.
-        let start = by_hand(0.0, 0.0);
-        let coded = program(
-            &steps,
-            &none,
-            start,
-            &format!("G68 X{cx:.9} Y{cy:.9} R{degrees:.9}\n"),
-        );
-        let turned = program(&steps, &by_hand, start, "");
-        let a = points(&coded);
-        let b = points(&turned);
-        prop_assert_eq!(a.len(), b.len());
-        for (p, q) in a.iter().zip(&b) {
-            prop_assert!((p.0 - q.0).abs() < 1e-6 && (p.1 - q.1).abs() < 1e-6, "{:?} {:?}", p, q);
-        }
+        let header = format!("G68 X{cx:.9} Y{cy:.9} R{degrees:.9}\n");
+        assert_coded_is_by_hand(&steps, &by_hand, false, &header, &Machine::default())?;
     }
 }

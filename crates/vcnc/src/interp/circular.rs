@@ -32,9 +32,18 @@ pub(crate) fn arc(
     }
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
+    let scaling = exec.frames.scaling;
+    // A mirror of one plane axis (or a negative factor) reverses the arc.
+    let direction = match scaling {
+        Some(s) if s.reverses((a, b)) => match direction {
+            ArcDirection::Clockwise => ArcDirection::CounterClockwise,
+            ArcDirection::CounterClockwise => ArcDirection::Clockwise,
+        },
+        _ => direction,
+    };
     let spec = if let Some(r) = cmd.r() {
         ArcSpec::Radius {
-            radius: exec.length(&r),
+            radius: exec.length(&r) * scaling.map_or(1.0, |s| s.arc_factor((a, b))),
             span: r.span,
         }
     } else {
@@ -55,6 +64,9 @@ pub(crate) fn arc(
             ca.map_or(0.0, |v| exec.length(&v)),
             cb.map_or(0.0, |v| exec.length(&v)),
         );
+        if let Some(scaling) = &scaling {
+            offset = scaling.arc_vector((a, b), offset);
+        }
         if let Some(rotation) = &exec.frames.rotation {
             // I J K are a vector in the programmed (unrotated) coordinates.
             offset = rotation.vector(offset);

@@ -105,13 +105,27 @@ impl Executor {
                 Some(5),
             ));
         }
+        let scaling = cmd.group(Group::Scaling).map(|g| g.code);
+        let mirror = cmd.group(Group::Mirror).map(|g| g.code);
+        match scaling {
+            Some(GCode::Scale) => super::scaling::g51(self, cmd)?,
+            Some(GCode::ScalingCancel) => super::scaling::cancel(self, false),
+            _ => {}
+        }
+        match mirror {
+            Some(GCode::Mirror) => super::scaling::g51_1(self, cmd)?,
+            Some(GCode::MirrorCancel) => super::scaling::cancel(self, true),
+            _ => {}
+        }
         match rotation {
             Some(GCode::Rotate) => super::rotation::g68(self, cmd)?,
             Some(GCode::RotationCancel) => super::rotation::g69(self),
             _ => {}
         }
-        // The axis words of a G68 block are its centre.
+        // The axis words of a G68, G51 or G51.1 block are its centre.
         let consumed = rotation == Some(GCode::Rotate)
+            || scaling == Some(GCode::Scale)
+            || mirror == Some(GCode::Mirror)
             || match non_modal.map(|g| g.code) {
                 Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
                 Some(GCode::SetCoordinates) => super::coords::g92(self, cmd)?,

@@ -1,10 +1,12 @@
 //! The coordinate chain: from program coordinates to machine coordinates.
 //!
-//! machine = rotation(program) + local (G52) + G92 shift + work offset (G54 ...)
+//! machine = rotation(scaling(program)) + local (G52) + G92 shift + work offset (G54 ...)
 //!           + external offset + tool length vector (Z only)
 //!
-//! The rotation (G68) turns the programmed coordinates about a centre in the plane that was
-//! selected when it was programmed; everything else is a translation.
+//! Scaling (G51) or the programmable mirror (G51.1, a scaling by -1) stretches the programmed
+//! coordinates of some axes about a centre; the rotation (G68) then turns them about a centre in
+//! the plane that was selected when it was programmed; everything else is a translation. The
+//! FANUC family applies them in that order: mirror or scaling, then rotation.
 //!
 //! (spec/iso-syntec-milling.md 0.1.3, seed L4493-4497.) The tool length vector is the offset
 //! actually applied to the machine position; it follows the modal G43/G44 value only when a block
@@ -30,6 +32,43 @@ pub(crate) struct Frames {
     shift: [f64; AXES],
     /// G68, while it is on.
     pub(crate) rotation: Option<Rotation>,
+    /// G51 or G51.1, while it is on.
+    pub(crate) scaling: Option<Scaling>,
+}
+
+/// G51 scaling or G51.1 mirror: each axis' programmed coordinate is stretched about a centre,
+/// `x' = c + f (x - c)`; a factor of 1 leaves the axis alone, -1 mirrors it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Scaling {
+    /// The centre, program coordinates.
+    pub(crate) center: [f64; AXES],
+    /// The factor of each axis (never zero).
+    pub(crate) factor: [f64; AXES],
+    /// G51.1 rather than G51 (for messages).
+    pub(crate) mirror: bool,
+}
+
+impl Scaling {
+    /// An arc's centre offset in the plane axes `(a, b)`: each component takes its axis' sign and
+    /// the larger of the two factors' sizes, so that a circle stays a circle (Syntec spec 1.28:
+    /// unequal factors scale an arc by the largest one).
+    pub(crate) fn arc_vector(&self, (a, b): (usize, usize), (x, y): (f64, f64)) -> (f64, f64) {
+        let size = self.arc_factor((a, b));
+        (
+            x * size * self.factor[a].signum(),
+            y * size * self.factor[b].signum(),
+        )
+    }
+
+    /// How much an arc's radius grows in the plane axes `(a, b)`.
+    pub(crate) fn arc_factor(&self, (a, b): (usize, usize)) -> f64 {
+        self.factor[a].abs().max(self.factor[b].abs())
+    }
+
+    /// True when exactly one of the plane axes `(a, b)` is reversed: arcs turn the other way.
+    pub(crate) fn reverses(&self, (a, b): (usize, usize)) -> bool {
+        (self.factor[a] < 0.0) != (self.factor[b] < 0.0)
+    }
 }
 
 /// G68: a rotation of program coordinates in a plane, about a centre (spec 1.37:
@@ -95,6 +134,7 @@ impl Frames {
             active: WorkOffsetId::Standard(1),
             shift: [0.0; AXES],
             rotation: None,
+            scaling: None,
         };
         frames.recompute();
         frames
@@ -162,6 +202,11 @@ impl Frames {
         if let Some(rotation) = &self.rotation {
             rotation.turn(&mut program, -rotation.sin);
         }
+        if let Some(scaling) = &self.scaling {
+            for ((p, c), f) in program.iter_mut().zip(scaling.center).zip(scaling.factor) {
+                *p = c + (*p - c) / f;
+            }
+        }
         program
     }
 
@@ -169,6 +214,11 @@ impl Frames {
     pub(crate) fn to_machine(&self, program: &[f64; AXES], length: f64) -> [f64; AXES] {
         let shift = &self.shift;
         let mut turned = *program;
+        if let Some(scaling) = &self.scaling {
+            for ((p, c), f) in turned.iter_mut().zip(scaling.center).zip(scaling.factor) {
+                *p = c + (*p - c) * f;
+            }
+        }
         if let Some(rotation) = &self.rotation {
             rotation.turn(&mut turned, rotation.sin);
         }

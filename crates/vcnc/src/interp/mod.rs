@@ -22,6 +22,7 @@ mod length;
 pub mod modal;
 mod reference;
 mod rotation;
+mod scaling;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Machine;

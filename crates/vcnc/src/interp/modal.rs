@@ -186,7 +186,9 @@ impl ModalState {
             | PresetCoordinates
             | PolarCancel
             | ScalingCancel
+            | Scale
             | MirrorCancel
+            | Mirror
             | ModalMacroCancel
             | RotationCancel
             | Rotate

@@ -133,8 +133,12 @@ pub enum GCode {
     PolarCancel,
     /// G50.
     ScalingCancel,
+    /// G51: scaling.
+    Scale,
     /// G50.1.
     MirrorCancel,
+    /// G51.1: programmable mirror image.
+    Mirror,
     /// G67.
     ModalMacroCancel,
     /// G69.
@@ -191,7 +195,9 @@ impl GCode {
             ReturnToRLevel => "canned cycle return to R level",
             PolarCancel => "polar coordinate command cancel",
             ScalingCancel => "scaling cancel",
+            Scale => "scaling",
             MirrorCancel => "programmable mirror image cancel",
+            Mirror => "programmable mirror image",
             ModalMacroCancel => "modal macro call cancel",
             RotationCancel => "coordinate rotation cancel",
             Rotate => "coordinate rotation",
@@ -212,7 +218,7 @@ impl GCode {
             LengthCompPlus | LengthCompMinus | LengthCompCancel => Group::LengthComp,
             CycleCancel => Group::Cycle,
             ReturnToInitialLevel | ReturnToRLevel => Group::CycleReturn,
-            ScalingCancel => Group::Scaling,
+            ScalingCancel | Scale => Group::Scaling,
             ModalMacroCancel => Group::ModalMacro,
             ConstantSurfaceSpeed | ConstantSpindleSpeed => Group::SpindleMode,
             WorkOffset(_) | ExtendedWorkOffset => Group::WorkOffset,
@@ -222,7 +228,7 @@ impl GCode {
             RotationCancel | Rotate => Group::Rotation,
             PolarCancel => Group::Polar,
             PolarInterpolationCancel => Group::PolarInterpolation,
-            MirrorCancel => Group::Mirror,
+            MirrorCancel | Mirror => Group::Mirror,
             Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
             | PresetCoordinates => Group::NonModal,
@@ -280,6 +286,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         490 => LengthCompCancel,
         500 => ScalingCancel,
         501 => MirrorCancel,
+        510 => Scale,
+        511 => Mirror,
         520 => LocalCoordinates,
         530 => MachineCoordinates,
         540..=590 if tenths % 10 == 0 => WorkOffset(((tenths - 530) / 10) as u8),
@@ -335,8 +343,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (460, Some(5), "tool position offset -1"),
     (470, Some(5), "tool position offset +2"),
     (480, Some(5), "tool position offset -2"),
-    (510, Some(5), "scaling"),
-    (511, Some(5), "programmable mirror image"),
     (531, None, "tool axis direction control"),
     (650, Some(3), "macro call"),
     (660, Some(3), "modal macro call"),

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code, unreachable_pub)]
 
+pub mod contour;
+
 use std::path::PathBuf;
 use vcnc::{interpret_bytes, Alarm, Machine, Options, Segment};
 
