@@ -36,6 +36,8 @@ pub(crate) struct Executor {
     pub(crate) intermediate: [Option<f64>; AXES],
     /// Which axes the machine has, by axis index.
     pub(crate) machine_axes: [bool; AXES],
+    /// G16: the last polar point, while polar coordinate command is on.
+    pub(crate) polar: Option<super::polar::PolarPoint>,
 }
 
 /// What one block did to the flow of the program.
@@ -65,6 +67,7 @@ impl Executor {
             length_offset_number: 0,
             intermediate: [None; AXES],
             machine_axes: std::array::from_fn(|i| machine.axes[i].is_some()),
+            polar: None,
             profile,
             machine: machine.clone(),
         }
@@ -115,6 +118,11 @@ impl Executor {
         match mirror {
             Some(GCode::Mirror) => super::scaling::g51_1(self, cmd)?,
             Some(GCode::MirrorCancel) => super::scaling::cancel(self, true),
+            _ => {}
+        }
+        match cmd.group(Group::Polar).map(|g| g.code) {
+            Some(GCode::Polar) => super::polar::g16(self),
+            Some(GCode::PolarCancel) => super::polar::g15(self),
             _ => {}
         }
         match rotation {
@@ -260,6 +268,16 @@ impl Executor {
 
     /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
     pub(crate) fn target_program(&self, cmd: &Command) -> [f64; AXES] {
+        let mut target = self.cartesian_target(cmd);
+        if let Some(point) = super::polar::point(self, cmd) {
+            let (a, b, _) = self.modal.plane.axes();
+            (target[a], target[b]) = super::polar::cartesian(point);
+        }
+        target
+    }
+
+    /// The target of the axis words read as Cartesian coordinates.
+    fn cartesian_target(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.program_position();
         let incremental = self.modal.distance == super::modal::DistanceMode::Incremental;
         for axis in cmd.axes_present() {
@@ -302,6 +320,9 @@ impl Executor {
         out: &mut Output,
     ) -> Result<(), Alarm> {
         let target = self.target_program(cmd);
+        if let Some(point) = super::polar::point(self, cmd) {
+            self.polar = Some(point);
+        }
         let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;
         let machine_target = self.machine_target(&target, moves_z);
         match self.modal.motion {

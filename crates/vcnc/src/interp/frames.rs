@@ -71,6 +71,23 @@ impl Scaling {
     }
 }
 
+/// The sine and cosine of an angle in degrees, exact for quarter turns: a program rotated by 90
+/// degrees, or a hole at 90 degrees in polar coordinates, ends on round numbers.
+pub(crate) fn sin_cos_degrees(degrees: f64) -> (f64, f64) {
+    let turn = degrees.rem_euclid(360.0);
+    if turn == 0.0 {
+        (0.0, 1.0)
+    } else if turn == 90.0 {
+        (1.0, 0.0)
+    } else if turn == 180.0 {
+        (0.0, -1.0)
+    } else if turn == 270.0 {
+        (-1.0, 0.0)
+    } else {
+        degrees.to_radians().sin_cos()
+    }
+}
+
 /// G68: a rotation of program coordinates in a plane, about a centre (spec 1.37:
 /// p' = c + Rot(R) (p - c), positive angles counter-clockwise seen from the plane's normal).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -87,19 +104,7 @@ pub(crate) struct Rotation {
 
 impl Rotation {
     pub(crate) fn new(axes: (usize, usize), center: (f64, f64), degrees: f64) -> Rotation {
-        // Quarter turns exactly: a program rotated by 90 degrees ends on round numbers.
-        let turn = degrees.rem_euclid(360.0);
-        let (sin, cos) = if turn == 0.0 {
-            (0.0, 1.0)
-        } else if turn == 90.0 {
-            (1.0, 0.0)
-        } else if turn == 180.0 {
-            (0.0, -1.0)
-        } else if turn == 270.0 {
-            (-1.0, 0.0)
-        } else {
-            degrees.to_radians().sin_cos()
-        };
+        let (sin, cos) = sin_cos_degrees(degrees);
         Rotation {
             axes,
             center,

@@ -20,6 +20,7 @@ mod exec;
 mod frames;
 mod length;
 pub mod modal;
+mod polar;
 mod reference;
 mod rotation;
 mod scaling;

@@ -185,6 +185,7 @@ impl ModalState {
             | SetCoordinates
             | PresetCoordinates
             | PolarCancel
+            | Polar
             | ScalingCancel
             | Scale
             | MirrorCancel

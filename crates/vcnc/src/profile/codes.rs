@@ -131,6 +131,8 @@ pub enum GCode {
     ReturnToRLevel,
     /// G15.
     PolarCancel,
+    /// G16: polar coordinate command.
+    Polar,
     /// G50.
     ScalingCancel,
     /// G51: scaling.
@@ -194,6 +196,7 @@ impl GCode {
             ReturnToInitialLevel => "canned cycle return to initial level",
             ReturnToRLevel => "canned cycle return to R level",
             PolarCancel => "polar coordinate command cancel",
+            Polar => "polar coordinate command",
             ScalingCancel => "scaling cancel",
             Scale => "scaling",
             MirrorCancel => "programmable mirror image cancel",
@@ -226,7 +229,7 @@ impl GCode {
                 Group::PathMode
             }
             RotationCancel | Rotate => Group::Rotation,
-            PolarCancel => Group::Polar,
+            PolarCancel | Polar => Group::Polar,
             PolarInterpolationCancel => Group::PolarInterpolation,
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
@@ -270,6 +273,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         100 => DataInput,
         131 => PolarInterpolationCancel,
         150 => PolarCancel,
+        160 => Polar,
         170 => PlaneXy,
         180 => PlaneZx,
         190 => PlaneYz,
@@ -328,7 +332,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (71, None, "cylindrical interpolation"),
     (80, Some(6), "look-ahead control"),
     (121, Some(5), "polar coordinate interpolation"),
-    (160, Some(5), "polar coordinate command"),
     (220, None, "stored stroke check on"),
     (230, None, "stored stroke check off"),
     (270, None, "reference position return check"),

@@ -1,0 +1,72 @@
+//! G16/G15: polar coordinate command (spec iso-syntec-milling.md 1.14).
+//!
+//! In G16 the first axis word of the selected plane is a radius and the second an angle in
+//! degrees, counter-clockwise positive, about the program origin. A word left out keeps its polar
+//! value (not its Cartesian one). In G91 radius and angle add to the previous point's. Other
+//! words (I J K, R, the third axis) are not converted.
+
+use super::decode::Command;
+use super::exec::Executor;
+use super::modal::DistanceMode;
+use crate::machine::Axis;
+use crate::profile::DecimalLess;
+
+/// The radius and angle (degrees) of the last polar point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PolarPoint {
+    pub(crate) radius: f64,
+    pub(crate) degrees: f64,
+}
+
+/// G16: polar mode on, starting from the polar values of the current position.
+pub(crate) fn g16(exec: &mut Executor) {
+    let (a, b, _) = exec.modal.plane.axes();
+    let here = exec.program_position();
+    exec.polar = Some(PolarPoint {
+        radius: here[a].hypot(here[b]),
+        degrees: here[b].atan2(here[a]).to_degrees(),
+    });
+}
+
+/// G15: polar mode off.
+pub(crate) fn g15(exec: &mut Executor) {
+    exec.polar = None;
+}
+
+/// The polar point a block in G16 programs, when it has a word of the plane: the radius from the
+/// plane's first axis word, the angle from the second's, the others kept.
+pub(crate) fn point(exec: &Executor, cmd: &Command) -> Option<PolarPoint> {
+    let previous = exec.polar?;
+    let (a, b, _) = exec.modal.plane.axes();
+    let radius_word = cmd.axis(a);
+    let angle_word = cmd.axis(b);
+    if radius_word.is_none() && angle_word.is_none() {
+        return None;
+    }
+    let radius = radius_word.map(|v| exec.axis_value(Axis::ALL[a], &v));
+    let degrees = angle_word.map(|v| {
+        // An angle, whatever the plane's axis is: degrees, least increments without a point.
+        let n = v.number;
+        if !n.decimal_point && exec.profile.decimal_less == DecimalLess::Increments {
+            n.value * exec.profile.increment_deg
+        } else {
+            n.value
+        }
+    });
+    Some(match exec.modal.distance {
+        DistanceMode::Absolute => PolarPoint {
+            radius: radius.unwrap_or(previous.radius),
+            degrees: degrees.unwrap_or(previous.degrees),
+        },
+        DistanceMode::Incremental => PolarPoint {
+            radius: previous.radius + radius.unwrap_or(0.0),
+            degrees: previous.degrees + degrees.unwrap_or(0.0),
+        },
+    })
+}
+
+/// The Cartesian coordinates of the plane's two axes for a polar point.
+pub(crate) fn cartesian(point: PolarPoint) -> (f64, f64) {
+    let (sin, cos) = super::frames::sin_cos_degrees(point.degrees);
+    (point.radius * cos, point.radius * sin)
+}
