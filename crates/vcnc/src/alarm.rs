@@ -88,6 +88,10 @@ pub enum AlarmCode {
     BadDwell,
     /// The program file could not be read.
     ReadError,
+    /// Cutter radius compensation cannot make the tool-centre path: an arc the tool does not
+    /// fit inside, or a corner where the compensated path would cut into the contour. FANUC
+    /// alarms 033 and 041.
+    CutterCompensation,
 }
 
 impl AlarmCode {
@@ -121,6 +125,7 @@ impl AlarmCode {
             BadFeedRate => "bad_feed_rate",
             BadDwell => "bad_dwell",
             ReadError => "read_error",
+            CutterCompensation => "cutter_compensation",
         }
     }
 
@@ -154,6 +159,7 @@ impl AlarmCode {
             BadFeedRate => "V051",
             BadDwell => "V052",
             ReadError => "V090",
+            CutterCompensation => "V060",
         }
     }
 
@@ -185,6 +191,7 @@ impl AlarmCode {
         AlarmCode::BadFeedRate,
         AlarmCode::BadDwell,
         AlarmCode::ReadError,
+        AlarmCode::CutterCompensation,
     ];
 }
 

@@ -17,7 +17,7 @@ fn first_alarm(program: &str) -> (AlarmCode, u32, String, String) {
 #[test]
 fn a_code_planned_for_later_is_named_with_its_issue() {
     let alarm = interpret_str(
-        "G0 X1.\nG41 D1 X5.\n",
+        "G0 X1.\nG45 D1 X5.\n",
         &Machine::default(),
         Options::default(),
     )
@@ -26,7 +26,7 @@ fn a_code_planned_for_later_is_named_with_its_issue() {
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
     assert_eq!(
         alarm.message,
-        "G41 (cutter compensation left) is not supported yet"
+        "G45 (tool position offset +1) is not supported yet"
     );
     assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #5"));
     assert_eq!(alarm.span.unwrap().line, 2);

@@ -32,6 +32,8 @@ pub(crate) struct Executor {
     pub(crate) tool_in_spindle: u32,
     /// The H number of the active length compensation.
     pub(crate) length_offset_number: u32,
+    /// The D number of cutter radius compensation.
+    pub(crate) radius_offset_number: u32,
     /// The G28/G30 intermediate point, program coordinates, per axis.
     pub(crate) intermediate: [Option<f64>; AXES],
     /// Which axes the machine has, by axis index.
@@ -50,6 +52,25 @@ pub(crate) enum Flow {
 }
 
 impl Executor {
+    /// The tool offset number an H or D word gives (`letter`).
+    ///
+    /// # Errors
+    /// [`AlarmCode::OffsetNumberOutOfRange`] for a number the control does not have.
+    pub(crate) fn offset_number(&self, word: Value, letter: char) -> Result<u32, Alarm> {
+        let n = word.number.whole().unwrap_or(-1);
+        let max = self.profile.max_offset_number;
+        if n < 0 || n > i64::from(max) {
+            return Err(Alarm::error(
+                AlarmCode::OffsetNumberOutOfRange,
+                word.span,
+                format!("{letter}{n} is out of range: this control has {letter}0 to {letter}{max}"),
+            ));
+        }
+        Ok(n as u32)
+    }
+}
+
+impl Executor {
     pub(crate) fn new(machine: &Machine) -> Executor {
         let profile = machine.profile.clone();
         let modal = ModalState::power_on(&profile.power_on);
@@ -65,6 +86,7 @@ impl Executor {
             selected_tool: 0,
             tool_in_spindle: 0,
             length_offset_number: 0,
+            radius_offset_number: 0,
             intermediate: [None; AXES],
             machine_axes: std::array::from_fn(|i| machine.axes[i].is_some()),
             polar: None,
@@ -94,6 +116,7 @@ impl Executor {
             super::auxiliary::dwell(self, cmd, g.order, out)?;
         }
         let length_changed = super::length::apply(self, cmd, out)?;
+        super::compensation::before_motion(self, cmd, out)?;
         let rotation = cmd.group(Group::Rotation).map(|g| g.code);
         if self.frames.rotation.is_some()
             && matches!(
@@ -151,6 +174,7 @@ impl Executor {
         } else if length_changed && !consumed {
             super::length::move_to_new_vector(self, cmd, out)?;
         }
+        super::compensation::after_motion(self, cmd, out)?;
         if self.modal.feed_mode == FeedMode::InverseTime {
             // G93: F is not modal (spec 1.56): every cutting block needs its own.
             self.feed = None;

@@ -8,7 +8,7 @@ use super::decode::Command;
 use super::exec::Executor;
 use super::modal::{LengthComp, MotionMode};
 use super::Output;
-use crate::alarm::{Alarm, AlarmCode};
+use crate::alarm::Alarm;
 use crate::motion::SegmentKind;
 use crate::profile::Group;
 
@@ -19,18 +19,7 @@ use crate::profile::Group;
 /// [`AlarmCode::OffsetNumberOutOfRange`] for an H number the control does not have.
 pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Result<bool, Alarm> {
     if let Some(h) = cmd.h() {
-        let n = h.number.whole().unwrap_or(-1);
-        if n < 0 || n > i64::from(exec.profile.max_offset_number) {
-            return Err(Alarm::error(
-                AlarmCode::OffsetNumberOutOfRange,
-                h.span,
-                format!(
-                    "H{n} is out of range: this control has H0 to H{}",
-                    exec.profile.max_offset_number
-                ),
-            ));
-        }
-        exec.length_offset_number = n as u32;
+        exec.length_offset_number = exec.offset_number(h, 'H')?;
     }
     let changed = cmd.group(Group::LengthComp).is_some()
         || (cmd.h().is_some() && exec.modal.length_comp != LengthComp::Off);

@@ -13,6 +13,7 @@ mod arc;
 mod auxiliary;
 mod circular;
 mod comp;
+mod compensation;
 mod coords;
 mod data_input;
 mod decode;
@@ -60,20 +61,90 @@ impl Default for Options {
 #[derive(Debug, Default)]
 pub(crate) struct Output {
     items: Vec<Result<Segment, Alarm>>,
+    /// Items from this index on wait for cutter compensation to know where a move ends.
+    held: Option<usize>,
+    /// Cutter compensation in force: motion goes through it.
+    pub(crate) comp: Option<comp::Compensator>,
+    /// An alarm raised while queueing (a corner compensation cannot make): it ends the run.
+    failed: Option<Alarm>,
 }
 
 impl Output {
     /// Records a segment of the block `cmd`.
     pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
-        self.items.push(Ok(Segment {
+        let segment = Segment {
             kind,
             span: cmd.span,
             sequence: cmd.sequence,
-        }));
+        };
+        match self.comp.as_mut() {
+            Some(comp) => {
+                if let Err(alarm) = comp.push(segment, &mut self.items, &mut self.held) {
+                    self.failed.get_or_insert(alarm);
+                }
+            }
+            None => self.items.push(Ok(segment)),
+        }
+    }
+
+    /// How many items can be handed out now.
+    fn releasable(&self) -> usize {
+        self.held.unwrap_or(self.items.len())
+    }
+
+    /// Nothing waits any more: the program is over.
+    fn finish(&mut self) {
+        if let Some(mut comp) = self.comp.take() {
+            if let Err(alarm) = comp.finish(&mut self.items, &mut self.held) {
+                self.stop(alarm);
+            }
+        }
+        self.held = None;
+    }
+
+    /// The alarm raised while queueing, once.
+    pub(crate) fn take_failure(&mut self) -> Option<Alarm> {
+        self.failed.take()
+    }
+
+    /// Ends compensation: whatever is pending is written out.
+    ///
+    /// # Errors
+    /// Interference at the pending element's end.
+    pub(crate) fn finish_compensation(
+        &mut self,
+        comp: &mut comp::Compensator,
+    ) -> Result<(), Alarm> {
+        comp.finish(&mut self.items, &mut self.held)
+    }
+
+    /// A block ends: compensation counts blocks without motion in the plane.
+    ///
+    /// # Errors
+    /// Interference where a pending element had to end.
+    fn end_block(&mut self) -> Result<(), Alarm> {
+        match self.comp.as_mut() {
+            Some(comp) => comp.end_block(&mut self.items, &mut self.held),
+            None => Ok(()),
+        }
     }
 
     /// Records an alarm (a warning, or the error that ends the run).
     pub(crate) fn push_warning(&mut self, alarm: Alarm) {
+        self.items.push(Err(alarm));
+    }
+
+    /// An error ends the run. With compensation looking ahead, the control stops before the
+    /// block that was waiting for this one: the pending move and the moves held after it never
+    /// happen (their warnings stay).
+    fn stop(&mut self, alarm: Alarm) {
+        if let Some(held) = self.held.take() {
+            let tail = self.items.split_off(held);
+            self.items.extend(tail.into_iter().filter(Result::is_err));
+        }
+        if let Some(comp) = self.comp.as_mut() {
+            comp.abandon();
+        }
         self.items.push(Err(alarm));
     }
 }
@@ -174,13 +245,23 @@ impl<B: BlockSource> Interpreter<B> {
     /// [`Iterator::next`] gives, with fewer moves: consumers of long streams use this.
     pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
         // The executor writes straight into the caller's vector: no item is moved twice.
+        let base = out.len();
         let leftover = std::mem::take(&mut self.out.items);
         out.extend(leftover);
+        self.out.held = self.out.held.map(|h| h + base);
         std::mem::swap(&mut self.out.items, out);
-        while !self.done && self.out.items.len() < at_least {
+        while !self.done && self.out.releasable() < at_least {
             self.step();
         }
+        if self.done {
+            self.out.finish();
+        }
         std::mem::swap(&mut self.out.items, out);
+        if let Some(held) = self.out.held {
+            // What waits for compensation stays here.
+            self.out.items = out.split_off(held);
+            self.out.held = Some(0);
+        }
         !out.is_empty()
     }
 
@@ -194,7 +275,7 @@ impl<B: BlockSource> Interpreter<B> {
             Ok(true) => self.cursor = 0,
             Ok(false) => self.end_of_text(),
             Err(error) => {
-                self.out.push_warning(Alarm {
+                self.out.stop(Alarm {
                     code: AlarmCode::ReadError,
                     severity: crate::alarm::Severity::Error,
                     message: format!("cannot read the program: {error}"),
@@ -231,11 +312,12 @@ impl<B: BlockSource> Interpreter<B> {
         let block = &self.source.blocks()[self.cursor];
         self.cursor += 1;
         for alarm in &block.alarms {
-            self.out.push_warning(alarm.clone());
             if alarm.is_error() {
+                self.out.stop(alarm.clone());
                 self.done = true;
                 return;
             }
+            self.out.push_warning(alarm.clone());
         }
         if let Some(level) = block.skip {
             if self.options.block_skip[usize::from(level.clamp(1, 9)) - 1] {
@@ -270,16 +352,26 @@ impl<B: BlockSource> Interpreter<B> {
             self.out.push_warning(warning);
         }
         if let Err(alarm) = decoded {
-            self.out.push_warning(alarm);
+            self.out.stop(alarm);
             self.done = true;
             return;
         }
         self.blocks_executed += 1;
-        match self.exec.run(&self.command, &mut self.out) {
+        let flow = self.exec.run(&self.command, &mut self.out);
+        let flow = match self.out.take_failure() {
+            Some(alarm) => Err(alarm),
+            None => flow.and_then(|flow| {
+                if flow == Flow::Next {
+                    self.out.end_block()?;
+                }
+                Ok(flow)
+            }),
+        };
+        match flow {
             Ok(Flow::Next) => {}
             Ok(Flow::End) => self.done = true,
             Err(alarm) => {
-                self.out.push_warning(alarm);
+                self.out.stop(alarm);
                 self.done = true;
             }
         }
@@ -291,12 +383,19 @@ impl<B: BlockSource> Iterator for Interpreter<B> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if !self.out.items.is_empty() {
-                // The queue holds one block's items at most, so taking the first is cheap.
+            if self.out.releasable() > 0 {
+                // The queue holds a few blocks' items at most, so taking the first is cheap.
+                if let Some(held) = self.out.held.as_mut() {
+                    *held -= 1;
+                }
                 return Some(self.out.items.remove(0));
             }
             if self.done {
-                return None;
+                if self.out.items.is_empty() {
+                    return None;
+                }
+                self.out.finish();
+                continue;
             }
             self.step();
         }

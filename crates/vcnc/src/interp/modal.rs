@@ -179,6 +179,8 @@ impl ModalState {
             | ReturnFromReference
             | NthReferenceReturn
             | CutterCompCancel
+            | CutterCompLeft
+            | CutterCompRight
             | LocalCoordinates
             | MachineCoordinates
             | CycleCancel

@@ -83,6 +83,10 @@ pub enum GCode {
     NthReferenceReturn,
     /// G40.
     CutterCompCancel,
+    /// G41: cutter radius compensation, tool left of the path.
+    CutterCompLeft,
+    /// G42: cutter radius compensation, tool right of the path.
+    CutterCompRight,
     /// G43.
     LengthCompPlus,
     /// G44.
@@ -172,6 +176,8 @@ impl GCode {
             ReturnFromReference => "return from reference point",
             NthReferenceReturn => "2nd/3rd/4th reference point return",
             CutterCompCancel => "cutter compensation cancel",
+            CutterCompLeft => "cutter compensation left",
+            CutterCompRight => "cutter compensation right",
             LengthCompPlus => "tool length compensation +",
             LengthCompMinus => "tool length compensation -",
             LengthCompCancel => "tool length compensation cancel",
@@ -217,7 +223,7 @@ impl GCode {
             Absolute | Incremental => Group::Distance,
             InverseTimeFeed | FeedPerMinute | FeedPerRevolution => Group::FeedMode,
             Inch | Metric => Group::Units,
-            CutterCompCancel => Group::CutterComp,
+            CutterCompCancel | CutterCompLeft | CutterCompRight => Group::CutterComp,
             LengthCompPlus | LengthCompMinus | LengthCompCancel => Group::LengthComp,
             CycleCancel => Group::Cycle,
             ReturnToInitialLevel | ReturnToRLevel => Group::CycleReturn,
@@ -285,6 +291,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         290 => ReturnFromReference,
         300 => NthReferenceReturn,
         400 => CutterCompCancel,
+        410 => CutterCompLeft,
+        420 => CutterCompRight,
         430 => LengthCompPlus,
         440 => LengthCompMinus,
         490 => LengthCompCancel,
@@ -339,8 +347,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (330, None, "thread cutting"),
     (370, None, "automatic tool length measurement"),
     (371, None, "automatic tool length measurement II"),
-    (410, Some(5), "cutter compensation left"),
-    (420, Some(5), "cutter compensation right"),
     (434, None, "tool centre point control"),
     (450, Some(5), "tool position offset +1"),
     (460, Some(5), "tool position offset -1"),
@@ -581,7 +587,10 @@ mod tests {
     #[test]
     fn planned_codes_name_their_issue() {
         let fanuc = Profile::builtin(ProfileName::Fanuc);
-        assert_eq!(classify_g(410, &fanuc), GLookup::NotSupported(Some(5)));
+        assert_eq!(
+            classify_g(410, &fanuc),
+            GLookup::Known(GCode::CutterCompLeft)
+        );
         assert_eq!(classify_g(810, &fanuc), GLookup::NotSupported(Some(4)));
         assert_eq!(classify_g(650, &fanuc), GLookup::NotSupported(Some(3)));
     }

@@ -301,36 +301,6 @@ impl Element {
             }
         }
     }
-
-    /// The same element with another end point (a compensated element trimmed at a corner).
-    fn with_end(&self, point: V2) -> Element {
-        match *self {
-            Element::Line { start, .. } => Element::Line { start, end: point },
-            Element::Arc {
-                start, center, ccw, ..
-            } => Element::Arc {
-                start,
-                end: point,
-                center,
-                ccw,
-            },
-        }
-    }
-
-    /// The same element with another start point.
-    fn with_start(&self, point: V2) -> Element {
-        match *self {
-            Element::Line { end, .. } => Element::Line { start: point, end },
-            Element::Arc {
-                end, center, ccw, ..
-            } => Element::Arc {
-                start: point,
-                end,
-                center,
-                ccw,
-            },
-        }
-    }
 }
 
 /// The tool-centre path through the corner where element `a` ends and element `b` starts.
@@ -345,6 +315,7 @@ pub(crate) struct Corner {
 
 impl Corner {
     /// Where the compensated `b` starts.
+    #[cfg(test)]
     pub(crate) fn b_start(&self) -> V2 {
         self.links.last().copied().unwrap_or(self.a_end)
     }
@@ -541,16 +512,48 @@ pub(crate) fn perpendicular_end(last: &Element, side: Side, r: f64) -> V2 {
     last.end() + side.normal(last.end_tangent()) * r
 }
 
-/// The compensated element `element`, trimmed to start at `start` and end at `end` (the corner
-/// points on either side).
-pub(crate) fn trimmed(
-    element: &Element,
-    side: Side,
-    r: f64,
-    start: V2,
-    end: V2,
-) -> Result<Element, GeometryError> {
-    Ok(element.offset(side, r)?.with_start(start).with_end(end))
+/// FANUC's interference check on a compensated element once both its corners are known: the
+/// tool centre, going from `start` to `end`, would travel against the programmed element (a
+/// line's direction turned by more than 90 degrees, an arc's swept angle changed by more than
+/// 180 degrees). Following it would cut into the contour.
+pub(crate) fn interferes(programmed: &Element, start: V2, end: V2) -> bool {
+    match *programmed {
+        Element::Line { start: p, end: q } => (end - start).dot(q - p) < -EPSILON,
+        Element::Arc {
+            start: p,
+            end: q,
+            center,
+            ccw,
+        } => {
+            let tau = std::f64::consts::TAU;
+            let sweep = |from: V2, to: V2| {
+                let (a, b) = (from - center, to - center);
+                let ccw_angle = (b.y.atan2(b.x) - a.y.atan2(a.x)).rem_euclid(tau);
+                if ccw {
+                    ccw_angle
+                } else {
+                    (tau - ccw_angle).rem_euclid(tau)
+                }
+            };
+            let pi = std::f64::consts::PI;
+            let programmed = if p.distance(q) < 1e-7 {
+                tau
+            } else {
+                sweep(p, q)
+            };
+            // Ends that meet: a full circle if the programmed arc is nearly full, else nothing.
+            let compensated = if start.distance(end) < 1e-7 {
+                if programmed > pi {
+                    tau
+                } else {
+                    0.0
+                }
+            } else {
+                sweep(start, end)
+            };
+            (compensated - programmed).abs() > pi
+        }
+    }
 }
 
 #[cfg(test)]

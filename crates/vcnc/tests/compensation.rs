@@ -1,0 +1,161 @@
+//! Cutter radius compensation (G40/G41/G42) through the interpreter: the FANUC 0M manual's
+//! worked example and start-ups (spec iso-fanuc0m-mitsubishi.md A.22), blocks without motion in
+//! the plane, alarms, and a property: a compensated pocket keeps the tool radius from its walls.
+
+mod common;
+
+use common::check_on;
+use vcnc::machine::ToolOffset;
+use vcnc::Machine;
+
+fn machine_with_radius(number: u32, radius: f64) -> Machine {
+    let mut machine = Machine::default();
+    machine.tool_offsets.insert(
+        number,
+        ToolOffset {
+            number,
+            radius,
+            ..ToolOffset::default()
+        },
+    );
+    machine
+}
+
+/// Example 1 (001:L971-1000, file examples/fanuc0m/16-g41-g40-example1-frag.nc), D12 = 5: the
+/// tool-centre points the spec works out, and at I (an outer corner of 77.47 degrees) the two
+/// extension points of a sharp corner, the second one a move of the next block.
+#[test]
+fn fanuc_0m_example_1() {
+    check_on(
+        &machine_with_radius(12, 5.0),
+        "G90 G00 X-20. Y-20.
+         G01 G41 X0 Y0 D12 F80.
+         Y35.
+         X20.
+         G03 X25. Y60. R65.
+         G02 X65. R-25.
+         G03 X70. Y35. R65.
+         G01 X90.
+         Y0.
+         X45. Y10.
+         X0 Y0
+         X-20. Y-20.
+         G40
+         M30",
+        "
+        rapid X-20 Y-20 Z0
+        line X-5 Y0 Z0 F80
+        line X-5 Y40 Z0 F80
+        line X16.5685 Y40 Z0 F80
+        arc ccw xy X19.9799 Y58.4472 Z0 C(-40,60,0) F80
+        arc cw xy X70.0201 Y58.4472 Z0 C(45,75,0) F80
+        arc ccw xy X73.4315 Y40 Z0 C(130,60,0) F80
+        line X95 Y40 Z0 F80
+        line X95 Y-5 Z0 F80
+        line X93.7963 Y-5.9656 Z0 F80
+        line X45 Y4.878 Z0 F80
+        line X2.506 Y-4.5651 Z0 F80
+        line X-16.4645 Y-23.5355 Z0 F80
+        line X-20 Y-20 Z0 F80
+        end M30",
+    );
+}
+
+/// Start-up (a) of the manual (001:L885-902, file examples/fanuc0m/12-g42-start-a-frag.nc),
+/// D11 = 4, with a Z move and a coolant code between two elements: two blocks without motion in
+/// the plane, so the arc ends perpendicular to itself (look-ahead of two blocks).
+#[test]
+fn g42_start_up_and_blocks_without_motion_in_the_plane() {
+    check_on(
+        &machine_with_radius(11, 4.0),
+        "G90 G00 X110. Y-20.
+         G01 G42 X92. Y0 D11 F80.
+         Y52.
+         G03 X84. Y60. R8.
+         G01 Z-1.
+         M08
+         X0
+         Y0
+         G40 X-20.
+         M30",
+        "
+        rapid X110 Y-20 Z0
+        line X96 Y0 Z0 F80
+        line X96 Y52 Z0 F80
+        arc ccw xy X84 Y64 Z0 C(84,52,0) F80
+        line X84 Y64 Z-1 F80
+        coolant on
+        line X-4 Y64 Z-1 F80
+        line X-4 Y0 Z-1 F80
+        line X-20 Y0 Z-1 F80
+        end M30",
+    );
+}
+
+/// One block without motion in the plane: the corner is still known, and the Z move is made at
+/// the corner point (outer corners of 90 degrees: the offset lines' intersection).
+#[test]
+fn a_z_move_between_two_elements_is_made_at_the_corner() {
+    check_on(
+        &machine_with_radius(1, 5.0),
+        "G0 X-10. Y-10.
+         G1 G41 X0 Y0 D1 F100.
+         Y50.
+         Z-1.
+         X50.
+         Y0
+         X0
+         G40 X-10. Y-10.
+         M30",
+        "
+        rapid X-10 Y-10 Z0
+        line X-5 Y0 Z0 F100
+        line X-5 Y55 Z0 F100
+        line X-5 Y55 Z-1 F100
+        line X55 Y55 Z-1 F100
+        line X55 Y-5 Z-1 F100
+        line X0 Y-5 Z-1 F100
+        line X-10 Y-10 Z-1 F100
+        end M30",
+    );
+}
+
+#[test]
+fn compensation_cannot_start_in_an_arc_and_an_arc_smaller_than_the_tool_alarms() {
+    let machine = machine_with_radius(1, 5.0);
+    check_on(
+        &machine,
+        "G1 X10. F100.\nG02 G41 X20. R5. D1\nM30",
+        "
+        line X10 Y0 Z0 F100
+        alarm cutter_compensation line 2",
+    );
+    // G41 on a counter-clockwise arc of radius 3 with a tool of radius 5: the tool is inside.
+    check_on(
+        &machine,
+        "G1 G41 X10. Y0 D1 F100.\nG3 X10. Y6. R3.\nM30",
+        "alarm cutter_compensation line 2",
+    );
+}
+
+/// A groove narrower than the tool: the compensated bottom of the groove would run backwards
+/// between its two inner corners. The control stops before that block (FANUC alarm 041); the
+/// moves before it are made.
+#[test]
+fn a_groove_narrower_than_the_tool_is_interference() {
+    check_on(
+        &machine_with_radius(1, 5.0),
+        "G0 X0 Y30.
+         G1 G41 X0 Y20. D1 F100.
+         Y0
+         X6.
+         Y20.
+         G40 Y30.
+         M30",
+        "
+        rapid X0 Y30 Z0
+        line X5 Y20 Z0 F100
+        line X5 Y5 Z0 F100
+        alarm cutter_compensation line 4",
+    );
+}
