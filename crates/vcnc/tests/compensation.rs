@@ -4,9 +4,9 @@
 
 mod common;
 
-use common::check_on;
+use common::{check_on, shared_dir};
 use vcnc::machine::ToolOffset;
-use vcnc::Machine;
+use vcnc::{Machine, ProfileName};
 
 fn machine_with_radius(number: u32, radius: f64) -> Machine {
     let mut machine = Machine::default();
@@ -157,5 +157,50 @@ fn a_groove_narrower_than_the_tool_is_interference() {
         line X5 Y20 Z0 F100
         line X5 Y5 Z0 F100
         alarm cutter_compensation line 4",
+    );
+}
+
+/// The FANUC 0M manual's contour example O2127 (001:L1125-1237, spec A.23, file
+/// examples/fanuc0m/17-o2127-g43-g42-contour.nc): G42 with D11 = 5 round lines and arcs given
+/// partly in G91, the tool-centre points the example's header works out. At the 90-degree outer
+/// corner after the R12 arc the arc's circle is extended to meet the next path at (25.101, 37);
+/// the last element ends perpendicular because `G00 Z20.` has no motion in the plane; the lone
+/// `G40` moves the tool back onto the programmed point.
+#[test]
+fn fanuc_0m_contour_example_o2127() {
+    let path = shared_dir().join("spec/examples/fanuc0m/17-o2127-g43-g42-contour.nc");
+    let text = std::fs::read_to_string(&path).expect("the example is in ../shared");
+    let mut machine = machine_with_radius(11, 5.0)
+        .with_profile(ProfileName::Fanuc0m)
+        .unwrap();
+    machine.tool_offsets.insert(
+        1,
+        ToolOffset {
+            number: 1,
+            length: -395.452,
+            ..ToolOffset::default()
+        },
+    );
+    check_on(
+        &machine,
+        &text,
+        "
+        spindle Clockwise 800
+        coolant on
+        rapid X-20 Y-20 Z0
+        rapid X-20 Y-20 Z-390.452
+        line X-20 Y-20 Z-400.452 F60
+        line X12 Y7 Z-400.452 F100
+        line X52 Y7 Z-400.452 F100
+        arc ccw xy X77 Y32 Z-400.452 C(52,32,-400.452) F100
+        arc ccw xy X37 Y32 Z-400.452 C(57,32,-400.452) F100
+        arc cw xy X25.101 Y37 Z-400.452 C(30,32,-400.452) F100
+        line X7 Y37 Z-400.452 F100
+        line X7 Y0 Z-400.452 F100
+        rapid X7 Y0 Z-375.452
+        rapid X12 Y0 Z-375.452
+        rapid X12 Y0 Z0
+        rapid X0 Y0 Z0
+        end M30",
     );
 }

@@ -379,14 +379,8 @@ pub(crate) fn corner(
             },
         }),
         Turn::Inner => {
-            let corner_point = a.end();
-            let point = intersections(&oa, &ob)
-                .into_iter()
-                .min_by(|p, q| {
-                    p.distance(corner_point)
-                        .total_cmp(&q.distance(corner_point))
-                })
-                .ok_or(GeometryError::NoIntersection)?;
+            let point =
+                nearest(intersections(&oa, &ob), a.end()).ok_or(GeometryError::NoIntersection)?;
             if !oa.spans(point) || !ob.spans(point) {
                 return Err(GeometryError::Interference);
             }
@@ -395,11 +389,21 @@ pub(crate) fn corner(
                 links: Vec::new(),
             })
         }
-        Turn::Outer => {
-            // The tangent lines at the compensated ends meet at q.
-            let q = line_intersection(pa, ta, pb, tb).unwrap_or(pa);
-            Ok(outer_corner(a, b, pa, pb, &[q]))
-        }
+        Turn::Outer => match nearest(intersections(&oa, &ob), a.end()) {
+            // The compensated paths meet (an arc's path taken as its whole circle): the tool
+            // centre goes there, as the FANUC 0M manual's example shows at an arc-line corner.
+            Some(point) if !matches!((a, b), (Element::Line { .. }, Element::Line { .. })) => {
+                Ok(Corner {
+                    a_end: point,
+                    links: Vec::new(),
+                })
+            }
+            _ => {
+                // The tangent lines at the compensated ends meet at q.
+                let q = line_intersection(pa, ta, pb, tb).unwrap_or(pa);
+                Ok(outer_corner(a, b, pa, pb, &[q]))
+            }
+        },
         Turn::SharpOuter => {
             let qa = pa + ta * r;
             let qb = pb - tb * r;
@@ -427,6 +431,13 @@ fn outer_corner(a: &Element, b: &Element, pa: V2, pb: V2, via: &[V2]) -> Corner 
         links.remove(0);
     }
     Corner { a_end, links }
+}
+
+/// The point of `points` nearest `to`.
+fn nearest(points: Vec<V2>, to: V2) -> Option<V2> {
+    points
+        .into_iter()
+        .min_by(|p, q| p.distance(to).total_cmp(&q.distance(to)))
 }
 
 /// Where the lines through `p` along `u` and through `q` along `v` meet; `None` when parallel.
