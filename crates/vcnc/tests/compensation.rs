@@ -204,3 +204,96 @@ fn fanuc_0m_contour_example_o2127() {
         end M30",
     );
 }
+
+/// G41 to G42 in offset mode: the compensated paths of the two elements do not cross, so the
+/// first ends perpendicular to itself on the left and a straight move goes to the start of the
+/// second on the right; then an inner corner on the new side.
+#[test]
+fn changing_from_g41_to_g42_in_offset_mode() {
+    check_on(
+        &machine_with_radius(1, 5.0),
+        "G0 X-10. Y0
+         G1 G41 X0 Y0 D1 F100.
+         X50.
+         G42 Y50.
+         X100.
+         G40 X110.
+         M30",
+        "
+        rapid X-10 Y0 Z0
+        line X0 Y5 Z0 F100
+        line X50 Y5 Z0 F100
+        line X55 Y0 Z0 F100
+        line X55 Y45 Z0 F100
+        line X100 Y45 Z0 F100
+        line X110 Y50 Z0 F100
+        end M30",
+    );
+}
+
+/// A new D in offset mode: the corner at the start of its block is made with the old radius,
+/// the corner at its end with the new one, so the block's tool-centre path slants.
+#[test]
+fn changing_d_in_offset_mode() {
+    let mut machine = machine_with_radius(1, 5.0);
+    machine.tool_offsets.insert(
+        2,
+        ToolOffset {
+            number: 2,
+            radius: 2.0,
+            ..ToolOffset::default()
+        },
+    );
+    check_on(
+        &machine,
+        "G0 X-10. Y0
+         G1 G41 X0 Y0 D1 F100.
+         X50.
+         Y50. D2
+         X0
+         G40 X-10.
+         M30",
+        "
+        rapid X-10 Y0 Z0
+        line X0 Y5 Z0 F100
+        line X45 Y5 Z0 F100
+        line X48 Y48 Z0 F100
+        line X0 Y48 Z0 F100
+        line X-10 Y50 Z0 F100
+        end M30",
+    );
+    // In an arc block the path would change its radius along the arc: refused.
+    check_on(
+        &machine,
+        "G1 G41 X0 Y0 D1 F100.\nX50.\nG3 X60. Y10. R10. D2\nM30",
+        "alarm not_supported_yet line 3",
+    );
+}
+
+/// G28 in offset mode (spec A.22 rule 4): the last element ends perpendicular, the return goes
+/// from the tool centre through the intermediate point without compensation, and compensation
+/// starts up again with the next motion in the plane. G09 is allowed while compensating.
+#[test]
+fn g28_cancels_compensation_for_its_block() {
+    check_on(
+        &machine_with_radius(1, 5.0),
+        "G0 X-10. Y0
+         G1 G41 X0 Y0 D1 F100.
+         G09 X50.
+         G28 X60. Y10.
+         G1 X0 Y20.
+         X20.
+         G40 X30.
+         M30",
+        "
+        rapid X-10 Y0 Z0
+        line X0 Y5 Z0 F100
+        line X50 Y5 Z0 F100
+        rapid X60 Y10 Z0
+        rapid X0 Y0 Z0
+        line X0 Y25 Z0 F100
+        line X20 Y25 Z0 F100
+        line X30 Y20 Z0 F100
+        end M30",
+    );
+}

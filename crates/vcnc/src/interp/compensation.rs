@@ -11,35 +11,38 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::motion::{MachinePos, Move, SegmentKind};
 use crate::profile::{GCode, Group};
 
-/// Before the block's motion: D, and G41/G42/G40 of the block.
+/// Before the block's motion: D, G41/G42/G40 of the block, and the codes that cancel
+/// compensation for one block.
 ///
 /// # Errors
-/// G41/G42 in a G02/G03 block (FANUC alarm 034); a D number out of range; G41/G42 or D changed
-/// while compensating (not supported yet); codes that do not work with compensation yet.
+/// G41/G42 in a G02/G03 block (FANUC alarm 034); a D number out of range; interference where a
+/// pending element has to end.
 pub(crate) fn before_motion(
     exec: &mut Executor,
     cmd: &Command,
     out: &mut Output,
 ) -> Result<(), Alarm> {
     if let Some(d) = cmd.word(b'D') {
-        let n = exec.offset_number(d, 'D')?;
-        if out.comp.is_some() && n != exec.radius_offset_number {
-            return Err(Alarm::not_supported(
-                d.span,
-                "changing D while compensating",
-                Some(5),
-            ));
+        exec.radius_offset_number = exec.offset_number(d, 'D')?;
+        if let Some(comp) = out.comp.as_mut() {
+            let left = comp.left();
+            comp.change(setting(exec, left), left);
         }
-        exec.radius_offset_number = n;
     }
     if out.comp.is_some() {
         if let Some(g) = cmd.group(Group::NonModal) {
-            if !matches!(g.code, GCode::Dwell | GCode::DataInput) {
-                return Err(Alarm::not_supported(
-                    g.span,
-                    "this code while cutter compensation is on",
-                    Some(5),
-                ));
+            if matches!(
+                g.code,
+                GCode::ReferenceReturn
+                    | GCode::ReturnFromReference
+                    | GCode::NthReferenceReturn
+                    | GCode::MachineCoordinates
+                    | GCode::SetCoordinates
+                    | GCode::PresetCoordinates
+                    | GCode::LocalCoordinates
+            ) {
+                // Cancelled for this block, resumed with the next (spec A.22 rule 4).
+                out.suspend_compensation()?;
             }
         }
     }
@@ -58,32 +61,14 @@ pub(crate) fn before_motion(
                 )
                 .with_help("start it in a straight move before the arc (FANUC alarm 034)"));
             }
-            let offset = exec
-                .machine
-                .tool_offsets
-                .get(&exec.radius_offset_number)
-                .map_or(0.0, |t| t.radius + t.radius_wear);
-            let mut side = Side::of(g.code == GCode::CutterCompLeft, offset);
-            let (a, b, _) = exec.modal.plane.axes();
-            if exec.frames.scaling.is_some_and(|s| s.reverses((a, b))) {
-                // A mirrored plane axis swaps G41 and G42 (spec 1.29).
-                side = match side {
-                    Side::Left => Side::Right,
-                    Side::Right => Side::Left,
-                };
-            }
-            match &out.comp {
+            let left = g.code == GCode::CutterCompLeft;
+            let setting = setting(exec, left);
+            match out.comp.as_mut() {
                 None => {
-                    out.comp = Some(Compensator::new(side, offset, (a, b), &exec.position));
+                    let (a, b, _) = exec.modal.plane.axes();
+                    out.comp = Some(Compensator::new(setting, (a, b), &exec.position, left));
                 }
-                Some(comp) if comp.setting() == (side, offset.abs()) => {}
-                Some(_) => {
-                    return Err(Alarm::not_supported(
-                        g.span,
-                        "changing between G41 and G42 while compensating",
-                        Some(5),
-                    ));
-                }
+                Some(comp) => comp.change(setting, left),
             }
         }
         GCode::CutterCompCancel => {
@@ -94,6 +79,27 @@ pub(crate) fn before_motion(
         _ => {}
     }
     Ok(())
+}
+
+/// The side and radius of G41 (`left`) or G42 with the D number in force: a negative offset
+/// and a mirrored plane axis (spec 1.29) each swap the side.
+fn setting(exec: &Executor, left: bool) -> (Side, f64) {
+    let offset = exec
+        .machine
+        .tool_offsets
+        .get(&exec.radius_offset_number)
+        .map_or(0.0, |t| t.radius + t.radius_wear);
+    let side = Side::of(left, offset);
+    let (a, b, _) = exec.modal.plane.axes();
+    let side = if exec.frames.scaling.is_some_and(|s| s.reverses((a, b))) {
+        match side {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    } else {
+        side
+    };
+    (side, offset.abs())
 }
 
 /// After the block's motion: a G40 block ends compensation, moving the tool centre onto the

@@ -118,6 +118,17 @@ impl Output {
         comp.finish(&mut self.items, &mut self.held)
     }
 
+    /// G28, G29, G30, G53 or G92 while compensating: cancelled for this block.
+    ///
+    /// # Errors
+    /// Interference at the pending element's end.
+    pub(crate) fn suspend_compensation(&mut self) -> Result<(), Alarm> {
+        match self.comp.as_mut() {
+            Some(comp) => comp.suspend(&mut self.items, &mut self.held),
+            None => Ok(()),
+        }
+    }
+
     /// A block ends: compensation counts blocks without motion in the plane.
     ///
     /// # Errors

@@ -412,6 +412,36 @@ pub(crate) fn corner(
     }
 }
 
+/// The corner where the side changes (G41 <-> G42 in offset mode): `a` compensated with `old`,
+/// `b` with `new`. The tool centre goes to where the two compensated paths cross, if they do
+/// within both elements; otherwise to the end of `a` perpendicular to it, then straight to the
+/// start of `b` perpendicular to it.
+///
+/// # Errors
+/// The errors of [`Element::offset`].
+pub(crate) fn side_change(
+    a: &Element,
+    b: &Element,
+    old: (Side, f64),
+    new: (Side, f64),
+) -> Result<Corner, GeometryError> {
+    let oa = a.offset(old.0, old.1)?;
+    let ob = b.offset(new.0, new.1)?;
+    let crossing = intersections(&oa, &ob)
+        .into_iter()
+        .filter(|&p| oa.spans(p) && ob.spans(p));
+    Ok(match nearest(crossing.collect(), a.end()) {
+        Some(point) => Corner {
+            a_end: point,
+            links: Vec::new(),
+        },
+        None => Corner {
+            a_end: perpendicular_end(a, old.0, old.1),
+            links: vec![start_up_end(b, new.0, new.1)],
+        },
+    })
+}
+
 /// An outer corner through the points `via`: a compensated line runs on to the first of them, a
 /// compensated arc ends on its normal and a straight move joins it; the same at `b`'s side.
 fn outer_corner(a: &Element, b: &Element, pa: V2, pb: V2, via: &[V2]) -> Corner {

@@ -48,6 +48,13 @@ pub(crate) struct Compensator {
     moved: bool,
     /// G40 in this block: the next motion goes from the tool centre to the programmed point.
     cancelling: bool,
+    /// G28, G29, G30, G53 or G92 in this block: compensation is cancelled for the block and
+    /// starts up again with the next motion in the plane (spec A.22 rule 4).
+    suspended: bool,
+    /// A change of side or radius (G41/G42 or D in offset mode), for the next element.
+    next: Option<(Side, f64)>,
+    /// G41 (true) or G42 in force, before the sign of the offset and mirroring decide the side.
+    left: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -76,8 +83,13 @@ fn set_plane(p: &mut [f64; AXES], (a, b): (usize, usize), v: V2) {
 
 impl Compensator {
     /// Compensation on `side` by `radius` in the plane `axes`, from the tool position `tool`
-    /// (machine coordinates).
-    pub(crate) fn new(side: Side, radius: f64, axes: (usize, usize), tool: &[f64; AXES]) -> Self {
+    /// (machine coordinates), started by G41 (`left`) or G42.
+    pub(crate) fn new(
+        (side, radius): (Side, f64),
+        axes: (usize, usize),
+        tool: &[f64; AXES],
+        left: bool,
+    ) -> Self {
         Compensator {
             side,
             radius: radius.abs(),
@@ -88,6 +100,9 @@ impl Compensator {
             started: false,
             moved: false,
             cancelling: false,
+            suspended: false,
+            next: None,
+            left,
         }
     }
 
@@ -127,6 +142,16 @@ impl Compensator {
             items.push(Ok(segment));
             return Ok(());
         }
+        if self.suspended {
+            // Without compensation for this block: the first move leaves from the tool centre.
+            let mut segment = segment;
+            if let Some(motion) = motion_mut(&mut segment) {
+                set_plane(&mut motion.from.0, self.axes, self.tool);
+                self.tool = plane_point(&motion.to.0, self.axes);
+            }
+            items.push(Ok(segment));
+            return Ok(());
+        }
         let Some(element) = self.element(&segment) else {
             let mut segment = segment;
             let here = self.pending.as_ref().map_or(self.tool, |p| p.provisional);
@@ -160,22 +185,41 @@ impl Compensator {
             items.push(Ok(segment));
             return Ok(());
         }
+        // The side and radius for this element: a change in offset mode applies from here.
+        let setting = self.next.take().unwrap_or((self.side, self.radius));
         // An element that cannot be compensated at all (an arc smaller than the tool) stops the
         // control before the block waiting for it moves.
         element
-            .offset(self.side, self.radius)
+            .offset(setting.0, setting.1)
             .map_err(|e| geometry_alarm(e, &segment))?;
+        if setting.1 != self.radius
+            && self.pending.is_some()
+            && matches!(element, Element::Arc { .. })
+        {
+            // The element would start at the old radius and end at the new one.
+            return Err(Alarm::not_supported(
+                segment.span,
+                "changing D in an arc block while compensating",
+                Some(5),
+            ));
+        }
         let start_up = !self.started;
         let start = match self.pending.take() {
             Some(pending) => {
-                let (a_end, links) = self.corner(&pending, &element, &segment)?;
+                let (a_end, links) = self.corner(&pending, &element, &segment, setting)?;
                 self.emit(pending, a_end, items, held)?;
+                (self.side, self.radius) = setting;
                 self.links(a_end, &links, &segment, items);
+                self.tool
+            }
+            None if start_up => {
+                (self.side, self.radius) = setting;
                 self.tool
             }
             None if start_up => self.tool,
             None => {
                 // After an end perpendicular to the last element: straight to this one's start.
+                (self.side, self.radius) = setting;
                 let start = geometry::start_up_end(&element, self.side, self.radius);
                 let tool = self.tool;
                 self.links(tool, &[start], &segment, items);
@@ -196,21 +240,30 @@ impl Compensator {
         Ok(())
     }
 
-    /// The end of the pending element and the links to the next one's start.
+    /// The end of the pending element and the links to the next one's start, which is
+    /// compensated with `setting`. A change of radius takes effect at the end of the next
+    /// element (the corner is made with the old one); a change of side at this corner.
     fn corner(
         &self,
         pending: &Pending,
         next: &Element,
         segment: &Segment,
+        (side, radius): (Side, f64),
     ) -> Result<(V2, Vec<V2>), Alarm> {
         if pending.start_up {
-            return Ok((
-                geometry::start_up_end(next, self.side, self.radius),
-                Vec::new(),
-            ));
+            return Ok((geometry::start_up_end(next, side, radius), Vec::new()));
         }
-        let corner = geometry::corner(&pending.element, next, self.side, self.radius)
-            .map_err(|e| geometry_alarm(e, segment))?;
+        let corner = if side == self.side {
+            geometry::corner(&pending.element, next, self.side, self.radius)
+        } else {
+            geometry::side_change(
+                &pending.element,
+                next,
+                (self.side, self.radius),
+                (side, radius),
+            )
+        }
+        .map_err(|e| geometry_alarm(e, segment))?;
         Ok((corner.a_end, corner.links))
     }
 
@@ -300,6 +353,12 @@ impl Compensator {
         items: &mut Vec<Result<Segment, Alarm>>,
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
+        if std::mem::take(&mut self.suspended) {
+            // Compensation starts up again with the next motion in the plane.
+            self.started = false;
+            self.moved = false;
+            return Ok(());
+        }
         if !std::mem::take(&mut self.moved) && self.pending.is_some() {
             self.idle_blocks += 1;
             if self.idle_blocks >= LOOK_AHEAD {
@@ -327,6 +386,32 @@ impl Compensator {
         }
     }
 
+    /// G28, G29, G30, G53 or G92 in offset mode: the pending element ends perpendicular to
+    /// itself and the block's moves are made without compensation.
+    ///
+    /// # Errors
+    /// Interference at the pending element's end.
+    pub(crate) fn suspend(
+        &mut self,
+        items: &mut Vec<Result<Segment, Alarm>>,
+        held: &mut Option<usize>,
+    ) -> Result<(), Alarm> {
+        self.finish(items, held)?;
+        self.suspended = true;
+        Ok(())
+    }
+
+    /// G41/G42 or D in offset mode: the new side and radius apply from the next element.
+    pub(crate) fn change(&mut self, setting: (Side, f64), left: bool) {
+        self.left = left;
+        self.next = (setting != (self.side, self.radius)).then_some(setting);
+    }
+
+    /// G41 (true) or G42 in force.
+    pub(crate) fn left(&self) -> bool {
+        self.left
+    }
+
     /// An alarm stops the control: the pending element never moves.
     pub(crate) fn abandon(&mut self) {
         self.pending = None;
@@ -345,11 +430,6 @@ impl Compensator {
     /// The plane's first and second axis.
     pub(crate) fn axes(&self) -> (usize, usize) {
         self.axes
-    }
-
-    /// The side and radius in force.
-    pub(crate) fn setting(&self) -> (Side, f64) {
-        (self.side, self.radius)
     }
 
     /// True while a G40 block is being executed.
