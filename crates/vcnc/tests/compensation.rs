@@ -10,15 +10,21 @@ use vcnc::{Machine, ProfileName};
 
 fn machine_with_radius(number: u32, radius: f64) -> Machine {
     let mut machine = Machine::default();
+    set_offset(&mut machine, number, 0.0, radius);
+    machine
+}
+
+/// Sets offset `number` to a length and a radius.
+fn set_offset(machine: &mut Machine, number: u32, length: f64, radius: f64) {
     machine.tool_offsets.insert(
         number,
         ToolOffset {
             number,
+            length,
             radius,
             ..ToolOffset::default()
         },
     );
-    machine
 }
 
 /// Example 1 (001:L971-1000, file examples/fanuc0m/16-g41-g40-example1-frag.nc), D12 = 5: the
@@ -173,14 +179,7 @@ fn fanuc_0m_contour_example_o2127() {
     let mut machine = machine_with_radius(11, 5.0)
         .with_profile(ProfileName::Fanuc0m)
         .unwrap();
-    machine.tool_offsets.insert(
-        1,
-        ToolOffset {
-            number: 1,
-            length: -395.452,
-            ..ToolOffset::default()
-        },
-    );
+    set_offset(&mut machine, 1, -395.452, 0.0);
     check_on(
         &machine,
         &text,
@@ -236,14 +235,7 @@ fn changing_from_g41_to_g42_in_offset_mode() {
 #[test]
 fn changing_d_in_offset_mode() {
     let mut machine = machine_with_radius(1, 5.0);
-    machine.tool_offsets.insert(
-        2,
-        ToolOffset {
-            number: 2,
-            radius: 2.0,
-            ..ToolOffset::default()
-        },
-    );
+    set_offset(&mut machine, 2, 0.0, 2.0);
     check_on(
         &machine,
         "G0 X-10. Y0
@@ -294,6 +286,72 @@ fn g28_cancels_compensation_for_its_block() {
         line X0 Y25 Z0 F100
         line X20 Y25 Z0 F100
         line X30 Y20 Z0 F100
+        end M30",
+    );
+}
+
+/// The old FANUC 0M form `G42 H19` (corpus gcodeworkshop_FANUC0M_0097.nc): on the fanuc0m
+/// profile the H of a G41/G42 block without D is the radius offset number, and the length
+/// offset in force (H3) stays.
+#[test]
+fn fanuc_0m_h_form_names_the_radius_offset() {
+    let mut machine = machine_with_radius(19, 5.0)
+        .with_profile(ProfileName::Fanuc0m)
+        .unwrap();
+    set_offset(&mut machine, 3, 10.0, 0.0);
+    check_on(
+        &machine,
+        "G0 X-10. Y0\nG43 H3 Z5.\nG1 G42 H19 X0 Y0 F100.\nX50.\nG40 X60.\nM30",
+        "
+        rapid X-10 Y0 Z0
+        rapid X-10 Y0 Z15
+        line X0 Y-5 Z15 F100
+        line X50 Y-5 Z15 F100
+        line X60 Y0 Z15 F100
+        end M30",
+    );
+}
+
+/// Haas keeps cutter diameters in its offset table: D1 = 10 compensates by 5.
+#[test]
+fn haas_offsets_are_diameters() {
+    check_on(
+        &machine_with_radius(1, 10.0)
+            .with_profile(ProfileName::Haas)
+            .unwrap(),
+        "G0 X-10. Y0\nG1 G41 X0 Y0 D1 F100.\nX50.\nG40 X60.\nM30",
+        "
+        rapid X-10 Y0 Z0
+        line X0 Y5 Z0 F100
+        line X50 Y5 Z0 F100
+        line X60 Y0 Z0 F100
+        end M30",
+    );
+}
+
+/// The look-ahead is a profile setting: with one block, a lone Z move already ends the element
+/// perpendicular to itself, and the next element is reached by a straight move to its start.
+#[test]
+fn the_look_ahead_is_a_profile_setting() {
+    let mut machine = machine_with_radius(1, 5.0);
+    machine.profile.cutter_comp_look_ahead = 1;
+    check_on(
+        &machine,
+        "G0 X-10. Y-10.
+         G1 G41 X0 Y0 D1 F100.
+         Y50.
+         Z-1.
+         X50.
+         G40 X60.
+         M30",
+        "
+        rapid X-10 Y-10 Z0
+        line X-5 Y0 Z0 F100
+        line X-5 Y50 Z0 F100
+        line X-5 Y50 Z-1 F100
+        line X0 Y55 Z-1 F100
+        line X50 Y55 Z-1 F100
+        line X60 Y50 Z-1 F100
         end M30",
     );
 }

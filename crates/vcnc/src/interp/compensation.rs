@@ -22,8 +22,14 @@ pub(crate) fn before_motion(
     cmd: &Command,
     out: &mut Output,
 ) -> Result<(), Alarm> {
-    if let Some(d) = cmd.word(b'D') {
-        exec.radius_offset_number = exec.offset_number(d, 'D')?;
+    let d = cmd.word(b'D');
+    let number = match d {
+        Some(d) => Some((d, 'D')),
+        None if h_names_radius_offset(exec, cmd) => cmd.h().map(|h| (h, 'H')),
+        None => None,
+    };
+    if let Some((word, letter)) = number {
+        exec.radius_offset_number = exec.offset_number(word, letter)?;
         if let Some(comp) = out.comp.as_mut() {
             let left = comp.left();
             comp.change(setting(exec, left), left);
@@ -66,7 +72,13 @@ pub(crate) fn before_motion(
             match out.comp.as_mut() {
                 None => {
                     let (a, b, _) = exec.modal.plane.axes();
-                    out.comp = Some(Compensator::new(setting, (a, b), &exec.position, left));
+                    out.comp = Some(Compensator::new(
+                        setting,
+                        (a, b),
+                        &exec.position,
+                        left,
+                        exec.profile.cutter_comp_look_ahead,
+                    ));
                 }
                 Some(comp) => comp.change(setting, left),
             }
@@ -81,6 +93,17 @@ pub(crate) fn before_motion(
     Ok(())
 }
 
+/// True when the block's H word is the radius offset number (`G42 H19`, the old FANUC 0M
+/// form) rather than a length offset number.
+pub(crate) fn h_names_radius_offset(exec: &Executor, cmd: &Command) -> bool {
+    exec.profile.radius_offset_by_h
+        && cmd.word(b'D').is_none()
+        && cmd
+            .group(Group::CutterComp)
+            .is_some_and(|g| g.code != GCode::CutterCompCancel)
+        && cmd.group(Group::LengthComp).is_none()
+}
+
 /// The side and radius of G41 (`left`) or G42 with the D number in force: a negative offset
 /// and a mirrored plane axis (spec 1.29) each swap the side.
 fn setting(exec: &Executor, left: bool) -> (Side, f64) {
@@ -89,6 +112,11 @@ fn setting(exec: &Executor, left: bool) -> (Side, f64) {
         .tool_offsets
         .get(&exec.radius_offset_number)
         .map_or(0.0, |t| t.radius + t.radius_wear);
+    let offset = if exec.profile.radius_offsets_are_diameters {
+        offset / 2.0
+    } else {
+        offset
+    };
     let side = Side::of(left, offset);
     let (a, b, _) = exec.modal.plane.axes();
     let side = if exec.frames.scaling.is_some_and(|s| s.reverses((a, b))) {

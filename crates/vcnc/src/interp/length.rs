@@ -18,11 +18,15 @@ use crate::profile::Group;
 /// # Errors
 /// [`AlarmCode::OffsetNumberOutOfRange`] for an H number the control does not have.
 pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Result<bool, Alarm> {
-    if let Some(h) = cmd.h() {
+    // In the old FANUC 0M form `G42 H19` the H belongs to cutter compensation.
+    let h = cmd
+        .h()
+        .filter(|_| !super::compensation::h_names_radius_offset(exec, cmd));
+    if let Some(h) = h {
         exec.length_offset_number = exec.offset_number(h, 'H')?;
     }
     let changed = cmd.group(Group::LengthComp).is_some()
-        || (cmd.h().is_some() && exec.modal.length_comp != LengthComp::Off);
+        || (h.is_some() && exec.modal.length_comp != LengthComp::Off);
     Ok(changed && (exec.active_length() - exec.frames.length_vector).abs() > 0.0)
 }
 

@@ -224,6 +224,14 @@ pub struct Profile {
     pub g10_tool_default: Option<ToolOffsetField>,
     /// Cutter compensation values are diameters (Haas), not radii.
     pub radius_offsets_are_diameters: bool,
+    /// A G41/G42 block with H and no D takes H as its radius offset number, not as a length
+    /// offset (the old FANUC 0M form, `G42 H19`, seen in the corpus).
+    #[serde(default)]
+    pub radius_offset_by_h: bool,
+    /// Blocks in a row without motion in the compensation plane after which the last element
+    /// ends perpendicular to itself (cutter compensation's look-ahead; FANUC: 2).
+    #[serde(default = "default_cutter_comp_look_ahead")]
+    pub cutter_comp_look_ahead: u32,
     /// M codes a block may hold; when a block has more, only the last ones run (FANUC 0M: one,
     /// spec A.15 and example fanuc0m/06).
     #[serde(default = "default_m_codes_per_block")]
@@ -251,6 +259,10 @@ pub struct Profile {
     pub subprogram_m_codes: Vec<u32>,
     /// Power-on modal state.
     pub power_on: PowerOn,
+}
+
+fn default_cutter_comp_look_ahead() -> u32 {
+    2
 }
 
 fn default_m_codes_per_block() -> u32 {

@@ -13,7 +13,7 @@
 //!   position (the perpendicular end) and moved to the corner point when it is known.
 //! - Resolution: the next plane motion (the corner; its extra straight moves belong to the block
 //!   that turns the corner), G40 and program end (perpendicular end, then the G40 move to the
-//!   programmed point), or `LOOK_AHEAD` blocks in a row without plane motion (perpendicular end,
+//!   programmed point), or the profile's look-ahead count of blocks in a row without plane motion (perpendicular end,
 //!   as FANUC does).
 //! - Start-up (type A): the start-up block ends at the next element's start moved perpendicular
 //!   by the radius. G41/G42 in G02/G03 is refused by the caller (FANUC alarm 034).
@@ -26,10 +26,6 @@ use crate::machine::AXES;
 use crate::motion::{ArcDirection, MachinePos, Segment, SegmentKind};
 use geometry::{Element, GeometryError, Side, V2};
 
-/// Blocks without motion in the plane after which a pending element ends perpendicular to
-/// itself (FANUC: two such blocks in a row).
-const LOOK_AHEAD: usize = 2;
-
 /// Cutter compensation in force: turns the programmed motion of the executor (machine
 /// coordinates, the tool's programmed centre) into the tool-centre path, one corner late.
 #[derive(Clone, Debug)]
@@ -41,7 +37,10 @@ pub(crate) struct Compensator {
     /// Where the tool centre is, plane axes, when nothing is pending.
     tool: V2,
     pending: Option<Pending>,
-    idle_blocks: usize,
+    idle_blocks: u32,
+    /// Blocks without motion in the plane after which a pending element ends perpendicular to
+    /// itself (the profile's look-ahead).
+    look_ahead: u32,
     /// True once the first element in the plane (the start-up) has come.
     started: bool,
     /// True when the block being executed moved in the plane.
@@ -89,6 +88,7 @@ impl Compensator {
         axes: (usize, usize),
         tool: &[f64; AXES],
         left: bool,
+        look_ahead: u32,
     ) -> Self {
         Compensator {
             side,
@@ -97,6 +97,7 @@ impl Compensator {
             tool: plane_point(tool, axes),
             pending: None,
             idle_blocks: 0,
+            look_ahead: look_ahead.max(1),
             started: false,
             moved: false,
             cancelling: false,
@@ -361,7 +362,7 @@ impl Compensator {
         }
         if !std::mem::take(&mut self.moved) && self.pending.is_some() {
             self.idle_blocks += 1;
-            if self.idle_blocks >= LOOK_AHEAD {
+            if self.idle_blocks >= self.look_ahead {
                 self.finish(items, held)?;
             }
         }
