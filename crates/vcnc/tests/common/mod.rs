@@ -2,6 +2,8 @@
 #![allow(dead_code, unreachable_pub)]
 
 pub mod contour;
+pub mod corpus;
+pub mod plane;
 
 use std::path::PathBuf;
 use vcnc::{interpret_bytes, Alarm, Machine, Options, Segment};
