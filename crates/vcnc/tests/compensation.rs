@@ -355,3 +355,88 @@ fn the_look_ahead_is_a_profile_setting() {
         end M30",
     );
 }
+
+/// Runs a manual example from ../shared/spec/examples on `machine`.
+#[track_caller]
+fn check_example(file: &str, machine: &Machine, expected: &str) {
+    let path = shared_dir().join("spec/examples").join(file);
+    let text = std::fs::read_to_string(&path).expect("the example is in ../shared");
+    check_on(machine, &text, expected);
+}
+
+/// The Syntec manual's flower slot (000:L1753-1807, spec 1.24, file
+/// examples/syntec/34-g41-flower-slot.nc), D01 = 5 as the header suggests: nine arcs, G41, every
+/// corner an outer one where the compensated circles meet (R10 arcs with the tool inside: R5;
+/// R15 arcs with the tool outside: R20). The corner points were worked out separately by
+/// intersecting the compensated circles, e.g. B': circles about (-0.1658,33.9986) R5 and about
+/// (18,18) R20 meet at (4.7250,32.9591).
+#[test]
+fn syntec_flower_slot_example_34() {
+    let machine = machine_with_radius(1, 5.0)
+        .with_profile(ProfileName::Syntec)
+        .unwrap();
+    check_example(
+        "syntec/34-g41-flower-slot.nc",
+        &machine,
+        "
+        select T1
+        spindle Clockwise 1000
+        rapid X0 Y0 Z10
+        coolant on
+        line X0 Y0 Z-10 F600
+        line X-0.0829 Y28.9993 Z-10 F600
+        arc ccw xy X4.725 Y32.9591 Z-10 C(-0.1658,33.9986,-10) F600
+        arc cw xy X33.0471 Y4.8249 Z-10 C(18,18,-10) F600
+        arc ccw xy X33.0471 Y-4.8249 Z-10 C(34.3589,0,-10) F600
+        arc cw xy X4.8249 Y-33.0471 Z-10 C(18,-18,-10) F600
+        arc ccw xy X-4.8249 Y-33.0471 Z-10 C(0,-34.3589,-10) F600
+        arc cw xy X-33.0471 Y-4.8249 Z-10 C(-18,-18,-10) F600
+        arc ccw xy X-33.0471 Y4.8249 Z-10 C(-34.3589,0,-10) F600
+        arc cw xy X-4.725 Y32.9591 Z-10 C(-18,18,-10) F600
+        arc ccw xy X0.0829 Y28.9993 Z-10 C(0.1658,33.9986,-10) F600
+        rapid X0.0829 Y28.9993 Z10
+        rapid X0 Y0 Z10
+        coolant off
+        spindle Stopped 1000
+        end M30",
+    );
+}
+
+/// The Syntec manual's contour (000:L1854-1880, spec 1.25, file
+/// examples/syntec/35-g43-g42-contour.nc), D01 = 10 and H01 = -10: G42 starts in a block
+/// without motion; the start-up rapid is followed by two blocks without motion in the plane
+/// (the G43 Z move and the plunge), so it ends perpendicular to itself at
+/// (10,5) + 10 (0.4472,-0.8944); the first cut goes from there to A' (10,-5). Outer corners:
+/// (120,-5); x=120 meets the 45-degree side's path through (117.0711,92.0711) at y=89.1421;
+/// that meets y=115 at x=94.1421; y=115 meets the R30 circle about (10,105) at x=38.2843; the
+/// circle meets x=0 at y=76.7157. The last side ends perpendicular at (0,5); G40 G49 moves
+/// back onto A and lifts by the length offset.
+#[test]
+fn syntec_contour_example_35() {
+    let mut machine = machine_with_radius(1, 10.0)
+        .with_profile(ProfileName::Syntec)
+        .unwrap();
+    set_offset(&mut machine, 1, -10.0, 10.0);
+    check_example(
+        "syntec/35-g43-g42-contour.nc",
+        &machine,
+        "
+        select T1
+        spindle Clockwise 1000
+        rapid X14.4721 Y-3.9443 Z15
+        rapid X14.4721 Y-3.9443 Z5
+        line X14.4721 Y-3.9443 Z-20 F1000
+        line X10 Y-5 Z-20 F1000
+        line X120 Y-5 Z-20 F1000
+        line X120 Y89.1421 Z-20 F1000
+        line X94.1421 Y115 Z-20 F1000
+        line X38.2843 Y115 Z-20 F1000
+        arc cw xy X0 Y76.7157 Z-20 C(10,105,-20) F1000
+        line X0 Y5 Z-20 F1000
+        rapid X0 Y5 Z5
+        rapid X0 Y5 Z15
+        rapid X10 Y5 Z15
+        spindle Stopped 1000
+        end M30",
+    );
+}
