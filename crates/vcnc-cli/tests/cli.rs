@@ -71,7 +71,7 @@ fn check_exits_0_when_clean_1_on_an_alarm_and_2_on_misuse() {
 
 #[test]
 fn check_json_lists_alarms_with_line_and_column() {
-    let bad = temp_program("bad2.nc", "G0 X1.\n  G45 D1 X5.\nM30\n");
+    let bad = temp_program("bad2.nc", "G0 X1.\n  G65 P9010 X5.\nM30\n");
     let out = vcnc(&["check", "--format", "json", &bad]);
     assert_eq!(out.status.code(), Some(1));
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();

@@ -92,6 +92,9 @@ pub enum AlarmCode {
     /// fit inside, or a corner where the compensated path would cut into the contour. FANUC
     /// alarms 033 and 041.
     CutterCompensation,
+    /// G45-G48 where they cannot work: with cutter compensation (Syntec COR-082), on an arc that
+    /// is not 90 or 270 degrees or is given by R (COR-081).
+    PositionOffset,
 }
 
 impl AlarmCode {
@@ -126,6 +129,7 @@ impl AlarmCode {
             BadDwell => "bad_dwell",
             ReadError => "read_error",
             CutterCompensation => "cutter_compensation",
+            PositionOffset => "position_offset",
         }
     }
 
@@ -160,6 +164,7 @@ impl AlarmCode {
             BadDwell => "V052",
             ReadError => "V090",
             CutterCompensation => "V060",
+            PositionOffset => "V061",
         }
     }
 
@@ -192,6 +197,7 @@ impl AlarmCode {
         AlarmCode::BadDwell,
         AlarmCode::ReadError,
         AlarmCode::CutterCompensation,
+        AlarmCode::PositionOffset,
     ];
 }
 

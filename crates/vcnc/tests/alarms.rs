@@ -17,7 +17,7 @@ fn first_alarm(program: &str) -> (AlarmCode, u32, String, String) {
 #[test]
 fn a_code_planned_for_later_is_named_with_its_issue() {
     let alarm = interpret_str(
-        "G0 X1.\nG45 D1 X5.\n",
+        "G0 X1.\nG65 P9010 X5.\n",
         &Machine::default(),
         Options::default(),
     )
@@ -26,9 +26,9 @@ fn a_code_planned_for_later_is_named_with_its_issue() {
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
     assert_eq!(
         alarm.message,
-        "G45 (tool position offset +1) is not supported yet"
+        "G65 (macro call) is not supported yet"
     );
-    assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #5"));
+    assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #3"));
     assert_eq!(alarm.span.unwrap().line, 2);
     assert_eq!(alarm.severity, Severity::Error);
 }

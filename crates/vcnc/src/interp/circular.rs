@@ -41,7 +41,11 @@ pub(crate) fn arc(
         },
         _ => direction,
     };
+    let position_offset = super::position_offset::factor(cmd);
     let spec = if let Some(r) = cmd.r() {
+        if let Some(factor) = position_offset {
+            return Err(super::position_offset::radius_refused(factor));
+        }
         ArcSpec::Radius {
             radius: exec.length(&r) * scaling.map_or(1.0, |s| s.arc_factor((a, b))),
             span: r.span,
@@ -64,6 +68,9 @@ pub(crate) fn arc(
             ca.map_or(0.0, |v| exec.length(&v)),
             cb.map_or(0.0, |v| exec.length(&v)),
         );
+        if let Some(factor) = position_offset {
+            offset = super::position_offset::centre(exec, factor, offset);
+        }
         if let Some(scaling) = &scaling {
             offset = scaling.arc_vector((a, b), offset);
         }
@@ -99,6 +106,9 @@ pub(crate) fn arc(
         direction,
         exec.profile.arc_radius_tolerance,
     )?;
+    if let Some(factor) = position_offset {
+        super::position_offset::check_quarter(factor, start, end, center_plane)?;
+    }
     let mut center = exec.position;
     center[a] = center_plane.0;
     center[b] = center_plane.1;

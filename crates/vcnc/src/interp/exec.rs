@@ -343,7 +343,12 @@ impl Executor {
         length_changed: bool,
         out: &mut Output,
     ) -> Result<(), Alarm> {
-        let target = self.target_program(cmd);
+        let mut target = self.target_program(cmd);
+        if let Some(factor) = super::position_offset::factor(cmd) {
+            let start = self.program_position();
+            let compensating = out.comp.is_some();
+            super::position_offset::apply(self, cmd, factor, compensating, &start, &mut target)?;
+        }
         if let Some(point) = super::polar::point(self, cmd) {
             self.polar = Some(point);
         }

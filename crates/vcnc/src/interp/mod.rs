@@ -22,6 +22,7 @@ mod frames;
 mod length;
 pub mod modal;
 mod polar;
+mod position_offset;
 mod reference;
 mod rotation;
 mod scaling;

@@ -186,6 +186,7 @@ impl ModalState {
             | CycleCancel
             | SetCoordinates
             | PresetCoordinates
+            | PositionOffset(_)
             | PolarCancel
             | Polar
             | ScalingCancel

@@ -117,6 +117,9 @@ pub enum GCode {
     Incremental,
     /// G92.
     SetCoordinates,
+    /// G45 (+1), G46 (-1), G47 (+2), G48 (-2): tool position offset by that many times the D
+    /// value along each axis's travel, one block.
+    PositionOffset(i8),
     /// G92.1.
     PresetCoordinates,
     /// G93.
@@ -193,6 +196,10 @@ impl GCode {
             Absolute => "absolute programming",
             Incremental => "incremental programming",
             SetCoordinates => "coordinate system setting",
+            PositionOffset(1) => "tool position offset +1",
+            PositionOffset(-1) => "tool position offset -1",
+            PositionOffset(2) => "tool position offset +2",
+            PositionOffset(_) => "tool position offset -2",
             PresetCoordinates => "work coordinate system preset",
             InverseTimeFeed => "inverse time feed",
             FeedPerMinute => "feed per minute",
@@ -240,7 +247,7 @@ impl GCode {
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
-            | PresetCoordinates => Group::NonModal,
+            | PresetCoordinates | PositionOffset(_) => Group::NonModal,
         }
     }
 }
@@ -295,6 +302,10 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         420 => CutterCompRight,
         430 => LengthCompPlus,
         440 => LengthCompMinus,
+        450 if profile.tool_position_offset => PositionOffset(1),
+        460 if profile.tool_position_offset => PositionOffset(-1),
+        470 if profile.tool_position_offset => PositionOffset(2),
+        480 if profile.tool_position_offset => PositionOffset(-2),
         490 => LengthCompCancel,
         500 => ScalingCancel,
         501 => MirrorCancel,
@@ -348,10 +359,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (370, None, "automatic tool length measurement"),
     (371, None, "automatic tool length measurement II"),
     (434, None, "tool centre point control"),
-    (450, Some(5), "tool position offset +1"),
-    (460, Some(5), "tool position offset -1"),
-    (470, Some(5), "tool position offset +2"),
-    (480, Some(5), "tool position offset -2"),
     (531, None, "tool axis direction control"),
     (650, Some(3), "macro call"),
     (660, Some(3), "modal macro call"),

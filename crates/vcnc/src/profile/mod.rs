@@ -232,6 +232,10 @@ pub struct Profile {
     /// ends perpendicular to itself (cutter compensation's look-ahead; FANUC: 2).
     #[serde(default = "default_cutter_comp_look_ahead")]
     pub cutter_comp_look_ahead: u32,
+    /// G45-G48 are tool position offsets (FANUC family, Syntec, Mitsubishi); Haas has no such
+    /// codes (its G47 engraves text).
+    #[serde(default = "default_true")]
+    pub tool_position_offset: bool,
     /// M codes a block may hold; when a block has more, only the last ones run (FANUC 0M: one,
     /// spec A.15 and example fanuc0m/06).
     #[serde(default = "default_m_codes_per_block")]
@@ -259,6 +263,10 @@ pub struct Profile {
     pub subprogram_m_codes: Vec<u32>,
     /// Power-on modal state.
     pub power_on: PowerOn,
+}
+
+fn default_true() -> bool {
+    true
 }
 
 fn default_cutter_comp_look_ahead() -> u32 {
