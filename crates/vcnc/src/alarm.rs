@@ -95,6 +95,9 @@ pub enum AlarmCode {
     /// G45-G48 where they cannot work: with cutter compensation (Syntec COR-082), on an arc that
     /// is not 90 or 270 degrees or is given by R (COR-081).
     PositionOffset,
+    /// A canned cycle without the data it needs (Z, Q), with a bad K, or a plane change inside
+    /// a cycle.
+    CycleData,
 }
 
 impl AlarmCode {
@@ -130,6 +133,7 @@ impl AlarmCode {
             ReadError => "read_error",
             CutterCompensation => "cutter_compensation",
             PositionOffset => "position_offset",
+            CycleData => "cycle_data",
         }
     }
 
@@ -165,6 +169,7 @@ impl AlarmCode {
             ReadError => "V090",
             CutterCompensation => "V060",
             PositionOffset => "V061",
+            CycleData => "V070",
         }
     }
 
@@ -198,6 +203,7 @@ impl AlarmCode {
         AlarmCode::ReadError,
         AlarmCode::CutterCompensation,
         AlarmCode::PositionOffset,
+        AlarmCode::CycleData,
     ];
 }
 

@@ -24,10 +24,7 @@ fn a_code_planned_for_later_is_named_with_its_issue() {
     .find_map(Result::err)
     .unwrap();
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
-    assert_eq!(
-        alarm.message,
-        "G65 (macro call) is not supported yet"
-    );
+    assert_eq!(alarm.message, "G65 (macro call) is not supported yet");
     assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #3"));
     assert_eq!(alarm.span.unwrap().line, 2);
     assert_eq!(alarm.severity, Severity::Error);

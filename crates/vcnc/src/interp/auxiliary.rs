@@ -4,7 +4,7 @@
 //! after it. M codes the profile does not know are passed on to the machine as auxiliary events,
 //! as a real control passes them to its PLC.
 
-use super::decode::Command;
+use super::decode::{Command, Value};
 use super::exec::{end_program, stop, Executor, Flow};
 use super::modal::{SpindleMode, Units};
 use super::Output;
@@ -148,21 +148,7 @@ pub(crate) fn dwell(
     out: &mut Output,
 ) -> Result<(), Alarm> {
     let seconds = if let Some(p) = cmd.p() {
-        let n = p.number;
-        match exec.profile.dwell_p {
-            DwellP::MillisecondsStrict if n.decimal_point && n.value.fract() != 0.0 => {
-                return Err(Alarm::error(
-                    AlarmCode::DecimalPointNotAllowed,
-                    p.span,
-                    "G04 P is a whole number of milliseconds",
-                )
-                .with_help("write P1500 for 1.5 s, or X1.5"));
-            }
-            DwellP::MillisecondsStrict => n.value / 1000.0,
-            DwellP::MillisecondsTruncated => n.value.trunc() / 1000.0,
-            DwellP::SecondsWithPoint if n.decimal_point => n.value,
-            DwellP::SecondsWithPoint => n.value / 1000.0,
-        }
+        p_seconds(exec.profile.dwell_p, p)?
     } else if let Some(x) = cmd.axis(Axis::X.index()) {
         let n = x.number;
         if exec.profile.dwell_x_before_g04_is_increments && x.order < g04_order && n.decimal_point {
@@ -190,4 +176,26 @@ pub(crate) fn dwell(
     }
     out.push(cmd, SegmentKind::Dwell { seconds });
     Ok(())
+}
+
+/// A dwell's P in seconds, read as `rule` says.
+///
+/// # Errors
+/// A fraction where the control takes whole milliseconds.
+pub(crate) fn p_seconds(rule: DwellP, p: Value) -> Result<f64, Alarm> {
+    let n = p.number;
+    Ok(match rule {
+        DwellP::MillisecondsStrict if n.decimal_point && n.value.fract() != 0.0 => {
+            return Err(Alarm::error(
+                AlarmCode::DecimalPointNotAllowed,
+                p.span,
+                "P is a whole number of milliseconds",
+            )
+            .with_help("write P1500 for 1.5 s"));
+        }
+        DwellP::MillisecondsStrict => n.value / 1000.0,
+        DwellP::MillisecondsTruncated => n.value.trunc() / 1000.0,
+        DwellP::SecondsWithPoint if n.decimal_point => n.value,
+        DwellP::SecondsWithPoint => n.value / 1000.0,
+    })
 }

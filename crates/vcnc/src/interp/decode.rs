@@ -41,6 +41,8 @@ pub(crate) struct Command {
     pub(crate) sequence: Option<u32>,
     /// G09 in the block.
     pub(crate) exact_stop_once: bool,
+    /// Syntec's `F2=`: a canned cycle's retract feed.
+    pub(crate) retract_feed: Option<Value>,
     /// Per address letter A-Z: 1 + index into `values`, 0 when absent (G, M and N are kept apart).
     letters: [u8; 26],
     /// Bit i set when the axis word of axis index i is present.
@@ -162,6 +164,7 @@ impl Command {
         self.span = Span::default();
         self.sequence = None;
         self.exact_stop_once = false;
+        self.retract_feed = None;
         self.letters = [0; 26];
         self.axis_mask = 0;
         self.values.clear();
@@ -332,6 +335,7 @@ pub(crate) fn decode(
                 whole(word)?;
                 out.set(word, value)?;
             }
+            b'F' if word.index == 2 => out.retract_feed = Some(value),
             b'F' | b'S' => {
                 return Err(Alarm::not_supported(
                     word.span,

@@ -40,6 +40,8 @@ pub(crate) struct Executor {
     pub(crate) machine_axes: [bool; AXES],
     /// G16: the last polar point, while polar coordinate command is on.
     pub(crate) polar: Option<super::polar::PolarPoint>,
+    /// The canned cycle in force.
+    pub(crate) cycle: Option<super::cycles::Cycle>,
 }
 
 /// What one block did to the flow of the program.
@@ -90,6 +92,7 @@ impl Executor {
             intermediate: [None; AXES],
             machine_axes: std::array::from_fn(|i| machine.axes[i].is_some()),
             polar: None,
+            cycle: None,
             profile,
             machine: machine.clone(),
         }
@@ -106,6 +109,7 @@ impl Executor {
     /// The alarm that stops the program at this block.
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.apply_modal(cmd)?;
+        super::cycles::apply_codes(self, cmd)?;
         self.set_feed(cmd)?;
         if cmd.has_auxiliary_words() {
             super::auxiliary::speed_and_tool(self, cmd, out)?;
@@ -169,7 +173,9 @@ impl Executor {
                 Some(GCode::Dwell) => true,
                 _ => false,
             };
-        if !consumed && (cmd.has_axis_words() || has_center_words(cmd)) {
+        if !consumed && self.cycle.is_some() {
+            super::cycles::run(self, cmd, out)?;
+        } else if !consumed && (cmd.has_axis_words() || has_center_words(cmd)) {
             self.motion(cmd, length_changed, out)?;
         } else if length_changed && !consumed {
             super::length::move_to_new_vector(self, cmd, out)?;

@@ -15,6 +15,7 @@ mod circular;
 mod comp;
 mod compensation;
 mod coords;
+mod cycles;
 mod data_input;
 mod decode;
 mod exec;

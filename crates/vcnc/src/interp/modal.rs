@@ -184,6 +184,7 @@ impl ModalState {
             | LocalCoordinates
             | MachineCoordinates
             | CycleCancel
+            | Cycle(_)
             | SetCoordinates
             | PresetCoordinates
             | PositionOffset(_)

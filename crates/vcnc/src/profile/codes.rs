@@ -111,6 +111,8 @@ pub enum GCode {
     ContinuousMode,
     /// G80.
     CycleCancel,
+    /// G73, G74, G76, G81 ... G86, G89: a canned cycle (group 09).
+    Cycle(CycleKind),
     /// G90.
     Absolute,
     /// G91.
@@ -193,6 +195,7 @@ impl GCode {
             TappingMode => "tapping mode",
             ContinuousMode => "cutting (continuous) mode",
             CycleCancel => "canned cycle cancel",
+            Cycle(kind) => kind.description(),
             Absolute => "absolute programming",
             Incremental => "incremental programming",
             SetCoordinates => "coordinate system setting",
@@ -232,7 +235,7 @@ impl GCode {
             Inch | Metric => Group::Units,
             CutterCompCancel | CutterCompLeft | CutterCompRight => Group::CutterComp,
             LengthCompPlus | LengthCompMinus | LengthCompCancel => Group::LengthComp,
-            CycleCancel => Group::Cycle,
+            CycleCancel | Cycle(_) => Group::Cycle,
             ReturnToInitialLevel | ReturnToRLevel => Group::CycleReturn,
             ScalingCancel | Scale => Group::Scaling,
             ModalMacroCancel => Group::ModalMacro,
@@ -261,6 +264,50 @@ pub enum GLookup {
     NotSupported(Option<u32>),
     /// A code this control does not have.
     Unknown,
+}
+
+/// The canned cycles vcnc runs (spec iso-syntec-milling.md 1.40-1.52, iso-fanuc0m-mitsubishi.md
+/// A.32-A.36).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CycleKind {
+    /// G73: feed a peck, rapid back a little, feed on.
+    HighSpeedPeck,
+    /// G74: tap in with the spindle counter-clockwise, reverse, feed out.
+    LeftHandTap,
+    /// G76: bore, orient the spindle, shift off the wall, rapid out.
+    FineBoring,
+    /// G81: feed in, rapid out.
+    Drill,
+    /// G82: feed in, dwell, rapid out.
+    DrillDwell,
+    /// G83: feed a peck, rapid out to R, rapid back in, feed on.
+    Peck,
+    /// G84: tap in with the spindle clockwise, reverse, feed out.
+    Tap,
+    /// G85: feed in, feed out.
+    Bore,
+    /// G86: feed in, stop the spindle, rapid out.
+    BoreSpindleStop,
+    /// G89: feed in, dwell, feed out.
+    BoreDwell,
+}
+
+impl CycleKind {
+    /// What the cycle does, in a few words.
+    pub fn description(self) -> &'static str {
+        match self {
+            CycleKind::HighSpeedPeck => "high-speed peck drilling cycle",
+            CycleKind::LeftHandTap => "left-hand tapping cycle",
+            CycleKind::FineBoring => "fine boring cycle",
+            CycleKind::Drill => "drilling cycle",
+            CycleKind::DrillDwell => "drilling cycle with dwell",
+            CycleKind::Peck => "peck drilling cycle",
+            CycleKind::Tap => "tapping cycle",
+            CycleKind::Bore => "boring cycle",
+            CycleKind::BoreSpindleStop => "boring cycle, spindle stop",
+            CycleKind::BoreDwell => "boring cycle with dwell",
+        }
+    }
 }
 
 /// A G code number as people write it: `G01`, `G54.1`.
@@ -324,7 +371,17 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         670 => ModalMacroCancel,
         680 => Rotate,
         690 => RotationCancel,
+        730 => Cycle(CycleKind::HighSpeedPeck),
+        740 => Cycle(CycleKind::LeftHandTap),
+        760 => Cycle(CycleKind::FineBoring),
         800 => CycleCancel,
+        810 => Cycle(CycleKind::Drill),
+        820 => Cycle(CycleKind::DrillDwell),
+        830 => Cycle(CycleKind::Peck),
+        840 => Cycle(CycleKind::Tap),
+        850 => Cycle(CycleKind::Bore),
+        860 => Cycle(CycleKind::BoreSpindleStop),
+        890 => Cycle(CycleKind::BoreDwell),
         900 => Absolute,
         910 => Incremental,
         920 => SetCoordinates,
@@ -363,18 +420,8 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (650, Some(3), "macro call"),
     (660, Some(3), "modal macro call"),
     (682, None, "tilted working plane"),
-    (730, Some(4), "high-speed peck drilling cycle"),
-    (740, Some(4), "left-hand tapping cycle"),
-    (760, Some(4), "fine boring cycle"),
-    (810, Some(4), "drilling cycle"),
-    (820, Some(4), "drilling cycle with dwell"),
-    (830, Some(4), "peck drilling cycle"),
-    (840, Some(4), "tapping cycle"),
-    (850, Some(4), "boring cycle"),
-    (860, Some(4), "boring cycle, spindle stop"),
     (870, Some(4), "back boring cycle"),
     (880, Some(4), "boring cycle, manual retract"),
-    (890, Some(4), "boring cycle with dwell"),
     (1201, None, "machining condition selection"),
     (1340, Some(4), "bolt hole circle pattern"),
     (1350, Some(4), "holes on a line at an angle"),
@@ -386,6 +433,7 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
 /// Codes that exist only where a profile says so: (code, the profile's switch, issue, meaning).
 fn not_yet_on(tenths: i32, profile: &Profile) -> Option<(Option<u32>, &'static str)> {
     match tenths {
+        470 if !profile.tool_position_offset => Some((None, "text engraving")),
         120 if profile.g12_g13_circle_cutting => Some((Some(4), "circle cutting CW")),
         130 if profile.g12_g13_circle_cutting => Some((Some(4), "circle cutting CCW")),
         _ => NOT_YET
@@ -598,7 +646,18 @@ mod tests {
             classify_g(410, &fanuc),
             GLookup::Known(GCode::CutterCompLeft)
         );
-        assert_eq!(classify_g(810, &fanuc), GLookup::NotSupported(Some(4)));
+        assert_eq!(
+            classify_g(810, &fanuc),
+            GLookup::Known(GCode::Cycle(CycleKind::Drill))
+        );
+        assert_eq!(classify_g(870, &fanuc), GLookup::NotSupported(Some(4)));
         assert_eq!(classify_g(650, &fanuc), GLookup::NotSupported(Some(3)));
+        // Haas G47 engraves text; elsewhere G47 is a tool position offset.
+        let haas = Profile::builtin(ProfileName::Haas);
+        assert_eq!(classify_g(470, &haas), GLookup::NotSupported(None));
+        assert_eq!(
+            classify_g(470, &fanuc),
+            GLookup::Known(GCode::PositionOffset(2))
+        );
     }
 }

@@ -9,8 +9,8 @@
 mod codes;
 
 pub use codes::{
-    classify_g, classify_m, g_name, not_supported_description, supported_codes_markdown, GCode,
-    GLookup, Group, MCode, MLookup,
+    classify_g, classify_m, g_name, not_supported_description, supported_codes_markdown, CycleKind,
+    GCode, GLookup, Group, MCode, MLookup,
 };
 
 use crate::syntax::iso::SyntaxOptions;
@@ -104,6 +104,21 @@ pub enum DwellP {
     MillisecondsTruncated,
     /// Milliseconds without a decimal point, seconds with one (Haas, Mitsubishi).
     SecondsWithPoint,
+}
+
+/// Where G76 shifts the tool at the hole bottom: along the plane's first or second axis.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShiftDirection {
+    /// +X in G17 (the plane's first axis, plus).
+    #[default]
+    PlusFirst,
+    /// -X in G17.
+    MinusFirst,
+    /// +Y in G17.
+    PlusSecond,
+    /// -Y in G17.
+    MinusSecond,
 }
 
 /// How G00 moves the axes.
@@ -236,6 +251,25 @@ pub struct Profile {
     /// codes (its G47 engraves text).
     #[serde(default = "default_true")]
     pub tool_position_offset: bool,
+    /// Canned cycles drill along the axis normal to the plane (G17 Z, G18 Y, G19 X); when false,
+    /// always along Z (FANUC 0M, spec A.32).
+    #[serde(default = "default_true")]
+    pub cycle_plane_follows_g17: bool,
+    /// G73: how far the tool backs off after each peck, mm (FANUC parameter 5114, 0M 0531,
+    /// Syntec Pr4002).
+    #[serde(default = "default_peck_distance")]
+    pub peck_retract: f64,
+    /// G83: how far above the last depth the rapid back into the hole stops, mm (FANUC 5115,
+    /// Syntec Pr4002).
+    #[serde(default = "default_peck_distance")]
+    pub peck_clearance: f64,
+    /// G76: the direction of the shift off the wall at the hole bottom (Syntec Pr4020, FANUC
+    /// RD1/RD2), in the positioning plane.
+    #[serde(default)]
+    pub boring_shift: ShiftDirection,
+    /// How a canned cycle's P is read; when absent, as G04's P.
+    #[serde(default)]
+    pub cycle_dwell_p: Option<DwellP>,
     /// M codes a block may hold; when a block has more, only the last ones run (FANUC 0M: one,
     /// spec A.15 and example fanuc0m/06).
     #[serde(default = "default_m_codes_per_block")]
@@ -263,6 +297,10 @@ pub struct Profile {
     pub subprogram_m_codes: Vec<u32>,
     /// Power-on modal state.
     pub power_on: PowerOn,
+}
+
+fn default_peck_distance() -> f64 {
+    1.0
 }
 
 fn default_true() -> bool {

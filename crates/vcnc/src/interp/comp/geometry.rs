@@ -25,6 +25,11 @@ use std::ops::{Add, Mul, Neg, Sub};
 /// Lengths below this are zero, in mm: far below a control's least increment.
 pub(crate) const EPSILON: f64 = 1e-9;
 
+/// How far beyond an element's end a corner point may lie and still count as on the element,
+/// mm. Programs written to 0.0001 inch have arcs whose ends are that far apart from where the
+/// next arc starts (corpus ramos_O1006); a control does not call that interference.
+const SPAN_TOLERANCE: f64 = 0.005;
+
 /// A point or vector in the compensation plane.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub(crate) struct V2 {
@@ -268,13 +273,16 @@ impl Element {
         }
     }
 
-    /// True when `point` (on the element's line or circle) lies between its ends.
+    /// True when `point` (on the element's line or circle) lies between its ends, or at most
+    /// [`SPAN_TOLERANCE`] beyond one.
     fn spans(&self, point: V2) -> bool {
         match *self {
             Element::Line { start, end } => {
                 let d = end - start;
-                let t = (point - start).dot(d) / d.dot(d);
-                (-1e-9..=1.0 + 1e-9).contains(&t)
+                let length = d.length();
+                let t = (point - start).dot(d) / (length * length);
+                let margin = SPAN_TOLERANCE / length;
+                (-margin..=1.0 + margin).contains(&t)
             }
             Element::Arc {
                 start,
@@ -292,7 +300,7 @@ impl Element {
                     angle(point - center),
                 );
                 let full = start.distance(end) < EPSILON;
-                let tolerance = 1e-9;
+                let tolerance = SPAN_TOLERANCE / start.distance(center).max(EPSILON);
                 full || if ccw {
                     sweep(a0, a) <= sweep(a0, a1) + tolerance || sweep(a, a0) < tolerance
                 } else {

@@ -1,0 +1,402 @@
+//! Canned cycles (issue #4): G73, G74, G76, G81-G86, G89 with G98/G99, cancelled by G80 or any
+//! group-01 code (spec iso-syntec-milling.md 1.40-1.52, iso-fanuc0m-mitsubishi.md A.32-A.36).
+//!
+//! A cycle block positions over the hole (rapid, in the plane), goes down to the R level
+//! (rapid), machines to the bottom Z as the cycle says, and returns to the R level (G99) or the
+//! initial level (G98): the drilling-axis position when the cycle mode was entered. Every move
+//! is an ordinary rapid or feed of the block, so cutter compensation, the planner and the
+//! trace need nothing new. Hole data (R, Z, Q, P) are modal until G80; K repeats the block
+//! (each time moving by the block's X/Y in G91), K0 only stores the data.
+
+use super::decode::Command;
+use super::exec::Executor;
+use super::modal::{CycleReturn, DistanceMode};
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::{Axis, AXES};
+use crate::motion::{Plane, SegmentKind, SpindleState};
+use crate::profile::{CycleKind, GCode, Group, ShiftDirection};
+use crate::source::Span;
+
+/// The cycle mode in force.
+#[derive(Clone, Debug)]
+pub(crate) struct Cycle {
+    kind: CycleKind,
+    /// The plane's first and second axis (positioning) and the drilling axis.
+    axes: (usize, usize, usize),
+    /// The plane the cycle started in: changing it needs G80 first.
+    plane: Plane,
+    /// The initial level: the drilling-axis program coordinate when the mode was entered.
+    initial: f64,
+    /// R as last written, mm: a level (G90) or the distance from the initial level (G91).
+    r: Option<f64>,
+    /// Z as last written, mm: the bottom (G90) or the distance from the R level (G91).
+    z: Option<(f64, Span)>,
+    /// Q, mm: the peck depth (G73, G83) or the shift (G76).
+    q: Option<f64>,
+    /// P, seconds: the dwell at the bottom.
+    p: f64,
+}
+
+/// G80, a cycle code, or a group-01 code in the block: the cycle mode starts, changes or ends.
+///
+/// # Errors
+/// A plane change while a cycle is in force.
+pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
+    if cmd.group(Group::Motion).is_some() {
+        // Any group-01 code cancels the cycle, also one in the cycle's own block (Syntec
+        // restriction 4, FANUC).
+        exec.cycle = None;
+        return Ok(());
+    }
+    let Some(g) = cmd.group(Group::Cycle) else {
+        if let Some(cycle) = &exec.cycle {
+            if exec.modal.plane != cycle.plane && exec.profile.cycle_plane_follows_g17 {
+                return Err(Alarm::error(
+                    AlarmCode::CycleData,
+                    cmd.group(Group::Plane).map_or(cmd.span, |g| g.span),
+                    "the plane cannot change while a canned cycle is in force",
+                )
+                .with_help("cancel the cycle with G80 first"));
+            }
+        }
+        return Ok(());
+    };
+    match g.code {
+        GCode::CycleCancel => exec.cycle = None,
+        GCode::Cycle(kind) => match exec.cycle.as_mut() {
+            Some(cycle) => cycle.kind = kind,
+            None => {
+                let (a, b, d) = if exec.profile.cycle_plane_follows_g17 {
+                    exec.modal.plane.axes()
+                } else {
+                    Plane::Xy.axes()
+                };
+                exec.cycle = Some(Cycle {
+                    kind,
+                    axes: (a, b, d),
+                    plane: exec.modal.plane,
+                    initial: exec.program_position()[d],
+                    r: None,
+                    z: None,
+                    q: None,
+                    p: 0.0,
+                });
+            }
+        },
+        _ => {}
+    }
+    Ok(())
+}
+
+/// A block in cycle mode: stores its hole data and machines its holes. A block without a
+/// position or hole data (X, Y, Z, R or another axis) does not drill.
+///
+/// # Errors
+/// Missing or bad hole data, no feed.
+pub(crate) fn run(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+    let Some(mut cycle) = exec.cycle.take() else {
+        return Ok(());
+    };
+    if out.comp.is_some() && (cmd.has_axis_words() || cmd.r().is_some()) {
+        // Cutter compensation does not apply to a cycle's moves (spec 1.40 restriction 5): it is
+        // cancelled for the block and starts up again after it.
+        out.suspend_compensation()?;
+    }
+    let result = holes(exec, &mut cycle, cmd, out);
+    exec.cycle = Some(cycle);
+    result
+}
+
+fn holes(
+    exec: &mut Executor,
+    cycle: &mut Cycle,
+    cmd: &Command,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    if !cmd.has_axis_words() && cmd.r().is_none() {
+        return Ok(());
+    }
+    store(exec, cycle, cmd)?;
+    let repeats = match cmd.word(b'K') {
+        Some(k) => match k.number.whole() {
+            Some(n) if n >= 0 => n,
+            _ => {
+                return Err(Alarm::error(
+                    AlarmCode::CycleData,
+                    k.span,
+                    "K, the number of repeats, is a whole number from 0",
+                ))
+            }
+        },
+        None => 1,
+    };
+    let (a, b, d) = cycle.axes;
+    let incremental = exec.modal.distance == DistanceMode::Incremental;
+    let Some((z, _)) = cycle.z else {
+        return Err(Alarm::error(
+            AlarmCode::CycleData,
+            cmd.span,
+            "a canned cycle needs Z, the hole bottom",
+        ));
+    };
+    let r_level = match (cycle.r, incremental) {
+        (Some(r), false) => r,
+        (Some(r), true) => cycle.initial + r,
+        (None, _) => cycle.initial,
+    };
+    let bottom = if incremental { r_level + z } else { z };
+    if matches!(cycle.kind, CycleKind::HighSpeedPeck | CycleKind::Peck)
+        && cycle.q.map_or(true, |q| q <= 0.0)
+    {
+        return Err(Alarm::error(
+            AlarmCode::CycleData,
+            cmd.span,
+            "a peck drilling cycle needs Q, the depth of each peck, above zero",
+        )
+        .with_help("FANUC alarm 045"));
+    }
+    for _ in 0..repeats {
+        // Over the hole, at the level the last hole returned to.
+        let mut target = exec.program_position();
+        for axis in [a, b] {
+            if let Some(word) = cmd.axis(axis) {
+                let v = exec.axis_value(Axis::ALL[axis], &word);
+                target[axis] = if incremental { target[axis] + v } else { v };
+            }
+        }
+        // Other axes (a rotary table, say) move with the positioning.
+        for axis in cmd.axes_present() {
+            let i = axis.index();
+            if let (false, Some(word)) = ([a, b, d].contains(&i), cmd.axis(i)) {
+                let v = exec.axis_value(axis, &word);
+                target[i] = if incremental { target[i] + v } else { v };
+            }
+        }
+        rapid(exec, cmd, out, target)?;
+        let back = match exec.modal.cycle_return {
+            CycleReturn::InitialLevel => cycle.initial,
+            CycleReturn::RLevel => r_level,
+        };
+        let mut hole = Hole {
+            exec: &mut *exec,
+            cmd,
+            out: &mut *out,
+            d,
+            r_level,
+            bottom,
+            back,
+        };
+        hole.run(cycle)?;
+    }
+    Ok(())
+}
+
+/// Stores the block's hole data.
+fn store(exec: &Executor, cycle: &mut Cycle, cmd: &Command) -> Result<(), Alarm> {
+    if let Some(r) = cmd.r() {
+        cycle.r = Some(exec.length(&r));
+    }
+    if let Some(z) = cmd.axis(cycle.axes.2) {
+        cycle.z = Some((exec.axis_value(Axis::ALL[cycle.axes.2], &z), z.span));
+    }
+    if let Some(q) = cmd.word(b'Q') {
+        // A minus sign is ignored (spec 1.41).
+        cycle.q = Some(exec.length(&q).abs());
+    }
+    if let Some(p) = cmd.p() {
+        let rule = exec.profile.cycle_dwell_p.unwrap_or(exec.profile.dwell_p);
+        cycle.p = super::auxiliary::p_seconds(rule, p)?;
+    }
+    if let Some(f2) = cmd.retract_feed {
+        // Syntec's retract feed works only in its fast drilling mode (Pr4008 = 1); in the
+        // normal mode vcnc runs, the retract stays a rapid. It must still be whole (COR-045).
+        if f2.number.value.fract() != 0.0 {
+            return Err(
+                Alarm::error(AlarmCode::CycleData, f2.span, "F2= must be a whole number")
+                    .with_help("Syntec alarm COR-045"),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// One hole being machined: the block and the levels on the drilling axis, program
+/// coordinates.
+struct Hole<'a> {
+    exec: &'a mut Executor,
+    cmd: &'a Command,
+    out: &'a mut Output,
+    d: usize,
+    r_level: f64,
+    bottom: f64,
+    /// Where the tool returns: the R level (G99) or the initial level (G98).
+    back: f64,
+}
+
+impl Hole<'_> {
+    /// From over the hole: down to R, the cycle's own moves, back up.
+    fn run(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
+        let (r, bottom, back) = (self.r_level, self.bottom, self.back);
+        self.rapid_to(r)?;
+        match cycle.kind {
+            CycleKind::Drill => {
+                self.feed_to(bottom)?;
+                self.rapid_to(back)
+            }
+            CycleKind::DrillDwell => {
+                self.feed_to(bottom)?;
+                self.dwell(cycle.p);
+                self.rapid_to(back)
+            }
+            CycleKind::HighSpeedPeck | CycleKind::Peck => {
+                self.peck(cycle)?;
+                self.rapid_to(back)
+            }
+            CycleKind::Bore => {
+                self.feed_to(bottom)?;
+                self.feed_to(r)?;
+                self.rapid_to(back)
+            }
+            CycleKind::BoreDwell => {
+                self.feed_to(bottom)?;
+                self.dwell(cycle.p);
+                self.feed_to(r)?;
+                self.rapid_to(back)
+            }
+            CycleKind::BoreSpindleStop => {
+                let running = self.exec.spindle;
+                self.feed_to(bottom)?;
+                self.spindle(SpindleState::Stopped);
+                self.rapid_to(back)?;
+                self.spindle(running);
+                Ok(())
+            }
+            CycleKind::Tap | CycleKind::LeftHandTap => {
+                let (forward, reverse) = if cycle.kind == CycleKind::Tap {
+                    (SpindleState::Clockwise, SpindleState::CounterClockwise)
+                } else {
+                    (SpindleState::CounterClockwise, SpindleState::Clockwise)
+                };
+                // Spec 1.42 type I: dwell and reverse at the bottom and again at R.
+                self.feed_to(bottom)?;
+                self.dwell(cycle.p);
+                self.spindle(reverse);
+                self.feed_to(r)?;
+                self.dwell(cycle.p);
+                self.spindle(forward);
+                self.rapid_to(back)
+            }
+            CycleKind::FineBoring => {
+                let running = self.exec.spindle;
+                self.feed_to(bottom)?;
+                self.dwell(cycle.p);
+                self.spindle(SpindleState::Oriented);
+                // Off the wall, out, and back over the hole's centre.
+                let (a, b, _) = cycle.axes;
+                let (da, db) = shift(self.exec, cycle);
+                let over = self.exec.program_position();
+                let mut off = over;
+                off[a] += da;
+                off[b] += db;
+                rapid(self.exec, self.cmd, self.out, off)?;
+                self.rapid_to(back)?;
+                let mut centre = self.exec.program_position();
+                (centre[a], centre[b]) = (over[a], over[b]);
+                rapid(self.exec, self.cmd, self.out, centre)?;
+                self.spindle(running);
+                Ok(())
+            }
+        }
+    }
+
+    /// G73 and G83 from the R level to the bottom, peck by peck; the last peck is shorter.
+    fn peck(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
+        let q = cycle.q.unwrap_or(f64::INFINITY);
+        let down = if self.bottom < self.r_level {
+            -1.0
+        } else {
+            1.0
+        };
+        let mut depth = self.r_level;
+        loop {
+            let next = if (self.bottom - depth).abs() <= q {
+                self.bottom
+            } else {
+                depth + down * q
+            };
+            if depth != self.r_level && cycle.kind == CycleKind::Peck {
+                // G83: back into the hole, stopping the clearance short of the last depth.
+                self.rapid_to(depth - down * self.exec.profile.peck_clearance)?;
+            }
+            self.feed_to(next)?;
+            depth = next;
+            if depth == self.bottom {
+                return Ok(());
+            }
+            match cycle.kind {
+                CycleKind::Peck => self.rapid_to(self.r_level)?,
+                _ => self.rapid_to(depth - down * self.exec.profile.peck_retract)?,
+            }
+        }
+    }
+
+    fn rapid_to(&mut self, level: f64) -> Result<(), Alarm> {
+        let target = self.at(level);
+        rapid(self.exec, self.cmd, self.out, target)
+    }
+
+    fn feed_to(&mut self, level: f64) -> Result<(), Alarm> {
+        let target = self.at(level);
+        let to = self.exec.machine_target(&target, true);
+        if to == self.exec.position {
+            return Ok(());
+        }
+        let feed = self.exec.cutting_feed(self.cmd)?;
+        let motion = self.exec.move_to(to, self.cmd)?;
+        self.out.push(self.cmd, SegmentKind::Line { motion, feed });
+        Ok(())
+    }
+
+    /// Where the tool is, with the drilling axis at `level` (program coordinates).
+    fn at(&self, level: f64) -> [f64; AXES] {
+        let mut target = self.exec.program_position();
+        target[self.d] = level;
+        target
+    }
+
+    fn dwell(&mut self, seconds: f64) {
+        if seconds > 0.0 {
+            self.out.push(self.cmd, SegmentKind::Dwell { seconds });
+        }
+    }
+
+    fn spindle(&mut self, state: SpindleState) {
+        self.exec.spindle = state;
+        let speed = self.exec.speed;
+        self.out
+            .push(self.cmd, SegmentKind::Spindle { state, speed });
+    }
+}
+
+/// A rapid to a program-coordinate point.
+fn rapid(
+    exec: &mut Executor,
+    cmd: &Command,
+    out: &mut Output,
+    target: [f64; AXES],
+) -> Result<(), Alarm> {
+    let to = exec.machine_target(&target, true);
+    exec.rapid_to(to, cmd, out)
+}
+
+/// G76's shift at the bottom: Q along the profile's direction, in the positioning plane.
+fn shift(exec: &Executor, cycle: &Cycle) -> (f64, f64) {
+    let q = cycle.q.unwrap_or(0.0);
+    match exec.profile.boring_shift {
+        ShiftDirection::PlusFirst => (q, 0.0),
+        ShiftDirection::MinusFirst => (-q, 0.0),
+        ShiftDirection::PlusSecond => (0.0, q),
+        ShiftDirection::MinusSecond => (0.0, -q),
+    }
+}
