@@ -169,3 +169,225 @@ fn g76_fine_boring() {
         ),
     );
 }
+
+/// The head of the examples that start the spindle after moving to the initial point.
+fn started(state: &str) -> Vec<String> {
+    vec![
+        "rapid X0 Y0 Z10".to_string(),
+        format!("spindle {state} 500"),
+    ]
+}
+
+fn run_example(file: &str, state: &str, count: usize, body: impl Fn(&Hole) -> Vec<String>) {
+    let head = started(state);
+    let head: Vec<&str> = head.iter().map(String::as_str).collect();
+    let stop = "spindle Stopped 500";
+    example(file, &frame(&head, &holes(count), body, &[stop, "end M30"]));
+}
+
+/// Spec 1.45: G01 to Z, dwell P2 (2 s), G00 out.
+#[test]
+fn g82_drilling_with_dwell() {
+    run_example("54-g82-dwell-drill.nc", "Clockwise", 4, |h| {
+        vec![feed(h, h.bottom), "dwell 2".into(), rapid(h, h.back)]
+    });
+}
+
+/// Spec 1.42 type I: tapping in with the spindle counter-clockwise, dwell P2 and reverse at
+/// the bottom, G01 out to R, dwell and reverse again, then up to the return level.
+#[test]
+fn g74_left_hand_tapping() {
+    run_example("51-g74-left-tap.nc", "CounterClockwise", 5, |h| {
+        let mut v = vec![
+            feed(h, h.bottom),
+            "dwell 2".into(),
+            "spindle Clockwise 500".into(),
+            feed(h, R),
+            "dwell 2".into(),
+            "spindle CounterClockwise 500".into(),
+        ];
+        if h.back != R {
+            v.push(rapid(h, h.back));
+        }
+        v
+    });
+}
+
+/// Spec 1.47: as G74 with the spindle clockwise; no P, no dwell.
+#[test]
+fn g84_tapping() {
+    run_example("56-g84-tap.nc", "Clockwise", 4, |h| {
+        let mut v = vec![
+            feed(h, h.bottom),
+            "spindle CounterClockwise 500".into(),
+            feed(h, R),
+            "spindle Clockwise 500".into(),
+        ];
+        if h.back != R {
+            v.push(rapid(h, h.back));
+        }
+        v
+    });
+}
+
+/// Spec 1.48: G01 in, G01 out to R, G00 to the initial level under G98.
+#[test]
+fn g85_boring() {
+    run_example("57-g85-bore.nc", "Clockwise", 4, |h| {
+        let mut v = vec![feed(h, h.bottom), feed(h, R)];
+        if h.back != R {
+            v.push(rapid(h, h.back));
+        }
+        v
+    });
+}
+
+/// Spec 1.49: G01 in, spindle stop, G00 out, spindle on again (inferred, FANUC).
+#[test]
+fn g86_boring_with_spindle_stop() {
+    run_example("58-g86-bore.nc", "Clockwise", 4, |h| {
+        vec![
+            feed(h, h.bottom),
+            "spindle Stopped 500".into(),
+            rapid(h, h.back),
+            "spindle Clockwise 500".into(),
+        ]
+    });
+}
+
+/// Spec 1.52: G01 in, dwell P2.5 (seconds), G01 out to R, G00 to the initial level under G98.
+#[test]
+fn g89_boring_with_dwell() {
+    run_example("61-g89-dwell-bore.nc", "Clockwise", 4, |h| {
+        let mut v = vec![feed(h, h.bottom), "dwell 2.5".into(), feed(h, R)];
+        if h.back != R {
+            v.push(rapid(h, h.back));
+        }
+        v
+    });
+}
+
+/// Hand-checked cases on the FANUC profile (spec A.32 and 1.40 rules).
+fn fanuc(program: &str, expected: &str) {
+    check_on(&Machine::default(), program, expected);
+}
+
+/// G91: R from the initial level (10 - 12 = -2), Z from R (-2 - 15 = -17); K3 repeats the
+/// incremental X10 three times, returning to R (G99).
+#[test]
+fn incremental_hole_data_and_k_repeats() {
+    fanuc(
+        "G0 X0 Y0 Z10.\nG91 G99 G81 X10. Y0 Z-15. R-12. K3 F100.\nG80\nM30",
+        "
+        rapid X0 Y0 Z10
+        rapid X10 Y0 Z10
+        rapid X10 Y0 Z-2
+        line X10 Y0 Z-17 F100
+        rapid X10 Y0 Z-2
+        rapid X20 Y0 Z-2
+        line X20 Y0 Z-17 F100
+        rapid X20 Y0 Z-2
+        rapid X30 Y0 Z-2
+        line X30 Y0 Z-17 F100
+        rapid X30 Y0 Z-2
+        end M30",
+    );
+}
+
+/// K0 stores the hole data without moving; the next position drills with them. Blocks with no
+/// position or hole data (M08) do not drill; G98 (power-on) returns to the initial level.
+#[test]
+fn k0_stores_and_blocks_without_positions_do_not_drill() {
+    fanuc(
+        "G0 X0 Y0 Z10.\nG81 X10. Z-5. R2. F100. K0\nM08\nX20.\nG80\nM30",
+        "
+        rapid X0 Y0 Z10
+        coolant on
+        rapid X20 Y0 Z10
+        rapid X20 Y0 Z2
+        line X20 Y0 Z-5 F100
+        rapid X20 Y0 Z10
+        end M30",
+    );
+}
+
+/// G18: positioning in Z-X, drilling along Y (spec 1.40).
+#[test]
+fn in_g18_the_cycle_drills_along_y() {
+    fanuc(
+        "G18 G0 X0 Y10. Z0\nG81 X5. Z5. Y-5. R2. F100.\nG80\nM30",
+        "
+        rapid X0 Y10 Z0
+        rapid X5 Y10 Z5
+        rapid X5 Y2 Z5
+        line X5 Y-5 Z5 F100
+        rapid X5 Y10 Z5
+        end M30",
+    );
+}
+
+/// FANUC 0M: cycles drill along Z whatever the plane (spec A.32).
+#[test]
+fn on_the_0m_the_cycle_drills_along_z_in_g18() {
+    check_on(
+        &Machine::default()
+            .with_profile(ProfileName::Fanuc0m)
+            .unwrap(),
+        "G18 G0 X0 Y0 Z10.\nG81 X5. Y5. Z-5. R2. F100.\nG80\nM30",
+        "
+        rapid X0 Y0 Z10
+        rapid X5 Y5 Z10
+        rapid X5 Y5 Z2
+        line X5 Y5 Z-5 F100
+        rapid X5 Y5 Z10
+        end M30",
+    );
+}
+
+/// A group-01 code ends the cycle: the next block is a plain move.
+#[test]
+fn a_group_01_code_cancels_the_cycle() {
+    fanuc(
+        "G0 Z10.\nG81 X5. Z-5. R2. F100.\nG0 X20.\nM30",
+        "
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z-5 F100
+        rapid X5 Y0 Z10
+        rapid X20 Y0 Z10
+        end M30",
+    );
+}
+
+/// G80 clears the hole data (spec A.32): a new cycle without Z alarms; a peck cycle without Q
+/// alarms (FANUC 045); the plane cannot change inside a cycle.
+#[test]
+fn missing_hole_data_and_plane_changes_alarm() {
+    fanuc(
+        "G0 Z10.\nG81 X5. Z-5. R2. F100.\nG80\nG81 X10.\nM30",
+        "
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z-5 F100
+        rapid X5 Y0 Z10
+        alarm cycle_data line 4",
+    );
+    fanuc(
+        "G0 Z10.\nG83 X5. Z-5. R2. F100.\nM30",
+        "
+        rapid X0 Y0 Z10
+        alarm cycle_data line 2",
+    );
+    fanuc(
+        "G0 Z10.\nG81 X5. Z-5. R2. F100.\nG18 X10.\nM30",
+        "
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z-5 F100
+        rapid X5 Y0 Z10
+        alarm cycle_data line 3",
+    );
+}
