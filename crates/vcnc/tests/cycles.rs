@@ -391,3 +391,23 @@ fn missing_hole_data_and_plane_changes_alarm() {
         alarm cycle_data line 3",
     );
 }
+
+/// G84 taps with the spindle clockwise: started the other way (or not at all), a warning.
+#[test]
+fn tapping_with_the_spindle_the_wrong_way_warns() {
+    fanuc(
+        "S500 M04\nG0 Z10.\nG84 X5. Z-5. R2. F500.\nG80\nM30",
+        "
+        spindle CounterClockwise 500
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z-5 F500
+        spindle CounterClockwise 500
+        line X5 Y0 Z2 F500
+        spindle Clockwise 500
+        rapid X5 Y0 Z10
+        end M30
+        alarm cycle_data line 3",
+    );
+}

@@ -156,6 +156,24 @@ fn holes(
         )
         .with_help("FANUC alarm 045"));
     }
+    let wanted = match cycle.kind {
+        CycleKind::Tap => Some(SpindleState::Clockwise),
+        CycleKind::LeftHandTap => Some(SpindleState::CounterClockwise),
+        _ => None,
+    };
+    if let Some(wanted) = wanted.filter(|&w| repeats > 0 && exec.spindle != w) {
+        // The tap turns the way the spindle was started (spec 1.42, 1.47: M03 before G84, M04
+        // before G74); anything else breaks the tap on a real machine.
+        out.push_warning(Alarm::warning(
+            AlarmCode::CycleData,
+            cmd.span,
+            format!(
+                "tapping with the spindle {}: this cycle taps with it {}",
+                spindle_words(exec.spindle),
+                spindle_words(wanted)
+            ),
+        ));
+    }
     for _ in 0..repeats {
         // Over the hole, at the level the last hole returned to.
         let mut target = exec.program_position();
@@ -398,5 +416,14 @@ fn shift(exec: &Executor, cycle: &Cycle) -> (f64, f64) {
         ShiftDirection::MinusFirst => (-q, 0.0),
         ShiftDirection::PlusSecond => (0.0, q),
         ShiftDirection::MinusSecond => (0.0, -q),
+    }
+}
+
+fn spindle_words(state: SpindleState) -> &'static str {
+    match state {
+        SpindleState::Clockwise => "turning clockwise (M03)",
+        SpindleState::CounterClockwise => "turning counter-clockwise (M04)",
+        SpindleState::Stopped => "stopped",
+        SpindleState::Oriented => "oriented and stopped",
     }
 }
