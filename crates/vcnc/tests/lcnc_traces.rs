@@ -2,7 +2,9 @@
 //! canonical motion LinuxCNC's interpreter (`rs274 -g`) printed for them, recorded as fixtures by
 //! `cargo xtask record-lcnc` (tests/data/lcnc/*.ngc and *.canon). vcnc's motion on the FANUC
 //! profile must match within 0.001 mm: every rapid, feed and arc, its end point, arc centre,
-//! direction and plane, and the feed rate. LinuxCNC is not needed to run this test.
+//! direction and plane, and the feed rate. LinuxCNC is not needed to run this test. The canned
+//! cycle programs (G81, G82, G85, G86, G89 in three planes, G98/G99, G90/G91 with repeats) are
+//! read by vcnc with the repeat count as K, FANUC's address for LinuxCNC's L.
 
 mod common;
 #[path = "common/lcnc_canon.rs"]
@@ -63,8 +65,26 @@ struct Motion {
     feed: Option<f64>,
 }
 
+/// The program as a FANUC control reads it: LinuxCNC writes a canned cycle's repeat count as L
+/// where FANUC writes K (the only dialect difference the fixtures use).
+fn fanuc_text(text: &str) -> String {
+    text.lines()
+        .map(|line| {
+            let cycle = ["G81", "G82", "G83", "G73", "G85", "G86", "G89"]
+                .iter()
+                .any(|g| line.contains(g));
+            if cycle {
+                line.replace(" L", " K")
+            } else {
+                line.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 fn vcnc_motions(text: &str, machine: &Machine) -> Result<Vec<Motion>, String> {
-    let run = common::run(text.as_bytes(), machine, Options::default());
+    let run = common::run(fanuc_text(text).as_bytes(), machine, Options::default());
     if let Some(alarm) = run.error() {
         return Err(format!("vcnc alarm: {alarm}"));
     }
