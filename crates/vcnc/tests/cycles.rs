@@ -411,3 +411,52 @@ fn tapping_with_the_spindle_the_wrong_way_warns() {
         alarm cycle_data line 3",
     );
 }
+
+/// Spec 1.50, file 59-g87-back-bore.nc (R-30 below the part, Z10, Q5, P4 s): orient, shift -Q
+/// (against Pr4020's +X), down to R, back on the axis, spindle on, bore up to Z, dwell, orient,
+/// shift, out to the initial level (here Z10 already), spindle on, back on the axis.
+#[test]
+fn g87_back_boring() {
+    let mut lines = vec![
+        "rapid X0 Y0 Z10".to_string(),
+        "spindle Clockwise 500".to_string(),
+    ];
+    for (x, y) in [(5.0, 5.0), (15.0, 5.0), (15.0, 15.0)] {
+        lines.extend([
+            format!("rapid X{x} Y{y} Z10"),
+            "spindle Oriented 500".into(),
+            format!("rapid X{} Y{y} Z10", x - 5.0),
+            format!("rapid X{} Y{y} Z-30", x - 5.0),
+            format!("rapid X{x} Y{y} Z-30"),
+            "spindle Clockwise 500".into(),
+            format!("line X{x} Y{y} Z10 F1000"),
+            "dwell 4".into(),
+            "spindle Oriented 500".into(),
+            format!("rapid X{} Y{y} Z10", x - 5.0),
+            "spindle Clockwise 500".into(),
+            format!("rapid X{x} Y{y} Z10"),
+        ]);
+    }
+    lines.extend(["spindle Stopped 500".into(), "end M30".into()]);
+    example("59-g87-back-bore.nc", &lines.join("\n"));
+}
+
+/// Spec 1.51: G01 in, dwell P3 (3 s), spindle stop, a stop for the operator's manual retract,
+/// then from the bottom G01 to R, G00 to the initial level under G98, spindle on.
+#[test]
+fn g88_boring_with_manual_retract() {
+    run_example("60-g88-semi-auto-bore.nc", "Clockwise", 4, |h| {
+        let mut v = vec![
+            feed(h, h.bottom),
+            "dwell 3".into(),
+            "spindle Stopped 500".into(),
+            "stop Program".into(),
+            feed(h, R),
+        ];
+        if h.back != R {
+            v.push(rapid(h, h.back));
+        }
+        v.push("spindle Clockwise 500".into());
+        v
+    });
+}

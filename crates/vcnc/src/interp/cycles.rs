@@ -14,7 +14,7 @@ use super::modal::{CycleReturn, DistanceMode};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
-use crate::motion::{Plane, SegmentKind, SpindleState};
+use crate::motion::{Plane, SegmentKind, SpindleState, StopKind};
 use crate::profile::{CycleKind, GCode, Group, ShiftDirection};
 use crate::source::Span;
 
@@ -256,7 +256,10 @@ impl Hole<'_> {
     /// From over the hole: down to R, the cycle's own moves, back up.
     fn run(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
         let (r, bottom, back) = (self.r_level, self.bottom, self.back);
-        self.rapid_to(r)?;
+        if cycle.kind != CycleKind::BackBore {
+            // G87 goes down to R shifted off the hole's axis.
+            self.rapid_to(r)?;
+        }
         match cycle.kind {
             CycleKind::Drill => {
                 self.feed_to(bottom)?;
@@ -305,27 +308,77 @@ impl Hole<'_> {
                 self.spindle(forward);
                 self.rapid_to(back)
             }
+            CycleKind::BoreManualRetract => {
+                // Spec 1.51: the operator retracts by hand and presses cycle start; vcnc stops
+                // there and goes on from the bottom.
+                let running = self.exec.spindle;
+                self.feed_to(bottom)?;
+                self.dwell(cycle.p);
+                self.spindle(SpindleState::Stopped);
+                self.out.push(
+                    self.cmd,
+                    SegmentKind::Stop {
+                        kind: StopKind::Program,
+                    },
+                );
+                self.feed_to(r)?;
+                self.rapid_to(back)?;
+                self.spindle(running);
+                Ok(())
+            }
             CycleKind::FineBoring => {
                 let running = self.exec.spindle;
                 self.feed_to(bottom)?;
                 self.dwell(cycle.p);
                 self.spindle(SpindleState::Oriented);
                 // Off the wall, out, and back over the hole's centre.
-                let (a, b, _) = cycle.axes;
-                let (da, db) = shift(self.exec, cycle);
-                let over = self.exec.program_position();
-                let mut off = over;
-                off[a] += da;
-                off[b] += db;
-                rapid(self.exec, self.cmd, self.out, off)?;
+                let centre = self.exec.program_position();
+                self.shift_off(cycle, 1.0)?;
                 self.rapid_to(back)?;
-                let mut centre = self.exec.program_position();
-                (centre[a], centre[b]) = (over[a], over[b]);
-                rapid(self.exec, self.cmd, self.out, centre)?;
+                self.shift_back(centre, cycle)?;
                 self.spindle(running);
                 Ok(())
             }
+            CycleKind::BackBore => self.back_bore(cycle),
         }
+    }
+
+    /// G87 (spec 1.50): oriented and shifted off the axis, down through the hole to R below
+    /// the part, back on the axis, spindle on, bore up to Z, dwell, orient and shift off, out
+    /// to the initial level (never R), spindle on, back on the axis.
+    fn back_bore(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
+        let running = self.exec.spindle;
+        let centre = self.exec.program_position();
+        self.spindle(SpindleState::Oriented);
+        self.shift_off(cycle, -1.0)?;
+        self.rapid_to(self.r_level)?;
+        self.shift_back(centre, cycle)?;
+        self.spindle(SpindleState::Clockwise);
+        self.feed_to(self.bottom)?;
+        self.dwell(cycle.p);
+        self.spindle(SpindleState::Oriented);
+        self.shift_off(cycle, -1.0)?;
+        self.rapid_to(cycle.initial)?;
+        self.spindle(running);
+        self.shift_back(centre, cycle)
+    }
+
+    /// A rapid by Q along the shift direction (`sign` -1: against it), in the plane.
+    fn shift_off(&mut self, cycle: &Cycle, sign: f64) -> Result<(), Alarm> {
+        let (a, b, _) = cycle.axes;
+        let (da, db) = shift(self.exec, cycle);
+        let mut off = self.exec.program_position();
+        off[a] += sign * da;
+        off[b] += sign * db;
+        rapid(self.exec, self.cmd, self.out, off)
+    }
+
+    /// A rapid back over `centre` in the plane, at the present level.
+    fn shift_back(&mut self, centre: [f64; AXES], cycle: &Cycle) -> Result<(), Alarm> {
+        let (a, b, _) = cycle.axes;
+        let mut target = self.exec.program_position();
+        (target[a], target[b]) = (centre[a], centre[b]);
+        rapid(self.exec, self.cmd, self.out, target)
     }
 
     /// G73 and G83 from the R level to the bottom, peck by peck; the last peck is shorter.

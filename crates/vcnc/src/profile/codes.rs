@@ -288,6 +288,10 @@ pub enum CycleKind {
     Bore,
     /// G86: feed in, stop the spindle, rapid out.
     BoreSpindleStop,
+    /// G87: from below the part, bore upwards.
+    BackBore,
+    /// G88: feed in, dwell, stop the spindle, wait for the operator to retract by hand.
+    BoreManualRetract,
     /// G89: feed in, dwell, feed out.
     BoreDwell,
 }
@@ -305,6 +309,8 @@ impl CycleKind {
             CycleKind::Tap => "tapping cycle",
             CycleKind::Bore => "boring cycle",
             CycleKind::BoreSpindleStop => "boring cycle, spindle stop",
+            CycleKind::BackBore => "back boring cycle",
+            CycleKind::BoreManualRetract => "boring cycle, manual retract",
             CycleKind::BoreDwell => "boring cycle with dwell",
         }
     }
@@ -381,6 +387,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         840 => Cycle(CycleKind::Tap),
         850 => Cycle(CycleKind::Bore),
         860 => Cycle(CycleKind::BoreSpindleStop),
+        870 => Cycle(CycleKind::BackBore),
+        880 => Cycle(CycleKind::BoreManualRetract),
         890 => Cycle(CycleKind::BoreDwell),
         900 => Absolute,
         910 => Incremental,
@@ -420,8 +428,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (650, Some(3), "macro call"),
     (660, Some(3), "modal macro call"),
     (682, None, "tilted working plane"),
-    (870, Some(4), "back boring cycle"),
-    (880, Some(4), "boring cycle, manual retract"),
     (1201, None, "machining condition selection"),
     (1340, Some(4), "bolt hole circle pattern"),
     (1350, Some(4), "holes on a line at an angle"),
@@ -650,7 +656,7 @@ mod tests {
             classify_g(810, &fanuc),
             GLookup::Known(GCode::Cycle(CycleKind::Drill))
         );
-        assert_eq!(classify_g(870, &fanuc), GLookup::NotSupported(Some(4)));
+        assert_eq!(classify_g(1340, &fanuc), GLookup::NotSupported(Some(4)));
         assert_eq!(classify_g(650, &fanuc), GLookup::NotSupported(Some(3)));
         // Haas G47 engraves text; elsewhere G47 is a tool position offset.
         let haas = Profile::builtin(ProfileName::Haas);
