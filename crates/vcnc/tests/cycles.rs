@@ -460,3 +460,69 @@ fn g88_boring_with_manual_retract() {
         v
     });
 }
+
+/// The FANUC 0M manual's O1616 (001:L1651-1697, file examples/fanuc0m/23-o1616-g73-g74.nc),
+/// length offsets zero: G73 with Q5000 (5 mm in 0.001 mm units) from R3 to Z-15, peck bottoms
+/// -2, -7, -12, -15 with a 1 mm retract (parameter 0531) after each, back to R (G99); then the
+/// G74 tap from R3 to Z-15 with the spindle reversed at the bottom and back at R, out to the
+/// initial level Z10 (G98), as the example's header works out.
+#[test]
+fn fanuc_0m_example_o1616() {
+    let text =
+        std::fs::read_to_string(shared_dir().join("spec/examples/fanuc0m/23-o1616-g73-g74.nc"))
+            .unwrap();
+    let mut lines: Vec<String> = [
+        "select T1",
+        "change T1",
+        "spindle Clockwise 800",
+        "rapid X0 Y0 Z10",
+        "rapid X20 Y28 Z10",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    for (x, y) in [(20, 28), (85, 38)] {
+        // The first hole comes down from the initial level, the second moves over at R.
+        lines.push(format!("rapid X{x} Y{y} Z3"));
+        for bottom in [-2, -7, -12] {
+            lines.push(format!("line X{x} Y{y} Z{bottom} F60"));
+            lines.push(format!("rapid X{x} Y{y} Z{}", bottom + 1));
+        }
+        lines.push(format!("line X{x} Y{y} Z-15 F60"));
+        lines.push(format!("rapid X{x} Y{y} Z3"));
+    }
+    lines.extend(
+        [
+            "rapid X85 Y38 Z0",
+            "spindle Stopped 800",
+            "select T2",
+            "change T2",
+            "spindle CounterClockwise 100",
+            "rapid X85 Y38 Z10",
+        ]
+        .iter()
+        .map(|s| s.to_string()),
+    );
+    for (x, y) in [(85, 38), (20, 28)] {
+        if x == 20 {
+            // The first tap hole is right below the tool: no positioning move.
+            lines.push(format!("rapid X{x} Y{y} Z10"));
+        }
+        lines.extend([
+            format!("rapid X{x} Y{y} Z3"),
+            format!("line X{x} Y{y} Z-15 F125"),
+            "spindle Clockwise 100".into(),
+            format!("line X{x} Y{y} Z3 F125"),
+            "spindle CounterClockwise 100".into(),
+            format!("rapid X{x} Y{y} Z10"),
+        ]);
+    }
+    lines.extend(["rapid X20 Y28 Z0".into(), "end M30".into()]);
+    check_on(
+        &Machine::default()
+            .with_profile(ProfileName::Fanuc0m)
+            .unwrap(),
+        &text,
+        &lines.join("\n"),
+    );
+}
