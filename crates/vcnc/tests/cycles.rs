@@ -526,3 +526,114 @@ fn fanuc_0m_example_o1616() {
         &lines.join("\n"),
     );
 }
+
+/// The holes a Syntec example drills: the program-coordinate X Y of every feed move.
+fn drilled(file: &str) -> Vec<(f64, f64)> {
+    let text = std::fs::read(shared_dir().join("spec/examples/syntec").join(file)).unwrap();
+    let machine = Machine::default()
+        .with_profile(ProfileName::Syntec)
+        .unwrap();
+    let run = common::run(&text, &machine, vcnc::Options::default());
+    assert!(run.error().is_none(), "{file}: {:?}", run.error());
+    run.segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            vcnc::SegmentKind::Line { motion, .. } => {
+                let w = motion.work_to();
+                Some((w[0], w[1]))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+#[track_caller]
+fn assert_holes(actual: &[(f64, f64)], expected: &[(f64, f64)]) {
+    assert_eq!(actual.len(), expected.len(), "{actual:?}");
+    for (a, e) in actual.iter().zip(expected) {
+        assert!(
+            (a.0 - e.0).abs() < 1e-3 && (a.1 - e.1).abs() < 1e-3,
+            "hole {a:?}, expected {e:?}"
+        );
+    }
+}
+
+/// The hole patterns (spec 1.59-1.62, files 67-70): the hole positions the spec works out from
+/// the manual's examples (G134 about the centre (700,200) after G92 X500 Y100 and G91 X200
+/// Y100; the others from the start position, the origin).
+#[test]
+fn syntec_hole_patterns() {
+    assert_holes(
+        &drilled("67-g134-bolt-circle.nc"),
+        &[
+            (793.969, 234.202),
+            (717.365, 298.481),
+            (623.396, 264.279),
+            (606.031, 165.798),
+            (682.635, 101.519),
+            (776.604, 135.721),
+        ],
+    );
+    assert_holes(
+        &drilled("68-g135-angle-line.nc"),
+        &[
+            (200.0, 100.0),
+            (286.603, 150.0),
+            (373.205, 200.0),
+            (459.808, 250.0),
+            (546.410, 300.0),
+        ],
+    );
+    assert_holes(
+        &drilled("69-g136-arc-holes.nc"),
+        &[
+            (595.442, 152.094),
+            (571.892, 226.785),
+            (529.813, 292.836),
+            (472.073, 345.746),
+            (402.606, 381.908),
+            (326.147, 398.858),
+        ],
+    );
+    // 10 x 8 holes row by row, every other row backwards: 80 holes, the last at (300, 600).
+    let grid = drilled("70-g137.1-grid.nc");
+    let expected: Vec<(f64, f64)> = (0..8)
+        .flat_map(|j| {
+            (0..10).map(move |i| {
+                let i = if j % 2 == 0 { i } else { 9 - i };
+                (300.0 + 50.0 * i as f64, -100.0 + 100.0 * j as f64)
+            })
+        })
+        .collect();
+    assert_holes(&grid, &expected);
+}
+
+/// One hole of the bolt circle move by move (G91 R5 from the initial level 0: R at +5, the
+/// bottom 10 below it; G98 back to 0).
+#[test]
+fn a_pattern_hole_is_a_full_cycle() {
+    check_on(
+        &Machine::default()
+            .with_profile(ProfileName::Syntec)
+            .unwrap(),
+        "G91 G81 Z-10. R5. K0 F200.\nG134 X0 Y0 I10. J90. K1\nG80\nM30",
+        "
+        rapid X0 Y10 Z0
+        rapid X0 Y10 Z5
+        line X0 Y10 Z-5 F200
+        rapid X0 Y10 Z0
+        end M30",
+    );
+}
+
+/// A pattern needs a cycle in force.
+#[test]
+fn a_pattern_without_a_cycle_alarms() {
+    check_on(
+        &Machine::default()
+            .with_profile(ProfileName::Syntec)
+            .unwrap(),
+        "G134 X0 Y0 I10. J0 K4\nM30",
+        "alarm cycle_data line 1",
+    );
+}

@@ -15,7 +15,7 @@ use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
 use crate::motion::{Plane, SegmentKind, SpindleState, StopKind};
-use crate::profile::{CycleKind, GCode, Group, ShiftDirection};
+use crate::profile::{CycleKind, GCode, Group, PatternKind, ShiftDirection};
 use crate::source::Span;
 
 /// The cycle mode in force.
@@ -131,7 +131,47 @@ fn holes(
         },
         None => 1,
     };
+    if repeats == 0 {
+        return Ok(());
+    }
+    let levels = levels(exec, cycle, cmd, out)?;
     let (a, b, d) = cycle.axes;
+    let incremental = exec.modal.distance == DistanceMode::Incremental;
+    for _ in 0..repeats {
+        // Over the hole: the plane axes (incremental ones step on with each repeat), and other
+        // axes (a rotary table, say) with them.
+        let mut target = exec.program_position();
+        for axis in cmd.axes_present() {
+            let i = axis.index();
+            if let (false, Some(word)) = (i == d, cmd.axis(i)) {
+                let v = exec.axis_value(axis, &word);
+                target[i] = if incremental { target[i] + v } else { v };
+            }
+        }
+        drill_at(
+            exec,
+            cycle,
+            cmd,
+            out,
+            levels,
+            (target[a], target[b]),
+            Some(target),
+        )?;
+    }
+    Ok(())
+}
+
+/// The R level and the bottom for the block's holes, program coordinates, after the checks a
+/// cycle makes before it moves.
+///
+/// # Errors
+/// No Z; a peck cycle without Q.
+fn levels(
+    exec: &Executor,
+    cycle: &Cycle,
+    cmd: &Command,
+    out: &mut Output,
+) -> Result<(f64, f64), Alarm> {
     let incremental = exec.modal.distance == DistanceMode::Incremental;
     let Some((z, _)) = cycle.z else {
         return Err(Alarm::error(
@@ -161,7 +201,7 @@ fn holes(
         CycleKind::LeftHandTap => Some(SpindleState::CounterClockwise),
         _ => None,
     };
-    if let Some(wanted) = wanted.filter(|&w| repeats > 0 && exec.spindle != w) {
+    if let Some(wanted) = wanted.filter(|&w| exec.spindle != w) {
         // The tap turns the way the spindle was started (spec 1.42, 1.47: M03 before G84, M04
         // before G74); anything else breaks the tap on a real machine.
         out.push_warning(Alarm::warning(
@@ -174,38 +214,163 @@ fn holes(
             ),
         ));
     }
-    for _ in 0..repeats {
-        // Over the hole, at the level the last hole returned to.
-        let mut target = exec.program_position();
-        for axis in [a, b] {
-            if let Some(word) = cmd.axis(axis) {
-                let v = exec.axis_value(Axis::ALL[axis], &word);
-                target[axis] = if incremental { target[axis] + v } else { v };
+    Ok((r_level, bottom))
+}
+
+/// One hole at `at` (the plane axes): a rapid over it at the level the last hole returned to
+/// (`target` gives the other axes' positions when the block moves them), then the cycle.
+fn drill_at(
+    exec: &mut Executor,
+    cycle: &Cycle,
+    cmd: &Command,
+    out: &mut Output,
+    (r_level, bottom): (f64, f64),
+    at: (f64, f64),
+    target: Option<[f64; AXES]>,
+) -> Result<(), Alarm> {
+    let (a, b, d) = cycle.axes;
+    let mut over = target.unwrap_or_else(|| exec.program_position());
+    (over[a], over[b]) = at;
+    over[d] = exec.program_position()[d];
+    rapid(exec, cmd, out, over)?;
+    let back = match exec.modal.cycle_return {
+        CycleReturn::InitialLevel => cycle.initial,
+        CycleReturn::RLevel => r_level,
+    };
+    Hole {
+        exec,
+        cmd,
+        out,
+        d,
+        r_level,
+        bottom,
+        back,
+    }
+    .run(cycle)
+}
+
+/// G134, G135, G136, G137.1 (spec 1.59-1.62): the holes of the pattern, each drilled by the
+/// cycle in force; X Y place the pattern (G91: from where the tool is), I J K P shape it. The
+/// tool stays over the last hole.
+///
+/// # Errors
+/// No cycle in force; a pattern word missing or out of range.
+pub(crate) fn pattern(
+    exec: &mut Executor,
+    cmd: &Command,
+    kind: PatternKind,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let Some(cycle) = exec.cycle.take() else {
+        return Err(Alarm::error(
+            AlarmCode::CycleData,
+            cmd.span,
+            "a hole pattern drills with the canned cycle in force, and none is",
+        )
+        .with_help("set the cycle first, e.g. G81 Z.. R.. F.. K0"));
+    };
+    let result = pattern_holes(exec, &cycle, cmd, kind, out);
+    exec.cycle = Some(cycle);
+    result
+}
+
+fn pattern_holes(
+    exec: &mut Executor,
+    cycle: &Cycle,
+    cmd: &Command,
+    kind: PatternKind,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let (a, b, _) = cycle.axes;
+    let here = exec.program_position();
+    let incremental = exec.modal.distance == DistanceMode::Incremental;
+    let place = |axis: usize| {
+        cmd.axis(axis).map_or(here[axis], |v| {
+            let v = exec.axis_value(Axis::ALL[axis], &v);
+            if incremental {
+                here[axis] + v
+            } else {
+                v
             }
+        })
+    };
+    let origin = (place(a), place(b));
+    let need = |letter: u8, what: &str| {
+        cmd.word(letter).ok_or_else(|| {
+            Alarm::error(
+                AlarmCode::CycleData,
+                cmd.span,
+                format!("this hole pattern needs {} ({what})", letter as char),
+            )
+        })
+    };
+    let count = |letter: u8, what: &str| -> Result<i64, Alarm> {
+        let word = need(letter, what)?;
+        match word.number.whole() {
+            Some(n) if n != 0 && n.abs() <= 9999 => Ok(n),
+            _ => Err(Alarm::error(
+                AlarmCode::CycleData,
+                word.span,
+                format!(
+                    "{} ({what}) is a whole number from 1 to 9999",
+                    letter as char
+                ),
+            )),
         }
-        // Other axes (a rotary table, say) move with the positioning.
-        for axis in cmd.axes_present() {
-            let i = axis.index();
-            if let (false, Some(word)) = ([a, b, d].contains(&i), cmd.axis(i)) {
-                let v = exec.axis_value(axis, &word);
-                target[i] = if incremental { target[i] + v } else { v };
-            }
+    };
+    let polar = |radius: f64, degrees: f64| {
+        let (sin, cos) = degrees.to_radians().sin_cos();
+        (origin.0 + radius * cos, origin.1 + radius * sin)
+    };
+    let points: Vec<(f64, f64)> = match kind {
+        PatternKind::BoltCircle => {
+            let radius = exec.length(&need(b'I', "the radius")?);
+            let first = exec.angle(&need(b'J', "the first hole's angle")?);
+            let n = count(b'K', "the number of holes; negative: clockwise")?;
+            let step = 360.0 / n as f64;
+            (0..n.abs())
+                .map(|i| polar(radius, first + step * i as f64))
+                .collect()
         }
-        rapid(exec, cmd, out, target)?;
-        let back = match exec.modal.cycle_return {
-            CycleReturn::InitialLevel => cycle.initial,
-            CycleReturn::RLevel => r_level,
-        };
-        let mut hole = Hole {
-            exec: &mut *exec,
-            cmd,
-            out: &mut *out,
-            d,
-            r_level,
-            bottom,
-            back,
-        };
-        hole.run(cycle)?;
+        PatternKind::Line => {
+            let spacing = exec.length(&need(b'I', "the spacing")?);
+            let (sin, cos) = exec.angle(&need(b'J', "the angle")?).to_radians().sin_cos();
+            let n = count(b'K', "the number of holes")?.abs();
+            (0..n)
+                .map(|i| {
+                    let d = spacing * i as f64;
+                    (origin.0 + d * cos, origin.1 + d * sin)
+                })
+                .collect()
+        }
+        PatternKind::Arc => {
+            let radius = exec.length(&need(b'I', "the radius")?);
+            let first = exec.angle(&need(b'J', "the first hole's angle")?);
+            let pitch = exec.angle(&need(b'P', "the angle between holes")?);
+            let n = count(b'K', "the number of holes")?.abs();
+            (0..n)
+                .map(|i| polar(radius, first + pitch * i as f64))
+                .collect()
+        }
+        PatternKind::Grid => {
+            let dx = exec.length(&need(b'I', "the spacing along the first axis")?);
+            let nx = count(b'P', "the number of holes along the first axis")?.abs();
+            let dy = exec.length(&need(b'J', "the spacing along the second axis")?);
+            let ny = count(b'K', "the number of rows")?.abs();
+            // Row by row, each row the other way round (zig-zag), as FANUC-family grids go.
+            (0..ny)
+                .flat_map(|j| {
+                    (0..nx).map(move |i| {
+                        let i = if j % 2 == 0 { i } else { nx - 1 - i };
+                        (origin.0 + dx * i as f64, origin.1 + dy * j as f64)
+                    })
+                })
+                .collect()
+        }
+    };
+    let levels = levels(exec, cycle, cmd, out)?;
+    for at in points {
+        drill_at(exec, cycle, cmd, out, levels, at, None)?;
     }
     Ok(())
 }

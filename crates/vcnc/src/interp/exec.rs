@@ -171,6 +171,10 @@ impl Executor {
                 Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
                 Some(GCode::MachineCoordinates) => super::coords::g53(self, cmd, out)?,
                 Some(GCode::Dwell) => true,
+                Some(GCode::Pattern(kind)) => {
+                    super::cycles::pattern(self, cmd, kind, out)?;
+                    true
+                }
                 _ => false,
             };
         if !consumed && self.cycle.is_some() {
@@ -285,14 +289,20 @@ impl Executor {
     /// An axis word converted: mm for linear axes, degrees for rotary ones.
     pub(crate) fn axis_value(&self, axis: Axis, value: &Value) -> f64 {
         if axis.is_rotary() {
-            let n = value.number;
-            if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
-                n.value * self.profile.increment_deg
-            } else {
-                n.value
-            }
+            self.angle(value)
         } else {
             self.length(value)
+        }
+    }
+
+    /// An angle in degrees (a rotary axis, G68's R, G16's angle, a hole pattern's J): in least
+    /// increments when written without a decimal point on profiles that read numbers so.
+    pub(crate) fn angle(&self, value: &Value) -> f64 {
+        let n = value.number;
+        if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
+            n.value * self.profile.increment_deg
+        } else {
+            n.value
         }
     }
 

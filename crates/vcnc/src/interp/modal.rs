@@ -188,6 +188,7 @@ impl ModalState {
             | SetCoordinates
             | PresetCoordinates
             | PositionOffset(_)
+            | Pattern(_)
             | PolarCancel
             | Polar
             | ScalingCancel

@@ -9,7 +9,6 @@ use super::decode::Command;
 use super::exec::Executor;
 use super::modal::DistanceMode;
 use crate::machine::Axis;
-use crate::profile::DecimalLess;
 
 /// The radius and angle (degrees) of the last polar point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -44,15 +43,8 @@ pub(crate) fn point(exec: &Executor, cmd: &Command) -> Option<PolarPoint> {
         return None;
     }
     let radius = radius_word.map(|v| exec.axis_value(Axis::ALL[a], &v));
-    let degrees = angle_word.map(|v| {
-        // An angle, whatever the plane's axis is: degrees, least increments without a point.
-        let n = v.number;
-        if !n.decimal_point && exec.profile.decimal_less == DecimalLess::Increments {
-            n.value * exec.profile.increment_deg
-        } else {
-            n.value
-        }
-    });
+    // An angle, whatever the plane's axis is.
+    let degrees = angle_word.map(|v| exec.angle(&v));
     Some(match exec.modal.distance {
         DistanceMode::Absolute => PolarPoint {
             radius: radius.unwrap_or(previous.radius),

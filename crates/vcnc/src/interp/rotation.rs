@@ -14,7 +14,6 @@ use super::frames::Rotation;
 use super::modal::DistanceMode;
 use crate::alarm::Alarm;
 use crate::machine::Axis;
-use crate::profile::DecimalLess;
 
 /// G68: sets the rotation from the block's centre words and R.
 ///
@@ -30,14 +29,7 @@ pub(crate) fn g68(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
             .map_or(here[axis], |v| exec.axis_value(Axis::ALL[axis], &v))
     };
     let center = (word(a), word(b));
-    let angle = cmd.r().map_or(0.0, |r| {
-        let n = r.number;
-        if !n.decimal_point && exec.profile.decimal_less == DecimalLess::Increments {
-            n.value * exec.profile.increment_deg
-        } else {
-            n.value
-        }
-    });
+    let angle = cmd.r().map_or(0.0, |r| exec.angle(&r));
     let degrees = match (exec.modal.distance, previous) {
         (DistanceMode::Incremental, Some(previous)) => previous.degrees + angle,
         _ => angle,

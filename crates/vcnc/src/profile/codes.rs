@@ -111,8 +111,10 @@ pub enum GCode {
     ContinuousMode,
     /// G80.
     CycleCancel,
-    /// G73, G74, G76, G81 ... G86, G89: a canned cycle (group 09).
+    /// G73, G74, G76, G81 ... G89: a canned cycle (group 09).
     Cycle(CycleKind),
+    /// Syntec G134, G135, G136, G137.1: holes in a pattern, drilled by the cycle in force.
+    Pattern(PatternKind),
     /// G90.
     Absolute,
     /// G91.
@@ -196,6 +198,10 @@ impl GCode {
             ContinuousMode => "cutting (continuous) mode",
             CycleCancel => "canned cycle cancel",
             Cycle(kind) => kind.description(),
+            Pattern(PatternKind::BoltCircle) => "bolt hole circle pattern",
+            Pattern(PatternKind::Line) => "holes on a line at an angle",
+            Pattern(PatternKind::Arc) => "holes on an arc",
+            Pattern(PatternKind::Grid) => "grid hole pattern",
             Absolute => "absolute programming",
             Incremental => "incremental programming",
             SetCoordinates => "coordinate system setting",
@@ -250,7 +256,7 @@ impl GCode {
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
-            | PresetCoordinates | PositionOffset(_) => Group::NonModal,
+            | PresetCoordinates | PositionOffset(_) | Pattern(_) => Group::NonModal,
         }
     }
 }
@@ -314,6 +320,19 @@ impl CycleKind {
             CycleKind::BoreDwell => "boring cycle with dwell",
         }
     }
+}
+
+/// Syntec's hole patterns (spec iso-syntec-milling.md 1.59-1.62).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PatternKind {
+    /// G134: holes equally spaced on a circle.
+    BoltCircle,
+    /// G135: holes on a line at an angle.
+    Line,
+    /// G136: holes on an arc at an angular pitch.
+    Arc,
+    /// G137.1: a grid of holes.
+    Grid,
 }
 
 /// A G code number as people write it: `G01`, `G54.1`.
@@ -400,6 +419,10 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         960 => ConstantSurfaceSpeed,
         970 => ConstantSpindleSpeed,
         980 => ReturnToInitialLevel,
+        1340 if profile.hole_patterns => Pattern(PatternKind::BoltCircle),
+        1350 if profile.hole_patterns => Pattern(PatternKind::Line),
+        1360 if profile.hole_patterns => Pattern(PatternKind::Arc),
+        1371 if profile.hole_patterns => Pattern(PatternKind::Grid),
         990 => ReturnToRLevel,
         _ => return not_yet(tenths, profile),
     };
@@ -429,10 +452,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (660, Some(3), "modal macro call"),
     (682, None, "tilted working plane"),
     (1201, None, "machining condition selection"),
-    (1340, Some(4), "bolt hole circle pattern"),
-    (1350, Some(4), "holes on a line at an angle"),
-    (1360, Some(4), "holes on an arc"),
-    (1371, Some(4), "grid hole pattern"),
     (1870, Some(6), "smoothness / accuracy setting"),
 ];
 
@@ -656,7 +675,7 @@ mod tests {
             classify_g(810, &fanuc),
             GLookup::Known(GCode::Cycle(CycleKind::Drill))
         );
-        assert_eq!(classify_g(1340, &fanuc), GLookup::NotSupported(Some(4)));
+        assert_eq!(classify_g(1340, &fanuc), GLookup::Unknown);
         assert_eq!(classify_g(650, &fanuc), GLookup::NotSupported(Some(3)));
         // Haas G47 engraves text; elsewhere G47 is a tool position offset.
         let haas = Profile::builtin(ProfileName::Haas);

@@ -10,7 +10,7 @@ mod codes;
 
 pub use codes::{
     classify_g, classify_m, g_name, not_supported_description, supported_codes_markdown, CycleKind,
-    GCode, GLookup, Group, MCode, MLookup,
+    GCode, GLookup, Group, MCode, MLookup, PatternKind,
 };
 
 use crate::syntax::iso::SyntaxOptions;
@@ -270,6 +270,9 @@ pub struct Profile {
     /// How a canned cycle's P is read; when absent, as G04's P.
     #[serde(default)]
     pub cycle_dwell_p: Option<DwellP>,
+    /// Syntec's hole patterns G134, G135, G136, G137.1.
+    #[serde(default)]
+    pub hole_patterns: bool,
     /// M codes a block may hold; when a block has more, only the last ones run (FANUC 0M: one,
     /// spec A.15 and example fanuc0m/06).
     #[serde(default = "default_m_codes_per_block")]
