@@ -637,3 +637,97 @@ fn a_pattern_without_a_cycle_alarms() {
         "alarm cycle_data line 1",
     );
 }
+
+/// The holes of an example: machine X Y Z of every feed move's end, on `profile`.
+fn bottoms(file: &str, profile: ProfileName) -> Vec<(f64, f64, f64)> {
+    let text = std::fs::read(shared_dir().join("spec/examples").join(file)).unwrap();
+    let run = common::run(
+        &text,
+        &Machine::default().with_profile(profile).unwrap(),
+        vcnc::Options::default(),
+    );
+    assert!(run.error().is_none(), "{file}: {:?}", run.error());
+    run.segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            vcnc::SegmentKind::Line { motion, .. } => {
+                let p = motion.to.0;
+                Some((p[0], p[1], p[2]))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+#[track_caller]
+fn assert_points(actual: &[(f64, f64, f64)], expected: &[(f64, f64, f64)]) {
+    assert!(actual.len() >= expected.len(), "{actual:?}");
+    for (a, e) in actual.iter().zip(expected) {
+        assert!(
+            (a.0 - e.0).abs() < 1e-3 && (a.1 - e.1).abs() < 1e-3 && (a.2 - e.2).abs() < 1e-3,
+            "point {a:?}, expected {e:?}"
+        );
+    }
+}
+
+/// Syntec 1.14 examples (files 20, 21): G16 hole positions as radius and angle. In example 2
+/// the cycle's levels, set in G90, stay where they are when G91 steps the angle; K2 drills
+/// twice, so a fourth hole falls at 450 = 90 degrees (the spec's literal reading).
+#[test]
+fn polar_hole_positions() {
+    let (c, s) = (86.60254, 50.0);
+    assert_eq!(
+        bottoms("syntec/20-g16-polar-absolute.nc", ProfileName::Syntec).len(),
+        3
+    );
+    assert_points(
+        &bottoms("syntec/20-g16-polar-absolute.nc", ProfileName::Syntec),
+        &[(0.0, 100.0, -12.0), (-c, -s, -12.0), (c, -s, -12.0)],
+    );
+    assert_points(
+        &bottoms("syntec/21-g16-polar-incremental.nc", ProfileName::Syntec),
+        &[
+            (0.0, 100.0, -12.0),
+            (-c, -s, -12.0),
+            (c, -s, -12.0),
+            (0.0, 100.0, -12.0),
+        ],
+    );
+}
+
+/// Syntec 1.32 example (file 43): three holes in G54 at (90,15), (110,15), (100,65) to Z-15
+/// (no length offset in the default machine), then the slot in the G52 system shifted by
+/// (30,30) at Z-12.
+#[test]
+fn holes_and_a_slot_in_a_local_system() {
+    assert_points(
+        &bottoms("syntec/43-g52-local-coords.nc", ProfileName::Syntec),
+        &[
+            (90.0, 15.0, -15.0),
+            (110.0, 15.0, -15.0),
+            (100.0, 65.0, -15.0),
+            (30.0, 30.0, -12.0),
+            (50.0, 30.0, -12.0),
+            (50.0, 40.0, -12.0),
+        ],
+    );
+}
+
+/// The FANUC 0M manual's O1717 (file examples/fanuc0m/24-o1717-drill-tap-bore.nc) calls G83
+/// without Q after G80 has cleared it: the control stops with alarm 045 at that block (the
+/// example's header; the original program is wrong there).
+#[test]
+fn fanuc_0m_o1717_stops_at_g83_without_q() {
+    let text = std::fs::read(shared_dir().join("spec/examples/fanuc0m/24-o1717-drill-tap-bore.nc"))
+        .unwrap();
+    let run = common::run(
+        &text,
+        &Machine::default()
+            .with_profile(ProfileName::Fanuc0m)
+            .unwrap(),
+        vcnc::Options::default(),
+    );
+    let alarm = run.error().expect("G83 without Q alarms");
+    assert_eq!(alarm.code, vcnc::AlarmCode::CycleData);
+    assert_eq!(alarm.span.unwrap().line, 37);
+}

@@ -16,7 +16,6 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
 use crate::motion::{Plane, SegmentKind, SpindleState, StopKind};
 use crate::profile::{CycleKind, GCode, Group, PatternKind, ShiftDirection};
-use crate::source::Span;
 
 /// The cycle mode in force.
 #[derive(Clone, Debug)]
@@ -28,10 +27,11 @@ pub(crate) struct Cycle {
     plane: Plane,
     /// The initial level: the drilling-axis program coordinate when the mode was entered.
     initial: f64,
-    /// R as last written, mm: a level (G90) or the distance from the initial level (G91).
+    /// The R level, program coordinates: R as written in G90, the initial level plus R in G91.
+    /// Levels stay where they were set when later blocks switch G90/G91 (spec 1.14 example 2).
     r: Option<f64>,
-    /// Z as last written, mm: the bottom (G90) or the distance from the R level (G91).
-    z: Option<(f64, Span)>,
+    /// The bottom, program coordinates: Z as written in G90, the R level plus Z in G91.
+    z: Option<f64>,
     /// Q, mm: the peck depth (G73, G83) or the shift (G76).
     q: Option<f64>,
     /// P, seconds: the dwell at the bottom.
@@ -135,18 +135,13 @@ fn holes(
         return Ok(());
     }
     let levels = levels(exec, cycle, cmd, out)?;
-    let (a, b, d) = cycle.axes;
-    let incremental = exec.modal.distance == DistanceMode::Incremental;
+    let (a, b, _) = cycle.axes;
     for _ in 0..repeats {
-        // Over the hole: the plane axes (incremental ones step on with each repeat), and other
-        // axes (a rotary table, say) with them.
-        let mut target = exec.program_position();
-        for axis in cmd.axes_present() {
-            let i = axis.index();
-            if let (false, Some(word)) = (i == d, cmd.axis(i)) {
-                let v = exec.axis_value(axis, &word);
-                target[i] = if incremental { target[i] + v } else { v };
-            }
+        // Over the hole: the plane axes as a move would go there (G91 steps on with each
+        // repeat; G16 reads radius and angle), and other axes (a rotary table, say) with them.
+        let target = exec.target_program(cmd);
+        if let Some(point) = super::polar::point(exec, cmd) {
+            exec.polar = Some(point);
         }
         drill_at(
             exec,
@@ -172,20 +167,14 @@ fn levels(
     cmd: &Command,
     out: &mut Output,
 ) -> Result<(f64, f64), Alarm> {
-    let incremental = exec.modal.distance == DistanceMode::Incremental;
-    let Some((z, _)) = cycle.z else {
+    let Some(bottom) = cycle.z else {
         return Err(Alarm::error(
             AlarmCode::CycleData,
             cmd.span,
             "a canned cycle needs Z, the hole bottom",
         ));
     };
-    let r_level = match (cycle.r, incremental) {
-        (Some(r), false) => r,
-        (Some(r), true) => cycle.initial + r,
-        (None, _) => cycle.initial,
-    };
-    let bottom = if incremental { r_level + z } else { z };
+    let r_level = cycle.r.unwrap_or(cycle.initial);
     if matches!(cycle.kind, CycleKind::HighSpeedPeck | CycleKind::Peck)
         && cycle.q.map_or(true, |q| q <= 0.0)
     {
@@ -377,11 +366,15 @@ fn pattern_holes(
 
 /// Stores the block's hole data.
 fn store(exec: &Executor, cycle: &mut Cycle, cmd: &Command) -> Result<(), Alarm> {
+    let incremental = exec.modal.distance == DistanceMode::Incremental;
     if let Some(r) = cmd.r() {
-        cycle.r = Some(exec.length(&r));
+        let r = exec.length(&r);
+        cycle.r = Some(if incremental { cycle.initial + r } else { r });
     }
     if let Some(z) = cmd.axis(cycle.axes.2) {
-        cycle.z = Some((exec.axis_value(Axis::ALL[cycle.axes.2], &z), z.span));
+        let z = exec.axis_value(Axis::ALL[cycle.axes.2], &z);
+        let r_level = cycle.r.unwrap_or(cycle.initial);
+        cycle.z = Some(if incremental { r_level + z } else { z });
     }
     if let Some(q) = cmd.word(b'Q') {
         // A minus sign is ignored (spec 1.41).
