@@ -731,3 +731,35 @@ fn fanuc_0m_o1717_stops_at_g83_without_q() {
     assert_eq!(alarm.code, vcnc::AlarmCode::CycleData);
     assert_eq!(alarm.span.unwrap().line, 37);
 }
+
+/// The FANUC 0M manual's O1818 (file examples/fanuc0m/25-o1818-ream-bore-backbore.nc), length
+/// offsets zero: the ends of every cutting move as the example's header works them out: centre
+/// holes to Z-6 (R3 without a point is 0.003 mm on the 0M), drills to Z-24 (R cleared by G80:
+/// the initial level Z5), the reamer fed in and out, counterbores to Z-12, the 30 mm drill to
+/// Z-31, the boring bar to Z-22, and the back boring bar fed up from R-25 to Z-15.
+#[test]
+fn fanuc_0m_example_o1818() {
+    assert_points(
+        &bottoms(
+            "fanuc0m/25-o1818-ream-bore-backbore.nc",
+            ProfileName::Fanuc0m,
+        ),
+        &[
+            (15.0, 55.0, -6.0),
+            (30.0, 35.0, -6.0),
+            (50.0, 15.0, -6.0),
+            (85.0, 35.0, -6.0),
+            (85.0, 35.0, -24.0),
+            (50.0, 15.0, -24.0),
+            (15.0, 55.0, -24.0),
+            (30.0, 35.0, -24.0),
+            (30.0, 35.0, -24.0),
+            (30.0, 35.0, 5.0),
+            (15.0, 55.0, -12.0),
+            (50.0, 15.0, -12.0),
+            (85.0, 35.0, -31.0),
+            (85.0, 35.0, -22.0),
+            (85.0, 35.0, -15.0),
+        ],
+    );
+}
