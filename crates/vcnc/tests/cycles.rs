@@ -763,3 +763,125 @@ fn fanuc_0m_example_o1818() {
         ],
     );
 }
+
+/// The FANUC-family cycles in all three planes (spec A.32-A.43, 1.41-1.51): each cycle's
+/// sequence written out from the manuals' step lists, for G17 (drilling along Z), G18 (along
+/// Y) and G19 (along X). Holes at (5,5) and (15,5) return to R (G99), the third at (15,15) to
+/// the initial level 10 (G98); R -5, bottom -10 (G87: from R -20 below up to -5), Q 2, P 1 s.
+#[test]
+fn fanuc_cycles_in_three_planes() {
+    // (plane code, positioning axes and drilling axis as X=0 Y=1 Z=2, their letters)
+    let planes = [
+        (17, [0, 1, 2], ["X", "Y", "Z"]),
+        (18, [2, 0, 1], ["Z", "X", "Y"]),
+        (19, [1, 2, 0], ["Y", "Z", "X"]),
+    ];
+    for (plane, axes, letters) in planes {
+        for code in [73, 74, 76, 83, 84, 87, 88] {
+            let point = |a: f64, b: f64, d: f64| {
+                let mut p = [0.0; 3];
+                (p[axes[0]], p[axes[1]], p[axes[2]]) = (a, b, d);
+                format!("X{} Y{} Z{}", p[0], p[1], p[2])
+            };
+            let [la, lb, ld] = letters;
+            let start = if code == 74 { "M04" } else { "M03" };
+            let (r, z) = if code == 87 {
+                (-20.0, -5.0)
+            } else {
+                (-5.0, -10.0)
+            };
+            let program = format!(
+                "G{plane} G0 {la}0 {lb}0 {ld}10.\nS500 {start}\n\
+                 G99 G{code} {la}5. {lb}5. {ld}{z}. R{r}. Q2. P1000 F100.\n{la}15.\nG98 {lb}15.\nG80\nM30"
+            );
+            let (forward, reverse) = if code == 74 {
+                ("CounterClockwise", "Clockwise")
+            } else {
+                ("Clockwise", "CounterClockwise")
+            };
+            let mut expected = vec![format!("rapid {}", point(0.0, 0.0, 10.0))];
+            expected.push(format!("spindle {forward} 500"));
+            let mut level = 10.0;
+            for (a, b, back) in [(5.0, 5.0, r), (15.0, 5.0, r), (15.0, 15.0, 10.0)] {
+                let back = if code == 87 { 10.0 } else { back };
+                let rapid = |d: f64| format!("rapid {}", point(a, b, d));
+                let shifted = |d: f64, by: f64| format!("rapid {}", point(a + by, b, d));
+                let feed = |d: f64| format!("line {} F100", point(a, b, d));
+                let mut v = vec![rapid(level)];
+                if code != 87 && level != r {
+                    v.push(rapid(r));
+                }
+                match code {
+                    73 => v.extend([
+                        feed(-7.0),
+                        rapid(-6.0),
+                        feed(-9.0),
+                        rapid(-8.0),
+                        feed(-10.0),
+                    ]),
+                    83 => v.extend([
+                        feed(-7.0),
+                        rapid(r),
+                        rapid(-6.0),
+                        feed(-9.0),
+                        rapid(r),
+                        rapid(-8.0),
+                        feed(-10.0),
+                    ]),
+                    74 | 84 => v.extend([
+                        feed(z),
+                        "dwell 1".into(),
+                        format!("spindle {reverse} 500"),
+                        feed(r),
+                        "dwell 1".into(),
+                        format!("spindle {forward} 500"),
+                    ]),
+                    76 => v.extend([
+                        feed(z),
+                        "dwell 1".into(),
+                        "spindle Oriented 500".into(),
+                        shifted(z, 2.0),
+                        shifted(back, 2.0),
+                        rapid(back),
+                        "spindle Clockwise 500".into(),
+                    ]),
+                    87 => v.extend([
+                        "spindle Oriented 500".into(),
+                        shifted(10.0, -2.0),
+                        shifted(r, -2.0),
+                        rapid(r),
+                        "spindle Clockwise 500".into(),
+                        feed(z),
+                        "dwell 1".into(),
+                        "spindle Oriented 500".into(),
+                        shifted(z, -2.0),
+                        shifted(10.0, -2.0),
+                        "spindle Clockwise 500".into(),
+                        rapid(10.0),
+                    ]),
+                    _ => v.extend([
+                        feed(z),
+                        "dwell 1".into(),
+                        "spindle Stopped 500".into(),
+                        "stop Program".into(),
+                        feed(r),
+                    ]),
+                }
+                // The return, where the cycle's own moves have not made it (G76 and G87 return
+                // within their sequences; the others that end at R go on only under G98).
+                match code {
+                    73 | 83 => v.push(rapid(back)),
+                    74 | 84 | 88 if back != r => v.push(rapid(back)),
+                    _ => {}
+                }
+                if code == 88 {
+                    v.push("spindle Clockwise 500".into());
+                }
+                expected.extend(v);
+                level = back;
+            }
+            expected.push("end M30".into());
+            check_on(&Machine::default(), &program, &expected.join("\n"));
+        }
+    }
+}
