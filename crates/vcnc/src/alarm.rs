@@ -98,6 +98,9 @@ pub enum AlarmCode {
     /// A canned cycle without the data it needs (Z, Q), with a bad K, or a plane change inside
     /// a cycle.
     CycleData,
+    /// G12/G13 circle cutting without an offset number, or with a circle no larger than the
+    /// offset (Mitsubishi P170, P233).
+    CircleCutting,
 }
 
 impl AlarmCode {
@@ -134,6 +137,7 @@ impl AlarmCode {
             CutterCompensation => "cutter_compensation",
             PositionOffset => "position_offset",
             CycleData => "cycle_data",
+            CircleCutting => "circle_cutting",
         }
     }
 
@@ -170,6 +174,7 @@ impl AlarmCode {
             CutterCompensation => "V060",
             PositionOffset => "V061",
             CycleData => "V070",
+            CircleCutting => "V071",
         }
     }
 
@@ -204,6 +209,7 @@ impl AlarmCode {
         AlarmCode::CutterCompensation,
         AlarmCode::PositionOffset,
         AlarmCode::CycleData,
+        AlarmCode::CircleCutting,
     ];
 }
 

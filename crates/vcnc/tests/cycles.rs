@@ -885,3 +885,65 @@ fn fanuc_cycles_in_three_planes() {
         }
     }
 }
+
+/// A Mitsubishi machine with D1 = `d`.
+fn mitsubishi(d: f64) -> Machine {
+    let mut machine = Machine::default()
+        .with_profile(ProfileName::Mitsubishi)
+        .unwrap();
+    machine.tool_offsets.insert(
+        1,
+        vcnc::machine::ToolOffset {
+            number: 1,
+            radius: d,
+            ..Default::default()
+        },
+    );
+    machine
+}
+
+/// Mitsubishi G12/G13 (spec B.6): from the centre a half circle of radius r/2 out to the circle,
+/// the full circle, a half circle back, all clockwise for G12; r = |I| - D (15 here), a negative
+/// offset enlarges it; in G18 the first plane axis is Z.
+#[test]
+fn mitsubishi_circle_cutting() {
+    check_on(
+        &mitsubishi(5.0),
+        "G0 X10. Y10.\nG12 I20. D1 F100.\nM30",
+        "
+        rapid X10 Y10 Z0
+        arc cw xy X25 Y10 Z0 C(17.5,10,0) F100
+        arc cw xy X25 Y10 Z0 C(10,10,0) F100
+        arc cw xy X10 Y10 Z0 C(17.5,10,0) F100
+        end M30",
+    );
+    check_on(
+        &mitsubishi(-5.0),
+        "G18 G0 X10. Z10.\nG13 I-20. D1 F100.\nM30",
+        "
+        rapid X10 Y0 Z10
+        arc ccw zx X10 Y0 Z35 C(10,0,22.5) F100
+        arc ccw zx X10 Y0 Z35 C(10,0,10) F100
+        arc ccw zx X10 Y0 Z10 C(10,0,22.5) F100
+        end M30",
+    );
+}
+
+#[test]
+fn circle_cutting_alarms_and_exists_only_where_the_profile_has_it() {
+    check_on(
+        &mitsubishi(5.0),
+        "G12 I20. F100.\nM30",
+        "alarm circle_cutting line 1",
+    );
+    check_on(
+        &mitsubishi(5.0),
+        "G12 I5. D1 F100.\nM30",
+        "alarm circle_cutting line 1",
+    );
+    check_on(
+        &Machine::default(),
+        "G12 I20. D1 F100.\nM30",
+        "alarm unknown_g_code line 1",
+    );
+}

@@ -22,7 +22,11 @@ pub(crate) fn before_motion(
     cmd: &Command,
     out: &mut Output,
 ) -> Result<(), Alarm> {
-    let d = cmd.word(b'D');
+    // In a G12/G13 block D is the circle's own offset, not the cutter compensation's.
+    let circle = cmd
+        .group(Group::NonModal)
+        .is_some_and(|g| matches!(g.code, GCode::CircleCutting(_)));
+    let d = cmd.word(b'D').filter(|_| !circle);
     let number = match d {
         Some(d) => Some((d, 'D')),
         None if h_names_radius_offset(exec, cmd) => cmd.h().map(|h| (h, 'H')),

@@ -171,6 +171,10 @@ impl Executor {
                 Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
                 Some(GCode::MachineCoordinates) => super::coords::g53(self, cmd, out)?,
                 Some(GCode::Dwell) => true,
+                Some(GCode::CircleCutting(direction)) => {
+                    super::circle_cutting::run(self, cmd, direction, out)?;
+                    true
+                }
                 Some(GCode::Pattern(kind)) => {
                     super::cycles::pattern(self, cmd, kind, out)?;
                     true

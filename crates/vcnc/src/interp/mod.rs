@@ -11,6 +11,7 @@
 
 mod arc;
 mod auxiliary;
+mod circle_cutting;
 mod circular;
 mod comp;
 mod compensation;

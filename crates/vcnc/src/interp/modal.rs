@@ -189,6 +189,7 @@ impl ModalState {
             | PresetCoordinates
             | PositionOffset(_)
             | Pattern(_)
+            | CircleCutting(_)
             | PolarCancel
             | Polar
             | ScalingCancel

@@ -4,6 +4,7 @@
 //! maps a number to a meaning; the interpreter matches on [`GCode`].
 
 use super::Profile;
+use crate::motion::ArcDirection;
 
 /// The modal groups of the FANUC-family M-series numbering (spec/iso-syntec-milling.md A.4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -115,6 +116,9 @@ pub enum GCode {
     Cycle(CycleKind),
     /// Syntec G134, G135, G136, G137.1: holes in a pattern, drilled by the cycle in force.
     Pattern(PatternKind),
+    /// Mitsubishi G12 (clockwise) and G13 (counter-clockwise): cut a circle's inside from its
+    /// centre and come back.
+    CircleCutting(ArcDirection),
     /// G90.
     Absolute,
     /// G91.
@@ -202,6 +206,8 @@ impl GCode {
             Pattern(PatternKind::Line) => "holes on a line at an angle",
             Pattern(PatternKind::Arc) => "holes on an arc",
             Pattern(PatternKind::Grid) => "grid hole pattern",
+            CircleCutting(ArcDirection::Clockwise) => "circle cutting CW",
+            CircleCutting(ArcDirection::CounterClockwise) => "circle cutting CCW",
             Absolute => "absolute programming",
             Incremental => "incremental programming",
             SetCoordinates => "coordinate system setting",
@@ -256,7 +262,9 @@ impl GCode {
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
-            | PresetCoordinates | PositionOffset(_) | Pattern(_) => Group::NonModal,
+            | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_) => {
+                Group::NonModal
+            }
         }
     }
 }
@@ -356,6 +364,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         40 => Dwell,
         90 => ExactStopOnce,
         100 => DataInput,
+        120 if profile.g12_g13_circle_cutting => CircleCutting(ArcDirection::Clockwise),
+        130 if profile.g12_g13_circle_cutting => CircleCutting(ArcDirection::CounterClockwise),
         131 => PolarInterpolationCancel,
         150 => PolarCancel,
         160 => Polar,
@@ -459,8 +469,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
 fn not_yet_on(tenths: i32, profile: &Profile) -> Option<(Option<u32>, &'static str)> {
     match tenths {
         470 if !profile.tool_position_offset => Some((None, "text engraving")),
-        120 if profile.g12_g13_circle_cutting => Some((Some(4), "circle cutting CW")),
-        130 if profile.g12_g13_circle_cutting => Some((Some(4), "circle cutting CCW")),
         _ => NOT_YET
             .iter()
             .find(|(code, _, _)| *code == tenths)

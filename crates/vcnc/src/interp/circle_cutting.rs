@@ -1,0 +1,78 @@
+//! Mitsubishi G12/G13 circle cutting (spec iso-fanuc0m-mitsubishi.md B.6, issue #4): from the
+//! circle's centre, a half circle out to the circle, the whole circle, a half circle back to the
+//! centre, all in the cutting direction, in the selected plane. The tool centre runs on radius
+//! |I| minus offset D (a negative offset enlarges it).
+
+use super::decode::Command;
+use super::exec::Executor;
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::AXES;
+use crate::motion::{ArcDirection, MachinePos, SegmentKind};
+
+/// Runs a G12 (clockwise) or G13 block.
+///
+/// # Errors
+/// No I or D, an offset number out of range, a circle no larger than the offset, no feed.
+pub(crate) fn run(
+    exec: &mut Executor,
+    cmd: &Command,
+    direction: ArcDirection,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let refuse = |message: &str| Alarm::error(AlarmCode::CircleCutting, cmd.span, message);
+    let i = cmd
+        .word(b'I')
+        .ok_or_else(|| refuse("circle cutting needs I, the circle's radius"))?;
+    let d = cmd.word(b'D').ok_or_else(|| {
+        refuse("circle cutting needs D, the offset number")
+            .with_help("Mitsubishi program error P170")
+    })?;
+    let number = exec.offset_number(d, 'D')?;
+    let offset = exec
+        .machine
+        .tool_offsets
+        .get(&number)
+        .map_or(0.0, |t| t.radius + t.radius_wear);
+    let r = exec.length(&i).abs() - offset;
+    if r <= 0.0 {
+        return Err(Alarm::error(
+            AlarmCode::CircleCutting,
+            i.span,
+            format!(
+                "the circle's radius {:.4} is not larger than the offset {offset:.4}",
+                exec.length(&i).abs()
+            ),
+        )
+        .with_help("Mitsubishi program error P233"));
+    }
+    let feed = exec.cutting_feed(cmd)?;
+    let plane = exec.modal.plane;
+    let (a, _, _) = plane.axes();
+    let centre = exec.program_position();
+    let at = |da: f64| {
+        let mut p = centre;
+        p[a] += da;
+        p
+    };
+    // Out on a half circle about (r/2, 0), round the circle about the centre, back again.
+    let steps: [([f64; AXES], [f64; AXES]); 3] =
+        [(at(r), at(r / 2.0)), (at(r), centre), (centre, at(r / 2.0))];
+    for (to, about) in steps {
+        let to = exec.machine_target(&to, false);
+        let about = exec.machine_target(&about, false);
+        let motion = exec.move_to(to, cmd)?;
+        out.push(
+            cmd,
+            SegmentKind::Arc {
+                motion,
+                center: MachinePos(about),
+                direction,
+                plane,
+                extra_turns: 0,
+                feed,
+            },
+        );
+    }
+    Ok(())
+}
