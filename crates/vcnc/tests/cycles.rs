@@ -947,3 +947,65 @@ fn circle_cutting_alarms_and_exists_only_where_the_profile_has_it() {
         "alarm unknown_g_code line 1",
     );
 }
+
+/// Syntec's E in G84 (spec 1.47): 20 threads per inch is a pitch of 1.27 mm; at S500 in G94 the
+/// feed is 635 mm/min, in G95 1.27 mm/rev. With F in the block, E is ignored. E elsewhere is
+/// refused.
+#[test]
+fn tapping_feed_from_threads_per_inch() {
+    let syntec = Machine::default()
+        .with_profile(ProfileName::Syntec)
+        .unwrap();
+    check_on(
+        &syntec,
+        "S500 M03\nG0 Z10.\nG84 X5. Z-5. R2. E20.\nG80\nM30",
+        "
+        spindle Clockwise 500
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z-5 F635
+        spindle CounterClockwise 500
+        line X5 Y0 Z2 F635
+        spindle Clockwise 500
+        rapid X5 Y0 Z10
+        end M30",
+    );
+    check_on(
+        &syntec,
+        "S500 M03\nG95 G0 Z10.\nG84 X5. Z-5. R2. E20. F2.\nG80\nM30",
+        "
+        spindle Clockwise 500
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z-5 F2/rev
+        spindle CounterClockwise 500
+        line X5 Y0 Z2 F2/rev
+        spindle Clockwise 500
+        rapid X5 Y0 Z10
+        end M30",
+    );
+    check_on(
+        &syntec,
+        "S500 M03\nG95 G0 Z10.\nG84 X5. Z-5. R2. E20.\nG80\nM30",
+        "
+        spindle Clockwise 500
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z-5 F1.27/rev
+        spindle CounterClockwise 500
+        line X5 Y0 Z2 F1.27/rev
+        spindle Clockwise 500
+        rapid X5 Y0 Z10
+        end M30",
+    );
+    check_on(
+        &syntec,
+        "G0 Z10.\nG81 X5. Z-5. R2. E20. F100.\nM30",
+        "
+        rapid X0 Y0 Z10
+        alarm cycle_data line 2",
+    );
+}

@@ -10,7 +10,7 @@
 
 use super::decode::Command;
 use super::exec::Executor;
-use super::modal::{CycleReturn, DistanceMode};
+use super::modal::{CycleReturn, DistanceMode, FeedMode};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
@@ -118,6 +118,7 @@ fn holes(
         return Ok(());
     }
     store(exec, cycle, cmd)?;
+    tapping_feed(exec, cycle, cmd)?;
     let repeats = match cmd.word(b'K') {
         Some(k) => match k.number.whole() {
             Some(n) if n >= 0 => n,
@@ -361,6 +362,34 @@ fn pattern_holes(
     for at in points {
         drill_at(exec, cycle, cmd, out, levels, at, None)?;
     }
+    Ok(())
+}
+
+/// Syntec's E (threads per inch) in a tapping cycle: without F, the feed is the pitch 25.4 / E
+/// mm per revolution (G95), times the spindle speed (G94) (spec 1.42, 1.47).
+///
+/// # Errors
+/// E where it means nothing: outside G74/G84, or not above zero.
+fn tapping_feed(exec: &mut Executor, cycle: &Cycle, cmd: &Command) -> Result<(), Alarm> {
+    let Some(e) = cmd.word(b'E') else {
+        return Ok(());
+    };
+    if !matches!(cycle.kind, CycleKind::Tap | CycleKind::LeftHandTap) || e.number.value <= 0.0 {
+        return Err(Alarm::error(
+            AlarmCode::CycleData,
+            e.span,
+            "E, threads per inch, is for the tapping cycles G74 and G84, above zero",
+        ));
+    }
+    if cmd.f().is_some() {
+        // F and E together: E is ignored (spec 1.42).
+        return Ok(());
+    }
+    let pitch = 25.4 / e.number.value;
+    exec.feed = Some(match exec.modal.feed_mode {
+        FeedMode::PerRevolution => pitch,
+        _ => pitch * exec.speed,
+    });
     Ok(())
 }
 

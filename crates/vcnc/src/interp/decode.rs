@@ -331,6 +331,8 @@ pub(crate) fn decode(
             }
             b'P' => out.set(word, value)?,
             b'Q' => out.set(word, value)?,
+            // Syntec's threads per inch of a tapping cycle.
+            b'E' => out.set(word, value)?,
             b'L' => {
                 whole(word)?;
                 out.set(word, value)?;

@@ -181,6 +181,13 @@ impl Executor {
                 }
                 _ => false,
             };
+        if let (Some(e), None) = (cmd.word(b'E'), &self.cycle) {
+            return Err(Alarm::not_supported(
+                e.span,
+                "address E outside a tapping cycle",
+                None,
+            ));
+        }
         if !consumed && self.cycle.is_some() {
             super::cycles::run(self, cmd, out)?;
         } else if !consumed && (cmd.has_axis_words() || has_center_words(cmd)) {
