@@ -1009,3 +1009,30 @@ fn tapping_feed_from_threads_per_inch() {
         alarm cycle_data line 2",
     );
 }
+
+/// Limits that raise alarms instead of running for ever: K above the controls' 9999, a grid of
+/// more than 9999 holes, a peck depth that would need more than 9999 pecks.
+#[test]
+fn counts_beyond_the_limits_alarm() {
+    fanuc(
+        "G0 Z10.\nG81 X5. Z-5. R2. F100. K10000\nM30",
+        "
+        rapid X0 Y0 Z10
+        alarm cycle_data line 2",
+    );
+    fanuc(
+        "G0 Z10.\nG83 X5. Z-5. R2. Q0.0001 F100.\nM30",
+        "
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        alarm cycle_data line 2",
+    );
+    check_on(
+        &Machine::default()
+            .with_profile(ProfileName::Syntec)
+            .unwrap(),
+        "G81 Z-5. R2. F100. K0\nG137.1 X0 Y0 I1. P1000 J1. K1000\nM30",
+        "alarm cycle_data line 2",
+    );
+}

@@ -17,6 +17,11 @@ use crate::machine::{Axis, AXES};
 use crate::motion::{Plane, SegmentKind, SpindleState, StopKind};
 use crate::profile::{CycleKind, GCode, Group, PatternKind, ShiftDirection};
 
+/// The most repeats (K) or pattern holes one block may make, and the most pecks in one hole:
+/// the controls' own limit for K (spec 1.40: 0-9999), and a bound that turns a peck depth of
+/// almost nothing into an alarm instead of a hang.
+const MAX_COUNT: i64 = 9999;
+
 /// The cycle mode in force.
 #[derive(Clone, Debug)]
 pub(crate) struct Cycle {
@@ -121,12 +126,12 @@ fn holes(
     tapping_feed(exec, cycle, cmd)?;
     let repeats = match cmd.word(b'K') {
         Some(k) => match k.number.whole() {
-            Some(n) if n >= 0 => n,
+            Some(n) if (0..=MAX_COUNT).contains(&n) => n,
             _ => {
                 return Err(Alarm::error(
                     AlarmCode::CycleData,
                     k.span,
-                    "K, the number of repeats, is a whole number from 0",
+                    format!("K, the number of repeats, is a whole number from 0 to {MAX_COUNT}"),
                 ))
             }
         },
@@ -347,6 +352,16 @@ fn pattern_holes(
             let nx = count(b'P', "the number of holes along the first axis")?.abs();
             let dy = exec.length(&need(b'J', "the spacing along the second axis")?);
             let ny = count(b'K', "the number of rows")?.abs();
+            if nx * ny > MAX_COUNT {
+                return Err(Alarm::error(
+                    AlarmCode::CycleData,
+                    cmd.span,
+                    format!(
+                        "this grid has {} holes: vcnc drills at most {MAX_COUNT} in one block",
+                        nx * ny
+                    ),
+                ));
+            }
             // Row by row, each row the other way round (zig-zag), as FANUC-family grids go.
             (0..ny)
                 .flat_map(|j| {
@@ -571,6 +586,13 @@ impl Hole<'_> {
     /// G73 and G83 from the R level to the bottom, peck by peck; the last peck is shorter.
     fn peck(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
         let q = cycle.q.unwrap_or(f64::INFINITY);
+        if (self.bottom - self.r_level).abs() / q > MAX_COUNT as f64 {
+            return Err(Alarm::error(
+                AlarmCode::CycleData,
+                self.cmd.span,
+                format!("Q is so small that a hole would take more than {MAX_COUNT} pecks"),
+            ));
+        }
         let down = if self.bottom < self.r_level {
             -1.0
         } else {
