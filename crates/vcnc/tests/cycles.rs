@@ -767,7 +767,8 @@ fn fanuc_0m_example_o1818() {
 /// The FANUC-family cycles in all three planes (spec A.32-A.43, 1.41-1.51): each cycle's
 /// sequence written out from the manuals' step lists, for G17 (drilling along Z), G18 (along
 /// Y) and G19 (along X). Holes at (5,5) and (15,5) return to R (G99), the third at (15,15) to
-/// the initial level 10 (G98); R -5, bottom -10 (G87: from R -20 below up to -5), Q 2, P 1 s.
+/// the initial level 10 (G98); R -5, bottom -10 (G87: from R -20 below up to -5), Q 2 (for the
+/// taps: peck tapping, spec 1.42 type III), P 1 s.
 #[test]
 fn fanuc_cycles_in_three_planes() {
     // (plane code, positioning axes and drilling axis as X=0 Y=1 Z=2, their letters)
@@ -828,14 +829,19 @@ fn fanuc_cycles_in_three_planes() {
                         rapid(-8.0),
                         feed(-10.0),
                     ]),
-                    74 | 84 => v.extend([
-                        feed(z),
-                        "dwell 1".into(),
-                        format!("spindle {reverse} 500"),
-                        feed(r),
-                        "dwell 1".into(),
-                        format!("spindle {forward} 500"),
-                    ]),
+                    // Q in a tapping cycle: peck tapping, back out to R after each peck.
+                    74 | 84 => {
+                        for depth in [-7.0, -9.0, -10.0] {
+                            v.extend([
+                                feed(depth),
+                                "dwell 1".into(),
+                                format!("spindle {reverse} 500"),
+                                feed(r),
+                                "dwell 1".into(),
+                                format!("spindle {forward} 500"),
+                            ]);
+                        }
+                    }
                     76 => v.extend([
                         feed(z),
                         "dwell 1".into(),

@@ -501,13 +501,24 @@ impl Hole<'_> {
                 } else {
                     (SpindleState::CounterClockwise, SpindleState::Clockwise)
                 };
-                // Spec 1.42 type I: dwell and reverse at the bottom and again at R.
-                self.feed_to(bottom)?;
-                self.dwell(cycle.p);
-                self.spindle(reverse);
-                self.feed_to(r)?;
-                self.dwell(cycle.p);
-                self.spindle(forward);
+                // Spec 1.42: type I taps in one pass; with Q, type III (Pr4001 = 0, FANUC's
+                // standard peck tapping) taps Q deeper each time and backs out to R between
+                // pecks. Dwell and reverse at each turn.
+                let q = cycle.q.filter(|&q| q > 0.0).unwrap_or(f64::INFINITY);
+                self.check_pecks(q)?;
+                let mut depth = r;
+                loop {
+                    depth = self.next_depth(depth, q);
+                    self.feed_to(depth)?;
+                    self.dwell(cycle.p);
+                    self.spindle(reverse);
+                    self.feed_to(r)?;
+                    self.dwell(cycle.p);
+                    self.spindle(forward);
+                    if depth == bottom {
+                        break;
+                    }
+                }
                 self.rapid_to(back)
             }
             CycleKind::BoreManualRetract => {
@@ -586,13 +597,7 @@ impl Hole<'_> {
     /// G73 and G83 from the R level to the bottom, peck by peck; the last peck is shorter.
     fn peck(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
         let q = cycle.q.unwrap_or(f64::INFINITY);
-        if (self.bottom - self.r_level).abs() / q > MAX_COUNT as f64 {
-            return Err(Alarm::error(
-                AlarmCode::CycleData,
-                self.cmd.span,
-                format!("Q is so small that a hole would take more than {MAX_COUNT} pecks"),
-            ));
-        }
+        self.check_pecks(q)?;
         let down = if self.bottom < self.r_level {
             -1.0
         } else {
@@ -600,11 +605,7 @@ impl Hole<'_> {
         };
         let mut depth = self.r_level;
         loop {
-            let next = if (self.bottom - depth).abs() <= q {
-                self.bottom
-            } else {
-                depth + down * q
-            };
+            let next = self.next_depth(depth, q);
             if depth != self.r_level && cycle.kind == CycleKind::Peck {
                 // G83: back into the hole, stopping the clearance short of the last depth.
                 self.rapid_to(depth - down * self.exec.profile.peck_clearance)?;
@@ -618,6 +619,29 @@ impl Hole<'_> {
                 CycleKind::Peck => self.rapid_to(self.r_level)?,
                 _ => self.rapid_to(depth - down * self.exec.profile.peck_retract)?,
             }
+        }
+    }
+
+    /// Refuses a peck depth so small the hole would take more pecks than [`MAX_COUNT`].
+    fn check_pecks(&self, q: f64) -> Result<(), Alarm> {
+        if (self.bottom - self.r_level).abs() / q > MAX_COUNT as f64 {
+            return Err(Alarm::error(
+                AlarmCode::CycleData,
+                self.cmd.span,
+                format!("Q is so small that a hole would take more than {MAX_COUNT} pecks"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// One peck of `q` deeper than `depth`, the last one shortened to end at the bottom.
+    fn next_depth(&self, depth: f64, q: f64) -> f64 {
+        if (self.bottom - depth).abs() <= q {
+            self.bottom
+        } else if self.bottom < depth {
+            depth - q
+        } else {
+            depth + q
         }
     }
 
