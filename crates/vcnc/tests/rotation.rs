@@ -137,3 +137,38 @@ proptest! {
         assert_coded_is_by_hand(&steps, &by_hand, false, &header, &Machine::default())?;
     }
 }
+
+/// Syntec's G92.1 with rotation (spec 1.55, file examples/syntec/63-g92.1-rotated-preset.nc):
+/// after `G92.1 X10. Y10. K1. R45.` at (20,20) the program position is (14.142, 0); `G01 X100.`
+/// (Syntec's default feed) goes to machine (10,10) + 100 (cos 45, sin 45) = (80.711, 80.711),
+/// program (100, 0).
+#[test]
+fn syntec_g92_1_presets_with_a_rotation() {
+    let text =
+        std::fs::read(common::shared_dir().join("spec/examples/syntec/63-g92.1-rotated-preset.nc"))
+            .unwrap();
+    let machine = vcnc::Machine::default()
+        .with_profile(vcnc::ProfileName::Syntec)
+        .unwrap();
+    let run = common::run(&text, &machine, vcnc::Options::default());
+    assert!(run.error().is_none(), "{:?}", run.error());
+    let last = run
+        .segments
+        .iter()
+        .rev()
+        .find_map(|s| s.motion())
+        .expect("the example moves");
+    let (m, w) = (last.to.0, last.work_to());
+    assert!(
+        (m[0] - 80.7107).abs() < 1e-4 && (m[1] - 80.7107).abs() < 1e-4,
+        "{m:?}"
+    );
+    assert!((w[0] - 100.0).abs() < 1e-9 && w[1].abs() < 1e-9, "{w:?}");
+    // FANUC's G92.1 has no rotation.
+    let fanuc = common::run(
+        b"G92.1 X10. Y10. K1. R45.\nM30\n",
+        &vcnc::Machine::default(),
+        vcnc::Options::default(),
+    );
+    assert!(fanuc.error().is_some());
+}

@@ -74,8 +74,11 @@ pub(crate) fn arc(
         if let Some(scaling) = &scaling {
             offset = scaling.arc_vector((a, b), offset);
         }
-        if let Some(rotation) = &exec.frames.rotation {
-            // I J K are a vector in the programmed (unrotated) coordinates.
+        // I J K are a vector in the programmed (unrotated) coordinates.
+        for rotation in [&exec.frames.rotation, &exec.frames.preset_rotation]
+            .into_iter()
+            .flatten()
+        {
             offset = rotation.vector(offset);
         }
         ArcSpec::Center { offset, span }

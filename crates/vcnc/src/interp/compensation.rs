@@ -165,7 +165,7 @@ pub(crate) fn after_motion(
         to: MachinePos(exec.position),
         path_mode: exec.modal.path_mode,
         exact_stop: cmd.exact_stop_once,
-        offset: exec.frames.offset(),
+        offset: exec.frames.offset_at(&exec.position),
     };
     let kind = match exec.modal.motion {
         MotionMode::Rapid => SegmentKind::Rapid {

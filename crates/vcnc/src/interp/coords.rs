@@ -2,6 +2,7 @@
 
 use super::decode::Command;
 use super::exec::Executor;
+use super::frames::Rotation;
 use super::modal::DistanceMode;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
@@ -37,12 +38,7 @@ pub(crate) fn g92(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
 /// Not supported yet for Syntec's rotated form; an axis value other than 0.
 pub(crate) fn g92_1(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     if cmd.r().is_some() || cmd.center(2).is_some() {
-        let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
-        return Err(Alarm::not_supported(
-            span,
-            "G92.1 with rotation (K, R)",
-            Some(5),
-        ));
+        return preset_with_rotation(exec, cmd);
     }
     let named = cmd.has_axis_words();
     for axis in Axis::ALL {
@@ -100,5 +96,50 @@ pub(crate) fn g53(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
         exec.frames.length_vector = 0.0;
     }
     exec.rapid_to(target, cmd, out)?;
+    Ok(true)
+}
+
+/// Syntec's G92.1 X Y K1. R (spec 1.55): the program origin moves to (X, Y) of the present
+/// program system (the G92 shift) and the program's X-Y plane turns by R degrees about it:
+/// machine = work offset + (X, Y) + Rot(R) p.
+///
+/// # Errors
+/// On profiles without it, with K other than 1 (the only axis the manual shows), or when the
+/// system is already shifted by G92, G52 or turned.
+fn preset_with_rotation(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
+    let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
+    if !exec.profile.g92_1_rotation {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            span,
+            "G92.1 takes no K or R on this control",
+        ));
+    }
+    let k = cmd.center(2).map(|k| k.number.value);
+    if k.is_some_and(|k| k != 1.0) {
+        return Err(Alarm::not_supported(
+            span,
+            "G92.1 with K other than 1 (rotation about Z)",
+            Some(5),
+        ));
+    }
+    let shifted = (0..2).any(|i| exec.frames.g92(i) != 0.0 || exec.frames.local(i) != 0.0);
+    if shifted || exec.frames.rotated() {
+        return Err(Alarm::not_supported(
+            span,
+            "G92.1 with R on a system already shifted by G92/G52 or turned",
+            Some(5),
+        ));
+    }
+    for axis in [Axis::X, Axis::Y] {
+        let i = axis.index();
+        if let Some(value) = cmd.axis(i) {
+            let v = exec.axis_value(axis, &value);
+            exec.frames.set_g92(i, v);
+        }
+    }
+    let degrees = cmd.r().map_or(0.0, |r| exec.angle(&r));
+    exec.frames.preset_rotation =
+        (degrees != 0.0).then(|| Rotation::new((0, 1), (0.0, 0.0), degrees));
     Ok(true)
 }

@@ -122,7 +122,7 @@ impl Executor {
         let length_changed = super::length::apply(self, cmd, out)?;
         super::compensation::before_motion(self, cmd, out)?;
         let rotation = cmd.group(Group::Rotation).map(|g| g.code);
-        if self.frames.rotation.is_some()
+        if self.frames.rotated()
             && matches!(
                 non_modal.map(|g| g.code),
                 Some(GCode::SetCoordinates | GCode::PresetCoordinates)
@@ -131,7 +131,7 @@ impl Executor {
             let span = non_modal.map_or(cmd.span, |g| g.span);
             return Err(Alarm::not_supported(
                 span,
-                "G92 while coordinate rotation (G68) is on",
+                "G92 or G92.1 while the coordinate system is rotated (G68, G92.1 R)",
                 Some(5),
             ));
         }
@@ -242,9 +242,7 @@ impl Executor {
                         };
                     }
                 }
-                GCode::PlaneXy | GCode::PlaneZx | GCode::PlaneYz
-                    if self.frames.rotation.is_some() =>
-                {
+                GCode::PlaneXy | GCode::PlaneZx | GCode::PlaneYz if self.frames.rotated() => {
                     let before = self.modal.plane;
                     self.modal.apply(g.code);
                     if self.modal.plane != before {
@@ -430,7 +428,7 @@ impl Executor {
             to: MachinePos(to),
             path_mode: self.modal.path_mode,
             exact_stop: cmd.exact_stop_once,
-            offset: self.frames.offset(),
+            offset: self.frames.offset_at(&to),
         })
     }
 

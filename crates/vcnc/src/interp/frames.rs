@@ -1,6 +1,7 @@
 //! The coordinate chain: from program coordinates to machine coordinates.
 //!
-//! machine = rotation(scaling(program)) + local (G52) + G92 shift + work offset (G54 ...)
+//! machine = preset rotation(rotation(scaling(program))) + local (G52) + G92 shift + work offset
+//! (G54 ...), the preset rotation being Syntec's G92.1 with K R
 //!           + external offset + tool length vector (Z only)
 //!
 //! Scaling (G51) or the programmable mirror (G51.1, a scaling by -1) stretches the programmed
@@ -32,6 +33,8 @@ pub(crate) struct Frames {
     shift: [f64; AXES],
     /// G68, while it is on.
     pub(crate) rotation: Option<Rotation>,
+    /// Syntec's G92.1 with K R: the program system turned about its new origin, outside G68.
+    pub(crate) preset_rotation: Option<Rotation>,
     /// G51 or G51.1, while it is on.
     pub(crate) scaling: Option<Scaling>,
 }
@@ -130,6 +133,11 @@ impl Rotation {
 }
 
 impl Frames {
+    /// True when a rotation turns the program's plane (G68 or Syntec's rotated G92.1).
+    pub(crate) fn rotated(&self) -> bool {
+        self.rotation.is_some() || self.preset_rotation.is_some()
+    }
+
     pub(crate) fn new(machine: &Machine) -> Frames {
         let mut frames = Frames {
             work_offsets: machine.work_offsets.clone(),
@@ -139,6 +147,7 @@ impl Frames {
             active: WorkOffsetId::Standard(1),
             shift: [0.0; AXES],
             rotation: None,
+            preset_rotation: None,
             scaling: None,
         };
         frames.recompute();
@@ -199,11 +208,24 @@ impl Frames {
         offset
     }
 
+    /// Machine minus program coordinates at the machine position `at`: the plain offset, or,
+    /// when the program system is scaled or turned, the difference at that point.
+    pub(crate) fn offset_at(&self, at: &[f64; AXES]) -> [f64; AXES] {
+        if self.scaling.is_none() && !self.rotated() {
+            return self.offset();
+        }
+        let program = self.to_program(at);
+        std::array::from_fn(|i| at[i] - program[i])
+    }
+
     /// Program coordinates of a machine position, with the applied tool length vector.
     pub(crate) fn to_program(&self, machine: &[f64; AXES]) -> [f64; AXES] {
         let shift = &self.shift;
         let mut program: [f64; AXES] = std::array::from_fn(|i| machine[i] - shift[i]);
         program[2] -= self.length_vector;
+        if let Some(rotation) = &self.preset_rotation {
+            rotation.turn(&mut program, -rotation.sin);
+        }
         if let Some(rotation) = &self.rotation {
             rotation.turn(&mut program, -rotation.sin);
         }
@@ -225,6 +247,9 @@ impl Frames {
             }
         }
         if let Some(rotation) = &self.rotation {
+            rotation.turn(&mut turned, rotation.sin);
+        }
+        if let Some(rotation) = &self.preset_rotation {
             rotation.turn(&mut turned, rotation.sin);
         }
         let mut machine: [f64; AXES] = std::array::from_fn(|i| turned[i] + shift[i]);

@@ -273,6 +273,10 @@ pub struct Profile {
     /// Syntec's hole patterns G134, G135, G136, G137.1.
     #[serde(default)]
     pub hole_patterns: bool,
+    /// Syntec's G92.1 X Y K R: a preset of the program origin with a rotation (spec 1.55);
+    /// elsewhere G92.1 is FANUC's work coordinate system preset.
+    #[serde(default)]
+    pub g92_1_rotation: bool,
     /// M codes a block may hold; when a block has more, only the last ones run (FANUC 0M: one,
     /// spec A.15 and example fanuc0m/06).
     #[serde(default = "default_m_codes_per_block")]
