@@ -36,8 +36,8 @@ fn run_summarises_the_bundled_example() {
     );
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("ended with M30"), "{text}");
-    assert!(text.contains("blocks executed   35"), "{text}");
-    assert!(text.contains("T1 (1 change)"), "{text}");
+    assert!(text.contains("blocks executed   48"), "{text}");
+    assert!(text.contains("T1 T2 (2 changes)"), "{text}");
 }
 
 #[test]
@@ -45,7 +45,7 @@ fn run_json_is_one_object_with_the_totals() {
     let out = vcnc(&["run", "--format", "json", &example()]);
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(value["ok"], true);
-    assert_eq!(value["blocks"], 35);
+    assert_eq!(value["blocks"], 48);
     assert!(value["feed"]["length_mm"].as_f64().unwrap() > 400.0);
 }
 
