@@ -1,9 +1,10 @@
 //! Fuzz target: arbitrary bytes through the whole interpreter, on every built-in profile.
 //!
 //! Properties (a broken one is a crash, and libFuzzer keeps the input):
-//! - no panic, and the run ends: at most `ITEMS_PER_BYTE` items per input byte (plus a few),
-//!   since a block takes at least one byte and yields only a handful of items; libFuzzer's
-//!   `-timeout` catches a single `next()` that never returns;
+//! - no panic, and the run ends: at most `ITEMS_PER_BLOCK` items per block (a block takes at
+//!   least one byte; most yield a handful of items, a canned cycle block up to vcnc's limit of
+//!   100,000 moves with their events); libFuzzer's `-timeout` catches a single `next()` that
+//!   never returns;
 //! - nothing comes out after the first error alarm;
 //! - every alarm has a span (in-memory ISO text has no whole-file problems), its span and its
 //!   labels' spans lie inside the input (`start <= end <= len`), and its message is one line;
@@ -18,8 +19,9 @@ use std::sync::OnceLock;
 use vcnc::motion::{Feed, Move};
 use vcnc::{interpret_bytes, Alarm, Machine, Options, ProfileName, Segment, SegmentKind, Span};
 
-const ITEMS_PER_BYTE: usize = 8;
-const ITEMS_ALWAYS: usize = 16;
+/// Items one block may yield: a cycle block's 100,000 moves, each with at most a spindle event
+/// or a dwell beside it, and a few more.
+const ITEMS_PER_BLOCK: usize = 250_000;
 
 struct Setup {
     machines: Vec<(ProfileName, Machine)>,
@@ -47,15 +49,20 @@ fn setup() -> &'static Setup {
 fuzz_target!(|data: &[u8]| {
     let setup = setup();
     let len = u32::try_from(data.len()).expect("libFuzzer inputs are small");
-    let limit = ITEMS_PER_BYTE * data.len() + ITEMS_ALWAYS;
     for (profile, machine) in &setup.machines {
-        let mut items = 0usize;
+        // Items per block, by the block's first byte.
+        let mut per_block: std::collections::HashMap<u32, usize> = Default::default();
         let mut error: Option<Alarm> = None;
-        for item in interpret_bytes(data, machine, Options::default()).take(limit + 1) {
-            items += 1;
+        for item in interpret_bytes(data, machine, Options::default()) {
+            let start = match &item {
+                Ok(segment) => segment.span.start,
+                Err(alarm) => alarm.span.map_or(0, |s| s.start),
+            };
+            let count = per_block.entry(start).or_default();
+            *count += 1;
             assert!(
-                items <= limit,
-                "{}: the run did not end within {limit} items",
+                *count <= ITEMS_PER_BLOCK,
+                "{}: the block at byte {start} yields more than {ITEMS_PER_BLOCK} items",
                 profile.as_str()
             );
             assert!(

@@ -1042,3 +1042,14 @@ fn counts_beyond_the_limits_alarm() {
         "alarm cycle_data line 2",
     );
 }
+
+/// A block that would make more than 100,000 moves alarms before moving.
+#[test]
+fn a_block_of_too_many_moves_alarms() {
+    fanuc(
+        "G0 Z10.\nG83 X5. Z-9. R0 Q0.001 K9999 F100.\nM30",
+        "
+        rapid X0 Y0 Z10
+        alarm cycle_data line 2",
+    );
+}

@@ -22,6 +22,11 @@ use crate::profile::{CycleKind, GCode, Group, PatternKind, ShiftDirection};
 /// almost nothing into an alarm instead of a hang.
 const MAX_COUNT: i64 = 9999;
 
+/// The most moves one cycle block may make (repeats or pattern holes times the moves of each
+/// hole): far beyond real programs, and a bound that keeps a K9999 of 9999-peck holes from
+/// running for hours.
+const MAX_BLOCK_MOVES: i64 = 100_000;
+
 /// The cycle mode in force.
 #[derive(Clone, Debug)]
 pub(crate) struct Cycle {
@@ -141,6 +146,7 @@ fn holes(
         return Ok(());
     }
     let levels = levels(exec, cycle, cmd, out)?;
+    check_size(cycle, levels, repeats, cmd)?;
     let (a, b, _) = cycle.axes;
     for _ in 0..repeats {
         // Over the hole: the plane axes as a move would go there (G91 steps on with each
@@ -210,6 +216,32 @@ fn levels(
         ));
     }
     Ok((r_level, bottom))
+}
+
+/// Refuses a block that would make more than [`MAX_BLOCK_MOVES`] moves for `holes` holes.
+fn check_size(
+    cycle: &Cycle,
+    (r_level, bottom): (f64, f64),
+    holes: i64,
+    cmd: &Command,
+) -> Result<(), Alarm> {
+    let pecking = matches!(
+        cycle.kind,
+        CycleKind::HighSpeedPeck | CycleKind::Peck | CycleKind::Tap | CycleKind::LeftHandTap
+    );
+    let pecks = match cycle.q.filter(|&q| pecking && q > 0.0) {
+        Some(q) => ((bottom - r_level).abs() / q).ceil().min(MAX_COUNT as f64) as i64,
+        None => 1,
+    };
+    let moves = holes.saturating_mul(4 + 3 * pecks);
+    if moves > MAX_BLOCK_MOVES {
+        return Err(Alarm::error(
+            AlarmCode::CycleData,
+            cmd.span,
+            format!("this block would make {moves} moves: vcnc makes at most {MAX_BLOCK_MOVES} in one block"),
+        ));
+    }
+    Ok(())
 }
 
 /// One hole at `at` (the plane axes): a rapid over it at the level the last hole returned to
@@ -374,6 +406,7 @@ fn pattern_holes(
         }
     };
     let levels = levels(exec, cycle, cmd, out)?;
+    check_size(cycle, levels, points.len() as i64, cmd)?;
     for at in points {
         drill_at(exec, cycle, cmd, out, levels, at, None)?;
     }
