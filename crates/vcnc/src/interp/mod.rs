@@ -75,18 +75,23 @@ pub(crate) struct Output {
 impl Output {
     /// Records a segment of the block `cmd`.
     pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
-        let segment = Segment {
-            kind,
-            span: cmd.span,
-            sequence: cmd.sequence,
-        };
         match self.comp.as_mut() {
+            // Built where it goes: a segment is a few hundred bytes, and this runs per move.
+            None => self.items.push(Ok(Segment {
+                kind,
+                span: cmd.span,
+                sequence: cmd.sequence,
+            })),
             Some(comp) => {
+                let segment = Segment {
+                    kind,
+                    span: cmd.span,
+                    sequence: cmd.sequence,
+                };
                 if let Err(alarm) = comp.push(segment, &mut self.items, &mut self.held) {
                     self.failed.get_or_insert(alarm);
                 }
             }
-            None => self.items.push(Ok(segment)),
         }
     }
 
