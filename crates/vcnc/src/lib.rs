@@ -30,6 +30,7 @@ pub mod alarm;
 pub mod interp;
 pub mod machine;
 pub mod motion;
+pub mod plan;
 pub mod profile;
 pub mod source;
 pub mod summary;

@@ -4,6 +4,7 @@
 //! (`default_machine.toml`), so every command works with no file at all. A machine file names
 //! its controller profile and may override any profile field.
 
+use crate::plan::{PlannerConfig, PlannerFile};
 use crate::profile::{Profile, ProfileName};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -170,6 +171,8 @@ struct MachineFile {
     #[serde(default)]
     tool_offsets: Vec<ToolOffset>,
     spindle: SpindleConfig,
+    #[serde(default)]
+    planner: PlannerFile,
 }
 
 /// Why a machine file was rejected.
@@ -247,6 +250,8 @@ pub struct Machine {
     pub tool_offsets: BTreeMap<u32, ToolOffset>,
     /// The spindle.
     pub spindle: SpindleConfig,
+    /// The planner's settings (`[planner]`): look-ahead, corners, event times.
+    pub planner: PlannerConfig,
     profile_overrides: toml::Table,
 }
 
@@ -270,6 +275,7 @@ impl Machine {
                     "axis {letter}: min is above max"
                 )));
             }
+            check_rates(&letter, &config)?;
             axes[axis.index()] = Some(config);
         }
         let count = profile.reference_points.max(1) as usize;
@@ -298,6 +304,7 @@ impl Machine {
             .into_iter()
             .map(|t| (t.number, t))
             .collect();
+        let planner = file.planner.resolve().map_err(MachineError::Invalid)?;
         Ok(Machine {
             name: file.name,
             profile,
@@ -307,6 +314,7 @@ impl Machine {
             work_offsets,
             tool_offsets,
             spindle: file.spindle,
+            planner,
             profile_overrides: file.profile_overrides,
         })
     }
@@ -337,6 +345,25 @@ impl Default for Machine {
         Machine::from_toml(DEFAULT_MACHINE_TOML)
             .expect("the embedded default machine is valid (checked by tests)")
     }
+}
+
+/// Rates and limits must be positive numbers (jerk may be `inf`: no jerk limit), so that the
+/// planner never divides by zero or meets a NaN.
+fn check_rates(letter: &str, config: &AxisConfig) -> Result<(), MachineError> {
+    for (name, value, infinite_ok) in [
+        ("rapid", config.rapid, false),
+        ("max_feed", config.max_feed, false),
+        ("acceleration", config.acceleration, false),
+        ("jerk", config.jerk, true),
+    ] {
+        let ok = value > 0.0 && (value.is_finite() || (infinite_ok && value == f64::INFINITY));
+        if !ok {
+            return Err(MachineError::Invalid(format!(
+                "axis {letter}: {name} = {value}: expected a positive number"
+            )));
+        }
+    }
+    Ok(())
 }
 
 fn single_letter(text: &str) -> Option<u8> {
@@ -375,6 +402,40 @@ mod tests {
             Some(WorkOffsetId::External)
         );
         assert_eq!(WorkOffsetId::parse("G60"), None);
+    }
+
+    #[test]
+    fn the_default_machine_spells_out_the_default_planner() {
+        let machine = Machine::default();
+        // The file rounds sqrt(3)/2 to three places.
+        let expected = PlannerConfig {
+            normal_acceleration_share: 0.866,
+            ..PlannerConfig::default()
+        };
+        assert_eq!(machine.planner, expected);
+    }
+
+    #[test]
+    fn planner_habits_are_a_starting_point_that_fields_override() {
+        let text = DEFAULT_MACHINE_TOML
+            .replace("[planner]", "[planner]\nhabits = \"linuxcnc\"")
+            .replace("look_ahead = 200\n", "")
+            .replace("corner_tolerance = 0.02\n", "");
+        let machine = Machine::from_toml(&text).unwrap();
+        assert_eq!(machine.planner.look_ahead, 200);
+        assert!(machine.planner.corner_tolerance.is_infinite());
+        // Written in the file, so it wins over the preset's 0.5.
+        assert_eq!(machine.planner.unblended_acceleration_factor, 1.0);
+    }
+
+    #[test]
+    fn a_planner_value_out_of_range_is_reported() {
+        let text = DEFAULT_MACHINE_TOML.replace("look_ahead = 200", "look_ahead = 1");
+        let error = Machine::from_toml(&text).unwrap_err().to_string();
+        assert!(error.contains("planner.look_ahead"), "{error}");
+        let text = DEFAULT_MACHINE_TOML.replace("acceleration = 2000.0", "acceleration = 0.0");
+        let error = Machine::from_toml(&text).unwrap_err().to_string();
+        assert!(error.contains("acceleration"), "{error}");
     }
 
     #[test]

@@ -1,0 +1,258 @@
+//! The planner's settings: the `[planner]` table of a machine file.
+//!
+//! Each setting models one thing a control does, so that a user whose machine takes longer than
+//! vcnc says can calibrate against measured times. `habits = "linuxcnc"` starts from the values
+//! that reproduce LinuxCNC 2.9's trajectory planner (see ../shared/tools/lcnc-time/README.md);
+//! any field written beside it still wins. Values are checked when the file is read, so the
+//! planner can rely on them being finite and in range.
+
+use serde::Deserialize;
+
+/// Planner settings, resolved (preset plus the fields written in the machine file).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlannerConfig {
+    /// Segments in the look-ahead window (at least 2): the planner's only buffer.
+    pub look_ahead: usize,
+    /// Largest distance, mm, by which a blended corner in continuous mode (G64) may cut inside
+    /// the programmed corner; infinite when only segment lengths bound the blend.
+    pub corner_tolerance: f64,
+    /// Share of a segment's length, at each end, that a corner blend may use.
+    pub blend_length_share: f64,
+    /// Share of the acceleration limit given to the normal (centripetal) acceleration on arcs and
+    /// corner blends; the tangential acceleration keeps sqrt(1 - share^2) of the limit at the
+    /// arc's highest speed.
+    pub normal_acceleration_share: f64,
+    /// The acceleration of a continuous-mode segment that ends without a blend into the next
+    /// motion (before an event or the program end) is multiplied by this (LinuxCNC: 0.5).
+    pub unblended_acceleration_factor: f64,
+    /// The largest share of the acceleration limit an arc may use tangentially when it ends
+    /// without a next motion (LinuxCNC: 0.5, the share it gives an arc before it knows the next
+    /// move); 1 leaves arcs to the normal-share rule alone.
+    pub unblended_arc_tangential_share: f64,
+    /// The acceleration of both motions at a corner where the machine stops (exact stop, or a
+    /// corner too sharp to blend) is multiplied by this (LinuxCNC: 0.9, measured with
+    /// lcnc-time; it matches its `ARC_BLEND_KINK_RATIO` of 0.1).
+    pub stop_acceleration_factor: f64,
+    /// Exact stop (G61) keeps moving through tangent block ends (LinuxCNC's "exact path"),
+    /// instead of stopping at every block end.
+    pub exact_stop_passes_tangents: bool,
+    /// A stop between a rapid and a cutting move even in continuous mode.
+    pub stop_between_rapid_and_feed: bool,
+    /// Least time per segment, s: caps the speed on very short segments (LinuxCNC: 1.02 servo
+    /// cycles).
+    pub min_segment_seconds: f64,
+    /// Highest path speed, mm/min, whatever the axes allow (LinuxCNC's
+    /// `[TRAJ]MAX_LINEAR_VELOCITY`); infinite when only the axes limit it.
+    pub max_path_rate: f64,
+    /// Seconds for a tool change (M06).
+    pub tool_change_seconds: f64,
+    /// Seconds for the spindle to start (M03/M04 from standstill).
+    pub spindle_start_seconds: f64,
+    /// Seconds for the spindle to stop (M05).
+    pub spindle_stop_seconds: f64,
+    /// Seconds for a spindle orientation (M19).
+    pub spindle_orientation_seconds: f64,
+}
+
+/// A named set of starting values for [`PlannerConfig`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PlannerHabits {
+    /// vcnc's model of a FANUC-style control.
+    Vcnc,
+    /// LinuxCNC 2.9's trajectory planner.
+    Linuxcnc,
+}
+
+impl Default for PlannerConfig {
+    fn default() -> PlannerConfig {
+        PlannerConfig::with_habits(PlannerHabits::Vcnc)
+    }
+}
+
+impl PlannerConfig {
+    /// The starting values of a set of habits.
+    pub fn with_habits(habits: PlannerHabits) -> PlannerConfig {
+        match habits {
+            PlannerHabits::Vcnc => PlannerConfig {
+                look_ahead: 200,
+                corner_tolerance: 0.02,
+                blend_length_share: 0.5,
+                normal_acceleration_share: NORMAL_SHARE,
+                unblended_acceleration_factor: 1.0,
+                unblended_arc_tangential_share: 1.0,
+                stop_acceleration_factor: 1.0,
+                exact_stop_passes_tangents: false,
+                stop_between_rapid_and_feed: true,
+                min_segment_seconds: 0.0,
+                max_path_rate: f64::INFINITY,
+                tool_change_seconds: 4.0,
+                spindle_start_seconds: 1.0,
+                spindle_stop_seconds: 1.0,
+                spindle_orientation_seconds: 1.0,
+            },
+            // LinuxCNC's planner as lcnc-time's README describes it: plain G64 has no tolerance,
+            // blends may use half of each segment, arcs keep half the acceleration tangentially,
+            // spindle and tool change are instant in its simulated machine.
+            PlannerHabits::Linuxcnc => PlannerConfig {
+                look_ahead: 200,
+                corner_tolerance: f64::INFINITY,
+                blend_length_share: 0.5,
+                normal_acceleration_share: NORMAL_SHARE,
+                unblended_acceleration_factor: 0.5,
+                unblended_arc_tangential_share: 0.5,
+                stop_acceleration_factor: 0.9,
+                exact_stop_passes_tangents: true,
+                stop_between_rapid_and_feed: true,
+                min_segment_seconds: 0.00102,
+                max_path_rate: f64::INFINITY,
+                tool_change_seconds: 0.0,
+                spindle_start_seconds: 0.0,
+                spindle_stop_seconds: 0.0,
+                spindle_orientation_seconds: 0.0,
+            },
+        }
+    }
+}
+
+/// sqrt(3)/2: the normal share that leaves half the acceleration for the tangent.
+const NORMAL_SHARE: f64 = 0.866_025_403_784_438_6;
+
+/// The `[planner]` table as written: every field optional.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PlannerFile {
+    habits: Option<PlannerHabits>,
+    look_ahead: Option<usize>,
+    corner_tolerance: Option<f64>,
+    blend_length_share: Option<f64>,
+    normal_acceleration_share: Option<f64>,
+    unblended_acceleration_factor: Option<f64>,
+    unblended_arc_tangential_share: Option<f64>,
+    stop_acceleration_factor: Option<f64>,
+    exact_stop_passes_tangents: Option<bool>,
+    stop_between_rapid_and_feed: Option<bool>,
+    min_segment_seconds: Option<f64>,
+    max_path_rate: Option<f64>,
+    tool_change_seconds: Option<f64>,
+    spindle_start_seconds: Option<f64>,
+    spindle_stop_seconds: Option<f64>,
+    spindle_orientation_seconds: Option<f64>,
+}
+
+impl PlannerFile {
+    /// The resolved settings, or a sentence saying which value is out of range.
+    pub(crate) fn resolve(&self) -> Result<PlannerConfig, String> {
+        let mut c = PlannerConfig::with_habits(self.habits.unwrap_or(PlannerHabits::Vcnc));
+        set(&mut c.look_ahead, self.look_ahead);
+        set(&mut c.corner_tolerance, self.corner_tolerance);
+        set(&mut c.blend_length_share, self.blend_length_share);
+        set(
+            &mut c.normal_acceleration_share,
+            self.normal_acceleration_share,
+        );
+        set(
+            &mut c.unblended_acceleration_factor,
+            self.unblended_acceleration_factor,
+        );
+        set(
+            &mut c.unblended_arc_tangential_share,
+            self.unblended_arc_tangential_share,
+        );
+        set(
+            &mut c.stop_acceleration_factor,
+            self.stop_acceleration_factor,
+        );
+        set(
+            &mut c.exact_stop_passes_tangents,
+            self.exact_stop_passes_tangents,
+        );
+        set(
+            &mut c.stop_between_rapid_and_feed,
+            self.stop_between_rapid_and_feed,
+        );
+        set(&mut c.min_segment_seconds, self.min_segment_seconds);
+        set(&mut c.max_path_rate, self.max_path_rate);
+        set(&mut c.tool_change_seconds, self.tool_change_seconds);
+        set(&mut c.spindle_start_seconds, self.spindle_start_seconds);
+        set(&mut c.spindle_stop_seconds, self.spindle_stop_seconds);
+        set(
+            &mut c.spindle_orientation_seconds,
+            self.spindle_orientation_seconds,
+        );
+        c.check()?;
+        Ok(c)
+    }
+}
+
+fn set<T>(field: &mut T, value: Option<T>) {
+    if let Some(value) = value {
+        *field = value;
+    }
+}
+
+impl PlannerConfig {
+    fn check(&self) -> Result<(), String> {
+        let within = |name: &str, value: f64, low: f64, high: f64| {
+            if value.is_nan() || value < low || value > high {
+                Err(format!(
+                    "planner.{name} = {value}: expected {low} to {high}"
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        if self.look_ahead < 2 || self.look_ahead > 100_000 {
+            return Err(format!(
+                "planner.look_ahead = {}: expected 2 to 100000",
+                self.look_ahead
+            ));
+        }
+        within(
+            "corner_tolerance",
+            self.corner_tolerance,
+            0.0,
+            f64::INFINITY,
+        )?;
+        within("blend_length_share", self.blend_length_share, 0.0, 0.5)?;
+        // A share of 1 would leave no tangential acceleration at an arc's top speed.
+        within(
+            "normal_acceleration_share",
+            self.normal_acceleration_share,
+            0.01,
+            0.99,
+        )?;
+        within(
+            "unblended_acceleration_factor",
+            self.unblended_acceleration_factor,
+            0.01,
+            1.0,
+        )?;
+        within(
+            "unblended_arc_tangential_share",
+            self.unblended_arc_tangential_share,
+            0.01,
+            1.0,
+        )?;
+        within(
+            "stop_acceleration_factor",
+            self.stop_acceleration_factor,
+            0.01,
+            1.0,
+        )?;
+        within("min_segment_seconds", self.min_segment_seconds, 0.0, 1.0)?;
+        within("max_path_rate", self.max_path_rate, 1e-6, f64::INFINITY)?;
+        for (name, value) in [
+            ("tool_change_seconds", self.tool_change_seconds),
+            ("spindle_start_seconds", self.spindle_start_seconds),
+            ("spindle_stop_seconds", self.spindle_stop_seconds),
+            (
+                "spindle_orientation_seconds",
+                self.spindle_orientation_seconds,
+            ),
+        ] {
+            within(name, value, 0.0, 1e6)?;
+        }
+        Ok(())
+    }
+}

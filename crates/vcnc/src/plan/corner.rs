@@ -1,0 +1,204 @@
+//! The speed at which one motion may hand over to the next: zero at a stop, the blend speed at
+//! a corner in continuous mode, unlimited (up to both segments' speeds) on a tangent.
+//!
+//! Corner blending follows the deviation model: the control rounds the corner with an arc
+//! tangent to both moves, as large as the corner tolerance and the segments' lengths allow, and
+//! passes it at the speed whose centripetal acceleration is the normal share of the limit. For a
+//! turn of angle phi, an arc of radius r tangent to both moves leaves the corner by
+//! r (1 / cos(phi/2) - 1) and starts r tan(phi/2) before it, so
+//! r = min(tolerance cos(phi/2) / (1 - cos(phi/2)), share * shorter length / tan(phi/2)),
+//! and no larger than the segments' speed needs. The arc replaces two legs of r tan(phi/2) by
+//! r phi and is passed at the junction speed: negligible at a tolerance of hundredths of a
+//! millimetre, a large part of the time where blends are only bounded by the segments' lengths
+//! (LinuxCNC's plain G64).
+
+use super::config::PlannerConfig;
+use super::limits::MotionLimits;
+use crate::motion::{Move, PathMode, Segment, SegmentKind};
+
+/// Turns smaller than this (radians) are tangent: no corner at all.
+const TANGENT_ANGLE: f64 = 1e-6;
+
+/// How a motion ends, as far as the next one is concerned.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Handover {
+    pub(crate) limits: MotionLimits,
+    rapid: bool,
+    per_axis_rapid: bool,
+    /// The block asks for an exact stop at its end (G61, G63 or G09).
+    exact_stop: bool,
+}
+
+impl Handover {
+    pub(crate) fn new(segment: &Segment, motion: &Move, limits: MotionLimits) -> Handover {
+        let (rapid, per_axis_rapid) = match segment.kind {
+            SegmentKind::Rapid { per_axis, .. } => (true, per_axis),
+            _ => (false, false),
+        };
+        Handover {
+            limits,
+            rapid,
+            per_axis_rapid,
+            exact_stop: motion.exact_stop
+                || matches!(motion.path_mode, PathMode::ExactStop | PathMode::Tapping),
+        }
+    }
+}
+
+/// What happens where one motion hands over to the next.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Junction {
+    /// Highest speed through the junction, mm/s (infinite: only the segments' own speeds).
+    pub(crate) speed: f64,
+    /// Path length each of the two segments gives up to the blend arc, mm.
+    pub(crate) leg: f64,
+    /// Length of the blend arc, mm, passed at the junction speed.
+    pub(crate) arc: f64,
+    /// A stop at a corner the path could not blend (exact stop, a reversal), as opposed to a
+    /// stop between kinds of motion.
+    pub(crate) corner_stop: bool,
+}
+
+impl Junction {
+    const STOP: Junction = Junction {
+        speed: 0.0,
+        leg: 0.0,
+        arc: 0.0,
+        corner_stop: false,
+    };
+    const CORNER_STOP: Junction = Junction {
+        corner_stop: true,
+        ..Junction::STOP
+    };
+    const TANGENT: Junction = Junction {
+        speed: f64::INFINITY,
+        leg: 0.0,
+        arc: 0.0,
+        corner_stop: false,
+    };
+
+    /// The machine comes to rest here.
+    #[cfg(test)]
+    fn is_stop(&self) -> bool {
+        self.speed <= 0.0
+    }
+}
+
+/// The junction of `prev` and `next`.
+pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig) -> Junction {
+    if prev.per_axis_rapid || next.per_axis_rapid {
+        return Junction::STOP;
+    }
+    if prev.rapid != next.rapid && config.stop_between_rapid_and_feed {
+        return Junction::STOP;
+    }
+    let (u, w) = (prev.limits.end_direction, next.limits.start_direction);
+    let cos_turn = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+    if cos_turn.is_nan() {
+        return Junction::STOP;
+    }
+    let cos_turn = cos_turn.clamp(-1.0, 1.0);
+    let tangent = cos_turn >= TANGENT_ANGLE.cos();
+    if prev.exact_stop && !(tangent && config.exact_stop_passes_tangents) {
+        return Junction::CORNER_STOP;
+    }
+    if tangent {
+        return Junction::TANGENT;
+    }
+    // A move without X Y Z travel (rotary only) has no direction: the product is 0, a right
+    // angle, which blends only as much as a right angle would.
+    let cos_half = (0.5 * (1.0 + cos_turn)).sqrt();
+    let sin_half = (0.5 * (1.0 - cos_turn)).sqrt();
+    if cos_half <= 1e-12 {
+        return Junction::CORNER_STOP;
+    }
+    let tan_half = sin_half / cos_half;
+    let by_tolerance = if config.corner_tolerance.is_finite() {
+        config.corner_tolerance * cos_half / (1.0 - cos_half)
+    } else {
+        f64::INFINITY
+    };
+    let shorter = prev.limits.length.min(next.limits.length);
+    let by_length = config.blend_length_share * shorter / tan_half;
+    // The blend turns in the plane of the two moves: each axis that moves may carry the whole
+    // normal acceleration somewhere on it.
+    let acceleration = prev.limits.turning.min(next.limits.turning);
+    let normal = config.normal_acceleration_share * acceleration;
+    // No larger arc than the speed of the two segments needs: it would only cut more corner.
+    let wanted = prev.limits.cruise.min(next.limits.cruise);
+    let radius = by_tolerance.min(by_length).min(wanted * wanted / normal);
+    let turn = 2.0 * sin_half.atan2(cos_half);
+    Junction {
+        speed: (normal * radius).sqrt(),
+        leg: radius * tan_half,
+        arc: radius * turn,
+        corner_stop: false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::profile::PathLimits;
+
+    fn handover(direction: [f64; 3], exact_stop: bool) -> Handover {
+        Handover {
+            limits: MotionLimits {
+                length: 100.0,
+                cruise: 100.0,
+                path: PathLimits {
+                    acceleration: 1000.0,
+                    jerk: f64::INFINITY,
+                },
+                unblended_acceleration: 1000.0,
+                turning: 1000.0,
+                start_direction: direction,
+                end_direction: direction,
+                feed_unknown: false,
+                stop_scaled: false,
+            },
+            rapid: false,
+            per_axis_rapid: false,
+            exact_stop,
+        }
+    }
+
+    #[test]
+    fn a_right_angle_blends_at_the_speed_of_its_tolerance_arc() {
+        let config = PlannerConfig {
+            corner_tolerance: 0.1,
+            ..PlannerConfig::default()
+        };
+        let v = junction(
+            &handover([1.0, 0.0, 0.0], false),
+            &handover([0.0, 1.0, 0.0], false),
+            &config,
+        )
+        .speed;
+        let c = std::f64::consts::FRAC_1_SQRT_2;
+        let radius = 0.1 * c / (1.0 - c);
+        let expected = (config.normal_acceleration_share * 1000.0 * radius).sqrt();
+        assert!((v - expected).abs() < 1e-9, "{v} {expected}");
+    }
+
+    #[test]
+    fn exact_stop_stops_even_on_a_straight_line_unless_told_otherwise() {
+        let x = [1.0, 0.0, 0.0];
+        let mut config = PlannerConfig::default();
+        assert!(junction(&handover(x, true), &handover(x, false), &config).is_stop());
+        config.exact_stop_passes_tangents = true;
+        let through = junction(&handover(x, true), &handover(x, false), &config);
+        assert!(through.speed.is_infinite());
+    }
+
+    #[test]
+    fn a_reversal_stops() {
+        let config = PlannerConfig::default();
+        let reversal = junction(
+            &handover([1.0, 0.0, 0.0], false),
+            &handover([-1.0, 0.0, 0.0], false),
+            &config,
+        );
+        assert!(reversal.is_stop());
+    }
+}

@@ -1,0 +1,325 @@
+//! Machine limits seen along one segment's path.
+//!
+//! The machine file gives per-axis limits (rates in mm/min, acceleration mm/s^2, jerk mm/s^3).
+//! A segment moves several axes at once; each axis sees the path speed times its share of the
+//! direction, so the path may go as fast as the tightest axis allows: v <= v_axis / |u_axis|.
+//! Arcs add the centripetal acceleration v^2 / r, which takes a share of the acceleration
+//! limit and leaves the rest to the tangent.
+//!
+//! Everything here is in mm/s, mm/s^2 and mm/s^3 (degrees for rotary axes). An axis the machine
+//! does not have, or a limit that is not a positive number, limits nothing.
+
+use super::config::PlannerConfig;
+use super::profile::{PathLimits, Profile};
+use crate::machine::{Machine, AXES};
+use crate::motion::{arc_sweep, ArcDirection, Feed, Move, PathMode, Segment, SegmentKind};
+
+/// Per-axis limits of a machine, in seconds-based units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct AxisLimits {
+    /// Highest cutting speed per axis, mm/s.
+    pub(crate) feed: [f64; AXES],
+    /// Rapid speed per axis, mm/s.
+    pub(crate) rapid: [f64; AXES],
+    /// Acceleration per axis, mm/s^2.
+    pub(crate) acceleration: [f64; AXES],
+    /// Jerk per axis, mm/s^3 (infinite: no jerk limit).
+    pub(crate) jerk: [f64; AXES],
+    /// Path speed cap, mm/s.
+    pub(crate) path_speed: f64,
+}
+
+fn positive_or_infinite(value: f64) -> f64 {
+    if value > 0.0 {
+        value
+    } else {
+        f64::INFINITY
+    }
+}
+
+impl AxisLimits {
+    pub(crate) fn new(machine: &Machine, config: &PlannerConfig) -> AxisLimits {
+        let field = |f: fn(&crate::machine::AxisConfig) -> f64, scale: f64| {
+            std::array::from_fn(|i| {
+                machine.axes[i]
+                    .as_ref()
+                    .map_or(f64::INFINITY, |axis| positive_or_infinite(f(axis)) * scale)
+            })
+        };
+        AxisLimits {
+            feed: field(|a| a.max_feed, 1.0 / 60.0),
+            rapid: field(|a| a.rapid, 1.0 / 60.0),
+            acceleration: field(|a| a.acceleration, 1.0),
+            jerk: field(|a| a.jerk, 1.0),
+            path_speed: positive_or_infinite(config.max_path_rate) / 60.0,
+        }
+    }
+}
+
+/// What the look-ahead needs to know of one motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct MotionLimits {
+    /// Path length, mm (degrees for a rotary-only move).
+    pub(crate) length: f64,
+    /// Speed the segment would like to cruise at: programmed feed (after override) or rapid,
+    /// capped by the axes, mm/s.
+    pub(crate) cruise: f64,
+    /// Tangential acceleration and jerk along the path.
+    pub(crate) path: PathLimits,
+    /// The tangential acceleration when the segment ends without blending into a next motion
+    /// (see `PlannerConfig::unblended_acceleration_factor`).
+    pub(crate) unblended_acceleration: f64,
+    /// Acceleration available for turning (corner blends): the lowest limit of the axes that
+    /// move, mm/s^2.
+    pub(crate) turning: f64,
+    /// Unit tangent over X Y Z at the start and at the end (zero for a move without XYZ travel).
+    pub(crate) start_direction: [f64; 3],
+    pub(crate) end_direction: [f64; 3],
+    /// The feed could not be known (G95 without a spindle speed): timed at the axis limit.
+    pub(crate) feed_unknown: bool,
+    /// The acceleration has been scaled for a stop at one of its ends.
+    pub(crate) stop_scaled: bool,
+}
+
+/// The speed, acceleration and jerk caps of a straight move with per-axis shares `share`
+/// (|direction component| per unit of path).
+fn projected(share: &[f64; AXES], limits: &[f64; AXES]) -> f64 {
+    let mut cap = f64::INFINITY;
+    for i in 0..AXES {
+        if share[i] > 1e-12 {
+            cap = cap.min(limits[i] / share[i]);
+        }
+    }
+    cap
+}
+
+/// The path of a move: length and per-axis shares of a straight line.
+/// The lowest acceleration limit among the axes with a share of the motion.
+fn turning_acceleration(share: &[f64; AXES], limits: &[f64; AXES]) -> f64 {
+    (0..AXES)
+        .filter(|&i| share[i] > 1e-12)
+        .map(|i| limits[i])
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn straight_path(motion: &Move) -> (f64, [f64; AXES], [f64; 3]) {
+    let delta: [f64; AXES] = std::array::from_fn(|i| motion.to.0[i] - motion.from.0[i]);
+    let linear = (delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2]).sqrt();
+    // A rotary-only move is measured in degrees (its feed is deg/min, as on the controls).
+    let length = if linear > 1e-9 {
+        linear
+    } else {
+        delta[3..].iter().map(|d| d * d).sum::<f64>().sqrt()
+    };
+    if length <= 1e-12 {
+        return (0.0, [0.0; AXES], [0.0; 3]);
+    }
+    let share = std::array::from_fn(|i| (delta[i] / length).abs());
+    let direction = if linear > 1e-9 {
+        [delta[0] / linear, delta[1] / linear, delta[2] / linear]
+    } else {
+        [0.0; 3]
+    };
+    (length, share, direction)
+}
+
+/// The programmed path speed, mm/s, of a cutting move, or None when it cannot be known.
+fn programmed_speed(feed: &Feed, length: f64, feed_override: f64) -> Option<f64> {
+    feed.mm_per_min(length)
+        .filter(|f| *f > 0.0 && f.is_finite())
+        .map(|f| f / 60.0 * feed_override)
+}
+
+impl MotionLimits {
+    /// The limits of a rapid, line or arc; None for events.
+    pub(crate) fn of(
+        segment: &Segment,
+        axes: &AxisLimits,
+        config: &PlannerConfig,
+        feed_override: f64,
+    ) -> Option<MotionLimits> {
+        match &segment.kind {
+            SegmentKind::Rapid { motion, .. } => Some(line(motion, None, axes, config, 1.0)),
+            SegmentKind::Line { motion, feed } => {
+                Some(line(motion, Some(feed), axes, config, feed_override))
+            }
+            SegmentKind::Arc { .. } => arc(segment, axes, config, feed_override),
+            _ => None,
+        }
+        .map(MotionLimits::bounded)
+    }
+
+    /// Scales the acceleration for a stop at one end (see
+    /// `PlannerConfig::stop_acceleration_factor`); a second stop does not scale it again.
+    pub(crate) fn scale_acceleration(&mut self, factor: f64) {
+        if factor < 1.0 && !self.stop_scaled {
+            self.stop_scaled = true;
+            self.path.acceleration *= factor;
+            self.unblended_acceleration *= factor;
+        }
+    }
+
+    /// Caps infinite limits (axes the machine does not limit) at values far beyond any machine,
+    /// so that the planner's arithmetic never meets inf - inf.
+    fn bounded(mut self) -> MotionLimits {
+        self.cruise = self.cruise.min(1e9);
+        self.path.acceleration = self.path.acceleration.min(1e12);
+        self.unblended_acceleration = self.unblended_acceleration.min(1e12);
+        self.turning = self.turning.min(1e12);
+        self
+    }
+}
+
+fn line(
+    motion: &Move,
+    feed: Option<&Feed>,
+    axes: &AxisLimits,
+    config: &PlannerConfig,
+    feed_override: f64,
+) -> MotionLimits {
+    let (length, share, direction) = straight_path(motion);
+    let rates = if feed.is_some() {
+        &axes.feed
+    } else {
+        &axes.rapid
+    };
+    let axis_speed = projected(&share, rates).min(axes.path_speed);
+    let programmed = feed.map(|f| programmed_speed(f, length, feed_override));
+    let cruise = match programmed {
+        Some(Some(v)) => v.min(axis_speed),
+        _ => axis_speed,
+    };
+    let acceleration = projected(&share, &axes.acceleration);
+    let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
+    MotionLimits {
+        length,
+        cruise: cap_short(cruise, length, config),
+        path: PathLimits {
+            acceleration,
+            jerk: projected(&share, &axes.jerk),
+        },
+        turning: turning_acceleration(&share, &axes.acceleration),
+        // Only a segment that could have blended is planned with the reduced acceleration.
+        unblended_acceleration: if continuous {
+            acceleration * config.unblended_acceleration_factor
+        } else {
+            acceleration
+        },
+        start_direction: direction,
+        end_direction: direction,
+        feed_unknown: matches!(programmed, Some(None)),
+        stop_scaled: false,
+    }
+}
+
+/// LinuxCNC spends at least a fixed time on a segment, whatever its length.
+fn cap_short(speed: f64, length: f64, config: &PlannerConfig) -> f64 {
+    if config.min_segment_seconds > 0.0 {
+        speed.min(length / config.min_segment_seconds)
+    } else {
+        speed
+    }
+}
+
+fn arc(
+    segment: &Segment,
+    axes: &AxisLimits,
+    config: &PlannerConfig,
+    feed_override: f64,
+) -> Option<MotionLimits> {
+    let SegmentKind::Arc {
+        motion,
+        center,
+        direction,
+        plane,
+        extra_turns,
+        feed,
+    } = &segment.kind
+    else {
+        return None;
+    };
+    let (a, b, n) = plane.axes();
+    let radius = (motion.from.0[a] - center.0[a]).hypot(motion.from.0[b] - center.0[b]);
+    let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
+    let planar = radius * sweep;
+    let axial = motion.to.0[n] - motion.from.0[n];
+    let length = planar.hypot(axial);
+    if length <= 1e-12 || radius <= 1e-12 {
+        return Some(line(motion, Some(feed), axes, config, feed_override));
+    }
+    // The tangent turns through the plane, so each plane axis carries the whole planar share
+    // somewhere on a long enough arc; taking it everywhere is the safe side.
+    let (p, q) = (planar / length, axial.abs() / length);
+    let mut share = [0.0; AXES];
+    share[a] = p;
+    share[b] = p;
+    share[n] = q;
+    let axis_speed = projected(&share, &axes.feed).min(axes.path_speed);
+    let plane_acceleration = axes.acceleration[a].min(axes.acceleration[b]);
+    // v_planar^2 / r <= share * a, with v_planar = p v.
+    let centripetal_speed =
+        (config.normal_acceleration_share * plane_acceleration * radius).sqrt() / p;
+    let top = axis_speed.min(centripetal_speed);
+    // The tangent keeps what the normal acceleration at the arc's top speed leaves over. The top
+    // speed, not the feed, sets it, so a faster feed never makes an arc accelerate harder.
+    let normal = (p * top).powi(2) / radius;
+    let tangential_room = if plane_acceleration.is_finite() {
+        (1.0 - (normal / plane_acceleration).powi(2))
+            .max(0.0)
+            .sqrt()
+    } else {
+        1.0
+    };
+    let programmed = programmed_speed(feed, length, feed_override);
+    let cruise = programmed.map_or(top, |v| v.min(top));
+    let sign = match direction {
+        ArcDirection::CounterClockwise => 1.0,
+        ArcDirection::Clockwise => -1.0,
+    };
+    let tangent = |point: &[f64; AXES]| {
+        let (ra, rb) = (point[a] - center.0[a], point[b] - center.0[b]);
+        let r = ra.hypot(rb).max(1e-12);
+        let mut t = [0.0; 3];
+        t[a] = -sign * rb / r * p;
+        t[b] = sign * ra / r * p;
+        t[n] = axial.signum() * q;
+        t
+    };
+    let acceleration = projected(&share, &axes.acceleration);
+    let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
+    let unblended_share = tangential_room.min(config.unblended_arc_tangential_share);
+    let unblended_factor = if continuous {
+        config.unblended_acceleration_factor
+    } else {
+        1.0
+    };
+    Some(MotionLimits {
+        length,
+        cruise: cap_short(cruise, length, config),
+        path: PathLimits {
+            acceleration: acceleration * tangential_room,
+            jerk: projected(&share, &axes.jerk),
+        },
+        turning: turning_acceleration(&share, &axes.acceleration),
+        unblended_acceleration: acceleration * unblended_share * unblended_factor,
+        start_direction: tangent(&motion.from.0),
+        end_direction: tangent(&motion.to.0),
+        feed_unknown: programmed.is_none(),
+        stop_scaled: false,
+    })
+}
+
+/// A rapid with each axis at its own rate (a dog-leg): every axis starts and stops on its own,
+/// and the move lasts as long as its slowest axis.
+pub(crate) fn per_axis_rapid_seconds(motion: &Move, axes: &AxisLimits) -> f64 {
+    (0..AXES)
+        .map(|i| {
+            let distance = (motion.to.0[i] - motion.from.0[i]).abs();
+            let limits = PathLimits {
+                acceleration: axes.acceleration[i],
+                jerk: axes.jerk[i],
+            };
+            Profile::new(distance, 0.0, 0.0, axes.rapid[i], limits).duration()
+        })
+        .fold(0.0, f64::max)
+}

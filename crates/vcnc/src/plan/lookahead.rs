@@ -1,0 +1,225 @@
+//! The look-ahead window: the planner's only buffer, and the passes that set entry speeds.
+//!
+//! Motions enter at the back with the highest speed their junction with the previous motion
+//! allows. When the window is full, a backward pass (assuming the machine must be able to stop
+//! at the window's end) and a forward pass (from the speed already fixed at the window's front)
+//! give every motion the highest entry speed that is reachable both ways; the first half is then
+//! final and leaves the window. Before an event (which stops the motion) and at the end of the
+//! stream the window ends in a real stop and all of it leaves.
+//!
+//! Why half: a motion that leaves has been planned with at least half a window of look-ahead
+//! behind it, and each motion costs two passes over the window per half window, so the work per
+//! segment is constant. Why the front speed never has to drop: the stop assumed at the old
+//! window end is the tightest condition there is, so a longer window only allows more.
+//!
+//! Alarms and zero-length motions sit in the window in stream order and take no time; they do
+//! not break a chain of motions.
+
+use super::config::PlannerConfig;
+use super::corner::{junction, Handover};
+use super::limits::{AxisLimits, MotionLimits};
+use super::profile::{reachable_speed, Profile};
+use crate::alarm::Alarm;
+use crate::motion::Segment;
+use std::collections::VecDeque;
+
+/// A motion's place in the plan.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Planned {
+    pub(crate) limits: MotionLimits,
+    /// The blend arc from the previous motion, passed at the entry speed before the segment's
+    /// own (shortened) path, mm.
+    pub(crate) lead_in: f64,
+    /// Highest entry speed the junction with the previous motion allows.
+    max_entry: f64,
+    /// Planned entry and exit speeds, mm/s.
+    pub(crate) entry: f64,
+    pub(crate) exit: f64,
+}
+
+/// One item of the window.
+pub(crate) struct Slot {
+    pub(crate) item: Result<Segment, Alarm>,
+    /// None for events, alarms and motions of zero length.
+    pub(crate) planned: Option<Planned>,
+}
+
+pub(crate) struct Window {
+    slots: VecDeque<Slot>,
+    capacity: usize,
+    /// Slots at the front whose speeds are final.
+    ready: usize,
+    /// Speed at the start of the first motion in the window (the last one that left ends there).
+    start_speed: f64,
+    /// How the last motion that entered ends, for the junction with the next; None after a stop.
+    last: Option<Handover>,
+}
+
+impl Window {
+    pub(crate) fn new(capacity: usize) -> Window {
+        let capacity = capacity.max(2);
+        Window {
+            slots: VecDeque::with_capacity(capacity + 1),
+            capacity,
+            ready: 0,
+            start_speed: 0.0,
+            last: None,
+        }
+    }
+
+    /// A final slot, if one is ready.
+    pub(crate) fn pop_ready(&mut self) -> Option<Slot> {
+        if self.ready == 0 {
+            return None;
+        }
+        self.ready -= 1;
+        let slot = self.slots.pop_front()?;
+        if let Some(planned) = &slot.planned {
+            self.start_speed = planned.exit;
+        }
+        Some(slot)
+    }
+
+    /// Adds an alarm: it takes no time and does not interrupt the motion.
+    pub(crate) fn push_alarm(&mut self, alarm: Alarm) {
+        self.slots.push_back(Slot {
+            item: Err(alarm),
+            planned: None,
+        });
+        self.release_if_full();
+    }
+
+    /// Adds a motion with its limits (None: a motion of zero length).
+    pub(crate) fn push_motion(
+        &mut self,
+        segment: Segment,
+        limits: Option<MotionLimits>,
+        config: &PlannerConfig,
+    ) {
+        let planned = match (limits, segment.motion()) {
+            (Some(mut limits), Some(motion)) if limits.length > 0.0 => {
+                let handover = Handover::new(&segment, motion, limits);
+                let mut max_entry = 0.0;
+                let mut lead_in = 0.0;
+                if let Some(prev) = &self.last {
+                    let junction = junction(prev, &handover, config);
+                    max_entry = junction.speed.min(prev.limits.cruise).min(limits.cruise);
+                    limits.length = (limits.length - junction.leg).max(0.0);
+                    lead_in = junction.arc;
+                    let stop_factor = if junction.corner_stop {
+                        config.stop_acceleration_factor
+                    } else {
+                        1.0
+                    };
+                    limits.scale_acceleration(stop_factor);
+                    if let Some(prev) = self.last_planned() {
+                        prev.limits.length = (prev.limits.length - junction.leg).max(0.0);
+                        prev.limits.scale_acceleration(stop_factor);
+                    }
+                }
+                self.last = Some(handover);
+                Some(Planned {
+                    limits,
+                    lead_in,
+                    max_entry,
+                    entry: 0.0,
+                    exit: 0.0,
+                })
+            }
+            _ => None,
+        };
+        self.slots.push_back(Slot {
+            item: Ok(segment),
+            planned,
+        });
+        self.release_if_full();
+    }
+
+    fn last_planned(&mut self) -> Option<&mut Planned> {
+        self.slots.iter_mut().rev().find_map(|s| s.planned.as_mut())
+    }
+
+    /// The motion comes to rest here (an event, or the end of the stream): everything in the
+    /// window becomes final. The last motion did not blend into another, so it gets the
+    /// unblended acceleration.
+    pub(crate) fn stop(&mut self) {
+        if let Some(last) = self.last_planned() {
+            last.limits.path.acceleration = last.limits.unblended_acceleration;
+        }
+        self.plan();
+        self.ready = self.slots.len();
+        self.last = None;
+    }
+
+    fn release_if_full(&mut self) {
+        if self.slots.len() >= self.capacity && self.ready == 0 {
+            self.plan();
+            self.ready = self.slots.len() / 2;
+        }
+    }
+
+    /// Backward then forward pass over the motions in the window.
+    fn plan(&mut self) {
+        let mut next_entry = 0.0;
+        for planned in self
+            .slots
+            .iter_mut()
+            .rev()
+            .filter_map(|s| s.planned.as_mut())
+        {
+            planned.exit = next_entry;
+            let limits = &planned.limits;
+            planned.entry =
+                planned
+                    .max_entry
+                    .min(reachable_speed(next_entry, limits.length, limits.path));
+            next_entry = planned.entry;
+        }
+        let mut reachable = self.start_speed;
+        let mut first = true;
+        let mut previous: Option<&mut Planned> = None;
+        for planned in self.slots.iter_mut().filter_map(|s| s.planned.as_mut()) {
+            // The first motion continues from a motion that has already left: its entry is fixed.
+            planned.entry = if first {
+                self.start_speed
+            } else {
+                planned.entry.min(reachable)
+            };
+            first = false;
+            if let Some(previous) = previous {
+                previous.exit = planned.entry;
+            }
+            let limits = &planned.limits;
+            reachable = reachable_speed(planned.entry, limits.length, limits.path);
+            previous = Some(planned);
+        }
+        if let Some(last) = previous {
+            last.exit = 0.0;
+        }
+    }
+}
+
+/// The timed result of a slot's motion: its profile (None for a per-axis rapid) and duration.
+pub(crate) fn time_motion(
+    segment: &Segment,
+    planned: &Planned,
+    axes: &AxisLimits,
+) -> (Option<Profile>, f64) {
+    if let crate::motion::SegmentKind::Rapid {
+        motion,
+        per_axis: true,
+    } = &segment.kind
+    {
+        return (None, super::limits::per_axis_rapid_seconds(motion, axes));
+    }
+    let limits = &planned.limits;
+    let profile = Profile::new(
+        limits.length,
+        planned.entry,
+        planned.exit,
+        limits.cruise,
+        limits.path,
+    )
+    .with_lead_in(planned.lead_in);
+    (Some(profile), profile.duration())
+}

@@ -1,0 +1,384 @@
+//! Velocity profiles along one segment: how fast the tool goes at each instant, in closed form.
+//!
+//! A segment is entered at one speed, speeds up to a peak (the cruise speed when there is room),
+//! and slows to its exit speed. Each change of speed is a [`Ramp`]: with a jerk limit it is the
+//! S-curve of three phases (jerk up, constant acceleration, jerk down, the middle one absent when
+//! the acceleration limit is not reached); with an infinite jerk it is the constant acceleration
+//! of a trapezoid. A ramp begins and ends with zero acceleration, so segments join without a
+//! jump in acceleration. That is conservative on chains of short segments (a real S-curve may
+//! carry acceleration across a block boundary) and keeps every segment's profile independent.
+//!
+//! Invariants: speeds are mm/s (or deg/s), lengths mm, times s, all finite and non-negative for
+//! finite non-negative input; nothing here panics or loops without bound on any input.
+
+/// The limits along the path that shape a profile: tangential acceleration and jerk.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathLimits {
+    /// Tangential acceleration, mm/s^2.
+    pub acceleration: f64,
+    /// Jerk, mm/s^3; infinite for trapezoidal profiles.
+    pub jerk: f64,
+}
+
+impl PathLimits {
+    fn is_trapezoid(&self) -> bool {
+        !self.jerk.is_finite()
+    }
+
+    /// The speed change above which an S-curve reaches full acceleration: a^2 / j.
+    fn full_acceleration_change(&self) -> f64 {
+        if self.is_trapezoid() {
+            0.0
+        } else {
+            self.acceleration * self.acceleration / self.jerk
+        }
+    }
+}
+
+/// A change of speed from `from` to `to` that starts and ends with zero acceleration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Ramp {
+    from: f64,
+    to: f64,
+    jerk: f64,
+    /// Acceleration reached in the middle of the ramp (magnitude).
+    peak_acceleration: f64,
+    /// Length of each of the two jerk phases (0 for a trapezoid).
+    jerk_time: f64,
+    /// Length of the constant-acceleration phase.
+    constant_time: f64,
+}
+
+impl Ramp {
+    /// The fastest change of speed under `limits`.
+    pub(crate) fn new(from: f64, to: f64, limits: PathLimits) -> Ramp {
+        let change = (to - from).abs();
+        let a = limits.acceleration;
+        let (peak_acceleration, jerk_time, constant_time) = if change <= 0.0 || a <= 0.0 {
+            (0.0, 0.0, 0.0)
+        } else if limits.is_trapezoid() {
+            (a, 0.0, change / a)
+        } else if change >= limits.full_acceleration_change() {
+            (a, a / limits.jerk, change / a - a / limits.jerk)
+        } else {
+            // The jerk phases meet before the acceleration limit: a triangle of acceleration.
+            let peak = (change * limits.jerk).sqrt();
+            (peak, peak / limits.jerk, 0.0)
+        };
+        Ramp {
+            from,
+            to,
+            jerk: limits.jerk,
+            peak_acceleration,
+            jerk_time,
+            constant_time,
+        }
+    }
+
+    /// Seconds the ramp takes.
+    pub(crate) fn duration(&self) -> f64 {
+        2.0 * self.jerk_time + self.constant_time
+    }
+
+    /// Distance covered. The acceleration is symmetric about the ramp's middle, so the speed is
+    /// point-symmetric there and the mean speed is the mean of the two ends.
+    pub(crate) fn distance(&self) -> f64 {
+        0.5 * (self.from + self.to) * self.duration()
+    }
+
+    /// Speed `t` seconds after the ramp starts (clamped to the ramp).
+    pub(crate) fn velocity_at(&self, t: f64) -> f64 {
+        let sign = if self.to >= self.from { 1.0 } else { -1.0 };
+        self.from + sign * self.change_at(t.clamp(0.0, self.duration()))
+    }
+
+    /// Signed acceleration `t` seconds after the ramp starts.
+    pub(crate) fn acceleration_at(&self, t: f64) -> f64 {
+        let sign = if self.to >= self.from { 1.0 } else { -1.0 };
+        let total = self.duration();
+        if !(0.0..=total).contains(&t) || total == 0.0 {
+            return 0.0;
+        }
+        let magnitude = if t < self.jerk_time {
+            self.jerk * t
+        } else if t <= self.jerk_time + self.constant_time {
+            self.peak_acceleration
+        } else {
+            self.jerk * (total - t)
+        };
+        sign * magnitude
+    }
+
+    /// How much the speed has changed `t` seconds in (magnitude).
+    fn change_at(&self, t: f64) -> f64 {
+        let (t1, t2) = (self.jerk_time, self.constant_time);
+        let half_jerk = |s: f64| {
+            if t1 > 0.0 {
+                0.5 * self.jerk * s * s
+            } else {
+                0.0
+            }
+        };
+        if t < t1 {
+            half_jerk(t)
+        } else if t <= t1 + t2 {
+            half_jerk(t1) + self.peak_acceleration * (t - t1)
+        } else {
+            (self.to - self.from).abs() - half_jerk(self.duration() - t)
+        }
+    }
+}
+
+/// The highest speed reachable from `speed` by accelerating over `distance` (the same function
+/// gives the highest speed from which `speed` can still be reached by braking over `distance`).
+pub(crate) fn reachable_speed(speed: f64, distance: f64, limits: PathLimits) -> f64 {
+    let (v, d, a) = (speed.max(0.0), distance.max(0.0), limits.acceleration);
+    if d == 0.0 || a <= 0.0 {
+        return v;
+    }
+    if limits.is_trapezoid() {
+        return (v * v + 2.0 * a * d).sqrt();
+    }
+    let j = limits.jerk;
+    let b = limits.full_acceleration_change();
+    // Distance of the ramp that just reaches full acceleration: time 2a/j at mean speed v + b/2.
+    let threshold = (2.0 * v + b) * a / j;
+    if d >= threshold {
+        // Full acceleration reached: (w^2 - v^2) / 2a + (a / 2j)(v + w) = d, a quadratic in w.
+        let c = b * v - v * v - 2.0 * a * d;
+        0.5 * (-b + (b * b - 4.0 * c).max(0.0).sqrt())
+    } else {
+        // Jerk phases only: w = v + s^2 with (2v + s^2) s = d sqrt(j), a depressed cubic in s.
+        v + jerk_cubic_root(2.0 * v, d * j.sqrt()).powi(2)
+    }
+}
+
+/// The real root of s^3 + p s - q = 0 for p >= 0, q >= 0 (Cardano, then one Newton step for
+/// the cancellation in its second term when p is large).
+fn jerk_cubic_root(p: f64, q: f64) -> f64 {
+    let half = 0.5 * q;
+    let root = (half * half + (p / 3.0).powi(3)).sqrt();
+    let c = (half + root).cbrt();
+    let mut s = if c > 0.0 { c - p / (3.0 * c) } else { 0.0 };
+    s = s.max(0.0);
+    let slope = 3.0 * s * s + p;
+    if slope > 0.0 {
+        s -= (s * s * s + p * s - q) / slope;
+    }
+    s.max(0.0)
+}
+
+const HUGE_SPEED: f64 = 1e9;
+const HUGE_ACCELERATION: f64 = 1e12;
+
+/// The speed profile of one segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Profile {
+    /// Path length, mm.
+    pub length: f64,
+    /// Speed at the start, mm/s.
+    pub entry: f64,
+    /// Highest speed on the segment, mm/s.
+    pub peak: f64,
+    /// Speed at the end, mm/s.
+    pub exit: f64,
+    /// The limits it was shaped with.
+    pub limits: PathLimits,
+    /// A stretch at the entry speed before the ramps (a corner blend's arc), s.
+    lead_in_time: f64,
+    up: Ramp,
+    down: Ramp,
+    cruise_time: f64,
+}
+
+impl Profile {
+    /// The fastest profile over `length` from `entry` to `exit` that stays under `cruise` and
+    /// `limits`. The look-ahead passes only ask for feasible end speeds; a pair that is slightly
+    /// out of reach (rounding) gets the closest feasible profile rather than an error.
+    pub fn new(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimits) -> Profile {
+        // An axis without limits gives infinite caps; huge finite ones keep the arithmetic free
+        // of inf - inf and take no measurable time.
+        let limits = PathLimits {
+            acceleration: limits.acceleration.min(HUGE_ACCELERATION),
+            jerk: limits.jerk,
+        };
+        let length = length.max(0.0);
+        let cruise = cruise.min(HUGE_SPEED).max(entry).max(exit);
+        let peak = peak_speed(length, entry, exit, cruise, limits);
+        let up = Ramp::new(entry, peak, limits);
+        let down = Ramp::new(peak, exit, limits);
+        let rest = length - up.distance() - down.distance();
+        let cruise_time = if rest > 0.0 && peak > 0.0 {
+            rest / peak
+        } else {
+            0.0
+        };
+        Profile {
+            length,
+            entry,
+            peak,
+            exit,
+            limits,
+            lead_in_time: 0.0,
+            up,
+            down,
+            cruise_time,
+        }
+    }
+
+    /// The same profile after `distance` passed at the entry speed (a corner blend's arc). At a
+    /// standstill there is no arc to pass: the distance is the ramps' business then, and the
+    /// look-ahead never plans a blend at zero speed.
+    pub fn with_lead_in(mut self, distance: f64) -> Profile {
+        if distance > 0.0 && self.entry > 1e-9 {
+            self.lead_in_time = distance / self.entry;
+            self.length += distance;
+        }
+        self
+    }
+
+    /// Seconds the segment takes.
+    pub fn duration(&self) -> f64 {
+        self.lead_in_time + self.up.duration() + self.cruise_time + self.down.duration()
+    }
+
+    /// Path speed `t` seconds into the segment.
+    pub fn velocity_at(&self, t: f64) -> f64 {
+        if t < self.lead_in_time {
+            return self.entry;
+        }
+        let t = t - self.lead_in_time;
+        let (t_up, t_cruise) = (self.up.duration(), self.cruise_time);
+        if t <= t_up {
+            self.up.velocity_at(t)
+        } else if t <= t_up + t_cruise {
+            self.peak
+        } else {
+            self.down.velocity_at(t - t_up - t_cruise)
+        }
+    }
+
+    /// Path (tangential) acceleration `t` seconds into the segment.
+    pub fn acceleration_at(&self, t: f64) -> f64 {
+        if t < self.lead_in_time {
+            return 0.0;
+        }
+        let t = t - self.lead_in_time;
+        let (t_up, t_cruise) = (self.up.duration(), self.cruise_time);
+        if t <= t_up {
+            self.up.acceleration_at(t)
+        } else if t <= t_up + t_cruise {
+            0.0
+        } else {
+            self.down.acceleration_at(t - t_up - t_cruise)
+        }
+    }
+}
+
+/// The peak speed of the fastest profile: the cruise speed when up and down ramps to it fit in
+/// the length, otherwise the speed at which they meet.
+fn peak_speed(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimits) -> f64 {
+    let low = entry.max(exit);
+    let needed = |peak: f64| {
+        Ramp::new(entry, peak, limits).distance() + Ramp::new(peak, exit, limits).distance()
+    };
+    if needed(cruise) <= length {
+        return cruise;
+    }
+    if needed(low) >= length {
+        return low;
+    }
+    let a = limits.acceleration;
+    if limits.is_trapezoid() {
+        // (p^2 - entry^2) / 2a + (p^2 - exit^2) / 2a = length.
+        let p = (a * length + 0.5 * (entry * entry + exit * exit)).sqrt();
+        return p.clamp(low, cruise);
+    }
+    if (entry - exit).abs() <= 1e-12 * cruise.max(1.0) {
+        // Two mirror-image ramps, each over half the length.
+        return reachable_speed(entry, 0.5 * length, limits).clamp(low, cruise);
+    }
+    // Both ramps at full acceleration: p^2 / a + (a/j) p + (a/2j)(entry + exit)
+    // - (entry^2 + exit^2) / 2a - length = 0. Valid when both changes exceed a^2 / j.
+    let b = limits.full_acceleration_change();
+    let c = 0.5 * b * (entry + exit) - 0.5 * (entry * entry + exit * exit) - a * length;
+    let p = 0.5 * (-b + (b * b - 4.0 * c).max(0.0).sqrt());
+    if p - low >= b && p <= cruise {
+        return p;
+    }
+    // One ramp jerk-limited and the other not, or both with different ends: no tidy closed form
+    // for the peak; bisection on the monotonic distance (each ramp's time stays closed-form).
+    let (mut lo, mut hi) = (low, cruise);
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if needed(mid) > length {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+        if hi - lo <= 1e-13 * hi {
+            break;
+        }
+    }
+    lo
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TRAPEZOID: PathLimits = PathLimits {
+        acceleration: 1000.0,
+        jerk: f64::INFINITY,
+    };
+    const S_CURVE: PathLimits = PathLimits {
+        acceleration: 1000.0,
+        jerk: 20000.0,
+    };
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-9 * b.abs().max(1.0)
+    }
+
+    #[test]
+    fn a_ramp_covers_its_mean_speed_times_its_duration() {
+        for limits in [TRAPEZOID, S_CURVE] {
+            for (from, to) in [(0.0, 100.0), (100.0, 10.0), (30.0, 31.0)] {
+                let ramp = Ramp::new(from, to, limits);
+                let steps = 20_000;
+                let dt = ramp.duration() / f64::from(steps);
+                let sum: f64 = (0..steps)
+                    .map(|i| ramp.velocity_at((f64::from(i) + 0.5) * dt) * dt)
+                    .sum();
+                assert!((sum - ramp.distance()).abs() < 1e-6, "{from} -> {to}");
+                assert!(close(ramp.velocity_at(ramp.duration()), to));
+            }
+        }
+    }
+
+    #[test]
+    fn reachable_speed_inverts_the_ramp_distance() {
+        for limits in [TRAPEZOID, S_CURVE] {
+            for (from, distance) in [(0.0, 0.01), (0.0, 50.0), (40.0, 0.001), (40.0, 20.0)] {
+                let w = reachable_speed(from, distance, limits);
+                let ramp = Ramp::new(from, w, limits);
+                assert!(close(ramp.distance(), distance), "{from} {distance} {w}");
+            }
+        }
+    }
+
+    #[test]
+    fn an_unequal_s_curve_profile_fits_its_length() {
+        for (entry, exit, length) in [(0.0, 30.0, 2.0), (50.0, 5.0, 3.0), (10.0, 12.0, 0.5)] {
+            let profile = Profile::new(length, entry, exit, 1000.0, S_CURVE);
+            let covered = profile.up.distance() + profile.down.distance();
+            assert!((covered - length).abs() < 1e-9, "{entry} {exit} {length}");
+        }
+    }
+
+    #[test]
+    fn a_zero_length_segment_takes_no_time() {
+        let profile = Profile::new(0.0, 0.0, 0.0, 100.0, S_CURVE);
+        assert_eq!(profile.duration(), 0.0);
+    }
+}
