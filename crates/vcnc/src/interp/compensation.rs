@@ -22,6 +22,10 @@ pub(crate) fn before_motion(
     cmd: &Command,
     out: &mut Output,
 ) -> Result<(), Alarm> {
+    if out.comp.is_none() && cmd.word(b'D').is_none() && cmd.group(Group::CutterComp).is_none() {
+        // Most blocks: nothing about compensation.
+        return Ok(());
+    }
     // In a G12/G13 block D is the circle's own offset, not the cutter compensation's.
     let circle = cmd
         .group(Group::NonModal)

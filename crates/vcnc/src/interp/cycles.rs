@@ -53,6 +53,10 @@ pub(crate) struct Cycle {
 /// # Errors
 /// A plane change while a cycle is in force.
 pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
+    if exec.cycle.is_none() && cmd.group(Group::Cycle).is_none() {
+        // Most blocks: no cycle in force and none named.
+        return Ok(());
+    }
     if cmd.group(Group::Motion).is_some() {
         // Any group-01 code cancels the cycle, also one in the cycle's own block (Syntec
         // restriction 4, FANUC).

@@ -419,6 +419,9 @@ impl Executor {
     /// # Errors
     /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range (incremental
     /// moves and offsets add up; the control refuses what it cannot represent).
+    // Inlined: the move is built where the caller puts it (in the output queue) instead of
+    // being copied out of a Result several times per block.
+    #[inline(always)]
     pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Result<Move, Alarm> {
         check_position(&to, cmd)?;
         let from = MachinePos(self.position);

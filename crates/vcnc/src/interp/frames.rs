@@ -210,6 +210,7 @@ impl Frames {
 
     /// Machine minus program coordinates at the machine position `at`: the plain offset, or,
     /// when the program system is scaled or turned, the difference at that point.
+    #[inline]
     pub(crate) fn offset_at(&self, at: &[f64; AXES]) -> [f64; AXES] {
         if self.scaling.is_none() && !self.rotated() {
             return self.offset();

@@ -74,6 +74,7 @@ pub(crate) struct Output {
 
 impl Output {
     /// Records a segment of the block `cmd`.
+    #[inline(always)]
     pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
         match self.comp.as_mut() {
             // Built where it goes: a segment is a few hundred bytes, and this runs per move.
@@ -82,15 +83,21 @@ impl Output {
                 span: cmd.span,
                 sequence: cmd.sequence,
             })),
-            Some(comp) => {
-                let segment = Segment {
-                    kind,
-                    span: cmd.span,
-                    sequence: cmd.sequence,
-                };
-                if let Err(alarm) = comp.push(segment, &mut self.items, &mut self.held) {
-                    self.failed.get_or_insert(alarm);
-                }
+            Some(_) => self.push_compensated(cmd, kind),
+        }
+    }
+
+    /// A segment through cutter compensation (kept out of line: the plain path is the hot one).
+    #[inline(never)]
+    fn push_compensated(&mut self, cmd: &Command, kind: SegmentKind) {
+        let segment = Segment {
+            kind,
+            span: cmd.span,
+            sequence: cmd.sequence,
+        };
+        if let Some(comp) = self.comp.as_mut() {
+            if let Err(alarm) = comp.push(segment, &mut self.items, &mut self.held) {
+                self.failed.get_or_insert(alarm);
             }
         }
     }
@@ -377,6 +384,22 @@ impl<B: BlockSource> Interpreter<B> {
         }
         self.blocks_executed += 1;
         let flow = self.exec.run(&self.command, &mut self.out);
+        if self.out.comp.is_none() && self.out.failed.is_none() {
+            // The common case, kept short: no compensation stage to tell about the block.
+            match flow {
+                Ok(Flow::Next) => {}
+                Ok(Flow::End) => self.done = true,
+                Err(alarm) => self.fail(alarm),
+            }
+            return;
+        }
+        self.after_compensated_block(flow);
+    }
+
+    /// The end of a block while compensation is on (or has failed): an alarm it raised while
+    /// queueing comes first; otherwise it counts the block.
+    #[inline(never)]
+    fn after_compensated_block(&mut self, flow: Result<Flow, Alarm>) {
         let flow = match self.out.take_failure() {
             Some(alarm) => Err(alarm),
             None => flow.and_then(|flow| {
@@ -389,11 +412,15 @@ impl<B: BlockSource> Interpreter<B> {
         match flow {
             Ok(Flow::Next) => {}
             Ok(Flow::End) => self.done = true,
-            Err(alarm) => {
-                self.out.stop(alarm);
-                self.done = true;
-            }
+            Err(alarm) => self.fail(alarm),
         }
+    }
+
+    /// An error ends the run.
+    #[cold]
+    fn fail(&mut self, alarm: Alarm) {
+        self.out.stop(alarm);
+        self.done = true;
     }
 }
 
