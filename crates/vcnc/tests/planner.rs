@@ -433,3 +433,42 @@ proptest! {
         prop_assert!(fast <= slow * (1.0 + 1e-9) + 1e-12, "{fast} > {slow}");
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// The window streams: when it is longer than any braking distance, planning through it
+    /// gives the times of planning the whole program at once.
+    #[test]
+    fn a_window_longer_than_any_braking_distance_gives_the_whole_program_plan(
+        steps in prop::collection::vec((0.2..2.0_f64, -0.3..0.3_f64, 0..20_u8), 100..300),
+        jerk in prop::option::of(100_000.0..1_000_000.0_f64),
+    ) {
+        // A wandering path of short steps, so that speeds are set by braking over many of them;
+        // now and then an exact stop.
+        let mut text = String::from("G90 G1 F6000.\n");
+        let (mut x, mut y, mut heading) = (0.0_f64, 0.0_f64, 0.0_f64);
+        for (length, turn, dice) in &steps {
+            heading += turn;
+            x += length * heading.cos();
+            y += length * heading.sin();
+            let mode = if *dice == 0 { "G61" } else { "G64" };
+            text += &format!("{mode} X{x:.4} Y{y:.4}\n");
+        }
+        text += "M30\n";
+        // 100 mm/s at 2000 mm/s^2 brakes within 2.5 mm, within 3.5 mm with a jerk of 100000
+        // (v (v/a + a/j) / 2): fewer than 32 segments of 0.2 mm.
+        let limits = |planner| Limits {
+            acceleration: 2000.0,
+            jerk: jerk.unwrap_or(f64::INFINITY),
+            planner,
+            ..Limits::default()
+        };
+        let windowed = timed(&text, &machine(&limits("look_ahead = 64")), PlanOptions::default());
+        let whole = timed(&text, &machine(&limits("look_ahead = 100000")), PlanOptions::default());
+        prop_assert_eq!(windowed.len(), whole.len());
+        for (a, b) in windowed.iter().zip(&whole) {
+            prop_assert!((a.dt - b.dt).abs() <= 1e-9 * b.dt.max(1.0), "{} != {}", a.dt, b.dt);
+        }
+    }
+}

@@ -8,8 +8,8 @@
 //! stream the window ends in a real stop and all of it leaves.
 //!
 //! Why half: a motion that leaves has been planned with at least half a window of look-ahead
-//! behind it, and each motion costs two passes over the window per half window, so the work per
-//! segment is constant. Why the front speed never has to drop: the stop assumed at the old
+//! behind it. The forward pass runs over the released half only, and the backward pass stops
+//! where its values stop changing, so the work per segment stays small and constant. Why the front speed never has to drop: the stop assumed at the old
 //! window end is the tightest condition there is, so a longer window only allows more.
 //!
 //! Alarms and zero-length motions sit in the window in stream order and take no time; they do
@@ -32,6 +32,8 @@ pub(crate) struct Planned {
     pub(crate) lead_in: f64,
     /// Highest entry speed the junction with the previous motion allows.
     max_entry: f64,
+    /// Highest entry speed that can still stop at the window's end (NaN until first planned).
+    backward: f64,
     /// Planned entry and exit speeds, mm/s.
     pub(crate) entry: f64,
     pub(crate) exit: f64,
@@ -39,7 +41,8 @@ pub(crate) struct Planned {
 
 /// One item of the window.
 pub(crate) struct Slot {
-    pub(crate) item: Result<Segment, Alarm>,
+    /// Alarms are rare and large: boxed, they keep the slots small to move.
+    pub(crate) item: Result<Segment, Box<Alarm>>,
     /// None for events, alarms and motions of zero length.
     pub(crate) planned: Option<Planned>,
 }
@@ -83,7 +86,7 @@ impl Window {
     /// Adds an alarm: it takes no time and does not interrupt the motion.
     pub(crate) fn push_alarm(&mut self, alarm: Alarm) {
         self.slots.push_back(Slot {
-            item: Err(alarm),
+            item: Err(Box::new(alarm)),
             planned: None,
         });
         self.release_if_full();
@@ -122,6 +125,7 @@ impl Window {
                     limits,
                     lead_in,
                     max_entry,
+                    backward: f64::NAN,
                     entry: 0.0,
                     exit: 0.0,
                 })
@@ -146,20 +150,28 @@ impl Window {
         if let Some(last) = self.last_planned() {
             last.limits.path.acceleration = last.limits.unblended_acceleration;
         }
-        self.plan();
-        self.ready = self.slots.len();
+        self.plan(self.slots.len());
         self.last = None;
     }
 
     fn release_if_full(&mut self) {
         if self.slots.len() >= self.capacity && self.ready == 0 {
-            self.plan();
-            self.ready = self.slots.len() / 2;
+            self.plan(self.slots.len() / 2);
         }
     }
 
-    /// Backward then forward pass over the motions in the window.
-    fn plan(&mut self) {
+    /// Plans the window and makes its first `release` slots final.
+    fn plan(&mut self, release: usize) {
+        self.backward_pass();
+        self.forward_pass(release);
+        self.ready = release;
+    }
+
+    /// The highest entry speed of each motion from which the machine can still stop at the
+    /// window's end. A motion's value depends only on the next one's, so once a value comes out
+    /// as it was in the previous round, every earlier one would too and the pass ends there:
+    /// at a corner that limits the speed, usually a few motions back.
+    fn backward_pass(&mut self) {
         let mut next_entry = 0.0;
         for planned in self
             .slots
@@ -167,32 +179,47 @@ impl Window {
             .rev()
             .filter_map(|s| s.planned.as_mut())
         {
-            planned.exit = next_entry;
             let limits = &planned.limits;
-            planned.entry =
+            let entry =
                 planned
                     .max_entry
                     .min(reachable_speed(next_entry, limits.length, limits.path));
-            next_entry = planned.entry;
+            if entry == planned.backward {
+                return;
+            }
+            planned.backward = entry;
+            next_entry = entry;
         }
+    }
+
+    /// Entry and exit speeds from the fixed speed at the window's front, as far as the first
+    /// motion after the released slots (whose entry is the last released motion's exit).
+    fn forward_pass(&mut self, release: usize) {
         let mut reachable = self.start_speed;
         let mut first = true;
         let mut previous: Option<&mut Planned> = None;
-        for planned in self.slots.iter_mut().filter_map(|s| s.planned.as_mut()) {
+        for (index, slot) in self.slots.iter_mut().enumerate() {
+            let Some(planned) = slot.planned.as_mut() else {
+                continue;
+            };
             // The first motion continues from a motion that has already left: its entry is fixed.
             planned.entry = if first {
                 self.start_speed
             } else {
-                planned.entry.min(reachable)
+                planned.backward.min(reachable)
             };
             first = false;
-            if let Some(previous) = previous {
+            if let Some(previous) = previous.take() {
                 previous.exit = planned.entry;
+            }
+            if index >= release {
+                return;
             }
             let limits = &planned.limits;
             reachable = reachable_speed(planned.entry, limits.length, limits.path);
             previous = Some(planned);
         }
+        // The window ends in a stop.
         if let Some(last) = previous {
             last.exit = 0.0;
         }

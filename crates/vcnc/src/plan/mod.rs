@@ -156,7 +156,7 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for Planner<I> {
             if let Some(slot) = self.window.pop_ready() {
                 let segment = match slot.item {
                     Ok(segment) => segment,
-                    Err(alarm) => return Some(Err(alarm)),
+                    Err(alarm) => return Some(Err(*alarm)),
                 };
                 let Some(planned) = slot.planned else {
                     return Some(Ok(self.timed(segment, 0.0, None)));

@@ -1,0 +1,82 @@
+//! Planner throughput, in segments per second, on the CAM-style program of
+//! `support/cam_program.rs` (feed lines wandering over 200 x 200 mm, every tenth block an arc)
+//! at 40,000 and 400,000 motion blocks, on the default machine (S-curves, corner blends).
+//!
+//! - `plan/N`: the motion stream is interpreted once, before timing, into memory; the bench times
+//!   `vcnc::plan::Planner` alone over it. The issue's target (#6): at least 5 million segments
+//!   per second on one core.
+//! - `interp_plan/N`: interpreting and planning together, as `vcnc run` does; compare with the
+//!   `interp` bench for what planning adds (the issue allows 30 % on the 400,000-block program).
+
+use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use std::time::Duration;
+use vcnc::plan::{PlanOptions, Planner};
+use vcnc::{interpret_str, Machine, Options, Segment};
+
+#[path = "support/cam_program.rs"]
+mod cam_program;
+
+/// Program sizes in motion blocks, as in the `interp` bench.
+const SIZES: [usize; 2] = [40_000, 400_000];
+
+fn plan(c: &mut Criterion) {
+    let machine = Machine::default();
+    let mut group = c.benchmark_group("plan");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(2))
+        .measurement_time(Duration::from_secs(6));
+    for blocks in SIZES {
+        let text = cam_program::program(blocks);
+        let segments: Vec<Segment> = interpret_str(&text, &machine, Options::default())
+            .map(|item| item.expect("the benchmark program runs without alarms"))
+            .collect();
+        group.throughput(Throughput::Elements(segments.len() as u64));
+        group.bench_with_input(
+            BenchmarkId::from_parameter(blocks),
+            &segments,
+            |b, segments| {
+                b.iter(|| {
+                    let stream = segments.iter().copied().map(Ok);
+                    total_seconds(Planner::new(stream, &machine, PlanOptions::default()))
+                });
+            },
+        );
+    }
+    group.finish();
+}
+
+fn interp_plan(c: &mut Criterion) {
+    let machine = Machine::default();
+    let mut group = c.benchmark_group("interp_plan");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(2))
+        .measurement_time(Duration::from_secs(8));
+    for blocks in SIZES {
+        let text = cam_program::program(blocks);
+        group.throughput(Throughput::Elements(blocks as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(blocks), &text, |b, text| {
+            b.iter(|| {
+                let stream = interpret_str(text, &machine, Options::default());
+                total_seconds(Planner::new(stream, &machine, PlanOptions::default()))
+            });
+        });
+    }
+    group.finish();
+}
+
+/// Runs the planner to the end; the program's time, so nothing is optimised away.
+fn total_seconds(
+    planner: impl Iterator<Item = Result<vcnc::plan::TimedSegment, vcnc::Alarm>>,
+) -> f64 {
+    let mut end = 0.0;
+    for item in planner {
+        let timed = item.expect("the benchmark program runs without alarms");
+        end = black_box(timed.t + timed.dt);
+    }
+    end
+}
+
+criterion_group!(benches, plan, interp_plan);
+criterion_main!(benches);
