@@ -5,7 +5,7 @@ use std::io::Read;
 use std::path::Path;
 use vcnc::syntax::source::BackgroundParser;
 use vcnc::syntax::{detect_dialect, Dialect};
-use vcnc::{FileId, Interpreter, Machine, Options};
+use vcnc::{Alarm, FileId, Interpreter, Machine, Options, Segment};
 
 /// A program being interpreted from a file.
 pub(crate) type FileInterpreter = Interpreter<BackgroundParser>;
@@ -37,6 +37,46 @@ pub(crate) fn open(
         machine,
         options,
     ))
+}
+
+/// The interpreter's stream, taken from it a batch at a time ([`Interpreter::next_batch`]) and
+/// handed out one item at a time: the planner pulls items, and batches are the interpreter's
+/// fast path.
+pub(crate) struct Batched {
+    interpreter: FileInterpreter,
+    /// The current batch, reversed, so that `pop` gives the next item.
+    items: Vec<Result<Segment, Alarm>>,
+    more: bool,
+}
+
+/// Segments per batch taken from the interpreter.
+const BATCH: usize = 1024;
+
+impl Batched {
+    pub(crate) fn new(interpreter: FileInterpreter) -> Batched {
+        Batched {
+            interpreter,
+            items: Vec::with_capacity(BATCH + 64),
+            more: true,
+        }
+    }
+
+    /// Blocks the interpreter has run so far.
+    pub(crate) fn blocks_executed(&self) -> u64 {
+        self.interpreter.blocks_executed()
+    }
+}
+
+impl Iterator for Batched {
+    type Item = Result<Segment, Alarm>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        while self.items.is_empty() && self.more {
+            self.more = self.interpreter.next_batch(&mut self.items, BATCH);
+            self.items.reverse();
+        }
+        self.items.pop()
+    }
 }
 
 /// The dialect a file would be read in.

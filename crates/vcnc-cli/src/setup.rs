@@ -2,6 +2,7 @@
 
 use clap::Args;
 use std::path::PathBuf;
+use vcnc::plan::PlanOptions;
 use vcnc::{Machine, Options, ProfileName};
 
 /// Machine and control options.
@@ -16,6 +17,13 @@ pub(crate) struct MachineArgs {
     /// Turn block skip switch N on (1-9; repeatable): blocks starting with `/N` are skipped.
     #[arg(long = "block-skip", value_name = "N", num_args = 0..=1, default_missing_value = "1")]
     pub(crate) block_skip: Vec<u8>,
+    /// Feed override, percent (as the panel's dial): scales programmed feeds, not rapids.
+    #[arg(
+        long = "feed-override",
+        value_name = "PERCENT",
+        default_value_t = 100.0
+    )]
+    pub(crate) feed_override: f64,
 }
 
 impl MachineArgs {
@@ -33,6 +41,19 @@ impl MachineArgs {
             Some(name) => machine.with_profile(name).map_err(|e| e.to_string()),
             None => Ok(machine),
         }
+    }
+
+    /// The planner's options (the feed override dial).
+    pub(crate) fn plan_options(&self) -> Result<PlanOptions, String> {
+        let percent = self.feed_override;
+        if !(percent > 0.0 && percent <= 1000.0) {
+            return Err(format!(
+                "--feed-override {percent}: expected a percentage above 0, at most 1000"
+            ));
+        }
+        Ok(PlanOptions {
+            feed_override: percent / 100.0,
+        })
     }
 
     /// The panel switches.

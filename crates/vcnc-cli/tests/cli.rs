@@ -114,9 +114,52 @@ fn trace_csv_has_a_header_and_a_row_per_segment() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next(),
-        Some("kind,line,file,n,x,y,z,f,cx,cy,cz,dir,plane,wx,wy,wz,value")
+        Some("kind,line,file,n,t,dt,x,y,z,f,cx,cy,cz,dir,plane,wx,wy,wz,value")
     );
     assert!(lines.next().unwrap().starts_with("feed,1,"));
+}
+
+#[test]
+fn trace_times_follow_one_another() {
+    let program = temp_program(
+        "timed.nc",
+        "G0 X10.
+G1 X20. F600.
+G4 X1.5
+M30
+",
+    );
+    let out = vcnc(&["trace", &program]);
+    let lines: Vec<serde_json::Value> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let mut clock = 0.0;
+    for line in &lines {
+        let (t, dt) = (line["t"].as_f64().unwrap(), line["dt"].as_f64().unwrap());
+        assert!((t - clock).abs() < 2e-6, "{line}");
+        clock = t + dt;
+    }
+    // 10 mm at 10 mm/s and a ramp; the dwell.
+    assert!(lines[1]["dt"].as_f64().unwrap() > 1.0);
+    assert_eq!(lines[2]["dt"], 1.5);
+}
+
+#[test]
+fn run_json_reports_where_the_time_goes() {
+    let program = temp_program("report.nc", "G0 X10.\nM6 T4\nG1 X20. F600.\nG4 X1.5\nM30\n");
+    let out = vcnc(&["run", "--format", "json", &program]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let time = &report["time"];
+    let total = time["total_seconds"].as_f64().unwrap();
+    assert!(total > report["estimated_seconds"].as_f64().unwrap());
+    assert_eq!(time["by_kind"]["dwell"], 1.5);
+    assert_eq!(time["by_tool"][1]["tool"], 4);
+    assert_eq!(time["slowest_blocks"][0]["line"], 2);
+    let half = vcnc(&["run", "--format", "json", "--feed-override", "50", &program]);
+    let half: serde_json::Value = serde_json::from_slice(&half.stdout).unwrap();
+    assert!(half["time"]["total_seconds"].as_f64().unwrap() > total);
 }
 
 #[test]

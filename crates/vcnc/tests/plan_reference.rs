@@ -10,6 +10,8 @@ mod common;
 mod plan;
 
 use std::path::{Path, PathBuf};
+use vcnc::summary::Summary;
+use vcnc::{interpret_str, Options};
 
 /// The agreement the issue asks for (#6, acceptance 3).
 const TOLERANCE: f64 = 0.02;
@@ -57,8 +59,12 @@ fn limits_line(program: &str) -> (f64, f64) {
 
 pub struct Comparison {
     pub stem: String,
+    /// The program's second comment: what it exercises.
+    pub what: String,
     pub linuxcnc: f64,
     pub vcnc: f64,
+    /// vcnc's length / feed estimate (`Summary::estimated_seconds`).
+    pub estimate: f64,
 }
 
 fn compare_all() -> Vec<Comparison> {
@@ -92,10 +98,22 @@ fn compare_all() -> Vec<Comparison> {
             });
             // lcnc-time counts from the first motion to the end of the last one.
             let vcnc = plan::total_seconds(&program, &machine);
+            let mut summary = Summary::new(&machine);
+            for segment in interpret_str(&program, &machine, Options::default()).flatten() {
+                summary.add(&segment);
+            }
+            let what = program
+                .lines()
+                .nth(1)
+                .unwrap_or("")
+                .trim_matches(|c| c == '(' || c == ')')
+                .to_string();
             Comparison {
                 stem,
+                what,
                 linuxcnc,
                 vcnc,
+                estimate: summary.estimated_seconds(),
             }
         })
         .collect()
@@ -136,5 +154,45 @@ fn every_reference_program_is_timed_within_two_percent_of_linuxcnc() {
     assert_eq!(
         failed, 0,
         "{failed} program(s) off by more than 2 %:\n{report}"
+    );
+}
+
+/// The README's table of the reference programs.
+fn readme_table(comparisons: &[Comparison]) -> String {
+    let mut table = String::from(
+        "| program | what it exercises | LinuxCNC s | vcnc s | vcnc - LinuxCNC | length / feed s |\n\
+         |---|---|---:|---:|---:|---:|\n",
+    );
+    for c in comparisons {
+        table += &format!(
+            "| `{}` | {} | {:.3} | {:.3} | {:+.2} % | {:.3} |\n",
+            c.stem,
+            c.what,
+            c.linuxcnc,
+            c.vcnc,
+            100.0 * (c.vcnc - c.linuxcnc) / c.linuxcnc,
+            c.estimate
+        );
+    }
+    table
+}
+
+#[test]
+fn the_readme_table_of_reference_times_is_up_to_date() {
+    let readme_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md");
+    let readme = std::fs::read_to_string(&readme_path).expect("README.md");
+    let (begin, end) = (
+        "<!-- plan-reference:begin -->\n",
+        "<!-- plan-reference:end -->",
+    );
+    let start = readme
+        .find(begin)
+        .expect("README has the plan-reference markers")
+        + begin.len();
+    let stop = readme[start..].find(end).expect("end marker") + start;
+    let expected = readme_table(&compare_all());
+    assert!(
+        readme[start..stop] == expected,
+        "README.md's reference table is stale; replace it with:\n{expected}"
     );
 }

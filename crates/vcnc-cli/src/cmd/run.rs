@@ -6,6 +6,7 @@ use clap::{Args as ClapArgs, ValueEnum};
 use serde_json::json;
 use std::path::PathBuf;
 use vcnc::motion::EndKind;
+use vcnc::plan::{Planner, TimeKind, TimeReport};
 use vcnc::summary::{Extents, Summary};
 use vcnc::{Alarm, SegmentKind};
 
@@ -30,28 +31,38 @@ pub(crate) struct Args {
     machine: MachineArgs,
 }
 
-const ESTIMATE_NOTE: &str =
-    "length / feed and rapid rates; acceleration and corners are not modelled yet";
+const ESTIMATE_NOTE: &str = "length / feed and rapid rates, without acceleration or corners";
+
+const PLAN_NOTE: &str = "planned: per-axis speed, acceleration and jerk, look-ahead, corners, \
+exact stops, dwell, tool change and spindle times from the machine file";
 
 pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let machine = args.machine.machine()?;
     let options = args.machine.options()?;
-    let mut interpreter = crate::program::open(&args.program, &machine, options)?;
+    let plan_options = args.machine.plan_options()?;
+    let interpreter = crate::program::open(&args.program, &machine, options)?;
+    let mut planner = Planner::new(
+        crate::program::Batched::new(interpreter),
+        &machine,
+        plan_options,
+    );
     let mut summary = Summary::new(&machine);
+    let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut end = None;
-    for item in interpreter.by_ref() {
+    for item in planner.by_ref() {
         match item {
-            Ok(segment) => {
-                if let SegmentKind::End { kind } = segment.kind {
+            Ok(timed) => {
+                if let SegmentKind::End { kind } = timed.segment.kind {
                     end = Some(kind);
                 }
-                summary.add(&segment);
+                summary.add(&timed.segment);
+                report.add(&timed);
             }
             Err(alarm) => alarms.push(alarm),
         }
     }
-    let blocks = interpreter.blocks_executed();
+    let blocks = planner.source().blocks_executed();
     let error = alarms.iter().find(|a| a.is_error());
     let result = match (error, end) {
         (Some(alarm), _) => format!(
@@ -68,6 +79,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     match args.format {
         Format::Human => {
             print_human(args, &machine, &summary, blocks, &result, warnings);
+            print_time_human(&report, &summary, plan_options.feed_override);
             crate::diagnostics::print_human(&args.program, &alarms);
         }
         Format::Json => {
@@ -93,6 +105,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
                 "dwell_seconds": summary.dwell_seconds,
                 "estimated_seconds": summary.estimated_seconds(),
                 "estimate_method": ESTIMATE_NOTE,
+                "time": time_json(&report, plan_options.feed_override),
                 "tools": summary.tools.iter().collect::<Vec<_>>(),
                 "tool_changes": summary.tool_changes,
                 "extents": { "machine": extents_json(&summary.machine_extents), "program": extents_json(&summary.work_extents),
@@ -140,20 +153,6 @@ fn print_human(
         "  cutting           {:>7} moves  {:>12.3} mm",
         summary.feed_moves, summary.feed_length
     );
-    println!(
-        "  estimated time    {}  (rapid {:.1} s, cutting {:.1} s, dwell {:.1} s)",
-        clock(summary.estimated_seconds()),
-        summary.rapid_seconds,
-        summary.feed_seconds,
-        summary.dwell_seconds
-    );
-    println!("                    estimate: {ESTIMATE_NOTE}");
-    if summary.untimed_moves > 0 {
-        println!(
-            "                    {} cutting moves untimed (feed per revolution without S)",
-            summary.untimed_moves
-        );
-    }
     let tools: Vec<String> = summary.tools.iter().map(|t| format!("T{t}")).collect();
     println!(
         "  tools             {}",
@@ -180,6 +179,83 @@ fn print_human(
         "  extents cutting   {}",
         extents_text(&summary.cutting_extents)
     );
+}
+
+/// The planned time, where it goes, and the length / feed estimate beside it.
+fn print_time_human(report: &TimeReport, summary: &Summary, feed_override: f64) {
+    let percent = if feed_override == 1.0 {
+        String::new()
+    } else {
+        format!(", feed override {:.0} %", feed_override * 100.0)
+    };
+    println!("  cycle time        {}{percent}", clock(report.total));
+    println!("                    {PLAN_NOTE}");
+    println!(
+        "  length / feed     {}  (rapid {:.1} s, cutting {:.1} s, dwell {:.1} s: {ESTIMATE_NOTE})",
+        clock(summary.estimated_seconds()),
+        summary.rapid_seconds,
+        summary.feed_seconds,
+        summary.dwell_seconds
+    );
+    if summary.untimed_moves > 0 {
+        println!(
+            "                    {} cutting moves at the axes' limit (feed per revolution without S)",
+            summary.untimed_moves
+        );
+    }
+    let kinds: Vec<String> = TimeKind::ALL
+        .iter()
+        .map(|k| {
+            format!(
+                "{} {:.1} s",
+                k.as_str().replace('_', " "),
+                report.seconds(*k)
+            )
+        })
+        .collect();
+    println!("  time by kind      {}", kinds.join(", "));
+    let tools: Vec<String> = report
+        .by_tool
+        .iter()
+        .map(|(tool, s)| format!("{} {s:.1} s", tool_name(*tool)))
+        .collect();
+    println!("  time by tool      {}", tools.join(", "));
+    for (i, block) in report.slowest_blocks().iter().enumerate() {
+        let label = if i == 0 { "  slowest blocks" } else { "" };
+        println!(
+            "{label:<20}line {:<8} {:>9.3} s",
+            block.span.line, block.seconds
+        );
+    }
+}
+
+fn tool_name(tool: Option<u32>) -> String {
+    tool.map_or_else(|| "no tool".to_string(), |t| format!("T{t}"))
+}
+
+fn time_json(report: &TimeReport, feed_override: f64) -> serde_json::Value {
+    let by_kind: serde_json::Map<String, serde_json::Value> = TimeKind::ALL
+        .iter()
+        .map(|k| (k.as_str().to_string(), json!(report.seconds(*k))))
+        .collect();
+    let by_tool: Vec<_> = report
+        .by_tool
+        .iter()
+        .map(|(tool, s)| json!({ "tool": tool, "seconds": s }))
+        .collect();
+    let slowest: Vec<_> = report
+        .slowest_blocks()
+        .iter()
+        .map(|b| json!({ "line": b.span.line, "seconds": b.seconds }))
+        .collect();
+    json!({
+        "total_seconds": report.total,
+        "method": PLAN_NOTE,
+        "feed_override": feed_override,
+        "by_kind": by_kind,
+        "by_tool": by_tool,
+        "slowest_blocks": slowest,
+    })
 }
 
 fn clock(seconds: f64) -> String {

@@ -1,7 +1,7 @@
 //! `vcnc trace`: the motion stream, one record per segment, in execution order.
 //!
-//! JSON lines carry `kind`, `line`, `file`, the end point `x y z` (and `a b c` when the machine
-//! has them) in machine coordinates, `f` in mm/min for cutting moves, `cx cy cz dir plane` for
+//! JSON lines carry `kind`, `line`, `file`, the planner's start time `t` and duration `dt` in
+//! seconds, the end point `x y z` (and `a b c` when the machine has them) in machine coordinates, `f` in mm/min for cutting moves, `cx cy cz dir plane` for
 //! arcs, and `n` (sequence number) and, with `--work`, `wx wy wz` (end point in program
 //! coordinates) as extras.
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
@@ -13,6 +13,7 @@ use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
 use vcnc::motion::{EndKind, Feed, Move, SpindleState, StopKind};
+use vcnc::plan::{Planner, TimedSegment};
 use vcnc::{Alarm, Axis, Segment, SegmentKind};
 
 /// Output format of the trace.
@@ -42,6 +43,7 @@ pub(crate) struct Args {
 pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let machine = args.machine.machine()?;
     let options = args.machine.options()?;
+    let plan_options = args.machine.plan_options()?;
     let interpreter = crate::program::open(&args.program, &machine, options)?;
     let rotary: Vec<Axis> = [Axis::A, Axis::B, Axis::C]
         .into_iter()
@@ -62,20 +64,26 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     if args.format == Format::Csv {
         writer.csv_header();
     }
-    // The interpreter runs on its own thread and hands over segments in batches, so that reading
-    // and interpreting overlap with formatting and writing on a second core. A fixed pool of
-    // batch buffers goes round between the two: no allocation, no fresh pages, bounded memory.
-    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
-    let (recycle, recycled) = std::sync::mpsc::sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
+    // The interpreter and the planner run on their own thread and hand over timed segments in
+    // batches, so that reading, interpreting and planning overlap with formatting and writing on
+    // a second core. A fixed pool of batch buffers goes round between the two: no allocation, no
+    // fresh pages, bounded memory.
+    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Item>>(POOL);
+    let (recycle, recycled) = std::sync::mpsc::sync_channel::<Vec<Item>>(POOL);
     for _ in 0..POOL {
-        let _ = recycle.try_send(Vec::with_capacity(BATCH + 64));
+        let _ = recycle.try_send(Vec::with_capacity(BATCH));
     }
-    let mut interpreter = interpreter;
+    let mut planner = Planner::new(
+        crate::program::Batched::new(interpreter),
+        &machine,
+        plan_options,
+    );
     let producer = std::thread::spawn(move || {
         while let Ok(mut batch) = recycled.recv() {
             batch.clear();
-            let more = interpreter.next_batch(&mut batch, BATCH);
-            if !more || sender.send(batch).is_err() {
+            batch.extend(planner.by_ref().take(BATCH));
+            let more = batch.len() == BATCH;
+            if sender.send(batch).is_err() || !more {
                 return;
             }
         }
@@ -88,9 +96,9 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     for batch in receiver {
         for item in &batch {
             match item {
-                Ok(segment) => match args.format {
-                    Format::Jsonl => writer.jsonl(segment),
-                    Format::Csv => writer.csv(segment),
+                Ok(timed) => match args.format {
+                    Format::Jsonl => writer.jsonl(timed),
+                    Format::Csv => writer.csv(timed),
                 },
                 Err(alarm) => {
                     failed |= alarm.is_error();
@@ -122,6 +130,9 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         Outcome::Clean
     })
 }
+
+/// What the planner thread hands over: a timed segment or an alarm.
+type Item = Result<TimedSegment, Alarm>;
 
 /// Segments per batch handed from the interpreter thread to the writer.
 const BATCH: usize = 4096;
@@ -240,7 +251,8 @@ impl Writer {
         self.out.byte(b'"');
     }
 
-    fn jsonl(&mut self, segment: &Segment) {
+    fn jsonl(&mut self, timed: &TimedSegment) {
+        let segment = &timed.segment;
         let record = record(segment);
         self.out.start_record(self.file_json.len());
         self.out.put_in_record(record.head);
@@ -250,6 +262,8 @@ impl Writer {
             self.key(key!("n"));
             self.out.unsigned(u64::from(n));
         }
+        self.number(key!("t"), timed.t);
+        self.number(key!("dt"), timed.dt);
         if let Some(motion) = record.motion {
             let to = motion.to.0;
             self.field(key!("x"), 0, to[0]);
@@ -311,7 +325,7 @@ impl Writer {
     }
 
     fn csv_header(&mut self) {
-        self.out.put(b"kind,line,file,n,x,y,z");
+        self.out.put(b"kind,line,file,n,t,dt,x,y,z");
         for i in 0..self.rotary.len() {
             self.out.byte(b',');
             self.out.byte(self.rotary[i].letter().to_ascii_lowercase());
@@ -323,7 +337,8 @@ impl Writer {
         });
     }
 
-    fn csv(&mut self, segment: &Segment) {
+    fn csv(&mut self, timed: &TimedSegment) {
+        let segment = &timed.segment;
         let record = record(segment);
         self.out.put(record.kind.as_bytes());
         self.out.byte(b',');
@@ -334,6 +349,10 @@ impl Writer {
         if let Some(n) = segment.sequence {
             self.out.unsigned(u64::from(n));
         }
+        self.out.byte(b',');
+        self.out.decimal(timed.t);
+        self.out.byte(b',');
+        self.out.decimal(timed.dt);
         let axes = 3 + self.rotary.len();
         match record.motion {
             Some(motion) => {

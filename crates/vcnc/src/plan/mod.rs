@@ -9,7 +9,8 @@
 //! The parts: `limits.rs` (machine limits along one segment's path), `corner.rs` (junction
 //! speeds), `profile.rs` (velocity profiles in closed form), `lookahead.rs` (the window and its
 //! passes), `events.rs` (time of dwells, tool changes, spindle), `config.rs` (the machine file's
-//! `[planner]` table, with LinuxCNC's habits as a preset).
+//! `[planner]` table, with LinuxCNC's habits as a preset), `report.rs` (where the time goes:
+//! by kind, by tool, the slowest blocks).
 //!
 //! Invariants: the look-ahead window is the only buffer, so memory is constant on any program
 //! length; items come out in the order they came in; the same input gives the same times; no
@@ -37,10 +38,12 @@ mod events;
 mod limits;
 mod lookahead;
 mod profile;
+mod report;
 
 pub(crate) use config::PlannerFile;
 pub use config::{PlannerConfig, PlannerHabits};
 pub use profile::{PathLimits, Profile};
+pub use report::{BlockTime, TimeKind, TimeReport, SLOWEST};
 
 use crate::alarm::Alarm;
 use crate::machine::Machine;
@@ -113,6 +116,11 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Planner<I> {
             events: EventClock::default(),
             clock: 0.0,
         }
+    }
+
+    /// The stream being planned (e.g. to ask the interpreter how many blocks it ran).
+    pub fn source(&self) -> &I {
+        &self.source
     }
 
     fn pull(&mut self) {
