@@ -1,15 +1,16 @@
 //! Alarms for people (rustc-style, with the source line and the word underlined) and for
 //! machines (JSON).
 
+use crate::program::ProgramFiles;
 use codespan_reporting::diagnostic::{Diagnostic, Label, Severity as CsSeverity};
-use codespan_reporting::files::SimpleFile;
+use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use codespan_reporting::term::{self, Config};
 use serde_json::{json, Value};
+use std::collections::HashMap;
 use std::io::IsTerminal;
-use std::path::Path;
 use vcnc::source::line_column;
-use vcnc::{Alarm, Severity};
+use vcnc::{Alarm, FileId, Severity};
 
 /// The text of a program for showing its lines: bytes that are not UTF-8 (Latin-1 comments)
 /// become `?`, one byte each, so byte offsets stay right.
@@ -33,13 +34,26 @@ pub(crate) fn display_text(bytes: &[u8]) -> String {
     }
 }
 
-/// Prints alarms of one program to stderr like rustc prints errors.
-pub(crate) fn print_human(path: &Path, alarms: &[Alarm]) {
+/// Prints alarms of one program to stderr like rustc prints errors; an alarm in a called
+/// program shows that program's line.
+pub(crate) fn print_human(files: &ProgramFiles, alarms: &[Alarm]) {
     if alarms.is_empty() {
         return;
     }
-    let bytes = std::fs::read(path).unwrap_or_default();
-    let file = SimpleFile::new(path.display().to_string(), display_text(&bytes));
+    let mut sources = SimpleFiles::new();
+    let mut ids: HashMap<FileId, (usize, usize)> = HashMap::new();
+    let mut id_of = |file: FileId| {
+        *ids.entry(file).or_insert_with(|| {
+            let path = files.path(file);
+            let bytes = std::fs::read(&path).unwrap_or_default();
+            let len = bytes.len();
+            (
+                sources.add(path.display().to_string(), display_text(&bytes)),
+                len,
+            )
+        })
+    };
+    let diagnostics: Vec<_> = alarms.iter().map(|a| to_codespan(a, &mut id_of)).collect();
     let color = if std::env::var_os("NO_COLOR").is_none() && std::io::stderr().is_terminal() {
         ColorChoice::Auto
     } else {
@@ -47,31 +61,32 @@ pub(crate) fn print_human(path: &Path, alarms: &[Alarm]) {
     };
     let writer = StandardStream::stderr(color);
     let config = Config::default();
-    for alarm in alarms {
-        let _ = term::emit(
-            &mut writer.lock(),
-            &config,
-            &file,
-            &to_codespan(alarm, bytes.len()),
-        );
+    for diagnostic in &diagnostics {
+        let _ = term::emit(&mut writer.lock(), &config, &sources, diagnostic);
     }
 }
 
-fn to_codespan(alarm: &Alarm, len: usize) -> Diagnostic<()> {
+fn to_codespan(
+    alarm: &Alarm,
+    id_of: &mut impl FnMut(FileId) -> (usize, usize),
+) -> Diagnostic<usize> {
     let severity = match alarm.severity {
         Severity::Error => CsSeverity::Error,
         Severity::Warning => CsSeverity::Warning,
     };
-    let range = |span: vcnc::Span| {
+    let mut place = |span: vcnc::Span| {
+        let (id, len) = id_of(span.file);
         let start = (span.start as usize).min(len);
-        start..(span.end as usize).clamp(start, len)
+        (id, start..(span.end as usize).clamp(start, len))
     };
     let mut labels = Vec::new();
     if let Some(span) = alarm.span {
-        labels.push(Label::primary((), range(span)));
+        let (id, range) = place(span);
+        labels.push(Label::primary(id, range));
     }
     for label in &alarm.labels {
-        labels.push(Label::secondary((), range(label.span)).with_message(label.message.clone()));
+        let (id, range) = place(label.span);
+        labels.push(Label::secondary(id, range).with_message(label.message.clone()));
     }
     let mut diagnostic = Diagnostic::new(severity)
         .with_code(alarm.code.code())
@@ -84,9 +99,19 @@ fn to_codespan(alarm: &Alarm, len: usize) -> Diagnostic<()> {
 }
 
 /// One alarm as a JSON object: file, line, column, code, id, severity, message, help.
-pub(crate) fn to_json(path: &Path, text: &[u8], alarm: &Alarm) -> Value {
+/// `texts` keeps the files read so far.
+pub(crate) fn to_json(
+    files: &ProgramFiles,
+    texts: &mut HashMap<FileId, Vec<u8>>,
+    alarm: &Alarm,
+) -> Value {
+    let file = alarm.span.map_or(FileId(0), |s| s.file);
+    let path = files.path(file);
     let (line, column) = match alarm.span {
         Some(span) => {
+            let text = texts
+                .entry(file)
+                .or_insert_with(|| std::fs::read(&path).unwrap_or_default());
             let at = line_column(text, span.start);
             (Some(at.line), Some(at.column))
         }

@@ -1,8 +1,11 @@
 //! Opening a program file: dialect detection and a streaming line source.
 
+use crate::setup::MachineArgs;
 use std::fs::File;
-use std::io::Read;
-use std::path::Path;
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+use vcnc::interp::{DirectoryLibrary, LoadedFiles, PersistentVariables};
 use vcnc::syntax::source::BackgroundParser;
 use vcnc::syntax::{detect_dialect, Dialect};
 use vcnc::{Alarm, FileId, Interpreter, Machine, Options, Segment};
@@ -10,13 +13,36 @@ use vcnc::{Alarm, FileId, Interpreter, Machine, Options, Segment};
 /// A program being interpreted from a file.
 pub(crate) type FileInterpreter = Interpreter<BackgroundParser>;
 
+/// The files a run reads: the main program (file 0) and the programs it calls.
+#[derive(Debug, Clone)]
+pub(crate) struct ProgramFiles {
+    main: PathBuf,
+    loaded: LoadedFiles,
+}
+
+impl ProgramFiles {
+    /// The path of file `file`.
+    pub(crate) fn path(&self, file: FileId) -> PathBuf {
+        if file == FileId(0) {
+            return self.main.clone();
+        }
+        self.loaded
+            .lock()
+            .ok()
+            .and_then(|l| l.iter().find(|(id, _)| *id == file).map(|(_, p)| p.clone()))
+            .unwrap_or_else(|| self.main.clone())
+    }
+}
+
 /// Opens `path` and starts interpreting it; the file is read and parsed on a thread of its own,
-/// a few hundred lines ahead of the interpreter.
+/// a few hundred lines ahead of the interpreter. Called programs come from `--lib` directories
+/// and the program's own directory; persistent variables from the state file.
 pub(crate) fn open(
     path: &Path,
     machine: &Machine,
     mut options: Options,
-) -> Result<FileInterpreter, String> {
+    setup: &MachineArgs,
+) -> Result<(Batched, ProgramFiles), String> {
     let mut head = Vec::with_capacity(4096);
     let file = File::open(path).map_err(|e| format!("cannot open {}: {e}", path.display()))?;
     file.take(4096)
@@ -31,39 +57,154 @@ pub(crate) fn open(
     let length = file.metadata().map_or(0, |m| m.len());
     let blocks =
         BackgroundParser::spawn_expecting(file, FileId(0), machine.profile.syntax(), length);
-    Ok(Interpreter::from_blocks(
-        blocks,
-        FileId(0),
-        machine,
-        options,
-    ))
+    let mut directories = setup.lib.clone();
+    if let Some(own) = path.parent() {
+        let own = if own.as_os_str().is_empty() {
+            PathBuf::from(".")
+        } else {
+            own.to_path_buf()
+        };
+        directories.push(own);
+    }
+    let library = DirectoryLibrary::new(Some(path.to_path_buf()), directories, 1);
+    let files = ProgramFiles {
+        main: path.to_path_buf(),
+        loaded: library.loaded_files(),
+    };
+    let mut interpreter = Interpreter::from_blocks(blocks, FileId(0), machine, options)
+        .with_library(Box::new(library));
+    let state = setup.state_file().map(StateFile::new);
+    if let Some(state) = &state {
+        interpreter = interpreter.with_persistent_variables(&state.load()?);
+    }
+    Ok((Batched::new(interpreter, state), files))
+}
+
+/// The machine state file: the persistent macro variables between runs.
+pub(crate) struct StateFile {
+    path: PathBuf,
+}
+
+impl StateFile {
+    fn new(path: PathBuf) -> StateFile {
+        StateFile { path }
+    }
+
+    /// The saved values (none when the file does not exist yet).
+    fn load(&self) -> Result<PersistentVariables, String> {
+        let text = match std::fs::read_to_string(&self.path) {
+            Ok(text) => text,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Default::default()),
+            Err(e) => {
+                return Err(format!(
+                    "cannot read state file {}: {e}",
+                    self.path.display()
+                ))
+            }
+        };
+        let table: toml::Table = text
+            .parse()
+            .map_err(|e| format!("state file {}: {e}", self.path.display()))?;
+        let mut values = PersistentVariables::default();
+        if let Some(toml::Value::Table(variables)) = table.get("variables") {
+            for (key, value) in variables {
+                let number = key.trim_start_matches('#').parse::<u32>().ok();
+                let value = match value {
+                    toml::Value::Float(f) => Some(*f),
+                    toml::Value::Integer(i) => Some(*i as f64),
+                    _ => None,
+                };
+                if let (Some(number), Some(value)) = (number, value) {
+                    values.values.insert(number, value);
+                }
+            }
+        }
+        Ok(values)
+    }
+
+    /// Writes the values to a temporary file beside the state file and renames it over the
+    /// state file: a run that is killed leaves the old file or the new one, never half of one.
+    fn save(&self, values: &PersistentVariables) -> std::io::Result<()> {
+        let mut text = String::from(
+            "# vcnc machine state: persistent macro variables (#500-#999), saved by each run.\n[variables]\n",
+        );
+        for (number, value) in &values.values {
+            text.push_str(&format!("\"#{number}\" = {value:?}\n"));
+        }
+        let name = self
+            .path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "state.toml".into());
+        let temporary = self
+            .path
+            .with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+        {
+            let mut file = File::create(&temporary)?;
+            file.write_all(text.as_bytes())?;
+            file.sync_all()?;
+        }
+        std::fs::rename(&temporary, &self.path)
+    }
 }
 
 /// The interpreter's stream, taken from it a batch at a time ([`Interpreter::next_batch`]) and
 /// handed out one item at a time: the planner pulls items, and batches are the interpreter's
-/// fast path.
+/// fast path. Persistent variables are saved to the state file as they change (at most twice a
+/// second, so that a killed run keeps what it wrote) and when the run ends.
 pub(crate) struct Batched {
     interpreter: FileInterpreter,
     /// The current batch, reversed, so that `pop` gives the next item.
     items: Vec<Result<Segment, Alarm>>,
     more: bool,
+    state: Option<StateFile>,
+    saved_writes: u64,
+    saved_at: Instant,
 }
 
 /// Segments per batch taken from the interpreter.
 const BATCH: usize = 1024;
 
+/// Least time between two saves of the state file while a program runs.
+const SAVE_INTERVAL: Duration = Duration::from_millis(500);
+
 impl Batched {
-    pub(crate) fn new(interpreter: FileInterpreter) -> Batched {
+    fn new(interpreter: FileInterpreter, state: Option<StateFile>) -> Batched {
+        let saved_writes = interpreter.persistent_writes();
         Batched {
             interpreter,
             items: Vec::with_capacity(BATCH + 64),
             more: true,
+            state,
+            saved_writes,
+            saved_at: Instant::now(),
         }
     }
 
     /// Blocks the interpreter has run so far.
     pub(crate) fn blocks_executed(&self) -> u64 {
         self.interpreter.blocks_executed()
+    }
+
+    /// Saves the persistent variables if they were written since the last save.
+    fn save_state(&mut self) {
+        let writes = self.interpreter.persistent_writes();
+        if writes == self.saved_writes {
+            return;
+        }
+        if let Some(state) = &self.state {
+            if let Err(e) = state.save(&self.interpreter.persistent_variables()) {
+                eprintln!("vcnc: cannot save state file {}: {e}", state.path.display());
+            }
+        }
+        self.saved_writes = writes;
+        self.saved_at = Instant::now();
+    }
+}
+
+impl Drop for Batched {
+    fn drop(&mut self) {
+        self.save_state();
     }
 }
 
@@ -74,6 +215,9 @@ impl Iterator for Batched {
         while self.items.is_empty() && self.more {
             self.more = self.interpreter.next_batch(&mut self.items, BATCH);
             self.items.reverse();
+            if self.state.is_some() && self.saved_at.elapsed() >= SAVE_INTERVAL {
+                self.save_state();
+            }
         }
         self.items.pop()
     }

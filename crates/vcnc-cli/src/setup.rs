@@ -24,6 +24,22 @@ pub(crate) struct MachineArgs {
         default_value_t = 100.0
     )]
     pub(crate) feed_override: f64,
+    /// A program directory (repeatable): M98, M198, G65 and G66 find O1234 there as a file
+    /// named `O1234`, `O1234.nc` or `1234.nc`, or headed by `O1234`. The program's own
+    /// directory is searched last.
+    #[arg(long = "lib", value_name = "DIR")]
+    pub(crate) lib: Vec<PathBuf>,
+    /// Machine state file: the persistent macro variables #500-#999 are read from it and
+    /// saved to it (default: beside the machine file as `<machine>.state.toml`; none for the
+    /// embedded machine).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) state: Option<PathBuf>,
+    /// How many times a main program that ends in M99 runs (the control repeats it forever).
+    #[arg(long = "main-passes", value_name = "N", default_value_t = 1)]
+    pub(crate) main_passes: u32,
+    /// Loop passes and backward jumps allowed before a macro program is taken to loop forever.
+    #[arg(long = "max-jumps", value_name = "N", default_value_t = 10_000_000)]
+    pub(crate) max_jumps: u64,
 }
 
 impl MachineArgs {
@@ -65,6 +81,20 @@ impl MachineArgs {
             }
             options.block_skip[usize::from(n) - 1] = true;
         }
+        if self.main_passes == 0 {
+            return Err("--main-passes 0: a program runs at least once".into());
+        }
+        options.limits.main_program_passes = self.main_passes;
+        options.limits.jumps = self.max_jumps;
         Ok(options)
+    }
+
+    /// The machine state file, if there is one.
+    pub(crate) fn state_file(&self) -> Option<PathBuf> {
+        self.state.clone().or_else(|| {
+            let machine = self.machine.as_ref()?;
+            let stem = machine.file_stem()?.to_string_lossy().into_owned();
+            Some(machine.with_file_name(format!("{stem}.state.toml")))
+        })
     }
 }

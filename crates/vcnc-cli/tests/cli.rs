@@ -76,7 +76,7 @@ fn check_json_lists_alarms_with_line_and_column() {
     assert_eq!(out.status.code(), Some(1));
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let alarm = &value["programs"][0]["alarms"][0];
-    assert_eq!(alarm["id"], "not_supported_yet");
+    assert_eq!(alarm["id"], "program_not_found");
     assert_eq!(alarm["line"], 2);
     assert_eq!(alarm["column"], 3);
     assert_eq!(alarm["severity"], "error");
@@ -183,4 +183,88 @@ fn sinumerik_programs_are_named_as_not_supported_yet() {
     assert!(String::from_utf8(out.stderr)
         .unwrap()
         .contains("SINUMERIK programs are not supported yet"));
+}
+
+#[test]
+fn called_programs_come_from_a_lib_directory_and_alarms_show_their_file() {
+    let dir = std::env::temp_dir().join(format!("vcnc-cli-lib-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("O7001.nc"), "O7001\nG1 X#24 F100.\nM99\n").unwrap();
+    std::fs::write(dir.join("O7002.nc"), "O7002\n#1=1/0\nM99\n").unwrap();
+    let main = temp_program("calls.nc", "G65 P7001 X5.\nM30\n");
+    let lib = dir.display().to_string();
+    let out = vcnc(&["trace", "--lib", &lib, &main]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("\"x\":5"));
+    let bad = temp_program("calls_bad.nc", "M98 P7002\nM30\n");
+    let out = vcnc(&["check", "--lib", &lib, &bad]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("O7002.nc:2:5"), "{stderr}");
+    assert!(stderr.contains("division by zero"), "{stderr}");
+}
+
+#[test]
+fn persistent_variables_survive_between_runs_in_the_state_file() {
+    let state = std::env::temp_dir().join(format!("vcnc-state-{}.toml", std::process::id()));
+    let _ = std::fs::remove_file(&state);
+    let state_arg = state.display().to_string();
+    let first = temp_program("count.nc", "#500=#500+1\n#501=7.5\nM30\n");
+    for _ in 0..2 {
+        let out = vcnc(&["check", "--state", &state_arg, &first]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let saved = std::fs::read_to_string(&state).unwrap();
+    assert!(saved.contains("\"#500\" = 2.0"), "{saved}");
+    assert!(saved.contains("\"#501\" = 7.5"), "{saved}");
+    // A program that reads them sees them; one that alarms when they are wrong does not.
+    let check = temp_program("read.nc", "IF [#500 NE 2] THEN #3000=1(LOST)\nM30\n");
+    let out = vcnc(&["check", "--state", &state_arg, &check]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn a_killed_run_leaves_a_whole_state_file() {
+    let state = std::env::temp_dir().join(format!("vcnc-killed-{}.toml", std::process::id()));
+    let _ = std::fs::remove_file(&state);
+    let state_arg = state.display().to_string();
+    // Writes #500 over and over, for far longer than the test waits.
+    let endless = temp_program(
+        "endless.nc",
+        "#500=0\nWHILE [#500 LT 1000000000] DO1\n#500=#500+1\nEND1\nM30\n",
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args([
+            "check",
+            "--max-jumps",
+            "2000000000",
+            "--state",
+            &state_arg,
+            &endless,
+        ])
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    child.kill().unwrap();
+    let _ = child.wait();
+    let saved = std::fs::read_to_string(&state).expect("saved while running");
+    let table: Vec<&str> = saved
+        .lines()
+        .filter(|l| l.starts_with("\"#500\""))
+        .collect();
+    assert_eq!(table.len(), 1, "{saved}");
+    let value: f64 = table[0].split('=').nth(1).unwrap().trim().parse().unwrap();
+    assert!(value > 0.0, "{saved}");
 }

@@ -101,6 +101,29 @@ pub enum AlarmCode {
     /// G12/G13 circle cutting without an offset number, or with a circle no larger than the
     /// offset (Mitsubishi P170, P233).
     CircleCutting,
+    /// A macro statement or expression that cannot be read: an unclosed bracket, `IF` without
+    /// GOTO or THEN, `#` without a number. FANUC alarms PS0114/PS0118-like "format error".
+    MacroSyntax,
+    /// A macro expression with no value: division by zero, SQRT of a negative number, ASIN of
+    /// more than 1, a value too large for its address. FANUC alarms PS0112/PS0119.
+    MacroArithmetic,
+    /// A variable that does not exist on this control or cannot be written (`#0 = 1`, an
+    /// unknown system variable). FANUC alarm PS0115/PS0116.
+    BadVariable,
+    /// GOTO, M99 P or M98 H to a sequence number the program does not have. FANUC alarm
+    /// PS0078.
+    SequenceNotFound,
+    /// M98, M198, G65 or G66 calls a program that is neither in the file nor in the program
+    /// directory. FANUC alarm PS0078.
+    ProgramNotFound,
+    /// DO and END that do not pair: END without its DO, a loop number outside 1-3, a DO that
+    /// never ends. FANUC alarms PS0126/PS0128.
+    LoopStructure,
+    /// A macro program ran into a limit: too many loop passes or jumps (a program that would
+    /// never end), calls nested too deeply (FANUC alarm PS0077), a program too large.
+    MacroLimit,
+    /// The program raised its own alarm by writing `#3000` (FANUC alarm 3000 + n).
+    UserAlarm,
 }
 
 impl AlarmCode {
@@ -138,6 +161,14 @@ impl AlarmCode {
             PositionOffset => "position_offset",
             CycleData => "cycle_data",
             CircleCutting => "circle_cutting",
+            MacroSyntax => "macro_syntax",
+            MacroArithmetic => "macro_arithmetic",
+            BadVariable => "bad_variable",
+            SequenceNotFound => "sequence_not_found",
+            ProgramNotFound => "program_not_found",
+            LoopStructure => "loop_structure",
+            MacroLimit => "macro_limit",
+            UserAlarm => "user_alarm",
         }
     }
 
@@ -175,6 +206,14 @@ impl AlarmCode {
             PositionOffset => "V061",
             CycleData => "V070",
             CircleCutting => "V071",
+            MacroSyntax => "V080",
+            MacroArithmetic => "V081",
+            BadVariable => "V082",
+            SequenceNotFound => "V083",
+            ProgramNotFound => "V084",
+            LoopStructure => "V085",
+            MacroLimit => "V086",
+            UserAlarm => "V087",
         }
     }
 
@@ -210,6 +249,14 @@ impl AlarmCode {
         AlarmCode::PositionOffset,
         AlarmCode::CycleData,
         AlarmCode::CircleCutting,
+        AlarmCode::MacroSyntax,
+        AlarmCode::MacroArithmetic,
+        AlarmCode::BadVariable,
+        AlarmCode::SequenceNotFound,
+        AlarmCode::ProgramNotFound,
+        AlarmCode::LoopStructure,
+        AlarmCode::MacroLimit,
+        AlarmCode::UserAlarm,
     ];
 }
 

@@ -148,6 +148,8 @@ pub enum StopKind {
     Program,
     /// M01.
     Optional,
+    /// `#3006 = n (MESSAGE)`: a stop that shows the operator a message.
+    Message,
 }
 
 /// How the program ended.
@@ -161,6 +163,9 @@ pub enum EndKind {
     TapeMark,
     /// The end of the text with no end code (a warning is raised too).
     EndOfText,
+    /// M99 in the main program: the control starts it again until reset; vcnc stops after the
+    /// passes its options allow (a warning says so).
+    M99,
 }
 
 /// The spindle's state.

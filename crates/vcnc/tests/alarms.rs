@@ -16,16 +16,15 @@ fn first_alarm(program: &str) -> (AlarmCode, u32, String, String) {
 
 #[test]
 fn a_code_planned_for_later_is_named_with_its_issue() {
-    let alarm = interpret_str(
-        "G0 X1.\nG65 P9010 X5.\n",
-        &Machine::default(),
-        Options::default(),
-    )
-    .find_map(Result::err)
-    .unwrap();
+    let alarm = interpret_str("G0 X1.\nG12.1\n", &Machine::default(), Options::default())
+        .find_map(Result::err)
+        .unwrap();
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
-    assert_eq!(alarm.message, "G65 (macro call) is not supported yet");
-    assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #3"));
+    assert_eq!(
+        alarm.message,
+        "G12.1 (polar coordinate interpolation) is not supported yet"
+    );
+    assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #5"));
     assert_eq!(alarm.span.unwrap().line, 2);
     assert_eq!(alarm.severity, Severity::Error);
 }
@@ -80,12 +79,13 @@ fn a_cut_before_any_feed_is_fanuc_alarm_011() {
 }
 
 #[test]
-fn custom_macro_b_is_not_supported_yet() {
-    let (code, line, text, _) = first_alarm("G0 X1.\n#100=5\n");
+fn a_call_to_a_program_nowhere_to_be_found_names_it() {
+    let (code, line, text, message) = first_alarm("G0 X1.\nM98 P1234\n");
     assert_eq!(
         (code, line, text.as_str()),
-        (AlarmCode::NotSupportedYet, 2, "#")
+        (AlarmCode::ProgramNotFound, 2, "P1234")
     );
+    assert!(message.contains("O1234"), "{message}");
 }
 
 #[test]

@@ -1,6 +1,7 @@
-//! Every real program of ../shared/corpus runs to its end, or stops with an alarm that names what
-//! vcnc does not support yet; SINUMERIK programs get one clear "not supported yet" alarm. Never a
-//! panic, never a hang. The counts are printed (`cargo test --test corpus -- --nocapture`).
+//! Every real program of ../shared/corpus runs to its end, stops with the alarm the real control
+//! raises (the table in tests/common/corpus.rs, with the reason for each), or stops with an alarm
+//! that names what vcnc does not support yet; SINUMERIK programs get one clear "not supported
+//! yet" alarm. Never a panic, never a hang. The counts are printed (`cargo test --test corpus -- --nocapture`).
 
 mod common;
 
@@ -13,6 +14,7 @@ use vcnc::{AlarmCode, Options};
 #[derive(Default, Debug)]
 struct Counts {
     ran_to_end: usize,
+    expected_alarms: usize,
     not_supported_yet: BTreeMap<String, usize>,
     dialect: usize,
 }
@@ -38,13 +40,22 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
                 dialect: detect_dialect(&name, &text),
                 ..Options::default()
             };
-            let run = common::run(&text, &machine, options.clone());
+            // Called programs: the same author's programs, as in that control's memory.
+            let library = common::corpus::library_for(&name, &corpus.join(folder));
+            let run = common::run_with_library(&text, &machine, options.clone(), Box::new(library));
             let ended = run
                 .segments
                 .iter()
                 .any(|s| matches!(s.kind, SegmentKind::End { .. }));
+            let expected = common::corpus::expected_alarm(&name);
             match run.error() {
-                None if ended => counts.ran_to_end += 1,
+                None if ended && expected.is_none() => counts.ran_to_end += 1,
+                None if ended => failures.push(format!(
+                    "{folder}/{name}: ran to its end, expected {expected:?}"
+                )),
+                Some(alarm) if Some((alarm.code, alarm.span.map_or(0, |s| s.line))) == expected => {
+                    counts.expected_alarms += 1;
+                }
                 None => failures.push(format!("{folder}/{name}: no end and no alarm")),
                 Some(alarm) if alarm.code == AlarmCode::DialectNotSupported => {
                     if folder != "sinumerik" {
@@ -70,6 +81,10 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
     }
     println!("corpus: {total} programs");
     println!("  ran to their end: {}", counts.ran_to_end);
+    println!(
+        "  stopped where the control stops (tests/common/corpus.rs): {}",
+        counts.expected_alarms
+    );
     println!("  SINUMERIK, not supported yet: {}", counts.dialect);
     for (message, n) in &counts.not_supported_yet {
         println!("  stopped, {message}: {n}");

@@ -34,29 +34,24 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let mut outcome = Outcome::Clean;
     let mut reports = Vec::new();
     for path in &args.programs {
-        let alarms: Vec<Alarm> = crate::program::open(path, &machine, options.clone())?
-            .filter_map(Result::err)
-            .collect();
+        let (stream, files) = crate::program::open(path, &machine, options.clone(), &args.machine)?;
+        let alarms: Vec<Alarm> = stream.filter_map(Result::err).collect();
         let failed = alarms.iter().any(Alarm::is_error);
         if failed {
             outcome = Outcome::Alarm;
         }
         match args.format {
             Format::Human => {
-                crate::diagnostics::print_human(path, &alarms);
+                crate::diagnostics::print_human(&files, &alarms);
                 if !failed {
                     eprintln!("{}: ok{}", path.display(), warning_count(&alarms));
                 }
             }
             Format::Json => {
-                let text = if alarms.is_empty() {
-                    Vec::new()
-                } else {
-                    std::fs::read(path).unwrap_or_default()
-                };
+                let mut texts = std::collections::HashMap::new();
                 let list: Vec<_> = alarms
                     .iter()
-                    .map(|a| crate::diagnostics::to_json(path, &text, a))
+                    .map(|a| crate::diagnostics::to_json(&files, &mut texts, a))
                     .collect();
                 reports.push(serde_json::json!({
                     "file": path.display().to_string(),

@@ -40,12 +40,8 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let machine = args.machine.machine()?;
     let options = args.machine.options()?;
     let plan_options = args.machine.plan_options()?;
-    let interpreter = crate::program::open(&args.program, &machine, options)?;
-    let mut planner = Planner::new(
-        crate::program::Batched::new(interpreter),
-        &machine,
-        plan_options,
-    );
+    let (stream, files) = crate::program::open(&args.program, &machine, options, &args.machine)?;
+    let mut planner = Planner::new(stream, &machine, plan_options);
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();
@@ -73,6 +69,9 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         (None, Some(EndKind::M02)) => "ended with M02".to_string(),
         (None, Some(EndKind::M30)) => "ended with M30".to_string(),
         (None, Some(EndKind::TapeMark)) => "ended at %".to_string(),
+        (None, Some(EndKind::M99)) => {
+            "ended at M99 in the main program (the control would repeat it)".to_string()
+        }
         (None, _) => "ended at the end of the text (no M02/M30)".to_string(),
     };
     let warnings = alarms.iter().filter(|a| !a.is_error()).count();
@@ -80,17 +79,13 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         Format::Human => {
             print_human(args, &machine, &summary, blocks, &result, warnings);
             print_time_human(&report, &summary, plan_options.feed_override);
-            crate::diagnostics::print_human(&args.program, &alarms);
+            crate::diagnostics::print_human(&files, &alarms);
         }
         Format::Json => {
-            let text = if alarms.is_empty() {
-                Vec::new()
-            } else {
-                std::fs::read(&args.program).unwrap_or_default()
-            };
+            let mut texts = std::collections::HashMap::new();
             let list: Vec<_> = alarms
                 .iter()
-                .map(|a| crate::diagnostics::to_json(&args.program, &text, a))
+                .map(|a| crate::diagnostics::to_json(&files, &mut texts, a))
                 .collect();
             let value = json!({
                 "file": args.program.display().to_string(),

@@ -44,7 +44,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let machine = args.machine.machine()?;
     let options = args.machine.options()?;
     let plan_options = args.machine.plan_options()?;
-    let interpreter = crate::program::open(&args.program, &machine, options)?;
+    let (stream, files) = crate::program::open(&args.program, &machine, options, &args.machine)?;
     let rotary: Vec<Axis> = [Axis::A, Axis::B, Axis::C]
         .into_iter()
         .filter(|a| machine.has_axis(*a))
@@ -73,11 +73,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     for _ in 0..POOL {
         let _ = recycle.try_send(Vec::with_capacity(BATCH));
     }
-    let mut planner = Planner::new(
-        crate::program::Batched::new(interpreter),
-        &machine,
-        plan_options,
-    );
+    let mut planner = Planner::new(stream, &machine, plan_options);
     let producer = std::thread::spawn(move || {
         while let Ok(mut batch) = recycled.recv() {
             batch.clear();
@@ -123,7 +119,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     // With both channel ends gone, the interpreter thread's next send or receive fails and it ends.
     drop(recycle);
     let _ = producer.join();
-    crate::diagnostics::print_human(&args.program, &alarms);
+    crate::diagnostics::print_human(&files, &alarms);
     Ok(if failed {
         Outcome::Alarm
     } else {
@@ -424,6 +420,7 @@ fn stop_name(kind: StopKind) -> &'static str {
     match kind {
         StopKind::Program => "program",
         StopKind::Optional => "optional",
+        StopKind::Message => "message",
     }
 }
 
@@ -433,6 +430,7 @@ fn end_name(kind: EndKind) -> &'static str {
         EndKind::M30 => "m30",
         EndKind::TapeMark => "tape_mark",
         EndKind::EndOfText => "end_of_text",
+        EndKind::M99 => "m99",
     }
 }
 

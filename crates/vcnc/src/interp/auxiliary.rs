@@ -86,6 +86,13 @@ pub(crate) fn before_motion(
                 | MCode::OptionalStop
                 | MCode::ProgramEnd
                 | MCode::ProgramEndRewind => continue,
+                // Calls and returns: the macro layer runs them after the block.
+                MCode::SubprogramCall
+                | MCode::SubprogramReturn
+                | MCode::ExternalSubprogramCall
+                | MCode::LocalSubprogramCall
+                | MCode::InterruptOn
+                | MCode::InterruptOff => continue,
                 MCode::SpindleClockwise => spindle(exec, SpindleState::Clockwise),
                 MCode::SpindleCounterClockwise => spindle(exec, SpindleState::CounterClockwise),
                 MCode::SpindleStop => spindle(exec, SpindleState::Stopped),

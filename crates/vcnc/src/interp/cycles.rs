@@ -48,6 +48,13 @@ pub(crate) struct Cycle {
     p: f64,
 }
 
+impl Cycle {
+    /// Which cycle this is.
+    pub(crate) fn kind(&self) -> CycleKind {
+        self.kind
+    }
+}
+
 /// G80, a cycle code, or a group-01 code in the block: the cycle mode starts, changes or ends.
 ///
 /// # Errors

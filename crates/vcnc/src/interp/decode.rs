@@ -8,7 +8,8 @@
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Axis;
 use crate::profile::{
-    classify_g, g_name, not_supported_description, GCode, GLookup, Group, Profile, SameGroupRule,
+    classify_g, classify_m, g_name, not_supported_description, GCode, GLookup, Group, MCode,
+    MLookup, Profile, SameGroupRule,
 };
 use crate::source::Span;
 use crate::syntax::{Block, Number, Word};
@@ -54,6 +55,12 @@ pub(crate) struct Command {
     m: Vec<Value>,
     /// Warnings found while decoding (the block still runs).
     pub(crate) warnings: Vec<Alarm>,
+    /// A subprogram call, return or interrupt code (M98, M99, M97, M198, M96): the macro
+    /// layer runs it after the block's other words.
+    pub(crate) subprogram: Option<(MCode, Value)>,
+    /// G65 or G66: the block is a macro call; the words from this index on are its arguments
+    /// and were not decoded.
+    pub(crate) macro_call: Option<(GWord, usize)>,
 }
 
 impl Command {
@@ -125,6 +132,15 @@ impl Command {
         &self.m
     }
 
+    /// Removes M02 or M30 from the block and returns it (a subprogram returns instead).
+    pub(crate) fn take_program_end(&mut self) -> Option<Value> {
+        let i = self
+            .m
+            .iter()
+            .position(|m| matches!(m.number.whole(), Some(2 | 30)))?;
+        Some(self.m.remove(i))
+    }
+
     /// An empty command standing for the block at `span`.
     pub(crate) fn at(span: Span) -> Command {
         Command {
@@ -172,6 +188,8 @@ impl Command {
         self.g_words.clear();
         self.m.clear();
         self.warnings.clear();
+        self.subprogram = None;
+        self.macro_call = None;
     }
 
     /// Records the value of an address letter.
@@ -282,11 +300,39 @@ pub(crate) fn decode(
         }
         if word.letter == b'G' {
             decode_g(word, order, profile, out)?;
+            if let Some(call) = out
+                .group(Group::NonModal)
+                .filter(|g| g.code == GCode::MacroCall)
+            {
+                out.macro_call = Some((call, order + 1));
+                break;
+            }
+            if let Some(call) = out
+                .group(Group::ModalMacro)
+                .filter(|g| g.code == GCode::ModalMacroCall && g.order == order)
+            {
+                out.macro_call = Some((call, order + 1));
+                break;
+            }
             continue;
         }
         match word.letter {
             b'M' => {
                 whole(word)?;
+                if let MLookup::Known(code) = classify_m(word.number.value as u32, profile) {
+                    if code.is_subprogram_flow() {
+                        if let Some((_, first)) = out.subprogram {
+                            return Err(Alarm::error(
+                                AlarmCode::WordNotAllowed,
+                                word.span,
+                                "two subprogram codes in one block",
+                            )
+                            .with_label(first.span, "the first one"));
+                        }
+                        out.subprogram = Some((code, value));
+                        continue;
+                    }
+                }
                 if out.m.len() >= profile.m_codes_per_block as usize && !out.m.is_empty() {
                     let dropped = out.m.remove(0);
                     out.warnings.push(

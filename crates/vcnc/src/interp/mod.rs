@@ -22,6 +22,7 @@ mod decode;
 mod exec;
 mod frames;
 mod length;
+mod macros;
 pub mod modal;
 mod polar;
 mod position_offset;
@@ -35,9 +36,14 @@ use crate::motion::{EndKind, MachinePos, Segment, SegmentKind};
 use crate::source::{FileId, Span};
 use crate::syntax::lines::LineSource;
 use crate::syntax::source::{BlockSource, ParsedLines};
-use crate::syntax::{BlockKind, Dialect};
+use crate::syntax::{Block, BlockKind, Dialect};
 use decode::Command;
 use exec::{Executor, Flow};
+pub use macros::programs::{
+    DirectoryLibrary, LoadedFiles, MemoryLibrary, ProgramLibrary, ProgramText,
+};
+pub use macros::vars::PersistentVariables;
+pub use macros::Limits;
 
 pub use modal::ModalState;
 
@@ -48,6 +54,8 @@ pub struct Options {
     pub block_skip: [bool; 9],
     /// The dialect of the program; SINUMERIK programs get one alarm saying it is not supported yet.
     pub dialect: Dialect,
+    /// Limits on macro programs (loop passes, repeats of a main program ending in M99).
+    pub limits: Limits,
 }
 
 impl Default for Options {
@@ -55,6 +63,7 @@ impl Default for Options {
         Options {
             block_skip: [false; 9],
             dialect: Dialect::Iso,
+            limits: Limits::default(),
         }
     }
 }
@@ -175,18 +184,47 @@ impl Output {
     }
 }
 
+/// Blocks run at most by one call of [`Interpreter::next_batch`].
+const STEPS_PER_BATCH: u32 = 1 << 16;
+
 /// Interprets an ISO program: an iterator over its motion stream.
 pub struct Interpreter<B> {
     source: B,
+    core: Core,
+}
+
+/// Where the next block comes from.
+#[derive(Clone, Debug)]
+pub(crate) enum Place {
+    /// The main program's block source, block `block` of its current line.
+    Stream {
+        /// Index of the next block in the line.
+        block: usize,
+    },
+    /// A program held in memory (a subprogram, or the main program once it jumped).
+    Stored {
+        /// The program.
+        program: std::sync::Arc<macros::programs::StoredProgram>,
+        /// Line index of the next block.
+        line: usize,
+        /// Index of the next block in the line.
+        block: usize,
+    },
+}
+
+/// Everything but the block source: the part that runs blocks, wherever they come from.
+pub(crate) struct Core {
     options: Options,
     exec: Executor,
-    cursor: usize,
     command: Command,
     out: Output,
     done: bool,
     started: bool,
     last_span: Span,
     blocks_executed: u64,
+    place: Place,
+    macros: macros::Macros,
+    file: FileId,
 }
 
 impl<S: LineSource> Interpreter<ParsedLines<S>> {
@@ -213,20 +251,21 @@ impl<B: BlockSource> Interpreter<B> {
         options: Options,
     ) -> Interpreter<B> {
         let exec = Executor::new(machine);
-        let mut interpreter = Interpreter {
-            source,
+        let mut core = Core {
             exec,
-            cursor: 0,
             command: Command::default(),
             out: Output::default(),
             done: false,
             started: false,
             last_span: Span::new(file, 0, 0, 1),
             blocks_executed: 0,
+            place: Place::Stream { block: 0 },
+            macros: macros::Macros::default(),
+            file,
             options,
         };
-        if interpreter.options.dialect == Dialect::Sinumerik {
-            interpreter.out.push_warning(
+        if core.options.dialect == Dialect::Sinumerik {
+            core.out.push_warning(
                 Alarm {
                     code: AlarmCode::DialectNotSupported,
                     severity: crate::alarm::Severity::Error,
@@ -236,84 +275,147 @@ impl<B: BlockSource> Interpreter<B> {
                     help: Some("vcnc runs FANUC-family ISO programs today; SINUMERIK 840D/828D support is planned".into()),
                 },
             );
-            interpreter.done = true;
+            core.done = true;
         }
-        interpreter
+        Interpreter { source, core }
+    }
+
+    /// Where called programs come from: a program directory, programs in memory. Without one,
+    /// only programs in the main program's own file can be called.
+    pub fn with_library(mut self, library: Box<dyn ProgramLibrary>) -> Interpreter<B> {
+        self.core.macros.library = Some(library);
+        self
+    }
+
+    /// The persistent common variables (#500-#999) as a previous run left them.
+    pub fn with_persistent_variables(mut self, values: &PersistentVariables) -> Interpreter<B> {
+        self.core.macros.vars.load_persistent(values);
+        self
+    }
+
+    /// The persistent common variables now: what the caller saves for the next run.
+    pub fn persistent_variables(&self) -> PersistentVariables {
+        self.core.macros.vars.persistent()
+    }
+
+    /// Counts writes to persistent variables: when it changes, they may have changed.
+    pub fn persistent_writes(&self) -> u64 {
+        self.core.macros.vars.persistent_writes()
+    }
+
+    /// The value of macro variable `#number` now (`None` when vacant or not a plain variable).
+    pub fn variable(&mut self, number: u32) -> Option<f64> {
+        let span = self.core.last_span;
+        self.core.read_variable(number, span).ok().flatten()
     }
 
     /// Blocks executed so far (skipped, empty and comment-only blocks not counted).
     pub fn blocks_executed(&self) -> u64 {
-        self.blocks_executed
+        self.core.blocks_executed
     }
 
     /// The machine position now.
     pub fn position(&self) -> MachinePos {
-        MachinePos(self.exec.position)
+        MachinePos(self.core.exec.position)
     }
 
     /// The position now in the program's coordinates (what the control shows as "absolute").
     pub fn program_position(&self) -> [f64; crate::machine::AXES] {
-        self.exec.program_position()
+        self.core.exec.program_position()
     }
 
     /// The tool in the spindle (the last T put there by M06; 0 before any change).
     pub fn tool_in_spindle(&self) -> u32 {
-        self.exec.tool_in_spindle
+        self.core.exec.tool_in_spindle
     }
 
     /// The modal state now.
     pub fn modal(&self) -> &ModalState {
-        &self.exec.modal
+        &self.core.exec.modal
     }
 
     /// Appends the next items of the stream to `out` until it holds at least `at_least` items
-    /// or the program is over; returns false when nothing more will come. The same items as
+    /// or the program is over (or a long stretch of blocks produced nothing: the batch may then
+    /// be empty); returns false when nothing more will come. The same items as
     /// [`Iterator::next`] gives, with fewer moves: consumers of long streams use this.
     pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
         // The executor writes straight into the caller's vector: no item is moved twice.
         let base = out.len();
-        let leftover = std::mem::take(&mut self.out.items);
+        let leftover = std::mem::take(&mut self.core.out.items);
         out.extend(leftover);
-        self.out.held = self.out.held.map(|h| h + base);
-        std::mem::swap(&mut self.out.items, out);
-        while !self.done && self.out.releasable() < at_least {
+        self.core.out.held = self.core.out.held.map(|h| h + base);
+        std::mem::swap(&mut self.core.out.items, out);
+        // A macro loop may run long without moving: the caller gets control back now and then
+        // (to save state, to show progress) with whatever is ready, possibly nothing.
+        let mut steps = 0u32;
+        while !self.core.done && self.core.out.releasable() < at_least && steps < STEPS_PER_BATCH {
             self.step();
+            steps += 1;
         }
-        if self.done {
-            self.out.finish();
+        if self.core.done {
+            self.core.out.finish();
         }
-        std::mem::swap(&mut self.out.items, out);
-        if let Some(held) = self.out.held {
+        std::mem::swap(&mut self.core.out.items, out);
+        if let Some(held) = self.core.out.held {
             // What waits for compensation stays here.
-            self.out.items = out.split_off(held);
-            self.out.held = Some(0);
+            self.core.out.items = out.split_off(held);
+            self.core.out.held = Some(0);
         }
-        !out.is_empty()
+        !(self.core.done && out.is_empty() && self.core.out.items.is_empty())
     }
 
     /// Reads and runs until something is queued or the program is over.
     fn step(&mut self) {
-        if self.cursor < self.source.blocks().len() {
-            self.run_block();
-            return;
-        }
-        match self.source.advance() {
-            Ok(true) => self.cursor = 0,
-            Ok(false) => self.end_of_text(),
-            Err(error) => {
-                self.out.stop(Alarm {
-                    code: AlarmCode::ReadError,
-                    severity: crate::alarm::Severity::Error,
-                    message: format!("cannot read the program: {error}"),
-                    span: None,
-                    labels: Vec::new(),
-                    help: None,
-                });
-                self.done = true;
+        match &mut self.core.place {
+            Place::Stream { block } => {
+                let blocks = self.source.blocks();
+                if *block < blocks.len() {
+                    let index = *block;
+                    *block += 1;
+                    self.core.macros.stream_line = blocks[index].span.line;
+                    self.core.run_block(&blocks[index], self.source.text());
+                    return;
+                }
+                match self.source.advance() {
+                    Ok(true) => *block = 0,
+                    Ok(false) => self.core.end_of_text(),
+                    Err(error) => {
+                        self.core.out.stop(Alarm {
+                            code: AlarmCode::ReadError,
+                            severity: crate::alarm::Severity::Error,
+                            message: format!("cannot read the program: {error}"),
+                            span: None,
+                            labels: Vec::new(),
+                            help: None,
+                        });
+                        self.core.done = true;
+                    }
+                }
+            }
+            Place::Stored {
+                program,
+                line,
+                block,
+            } => {
+                let program = std::sync::Arc::clone(program);
+                match program.line(*line) {
+                    Some(blocks) if *block < blocks.len() => {
+                        let index = *block;
+                        *block += 1;
+                        self.core.run_block(&blocks[index], self.source.text());
+                    }
+                    Some(_) => {
+                        *line += 1;
+                        *block = 0;
+                    }
+                    None => self.core.end_of_stored_program(),
+                }
             }
         }
     }
+}
 
+impl Core {
     fn end_of_text(&mut self) {
         let span = self.last_span;
         self.out.push_warning(
@@ -324,19 +426,22 @@ impl<B: BlockSource> Interpreter<B> {
             )
             .with_help("end the program with M30"),
         );
+        self.end(EndKind::EndOfText, span);
+    }
+
+    /// The run is over: the end item, and nothing more.
+    fn end(&mut self, kind: EndKind, span: Span) {
         self.out.items.push(Ok(Segment {
-            kind: SegmentKind::End {
-                kind: EndKind::EndOfText,
-            },
+            kind: SegmentKind::End { kind },
             span,
             sequence: None,
         }));
         self.done = true;
     }
 
-    fn run_block(&mut self) {
-        let block = &self.source.blocks()[self.cursor];
-        self.cursor += 1;
+    /// Runs one block of the program, from the stream or from memory. `main_text` is the
+    /// block source's text, when it has it (jumps need it).
+    fn run_block(&mut self, block: &Block, main_text: Option<&[u8]>) {
         for alarm in &block.alarms {
             if alarm.is_error() {
                 self.out.stop(alarm.clone());
@@ -351,7 +456,9 @@ impl<B: BlockSource> Interpreter<B> {
             }
         }
         if block.kind == BlockKind::TapeMark {
-            if self.started {
+            if self.macros.in_call() {
+                self.end_of_stored_program();
+            } else if self.started {
                 let cmd = Command::at(block.span);
                 self.out.push(
                     &cmd,
@@ -368,6 +475,15 @@ impl<B: BlockSource> Interpreter<B> {
         }
         self.started = true;
         self.last_span = block.span;
+        if block.has_macro() {
+            self.run_macro_block(block, main_text);
+            return;
+        }
+        self.run_words(block, main_text);
+    }
+
+    /// Decodes and executes the words of a block (its expressions already evaluated).
+    fn run_words(&mut self, block: &Block, main_text: Option<&[u8]>) {
         let decoded = decode::decode(
             block,
             &self.exec.profile,
@@ -383,17 +499,32 @@ impl<B: BlockSource> Interpreter<B> {
             return;
         }
         self.blocks_executed += 1;
+        if self.macros.in_call() && self.exec.profile.end_in_subprogram_returns {
+            // Syntec: M02/M30 in a subprogram return to the caller.
+            if let Some(end) = self.command.take_program_end() {
+                self.command.subprogram = Some((crate::profile::MCode::SubprogramReturn, end));
+            }
+        }
         let flow = self.exec.run(&self.command, &mut self.out);
         if self.out.comp.is_none() && self.out.failed.is_none() {
             // The common case, kept short: no compensation stage to tell about the block.
             match flow {
                 Ok(Flow::Next) => {}
                 Ok(Flow::End) => self.done = true,
-                Err(alarm) => self.fail(alarm),
+                Err(alarm) => return self.fail(alarm),
             }
-            return;
+        } else {
+            self.after_compensated_block(flow);
         }
-        self.after_compensated_block(flow);
+        if !self.done
+            && (self.command.subprogram.is_some()
+                || self.command.macro_call.is_some()
+                || self.macros.modal_call.is_some())
+        {
+            if let Err(alarm) = self.run_calls(block, main_text) {
+                self.fail(alarm);
+            }
+        }
     }
 
     /// The end of a block while compensation is on (or has failed): an alarm it raised while
@@ -429,18 +560,19 @@ impl<B: BlockSource> Iterator for Interpreter<B> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if self.out.releasable() > 0 {
+            let out = &mut self.core.out;
+            if out.releasable() > 0 {
                 // The queue holds a few blocks' items at most, so taking the first is cheap.
-                if let Some(held) = self.out.held.as_mut() {
+                if let Some(held) = out.held.as_mut() {
                     *held -= 1;
                 }
-                return Some(self.out.items.remove(0));
+                return Some(out.items.remove(0));
             }
-            if self.done {
-                if self.out.items.is_empty() {
+            if self.core.done {
+                if out.items.is_empty() {
                     return None;
                 }
-                self.out.finish();
+                out.finish();
                 continue;
             }
             self.step();

@@ -197,6 +197,8 @@ impl ModalState {
             | MirrorCancel
             | Mirror
             | ModalMacroCancel
+            | MacroCall
+            | ModalMacroCall
             | RotationCancel
             | Rotate
             | PolarInterpolationCancel => {}

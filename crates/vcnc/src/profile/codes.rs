@@ -158,6 +158,10 @@ pub enum GCode {
     Mirror,
     /// G67.
     ModalMacroCancel,
+    /// G65: call a macro once.
+    MacroCall,
+    /// G66: call a macro after every move.
+    ModalMacroCall,
     /// G69.
     RotationCancel,
     /// G68: coordinate rotation in the selected plane.
@@ -230,6 +234,8 @@ impl GCode {
             MirrorCancel => "programmable mirror image cancel",
             Mirror => "programmable mirror image",
             ModalMacroCancel => "modal macro call cancel",
+            MacroCall => "macro call",
+            ModalMacroCall => "modal macro call",
             RotationCancel => "coordinate rotation cancel",
             Rotate => "coordinate rotation",
             PolarInterpolationCancel => "polar coordinate interpolation cancel",
@@ -250,7 +256,8 @@ impl GCode {
             CycleCancel | Cycle(_) => Group::Cycle,
             ReturnToInitialLevel | ReturnToRLevel => Group::CycleReturn,
             ScalingCancel | Scale => Group::Scaling,
-            ModalMacroCancel => Group::ModalMacro,
+            ModalMacroCancel | ModalMacroCall => Group::ModalMacro,
+            MacroCall => Group::NonModal,
             ConstantSurfaceSpeed | ConstantSpindleSpeed => Group::SpindleMode,
             WorkOffset(_) | ExtendedWorkOffset => Group::WorkOffset,
             ExactStopMode | AutomaticCornerOverride | TappingMode | ContinuousMode => {
@@ -403,6 +410,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         620 => AutomaticCornerOverride,
         630 => TappingMode,
         640 => ContinuousMode,
+        650 => MacroCall,
+        660 => ModalMacroCall,
         670 => ModalMacroCancel,
         680 => Rotate,
         690 => RotationCancel,
@@ -458,8 +467,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (371, None, "automatic tool length measurement II"),
     (434, None, "tool centre point control"),
     (531, None, "tool axis direction control"),
-    (650, Some(3), "macro call"),
-    (660, Some(3), "modal macro call"),
     (682, None, "tilted working plane"),
     (1201, None, "machining condition selection"),
     (1870, Some(6), "smoothness / accuracy setting"),
@@ -513,6 +520,18 @@ pub enum MCode {
     CoolantOn,
     /// M09.
     CoolantOff,
+    /// M98: call a subprogram.
+    SubprogramCall,
+    /// M99: return from a subprogram (in a main program: start it again).
+    SubprogramReturn,
+    /// M198: call a subprogram from outside memory (Syntec).
+    ExternalSubprogramCall,
+    /// M97 on Haas: call a sequence number of the same program.
+    LocalSubprogramCall,
+    /// M96 on Syntec: arm the interrupt program.
+    InterruptOn,
+    /// M97 on Syntec: disarm the interrupt program.
+    InterruptOff,
 }
 
 impl MCode {
@@ -530,7 +549,26 @@ impl MCode {
             MCode::ToolChange => "tool change",
             MCode::CoolantOn => "coolant on",
             MCode::CoolantOff => "coolant off",
+            MCode::SubprogramCall => "subprogram call",
+            MCode::SubprogramReturn => "subprogram return",
+            MCode::ExternalSubprogramCall => "external subprogram call",
+            MCode::LocalSubprogramCall => "local subprogram call",
+            MCode::InterruptOn => "interrupt program on",
+            MCode::InterruptOff => "interrupt program off",
         }
+    }
+
+    /// True for the codes that call, return or arm subprograms: the macro layer runs them.
+    pub fn is_subprogram_flow(self) -> bool {
+        matches!(
+            self,
+            MCode::SubprogramCall
+                | MCode::SubprogramReturn
+                | MCode::ExternalSubprogramCall
+                | MCode::LocalSubprogramCall
+                | MCode::InterruptOn
+                | MCode::InterruptOff
+        )
     }
 }
 
@@ -548,7 +586,15 @@ pub enum MLookup {
 /// What M code `code` means on `profile`.
 pub fn classify_m(code: u32, profile: &Profile) -> MLookup {
     if profile.subprogram_m_codes.contains(&code) {
-        return MLookup::NotSupported(Some(3));
+        return match code {
+            98 => MLookup::Known(MCode::SubprogramCall),
+            99 => MLookup::Known(MCode::SubprogramReturn),
+            198 => MLookup::Known(MCode::ExternalSubprogramCall),
+            97 if profile.m97_local_subprogram => MLookup::Known(MCode::LocalSubprogramCall),
+            96 => MLookup::Known(MCode::InterruptOn),
+            97 => MLookup::Known(MCode::InterruptOff),
+            _ => MLookup::NotSupported(Some(3)),
+        };
     }
     MLookup::Known(match code {
         0 => MCode::ProgramStop,
@@ -684,7 +730,8 @@ mod tests {
             GLookup::Known(GCode::Cycle(CycleKind::Drill))
         );
         assert_eq!(classify_g(1340, &fanuc), GLookup::Unknown);
-        assert_eq!(classify_g(650, &fanuc), GLookup::NotSupported(Some(3)));
+        assert_eq!(classify_g(650, &fanuc), GLookup::Known(GCode::MacroCall));
+        assert_eq!(classify_g(121, &fanuc), GLookup::NotSupported(Some(5)));
         // Haas G47 engraves text; elsewhere G47 is a tool position offset.
         let haas = Profile::builtin(ProfileName::Haas);
         assert_eq!(classify_g(470, &haas), GLookup::NotSupported(None));

@@ -94,6 +94,30 @@ pub enum DecimalLess {
     WholeUnits,
 }
 
+/// How the argument letters of G65/G66 become local variables.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MacroArguments {
+    /// FANUC argument specification I (A #1, B #2, C #3, I #4, J #5, K #6, D #7, E #8, F #9,
+    /// H #11, M #13, Q #17, R #18, S #19, T #20, U #21, V #22, W #23, X #24, Y #25, Z #26) and
+    /// II (I, J, K repeated: the n-th I is #(3n+1), J #(3n+2), K #(3n+3)).
+    #[default]
+    Fanuc,
+}
+
+/// Where the tool offsets are among the system variables.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolOffsetVariables {
+    /// FANUC tool offset memory C: #2001 H wear, #2201 H geometry, #2401 D wear, #2601 D
+    /// geometry (200 each; #10001/#11001/#12001/#13001 for 400).
+    #[default]
+    FanucC,
+    /// Haas: #2001 length geometry, #2201 length wear, #2401 diameter geometry, #2601
+    /// diameter wear.
+    Haas,
+}
+
 /// How `P` of G04 is read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -300,10 +324,60 @@ pub struct Profile {
     pub g28_without_axes_homes_all: bool,
     /// Number of reference points (G28 is 1, G30 P2..Pn).
     pub reference_points: u32,
-    /// M codes that are subprogram calls and returns on this control (run by issue 3's code).
+    /// M codes that are subprogram calls and returns on this control: 98 call, 99 return,
+    /// 198 external call (Syntec), 96/97 interrupt on/off (Syntec) or 97 local call (Haas, see
+    /// `m97_local_subprogram`).
     pub subprogram_m_codes: Vec<u32>,
+    /// M97 P calls sequence number P of the running program (Haas); otherwise M97 turns the
+    /// interrupt program off (Syntec).
+    #[serde(default)]
+    pub m97_local_subprogram: bool,
+    /// M02 and M30 in a subprogram return to the caller (Syntec, spec section 2 item 12);
+    /// otherwise they end the program (FANUC).
+    #[serde(default)]
+    pub end_in_subprogram_returns: bool,
+    /// How G65/G66 argument letters map to local variables.
+    #[serde(default)]
+    pub macro_arguments: MacroArguments,
+    /// Which system variable numbers hold the tool offsets.
+    #[serde(default)]
+    pub tool_offset_variables: ToolOffsetVariables,
+    /// Syntec's #1000 modal variables, #1901-#1916 G92 offsets and #1930 rotation.
+    #[serde(default)]
+    pub syntec_system_variables: bool,
+    /// Haas's #3020-#3027 timers and spindle data, #4201+ modal data, #5401+ tool life.
+    #[serde(default)]
+    pub haas_system_variables: bool,
+    /// Extra common variables kept between runs (Haas: #10000-#10999), first and last.
+    #[serde(default)]
+    pub extended_common_variables: Option<(u32, u32)>,
+    /// Macro calls (G65, G66) nested at most this deep (FANUC: 4; PS0077 beyond).
+    #[serde(default = "default_macro_call_depth")]
+    pub macro_call_depth: u32,
+    /// Subprogram and macro calls together nested at most this deep (FANUC 0i: 10).
+    #[serde(default = "default_call_depth")]
+    pub call_depth: u32,
+    /// The loop numbers DO and END take: 1 to this (FANUC: 3).
+    #[serde(default = "default_loop_numbers")]
+    pub loop_numbers: u32,
+    /// `M98 P50001` without L calls O0001 five times: the digits before the last four count
+    /// the repeats (FANUC).
+    #[serde(default)]
+    pub m98_p_holds_repeats: bool,
     /// Power-on modal state.
     pub power_on: PowerOn,
+}
+
+fn default_macro_call_depth() -> u32 {
+    4
+}
+
+fn default_call_depth() -> u32 {
+    10
+}
+
+fn default_loop_numbers() -> u32 {
+    3
 }
 
 fn default_peck_distance() -> f64 {

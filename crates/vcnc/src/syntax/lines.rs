@@ -26,6 +26,12 @@ pub trait LineSource {
     /// # Errors
     /// Whatever the underlying reader reports.
     fn next_line(&mut self) -> io::Result<Option<Line<'_>>>;
+
+    /// The whole program text, when it is in memory: jumps (GOTO, WHILE) and subprograms that
+    /// follow M30 in the same file need it. `None` for streamed text.
+    fn text(&self) -> Option<&[u8]> {
+        None
+    }
 }
 
 /// Lines of a text held in memory.
@@ -47,7 +53,28 @@ impl<'a> TextLines<'a> {
     }
 }
 
+impl<'a> TextLines<'a> {
+    /// Lines of `text` from byte `offset` on, which starts line `number` (1-based): for reading
+    /// one program out of a file that holds several.
+    pub fn starting_at(text: &'a [u8], offset: usize, number: u32) -> TextLines<'a> {
+        TextLines {
+            text,
+            position: offset.min(text.len()),
+            number: number.saturating_sub(1),
+        }
+    }
+
+    /// The whole text.
+    pub fn text(&self) -> &'a [u8] {
+        self.text
+    }
+}
+
 impl LineSource for TextLines<'_> {
+    fn text(&self) -> Option<&[u8]> {
+        Some(self.text)
+    }
+
     fn next_line(&mut self) -> io::Result<Option<Line<'_>>> {
         if self.position >= self.text.len() {
             return Ok(None);

@@ -6,12 +6,14 @@
 //! Front ends never fail: a block that cannot be read carries the alarm, and reading goes on with
 //! the next block.
 
+pub mod expr;
 pub mod iso;
 pub mod lines;
 pub mod source;
 
 use crate::alarm::Alarm;
 use crate::source::Span;
+pub use expr::{Expr, Instruction, Statement};
 
 /// A number as written in a word: its value and how it was written.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -64,6 +66,9 @@ pub struct Word {
     pub number: Number,
     /// Where the word stands.
     pub span: Span,
+    /// The value is an expression of the block's `code` (`X#1`, `G#8`, `P[10]`); `number` is
+    /// then meaningless.
+    pub expr: Option<Expr>,
 }
 
 /// What kind of block this is.
@@ -90,6 +95,13 @@ pub struct Block {
     pub comment: Option<Span>,
     /// The problems found while reading the block; the block holds the words read before the first error.
     pub alarms: Vec<Alarm>,
+    /// Macro statements (assignments, IF, WHILE, GOTO, END), in the order written.
+    pub statements: Vec<Statement>,
+    /// The instructions of the block's expressions (statements' and words').
+    pub code: Vec<Instruction>,
+    /// The text of the first comment, kept for blocks with statements only: `#3000 = 1 (NO
+    /// TOOL)` shows it as the alarm message.
+    pub message: Option<Box<str>>,
 }
 
 impl Block {
@@ -102,6 +114,9 @@ impl Block {
             words: Vec::new(),
             comment: None,
             alarms: Vec::new(),
+            statements: Vec::new(),
+            code: Vec::new(),
+            message: None,
         }
     }
 
@@ -113,6 +128,9 @@ impl Block {
         self.words.clear();
         self.comment = None;
         self.alarms.clear();
+        self.statements.clear();
+        self.code.clear();
+        self.message = None;
     }
 
     /// The first word with this letter (and no extended index).
@@ -122,9 +140,15 @@ impl Block {
             .find(|w| w.letter == letter && w.index == 0)
     }
 
-    /// True when the block has no words and is not a tape mark.
+    /// True when the block has no words, no statements and is not a tape mark.
     pub fn is_empty(&self) -> bool {
-        self.kind == BlockKind::Words && self.words.is_empty()
+        self.kind == BlockKind::Words && self.words.is_empty() && self.statements.is_empty()
+    }
+
+    /// True when the block needs the macro executor: statements, or words whose values are
+    /// expressions.
+    pub fn has_macro(&self) -> bool {
+        !self.code.is_empty() || !self.statements.is_empty()
     }
 }
 

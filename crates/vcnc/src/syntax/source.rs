@@ -22,6 +22,11 @@ pub trait BlockSource {
 
     /// The blocks of the current line (empty before the first `advance`).
     fn blocks(&self) -> &[Block];
+
+    /// The whole program text, when it is in memory (see [`LineSource::text`]).
+    fn text(&self) -> Option<&[u8]> {
+        None
+    }
 }
 
 /// Lines from a [`LineSource`], parsed as they are asked for.
@@ -61,6 +66,10 @@ impl<L: LineSource> BlockSource for ParsedLines<L> {
 
     fn blocks(&self) -> &[Block] {
         self.blocks.as_slice()
+    }
+
+    fn text(&self) -> Option<&[u8]> {
+        self.lines.text()
     }
 }
 

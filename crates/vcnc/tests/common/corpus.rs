@@ -1,6 +1,6 @@
 //! The corpus programs' controls and machines (spec: corpus/MANIFEST.md).
 
-use vcnc::{Machine, ProfileName};
+use vcnc::{AlarmCode, Machine, ProfileName};
 
 /// The control each corpus program was written for (spec: corpus/MANIFEST.md).
 pub fn profile_for(name: &str) -> ProfileName {
@@ -27,9 +27,133 @@ pub fn machine_for(name: &str) -> Machine {
         // made for reads numbers without a decimal point as whole units (FANUC parameter DPI = 1).
         machine.profile.decimal_less = vcnc::profile::DecimalLess::WholeUnits;
     }
+    if name.starts_with("boreyko_") {
+        // Macro templates that read the tool diameter from the offset table (`#[2400 + #3026]`):
+        // on the author's machine the tools in use had their diameters set. A 10 mm cutter in
+        // every pocket the programs use.
+        for number in 1..=40 {
+            machine.tool_offsets.insert(
+                number,
+                vcnc::machine::ToolOffset {
+                    number,
+                    length: 100.0,
+                    radius: 10.0,
+                    ..Default::default()
+                },
+            );
+        }
+    }
+    if name.starts_with("z64_") {
+        // Bolt circles indexed on a rotary table: `G91 A[360.0/#2]`.
+        let rotary = vcnc::machine::AxisConfig {
+            min: -1.0e6,
+            max: 1.0e6,
+            ..machine.axes[0].clone().expect("the default machine has X")
+        };
+        machine.axes[vcnc::Axis::A.index()] = Some(rotary);
+    }
     if name.starts_with("kiely_") {
         // Hand-written for a Haas set to inch (setting 9): the programs never say G20.
         machine.profile.power_on.units = 200;
     }
     machine
+}
+
+/// The programs a corpus program can call: those of the same author in `folder` (the prefix
+/// before the first `_`), found by their `O` headers, as in that author's control memory.
+/// Programs of other authors are not on that machine.
+#[allow(dead_code)]
+pub fn library_for(name: &str, folder: &std::path::Path) -> vcnc::interp::MemoryLibrary {
+    let author = name.split('_').next().unwrap_or(name);
+    let mut library = vcnc::interp::MemoryLibrary::new();
+    let mut files: Vec<_> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    let mut file_id = 1;
+    for path in files {
+        let file_name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if file_name == name || file_name.split('_').next() != Some(author) {
+            continue;
+        }
+        let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
+        for line in text.lines() {
+            let line = line.trim_start();
+            let digits: String = line
+                .strip_prefix('O')
+                .unwrap_or("")
+                .chars()
+                .take_while(char::is_ascii_digit)
+                .collect();
+            if let Ok(number) = digits.parse::<u32>() {
+                library.insert(number, vcnc::FileId(file_id), &text);
+            }
+        }
+        file_id += 1;
+    }
+    library
+}
+
+/// The corpus programs that stop with an alarm, as the real control would stop them: (file,
+/// alarm, line, why). Every other corpus program runs to its end (issue #3, acceptance 2).
+#[allow(dead_code)]
+pub const EXPECTED_ALARMS: &[(&str, AlarmCode, u32, &str)] = &[
+    (
+        "boreyko_O00030_probe_g65_calls.nc",
+        AlarmCode::ProgramNotFound,
+        13,
+        "calls the probing macro O9832, which is not in the corpus",
+    ),
+    (
+        "boreyko_O00999_main_m98_bracket_p.nc",
+        AlarmCode::ProgramNotFound,
+        5,
+        "calls O10 to O80, which are not in the corpus",
+    ),
+    (
+        "brown_O9250_dynamic_offset_rotation.nc",
+        AlarmCode::UserAlarm,
+        15,
+        "run alone, without its G65 arguments: `#3000=1(NEED ROTATION AXIS)`",
+    ),
+    (
+        "selyaev_O0001_quad_main.nc",
+        AlarmCode::ArcRadiusTooSmall,
+        66,
+        "O3001 line 47 sets #621 from #610 where #620 is meant: the last corner arc (R0.2, line 66) cannot reach its end point",
+    ),
+    (
+        "selyaev_O0002_carving_main.nc",
+        AlarmCode::UnexpectedCharacter,
+        15,
+        "`#1=#1-#11:` ends in a stray colon (a typo in the original)",
+    ),
+    (
+        "selyaev_O3001_quad_pocket_macro.nc",
+        AlarmCode::MacroArithmetic,
+        27,
+        "run alone: its arguments are vacant, and `[#1-#2]/#17` divides by Q/2 = 0",
+    ),
+    (
+        "selyaev_O3002_carving_macro.nc",
+        AlarmCode::SequenceNotFound,
+        6,
+        "run alone: `N41GOTO#22` with #22 vacant",
+    ),
+    (
+        "selyaev_O3003_spiral_holes_macro.nc",
+        AlarmCode::ArcWithoutCenter,
+        23,
+        "run alone: its arguments are vacant, and the helical arc has radius 0",
+    ),
+];
+
+/// The alarm and line a corpus program is expected to stop with, if any.
+#[allow(dead_code)]
+pub fn expected_alarm(name: &str) -> Option<(AlarmCode, u32)> {
+    EXPECTED_ALARMS
+        .iter()
+        .find(|(file, ..)| *file == name)
+        .map(|&(_, code, line, _)| (code, line))
 }

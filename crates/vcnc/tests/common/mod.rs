@@ -37,9 +37,24 @@ impl Run {
 
 /// Runs a program held in memory to its end.
 pub fn run(text: &[u8], machine: &Machine, options: Options) -> Run {
+    collect(interpret_bytes(text, machine, options))
+}
+
+/// Runs a program held in memory to its end, with the programs of `library` to call.
+#[allow(dead_code)]
+pub fn run_with_library(
+    text: &[u8],
+    machine: &Machine,
+    options: Options,
+    library: Box<dyn vcnc::interp::ProgramLibrary>,
+) -> Run {
+    collect(interpret_bytes(text, machine, options).with_library(library))
+}
+
+fn collect(items: impl Iterator<Item = Result<Segment, Alarm>>) -> Run {
     let mut segments = Vec::new();
     let mut alarms = Vec::new();
-    for item in interpret_bytes(text, machine, options) {
+    for item in items {
         match item {
             Ok(segment) => segments.push(segment),
             Err(alarm) => alarms.push(alarm),

@@ -1,5 +1,7 @@
 //! The ISO block reader: one line of bytes into blocks of words.
 
+mod macros;
+
 use super::LineBlocks;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
@@ -108,6 +110,7 @@ fn parse_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> bool 
             index: 0,
             number,
             span: span(pos, end),
+            expr: None,
         });
         pos = end;
         while pos < text.len() && is_blank(&text[pos]) {
@@ -175,6 +178,16 @@ impl Reader<'_, '_> {
             stop -= 1;
         }
         block.span = self.span(start, stop.max(start));
+        if !block.statements.is_empty() {
+            if let Some(comment) = block.comment {
+                let from = comment.start.saturating_sub(self.base) as usize;
+                let to = (comment.end.saturating_sub(self.base) as usize).min(self.text.len());
+                let text = self.text.get(from..to).unwrap_or(&[]);
+                let text = text.strip_prefix(b"(").unwrap_or(text);
+                let text = text.strip_suffix(b")").unwrap_or(text);
+                block.message = Some(String::from_utf8_lossy(text).trim().into());
+            }
+        }
         end
     }
 
@@ -184,7 +197,8 @@ impl Reader<'_, '_> {
             let Some(byte) = self.peek() else {
                 return BlockEnd::Line;
             };
-            let at_block_start = block.words.is_empty() && block.skip.is_none();
+            let at_block_start =
+                block.words.is_empty() && block.statements.is_empty() && block.skip.is_none();
             match byte {
                 b';' if self.options.semicolon_ends_block => {
                     self.pos += 1;
@@ -217,10 +231,10 @@ impl Reader<'_, '_> {
                         return self.abandon(block);
                     }
                 }
-                b'#' | b'[' => {
-                    let span = self.span(self.pos, self.pos + 1);
-                    block.alarms.push(macro_not_supported(span));
-                    return self.abandon(block);
+                b'#' => {
+                    if self.read_assignment(block).is_err() {
+                        return self.abandon(block);
+                    }
                 }
                 b if b.is_ascii_alphabetic() => {
                     if !self.read_plain_word(block) && !self.read_word(block) {
@@ -332,44 +346,45 @@ impl Reader<'_, '_> {
             index: 0,
             number,
             span: self.span(start, end),
+            expr: None,
         });
         self.pos = end;
         true
     }
 
-    /// An address letter and its value. Returns false when the block cannot be read further.
+    /// An address letter and its value, or a macro statement that starts with a keyword.
+    /// Returns false when the block cannot be read further.
     fn read_word(&mut self, block: &mut crate::syntax::Block) -> bool {
         let start = self.pos;
         let letter = self.text[self.pos].to_ascii_uppercase();
-        self.pos += 1;
-        match self.peek() {
-            Some(b) if b.is_ascii_alphabetic() => {
-                // Two letters in a row: a macro keyword (IF, GOTO, WHILE, SIN ...).
-                let end = self.text[start..]
-                    .iter()
-                    .position(|b| !b.is_ascii_alphabetic())
-                    .map_or(self.text.len(), |n| start + n);
-                let keyword = String::from_utf8_lossy(&self.text[start..end]).to_ascii_uppercase();
-                let span = self.span(start, end);
-                block.alarms.push(if is_macro_keyword(&keyword) {
-                    macro_not_supported(span)
-                } else {
-                    Alarm::error(
-                        AlarmCode::UnexpectedCharacter,
-                        span,
-                        format!("`{keyword}` is not an ISO word"),
-                    )
-                    .with_help("an address is one letter followed by a number, e.g. `X10.`")
-                });
-                false
+        if self.peek_at(1).is_some_and(|b| b.is_ascii_alphabetic()) {
+            if let Some(read) = self.read_keyword_statement(block) {
+                return read.is_ok();
             }
-            Some(b'#' | b'[') => {
-                let span = self.span(self.pos, self.pos + 1);
-                block.alarms.push(macro_not_supported(span));
-                false
-            }
-            _ => self.read_value(block, letter, start),
+            // Two letters in a row that start no statement.
+            let end = self.text[start..]
+                .iter()
+                .position(|b| !b.is_ascii_alphabetic())
+                .map_or(self.text.len(), |n| start + n);
+            let keyword = String::from_utf8_lossy(&self.text[start..end]).to_ascii_uppercase();
+            let span = self.span(start, end);
+            block.alarms.push(if is_macro_keyword(&keyword) {
+                Alarm::not_supported(span, &format!("the macro statement `{keyword}`"), None)
+            } else {
+                Alarm::error(
+                    AlarmCode::UnexpectedCharacter,
+                    span,
+                    format!("`{keyword}` is not an ISO word"),
+                )
+                .with_help("an address is one letter followed by a number, e.g. `X10.`")
+            });
+            return false;
         }
+        self.pos += 1;
+        if self.expression_value_follows() {
+            return self.read_expression_word(block, letter, start).is_ok();
+        }
+        self.read_value(block, letter, start)
     }
 
     /// The number after an address letter (and the value of an extended address `F2=...`).
@@ -388,7 +403,11 @@ impl Reader<'_, '_> {
                 !first.decimal_point && !first.negative && (1.0..=9.0).contains(&first.value);
             if !simple_index {
                 let span = self.span(self.pos, self.pos + 1);
-                block.alarms.push(macro_not_supported(span));
+                block.alarms.push(Alarm::error(
+                    AlarmCode::UnexpectedCharacter,
+                    span,
+                    "`=` after an address: only F1= to F9= style extended addresses take one",
+                ));
                 return false;
             }
             index = first.value as u8;
@@ -403,6 +422,7 @@ impl Reader<'_, '_> {
             index,
             number,
             span: self.span(start, self.pos),
+            expr: None,
         });
         true
     }
@@ -431,12 +451,6 @@ impl Reader<'_, '_> {
             negative = sign == b'-';
             self.pos += 1;
             self.skip_blanks();
-        }
-        if let Some(b'#' | b'[') = self.peek() {
-            block
-                .alarms
-                .push(macro_not_supported(self.span(self.pos, self.pos + 1)));
-            return None;
         }
         if let Some((number, end)) = fast_number(&self.text[self.pos..], negative) {
             self.pos += end;
@@ -629,14 +643,6 @@ fn is_macro_keyword(word: &str) -> bool {
     KEYWORDS.iter().any(|k| word.starts_with(k))
 }
 
-fn macro_not_supported(span: Span) -> Alarm {
-    Alarm::not_supported(
-        span,
-        "Custom Macro B (variables, expressions, IF/WHILE/GOTO)",
-        Some(3),
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -729,16 +735,6 @@ mod tests {
     fn percent_and_colon_program_numbers() {
         assert_eq!(parse("%")[0].kind, BlockKind::TapeMark);
         assert_eq!(words(&parse(":0097")[0]), "O97");
-    }
-
-    #[test]
-    fn macro_syntax_is_reported_as_not_supported_yet() {
-        let blocks = parse("#1=#2+1");
-        assert_eq!(blocks[0].alarms[0].code, AlarmCode::NotSupportedYet);
-        let blocks = parse("IF[#1GT2]GOTO5");
-        assert_eq!(blocks[0].alarms[0].code, AlarmCode::NotSupportedYet);
-        let blocks = parse("X[#1+2]");
-        assert_eq!(blocks[0].alarms[0].code, AlarmCode::NotSupportedYet);
     }
 
     #[test]

@@ -1,0 +1,348 @@
+//! Programs held in memory: the subprograms and macros a program calls, and the main program
+//! itself once it jumps (GOTO, WHILE, M99).
+//!
+//! A control keeps its programs in memory, so a jump is a search of text it already has. vcnc
+//! streams a main program that runs straight through and holds nothing of it; the first jump
+//! loads it (from the block source's text, or through the [`ProgramLibrary`]) and parses it
+//! once. Called programs come from the same file (programs that follow M30, each headed by
+//! `O1234` or `:1234`) or from the library (a program directory).
+
+use crate::source::FileId;
+use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
+use crate::syntax::lines::{LineSource, TextLines};
+use crate::syntax::Block;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+/// The text of a program the library found.
+#[derive(Clone, Debug)]
+pub struct ProgramText {
+    /// The file id the program's spans carry (the caller keeps the file for diagnostics).
+    pub file: FileId,
+    /// The text.
+    pub text: Arc<[u8]>,
+}
+
+/// Where the interpreter finds programs that are not in the main program's file.
+pub trait ProgramLibrary: Send {
+    /// Program number `number` (`O1234`), if the library has it.
+    fn find(&mut self, number: u32) -> Option<ProgramText>;
+
+    /// The main program's text, when the block source streams it and cannot give it whole.
+    fn main_text(&mut self) -> Option<Arc<[u8]>> {
+        None
+    }
+}
+
+/// Programs held in memory by number: for tests and for callers that have the text already.
+#[derive(Clone, Debug, Default)]
+pub struct MemoryLibrary {
+    programs: HashMap<u32, ProgramText>,
+}
+
+impl MemoryLibrary {
+    /// An empty library.
+    pub fn new() -> MemoryLibrary {
+        MemoryLibrary::default()
+    }
+
+    /// Adds program `number` with `text`, whose spans will carry `file`.
+    pub fn insert(&mut self, number: u32, file: FileId, text: &str) {
+        self.programs.insert(
+            number,
+            ProgramText {
+                file,
+                text: Arc::from(text.as_bytes()),
+            },
+        );
+    }
+}
+
+impl ProgramLibrary for MemoryLibrary {
+    fn find(&mut self, number: u32) -> Option<ProgramText> {
+        self.programs.get(&number).cloned()
+    }
+}
+
+/// The files a [`DirectoryLibrary`] has read, by the file id it gave each: the caller renders
+/// diagnostics in them.
+pub type LoadedFiles = Arc<Mutex<Vec<(FileId, PathBuf)>>>;
+
+/// Programs in directories: files named `O1234`, `O1234.nc`, `1234.nc` (any extension, any
+/// case, leading zeros or none), and files named otherwise that hold `O1234` headers; and the
+/// main program's file, read whole when it jumps.
+#[derive(Debug)]
+pub struct DirectoryLibrary {
+    main: Option<PathBuf>,
+    directories: Vec<PathBuf>,
+    index: Option<HashMap<u32, PathBuf>>,
+    next_file: u32,
+    loaded: LoadedFiles,
+}
+
+impl DirectoryLibrary {
+    /// A library over `directories`; `main` is the main program's file; the files it reads get
+    /// ids from `first_file` on.
+    pub fn new(
+        main: Option<PathBuf>,
+        directories: Vec<PathBuf>,
+        first_file: u32,
+    ) -> DirectoryLibrary {
+        DirectoryLibrary {
+            main,
+            directories,
+            index: None,
+            next_file: first_file,
+            loaded: LoadedFiles::default(),
+        }
+    }
+
+    /// The files read so far, shared: it fills as the program runs.
+    pub fn loaded_files(&self) -> LoadedFiles {
+        Arc::clone(&self.loaded)
+    }
+
+    fn index(&mut self) -> &HashMap<u32, PathBuf> {
+        self.index.get_or_insert_with(|| {
+            let mut index = HashMap::new();
+            for directory in &self.directories {
+                let Ok(entries) = std::fs::read_dir(directory) else {
+                    continue;
+                };
+                let mut paths: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
+                paths.sort();
+                for path in &paths {
+                    if let Some(number) = program_number_of_file(path) {
+                        index.entry(number).or_insert_with(|| path.clone());
+                    }
+                }
+                // Files named otherwise are found by the `O1234` headers in them.
+                for path in paths {
+                    if program_number_of_file(&path).is_some() || !path.is_file() {
+                        continue;
+                    }
+                    let Ok(file) = std::fs::File::open(&path) else {
+                        continue;
+                    };
+                    let mut head = Vec::new();
+                    if std::io::Read::read_to_end(
+                        &mut std::io::Read::take(file, HEADER_SCAN),
+                        &mut head,
+                    )
+                    .is_err()
+                    {
+                        continue;
+                    }
+                    for (number, _, _) in program_headers(&head, &SyntaxOptions::default()) {
+                        index.entry(number).or_insert_with(|| path.clone());
+                    }
+                }
+            }
+            index
+        })
+    }
+}
+
+/// How much of a file is searched for program headers when its name is not a program number.
+const HEADER_SCAN: u64 = 1 << 20;
+
+/// `O1234.nc`, `o0012`, `1234.NC` → the program number.
+fn program_number_of_file(path: &Path) -> Option<u32> {
+    if !path.is_file() {
+        return None;
+    }
+    let stem = path.file_stem()?.to_str()?;
+    let digits = stem
+        .strip_prefix('O')
+        .or_else(|| stem.strip_prefix('o'))
+        .unwrap_or(stem);
+    if digits.is_empty() || digits.len() > 8 || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    digits.parse().ok()
+}
+
+impl ProgramLibrary for DirectoryLibrary {
+    fn find(&mut self, number: u32) -> Option<ProgramText> {
+        let path = self.index().get(&number)?.clone();
+        let text = std::fs::read(&path).ok()?;
+        let file = FileId(self.next_file);
+        self.next_file += 1;
+        if let Ok(mut loaded) = self.loaded.lock() {
+            loaded.push((file, path));
+        }
+        Some(ProgramText {
+            file,
+            text: Arc::from(text),
+        })
+    }
+
+    fn main_text(&mut self) -> Option<Arc<[u8]>> {
+        let text = std::fs::read(self.main.as_ref()?).ok()?;
+        Some(Arc::from(text))
+    }
+}
+
+/// A sequence number's place in a program: line index and block index in the line.
+pub(crate) type Position = (usize, usize);
+
+/// One program, parsed, with its sequence numbers indexed.
+#[derive(Debug)]
+pub(crate) struct StoredProgram {
+    /// The program number of its header, if it has one.
+    pub(crate) number: Option<u32>,
+    lines: Vec<LineBlocks>,
+    /// (sequence number, line, block), sorted.
+    labels: Vec<(u32, usize, usize)>,
+}
+
+impl StoredProgram {
+    /// Parses the lines of `text` from byte `offset` (line `line`) up to byte `end`.
+    pub(crate) fn parse(
+        text: &[u8],
+        (offset, line, end): (usize, u32, usize),
+        file: FileId,
+        syntax: &SyntaxOptions,
+        number: Option<u32>,
+    ) -> StoredProgram {
+        let end = end.min(text.len());
+        let mut source = TextLines::starting_at(&text[..end], offset, line);
+        let mut lines = Vec::new();
+        let mut labels = Vec::new();
+        while let Ok(Some(line)) = source.next_line() {
+            let mut blocks = LineBlocks::new();
+            parse_line(line, file, syntax, &mut blocks);
+            for (b, block) in blocks.as_slice().iter().enumerate() {
+                if let Some(n) = sequence_number(block) {
+                    labels.push((n, lines.len(), b));
+                }
+            }
+            lines.push(blocks);
+        }
+        labels.sort_unstable();
+        StoredProgram {
+            number,
+            lines,
+            labels,
+        }
+    }
+
+    /// The blocks of line `line`.
+    #[inline]
+    pub(crate) fn line(&self, line: usize) -> Option<&[Block]> {
+        self.lines.get(line).map(LineBlocks::as_slice)
+    }
+
+    /// The block with sequence number `n`: the first after `from` if there is one (a GOTO
+    /// searches forward first), else the first in the program.
+    pub(crate) fn find_label(&self, n: u32, from: Option<Position>) -> Option<Position> {
+        let first = self.labels.partition_point(|&(label, _, _)| label < n);
+        let matching = self.labels[first..]
+            .iter()
+            .take_while(|&&(label, _, _)| label == n)
+            .map(|&(_, line, block)| (line, block));
+        let mut earliest = None;
+        for position in matching {
+            if from.is_some_and(|from| position > from) {
+                return Some(position);
+            }
+            earliest.get_or_insert(position);
+        }
+        earliest
+    }
+
+    /// Where loop `label`'s END is, for the WHILE at `from`: the first END with that number
+    /// after it, counting nested loops of the same number.
+    pub(crate) fn find_loop_end(&self, from: Position, label: u32) -> Option<Position> {
+        use crate::syntax::Statement;
+        let mut depth = 0usize;
+        let (start_line, start_block) = from;
+        for (l, line) in self.lines.iter().enumerate().skip(start_line) {
+            for (b, block) in line.as_slice().iter().enumerate() {
+                if l == start_line && b <= start_block {
+                    continue;
+                }
+                for statement in &block.statements {
+                    match *statement {
+                        Statement::While { label: m, .. } if m == label => depth += 1,
+                        Statement::End { label: m, .. } if m == label => {
+                            if depth == 0 {
+                                return Some((l, b));
+                            }
+                            depth -= 1;
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+        None
+    }
+}
+
+/// The sequence number a block starts with, if any.
+fn sequence_number(block: &Block) -> Option<u32> {
+    let word = block.words.first().filter(|w| w.letter == b'N')?;
+    word.number.whole().and_then(|n| u32::try_from(n).ok())
+}
+
+/// Where each program of a file starts: (number, byte offset, line number) of each `O1234` or
+/// `:1234` header line. Scans bytes only (a large file is not parsed for this).
+pub(crate) fn program_headers(text: &[u8], syntax: &SyntaxOptions) -> Vec<(u32, usize, u32)> {
+    let mut headers = Vec::new();
+    let mut offset = 0usize;
+    let mut line = 1u32;
+    while offset < text.len() {
+        let rest = &text[offset..];
+        let length = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+        let content = &rest[..length];
+        let start = content
+            .iter()
+            .position(|b| !matches!(b, b' ' | b'\t' | b'\r'))
+            .unwrap_or(content.len());
+        let content = &content[start..];
+        let letter = content.first().copied().unwrap_or(0);
+        if letter == b'O' || letter == b'o' || (letter == b':' && syntax.colon_program_number) {
+            let digits: Vec<u8> = content[1..]
+                .iter()
+                .copied()
+                .take_while(u8::is_ascii_digit)
+                .collect();
+            if !digits.is_empty() && digits.len() <= 8 {
+                if let Some(n) = std::str::from_utf8(&digits)
+                    .ok()
+                    .and_then(|d| d.parse().ok())
+                {
+                    headers.push((n, offset, line));
+                }
+            }
+        }
+        offset += length + 1;
+        line = line.saturating_add(1);
+    }
+    headers
+}
+
+/// The lines of a text that are the main program: from the start to the header of the second
+/// program (the first header is the main program's own when nothing runs before it).
+pub(crate) fn main_program_end(text: &[u8], headers: &[(u32, usize, u32)]) -> usize {
+    let Some(&(_, first, _)) = headers.first() else {
+        return text.len();
+    };
+    // Anything but blanks, `%` and comments before the first header makes it a subprogram's.
+    let before = &text[..first];
+    let runs_before = before.split(|&b| b == b'\n').any(|line| {
+        let line: Vec<u8> = line
+            .iter()
+            .copied()
+            .filter(|b| !matches!(b, b' ' | b'\t' | b'\r'))
+            .collect();
+        !(line.is_empty() || line[0] == b'%' || line[0] == b'(' || line[0] == b';')
+    });
+    if runs_before {
+        first
+    } else {
+        headers.get(1).map_or(text.len(), |h| h.1)
+    }
+}

@@ -1,0 +1,800 @@
+//! Custom Macro B in a block: `#` assignments, IF/WHILE/DO/END/GOTO, and expressions as word
+//! values (`X#1`, `G#8`, `P[10]`, `X-[#4/2]`).
+//!
+//! Expressions are read by recursive descent with FANUC's precedence (functions, then `*` `/`
+//! `AND` `MOD`, then `+` `-` `OR` `XOR`, then the comparisons) and written out in postfix
+//! order into the block's `code`. Spaces may stand anywhere, and keywords need none around them
+//! (`IF[#1GT#2]GOTO10`, `WH[#18GT#26]DO1`): a run of letters is matched against the keywords
+//! that can stand there, longest first.
+
+use super::{fast_number, Reader};
+use crate::alarm::{Alarm, AlarmCode};
+use crate::syntax::expr::{BinaryOp, Expr, Function, Instruction, Op, Statement};
+use crate::syntax::{Block, Number, Word};
+
+/// Brackets and signs nested deeper than this are an alarm (FANUC allows five levels of
+/// brackets; the limit here only keeps a hostile line from exhausting the stack).
+const MAX_NESTING: usize = 64;
+
+/// Operators between operands, by precedence level: (keyword or symbol, operator).
+const COMPARISONS: &[(&str, BinaryOp)] = &[
+    ("EQ", BinaryOp::Equal),
+    ("NE", BinaryOp::NotEqual),
+    ("GT", BinaryOp::Greater),
+    ("GE", BinaryOp::GreaterOrEqual),
+    ("LT", BinaryOp::Less),
+    ("LE", BinaryOp::LessOrEqual),
+];
+const ADDITIVE: &[(&str, BinaryOp)] = &[
+    ("+", BinaryOp::Add),
+    ("-", BinaryOp::Subtract),
+    ("OR", BinaryOp::Or),
+    ("XOR", BinaryOp::Xor),
+];
+const MULTIPLICATIVE: &[(&str, BinaryOp)] = &[
+    ("*", BinaryOp::Multiply),
+    ("/", BinaryOp::Divide),
+    ("AND", BinaryOp::And),
+    ("MOD", BinaryOp::Modulo),
+];
+
+/// The function names, longest spelling first where one is a prefix of another.
+const FUNCTIONS: &[(&str, Function)] = &[
+    ("SIN", Function::Sin),
+    ("COS", Function::Cos),
+    ("TAN", Function::Tan),
+    ("ASIN", Function::Asin),
+    ("ACOS", Function::Acos),
+    ("ATAN", Function::Atan),
+    ("SQRT", Function::Sqrt),
+    ("SQR", Function::Sqrt),
+    ("ABS", Function::Abs),
+    ("ROUND", Function::Round),
+    ("RND", Function::Round),
+    ("FIX", Function::Fix),
+    ("FUP", Function::Fup),
+    ("LN", Function::Ln),
+    ("EXP", Function::Exp),
+    ("BIN", Function::Bin),
+    ("BCD", Function::Bcd),
+];
+
+/// Reading stops; the alarm is in the block.
+pub(super) struct Failed;
+
+type Read<T = ()> = Result<T, Failed>;
+
+impl Reader<'_, '_> {
+    /// The upper-case run of letters at the cursor (without moving).
+    fn letters(&self) -> String {
+        self.text[self.pos..]
+            .iter()
+            .take_while(|b| b.is_ascii_alphabetic() || **b == b'_')
+            .map(u8::to_ascii_uppercase)
+            .map(char::from)
+            .collect()
+    }
+
+    /// The longest entry of `table` that the text at the cursor starts with (case-insensitive).
+    fn match_keyword<T: Copy>(&self, table: &[(&str, T)]) -> Option<(usize, T)> {
+        let rest = &self.text[self.pos..];
+        table
+            .iter()
+            .filter(|(k, _)| {
+                rest.len() >= k.len() && rest[..k.len()].eq_ignore_ascii_case(k.as_bytes())
+            })
+            .max_by_key(|(k, _)| k.len())
+            .map(|(k, v)| (k.len(), *v))
+    }
+
+    /// A span of the line, kept inside the text: an error at the end of the line points at
+    /// its last character.
+    fn clamped(&self, start: usize, end: usize) -> crate::source::Span {
+        let length = self.text.len();
+        let end = end.max(start + 1).min(length);
+        let start = start.min(end.saturating_sub(1));
+        self.span(start, end)
+    }
+
+    fn fail(&self, block: &mut Block, start: usize, end: usize, message: String) -> Failed {
+        block.alarms.push(Alarm::error(
+            AlarmCode::MacroSyntax,
+            self.clamped(start, end),
+            message,
+        ));
+        Failed
+    }
+
+    fn emit(&self, block: &mut Block, op: Op, start: usize, end: usize) {
+        block.code.push(Instruction {
+            op,
+            span: self.span(start, end),
+        });
+    }
+
+    fn expect(&mut self, block: &mut Block, byte: u8, what: &str) -> Read {
+        self.skip_blanks();
+        if self.peek() == Some(byte) {
+            self.pos += 1;
+            Ok(())
+        } else {
+            let at = self.pos;
+            Err(self.fail(
+                block,
+                at,
+                at + 1,
+                format!("expected `{}` {what}", byte as char),
+            ))
+        }
+    }
+
+    /// A whole expression, comparisons included; returns its range of `code`.
+    pub(super) fn expression(&mut self, block: &mut Block) -> Read<Expr> {
+        let start = block.code.len() as u32;
+        self.comparison(block, 0)?;
+        Ok(Expr {
+            start,
+            end: block.code.len() as u32,
+        })
+    }
+
+    fn comparison(&mut self, block: &mut Block, depth: usize) -> Read {
+        self.additive(block, depth)?;
+        self.binary_tail(block, depth, COMPARISONS, Reader::additive)
+    }
+
+    fn additive(&mut self, block: &mut Block, depth: usize) -> Read {
+        self.multiplicative(block, depth)?;
+        self.binary_tail(block, depth, ADDITIVE, Reader::multiplicative)
+    }
+
+    fn multiplicative(&mut self, block: &mut Block, depth: usize) -> Read {
+        self.unary(block, depth)?;
+        self.binary_tail(block, depth, MULTIPLICATIVE, Reader::unary)
+    }
+
+    /// `(op operand)*` at one precedence level, left to right.
+    fn binary_tail(
+        &mut self,
+        block: &mut Block,
+        depth: usize,
+        operators: &[(&str, BinaryOp)],
+        operand: fn(&mut Self, &mut Block, usize) -> Read,
+    ) -> Read {
+        loop {
+            self.skip_blanks();
+            let Some((length, op)) = self.match_keyword(operators) else {
+                return Ok(());
+            };
+            // `/` right after an operand divides; `//` is a Syntec comment.
+            if op == BinaryOp::Divide
+                && self.options.slash_slash_comments
+                && self.peek_at(1) == Some(b'/')
+            {
+                return Ok(());
+            }
+            let at = self.pos;
+            self.pos += length;
+            operand(self, block, depth)?;
+            self.emit(block, Op::Binary(op), at, at + length);
+        }
+    }
+
+    fn unary(&mut self, block: &mut Block, depth: usize) -> Read {
+        if depth > MAX_NESTING {
+            let at = self.pos;
+            return Err(self.fail(block, at, at + 1, "expression nested too deeply".into()));
+        }
+        self.skip_blanks();
+        match self.peek() {
+            Some(b'-') => {
+                let at = self.pos;
+                self.pos += 1;
+                self.unary(block, depth + 1)?;
+                self.emit(block, Op::Negate, at, at + 1);
+                Ok(())
+            }
+            Some(b'+') => {
+                self.pos += 1;
+                self.unary(block, depth + 1)
+            }
+            _ => self.primary(block, depth),
+        }
+    }
+
+    fn primary(&mut self, block: &mut Block, depth: usize) -> Read {
+        self.skip_blanks();
+        let start = self.pos;
+        match self.peek() {
+            Some(b'[') => self.bracketed(block, depth),
+            Some(b'#') => {
+                self.pos += 1;
+                let before = block.code.len();
+                self.variable_number(block, depth)?;
+                // `#n` (or `#[n]`) with a constant n: one instruction instead of a constant and
+                // an indirection.
+                if block.code.len() == before + 1 {
+                    let span = self.span(start, self.pos);
+                    let last = &mut block.code[before];
+                    if let Op::Number(n) = last.op {
+                        if let Some(number) = whole_variable_number(n) {
+                            last.op = Op::Variable(number);
+                            last.span = span;
+                            return Ok(());
+                        }
+                    }
+                }
+                self.emit(block, Op::Indirect, start, start + 1);
+                Ok(())
+            }
+            Some(b'0'..=b'9' | b'.') => {
+                let number = self.expression_number(block)?;
+                self.emit(block, Op::Number(number), start, self.pos);
+                Ok(())
+            }
+            Some(b) if b.is_ascii_alphabetic() => self.function(block, depth),
+            _ => {
+                let found = match self.peek() {
+                    None => "the end of the block".to_string(),
+                    Some(b) => format!("`{}`", (b as char).escape_debug()),
+                };
+                Err(self.fail(
+                    block,
+                    start,
+                    start + 1,
+                    format!("expected a value (a number, #variable, [expression] or function), found {found}"),
+                ))
+            }
+        }
+    }
+
+    /// `[ expression ]`.
+    fn bracketed(&mut self, block: &mut Block, depth: usize) -> Read {
+        let open = self.pos;
+        self.pos += 1;
+        self.comparison(block, depth + 1)?;
+        self.skip_blanks();
+        if self.peek() == Some(b']') {
+            self.pos += 1;
+            Ok(())
+        } else {
+            let at = self.pos;
+            block.alarms.push(
+                Alarm::error(
+                    AlarmCode::MacroSyntax,
+                    self.clamped(at, at + 1),
+                    "expected `]` to close the bracket",
+                )
+                .with_label(self.clamped(open, open + 1), "opened here"),
+            );
+            Err(Failed)
+        }
+    }
+
+    /// The number after `#`: digits (`#5221`) or a bracketed expression (`#[#1+2]`). Emits it
+    /// as an expression (a constant for digits).
+    fn variable_number(&mut self, block: &mut Block, depth: usize) -> Read {
+        self.skip_blanks();
+        let start = self.pos;
+        match self.peek() {
+            Some(b'[') => self.bracketed(block, depth),
+            Some(b'0'..=b'9') => {
+                let number = self.expression_number(block)?;
+                self.emit(block, Op::Number(number), start, self.pos);
+                Ok(())
+            }
+            _ => Err(self.fail(
+                block,
+                start.saturating_sub(1),
+                start,
+                "`#` needs a variable number or a bracketed expression".into(),
+            )),
+        }
+    }
+
+    /// A constant inside an expression.
+    fn expression_number(&mut self, block: &mut Block) -> Read<f64> {
+        let start = self.pos;
+        if let Some((number, length)) = fast_number(&self.text[self.pos..], false) {
+            self.pos += length;
+            return Ok(number.value);
+        }
+        match self.read_digits(start, b'#', false, block) {
+            Some(number) => Ok(number.value),
+            None => Err(Failed),
+        }
+    }
+
+    /// `SIN[..]`, `ATAN[..]/[..]`, `ATAN[..,..]`, `POW[..,..]`.
+    fn function(&mut self, block: &mut Block, depth: usize) -> Read {
+        let start = self.pos;
+        if let Some(length) = self.match_keyword(&[("POW", ())]).map(|(l, ())| l) {
+            self.pos += length;
+            self.expect(block, b'[', "after POW")?;
+            self.comparison(block, depth + 1)?;
+            self.expect(block, b',', "between POW's arguments")?;
+            self.comparison(block, depth + 1)?;
+            self.expect(block, b']', "to close POW's arguments")?;
+            self.emit(block, Op::Power, start, start + length);
+            return Ok(());
+        }
+        let Some((length, function)) = self.match_keyword(FUNCTIONS) else {
+            let name = self.letters();
+            let end = start + name.len();
+            return Err(self.fail(
+                block,
+                start,
+                end,
+                format!("`{name}` is not a macro function or value"),
+            ));
+        };
+        self.pos += length;
+        self.skip_blanks();
+        if self.peek() != Some(b'[') {
+            let at = self.pos;
+            return Err(self.fail(
+                block,
+                at,
+                at + 1,
+                format!(
+                    "expected `[` after {}",
+                    String::from_utf8_lossy(&self.text[start..start + length]).to_uppercase()
+                ),
+            ));
+        }
+        self.pos += 1;
+        self.comparison(block, depth + 1)?;
+        self.skip_blanks();
+        if function == Function::Atan && self.peek() == Some(b',') {
+            // ATAN[y, x]
+            self.pos += 1;
+            self.comparison(block, depth + 1)?;
+            self.expect(block, b']', "to close ATAN's arguments")?;
+            self.emit(block, Op::Atan2, start, start + length);
+            return Ok(());
+        }
+        self.expect(block, b']', "to close the function's argument")?;
+        if function == Function::Atan {
+            // ATAN[y]/[x]: the slash belongs to the function, not a division.
+            let save = self.pos;
+            self.skip_blanks();
+            if self.peek() == Some(b'/') {
+                self.pos += 1;
+                self.skip_blanks();
+                if self.peek() == Some(b'[') {
+                    self.bracketed(block, depth + 1)?;
+                    self.emit(block, Op::Atan2, start, start + length);
+                    return Ok(());
+                }
+            }
+            self.pos = save;
+        }
+        self.emit(block, Op::Function(function), start, start + length);
+        Ok(())
+    }
+
+    /// A word whose value is an expression: `X#1`, `X-#1`, `G#8`, `P[10]`, `Z-[#4/2]`. The
+    /// cursor is after the address letter.
+    pub(super) fn read_expression_word(
+        &mut self,
+        block: &mut Block,
+        letter: u8,
+        start: usize,
+    ) -> Read {
+        let first = block.code.len() as u32;
+        self.unary(block, 0)?;
+        let expr = Expr {
+            start: first,
+            end: block.code.len() as u32,
+        };
+        block.words.push(Word {
+            letter,
+            index: 0,
+            number: Number::default(),
+            span: self.span(start, self.pos),
+            expr: Some(expr),
+        });
+        Ok(())
+    }
+
+    /// True when the text after an address letter is an expression value (`#`, `[`, or a sign
+    /// before either).
+    pub(super) fn expression_value_follows(&self) -> bool {
+        let rest = &self.text[self.pos..];
+        let mut bytes = rest.iter().filter(|b| !matches!(b, b' ' | b'\t'));
+        match bytes.next() {
+            Some(b'#' | b'[') => true,
+            Some(b'-' | b'+') => matches!(bytes.next(), Some(b'#' | b'[')),
+            _ => false,
+        }
+    }
+
+    /// `#i = expr` (or `:=`), the cursor on `#`.
+    pub(super) fn read_assignment(&mut self, block: &mut Block) -> Read {
+        let start = self.pos;
+        let (variable, value) = self.assignment_parts(block)?;
+        block.statements.push(Statement::Assign {
+            variable,
+            value,
+            span: self.span(start, self.pos),
+        });
+        Ok(())
+    }
+
+    fn assignment_parts(&mut self, block: &mut Block) -> Read<(Expr, Expr)> {
+        let start = self.pos;
+        self.pos += 1;
+        let first = block.code.len() as u32;
+        self.variable_number(block, 0)?;
+        let variable = Expr {
+            start: first,
+            end: block.code.len() as u32,
+        };
+        self.skip_blanks();
+        if self.peek() == Some(b':') && self.peek_at(1) == Some(b'=') {
+            self.pos += 2;
+        } else if self.peek() == Some(b'=') {
+            self.pos += 1;
+        } else {
+            let at = self.pos;
+            return Err(self.fail(
+                block,
+                start,
+                at,
+                "a variable at the start of a statement must be assigned: `#1 = value`".into(),
+            ));
+        }
+        let value = self.expression(block)?;
+        Ok((variable, value))
+    }
+
+    /// A loop number after DO or END.
+    fn loop_label(&mut self, block: &mut Block, keyword: &str, start: usize) -> Read<u32> {
+        self.skip_blanks();
+        let at = self.pos;
+        let digits = self.text[at..]
+            .iter()
+            .take_while(|b| b.is_ascii_digit())
+            .count();
+        if digits == 0 || digits > 4 {
+            return Err(self.fail(
+                block,
+                start,
+                at,
+                format!("{keyword} needs a loop number (DO1 ... END1)"),
+            ));
+        }
+        self.pos += digits;
+        let text = std::str::from_utf8(&self.text[at..at + digits]).unwrap_or("0");
+        Ok(text.parse().unwrap_or(0))
+    }
+
+    /// A statement that starts with a keyword: IF, WHILE (WH), DO, END, GOTO. Returns `None`
+    /// (nothing consumed) when the letters at the cursor are not one of them.
+    pub(super) fn read_keyword_statement(&mut self, block: &mut Block) -> Option<Read> {
+        const STATEMENTS: &[(&str, u8)] = &[
+            ("IF", 0),
+            ("WHILE", 1),
+            ("WH", 1),
+            ("DO", 2),
+            ("END", 3),
+            ("GOTO", 4),
+        ];
+        let start = self.pos;
+        let word = self.letters();
+        // `END_IF`, `ENDWHILE` ... are other languages' keywords: left to the caller.
+        let (length, kind) = self.match_keyword(STATEMENTS)?;
+        let rest = &word[length.min(word.len())..];
+        let allowed_after = match kind {
+            // IF[..], WH[..]: a bracket follows; GOTO#1, GOTO10, DO1: digits or `#`.
+            0 | 1 => rest.is_empty() || rest.starts_with("THEN") || rest.starts_with("GOTO"),
+            _ => rest.is_empty(),
+        };
+        if !allowed_after {
+            return None;
+        }
+        self.pos += length;
+        Some(match kind {
+            0 => self.read_if(block, start),
+            1 => self.read_while(block, start),
+            2 => self.loop_label(block, "DO", start).map(|label| {
+                block.statements.push(Statement::While {
+                    condition: None,
+                    label,
+                    span: self.span(start, self.pos),
+                });
+            }),
+            3 => self.loop_label(block, "END", start).map(|label| {
+                block.statements.push(Statement::End {
+                    label,
+                    span: self.span(start, self.pos),
+                });
+            }),
+            _ => self.expression(block).map(|target| {
+                block.statements.push(Statement::Goto {
+                    target,
+                    span: self.span(start, self.pos),
+                });
+            }),
+        })
+    }
+
+    /// The `[condition]` of IF and WHILE.
+    fn condition(&mut self, block: &mut Block, keyword: &str) -> Read<Expr> {
+        self.skip_blanks();
+        if self.peek() != Some(b'[') {
+            let at = self.pos;
+            return Err(self.fail(
+                block,
+                at,
+                at + 1,
+                format!("{keyword} needs a condition in brackets: {keyword} [#1 GT 0] ..."),
+            ));
+        }
+        let first = block.code.len() as u32;
+        self.bracketed(block, 0)?;
+        Ok(Expr {
+            start: first,
+            end: block.code.len() as u32,
+        })
+    }
+
+    fn read_if(&mut self, block: &mut Block, start: usize) -> Read {
+        let condition = self.condition(block, "IF")?;
+        self.skip_blanks();
+        match self.letters().as_str() {
+            w if w.starts_with("GOTO") => {
+                self.pos += 4;
+                let target = self.expression(block)?;
+                block.statements.push(Statement::IfGoto {
+                    condition,
+                    target,
+                    span: self.span(start, self.pos),
+                });
+                Ok(())
+            }
+            w if w.starts_with("THEN") => {
+                self.pos += 4;
+                self.skip_blanks();
+                if self.peek() != Some(b'#') {
+                    let at = self.pos;
+                    return Err(self.fail(
+                        block,
+                        at,
+                        at + 1,
+                        "THEN must be followed by an assignment (`THEN #1 = 0`)".into(),
+                    ));
+                }
+                let (variable, value) = self.assignment_parts(block)?;
+                block.statements.push(Statement::IfThen {
+                    condition,
+                    variable,
+                    value,
+                    span: self.span(start, self.pos),
+                });
+                Ok(())
+            }
+            _ => {
+                let at = self.pos;
+                Err(self.fail(
+                    block,
+                    at,
+                    at + 1,
+                    "IF [condition] must be followed by GOTO or THEN".into(),
+                ))
+            }
+        }
+    }
+
+    fn read_while(&mut self, block: &mut Block, start: usize) -> Read {
+        let condition = self.condition(block, "WHILE")?;
+        self.skip_blanks();
+        if !self.letters().starts_with("DO") {
+            let at = self.pos;
+            return Err(self.fail(
+                block,
+                at,
+                at + 1,
+                "WHILE [condition] must be followed by DO and a loop number".into(),
+            ));
+        }
+        self.pos += 2;
+        let label = self.loop_label(block, "DO", start)?;
+        block.statements.push(Statement::While {
+            condition: Some(condition),
+            label,
+            span: self.span(start, self.pos),
+        });
+        Ok(())
+    }
+}
+
+/// A variable number written as a constant (`#5221`): whole and in range.
+fn whole_variable_number(n: f64) -> Option<u32> {
+    (n >= 0.0 && n.fract() == 0.0 && n < f64::from(u32::MAX)).then_some(n as u32)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::source::FileId;
+    use crate::syntax::expr::{Expr, Instruction, Op, Statement};
+    use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
+    use crate::syntax::lines::Line;
+    use crate::syntax::Block;
+
+    fn parse(text: &str) -> Vec<Block> {
+        let mut out = LineBlocks::new();
+        let line = Line {
+            text: text.as_bytes(),
+            offset: 0,
+            number: 1,
+        };
+        let options = SyntaxOptions {
+            slash_slash_comments: true,
+            ..SyntaxOptions::default()
+        };
+        parse_line(line, FileId(0), &options, &mut out);
+        out.as_slice().to_vec()
+    }
+
+    /// An expression in postfix, with spaces.
+    fn postfix(expr: Expr, code: &[Instruction]) -> String {
+        expr.of(code)
+            .iter()
+            .map(|i| match i.op {
+                Op::Number(n) => format!("{n}"),
+                Op::Variable(n) => format!("#{n}"),
+                Op::Indirect => "#[]".into(),
+                Op::Negate => "neg".into(),
+                Op::Binary(op) => format!("{op:?}"),
+                Op::Function(f) => format!("{f:?}"),
+                Op::Atan2 => "atan2".into(),
+                Op::Power => "pow".into(),
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    /// The block's statements and words, one per `|`.
+    fn show(text: &str) -> String {
+        let blocks = parse(text);
+        let block = &blocks[0];
+        if let Some(alarm) = block.alarms.first() {
+            return format!("alarm {}: {}", alarm.span.unwrap().start, alarm.message);
+        }
+        let code = &block.code;
+        let mut parts: Vec<String> = block
+            .statements
+            .iter()
+            .map(|s| match *s {
+                Statement::Assign {
+                    variable, value, ..
+                } => format!("#[{}] = {}", postfix(variable, code), postfix(value, code)),
+                Statement::Goto { target, .. } => format!("goto {}", postfix(target, code)),
+                Statement::IfGoto {
+                    condition, target, ..
+                } => format!(
+                    "if {} goto {}",
+                    postfix(condition, code),
+                    postfix(target, code)
+                ),
+                Statement::IfThen {
+                    condition,
+                    variable,
+                    value,
+                    ..
+                } => format!(
+                    "if {} then #[{}] = {}",
+                    postfix(condition, code),
+                    postfix(variable, code),
+                    postfix(value, code)
+                ),
+                Statement::While {
+                    condition, label, ..
+                } => match condition {
+                    Some(c) => format!("while {} do {label}", postfix(c, code)),
+                    None => format!("do {label}"),
+                },
+                Statement::End { label, .. } => format!("end {label}"),
+            })
+            .collect();
+        parts.extend(block.words.iter().map(|w| match w.expr {
+            Some(e) => format!("{}({})", w.letter as char, postfix(e, code)),
+            None => format!("{}{}", w.letter as char, w.number.value),
+        }));
+        parts.join(" | ")
+    }
+
+    #[test]
+    fn assignments_follow_fanuc_precedence() {
+        assert_eq!(show("#1=#2+3*SIN[#4]"), "#[1] = #2 3 #4 Sin Multiply Add");
+        assert_eq!(
+            show("#1 = 1 + 2 * 3 EQ 7"),
+            "#[1] = 1 2 3 Multiply Add 7 Equal"
+        );
+        assert_eq!(show("#1=#2 AND #3 OR #4"), "#[1] = #2 #3 And #4 Or");
+        assert_eq!(show("#1=10 MOD 3 - 1"), "#[1] = 10 3 Modulo 1 Subtract");
+        assert_eq!(show("#1=-#2*-3"), "#[1] = #2 neg 3 neg Multiply");
+        assert_eq!(show("#1=8/4/2"), "#[1] = 8 4 Divide 2 Divide");
+    }
+
+    #[test]
+    fn indirect_variables_and_syntec_assignment() {
+        assert_eq!(show("#4= #[ 2400. + #3026 ]"), "#[4] = 2400 #3026 Add #[]");
+        assert_eq!(show("#[#141]=#5221"), "#[#141] = #5221");
+        assert_eq!(show("#[100]=1"), "#[100] = 1");
+        assert_eq!(show("#30 := #1000;"), "#[30] = #1000");
+    }
+
+    #[test]
+    fn words_take_expressions() {
+        assert_eq!(show("G90G#3Z#18J#1"), "G90 | G(#3) | Z(#18) | J(#1)");
+        assert_eq!(
+            show("X [ - #4 / 2 - #9 ]"),
+            "X(#4 neg 2 Divide #9 Subtract)"
+        );
+        assert_eq!(show("M98 P [ 10 ]"), "M98 | P(10)");
+        assert_eq!(show("G91 A[360.0/#2]"), "G91 | A(360 #2 Divide)");
+        assert_eq!(show("X-#1 Y#[#2]"), "X(#1 neg) | Y(#2 #[])");
+        assert_eq!(show("F[#2*#4]"), "F(#2 #4 Multiply)");
+    }
+
+    #[test]
+    fn control_statements_need_no_spaces() {
+        assert_eq!(show("IF[#1GT#2]GOTO10"), "if #1 #2 Greater goto 10");
+        assert_eq!(show("N41GOTO#22"), "goto #22 | N41");
+        assert_eq!(
+            show("WH[[#1GE#2]OR[#1EQ#2]]DO1"),
+            "while #1 #2 GreaterOrEqual #1 #2 Equal Or do 1"
+        );
+        assert_eq!(
+            show("WHILE [#18 GT #26] DO 2"),
+            "while #18 #26 Greater do 2"
+        );
+        assert_eq!(show("N49END1"), "end 1 | N49");
+        assert_eq!(show("DO3"), "do 3");
+        assert_eq!(
+            show("IF [#1 EQ #0] THEN #3000=1(NEED ROTATION AXIS)"),
+            "if #1 #0 Equal then #[3000] = 1"
+        );
+        assert_eq!(show("IF[#1LT#2]THEN#1=#2"), "if #1 #2 Less then #[1] = #2");
+    }
+
+    #[test]
+    fn functions_and_their_argument_forms() {
+        assert_eq!(show("#1=ATAN[#2]/[#3]"), "#[1] = #2 #3 atan2");
+        assert_eq!(show("#1=ATAN[#2,#3]"), "#[1] = #2 #3 atan2");
+        assert_eq!(show("#1=ATAN[#2]/2"), "#[1] = #2 Atan 2 Divide");
+        assert_eq!(show("#1=POW[2,10]"), "#[1] = 2 10 pow");
+        assert_eq!(
+            show("#1=SQRT[ABS[#2]]+FIX[#3]+FUP[#4]+ROUND[#5]"),
+            "#[1] = #2 Abs Sqrt #3 Fix Add #4 Fup Add #5 Round Add"
+        );
+        assert_eq!(show("#1=#2GESQRT[4]"), "#[1] = #2 4 Sqrt GreaterOrEqual");
+    }
+
+    #[test]
+    fn malformed_macro_text_is_an_alarm_at_its_place() {
+        assert_eq!(
+            show("#1=[1+2"),
+            "alarm 6: expected `]` to close the bracket"
+        );
+        assert_eq!(
+            show("IF[#1]X1"),
+            "alarm 6: IF [condition] must be followed by GOTO or THEN"
+        );
+        assert!(show("#=1").starts_with("alarm 0: `#` needs"));
+        assert!(show("#1 5").starts_with("alarm 0: a variable at the start"));
+        assert!(show("#1=#1-#11:").starts_with("alarm 9: unexpected character"));
+        assert!(show("#1=FOO[1]").starts_with("alarm 3: `FOO` is not a macro function"));
+        assert!(show("DO").starts_with("alarm 0: DO needs a loop number"));
+        let deep = format!("#1={}1{}", "[".repeat(200), "]".repeat(200));
+        assert!(show(&deep).contains("nested too deeply"));
+    }
+
+    #[test]
+    fn double_slash_after_an_operand_is_a_syntec_comment() {
+        assert_eq!(show("#31 := #1004;   // mode backup"), "#[31] = #1004");
+        assert_eq!(show("G#30 G#31;      // restore"), "G(#30) | G(#31)");
+    }
+}
