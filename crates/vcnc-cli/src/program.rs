@@ -1,9 +1,14 @@
 //! Opening a program file: dialect detection and a streaming line source.
 
 use crate::setup::MachineArgs;
+use std::collections::VecDeque;
 use std::fs::File;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::sync::Arc;
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 use vcnc::interp::{DirectoryLibrary, LoadedFiles, PersistentVariables};
 use vcnc::syntax::source::BackgroundParser;
@@ -42,7 +47,7 @@ pub(crate) fn open(
     machine: &Machine,
     mut options: Options,
     setup: &MachineArgs,
-) -> Result<(Batched, ProgramFiles), String> {
+) -> Result<(Interpreted, ProgramFiles), String> {
     let mut head = Vec::with_capacity(4096);
     let file = File::open(path).map_err(|e| format!("cannot open {}: {e}", path.display()))?;
     file.take(4096)
@@ -77,7 +82,7 @@ pub(crate) fn open(
     if let Some(state) = &state {
         interpreter = interpreter.with_persistent_variables(&state.load()?);
     }
-    Ok((Batched::new(interpreter, state), files))
+    Ok((Interpreted::spawn(interpreter, state), files))
 }
 
 /// The machine state file: the persistent macro variables between runs.
@@ -148,78 +153,144 @@ impl StateFile {
     }
 }
 
-/// The interpreter's stream, taken from it a batch at a time ([`Interpreter::next_batch`]) and
-/// handed out one item at a time: the planner pulls items, and batches are the interpreter's
-/// fast path. Persistent variables are saved to the state file as they change (at most twice a
-/// second, so that a killed run keeps what it wrote) and when the run ends.
-pub(crate) struct Batched {
-    interpreter: FileInterpreter,
-    /// The current batch, reversed, so that `pop` gives the next item.
-    items: Vec<Result<Segment, Alarm>>,
-    more: bool,
-    state: Option<StateFile>,
-    saved_writes: u64,
-    saved_at: Instant,
+/// The interpreter's stream, run on a thread of its own and handed over a batch at a time
+/// ([`Interpreter::next_batch`]), one item at a time on this side: interpreting overlaps with
+/// whatever the consumer does (planning, formatting) on the other core. A fixed pool of batch
+/// buffers goes round between the two threads: no allocation after the start, bounded memory.
+/// Persistent variables are saved to the state file as they change (at most twice a second, so
+/// that a killed run keeps what it wrote) and when the interpreter ends; dropping the stream
+/// waits for that.
+pub(crate) struct Interpreted {
+    /// The current batch; its front is the next item.
+    items: VecDeque<Result<Segment, Alarm>>,
+    /// None once the interpreter thread has ended (or is told to, on drop).
+    batches: Option<Receiver<Vec<Result<Segment, Alarm>>>>,
+    recycle: SyncSender<Vec<Result<Segment, Alarm>>>,
+    blocks: Arc<AtomicU64>,
+    thread: Option<JoinHandle<()>>,
 }
 
 /// Segments per batch taken from the interpreter.
 const BATCH: usize = 1024;
 
+/// Batch buffers in circulation between the interpreter's thread and the consumer.
+const POOL: usize = 4;
+
 /// Least time between two saves of the state file while a program runs.
 const SAVE_INTERVAL: Duration = Duration::from_millis(500);
 
-impl Batched {
-    fn new(interpreter: FileInterpreter, state: Option<StateFile>) -> Batched {
-        let saved_writes = interpreter.persistent_writes();
-        Batched {
-            interpreter,
-            items: Vec::with_capacity(BATCH + 64),
-            more: true,
+impl Interpreted {
+    fn spawn(mut interpreter: FileInterpreter, state: Option<StateFile>) -> Interpreted {
+        let (sender, batches) = sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
+        let (recycle, recycled) = sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
+        for _ in 0..POOL {
+            let _ = recycle.try_send(Vec::with_capacity(BATCH + 64));
+        }
+        let blocks = Arc::new(AtomicU64::new(0));
+        let counter = Arc::clone(&blocks);
+        let thread = std::thread::spawn(move || {
+            let mut saver = StateSaver::new(&interpreter, state);
+            // A batch can come back empty (a macro loop that does not move): its buffer is
+            // kept for the next one, so the pool never runs dry.
+            let mut spare = None;
+            while let Some(mut batch) = spare.take().or_else(|| recycled.recv().ok()) {
+                batch.clear();
+                let more = interpreter.next_batch(&mut batch, BATCH);
+                counter.store(interpreter.blocks_executed(), Ordering::Release);
+                if saver.due() {
+                    saver.save(&interpreter);
+                }
+                if batch.is_empty() {
+                    spare = Some(batch);
+                } else if sender.send(batch).is_err() {
+                    break;
+                }
+                if !more {
+                    break;
+                }
+            }
+            saver.save(&interpreter);
+        });
+        Interpreted {
+            items: VecDeque::new(),
+            batches: Some(batches),
+            recycle,
+            blocks,
+            thread: Some(thread),
+        }
+    }
+
+    /// Blocks the interpreter has run so far (all of them once the stream has ended).
+    pub(crate) fn blocks_executed(&self) -> u64 {
+        self.blocks.load(Ordering::Acquire)
+    }
+}
+
+impl Iterator for Interpreted {
+    type Item = Result<Segment, Alarm>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            if let Some(item) = self.items.pop_front() {
+                return Some(item);
+            }
+            let batch = self.batches.as_ref()?.recv();
+            // The emptied buffer goes back; converting between Vec and VecDeque moves nothing.
+            let empty = Vec::from(std::mem::take(&mut self.items));
+            let _ = self.recycle.try_send(empty);
+            match batch {
+                Ok(batch) => self.items = VecDeque::from(batch),
+                Err(_) => {
+                    self.batches = None;
+                    return None;
+                }
+            }
+        }
+    }
+}
+
+impl Drop for Interpreted {
+    fn drop(&mut self) {
+        // Without its receiver the thread's next send fails and it ends, saving the state.
+        self.batches = None;
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
+
+/// Saves the persistent variables when they were written since the last save.
+struct StateSaver {
+    state: Option<StateFile>,
+    saved_writes: u64,
+    saved_at: Instant,
+}
+
+impl StateSaver {
+    fn new(interpreter: &FileInterpreter, state: Option<StateFile>) -> StateSaver {
+        StateSaver {
             state,
-            saved_writes,
+            saved_writes: interpreter.persistent_writes(),
             saved_at: Instant::now(),
         }
     }
 
-    /// Blocks the interpreter has run so far.
-    pub(crate) fn blocks_executed(&self) -> u64 {
-        self.interpreter.blocks_executed()
+    fn due(&self) -> bool {
+        self.state.is_some() && self.saved_at.elapsed() >= SAVE_INTERVAL
     }
 
-    /// Saves the persistent variables if they were written since the last save.
-    fn save_state(&mut self) {
-        let writes = self.interpreter.persistent_writes();
+    fn save(&mut self, interpreter: &FileInterpreter) {
+        let writes = interpreter.persistent_writes();
         if writes == self.saved_writes {
             return;
         }
         if let Some(state) = &self.state {
-            if let Err(e) = state.save(&self.interpreter.persistent_variables()) {
+            if let Err(e) = state.save(&interpreter.persistent_variables()) {
                 eprintln!("vcnc: cannot save state file {}: {e}", state.path.display());
             }
         }
         self.saved_writes = writes;
         self.saved_at = Instant::now();
-    }
-}
-
-impl Drop for Batched {
-    fn drop(&mut self) {
-        self.save_state();
-    }
-}
-
-impl Iterator for Batched {
-    type Item = Result<Segment, Alarm>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        while self.items.is_empty() && self.more {
-            self.more = self.interpreter.next_batch(&mut self.items, BATCH);
-            self.items.reverse();
-            if self.state.is_some() && self.saved_at.elapsed() >= SAVE_INTERVAL {
-                self.save_state();
-            }
-        }
-        self.items.pop()
     }
 }
 

@@ -27,6 +27,21 @@ pub(crate) struct AxisLimits {
     pub(crate) jerk: [f64; AXES],
     /// Path speed cap, mm/s.
     pub(crate) path_speed: f64,
+    /// The reciprocals of the limits above (0 for none), so that projecting them onto a
+    /// direction takes one division, not one per axis.
+    inverse: Inverses,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Inverses {
+    feed: [f64; AXES],
+    rapid: [f64; AXES],
+    acceleration: [f64; AXES],
+    jerk: [f64; AXES],
+}
+
+fn reciprocals(values: &[f64; AXES]) -> [f64; AXES] {
+    values.map(|v| 1.0 / v)
 }
 
 fn positive_or_infinite(value: f64) -> f64 {
@@ -46,12 +61,22 @@ impl AxisLimits {
                     .map_or(f64::INFINITY, |axis| positive_or_infinite(f(axis)) * scale)
             })
         };
+        let feed = field(|a| a.max_feed, 1.0 / 60.0);
+        let rapid = field(|a| a.rapid, 1.0 / 60.0);
+        let acceleration = field(|a| a.acceleration, 1.0);
+        let jerk = field(|a| a.jerk, 1.0);
         AxisLimits {
-            feed: field(|a| a.max_feed, 1.0 / 60.0),
-            rapid: field(|a| a.rapid, 1.0 / 60.0),
-            acceleration: field(|a| a.acceleration, 1.0),
-            jerk: field(|a| a.jerk, 1.0),
+            feed,
+            rapid,
+            acceleration,
+            jerk,
             path_speed: positive_or_infinite(config.max_path_rate) / 60.0,
+            inverse: Inverses {
+                feed: reciprocals(&feed),
+                rapid: reciprocals(&rapid),
+                acceleration: reciprocals(&acceleration),
+                jerk: reciprocals(&jerk),
+            },
         }
     }
 }
@@ -81,19 +106,17 @@ pub(crate) struct MotionLimits {
     pub(crate) stop_scaled: bool,
 }
 
-/// The speed, acceleration and jerk caps of a straight move with per-axis shares `share`
-/// (|direction component| per unit of path).
-fn projected(share: &[f64; AXES], limits: &[f64; AXES]) -> f64 {
-    let mut cap = f64::INFINITY;
+/// The cap a set of per-axis limits puts on the path, for a move with per-axis shares `share`
+/// (|direction component| per unit of path): min over axes of limit / share, from the limits'
+/// reciprocals `inverse`.
+fn projected(share: &[f64; AXES], inverse: &[f64; AXES]) -> f64 {
+    let mut largest = 0.0_f64;
     for i in 0..AXES {
-        if share[i] > 1e-12 {
-            cap = cap.min(limits[i] / share[i]);
-        }
+        largest = largest.max(share[i] * inverse[i]);
     }
-    cap
+    1.0 / largest
 }
 
-/// The path of a move: length and per-axis shares of a straight line.
 /// The lowest acceleration limit among the axes with a share of the motion.
 fn turning_acceleration(share: &[f64; AXES], limits: &[f64; AXES]) -> f64 {
     (0..AXES)
@@ -179,9 +202,9 @@ fn line(
 ) -> MotionLimits {
     let (length, share, direction) = straight_path(motion);
     let rates = if feed.is_some() {
-        &axes.feed
+        &axes.inverse.feed
     } else {
-        &axes.rapid
+        &axes.inverse.rapid
     };
     let axis_speed = projected(&share, rates).min(axes.path_speed);
     let programmed = feed.map(|f| programmed_speed(f, length, feed_override));
@@ -189,14 +212,14 @@ fn line(
         Some(Some(v)) => v.min(axis_speed),
         _ => axis_speed,
     };
-    let acceleration = projected(&share, &axes.acceleration);
+    let acceleration = projected(&share, &axes.inverse.acceleration);
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
     MotionLimits {
         length,
         cruise: cap_short(cruise, length, config),
         path: PathLimits {
             acceleration,
-            jerk: projected(&share, &axes.jerk),
+            jerk: projected(&share, &axes.inverse.jerk),
         },
         turning: turning_acceleration(&share, &axes.acceleration),
         // Only a segment that could have blended is planned with the reduced acceleration.
@@ -254,7 +277,7 @@ fn arc(
     share[a] = p;
     share[b] = p;
     share[n] = q;
-    let axis_speed = projected(&share, &axes.feed).min(axes.path_speed);
+    let axis_speed = projected(&share, &axes.inverse.feed).min(axes.path_speed);
     let plane_acceleration = axes.acceleration[a].min(axes.acceleration[b]);
     // v_planar^2 / r <= share * a, with v_planar = p v.
     let centripetal_speed =
@@ -285,7 +308,7 @@ fn arc(
         t[n] = axial.signum() * q;
         t
     };
-    let acceleration = projected(&share, &axes.acceleration);
+    let acceleration = projected(&share, &axes.inverse.acceleration);
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
     let unblended_share = tangential_room.min(config.unblended_arc_tangential_share);
     let unblended_factor = if continuous {
@@ -298,7 +321,7 @@ fn arc(
         cruise: cap_short(cruise, length, config),
         path: PathLimits {
             acceleration: acceleration * tangential_room,
-            jerk: projected(&share, &axes.jerk),
+            jerk: projected(&share, &axes.inverse.jerk),
         },
         turning: turning_acceleration(&share, &axes.acceleration),
         unblended_acceleration: acceleration * unblended_share * unblended_factor,

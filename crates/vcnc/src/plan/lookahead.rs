@@ -18,7 +18,7 @@
 use super::config::PlannerConfig;
 use super::corner::{junction, Handover};
 use super::limits::{AxisLimits, MotionLimits};
-use super::profile::{reachable_speed, Profile};
+use super::profile::{reachable_speed_up_to, Profile};
 use crate::alarm::Alarm;
 use crate::motion::Segment;
 use std::collections::VecDeque;
@@ -181,9 +181,7 @@ impl Window {
         {
             let limits = &planned.limits;
             let entry =
-                planned
-                    .max_entry
-                    .min(reachable_speed(next_entry, limits.length, limits.path));
+                reachable_speed_up_to(next_entry, planned.max_entry, limits.length, limits.path);
             if entry == planned.backward {
                 return;
             }
@@ -195,28 +193,29 @@ impl Window {
     /// Entry and exit speeds from the fixed speed at the window's front, as far as the first
     /// motion after the released slots (whose entry is the last released motion's exit).
     fn forward_pass(&mut self, release: usize) {
-        let mut reachable = self.start_speed;
-        let mut first = true;
         let mut previous: Option<&mut Planned> = None;
         for (index, slot) in self.slots.iter_mut().enumerate() {
             let Some(planned) = slot.planned.as_mut() else {
                 continue;
             };
             // The first motion continues from a motion that has already left: its entry is fixed.
-            planned.entry = if first {
-                self.start_speed
-            } else {
-                planned.backward.min(reachable)
+            planned.entry = match previous.take() {
+                None => self.start_speed,
+                Some(previous) => {
+                    let limits = &previous.limits;
+                    let entry = reachable_speed_up_to(
+                        previous.entry,
+                        planned.backward,
+                        limits.length,
+                        limits.path,
+                    );
+                    previous.exit = entry;
+                    entry
+                }
             };
-            first = false;
-            if let Some(previous) = previous.take() {
-                previous.exit = planned.entry;
-            }
             if index >= release {
                 return;
             }
-            let limits = &planned.limits;
-            reachable = reachable_speed(planned.entry, limits.length, limits.path);
             previous = Some(planned);
         }
         // The window ends in a stop.

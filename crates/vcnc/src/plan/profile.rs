@@ -153,6 +153,38 @@ pub(crate) fn reachable_speed(speed: f64, distance: f64, limits: PathLimits) -> 
     }
 }
 
+/// The highest speed reachable from `speed` over `distance`, but no more than `cap`. When the
+/// cap can be reached (the common case: a corner or the feed limits the speed, not the room to
+/// accelerate), one ramp distance settles it, without solving for the reachable speed.
+pub(crate) fn reachable_speed_up_to(
+    speed: f64,
+    cap: f64,
+    distance: f64,
+    limits: PathLimits,
+) -> f64 {
+    if cap <= speed {
+        return cap;
+    }
+    if ramp_distance(speed, cap, limits) <= distance {
+        return cap;
+    }
+    reachable_speed(speed, distance, limits).min(cap)
+}
+
+/// The distance of the fastest ramp from `from` up to `to` (the same as [`Ramp::distance`]).
+fn ramp_distance(from: f64, to: f64, limits: PathLimits) -> f64 {
+    let change = to - from;
+    let a = limits.acceleration;
+    let duration = if limits.is_trapezoid() {
+        change / a
+    } else if change >= limits.full_acceleration_change() {
+        change / a + a / limits.jerk
+    } else {
+        2.0 * (change / limits.jerk).sqrt()
+    };
+    0.5 * (from + to) * duration
+}
+
 /// The real root of s^3 + p s - q = 0 for p >= 0, q >= 0 (Cardano, then one Newton step for
 /// the cancellation in its second term when p is large).
 fn jerk_cubic_root(p: f64, q: f64) -> f64 {
@@ -186,9 +218,12 @@ pub struct Profile {
     pub limits: PathLimits,
     /// A stretch at the entry speed before the ramps (a corner blend's arc), s.
     lead_in_time: f64,
-    up: Ramp,
-    down: Ramp,
+    /// Durations of the ramp up to the peak, the cruise, and the ramp down. The ramps themselves
+    /// are rebuilt when a profile is sampled: a profile travels with every timed segment, so it
+    /// is kept small.
+    up_time: f64,
     cruise_time: f64,
+    down_time: f64,
 }
 
 impl Profile {
@@ -220,9 +255,9 @@ impl Profile {
             exit,
             limits,
             lead_in_time: 0.0,
-            up,
-            down,
+            up_time: up.duration(),
             cruise_time,
+            down_time: down.duration(),
         }
     }
 
@@ -239,7 +274,7 @@ impl Profile {
 
     /// Seconds the segment takes.
     pub fn duration(&self) -> f64 {
-        self.lead_in_time + self.up.duration() + self.cruise_time + self.down.duration()
+        self.lead_in_time + self.up_time + self.cruise_time + self.down_time
     }
 
     /// Path speed `t` seconds into the segment.
@@ -248,13 +283,13 @@ impl Profile {
             return self.entry;
         }
         let t = t - self.lead_in_time;
-        let (t_up, t_cruise) = (self.up.duration(), self.cruise_time);
+        let (t_up, t_cruise) = (self.up_time, self.cruise_time);
         if t <= t_up {
-            self.up.velocity_at(t)
+            Ramp::new(self.entry, self.peak, self.limits).velocity_at(t)
         } else if t <= t_up + t_cruise {
             self.peak
         } else {
-            self.down.velocity_at(t - t_up - t_cruise)
+            Ramp::new(self.peak, self.exit, self.limits).velocity_at(t - t_up - t_cruise)
         }
     }
 
@@ -264,13 +299,13 @@ impl Profile {
             return 0.0;
         }
         let t = t - self.lead_in_time;
-        let (t_up, t_cruise) = (self.up.duration(), self.cruise_time);
+        let (t_up, t_cruise) = (self.up_time, self.cruise_time);
         if t <= t_up {
-            self.up.acceleration_at(t)
+            Ramp::new(self.entry, self.peak, self.limits).acceleration_at(t)
         } else if t <= t_up + t_cruise {
             0.0
         } else {
-            self.down.acceleration_at(t - t_up - t_cruise)
+            Ramp::new(self.peak, self.exit, self.limits).acceleration_at(t - t_up - t_cruise)
         }
     }
 }
@@ -371,8 +406,20 @@ mod tests {
     fn an_unequal_s_curve_profile_fits_its_length() {
         for (entry, exit, length) in [(0.0, 30.0, 2.0), (50.0, 5.0, 3.0), (10.0, 12.0, 0.5)] {
             let profile = Profile::new(length, entry, exit, 1000.0, S_CURVE);
-            let covered = profile.up.distance() + profile.down.distance();
+            let up = Ramp::new(entry, profile.peak, S_CURVE);
+            let covered = up.distance() + Ramp::new(profile.peak, exit, S_CURVE).distance();
             assert!((covered - length).abs() < 1e-9, "{entry} {exit} {length}");
+        }
+    }
+
+    #[test]
+    fn a_capped_reach_is_the_cap_or_the_reachable_speed() {
+        for limits in [TRAPEZOID, S_CURVE] {
+            for (from, cap, distance) in [(0.0, 50.0, 0.1), (0.0, 50.0, 100.0), (30.0, 10.0, 1.0)] {
+                let capped = reachable_speed_up_to(from, cap, distance, limits);
+                let expected = reachable_speed(from, distance, limits).min(cap);
+                assert!(close(capped, expected), "{from} {cap} {distance}");
+            }
         }
     }
 
