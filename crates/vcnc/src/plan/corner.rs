@@ -13,16 +13,23 @@
 //! (LinuxCNC's plain G64).
 
 use super::config::PlannerConfig;
-use super::limits::MotionLimits;
+use super::limits::{MotionLimits, Tangents};
 use crate::motion::{Move, PathMode, Segment, SegmentKind};
 
 /// Turns smaller than this (radians) are tangent: no corner at all.
 const TANGENT_ANGLE: f64 = 1e-6;
 
-/// How a motion ends, as far as the next one is concerned.
+/// How a motion meets its neighbours, as far as a junction is concerned: small, because the
+/// last one is kept for the next junction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Handover {
-    pub(crate) limits: MotionLimits,
+    tangents: Tangents,
+    /// The motion's whole length, mm (before any blend shortens it).
+    length: f64,
+    /// Its cruise speed, mm/s.
+    pub(crate) cruise: f64,
+    /// Its turning acceleration (see [`MotionLimits::turning`]), mm/s^2.
+    turning: f64,
     rapid: bool,
     per_axis_rapid: bool,
     /// The block asks for an exact stop at its end (G61, G63 or G09).
@@ -30,13 +37,21 @@ pub(crate) struct Handover {
 }
 
 impl Handover {
-    pub(crate) fn new(segment: &Segment, motion: &Move, limits: MotionLimits) -> Handover {
+    pub(crate) fn new(
+        segment: &Segment,
+        motion: &Move,
+        limits: &MotionLimits,
+        tangents: Tangents,
+    ) -> Handover {
         let (rapid, per_axis_rapid) = match segment.kind {
             SegmentKind::Rapid { per_axis, .. } => (true, per_axis),
             _ => (false, false),
         };
         Handover {
-            limits,
+            tangents,
+            length: limits.length,
+            cruise: limits.cruise,
+            turning: limits.turning,
             rapid,
             per_axis_rapid,
             exact_stop: motion.exact_stop
@@ -92,7 +107,7 @@ pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig)
     if prev.rapid != next.rapid && config.stop_between_rapid_and_feed {
         return Junction::STOP;
     }
-    let (u, w) = (prev.limits.end_direction, next.limits.start_direction);
+    let (u, w) = (prev.tangents.end, next.tangents.start);
     let cos_turn = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
     if cos_turn.is_nan() {
         return Junction::STOP;
@@ -118,16 +133,18 @@ pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig)
     } else {
         f64::INFINITY
     };
-    let shorter = prev.limits.length.min(next.limits.length);
+    let shorter = prev.length.min(next.length);
     let by_length = config.blend_length_share * shorter / tan_half;
     // The blend turns in the plane of the two moves: each axis that moves may carry the whole
     // normal acceleration somewhere on it.
-    let acceleration = prev.limits.turning.min(next.limits.turning);
+    let acceleration = prev.turning.min(next.turning);
     let normal = config.normal_acceleration_share * acceleration;
     // No larger arc than the speed of the two segments needs: it would only cut more corner.
-    let wanted = prev.limits.cruise.min(next.limits.cruise);
+    let wanted = prev.cruise.min(next.cruise);
     let radius = by_tolerance.min(by_length).min(wanted * wanted / normal);
-    let turn = 2.0 * sin_half.atan2(cos_half);
+    // The half turn is below a right angle here, so its tangent is finite: atan of one number
+    // costs less than atan2.
+    let turn = 2.0 * tan_half.atan();
     Junction {
         speed: (normal * radius).sqrt(),
         leg: radius * tan_half,
@@ -139,24 +156,16 @@ pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plan::profile::PathLimits;
 
     fn handover(direction: [f64; 3], exact_stop: bool) -> Handover {
         Handover {
-            limits: MotionLimits {
-                length: 100.0,
-                cruise: 100.0,
-                path: PathLimits {
-                    acceleration: 1000.0,
-                    jerk: f64::INFINITY,
-                },
-                unblended_acceleration: 1000.0,
-                turning: 1000.0,
-                start_direction: direction,
-                end_direction: direction,
-                feed_unknown: false,
-                stop_scaled: false,
+            tangents: Tangents {
+                start: direction,
+                end: direction,
             },
+            length: 100.0,
+            cruise: 100.0,
+            turning: 1000.0,
             rapid: false,
             per_axis_rapid: false,
             exact_stop,

@@ -97,13 +97,19 @@ pub(crate) struct MotionLimits {
     /// Acceleration available for turning (corner blends): the lowest limit of the axes that
     /// move, mm/s^2.
     pub(crate) turning: f64,
-    /// Unit tangent over X Y Z at the start and at the end (zero for a move without XYZ travel).
-    pub(crate) start_direction: [f64; 3],
-    pub(crate) end_direction: [f64; 3],
     /// The feed could not be known (G95 without a spindle speed): timed at the axis limit.
     pub(crate) feed_unknown: bool,
     /// The acceleration has been scaled for a stop at one of its ends.
     pub(crate) stop_scaled: bool,
+}
+
+/// Unit tangents over X Y Z at the start and at the end of a motion (zero for a move without
+/// XYZ travel): what the junctions with its neighbours need. Kept apart from [`MotionLimits`],
+/// which stays in the look-ahead window for the whole passage of the motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Tangents {
+    pub(crate) start: [f64; 3],
+    pub(crate) end: [f64; 3],
 }
 
 /// The cap a set of per-axis limits puts on the path, for a move with per-axis shares `share`
@@ -112,17 +118,24 @@ pub(crate) struct MotionLimits {
 fn projected(share: &[f64; AXES], inverse: &[f64; AXES]) -> f64 {
     let mut largest = 0.0_f64;
     for i in 0..AXES {
-        largest = largest.max(share[i] * inverse[i]);
+        // A plain comparison, not f64::max: no NaN can reach here, and it is one instruction.
+        let demand = share[i] * inverse[i];
+        if demand > largest {
+            largest = demand;
+        }
     }
     1.0 / largest
 }
 
 /// The lowest acceleration limit among the axes with a share of the motion.
 fn turning_acceleration(share: &[f64; AXES], limits: &[f64; AXES]) -> f64 {
-    (0..AXES)
-        .filter(|&i| share[i] > 1e-12)
-        .map(|i| limits[i])
-        .fold(f64::INFINITY, f64::min)
+    let mut lowest = f64::INFINITY;
+    for i in 0..AXES {
+        if share[i] > 1e-12 && limits[i] < lowest {
+            lowest = limits[i];
+        }
+    }
+    lowest
 }
 
 fn straight_path(motion: &Move) -> (f64, [f64; AXES], [f64; 3]) {
@@ -137,9 +150,10 @@ fn straight_path(motion: &Move) -> (f64, [f64; AXES], [f64; 3]) {
     if length <= 1e-12 {
         return (0.0, [0.0; AXES], [0.0; 3]);
     }
-    let share = std::array::from_fn(|i| (delta[i] / length).abs());
+    let per_length = 1.0 / length;
+    let share = delta.map(|d| (d * per_length).abs());
     let direction = if linear > 1e-9 {
-        [delta[0] / linear, delta[1] / linear, delta[2] / linear]
+        [delta[0], delta[1], delta[2]].map(|d| d * per_length)
     } else {
         [0.0; 3]
     };
@@ -160,7 +174,7 @@ impl MotionLimits {
         axes: &AxisLimits,
         config: &PlannerConfig,
         feed_override: f64,
-    ) -> Option<MotionLimits> {
+    ) -> Option<(MotionLimits, Tangents)> {
         match &segment.kind {
             SegmentKind::Rapid { motion, .. } => Some(line(motion, None, axes, config, 1.0)),
             SegmentKind::Line { motion, feed } => {
@@ -169,7 +183,7 @@ impl MotionLimits {
             SegmentKind::Arc { .. } => arc(segment, axes, config, feed_override),
             _ => None,
         }
-        .map(MotionLimits::bounded)
+        .map(|(limits, tangents)| (limits.bounded(), tangents))
     }
 
     /// Scales the acceleration for a stop at one end (see
@@ -199,7 +213,7 @@ fn line(
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
-) -> MotionLimits {
+) -> (MotionLimits, Tangents) {
     let (length, share, direction) = straight_path(motion);
     let rates = if feed.is_some() {
         &axes.inverse.feed
@@ -214,7 +228,7 @@ fn line(
     };
     let acceleration = projected(&share, &axes.inverse.acceleration);
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
-    MotionLimits {
+    let limits = MotionLimits {
         length,
         cruise: cap_short(cruise, length, config),
         path: PathLimits {
@@ -228,11 +242,14 @@ fn line(
         } else {
             acceleration
         },
-        start_direction: direction,
-        end_direction: direction,
         feed_unknown: matches!(programmed, Some(None)),
         stop_scaled: false,
-    }
+    };
+    let tangents = Tangents {
+        start: direction,
+        end: direction,
+    };
+    (limits, tangents)
 }
 
 /// LinuxCNC spends at least a fixed time on a segment, whatever its length.
@@ -249,7 +266,7 @@ fn arc(
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
-) -> Option<MotionLimits> {
+) -> Option<(MotionLimits, Tangents)> {
     let SegmentKind::Arc {
         motion,
         center,
@@ -316,7 +333,7 @@ fn arc(
     } else {
         1.0
     };
-    Some(MotionLimits {
+    let limits = MotionLimits {
         length,
         cruise: cap_short(cruise, length, config),
         path: PathLimits {
@@ -325,11 +342,14 @@ fn arc(
         },
         turning: turning_acceleration(&share, &axes.acceleration),
         unblended_acceleration: acceleration * unblended_share * unblended_factor,
-        start_direction: tangent(&motion.from.0),
-        end_direction: tangent(&motion.to.0),
         feed_unknown: programmed.is_none(),
         stop_scaled: false,
-    })
+    };
+    let tangents = Tangents {
+        start: tangent(&motion.from.0),
+        end: tangent(&motion.to.0),
+    };
+    Some((limits, tangents))
 }
 
 /// A rapid with each axis at its own rate (a dog-leg): every axis starts and stops on its own,

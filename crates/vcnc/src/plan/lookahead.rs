@@ -17,7 +17,7 @@
 
 use super::config::PlannerConfig;
 use super::corner::{junction, Handover};
-use super::limits::{AxisLimits, MotionLimits};
+use super::limits::{AxisLimits, MotionLimits, Tangents};
 use super::profile::{reachable_speed_up_to, Profile};
 use crate::alarm::Alarm;
 use crate::motion::Segment;
@@ -96,17 +96,17 @@ impl Window {
     pub(crate) fn push_motion(
         &mut self,
         segment: Segment,
-        limits: Option<MotionLimits>,
+        limits: Option<(MotionLimits, Tangents)>,
         config: &PlannerConfig,
     ) {
         let planned = match (limits, segment.motion()) {
-            (Some(mut limits), Some(motion)) if limits.length > 0.0 => {
-                let handover = Handover::new(&segment, motion, limits);
+            (Some((mut limits, tangents)), Some(motion)) if limits.length > 0.0 => {
+                let handover = Handover::new(&segment, motion, &limits, tangents);
                 let mut max_entry = 0.0;
                 let mut lead_in = 0.0;
                 if let Some(prev) = &self.last {
                     let junction = junction(prev, &handover, config);
-                    max_entry = junction.speed.min(prev.limits.cruise).min(limits.cruise);
+                    max_entry = junction.speed.min(prev.cruise).min(limits.cruise);
                     limits.length = (limits.length - junction.leg).max(0.0);
                     lead_in = junction.arc;
                     let stop_factor = if junction.corner_stop {
@@ -140,6 +140,10 @@ impl Window {
     }
 
     fn last_planned(&mut self) -> Option<&mut Planned> {
+        // Almost always the last slot; a search only behind an alarm or a zero-length motion.
+        if self.slots.back().is_some_and(|s| s.planned.is_some()) {
+            return self.slots.back_mut().and_then(|s| s.planned.as_mut());
+        }
         self.slots.iter_mut().rev().find_map(|s| s.planned.as_mut())
     }
 

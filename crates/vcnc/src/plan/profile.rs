@@ -82,6 +82,7 @@ impl Ramp {
 
     /// Distance covered. The acceleration is symmetric about the ramp's middle, so the speed is
     /// point-symmetric there and the mean speed is the mean of the two ends.
+    #[cfg(test)]
     pub(crate) fn distance(&self) -> f64 {
         0.5 * (self.from + self.to) * self.duration()
     }
@@ -171,18 +172,25 @@ pub(crate) fn reachable_speed_up_to(
     reachable_speed(speed, distance, limits).min(cap)
 }
 
-/// The distance of the fastest ramp from `from` up to `to` (the same as [`Ramp::distance`]).
-fn ramp_distance(from: f64, to: f64, limits: PathLimits) -> f64 {
-    let change = to - from;
+/// Seconds of the fastest ramp between `from` and `to` (the same as [`Ramp::duration`], without
+/// building the ramp).
+fn ramp_time(from: f64, to: f64, limits: PathLimits) -> f64 {
+    let change = (to - from).abs();
     let a = limits.acceleration;
-    let duration = if limits.is_trapezoid() {
+    if change <= 0.0 || a <= 0.0 {
+        0.0
+    } else if limits.is_trapezoid() {
         change / a
     } else if change >= limits.full_acceleration_change() {
         change / a + a / limits.jerk
     } else {
         2.0 * (change / limits.jerk).sqrt()
-    };
-    0.5 * (from + to) * duration
+    }
+}
+
+/// The distance of the fastest ramp between `from` and `to` (the same as [`Ramp::distance`]).
+fn ramp_distance(from: f64, to: f64, limits: PathLimits) -> f64 {
+    0.5 * (from + to) * ramp_time(from, to, limits)
 }
 
 /// The real root of s^3 + p s - q = 0 for p >= 0, q >= 0 (Cardano, then one Newton step for
@@ -239,10 +247,21 @@ impl Profile {
         };
         let length = length.max(0.0);
         let cruise = cruise.min(HUGE_SPEED).max(entry).max(exit);
-        let peak = peak_speed(length, entry, exit, cruise, limits);
-        let up = Ramp::new(entry, peak, limits);
-        let down = Ramp::new(peak, exit, limits);
-        let rest = length - up.distance() - down.distance();
+        // Most segments reach their cruise speed: the ramps to it settle the profile.
+        let (mut up_time, mut down_time) = (
+            ramp_time(entry, cruise, limits),
+            ramp_time(cruise, exit, limits),
+        );
+        let mut rest = length - 0.5 * ((entry + cruise) * up_time + (cruise + exit) * down_time);
+        let mut peak = cruise;
+        if rest < 0.0 {
+            peak = peak_speed(length, entry, exit, cruise, limits);
+            (up_time, down_time) = (
+                ramp_time(entry, peak, limits),
+                ramp_time(peak, exit, limits),
+            );
+            rest = length - 0.5 * ((entry + peak) * up_time + (peak + exit) * down_time);
+        }
         let cruise_time = if rest > 0.0 && peak > 0.0 {
             rest / peak
         } else {
@@ -255,9 +274,9 @@ impl Profile {
             exit,
             limits,
             lead_in_time: 0.0,
-            up_time: up.duration(),
+            up_time,
             cruise_time,
-            down_time: down.duration(),
+            down_time,
         }
     }
 
@@ -314,9 +333,7 @@ impl Profile {
 /// the length, otherwise the speed at which they meet.
 fn peak_speed(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimits) -> f64 {
     let low = entry.max(exit);
-    let needed = |peak: f64| {
-        Ramp::new(entry, peak, limits).distance() + Ramp::new(peak, exit, limits).distance()
-    };
+    let needed = |peak: f64| ramp_distance(entry, peak, limits) + ramp_distance(peak, exit, limits);
     if needed(cruise) <= length {
         return cruise;
     }
@@ -419,6 +436,17 @@ mod tests {
                 let capped = reachable_speed_up_to(from, cap, distance, limits);
                 let expected = reachable_speed(from, distance, limits).min(cap);
                 assert!(close(capped, expected), "{from} {cap} {distance}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_ramp_shortcuts_agree_with_the_ramp() {
+        for limits in [TRAPEZOID, S_CURVE] {
+            for (from, to) in [(0.0, 100.0), (100.0, 10.0), (30.0, 31.0), (5.0, 5.0)] {
+                let ramp = Ramp::new(from, to, limits);
+                assert!(close(ramp_time(from, to, limits), ramp.duration()));
+                assert!(close(ramp_distance(from, to, limits), ramp.distance()));
             }
         }
     }
