@@ -40,6 +40,9 @@ struct Example {
     lines: Option<Vec<usize>>,
     #[serde(default)]
     tool_lengths: BTreeMap<String, f64>,
+    /// Radius offsets by offset number (the D cells).
+    #[serde(default)]
+    tool_radii: BTreeMap<String, f64>,
     #[serde(default)]
     work_offsets: BTreeMap<String, Point>,
     #[serde(default)]
@@ -80,6 +83,17 @@ impl Example {
                     ..ToolOffset::default()
                 },
             );
+        }
+        for (number, radius) in &self.tool_radii {
+            let number: u32 = number.parse().expect("tool_radii keys are numbers");
+            machine
+                .tool_offsets
+                .entry(number)
+                .or_insert(ToolOffset {
+                    number,
+                    ..ToolOffset::default()
+                })
+                .radius = *radius;
         }
         for (key, offset) in &self.work_offsets {
             let id = WorkOffsetId::parse(key)

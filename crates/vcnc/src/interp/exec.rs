@@ -382,7 +382,7 @@ impl Executor {
         match self.modal.motion {
             MotionMode::Rapid => self.rapid_to(machine_target, cmd, out),
             // A line that ends where it starts moves nothing (and needs no feed).
-            MotionMode::Linear if machine_target == self.position => Ok(()),
+            MotionMode::Linear if same_place(&machine_target, &self.position) => Ok(()),
             MotionMode::Linear => {
                 let feed = self.cutting_feed(cmd)?;
                 let motion = self.move_to(machine_target, cmd)?;
@@ -405,7 +405,7 @@ impl Executor {
         cmd: &Command,
         out: &mut Output,
     ) -> Result<(), Alarm> {
-        if to == self.position {
+        if same_place(&to, &self.position) {
             return Ok(());
         }
         let per_axis = self.profile.rapid_path == crate::profile::RapidPath::PerAxis;
@@ -505,4 +505,11 @@ pub(crate) fn end_program(cmd: &Command, kind: EndKind, out: &mut Output) -> Flo
 /// An M00/M01 stop.
 pub(crate) fn stop(cmd: &Command, kind: StopKind, out: &mut Output) {
     out.push(cmd, SegmentKind::Stop { kind });
+}
+
+/// Two machine positions the control cannot tell apart: every axis within a millionth of the
+/// finest input increment. Rotations and scaling leave rounding of about 1e-14 mm on a point the
+/// program meant to repeat; a real control, counting in increments, does not move there.
+pub(crate) fn same_place(a: &[f64; AXES], b: &[f64; AXES]) -> bool {
+    a.iter().zip(b).all(|(p, q)| (p - q).abs() <= 1e-10)
 }
