@@ -199,7 +199,16 @@ fn called_programs_come_from_a_lib_directory_and_alarms_show_their_file() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    assert!(String::from_utf8_lossy(&out.stdout).contains("\"x\":5"));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    // The move comes from line 2 of the called program, and its record says so.
+    let moved = stdout
+        .lines()
+        .find(|l| l.contains("\"x\":5"))
+        .expect("the called program moves to X5");
+    assert!(moved.contains("O7001.nc\""), "{moved}");
+    assert!(moved.contains("\"line\":2,"), "{moved}");
+    let end = stdout.lines().last().unwrap_or_default();
+    assert!(end.contains("calls.nc\""), "{end}");
     let bad = temp_program("calls_bad.nc", "M98 P7002\nM30\n");
     let out = vcnc(&["check", "--lib", &lib, &bad]);
     assert_eq!(out.status.code(), Some(1));

@@ -8,13 +8,14 @@
 
 use super::{Outcome, SetupError};
 use crate::numbers::{OutBuffer, Remembered};
+use crate::program::ProgramFiles;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
 use vcnc::motion::{EndKind, Feed, Move, SpindleState, StopKind};
 use vcnc::plan::{Planner, TimedSegment};
-use vcnc::{Alarm, Axis, Segment, SegmentKind};
+use vcnc::{Alarm, Axis, FileId, Segment, SegmentKind};
 
 /// Output format of the trace.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -49,18 +50,17 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         .into_iter()
         .filter(|a| machine.has_axis(*a))
         .collect();
-    let file_name = args.program.display().to_string();
     let mut writer = Writer {
         out: OutBuffer::new(1 << 16),
         memory: [Remembered::default(); 7],
-        file_json: format!(
-            ",\"file\":{}",
-            serde_json::to_string(&file_name).unwrap_or_else(|_| "\"\"".into())
-        ),
-        file_csv: csv_field(&file_name),
+        files: files.clone(),
+        file: FileId(0),
+        file_json: String::new(),
+        file_csv: String::new(),
         rotary,
         work: args.work,
     };
+    writer.set_file(FileId(0));
     if args.format == Format::Csv {
         writer.csv_header();
     }
@@ -147,6 +147,10 @@ struct Writer {
     out: OutBuffer,
     /// The text of the last x y z a b c and f written: most records repeat some of them.
     memory: [Remembered; 7],
+    /// The program files, for the name of a called program's file.
+    files: ProgramFiles,
+    /// The file of the last record, and its name as a JSON field and as a CSV field.
+    file: FileId,
     file_json: String,
     file_csv: String,
     rotary: Vec<Axis>,
@@ -220,6 +224,17 @@ fn feed_mm_per_min(feed: &Feed, segment: &Segment) -> Option<f64> {
 }
 
 impl Writer {
+    /// Makes `file` the file named in the records; segments of a called program name its file.
+    fn set_file(&mut self, file: FileId) {
+        let name = self.files.path(file).display().to_string();
+        self.file = file;
+        self.file_json = format!(
+            ",\"file\":{}",
+            serde_json::to_string(&name).unwrap_or_else(|_| "\"\"".into())
+        );
+        self.file_csv = csv_field(&name);
+    }
+
     /// Writes a key given as its full prefix, `,"x":` (see [`key!`]); inlined, so that the
     /// constant prefix is copied without a call.
     #[inline(always)]
@@ -249,6 +264,9 @@ impl Writer {
 
     fn jsonl(&mut self, timed: &TimedSegment) {
         let segment = &timed.segment;
+        if segment.span.file != self.file {
+            self.set_file(segment.span.file);
+        }
         let record = record(segment);
         self.out.start_record(self.file_json.len());
         self.out.put_in_record(record.head);
@@ -335,6 +353,9 @@ impl Writer {
 
     fn csv(&mut self, timed: &TimedSegment) {
         let segment = &timed.segment;
+        if segment.span.file != self.file {
+            self.set_file(segment.span.file);
+        }
         let record = record(segment);
         self.out.put(record.kind.as_bytes());
         self.out.byte(b',');
