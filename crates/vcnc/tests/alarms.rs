@@ -16,15 +16,15 @@ fn first_alarm(program: &str) -> (AlarmCode, u32, String, String) {
 
 #[test]
 fn a_code_planned_for_later_is_named_with_its_issue() {
-    let alarm = interpret_str("G0 X1.\nG12.1\n", &Machine::default(), Options::default())
+    let alarm = interpret_str("G0 X1.\nG08 P1\n", &Machine::default(), Options::default())
         .find_map(Result::err)
         .unwrap();
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
     assert_eq!(
         alarm.message,
-        "G12.1 (polar coordinate interpolation) is not supported yet"
+        "G08 (look-ahead control) is not supported yet"
     );
-    assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #5"));
+    assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #6"));
     assert_eq!(alarm.span.unwrap().line, 2);
     assert_eq!(alarm.severity, Severity::Error);
 }

@@ -165,6 +165,17 @@ impl Command {
         })
     }
 
+    /// Moves the word of axis `from`, if any, to the slot of axis `to`, which must be empty: in
+    /// G12.1 the rotary axis's address names the plane's hypothetical second axis.
+    pub(crate) fn move_axis_word(&mut self, from: Axis, to: Axis) {
+        let slot = |axis: Axis| usize::from(axis.letter() - b'A');
+        let (from, to) = (slot(from), slot(to));
+        if self.letters[from] != 0 {
+            self.letters[to] = std::mem::take(&mut self.letters[from]);
+            self.axis_mask = (self.axis_mask & !AXIS_BIT[from]) | AXIS_BIT[to];
+        }
+    }
+
     /// True when S, T or an M code is present: the block has auxiliary functions to run.
     pub(crate) fn has_auxiliary_words(&self) -> bool {
         !self.m.is_empty() || self.s().is_some() || self.t().is_some()

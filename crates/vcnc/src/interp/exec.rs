@@ -152,13 +152,19 @@ impl Executor {
             Some(GCode::PolarCancel) => super::polar::g15(self),
             _ => {}
         }
+        let polar_interpolation = cmd.group(Group::PolarInterpolation);
+        if let Some(g) = polar_interpolation {
+            super::polar_interp::switch(self, cmd, g, out)?;
+        }
         match rotation {
             Some(GCode::Rotate) => super::rotation::g68(self, cmd)?,
             Some(GCode::RotationCancel) => super::rotation::g69(self),
             _ => {}
         }
-        // The axis words of a G68, G51 or G51.1 block are its centre.
-        let consumed = rotation == Some(GCode::Rotate)
+        // The axis words of a G68, G51 or G51.1 block are its centre, those of G12.1 its
+        // eccentricity.
+        let consumed = polar_interpolation.is_some()
+            || rotation == Some(GCode::Rotate)
             || scaling == Some(GCode::Scale)
             || mirror == Some(GCode::Mirror)
             || match non_modal.map(|g| g.code) {

@@ -25,6 +25,7 @@ mod length;
 mod macros;
 pub mod modal;
 mod polar;
+mod polar_interp;
 mod position_offset;
 mod reference;
 mod rotation;
@@ -79,6 +80,22 @@ pub(crate) struct Output {
     pub(crate) comp: Option<comp::Compensator>,
     /// An alarm raised while queueing (a corner compensation cannot make): it ends the run.
     failed: Option<Alarm>,
+    /// G12.1 in force: what compensation releases waits here to be turned into X-C motion, and
+    /// `items` and `held` receive only what it has converted.
+    pub(crate) polar_interp: Option<Box<polar_interp::PolarStage>>,
+}
+
+/// Where compensation and the executor put their items: the queue, or the polar coordinate
+/// interpolation stage in front of it while G12.1 is on.
+fn queue<'a>(
+    items: &'a mut Vec<Result<Segment, Alarm>>,
+    held: &'a mut Option<usize>,
+    polar_interp: &'a mut Option<Box<polar_interp::PolarStage>>,
+) -> (&'a mut Vec<Result<Segment, Alarm>>, &'a mut Option<usize>) {
+    match polar_interp.as_deref_mut() {
+        Some(stage) => (&mut stage.staged, &mut stage.held),
+        None => (items, held),
+    }
 }
 
 impl Output {
@@ -87,16 +104,17 @@ impl Output {
     pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
         match self.comp.as_mut() {
             // Built where it goes: a segment is a few hundred bytes, and this runs per move.
-            None => self.items.push(Ok(Segment {
+            None if self.polar_interp.is_none() => self.items.push(Ok(Segment {
                 kind,
                 span: cmd.span,
                 sequence: cmd.sequence,
             })),
-            Some(_) => self.push_compensated(cmd, kind),
+            _ => self.push_compensated(cmd, kind),
         }
     }
 
-    /// A segment through cutter compensation (kept out of line: the plain path is the hot one).
+    /// A segment through cutter compensation and polar coordinate interpolation, whichever is on
+    /// (kept out of line: the plain path is the hot one).
     #[inline(never)]
     fn push_compensated(&mut self, cmd: &Command, kind: SegmentKind) {
         let segment = Segment {
@@ -104,10 +122,22 @@ impl Output {
             span: cmd.span,
             sequence: cmd.sequence,
         };
-        if let Some(comp) = self.comp.as_mut() {
-            if let Err(alarm) = comp.push(segment, &mut self.items, &mut self.held) {
-                self.failed.get_or_insert(alarm);
+        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        match self.comp.as_mut() {
+            Some(comp) => {
+                if let Err(alarm) = comp.push(segment, items, held) {
+                    self.failed.get_or_insert(alarm);
+                }
             }
+            None => items.push(Ok(segment)),
+        }
+        self.settle_polar_interp();
+    }
+
+    /// Converts what compensation has released into X-C motion, while G12.1 is on.
+    fn settle_polar_interp(&mut self) {
+        if let Some(stage) = self.polar_interp.as_deref_mut() {
+            stage.settle(&mut self.items);
         }
     }
 
@@ -119,9 +149,14 @@ impl Output {
     /// Nothing waits any more: the program is over.
     fn finish(&mut self) {
         if let Some(mut comp) = self.comp.take() {
-            if let Err(alarm) = comp.finish(&mut self.items, &mut self.held) {
+            let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+            if let Err(alarm) = comp.finish(items, held) {
                 self.stop(alarm);
             }
+        }
+        if let Some(stage) = self.polar_interp.take() {
+            // The program ends in G12.1: reset cancels the mode (spec 1.13.2 rule 2).
+            stage.flush(&mut self.items);
         }
         self.held = None;
     }
@@ -139,7 +174,10 @@ impl Output {
         &mut self,
         comp: &mut comp::Compensator,
     ) -> Result<(), Alarm> {
-        comp.finish(&mut self.items, &mut self.held)
+        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let finished = comp.finish(items, held);
+        self.settle_polar_interp();
+        finished
     }
 
     /// G28, G29, G30, G53 or G92 while compensating: cancelled for this block.
@@ -147,10 +185,13 @@ impl Output {
     /// # Errors
     /// Interference at the pending element's end.
     pub(crate) fn suspend_compensation(&mut self) -> Result<(), Alarm> {
-        match self.comp.as_mut() {
-            Some(comp) => comp.suspend(&mut self.items, &mut self.held),
+        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let suspended = match self.comp.as_mut() {
+            Some(comp) => comp.suspend(items, held),
             None => Ok(()),
-        }
+        };
+        self.settle_polar_interp();
+        suspended
     }
 
     /// A block ends: compensation counts blocks without motion in the plane.
@@ -158,28 +199,40 @@ impl Output {
     /// # Errors
     /// Interference where a pending element had to end.
     fn end_block(&mut self) -> Result<(), Alarm> {
-        match self.comp.as_mut() {
-            Some(comp) => comp.end_block(&mut self.items, &mut self.held),
+        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let ended = match self.comp.as_mut() {
+            Some(comp) => comp.end_block(items, held),
             None => Ok(()),
-        }
+        };
+        self.settle_polar_interp();
+        ended
     }
 
     /// Records an alarm (a warning, or the error that ends the run).
     pub(crate) fn push_warning(&mut self, alarm: Alarm) {
-        self.items.push(Err(alarm));
+        self.push_item(Err(alarm));
+    }
+
+    /// Queues an item behind everything queued before it.
+    fn push_item(&mut self, item: Result<Segment, Alarm>) {
+        let (items, _) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        items.push(item);
+        self.settle_polar_interp();
     }
 
     /// An error ends the run. With compensation looking ahead, the control stops before the
     /// block that was waiting for this one: the pending move and the moves held after it never
     /// happen (their warnings stay).
     fn stop(&mut self, alarm: Alarm) {
-        if let Some(held) = self.held.take() {
-            let tail = self.items.split_off(held);
-            self.items.extend(tail.into_iter().filter(Result::is_err));
+        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        if let Some(held) = held.take() {
+            let tail = items.split_off(held);
+            items.extend(tail.into_iter().filter(Result::is_err));
         }
         if let Some(comp) = self.comp.as_mut() {
             comp.abandon();
         }
+        self.settle_polar_interp();
         self.items.push(Err(alarm));
     }
 }
@@ -431,7 +484,7 @@ impl Core {
 
     /// The run is over: the end item, and nothing more.
     fn end(&mut self, kind: EndKind, span: Span) {
-        self.out.items.push(Ok(Segment {
+        self.out.push_item(Ok(Segment {
             kind: SegmentKind::End { kind },
             span,
             sequence: None,
@@ -505,6 +558,11 @@ impl Core {
                 self.command.subprogram = Some((crate::profile::MCode::SubprogramReturn, end));
             }
         }
+        if self.out.polar_interp.is_some() {
+            if let Err(alarm) = polar_interp::prepare(&mut self.command) {
+                return self.fail(alarm);
+            }
+        }
         let flow = self.exec.run(&self.command, &mut self.out);
         if self.out.comp.is_none() && self.out.failed.is_none() {
             // The common case, kept short: no compensation stage to tell about the block.
@@ -569,7 +627,7 @@ impl<B: BlockSource> Iterator for Interpreter<B> {
                 return Some(out.items.remove(0));
             }
             if self.core.done {
-                if out.items.is_empty() {
+                if out.items.is_empty() && out.polar_interp.is_none() {
                     return None;
                 }
                 out.finish();

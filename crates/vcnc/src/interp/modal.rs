@@ -201,6 +201,7 @@ impl ModalState {
             | ModalMacroCall
             | RotationCancel
             | Rotate
+            | PolarInterpolation
             | PolarInterpolationCancel => {}
         }
     }

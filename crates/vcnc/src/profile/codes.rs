@@ -166,6 +166,8 @@ pub enum GCode {
     RotationCancel,
     /// G68: coordinate rotation in the selected plane.
     Rotate,
+    /// G12.1: polar coordinate interpolation (X and a hypothetical axis C in the plane).
+    PolarInterpolation,
     /// G13.1.
     PolarInterpolationCancel,
 }
@@ -238,6 +240,7 @@ impl GCode {
             ModalMacroCall => "modal macro call",
             RotationCancel => "coordinate rotation cancel",
             Rotate => "coordinate rotation",
+            PolarInterpolation => "polar coordinate interpolation",
             PolarInterpolationCancel => "polar coordinate interpolation cancel",
         }
     }
@@ -265,7 +268,7 @@ impl GCode {
             }
             RotationCancel | Rotate => Group::Rotation,
             PolarCancel | Polar => Group::Polar,
-            PolarInterpolationCancel => Group::PolarInterpolation,
+            PolarInterpolation | PolarInterpolationCancel => Group::PolarInterpolation,
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
@@ -373,7 +376,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         100 => DataInput,
         120 if profile.g12_g13_circle_cutting => CircleCutting(ArcDirection::Clockwise),
         130 if profile.g12_g13_circle_cutting => CircleCutting(ArcDirection::CounterClockwise),
-        131 => PolarInterpolationCancel,
+        121 if profile.polar_interpolation => PolarInterpolation,
+        131 if profile.polar_interpolation => PolarInterpolationCancel,
         150 => PolarCancel,
         160 => Polar,
         170 => PlaneXy,
@@ -457,7 +461,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (70, None, "hypothetical axis interpolation"),
     (71, None, "cylindrical interpolation"),
     (80, Some(6), "look-ahead control"),
-    (121, Some(5), "polar coordinate interpolation"),
     (220, None, "stored stroke check on"),
     (230, None, "stored stroke check off"),
     (270, None, "reference position return check"),
@@ -731,7 +734,14 @@ mod tests {
         );
         assert_eq!(classify_g(1340, &fanuc), GLookup::Unknown);
         assert_eq!(classify_g(650, &fanuc), GLookup::Known(GCode::MacroCall));
-        assert_eq!(classify_g(121, &fanuc), GLookup::NotSupported(Some(5)));
+        assert_eq!(classify_g(50, &fanuc), GLookup::NotSupported(Some(6)));
+        assert_eq!(
+            classify_g(121, &fanuc),
+            GLookup::Known(GCode::PolarInterpolation)
+        );
+        // FANUC 0M has no polar coordinate interpolation.
+        let fanuc0m = Profile::builtin(ProfileName::Fanuc0m);
+        assert_eq!(classify_g(121, &fanuc0m), GLookup::Unknown);
         // Haas G47 engraves text; elsewhere G47 is a tool position offset.
         let haas = Profile::builtin(ProfileName::Haas);
         assert_eq!(classify_g(470, &haas), GLookup::NotSupported(None));

@@ -364,6 +364,15 @@ pub struct Profile {
     /// the repeats (FANUC).
     #[serde(default)]
     pub m98_p_holds_repeats: bool,
+    /// G12.1/G13.1 polar coordinate interpolation exists (FANUC family, Syntec spec 1.13,
+    /// Mitsubishi); it turns the machine's C axis with X as the radius.
+    #[serde(default)]
+    pub polar_interpolation: bool,
+    /// Largest distance, mm, between the programmed path in G12.1 and the path the straight X-C
+    /// pieces that replace it trace on the part (vcnc's choice: FANUC and Syntec interpolate in
+    /// their servo cycle and give no such number).
+    #[serde(default = "default_polar_interpolation_tolerance")]
+    pub polar_interpolation_tolerance: f64,
     /// Power-on modal state.
     pub power_on: PowerOn,
 }
@@ -382,6 +391,10 @@ fn default_loop_numbers() -> u32 {
 
 fn default_peck_distance() -> f64 {
     1.0
+}
+
+fn default_polar_interpolation_tolerance() -> f64 {
+    0.001
 }
 
 fn default_true() -> bool {

@@ -1,0 +1,529 @@
+//! G12.1/G13.1 polar coordinate interpolation: a contour programmed in the Cartesian plane of the
+//! linear axis X and a hypothetical axis C becomes motion of X (the radius) and of the rotary axis
+//! C (the angle). Spec: spec/iso-syntec-milling.md 1.13 (seed 000 L894-1017); FANUC and
+//! Mitsubishi M-series controls have the same codes.
+//!
+//! How it sits in the pipeline:
+//!
+//! - While the mode is on, the executor works in the Cartesian plane. [`prepare`] reads the
+//!   address C of each block as a length and carries it in the Y slot of positions, and G12.1
+//!   selects G17, so that lines, arcs (I J or R) and cutter compensation run unchanged in that
+//!   plane. The machine's own Y stays where it was (a Y word is refused in the mode).
+//! - [`PolarStage`] sits in the output queue after cutter compensation. A segment compensation
+//!   has released is cut into straight pieces in machine X and C whose ends lie on the
+//!   programmed (compensated) path, each short enough that the piece, seen on the part, stays
+//!   within the profile's `polar_interpolation_tolerance` of that path. Nothing Cartesian
+//!   leaves the stage.
+//! - G13.1 puts the machine position back in the executor and restores the plane (rule 4).
+//!
+//! Geometry (the spec's inferred FANUC conversion): the rotation centre is the program zero of X
+//! and C; G12.1's X and C put the program zero off it (eccentricity, Syntec 10.116.11 on). A
+//! Cartesian point (x, c) lies at u = x + ex, v = c + ec from the centre; the machine goes to
+//! X = |(u, v)| (a radius: vcnc has no diameter axes) and C = atan2(v, u) in degrees from the
+//! program zero of C, kept continuous from piece to piece (no jump at ±180 degrees). At the
+//! centre the angle keeps its last value; leaving it, C turns within a piece shorter than the
+//! tolerance.
+//!
+//! Every piece carries its block's feed: mm/min along the contour, which the control keeps as
+//! the tangential speed (G93 inverse time is shared out over the pieces). Rapids are cut the same
+//! way and stay rapids, on the Cartesian straight line.
+//!
+//! What it must never do: cost anything when the mode is off (the queue asks for the stage only
+//! when it exists).
+
+use super::decode::{Command, GWord};
+use super::exec::Executor;
+use super::frames::sin_cos_degrees;
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::{Axis, AXES};
+use crate::motion::{arc_sweep, ArcDirection, Feed, MachinePos, Move, Plane, Segment, SegmentKind};
+use crate::profile::{GCode, Group};
+
+/// The linear axis of the plane: the radius.
+const LINEAR: usize = Axis::X.index();
+/// The rotary axis: the angle.
+const ROTARY: usize = Axis::C.index();
+/// The slot of positions that carries the hypothetical axis while the mode is on.
+const HYPOTHETICAL: usize = Axis::Y.index();
+
+/// Closer than this to the rotation centre, mm, a point has no angle of its own.
+const CENTRE: f64 = 1e-9;
+/// Halvings of a segment at most: a piece is never shorter than 2^-30 of its segment.
+const MAX_DEPTH: u32 = 30;
+/// Halvings per segment at most, so that a tolerance finer than the arithmetic can follow (far
+/// from the centre at huge coordinates) cannot make pieces without end.
+const MAX_SPLITS: u32 = 1 << 16;
+
+/// Before a block in the mode: refuses the codes the mode does not allow and reads the address
+/// C as the hypothetical axis.
+///
+/// # Errors
+/// [`AlarmCode::WordNotAllowed`] for a G code the mode does not allow (spec 1.13.2 rules 3-5)
+/// or a Y word.
+pub(crate) fn prepare(cmd: &mut Command) -> Result<(), Alarm> {
+    if let Some(g) = cmd.g_codes().find(|g| !allowed_in_mode(g.code)) {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            g.span,
+            format!(
+                "{} cannot be commanded during polar coordinate interpolation (G12.1)",
+                g.code.description()
+            ),
+        )
+        .with_help("cancel the mode with G13.1 first"));
+    }
+    if let Some(y) = cmd.axis(HYPOTHETICAL) {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            y.span,
+            "Y cannot be commanded during polar coordinate interpolation (G12.1)",
+        )
+        .with_help("the plane is X and C; cancel the mode with G13.1 to move Y"));
+    }
+    cmd.move_axis_word(Axis::C, Axis::Y);
+    Ok(())
+}
+
+/// The codes the mode allows: motion and the modes that do not move the coordinate system
+/// (spec 1.13.2 rule 3 lists G01, G02, G03, G04, G40-G42, G65-G67; G00, G90/G91, the feed,
+/// path and spindle modes change nothing in the plane and are accepted too).
+fn allowed_in_mode(code: GCode) -> bool {
+    match code.group() {
+        Group::Motion
+        | Group::Distance
+        | Group::FeedMode
+        | Group::CutterComp
+        | Group::ModalMacro
+        | Group::PathMode
+        | Group::SpindleMode
+        | Group::CycleReturn
+        | Group::PolarInterpolation => true,
+        Group::NonModal => matches!(code, GCode::Dwell | GCode::ExactStopOnce | GCode::MacroCall),
+        _ => false,
+    }
+}
+
+/// G12.1 or G13.1 (`g`) in a block.
+///
+/// # Errors
+/// Cutter compensation on (spec 1.13.2 rule 6), G12.1 on a machine without X or C, or with
+/// words it does not take; see [`start`] and [`cancel`].
+pub(crate) fn switch(
+    exec: &mut Executor,
+    cmd: &Command,
+    g: GWord,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let name = match g.code {
+        GCode::PolarInterpolation => "G12.1",
+        _ => "G13.1",
+    };
+    if out.comp.is_some() {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            g.span,
+            format!("{name} cannot be commanded while cutter compensation (G41/G42) is on"),
+        )
+        .with_help("cancel compensation with G40 in an earlier block"));
+    }
+    match g.code {
+        GCode::PolarInterpolation => start(exec, cmd, g, out),
+        _ => cancel(exec, cmd, out),
+    }
+}
+
+/// G12.1: the executor's position becomes the Cartesian point of the tool, the plane G17.
+fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Result<(), Alarm> {
+    if out.polar_interp.is_some() {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            g.span,
+            "G12.1 while polar coordinate interpolation is already on",
+        ));
+    }
+    for axis in [Axis::X, Axis::C] {
+        if !exec.machine_axes[axis.index()] {
+            return Err(Alarm::error(
+                AlarmCode::AxisNotOnMachine,
+                g.span,
+                format!(
+                    "G12.1 needs the {} axis: the machine has none",
+                    axis.letter() as char
+                ),
+            )
+            .with_help(
+                "polar coordinate interpolation moves X and turns the rotary axis C; add them to the machine file (`[axes.c]`)",
+            ));
+        }
+    }
+    if let Some(axis) = cmd.axes_present().find(|a| !matches!(a, Axis::X | Axis::C)) {
+        let span = cmd.axis(axis.index()).map_or(g.span, |v| v.span);
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            span,
+            "G12.1 takes only X and C (the program zero's offset from the rotation centre)",
+        ));
+    }
+    refuse_transforms(exec, g)?;
+    let eccentricity = (
+        cmd.axis(LINEAR).map_or(0.0, |v| exec.length(&v)),
+        cmd.axis(ROTARY).map_or(0.0, |v| exec.length(&v)),
+    );
+    let machine = exec.position;
+    let offset = exec.frames.offset();
+    let radius = machine[LINEAR] - offset[LINEAR];
+    if radius < 0.0 {
+        // The conversion keeps X at or above the centre; starting below it, the first piece
+        // would swing X through the centre with C half a turn round.
+        return Err(Alarm::not_supported(
+            g.span,
+            "G12.1 with X below the rotation centre (a negative radius)",
+            None,
+        )
+        .with_help("position X at or above the program zero of X before G12.1"));
+    }
+    let (sin, cos) = sin_cos_degrees(machine[ROTARY] - offset[ROTARY]);
+    exec.position[LINEAR] = radius * cos - eccentricity.0 + offset[LINEAR];
+    exec.position[HYPOTHETICAL] = radius * sin - eccentricity.1 + offset[HYPOTHETICAL];
+    let plane = std::mem::replace(&mut exec.modal.plane, Plane::Xy);
+    out.polar_interp = Some(Box::new(PolarStage {
+        staged: Vec::new(),
+        held: None,
+        plane,
+        converter: Converter {
+            eccentricity,
+            machine_y: machine[HYPOTHETICAL],
+            last: machine,
+            tolerance: exec.profile.polar_interpolation_tolerance,
+        },
+    }));
+    Ok(())
+}
+
+/// The transforms vcnc does not combine with G12.1.
+fn refuse_transforms(exec: &Executor, g: GWord) -> Result<(), Alarm> {
+    let active = [
+        (exec.frames.rotated(), "coordinate rotation (G68, G92.1 R)"),
+        (
+            exec.frames.scaling.is_some(),
+            "scaling or mirror image (G51, G51.1)",
+        ),
+        (exec.polar.is_some(), "polar coordinate command (G16)"),
+        (exec.cycle.is_some(), "a canned cycle"),
+    ];
+    match active.iter().find(|(on, _)| *on) {
+        Some((_, what)) => Err(Alarm::not_supported(
+            g.span,
+            &format!("G12.1 while {what} is on"),
+            None,
+        )),
+        None => Ok(()),
+    }
+}
+
+/// G13.1: the machine position back in the executor, the plane before G12.1 restored.
+fn cancel(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+    if let Some(axis) = cmd.axes_present().next() {
+        let span = cmd.axis(axis.index()).map_or(cmd.span, |v| v.span);
+        return Err(
+            Alarm::error(AlarmCode::WordNotAllowed, span, "G13.1 takes no axis words")
+                .with_help("move in a block of its own"),
+        );
+    }
+    if let Some(stage) = out.polar_interp.take() {
+        let (plane, machine) = stage.flush(&mut out.items);
+        exec.position = machine;
+        exec.modal.plane = plane;
+    }
+    Ok(())
+}
+
+/// The stage between cutter compensation and the output queue while G12.1 is on.
+#[derive(Clone, Debug)]
+pub(crate) struct PolarStage {
+    /// Cartesian items, as the executor and compensation queue them.
+    pub(crate) staged: Vec<Result<Segment, Alarm>>,
+    /// Items from this index on wait for compensation to know where a move ends.
+    pub(crate) held: Option<usize>,
+    /// The plane before G12.1.
+    plane: Plane,
+    converter: Converter,
+}
+
+impl PolarStage {
+    /// Converts the items compensation has released and appends them to `items`.
+    pub(crate) fn settle(&mut self, items: &mut Vec<Result<Segment, Alarm>>) {
+        let ready = self.held.unwrap_or(self.staged.len());
+        if ready == 0 {
+            return;
+        }
+        for item in self.staged.drain(..ready) {
+            match item {
+                Ok(segment) if segment.motion().is_some() => {
+                    self.converter.convert(&segment, items);
+                }
+                other => items.push(other),
+            }
+        }
+        if let Some(held) = self.held.as_mut() {
+            *held = 0;
+        }
+    }
+
+    /// The mode ends: everything staged is converted. Returns the plane before G12.1 and the
+    /// machine position where the last piece ended.
+    pub(crate) fn flush(mut self, items: &mut Vec<Result<Segment, Alarm>>) -> (Plane, [f64; AXES]) {
+        self.held = None;
+        self.settle(items);
+        (self.plane, self.converter.last)
+    }
+}
+
+/// Cartesian points to machine X and C.
+#[derive(Clone, Debug)]
+struct Converter {
+    /// G12.1's X and C: the program zero's offset from the rotation centre, mm.
+    eccentricity: (f64, f64),
+    /// The machine's Y, which the mode does not move.
+    machine_y: f64,
+    /// The machine position where the last piece ended (where G12.1 found the tool at first).
+    last: [f64; AXES],
+    /// Largest distance between a piece and the Cartesian path, mm.
+    tolerance: f64,
+}
+
+/// A Cartesian segment as a function of t in [0, 1].
+enum Path {
+    Straight {
+        from: [f64; AXES],
+        to: [f64; AXES],
+    },
+    /// An arc in the plane axes, the other axes straight (a helix).
+    Arc {
+        from: [f64; AXES],
+        to: [f64; AXES],
+        axes: (usize, usize),
+        center: (f64, f64),
+        start_angle: f64,
+        /// Radians, negative clockwise.
+        sweep: f64,
+        /// Start and end radius (they may differ by the arc tolerance).
+        radius: (f64, f64),
+    },
+}
+
+impl Path {
+    fn of(segment: &Segment) -> Option<Path> {
+        match &segment.kind {
+            SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => {
+                Some(Path::Straight {
+                    from: motion.from.0,
+                    to: motion.to.0,
+                })
+            }
+            SegmentKind::Arc {
+                motion,
+                center,
+                direction,
+                plane,
+                extra_turns,
+                ..
+            } => {
+                let (a, b, _) = plane.axes();
+                let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
+                let sweep = match direction {
+                    ArcDirection::CounterClockwise => sweep,
+                    ArcDirection::Clockwise => -sweep,
+                };
+                let (from, to) = (motion.from.0, motion.to.0);
+                let center = (center.0[a], center.0[b]);
+                let start = (from[a] - center.0, from[b] - center.1);
+                let end = (to[a] - center.0, to[b] - center.1);
+                Some(Path::Arc {
+                    from,
+                    to,
+                    axes: (a, b),
+                    center,
+                    start_angle: start.1.atan2(start.0),
+                    sweep,
+                    radius: (start.0.hypot(start.1), end.0.hypot(end.1)),
+                })
+            }
+            _ => None,
+        }
+    }
+
+    /// The point at `t`: exactly the start at 0 and the end at 1.
+    fn at(&self, t: f64) -> [f64; AXES] {
+        let (from, to) = match self {
+            Path::Straight { from, to } | Path::Arc { from, to, .. } => (from, to),
+        };
+        if t <= 0.0 {
+            return *from;
+        }
+        if t >= 1.0 {
+            return *to;
+        }
+        let mut p = lerp(from, to, t);
+        if let Path::Arc {
+            axes: (a, b),
+            center,
+            start_angle,
+            sweep,
+            radius,
+            ..
+        } = self
+        {
+            let r = radius.0 + (radius.1 - radius.0) * t;
+            let (sin, cos) = (start_angle + sweep * t).sin_cos();
+            p[*a] = center.0 + r * cos;
+            p[*b] = center.1 + r * sin;
+        }
+        p
+    }
+}
+
+fn lerp(from: &[f64; AXES], to: &[f64; AXES], t: f64) -> [f64; AXES] {
+    std::array::from_fn(|i| from[i] + (to[i] - from[i]) * t)
+}
+
+/// `degrees` brought into [-180, 180).
+fn wrap(degrees: f64) -> f64 {
+    degrees - 360.0 * ((degrees + 180.0) / 360.0).floor()
+}
+
+/// One piece's end and where it ends on its segment.
+struct PieceEnd {
+    t: f64,
+    machine: [f64; AXES],
+}
+
+impl Converter {
+    /// Appends the pieces of the Cartesian `segment` to `items`.
+    fn convert(&mut self, segment: &Segment, items: &mut Vec<Result<Segment, Alarm>>) {
+        let (Some(path), Some(motion)) = (Path::of(segment), segment.motion()) else {
+            items.push(Ok(*segment));
+            return;
+        };
+        let motion = *motion;
+        let start = self.last;
+        let mut cut = Cut {
+            converter: self,
+            path: &path,
+            offset: motion.offset,
+            splits: MAX_SPLITS,
+            ends: Vec::new(),
+        };
+        cut.refine((0.0, start), 1.0, 0);
+        let ends = cut.ends;
+        let count = ends.len();
+        let mut from = (0.0, start);
+        for (i, end) in ends.into_iter().enumerate() {
+            let piece = Move {
+                from: MachinePos(from.1),
+                to: MachinePos(end.machine),
+                exact_stop: motion.exact_stop && i + 1 == count,
+                ..motion
+            };
+            let kind = match segment.kind {
+                SegmentKind::Rapid { .. } => SegmentKind::Rapid {
+                    motion: piece,
+                    per_axis: false,
+                },
+                SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => {
+                    SegmentKind::Line {
+                        motion: piece,
+                        feed: piece_feed(feed, end.t - from.0),
+                    }
+                }
+                other => other,
+            };
+            items.push(Ok(Segment { kind, ..*segment }));
+            from = (end.t, end.machine);
+        }
+        self.last = from.1;
+    }
+
+    /// The machine position of the Cartesian point `p`, its C next to `previous_c`.
+    fn to_machine(&self, p: &[f64; AXES], offset: &[f64; AXES], previous_c: f64) -> [f64; AXES] {
+        let u = p[LINEAR] - offset[LINEAR] + self.eccentricity.0;
+        let v = p[HYPOTHETICAL] - offset[HYPOTHETICAL] + self.eccentricity.1;
+        let radius = u.hypot(v);
+        let mut machine = *p;
+        machine[LINEAR] = offset[LINEAR] + radius;
+        machine[HYPOTHETICAL] = self.machine_y;
+        machine[ROTARY] = if radius > CENTRE {
+            let c = v.atan2(u).to_degrees() + offset[ROTARY];
+            previous_c + wrap(c - previous_c)
+        } else {
+            previous_c
+        };
+        machine
+    }
+
+    /// The Cartesian point (X and the hypothetical axis, executor coordinates) of a machine
+    /// position.
+    fn to_cartesian(&self, machine: &[f64; AXES], offset: &[f64; AXES]) -> (f64, f64) {
+        let radius = machine[LINEAR] - offset[LINEAR];
+        let (sin, cos) = (machine[ROTARY] - offset[ROTARY]).to_radians().sin_cos();
+        (
+            radius * cos - self.eccentricity.0 + offset[LINEAR],
+            radius * sin - self.eccentricity.1 + offset[HYPOTHETICAL],
+        )
+    }
+}
+
+/// One segment being cut into pieces.
+struct Cut<'a> {
+    converter: &'a Converter,
+    path: &'a Path,
+    /// Machine minus program coordinates along the segment.
+    offset: [f64; AXES],
+    /// Halvings left.
+    splits: u32,
+    ends: Vec<PieceEnd>,
+}
+
+impl Cut<'_> {
+    /// Cuts the path from `start` (its parameter and machine position) to `t1` into pieces
+    /// within the tolerance, appending their ends; returns the last end.
+    fn refine(&mut self, start: (f64, [f64; AXES]), t1: f64, depth: u32) -> [f64; AXES] {
+        let (t0, from) = start;
+        let end = self
+            .converter
+            .to_machine(&self.path.at(t1), &self.offset, from[ROTARY]);
+        if depth >= MAX_DEPTH || self.splits == 0 || self.within((t0, &from), (t1, &end)) {
+            self.ends.push(PieceEnd {
+                t: t1,
+                machine: end,
+            });
+            return end;
+        }
+        self.splits -= 1;
+        let middle = (t0 + t1) / 2.0;
+        let reached = self.refine(start, middle, depth + 1);
+        self.refine((middle, reached), t1, depth + 1)
+    }
+
+    /// True when the straight machine move between two points of the path stays within the
+    /// tolerance of it, judged at a quarter, half and three quarters of the move (against the
+    /// path at the same fraction of its parameter, which is stricter than the distance to it).
+    fn within(&self, (t0, from): (f64, &[f64; AXES]), (t1, to): (f64, &[f64; AXES])) -> bool {
+        [0.25, 0.5, 0.75].iter().all(|&s| {
+            let machine = lerp(from, to, s);
+            let (x, y) = self.converter.to_cartesian(&machine, &self.offset);
+            let p = self.path.at(t0 + (t1 - t0) * s);
+            (x - p[LINEAR]).hypot(y - p[HYPOTHETICAL]) <= self.converter.tolerance
+        })
+    }
+}
+
+/// The feed of a piece covering `share` of its block: the block's, but for G93, whose time is
+/// shared out.
+fn piece_feed(feed: Feed, share: f64) -> Feed {
+    match feed {
+        Feed::InverseTime(f) if share > 0.0 => Feed::InverseTime(f / share),
+        other => other,
+    }
+}
