@@ -362,6 +362,12 @@ impl<B: BlockSource> Interpreter<B> {
         self.core.read_variable(number, span).ok().flatten()
     }
 
+    /// The value of Syntec's public variable `@number` now (`None` when vacant or not one).
+    pub fn public_variable(&self, number: u32) -> Option<f64> {
+        let span = self.core.last_span;
+        self.core.read_public(number, span).ok().flatten()
+    }
+
     /// Blocks executed so far (skipped, empty and comment-only blocks not counted).
     pub fn blocks_executed(&self) -> u64 {
         self.core.blocks_executed
@@ -507,6 +513,10 @@ impl Core {
             if self.options.block_skip[usize::from(level.clamp(1, 9)) - 1] {
                 return;
             }
+        }
+        if block.kind == BlockKind::MacroHeader {
+            self.enter_macro_program(block.span, main_text);
+            return;
         }
         if block.kind == BlockKind::TapeMark {
             if self.macros.in_call() {

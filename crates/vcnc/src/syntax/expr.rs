@@ -29,6 +29,13 @@ pub enum Op {
     Atan2,
     /// Pops the exponent and the base (`POW[base,exponent]`).
     Power,
+    /// Pops the second argument, then the first, and pushes the function of both (Syntec
+    /// `MAX(a,b)`, `MIN(a,b)`, `ATAN2(y,x)`).
+    Function2(Function2),
+    /// Pushes the value of Syntec's public variable `@n`.
+    Public(u32),
+    /// Pops a number n and pushes the value of `@n` (`@[expr]`).
+    PublicIndirect,
 }
 
 /// The binary operators of Custom Macro B.
@@ -112,6 +119,43 @@ pub enum Function {
     Bin,
     /// `BCD`: binary to binary-coded decimal.
     Bcd,
+    /// `CEIL` (Syntec): the next whole number up, toward plus infinity.
+    Ceil,
+    /// `FLOOR` (Syntec): the next whole number down, toward minus infinity.
+    Floor,
+    /// `SIGN` (Syntec): -1, 0 or 1.
+    Sign,
+    /// `NOT` (Syntec): 1 when the value is 0 or vacant, else 0.
+    Not,
+}
+
+/// The two-argument functions of Syntec macro programs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Function2 {
+    /// `MAX(a,b)`: the larger.
+    Max,
+    /// `MIN(a,b)`: the smaller.
+    Min,
+    /// `ATAN2(y,x)`: the angle of (x, y) in degrees, -180 to 180.
+    Atan2,
+}
+
+/// Which set of variables a number names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VariableBank {
+    /// `#n`: the macro variables (locals, commons, system variables).
+    Macro,
+    /// `@n`: Syntec's public variables.
+    Public,
+}
+
+/// A variable a statement writes: its bank and the expression of its number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Target {
+    /// `#` or `@`.
+    pub bank: VariableBank,
+    /// Computes the variable number.
+    pub number: Expr,
 }
 
 /// An instruction with the span of the text it came from.
@@ -150,10 +194,10 @@ impl Expr {
 /// A macro statement: what a block does besides (or instead of) its words.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Statement {
-    /// `#i = expr` (`:=` on Syntec); `variable` computes the variable number.
+    /// `#i = expr` (`:=` on Syntec; `@i := expr` in a Syntec macro program).
     Assign {
-        /// The variable number.
-        variable: Expr,
+        /// The variable written.
+        variable: Target,
         /// The value.
         value: Expr,
         /// The whole statement.
@@ -202,6 +246,105 @@ pub enum Statement {
         /// The whole statement.
         span: Span,
     },
+    /// `IF condition THEN` of a Syntec macro program: the statements up to the next ELSEIF,
+    /// ELSE or END_IF run when the condition holds.
+    If {
+        /// The condition.
+        condition: Expr,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `ELSEIF condition THEN` (also spelled `ELSIF`).
+    ElseIf {
+        /// The condition.
+        condition: Expr,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `ELSE`.
+    Else {
+        /// The whole statement.
+        span: Span,
+    },
+    /// `END_IF` (also `ENDIF`).
+    EndIf {
+        /// The whole statement.
+        span: Span,
+    },
+    /// `WHILE condition DO`: the statements up to END_WHILE run while the condition holds.
+    WhileDo {
+        /// The condition, tested before each pass.
+        condition: Expr,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `END_WHILE` (also `ENDWHILE`).
+    EndWhile {
+        /// The whole statement.
+        span: Span,
+    },
+    /// `FOR #i := from TO to [BY step] DO`.
+    For {
+        /// The counter.
+        variable: Target,
+        /// Its first value.
+        from: Expr,
+        /// The last value it may take.
+        to: Expr,
+        /// What each pass adds (1 when BY is not written).
+        step: Option<Expr>,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `END_FOR` (also `ENDFOR`).
+    EndFor {
+        /// The whole statement.
+        span: Span,
+    },
+    /// `REPEAT`: the statements up to UNTIL run at least once.
+    Repeat {
+        /// The whole statement.
+        span: Span,
+    },
+    /// `UNTIL condition`: back to REPEAT unless the condition holds.
+    Until {
+        /// The condition, tested after each pass.
+        condition: Expr,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `END_REPEAT` (also `ENDREPEAT`), right after UNTIL.
+    EndRepeat {
+        /// The whole statement.
+        span: Span,
+    },
+    /// `EXIT`: leaves the innermost WHILE, FOR or REPEAT.
+    Exit {
+        /// The whole statement.
+        span: Span,
+    },
+    /// `WAIT()` or `SLEEP()`: they pace the control's read-ahead and its screen, which a
+    /// simulation does not have; nothing to do.
+    Wait {
+        /// The whole statement.
+        span: Span,
+    },
+    /// `ALARM(n)` or `ALARM(n, "text")`: stops the program with alarm n; the text is the
+    /// block's `message`.
+    Alarm {
+        /// The alarm number.
+        number: Expr,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `MSG("text")`, `MSG(n)` or `MSG(n, "text")`: shows a message and goes on; the text
+    /// is the block's `message`.
+    Message {
+        /// The message number, if one is given.
+        number: Option<Expr>,
+        /// The whole statement.
+        span: Span,
+    },
 }
 
 impl Statement {
@@ -213,7 +356,22 @@ impl Statement {
             | Statement::IfGoto { span, .. }
             | Statement::IfThen { span, .. }
             | Statement::While { span, .. }
-            | Statement::End { span, .. } => *span,
+            | Statement::End { span, .. }
+            | Statement::If { span, .. }
+            | Statement::ElseIf { span, .. }
+            | Statement::Else { span }
+            | Statement::EndIf { span }
+            | Statement::WhileDo { span, .. }
+            | Statement::EndWhile { span }
+            | Statement::For { span, .. }
+            | Statement::EndFor { span }
+            | Statement::Repeat { span }
+            | Statement::Until { span, .. }
+            | Statement::EndRepeat { span }
+            | Statement::Exit { span }
+            | Statement::Wait { span }
+            | Statement::Alarm { span, .. }
+            | Statement::Message { span, .. } => *span,
         }
     }
 }

@@ -13,7 +13,7 @@ pub mod source;
 
 use crate::alarm::Alarm;
 use crate::source::Span;
-pub use expr::{Expr, Instruction, Statement};
+pub use expr::{Expr, Instruction, Statement, Target, VariableBank};
 
 /// A number as written in a word: its value and how it was written.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -78,6 +78,8 @@ pub enum BlockKind {
     Words,
     /// A `%` tape mark.
     TapeMark,
+    /// `%@MACRO`: the program is a Syntec macro program (when this is its first line).
+    MacroHeader,
 }
 
 /// One block: the words between two ends of block, in the order written.
@@ -95,7 +97,7 @@ pub struct Block {
     pub comment: Option<Span>,
     /// The problems found while reading the block; the block holds the words read before the first error.
     pub alarms: Vec<Alarm>,
-    /// Macro statements (assignments, IF, WHILE, GOTO, END), in the order written.
+    /// Macro statements (assignments, IF, WHILE, GOTO, END ...), in the order written.
     pub statements: Vec<Statement>,
     /// The instructions of the block's expressions (statements' and words').
     pub code: Vec<Instruction>,

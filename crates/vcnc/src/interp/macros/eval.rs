@@ -8,12 +8,15 @@
 use super::MacroValue;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::Span;
-use crate::syntax::expr::{BinaryOp, Expr, Function, Instruction, Op};
+use crate::syntax::expr::{BinaryOp, Expr, Function, Function2, Instruction, Op};
 
 /// Reads variables for the evaluator.
 pub(crate) trait VariableReader {
     /// The value of `#number`, or an alarm for a variable that does not exist.
     fn read(&mut self, number: u32, span: Span) -> Result<MacroValue, Alarm>;
+
+    /// The value of Syntec's public variable `@number`.
+    fn read_public(&mut self, number: u32, span: Span) -> Result<MacroValue, Alarm>;
 }
 
 /// Room for operands: FANUC nests brackets five deep, so real expressions need a handful.
@@ -72,6 +75,18 @@ pub(crate) fn evaluate(
                 let base = stack[depth].unwrap_or(0.0);
                 let exponent = stack[depth + 1].unwrap_or(0.0);
                 Some(finite(base.powf(exponent), span, "POW")?)
+            }
+            Op::Function2(f) => {
+                depth -= 2;
+                let a = stack[depth].unwrap_or(0.0);
+                let b = stack[depth + 1].unwrap_or(0.0);
+                Some(function2(f, a, b, span)?)
+            }
+            Op::Public(n) => variables.read_public(n, span)?,
+            Op::PublicIndirect => {
+                depth -= 1;
+                let number = variable_number(stack[depth], span)?;
+                variables.read_public(number, span)?
             }
         };
         if depth >= STACK {
@@ -260,6 +275,40 @@ fn function(f: Function, x: f64, span: Span) -> Result<f64, Alarm> {
         Function::Bcd => {
             domain(x >= 0.0 && x.fract() == 0.0 && x < 1e15, "BCD")?;
             to_bcd(x as u64) as f64
+        }
+        Function::Ceil => x.ceil(),
+        Function::Floor => x.floor(),
+        Function::Sign => {
+            if x == 0.0 {
+                0.0
+            } else {
+                x.signum()
+            }
+        }
+        Function::Not => {
+            if x == 0.0 {
+                1.0
+            } else {
+                0.0
+            }
+        }
+    })
+}
+
+/// MAX, MIN and ATAN2 of Syntec macro programs.
+fn function2(f: Function2, a: f64, b: f64, span: Span) -> Result<f64, Alarm> {
+    Ok(match f {
+        Function2::Max => a.max(b),
+        Function2::Min => a.min(b),
+        Function2::Atan2 => {
+            if a == 0.0 && b == 0.0 {
+                return Err(Alarm::error(
+                    AlarmCode::MacroArithmetic,
+                    span,
+                    "ATAN2 of 0 and 0 has no value",
+                ));
+            }
+            a.atan2(b).to_degrees()
         }
     })
 }

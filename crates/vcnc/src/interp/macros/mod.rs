@@ -1,5 +1,6 @@
 //! Custom Macro B and subprograms: variables, expressions, IF/WHILE/GOTO, and the calls M98,
-//! M99, M97 (Haas), M198, G65 and G66.
+//! M99, M97 (Haas), M198, G65 and G66; the structured statements and public variables of
+//! Syntec `%@MACRO` programs are in `structured.rs`.
 //!
 //! A block with macro content comes here from the interpreter: its statements run in the order
 //! written, then its words are evaluated (a vacant variable drops its word) and the block runs
@@ -13,6 +14,7 @@
 
 pub(crate) mod eval;
 pub(crate) mod programs;
+mod structured;
 pub(crate) mod system;
 pub(crate) mod vars;
 
@@ -21,7 +23,7 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::motion::{EndKind, SegmentKind, StopKind};
 use crate::profile::{DecimalLess, GCode, Group, MCode};
 use crate::source::Span;
-use crate::syntax::expr::{Expr, Instruction, Statement};
+use crate::syntax::expr::{Expr, Instruction, Statement, Target, VariableBank};
 use crate::syntax::{Block, Number, Word};
 use programs::{Position, ProgramLibrary, StoredProgram};
 use std::collections::HashMap;
@@ -139,6 +141,10 @@ struct StateReader<'a> {
 impl eval::VariableReader for StateReader<'_> {
     fn read(&mut self, number: u32, span: Span) -> Result<MacroValue, Alarm> {
         self.core.read_variable(number, span)
+    }
+
+    fn read_public(&mut self, number: u32, span: Span) -> Result<MacroValue, Alarm> {
+        self.core.read_public(number, span)
     }
 }
 
@@ -316,6 +322,10 @@ impl Core {
                 span,
             } => {
                 if eval::is_true(self.evaluate(condition, code)?) {
+                    let variable = Target {
+                        bank: VariableBank::Macro,
+                        number: variable,
+                    };
                     self.assign(variable, value, code, span, message)?;
                 }
                 Ok(Next::Block)
@@ -346,21 +356,48 @@ impl Core {
                 self.run_end(label, span, main_text)?;
                 Ok(Next::Jumped)
             }
+            _ => self.run_structured(statement, block, main_text),
         }
     }
 
     fn assign(
         &mut self,
-        variable: Expr,
+        variable: Target,
         value: Expr,
         code: &[Instruction],
         span: Span,
         message: Option<&str>,
     ) -> Result<(), Alarm> {
-        let number_span = variable.span(code).unwrap_or(span);
-        let number = eval::variable_number(self.evaluate(variable, code)?, number_span)?;
+        let (number, number_span) = self.target_number(variable, code, span)?;
         let value = self.evaluate(value, code)?;
-        self.write_variable(number, value, number_span, message)
+        self.write_target(variable.bank, number, value, number_span, message)
+    }
+
+    /// The number of the variable `variable` names, and where it is written.
+    fn target_number(
+        &self,
+        variable: Target,
+        code: &[Instruction],
+        span: Span,
+    ) -> Result<(u32, Span), Alarm> {
+        let number_span = variable.number.span(code).unwrap_or(span);
+        let number = eval::variable_number(self.evaluate(variable.number, code)?, number_span)?;
+        Ok((number, number_span))
+    }
+
+    /// Sets `#number` or `@number`.
+    fn write_target(
+        &mut self,
+        bank: VariableBank,
+        number: u32,
+        value: MacroValue,
+        span: Span,
+        message: Option<&str>,
+    ) -> Result<(), Alarm> {
+        match bank {
+            VariableBank::Macro => self.write_variable(number, value, span, message),
+            VariableBank::Public => self.write_public(number, value, span),
+        }
     }
 
     /// The sequence number of a GOTO.

@@ -5,11 +5,13 @@
 //! streams a main program that runs straight through and holds nothing of it; the first jump
 //! loads it (from the block source's text, or through the [`ProgramLibrary`]) and parses it
 //! once. Called programs come from the same file (programs that follow M30, each headed by
-//! `O1234` or `:1234`) or from the library (a program directory).
+//! `O1234` or `:1234`) or from the library (a program directory). A Syntec `%@MACRO` program
+//! is read statement by statement and keeps the structure of its IF and loop statements; it
+//! always runs from memory (`structured.rs`).
 
 use crate::source::FileId;
-use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
-use crate::syntax::lines::{LineSource, TextLines};
+use crate::syntax::iso::structure::Structure;
+use crate::syntax::iso::{parse_program, LineBlocks, SyntaxOptions};
 use crate::syntax::Block;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -195,10 +197,13 @@ pub(crate) struct StoredProgram {
     lines: Vec<LineBlocks>,
     /// (sequence number, line, block), sorted.
     labels: Vec<(u32, usize, usize)>,
+    /// A Syntec `%@MACRO` program: the partners of its structured statements.
+    structure: Option<Structure>,
 }
 
 impl StoredProgram {
-    /// Parses the lines of `text` from byte `offset` (line `line`) up to byte `end`.
+    /// Parses the lines of `text` from byte `offset` (line `line`) up to byte `end`: an ISO
+    /// program line by line, a Syntec `%@MACRO` program statement by statement.
     pub(crate) fn parse(
         text: &[u8],
         (offset, line, end): (usize, u32, usize),
@@ -207,25 +212,32 @@ impl StoredProgram {
         number: Option<u32>,
     ) -> StoredProgram {
         let end = end.min(text.len());
-        let mut source = TextLines::starting_at(&text[..end], offset, line);
-        let mut lines = Vec::new();
+        let program = parse_program(&text[..end], offset, line, file, syntax);
         let mut labels = Vec::new();
-        while let Ok(Some(line)) = source.next_line() {
-            let mut blocks = LineBlocks::new();
-            parse_line(line, file, syntax, &mut blocks);
+        for (l, blocks) in program.lines.iter().enumerate() {
             for (b, block) in blocks.as_slice().iter().enumerate() {
                 if let Some(n) = sequence_number(block) {
-                    labels.push((n, lines.len(), b));
+                    labels.push((n, l, b));
                 }
             }
-            lines.push(blocks);
         }
         labels.sort_unstable();
         StoredProgram {
             number,
-            lines,
+            lines: program.lines,
             labels,
+            structure: program.structure,
         }
+    }
+
+    /// The partners of the structured statements, for a Syntec `%@MACRO` program.
+    pub(crate) fn structure(&self) -> Option<&Structure> {
+        self.structure.as_ref()
+    }
+
+    /// The block at `at`.
+    pub(crate) fn block(&self, (line, block): Position) -> Option<&Block> {
+        self.line(line)?.get(block)
     }
 
     /// The blocks of line `line`.

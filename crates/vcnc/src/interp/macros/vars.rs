@@ -41,6 +41,8 @@ pub(crate) struct Variables {
     /// Counts writes to the persistent variables, so the caller knows when to save them.
     persistent_writes: u64,
     extended: std::collections::BTreeMap<u32, MacroValue>,
+    /// Syntec's public variables `@n`, kept for the run.
+    public: std::collections::BTreeMap<u32, f64>,
 }
 
 impl Default for Variables {
@@ -51,6 +53,7 @@ impl Default for Variables {
             persistent: Box::new([None; 500]),
             persistent_writes: 0,
             extended: std::collections::BTreeMap::new(),
+            public: std::collections::BTreeMap::new(),
         }
     }
 }
@@ -105,6 +108,19 @@ impl Variables {
             Kind::Vacant | Kind::System => return false,
         }
         true
+    }
+
+    /// The value of the public variable `@number`.
+    pub(crate) fn public(&self, number: u32) -> MacroValue {
+        self.public.get(&number).copied()
+    }
+
+    /// Sets the public variable `@number` (vacant removes it).
+    pub(crate) fn set_public(&mut self, number: u32, value: MacroValue) {
+        match value {
+            Some(value) => self.public.insert(number, value),
+            None => self.public.remove(&number),
+        };
     }
 
     /// A macro call: a new level of locals holding the arguments.

@@ -6,14 +6,19 @@
 //! or the line end as end of block, spaces anywhere between words and inside a word, addresses in
 //! upper or lower case, and extended addresses such as `F2=` and `S1=`.
 //!
-//! Custom Macro B (`#` variables, `[ ]` expressions, IF/WHILE/GOTO) is recognised and reported
-//! as not supported yet; the block carries that alarm.
+//! Custom Macro B (`#` variables, `[ ]` expressions, IF/WHILE/GOTO) is read into statements
+//! and postfix expressions (`parser/macros.rs`). A Syntec program whose first line is `%@MACRO`
+//! is read statement by statement instead of line by line ([`parse_program`]), with the
+//! structured statements of `parser/structured.rs` paired by [`structure`].
 //!
 //! This module never decides what a word means: `X20` stays 20 with no decimal point.
 
 mod parser;
+mod program;
+pub mod structure;
 
 pub use parser::{parse_line, SyntaxOptions};
+pub use program::{parse_program, ProgramBlocks};
 
 /// A reusable set of blocks: the blocks of one line, overwritten line after line so that reading
 /// does not allocate once the buffers have grown.

@@ -1,12 +1,27 @@
 //! The ISO block reader: one line of bytes into blocks of words.
+//!
+//! The same reader reads the statements of a Syntec `%@MACRO` program (`Format::Macro`), one
+//! statement at a time, as `super::program` cuts them out of the text: there `( )` are
+//! brackets, not comments, and the structured statements (IF ... END_IF, WHILE, FOR, REPEAT)
+//! of `structured.rs` are read.
 
 mod macros;
+mod structured;
 
 use super::LineBlocks;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
 use crate::syntax::lines::Line;
 use crate::syntax::{BlockKind, Number, Word};
+
+/// How a text is read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Format {
+    /// ISO blocks: a line holds blocks ended by `;` or the line end, `( )` are comments.
+    Iso,
+    /// One statement of a Syntec `%@MACRO` program (its `;` and comments already removed).
+    Macro,
+}
 
 /// What varies between the ISO dialects at the level of characters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,6 +64,8 @@ fn parse_any_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &m
         base: line.offset,
         line: line.number,
         options,
+        format: Format::Iso,
+        line_breaks: &[],
     };
     loop {
         reader.skip_blanks();
@@ -136,6 +153,50 @@ struct Reader<'a, 'o> {
     base: u32,
     line: u32,
     options: &'o SyntaxOptions,
+    format: Format,
+    /// Where `text` has line ends (a macro statement may run over several lines), for the line
+    /// numbers of spans; empty for one line.
+    line_breaks: &'a [usize],
+}
+
+#[cfg(test)]
+pub(super) use macros::tests::describe as describe_block;
+
+/// Reads one statement of a Syntec macro program into `out`: `text` is the statement as it
+/// stands in the file from byte `offset` (line `line`), without its `;`, comments blanked out.
+pub(crate) fn parse_macro_statement(
+    text: &[u8],
+    offset: u32,
+    line: u32,
+    file: FileId,
+    options: &SyntaxOptions,
+    out: &mut LineBlocks,
+) {
+    let line_breaks: Vec<usize> = text
+        .iter()
+        .enumerate()
+        .filter(|(_, &b)| b == b'\n')
+        .map(|(i, _)| i)
+        .collect();
+    let mut reader = Reader {
+        text,
+        pos: 0,
+        file,
+        base: offset,
+        line,
+        options,
+        format: Format::Macro,
+        line_breaks: &line_breaks,
+    };
+    reader.skip_blanks();
+    if reader.at_end() {
+        return;
+    }
+    let block = out.push();
+    reader.read_block(block);
+    if block.is_empty() && block.skip.is_none() && block.alarms.is_empty() {
+        out.pop();
+    }
 }
 
 impl Reader<'_, '_> {
@@ -156,12 +217,14 @@ impl Reader<'_, '_> {
             self.base
                 .saturating_add(u32::try_from(p).unwrap_or(u32::MAX))
         };
-        Span::new(self.file, at(start), at(end), self.line)
+        let line = self.line + self.line_breaks.partition_point(|&b| b < start) as u32;
+        Span::new(self.file, at(start), at(end), line)
     }
 
     fn skip_blanks(&mut self) {
         while let Some(b) = self.peek() {
-            if matches!(b, b' ' | b'\t' | b'\x0c' | b'\x0b' | b'\r' | 0) {
+            // A line end is only ever inside a macro statement that runs over several lines.
+            if matches!(b, b' ' | b'\t' | b'\x0c' | b'\x0b' | b'\r' | b'\n' | 0) {
                 self.pos += 1;
             } else {
                 break;
@@ -209,7 +272,7 @@ impl Reader<'_, '_> {
                     self.pos = self.text.len();
                     return BlockEnd::Line;
                 }
-                b'(' => self.read_comment(block),
+                b'(' if self.format == Format::Iso => self.read_comment(block),
                 b'/' if self.options.slash_slash_comments && self.peek_at(1) == Some(b'/') => {
                     self.note_comment(block, self.pos, self.text.len());
                     self.pos = self.text.len();
@@ -217,7 +280,11 @@ impl Reader<'_, '_> {
                 }
                 b'/' if at_block_start => self.read_block_skip(block),
                 b'%' if at_block_start => {
-                    block.kind = BlockKind::TapeMark;
+                    block.kind = if is_macro_header(&self.text[self.pos..]) {
+                        BlockKind::MacroHeader
+                    } else {
+                        BlockKind::TapeMark
+                    };
                     self.pos = self.text.len();
                     return BlockEnd::Line;
                 }
@@ -235,6 +302,23 @@ impl Reader<'_, '_> {
                     if self.read_assignment(block).is_err() {
                         return self.abandon(block);
                     }
+                }
+                b'@' if self.format == Format::Macro => {
+                    if self.read_assignment(block).is_err() {
+                        return self.abandon(block);
+                    }
+                }
+                b'(' => {
+                    let span = self.span(self.pos, self.pos + 1);
+                    block.alarms.push(
+                        Alarm::error(
+                            AlarmCode::MacroSyntax,
+                            span,
+                            "`(` where a statement or a word should start",
+                        )
+                        .with_help("in a %@MACRO program `( )` are brackets: comments are `// ...` or `(* ... *)`"),
+                    );
+                    return self.abandon(block);
                 }
                 b if b.is_ascii_alphabetic() => {
                     if !self.read_plain_word(block) && !self.read_word(block) {
@@ -357,27 +441,19 @@ impl Reader<'_, '_> {
     fn read_word(&mut self, block: &mut crate::syntax::Block) -> bool {
         let start = self.pos;
         let letter = self.text[self.pos].to_ascii_uppercase();
-        if self.peek_at(1).is_some_and(|b| b.is_ascii_alphabetic()) {
-            if let Some(read) = self.read_keyword_statement(block) {
+        let macro_format = self.format == Format::Macro;
+        if self
+            .peek_at(1)
+            .is_some_and(|b| b.is_ascii_alphabetic() || (macro_format && b == b'_'))
+        {
+            let read = match self.format {
+                Format::Iso => self.read_keyword_statement(block),
+                Format::Macro => self.read_structured_statement(block),
+            };
+            if let Some(read) = read {
                 return read.is_ok();
             }
-            // Two letters in a row that start no statement.
-            let end = self.text[start..]
-                .iter()
-                .position(|b| !b.is_ascii_alphabetic())
-                .map_or(self.text.len(), |n| start + n);
-            let keyword = String::from_utf8_lossy(&self.text[start..end]).to_ascii_uppercase();
-            let span = self.span(start, end);
-            block.alarms.push(if is_macro_keyword(&keyword) {
-                Alarm::not_supported(span, &format!("the macro statement `{keyword}`"), None)
-            } else {
-                Alarm::error(
-                    AlarmCode::UnexpectedCharacter,
-                    span,
-                    format!("`{keyword}` is not an ISO word"),
-                )
-                .with_help("an address is one letter followed by a number, e.g. `X10.`")
-            });
+            self.unknown_name(block, start);
             return false;
         }
         self.pos += 1;
@@ -385,6 +461,43 @@ impl Reader<'_, '_> {
             return self.read_expression_word(block, letter, start).is_ok();
         }
         self.read_value(block, letter, start)
+    }
+
+    /// Two letters in a row that start no statement: the alarm says what they look like.
+    fn unknown_name(&mut self, block: &mut crate::syntax::Block, start: usize) {
+        let end = self.text[start..]
+            .iter()
+            .position(|b| !(b.is_ascii_alphabetic() || *b == b'_'))
+            .map_or(self.text.len(), |n| start + n);
+        let name = String::from_utf8_lossy(&self.text[start..end]).to_ascii_uppercase();
+        let span = self.span(start, end);
+        let called = self.text[end..]
+            .iter()
+            .find(|b| !matches!(b, b' ' | b'\t'))
+            .is_some_and(|&b| b == b'(' || b == b'[');
+        block.alarms.push(match self.format {
+            Format::Macro if called => {
+                Alarm::not_supported(span, &format!("the macro function `{name}`"), None)
+            }
+            Format::Macro if is_structured_keyword(&name) => {
+                Alarm::not_supported(span, &format!("`{name}`"), None)
+            }
+            Format::Macro => Alarm::error(
+                AlarmCode::MacroSyntax,
+                span,
+                format!("`{name}` is not a statement of a %@MACRO program"),
+            )
+            .with_help("a statement is an assignment (`#1 := 2;`), a keyword statement (IF, WHILE, FOR, REPEAT, GOTO ...) or NC words (`G01 X10.;`)"),
+            Format::Iso if is_macro_keyword(&name) => {
+                Alarm::not_supported(span, &format!("the macro statement `{name}`"), None)
+            }
+            Format::Iso => Alarm::error(
+                AlarmCode::UnexpectedCharacter,
+                span,
+                format!("`{name}` is not an ISO word"),
+            )
+            .with_help("an address is one letter followed by a number, e.g. `X10.`"),
+        });
     }
 
     /// The number after an address letter (and the value of an extended address `F2=...`).
@@ -632,6 +745,22 @@ fn char_width(bytes: &[u8]) -> usize {
     }
 }
 
+/// `%@MACRO` at the start of `rest` (any case), not followed by more of a word.
+pub(super) fn is_macro_header(rest: &[u8]) -> bool {
+    const HEADER: &[u8] = b"%@MACRO";
+    rest.len() >= HEADER.len()
+        && rest[..HEADER.len()].eq_ignore_ascii_case(HEADER)
+        && !rest
+            .get(HEADER.len())
+            .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
+}
+
+/// Statements of Syntec macro programs that vcnc does not run yet.
+fn is_structured_keyword(word: &str) -> bool {
+    const KEYWORDS: &[&str] = &["CASE", "END_CASE", "ENDCASE", "OF"];
+    KEYWORDS.contains(&word)
+}
+
 fn is_macro_keyword(word: &str) -> bool {
     const KEYWORDS: &[&str] = &[
         "IF", "THEN", "GOTO", "WHILE", "WH", "DO", "END", "EQ", "NE", "GT", "GE", "LT", "LE",
@@ -775,6 +904,8 @@ mod tests {
             base: 0,
             line: 1,
             options: &options,
+            format: Format::Iso,
+            line_breaks: &[],
         };
         reader.read_digits(0, b'X', negative, &mut Block::new())
     }

@@ -6,18 +6,30 @@
 //! order into the block's `code`. Spaces may stand anywhere, and keywords need none around them
 //! (`IF[#1GT#2]GOTO10`, `WH[#18GT#26]DO1`): a run of letters is matched against the keywords
 //! that can stand there, longest first.
+//!
+//! A Syntec `%@MACRO` statement (`Format::Macro`) is read with the precedence of IEC 61131-3
+//! structured text, which Syntec's macro language follows: `NOT` and signs, then `*` `/` `MOD`,
+//! then `+` `-`, then the comparisons (`=` `<>` `<` `<=` `>` `>=`, and FANUC's EQ ... LE),
+//! then `AND`, `XOR`, `OR`; `( )` bracket like `[ ]`, functions take `( )` (`ABS(#1)`), and
+//! `@n` is a public variable.
 
+use super::Format;
 use super::{fast_number, Reader};
 use crate::alarm::{Alarm, AlarmCode};
-use crate::syntax::expr::{BinaryOp, Expr, Function, Instruction, Op, Statement};
+use crate::syntax::expr::{
+    BinaryOp, Expr, Function, Function2, Instruction, Op, Statement, Target, VariableBank,
+};
 use crate::syntax::{Block, Number, Word};
 
 /// Brackets and signs nested deeper than this are an alarm (FANUC allows five levels of
 /// brackets; the limit here only keeps a hostile line from exhausting the stack).
 const MAX_NESTING: usize = 64;
 
-/// Operators between operands, by precedence level: (keyword or symbol, operator).
-const COMPARISONS: &[(&str, BinaryOp)] = &[
+/// Operators between operands: (keyword or symbol, operator). A precedence level is a list of
+/// these tables.
+type Operators = &'static [(&'static str, BinaryOp)];
+
+const COMPARISONS: Operators = &[
     ("EQ", BinaryOp::Equal),
     ("NE", BinaryOp::NotEqual),
     ("GT", BinaryOp::Greater),
@@ -25,17 +37,52 @@ const COMPARISONS: &[(&str, BinaryOp)] = &[
     ("LT", BinaryOp::Less),
     ("LE", BinaryOp::LessOrEqual),
 ];
-const ADDITIVE: &[(&str, BinaryOp)] = &[
-    ("+", BinaryOp::Add),
-    ("-", BinaryOp::Subtract),
-    ("OR", BinaryOp::Or),
-    ("XOR", BinaryOp::Xor),
+/// Syntec's comparison symbols.
+const SYMBOL_COMPARISONS: Operators = &[
+    ("=", BinaryOp::Equal),
+    ("<>", BinaryOp::NotEqual),
+    (">", BinaryOp::Greater),
+    (">=", BinaryOp::GreaterOrEqual),
+    ("<", BinaryOp::Less),
+    ("<=", BinaryOp::LessOrEqual),
 ];
-const MULTIPLICATIVE: &[(&str, BinaryOp)] = &[
+const SIGNS: Operators = &[("+", BinaryOp::Add), ("-", BinaryOp::Subtract)];
+const PRODUCTS: Operators = &[
     ("*", BinaryOp::Multiply),
     ("/", BinaryOp::Divide),
-    ("AND", BinaryOp::And),
     ("MOD", BinaryOp::Modulo),
+];
+const OR: Operators = &[("OR", BinaryOp::Or)];
+const XOR: Operators = &[("XOR", BinaryOp::Xor)];
+const AND: Operators = &[("AND", BinaryOp::And)];
+
+/// FANUC's precedence levels, lowest first: the comparisons; `+` `-` `OR` `XOR`; `*` `/` `AND`
+/// `MOD`.
+const ISO_LEVELS: &[&[Operators]] = &[&[COMPARISONS], &[SIGNS, OR, XOR], &[PRODUCTS, AND]];
+
+/// The precedence levels of a Syntec macro statement (IEC 61131-3), lowest first.
+const MACRO_LEVELS: &[&[Operators]] = &[
+    &[OR],
+    &[XOR],
+    &[AND],
+    &[SYMBOL_COMPARISONS, COMPARISONS],
+    &[SIGNS],
+    &[PRODUCTS],
+];
+
+/// The one-argument functions a Syntec macro statement has besides FANUC's.
+const MACRO_FUNCTIONS: &[(&str, Function)] = &[
+    ("CEIL", Function::Ceil),
+    ("FLOOR", Function::Floor),
+    ("SIGN", Function::Sign),
+];
+
+/// The two-argument functions of a Syntec macro statement: name and instruction.
+const MACRO_FUNCTIONS2: &[(&str, Op)] = &[
+    ("POW", Op::Power),
+    ("ATAN2", Op::Function2(Function2::Atan2)),
+    ("MAX", Op::Function2(Function2::Max)),
+    ("MIN", Op::Function2(Function2::Min)),
 ];
 
 /// The function names, longest spelling first where one is a prefix of another.
@@ -66,7 +113,7 @@ type Read<T = ()> = Result<T, Failed>;
 
 impl Reader<'_, '_> {
     /// The upper-case run of letters at the cursor (without moving).
-    fn letters(&self) -> String {
+    pub(super) fn letters(&self) -> String {
         self.text[self.pos..]
             .iter()
             .take_while(|b| b.is_ascii_alphabetic() || **b == b'_')
@@ -89,14 +136,20 @@ impl Reader<'_, '_> {
 
     /// A span of the line, kept inside the text: an error at the end of the line points at
     /// its last character.
-    fn clamped(&self, start: usize, end: usize) -> crate::source::Span {
+    pub(super) fn clamped(&self, start: usize, end: usize) -> crate::source::Span {
         let length = self.text.len();
         let end = end.max(start + 1).min(length);
         let start = start.min(end.saturating_sub(1));
         self.span(start, end)
     }
 
-    fn fail(&self, block: &mut Block, start: usize, end: usize, message: String) -> Failed {
+    pub(super) fn fail(
+        &self,
+        block: &mut Block,
+        start: usize,
+        end: usize,
+        message: String,
+    ) -> Failed {
         block.alarms.push(Alarm::error(
             AlarmCode::MacroSyntax,
             self.clamped(start, end),
@@ -112,7 +165,7 @@ impl Reader<'_, '_> {
         });
     }
 
-    fn expect(&mut self, block: &mut Block, byte: u8, what: &str) -> Read {
+    pub(super) fn expect(&mut self, block: &mut Block, byte: u8, what: &str) -> Read {
         self.skip_blanks();
         if self.peek() == Some(byte) {
             self.pos += 1;
@@ -131,39 +184,32 @@ impl Reader<'_, '_> {
     /// A whole expression, comparisons included; returns its range of `code`.
     pub(super) fn expression(&mut self, block: &mut Block) -> Read<Expr> {
         let start = block.code.len() as u32;
-        self.comparison(block, 0)?;
+        self.binary(block, 0, 0)?;
         Ok(Expr {
             start,
             end: block.code.len() as u32,
         })
     }
 
-    fn comparison(&mut self, block: &mut Block, depth: usize) -> Read {
-        self.additive(block, depth)?;
-        self.binary_tail(block, depth, COMPARISONS, Reader::additive)
+    /// The precedence levels of this format, lowest first.
+    fn levels(&self) -> &'static [&'static [Operators]] {
+        match self.format {
+            Format::Iso => ISO_LEVELS,
+            Format::Macro => MACRO_LEVELS,
+        }
     }
 
-    fn additive(&mut self, block: &mut Block, depth: usize) -> Read {
-        self.multiplicative(block, depth)?;
-        self.binary_tail(block, depth, ADDITIVE, Reader::multiplicative)
-    }
-
-    fn multiplicative(&mut self, block: &mut Block, depth: usize) -> Read {
-        self.unary(block, depth)?;
-        self.binary_tail(block, depth, MULTIPLICATIVE, Reader::unary)
-    }
-
-    /// `(op operand)*` at one precedence level, left to right.
-    fn binary_tail(
-        &mut self,
-        block: &mut Block,
-        depth: usize,
-        operators: &[(&str, BinaryOp)],
-        operand: fn(&mut Self, &mut Block, usize) -> Read,
-    ) -> Read {
+    /// `operand (op operand)*` at precedence level `level` (0 is the lowest: a whole
+    /// expression), left to right; past the last level, a unary operand.
+    fn binary(&mut self, block: &mut Block, depth: usize, level: usize) -> Read {
+        let Some(&tables) = self.levels().get(level) else {
+            return self.unary(block, depth);
+        };
+        self.binary(block, depth, level + 1)?;
         loop {
             self.skip_blanks();
-            let Some((length, op)) = self.match_keyword(operators) else {
+            let found = tables.iter().filter_map(|t| self.match_keyword(t));
+            let Some((length, op)) = found.max_by_key(|&(length, _)| length) else {
                 return Ok(());
             };
             // `/` right after an operand divides; `//` is a Syntec comment.
@@ -175,7 +221,7 @@ impl Reader<'_, '_> {
             }
             let at = self.pos;
             self.pos += length;
-            operand(self, block, depth)?;
+            self.binary(block, depth, level + 1)?;
             self.emit(block, Op::Binary(op), at, at + length);
         }
     }
@@ -198,6 +244,13 @@ impl Reader<'_, '_> {
                 self.pos += 1;
                 self.unary(block, depth + 1)
             }
+            Some(b'N' | b'n') if self.format == Format::Macro && self.letters() == "NOT" => {
+                let at = self.pos;
+                self.pos += 3;
+                self.unary(block, depth + 1)?;
+                self.emit(block, Op::Function(Function::Not), at, at + 3);
+                Ok(())
+            }
             _ => self.primary(block, depth),
         }
     }
@@ -207,10 +260,16 @@ impl Reader<'_, '_> {
         let start = self.pos;
         match self.peek() {
             Some(b'[') => self.bracketed(block, depth),
-            Some(b'#') => {
+            Some(b'(') if self.format == Format::Macro => self.bracketed(block, depth),
+            Some(sigil @ (b'#' | b'@')) if sigil == b'#' || self.format == Format::Macro => {
+                let bank = if sigil == b'#' {
+                    VariableBank::Macro
+                } else {
+                    VariableBank::Public
+                };
                 self.pos += 1;
                 let before = block.code.len();
-                self.variable_number(block, depth)?;
+                self.variable_number(block, depth, sigil)?;
                 // `#n` (or `#[n]`) with a constant n: one instruction instead of a constant and
                 // an indirection.
                 if block.code.len() == before + 1 {
@@ -218,13 +277,20 @@ impl Reader<'_, '_> {
                     let last = &mut block.code[before];
                     if let Op::Number(n) = last.op {
                         if let Some(number) = whole_variable_number(n) {
-                            last.op = Op::Variable(number);
+                            last.op = match bank {
+                                VariableBank::Macro => Op::Variable(number),
+                                VariableBank::Public => Op::Public(number),
+                            };
                             last.span = span;
                             return Ok(());
                         }
                     }
                 }
-                self.emit(block, Op::Indirect, start, start + 1);
+                let indirect = match bank {
+                    VariableBank::Macro => Op::Indirect,
+                    VariableBank::Public => Op::PublicIndirect,
+                };
+                self.emit(block, indirect, start, start + 1);
                 Ok(())
             }
             Some(b'0'..=b'9' | b'.') => {
@@ -232,7 +298,16 @@ impl Reader<'_, '_> {
                 self.emit(block, Op::Number(number), start, self.pos);
                 Ok(())
             }
-            Some(b) if b.is_ascii_alphabetic() => self.function(block, depth),
+            Some(b) if b.is_ascii_alphabetic() => match self.format {
+                Format::Iso => self.function(block, depth),
+                Format::Macro => self.macro_function(block, depth),
+            },
+            Some(b'"') if self.format == Format::Macro => Err(self.fail(
+                block,
+                start,
+                start + 1,
+                "a text is only an argument of MSG or ALARM here, not a value".into(),
+            )),
             _ => {
                 let found = match self.peek() {
                     None => "the end of the block".to_string(),
@@ -248,13 +323,18 @@ impl Reader<'_, '_> {
         }
     }
 
-    /// `[ expression ]`.
+    /// `[ expression ]`, or `( expression )` in a macro statement.
     fn bracketed(&mut self, block: &mut Block, depth: usize) -> Read {
         let open = self.pos;
+        let close = if self.peek() == Some(b'(') {
+            b')'
+        } else {
+            b']'
+        };
         self.pos += 1;
-        self.comparison(block, depth + 1)?;
+        self.binary(block, depth + 1, 0)?;
         self.skip_blanks();
-        if self.peek() == Some(b']') {
+        if self.peek() == Some(close) {
             self.pos += 1;
             Ok(())
         } else {
@@ -263,7 +343,7 @@ impl Reader<'_, '_> {
                 Alarm::error(
                     AlarmCode::MacroSyntax,
                     self.clamped(at, at + 1),
-                    "expected `]` to close the bracket",
+                    format!("expected `{}` to close the bracket", close as char),
                 )
                 .with_label(self.clamped(open, open + 1), "opened here"),
             );
@@ -271,9 +351,9 @@ impl Reader<'_, '_> {
         }
     }
 
-    /// The number after `#`: digits (`#5221`) or a bracketed expression (`#[#1+2]`). Emits it
-    /// as an expression (a constant for digits).
-    fn variable_number(&mut self, block: &mut Block, depth: usize) -> Read {
+    /// The number after `#` (or `@`): digits (`#5221`) or a bracketed expression (`#[#1+2]`).
+    /// Emits it as an expression (a constant for digits).
+    fn variable_number(&mut self, block: &mut Block, depth: usize, sigil: u8) -> Read {
         self.skip_blanks();
         let start = self.pos;
         match self.peek() {
@@ -287,7 +367,10 @@ impl Reader<'_, '_> {
                 block,
                 start.saturating_sub(1),
                 start,
-                "`#` needs a variable number or a bracketed expression".into(),
+                format!(
+                    "`{}` needs a variable number or a bracketed expression",
+                    sigil as char
+                ),
             )),
         }
     }
@@ -311,9 +394,9 @@ impl Reader<'_, '_> {
         if let Some(length) = self.match_keyword(&[("POW", ())]).map(|(l, ())| l) {
             self.pos += length;
             self.expect(block, b'[', "after POW")?;
-            self.comparison(block, depth + 1)?;
+            self.binary(block, depth + 1, 0)?;
             self.expect(block, b',', "between POW's arguments")?;
-            self.comparison(block, depth + 1)?;
+            self.binary(block, depth + 1, 0)?;
             self.expect(block, b']', "to close POW's arguments")?;
             self.emit(block, Op::Power, start, start + length);
             return Ok(());
@@ -343,12 +426,12 @@ impl Reader<'_, '_> {
             ));
         }
         self.pos += 1;
-        self.comparison(block, depth + 1)?;
+        self.binary(block, depth + 1, 0)?;
         self.skip_blanks();
         if function == Function::Atan && self.peek() == Some(b',') {
             // ATAN[y, x]
             self.pos += 1;
-            self.comparison(block, depth + 1)?;
+            self.binary(block, depth + 1, 0)?;
             self.expect(block, b']', "to close ATAN's arguments")?;
             self.emit(block, Op::Atan2, start, start + length);
             return Ok(());
@@ -373,8 +456,66 @@ impl Reader<'_, '_> {
         Ok(())
     }
 
-    /// A word whose value is an expression: `X#1`, `X-#1`, `G#8`, `P[10]`, `Z-[#4/2]`. The
-    /// cursor is after the address letter.
+    /// A function of a Syntec macro statement: `ABS(#1)`, `ATAN2(#2, #3)`, `MAX(a, b)`;
+    /// `[ ]` bracket the arguments as well as `( )`.
+    fn macro_function(&mut self, block: &mut Block, depth: usize) -> Read {
+        let start = self.pos;
+        // Names may hold digits after the first letter (ATAN2).
+        let name: String = self.text[start..]
+            .iter()
+            .take_while(|b| b.is_ascii_alphanumeric() || **b == b'_')
+            .map(|b| char::from(b.to_ascii_uppercase()))
+            .collect();
+        let end = start + name.len();
+        let one = MACRO_FUNCTIONS
+            .iter()
+            .chain(FUNCTIONS)
+            .find(|(n, _)| *n == name);
+        let two = MACRO_FUNCTIONS2.iter().find(|(n, _)| *n == name);
+        self.pos = end;
+        self.skip_blanks();
+        let close = match self.peek() {
+            Some(b'(') => b')',
+            Some(b'[') => b']',
+            _ if one.is_some() || two.is_some() => {
+                let at = self.pos;
+                return Err(self.fail(block, at, at + 1, format!("expected `(` after {name}")));
+            }
+            _ => {
+                return Err(self.fail(
+                    block,
+                    start,
+                    end,
+                    format!("`{name}` is not a macro function or value"),
+                ))
+            }
+        };
+        let op = match (one, two) {
+            (Some(&(_, function)), _) => Op::Function(function),
+            (None, Some(&(_, op))) => op,
+            (None, None) => {
+                let span = self.clamped(start, end);
+                block.alarms.push(Alarm::not_supported(
+                    span,
+                    &format!("the macro function `{name}`"),
+                    None,
+                ));
+                return Err(Failed);
+            }
+        };
+        self.pos += 1;
+        self.binary(block, depth + 1, 0)?;
+        if two.is_some() {
+            self.expect(block, b',', &format!("between {name}'s arguments"))?;
+            self.binary(block, depth + 1, 0)?;
+        }
+        self.expect(block, close, &format!("to close {name}'s arguments"))?;
+        self.emit(block, op, start, end);
+        Ok(())
+    }
+
+    /// A word whose value is an expression: `X#1`, `X-#1`, `G#8`, `P[10]`, `Z-[#4/2]`; in a
+    /// macro statement also `X(#1+2.)` and `X@3`. The cursor is after the address letter.
     pub(super) fn read_expression_word(
         &mut self,
         block: &mut Block,
@@ -398,18 +539,22 @@ impl Reader<'_, '_> {
     }
 
     /// True when the text after an address letter is an expression value (`#`, `[`, or a sign
-    /// before either).
+    /// before either; in a macro statement also `(` and `@`).
     pub(super) fn expression_value_follows(&self) -> bool {
         let rest = &self.text[self.pos..];
         let mut bytes = rest.iter().filter(|b| !matches!(b, b' ' | b'\t'));
-        match bytes.next() {
+        let opens = |b: Option<&u8>| match b {
             Some(b'#' | b'[') => true,
-            Some(b'-' | b'+') => matches!(bytes.next(), Some(b'#' | b'[')),
+            Some(b'(' | b'@') => self.format == Format::Macro,
             _ => false,
+        };
+        match bytes.next() {
+            Some(b'-' | b'+') => opens(bytes.next()),
+            first => opens(first),
         }
     }
 
-    /// `#i = expr` (or `:=`), the cursor on `#`.
+    /// `#i = expr` (or `:=`; `@i := expr` in a macro statement), the cursor on `#` or `@`.
     pub(super) fn read_assignment(&mut self, block: &mut Block) -> Read {
         let start = self.pos;
         let (variable, value) = self.assignment_parts(block)?;
@@ -421,12 +566,14 @@ impl Reader<'_, '_> {
         Ok(())
     }
 
-    fn assignment_parts(&mut self, block: &mut Block) -> Read<(Expr, Expr)> {
+    /// The variable at the cursor (`#n`, `#[..]`, `@n`, `@[..]`) up to `:=` or `=`.
+    pub(super) fn assigned_variable(&mut self, block: &mut Block) -> Read<Target> {
         let start = self.pos;
+        let sigil = self.peek().unwrap_or(b'#');
         self.pos += 1;
         let first = block.code.len() as u32;
-        self.variable_number(block, 0)?;
-        let variable = Expr {
+        self.variable_number(block, 0, sigil)?;
+        let number = Expr {
             start: first,
             end: block.code.len() as u32,
         };
@@ -444,6 +591,16 @@ impl Reader<'_, '_> {
                 "a variable at the start of a statement must be assigned: `#1 = value`".into(),
             ));
         }
+        let bank = if sigil == b'@' {
+            VariableBank::Public
+        } else {
+            VariableBank::Macro
+        };
+        Ok(Target { bank, number })
+    }
+
+    fn assignment_parts(&mut self, block: &mut Block) -> Read<(Target, Expr)> {
+        let variable = self.assigned_variable(block)?;
         let value = self.expression(block)?;
         Ok((variable, value))
     }
@@ -568,7 +725,7 @@ impl Reader<'_, '_> {
                 let (variable, value) = self.assignment_parts(block)?;
                 block.statements.push(Statement::IfThen {
                     condition,
-                    variable,
+                    variable: variable.number,
                     value,
                     span: self.span(start, self.pos),
                 });
@@ -615,9 +772,9 @@ fn whole_variable_number(n: f64) -> Option<u32> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use crate::source::FileId;
-    use crate::syntax::expr::{Expr, Instruction, Op, Statement};
+    use crate::syntax::expr::{Expr, Instruction, Op, Statement, Target, VariableBank};
     use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
     use crate::syntax::lines::Line;
     use crate::syntax::Block;
@@ -638,16 +795,19 @@ mod tests {
     }
 
     /// An expression in postfix, with spaces.
-    fn postfix(expr: Expr, code: &[Instruction]) -> String {
+    pub(crate) fn postfix(expr: Expr, code: &[Instruction]) -> String {
         expr.of(code)
             .iter()
             .map(|i| match i.op {
                 Op::Number(n) => format!("{n}"),
                 Op::Variable(n) => format!("#{n}"),
                 Op::Indirect => "#[]".into(),
+                Op::Public(n) => format!("@{n}"),
+                Op::PublicIndirect => "@[]".into(),
                 Op::Negate => "neg".into(),
                 Op::Binary(op) => format!("{op:?}"),
                 Op::Function(f) => format!("{f:?}"),
+                Op::Function2(f) => format!("{f:?}"),
                 Op::Atan2 => "atan2".into(),
                 Op::Power => "pow".into(),
             })
@@ -655,10 +815,75 @@ mod tests {
             .join(" ")
     }
 
-    /// The block's statements and words, one per `|`.
-    fn show(text: &str) -> String {
-        let blocks = parse(text);
-        let block = &blocks[0];
+    /// A variable written: `#[number]` or `@[number]`.
+    fn target(variable: Target, code: &[Instruction]) -> String {
+        let sigil = match variable.bank {
+            VariableBank::Macro => '#',
+            VariableBank::Public => '@',
+        };
+        format!("{sigil}[{}]", postfix(variable.number, code))
+    }
+
+    /// A statement, short.
+    fn statement(s: &Statement, code: &[Instruction]) -> String {
+        let p = |e: Expr| postfix(e, code);
+        match *s {
+            Statement::Assign {
+                variable, value, ..
+            } => format!("{} = {}", target(variable, code), p(value)),
+            Statement::Goto { target, .. } => format!("goto {}", p(target)),
+            Statement::IfGoto {
+                condition, target, ..
+            } => format!("if {} goto {}", p(condition), p(target)),
+            Statement::IfThen {
+                condition,
+                variable,
+                value,
+                ..
+            } => format!("if {} then #[{}] = {}", p(condition), p(variable), p(value)),
+            Statement::While {
+                condition, label, ..
+            } => match condition {
+                Some(c) => format!("while {} do {label}", p(c)),
+                None => format!("do {label}"),
+            },
+            Statement::End { label, .. } => format!("end {label}"),
+            Statement::If { condition, .. } => format!("if {} then", p(condition)),
+            Statement::ElseIf { condition, .. } => format!("elseif {} then", p(condition)),
+            Statement::WhileDo { condition, .. } => format!("while {} do", p(condition)),
+            Statement::For {
+                variable,
+                from,
+                to,
+                step,
+                ..
+            } => {
+                let by = step.map_or(String::new(), |s| format!(" by {}", p(s)));
+                format!(
+                    "for {} = {} to {}{by} do",
+                    target(variable, code),
+                    p(from),
+                    p(to)
+                )
+            }
+            Statement::Until { condition, .. } => format!("until {}", p(condition)),
+            Statement::Alarm { number, .. } => format!("alarm {}", p(number)),
+            Statement::Message { number, .. } => {
+                format!("msg {}", number.map_or(String::new(), p))
+            }
+            Statement::Else { .. } => "else".into(),
+            Statement::EndIf { .. } => "end_if".into(),
+            Statement::EndWhile { .. } => "end_while".into(),
+            Statement::EndFor { .. } => "end_for".into(),
+            Statement::Repeat { .. } => "repeat".into(),
+            Statement::EndRepeat { .. } => "end_repeat".into(),
+            Statement::Exit { .. } => "exit".into(),
+            Statement::Wait { .. } => "wait".into(),
+        }
+    }
+
+    /// The block's first alarm, or its statements and words, one per `|`.
+    pub(crate) fn describe(block: &Block) -> String {
         if let Some(alarm) = block.alarms.first() {
             return format!("alarm {}: {}", alarm.span.unwrap().start, alarm.message);
         }
@@ -666,43 +891,24 @@ mod tests {
         let mut parts: Vec<String> = block
             .statements
             .iter()
-            .map(|s| match *s {
-                Statement::Assign {
-                    variable, value, ..
-                } => format!("#[{}] = {}", postfix(variable, code), postfix(value, code)),
-                Statement::Goto { target, .. } => format!("goto {}", postfix(target, code)),
-                Statement::IfGoto {
-                    condition, target, ..
-                } => format!(
-                    "if {} goto {}",
-                    postfix(condition, code),
-                    postfix(target, code)
-                ),
-                Statement::IfThen {
-                    condition,
-                    variable,
-                    value,
-                    ..
-                } => format!(
-                    "if {} then #[{}] = {}",
-                    postfix(condition, code),
-                    postfix(variable, code),
-                    postfix(value, code)
-                ),
-                Statement::While {
-                    condition, label, ..
-                } => match condition {
-                    Some(c) => format!("while {} do {label}", postfix(c, code)),
-                    None => format!("do {label}"),
-                },
-                Statement::End { label, .. } => format!("end {label}"),
-            })
+            .map(|s| statement(s, code))
             .collect();
         parts.extend(block.words.iter().map(|w| match w.expr {
             Some(e) => format!("{}({})", w.letter as char, postfix(e, code)),
             None => format!("{}{}", w.letter as char, w.number.value),
         }));
+        if block.kind != crate::syntax::BlockKind::Words {
+            parts.push(format!("{:?}", block.kind));
+        }
+        if let (Some(message), None) = (&block.message, block.comment) {
+            parts.push(format!("{message:?}"));
+        }
         parts.join(" | ")
+    }
+
+    /// The first block of `text` described.
+    fn show(text: &str) -> String {
+        describe(&parse(text)[0])
     }
 
     #[test]
