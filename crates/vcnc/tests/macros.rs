@@ -38,16 +38,7 @@ fn vars(program: &str) -> Vec<Option<f64>> {
 
 /// Asserts variable values after a run (`None` = vacant).
 fn check(program: &str, expected: &[(usize, Option<f64>)]) {
-    let values = vars(program);
-    for &(n, want) in expected {
-        match (values[n], want) {
-            (Some(got), Some(want)) => assert!(
-                (got - want).abs() < 1e-9,
-                "#{n} = {got}, expected {want}\n{program}"
-            ),
-            (got, want) => assert_eq!(got, want, "#{n}\n{program}"),
-        }
-    }
+    common::variables::assert_values(program, &vars(program), expected);
 }
 
 /// The first error's code and line.
@@ -65,22 +56,7 @@ fn ends(program: &str, library: MemoryLibrary) -> Vec<[f64; 3]> {
     let (segments, alarms, _) = run_with(program, &Machine::default(), library);
     let errors: Vec<_> = alarms.iter().filter(|a| a.is_error()).collect();
     assert!(errors.is_empty(), "{program}\n{errors:?}");
-    segments
-        .iter()
-        .filter_map(|s| match &s.kind {
-            SegmentKind::Rapid { motion, .. }
-            | SegmentKind::Line { motion, .. }
-            | SegmentKind::Arc { motion, .. } => {
-                let p = motion.to.0;
-                Some([
-                    (p[0] * 1e4).round() / 1e4,
-                    (p[1] * 1e4).round() / 1e4,
-                    (p[2] * 1e4).round() / 1e4,
-                ])
-            }
-            _ => None,
-        })
-        .collect()
+    common::variables::move_ends(&segments)
 }
 
 fn library(programs: &[(u32, &str)]) -> MemoryLibrary {

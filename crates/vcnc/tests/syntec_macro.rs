@@ -56,16 +56,7 @@ fn vars(program: &str) -> Vec<Option<f64>> {
 
 /// Asserts `#` variable values after a run (`None` = vacant).
 fn check(program: &str, expected: &[(usize, Option<f64>)]) {
-    let values = vars(program);
-    for &(n, want) in expected {
-        match (values[n], want) {
-            (Some(got), Some(want)) => assert!(
-                (got - want).abs() < 1e-9,
-                "#{n} = {got}, expected {want}\n{program}"
-            ),
-            (got, want) => assert_eq!(got, want, "#{n}\n{program}"),
-        }
-    }
+    common::variables::assert_values(program, &vars(program), expected);
 }
 
 /// The error a run stops with.
@@ -88,18 +79,7 @@ fn alarm(program: &str) -> (AlarmCode, u32) {
 fn ends(program: &str, library: MemoryLibrary) -> Vec<[f64; 3]> {
     let (run, _, _) = run_full(program, library, Options::default());
     assert!(run.error().is_none(), "{program}\n{:?}", run.error());
-    run.segments
-        .iter()
-        .filter_map(|s| match &s.kind {
-            SegmentKind::Rapid { motion, .. }
-            | SegmentKind::Line { motion, .. }
-            | SegmentKind::Arc { motion, .. } => {
-                Some(motion.to.0.map(|c| (c * 1e4).round() / 1e4 + 0.0))
-            }
-            _ => None,
-        })
-        .map(|p| [p[0], p[1], p[2]])
-        .collect()
+    common::variables::move_ends(&run.segments)
 }
 
 fn v(x: f64) -> Option<f64> {

@@ -265,6 +265,20 @@ pub(crate) enum Place {
     },
 }
 
+impl Place {
+    /// Block `block` of line `line` of a program held in memory.
+    pub(crate) fn stored(
+        program: std::sync::Arc<macros::programs::StoredProgram>,
+        (line, block): macros::programs::Position,
+    ) -> Place {
+        Place::Stored {
+            program,
+            line,
+            block,
+        }
+    }
+}
+
 /// Everything but the block source: the part that runs blocks, wherever they come from.
 pub(crate) struct Core {
     options: Options,

@@ -329,14 +329,11 @@ impl Profile {
     }
 }
 
-/// The peak speed of the fastest profile: the cruise speed when up and down ramps to it fit in
-/// the length, otherwise the speed at which they meet.
+/// The peak speed of the fastest profile when the ramps up to the cruise speed and down from it
+/// do not fit in the length (the caller has found that): the speed at which they meet.
 fn peak_speed(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimits) -> f64 {
     let low = entry.max(exit);
     let needed = |peak: f64| ramp_distance(entry, peak, limits) + ramp_distance(peak, exit, limits);
-    if needed(cruise) <= length {
-        return cruise;
-    }
     if needed(low) >= length {
         return low;
     }

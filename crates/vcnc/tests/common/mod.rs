@@ -4,6 +4,7 @@
 pub mod contour;
 pub mod corpus;
 pub mod plane;
+pub mod variables;
 
 use std::path::PathBuf;
 use vcnc::{interpret_bytes, Alarm, Machine, Options, Segment};

@@ -627,11 +627,7 @@ impl Core {
             }
             self.macros.loops.pop();
         }
-        self.place = Place::Stored {
-            program,
-            line: target.0,
-            block: target.1,
-        };
+        self.place = Place::stored(program, target);
         Ok(())
     }
 
@@ -686,11 +682,7 @@ impl Core {
                 format!("DO{label} has no END{label} after it"),
             ));
         };
-        self.place = Place::Stored {
-            program,
-            line: end.0,
-            block: end.1 + 1,
-        };
+        self.place = Place::stored(program, (end.0, end.1 + 1));
         Ok(Next::Jumped)
     }
 
@@ -719,11 +711,7 @@ impl Core {
         };
         self.count_jump(span)?;
         let program = self.current_program(main_text, span)?;
-        self.place = Place::Stored {
-            program,
-            line: at.0,
-            block: at.1,
-        };
+        self.place = Place::stored(program, at);
         Ok(())
     }
 
@@ -942,11 +930,7 @@ impl Core {
             modal,
             span,
         });
-        self.place = Place::Stored {
-            program,
-            line: start.0,
-            block: start.1,
-        };
+        self.place = Place::stored(program, start);
         Ok(())
     }
 
@@ -976,11 +960,7 @@ impl Core {
             }
             self.macros.loops.clear();
             self.count_jump(span)?;
-            self.place = Place::Stored {
-                program,
-                line: start.0,
-                block: start.1,
-            };
+            self.place = Place::stored(program, start);
             return Ok(());
         }
         let frame = self.macros.calls.pop().expect("a frame is there");
@@ -1001,11 +981,7 @@ impl Core {
             };
             self.count_jump(span)?;
             self.macros.loops.clear();
-            self.place = Place::Stored {
-                program,
-                line: target.0,
-                block: target.1,
-            };
+            self.place = Place::stored(program, target);
         }
         Ok(())
     }
@@ -1046,11 +1022,7 @@ impl Core {
             None => (0, 0),
         };
         self.macros.loops.clear();
-        self.place = Place::Stored {
-            program,
-            line: target.0,
-            block: target.1,
-        };
+        self.place = Place::stored(program, target);
         Ok(())
     }
 

@@ -200,11 +200,7 @@ impl Core {
     }
 
     fn jump_to(&mut self, program: Arc<StoredProgram>, (line, block): Position) -> Next {
-        self.place = Place::Stored {
-            program,
-            line,
-            block,
-        };
+        self.place = Place::stored(program, (line, block));
         Next::Jumped
     }
 
