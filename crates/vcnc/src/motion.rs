@@ -334,9 +334,14 @@ fn arc_length(
     plane: Plane,
     extra_turns: u32,
 ) -> f64 {
+    let sweep = arc_sweep(motion, center, direction, plane, extra_turns);
+    helix_length(motion, center, plane, sweep)
+}
+
+/// The length of an arc (along the helix) whose sweep, in radians, is known.
+pub fn helix_length(motion: &Move, center: &MachinePos, plane: Plane, sweep: f64) -> f64 {
     let (a, b, n) = plane.axes();
     let radius = (motion.from.0[a] - center.0[a]).hypot(motion.from.0[b] - center.0[b]);
-    let sweep = arc_sweep(motion, center, direction, plane, extra_turns);
     let planar = radius * sweep;
     let axial = motion.to.0[n] - motion.from.0[n];
     planar.hypot(axial)

@@ -3,7 +3,9 @@
 //! program coordinates, tools used.
 
 use crate::machine::{Machine, AXES};
-use crate::motion::{arc_sweep, ArcDirection, Move, Plane, Segment, SegmentKind};
+use crate::motion::{
+    arc_sweep, helix_length, ArcDirection, MachinePos, Move, Plane, Segment, SegmentKind,
+};
 use std::collections::BTreeSet;
 
 /// An axis-aligned box over X Y Z.
@@ -23,10 +25,16 @@ impl Extents {
         }
     }
 
+    #[inline]
     fn add(&mut self, p: [f64; 3]) {
         for ((min, max), v) in self.min.iter_mut().zip(&mut self.max).zip(p) {
-            *min = min.min(v);
-            *max = max.max(v);
+            // Plain comparisons (a NaN changes nothing): cheaper than f64::min and max.
+            if v < *min {
+                *min = v;
+            }
+            if v > *max {
+                *max = v;
+            }
         }
     }
 
@@ -66,6 +74,8 @@ pub struct Summary {
     /// Tool changes.
     pub tool_changes: u64,
     rapid_rates: [f64; AXES],
+    /// Where the last move ended, its offset and whether it cut.
+    last_end: Option<(MachinePos, [f64; AXES], bool)>,
 }
 
 impl Summary {
@@ -88,6 +98,7 @@ impl Summary {
             tools: BTreeSet::new(),
             tool_changes: 0,
             rapid_rates,
+            last_end: None,
         }
     }
 
@@ -98,9 +109,9 @@ impl Summary {
 
     /// Adds one segment.
     pub fn add(&mut self, segment: &Segment) {
-        let length = segment.length();
         match &segment.kind {
             SegmentKind::Rapid { motion, .. } => {
+                let length = motion.from.distance_xyz(&motion.to);
                 self.rapid_moves += 1;
                 self.rapid_length += length;
                 // Each axis at most at its rapid rate: the slowest axis sets the time, whether the
@@ -112,6 +123,7 @@ impl Summary {
                 self.extend(motion, None, false);
             }
             SegmentKind::Line { motion, feed } => {
+                let length = motion.from.distance_xyz(&motion.to);
                 self.feed_moves += 1;
                 self.feed_length += length;
                 self.time_cut(feed.mm_per_min(length), length);
@@ -125,10 +137,12 @@ impl Summary {
                 plane,
                 extra_turns,
             } => {
+                // The sweep once, for the length and the extremes (each takes two atan2).
+                let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
+                let length = helix_length(motion, center, *plane, sweep);
                 self.feed_moves += 1;
                 self.feed_length += length;
                 self.time_cut(feed.mm_per_min(length), length);
-                let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
                 self.extend(
                     motion,
                     Some((center.xyz(), *direction, *plane, sweep)),
@@ -157,39 +171,62 @@ impl Summary {
         arc: Option<([f64; 3], ArcDirection, Plane, f64)>,
         cutting: bool,
     ) {
-        let offset = [motion.offset[0], motion.offset[1], motion.offset[2]];
-        let mut points = vec![motion.from.xyz(), motion.to.xyz()];
-        if let Some((center, direction, plane, sweep)) = arc {
-            points.extend(arc_extreme_points(motion, center, direction, plane, sweep));
+        // A move starts where the last one ended (in the same program coordinates, mostly): that
+        // point is in the extents already.
+        let continues = self.last_end == Some((motion.from, motion.offset, cutting));
+        if !continues {
+            self.extend_point(motion, motion.from.xyz(), cutting);
         }
-        for p in points {
-            self.machine_extents.add(p);
-            let work = [p[0] - offset[0], p[1] - offset[1], p[2] - offset[2]];
-            self.work_extents.add(work);
-            if cutting {
-                self.cutting_extents.add(work);
-            }
+        self.extend_point(motion, motion.to.xyz(), cutting);
+        self.last_end = Some((motion.to, motion.offset, cutting));
+        if let Some((center, direction, plane, sweep)) = arc {
+            for_arc_extreme_points(motion, center, direction, plane, sweep, |p| {
+                self.extend_point(motion, p, cutting)
+            });
+        }
+    }
+
+    /// Adds a point in machine coordinates of `motion` to the extents.
+    #[inline]
+    fn extend_point(&mut self, motion: &Move, p: [f64; 3], cutting: bool) {
+        self.machine_extents.add(p);
+        let work = [
+            p[0] - motion.offset[0],
+            p[1] - motion.offset[1],
+            p[2] - motion.offset[2],
+        ];
+        self.work_extents.add(work);
+        if cutting {
+            self.cutting_extents.add(work);
         }
     }
 }
 
-/// The points where an arc reaches its extremes along the plane's axes (0, 90, 180, 270 degrees),
-/// when they lie inside its sweep. The normal axis is taken at the start (helix ends are added
-/// by the caller).
-fn arc_extreme_points(
+/// Calls `visit` with each point where an arc reaches its extremes along the plane's axes (0,
+/// 90, 180, 270 degrees) that lies inside its sweep. The normal axis is taken at the start
+/// (helix ends are added by the caller). A callback, not a list: the summary runs once per
+/// segment of the stream and must not allocate.
+fn for_arc_extreme_points(
     motion: &Move,
     center: [f64; 3],
     direction: ArcDirection,
     plane: Plane,
     sweep: f64,
-) -> Vec<[f64; 3]> {
+    mut visit: impl FnMut([f64; 3]),
+) {
     let (a, b, _) = plane.axes();
     let start = motion.from.xyz();
     let radius = (start[a] - center[a]).hypot(start[b] - center[b]);
     let start_angle = (start[b] - center[b]).atan2(start[a] - center[a]);
-    let mut points = Vec::new();
-    for quadrant in 0..4 {
-        let angle = f64::from(quadrant) * std::f64::consts::FRAC_PI_2;
+    // The four axis directions as (angle, cos, sin), exact.
+    let quadrants = [
+        (0.0, 1.0, 0.0),
+        (1.0, 0.0, 1.0),
+        (2.0, -1.0, 0.0),
+        (3.0, 0.0, -1.0),
+    ];
+    for (quadrant, cos, sin) in quadrants {
+        let angle = quadrant * std::f64::consts::FRAC_PI_2;
         let mut delta = match direction {
             ArcDirection::CounterClockwise => angle - start_angle,
             ArcDirection::Clockwise => start_angle - angle,
@@ -197,10 +234,52 @@ fn arc_extreme_points(
         delta = delta.rem_euclid(std::f64::consts::TAU);
         if delta <= sweep {
             let mut p = start;
-            p[a] = center[a] + radius * angle.cos();
-            p[b] = center[b] + radius * angle.sin();
-            points.push(p);
+            p[a] = center[a] + radius * cos;
+            p[b] = center[b] + radius * sin;
+            visit(p);
         }
     }
-    points
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{interpret_str, Options};
+
+    fn summary_of(program: &str) -> Summary {
+        let machine = Machine::default();
+        let mut summary = Summary::new(&machine);
+        for item in interpret_str(program, &machine, Options::default()) {
+            summary.add(&item.expect("no alarm"));
+        }
+        summary
+    }
+
+    #[test]
+    fn extents_take_the_arc_extremes_inside_the_sweep() {
+        // A half circle from (10, 0) counter-clockwise round (0, 0) to (-10, 0): it reaches
+        // Y 10 at 90 degrees, never Y -10.
+        let s = summary_of("G90 G17 G54 G0 X10. Y0 Z0\nG3 X-10. Y0 I-10. J0 F100.\nM30\n");
+        let e = s.work_extents;
+        assert!((e.max[1] - 10.0).abs() < 1e-12, "{e:?}");
+        assert!(e.min[1].abs() < 1e-12, "{e:?}");
+        assert!((e.min[0] + 10.0).abs() < 1e-12 && (e.max[0] - 10.0).abs() < 1e-12);
+        let c = s.cutting_extents;
+        assert!(
+            (c.max[1] - 10.0).abs() < 1e-12 && c.min[1].abs() < 1e-12,
+            "{c:?}"
+        );
+        assert!((s.feed_length - 10.0 * std::f64::consts::PI).abs() < 1e-9);
+    }
+
+    #[test]
+    fn extents_count_the_start_of_a_cut_after_a_rapid_and_each_offset() {
+        // The cut starts where the rapid ended: that point belongs to the cutting extents too.
+        let s = summary_of("G90 G54 G0 X5. Y5. Z0\nG1 X6. F100.\nG52 X100.\nG1 X7.\nM30\n");
+        assert_eq!(s.cutting_extents.max[0], 7.0);
+        // After G52 the tool stands at X-94. of the shifted program coordinates: the last cut
+        // starts there.
+        assert_eq!(s.cutting_extents.min[0], -94.0);
+        assert_eq!(s.work_extents.max[0], 7.0);
+    }
 }
