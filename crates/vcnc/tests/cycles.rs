@@ -608,6 +608,31 @@ fn syntec_hole_patterns() {
     assert_holes(&grid, &expected);
 }
 
+/// Syntec 1.62 example (file 70) move by move: G91 G81 Z-10. R5. K0 stores the cycle with R 5
+/// above the initial level Z0 and the bottom 10 below R; G137.1 then drills the 10 x 8 grid
+/// from (300, -100) (incremental from the start at the origin), every other row backwards (the
+/// order the spec infers), each hole a rapid over it at Z0, a rapid to R, the feed at F20 to
+/// the bottom and, in G98, a rapid back to Z0. The program has no M30: it ends at its text's
+/// end with a warning.
+#[test]
+fn syntec_grid_example_move_by_move() {
+    let mut lines = Vec::new();
+    for j in 0..8 {
+        for i in 0..10 {
+            let i = if j % 2 == 0 { i } else { 9 - i };
+            let (x, y) = (300 + 50 * i, -100 + 100 * j);
+            lines.push(format!("rapid X{x} Y{y} Z0"));
+            lines.push(format!("rapid X{x} Y{y} Z5"));
+            lines.push(format!("line X{x} Y{y} Z-5 F20"));
+            lines.push(format!("rapid X{x} Y{y} Z0"));
+        }
+    }
+    lines.push("end EndOfText".into());
+    // The warning for a program without M02/M30, at the last line.
+    lines.push("alarm missing_program_end line 10".into());
+    example("70-g137.1-grid.nc", &lines.join("\n"));
+}
+
 /// One hole of the bolt circle move by move (G91 R5 from the initial level 0: R at +5, the
 /// bottom 10 below it; G98 back to 0).
 #[test]
@@ -718,18 +743,50 @@ fn holes_and_a_slot_in_a_local_system() {
 /// example's header; the original program is wrong there).
 #[test]
 fn fanuc_0m_o1717_stops_at_g83_without_q() {
-    let text = std::fs::read(shared_dir().join("spec/examples/fanuc0m/24-o1717-drill-tap-bore.nc"))
-        .unwrap();
-    let run = common::run(
-        &text,
+    // Every move before the alarm, from the blocks: the G28 blocks in G91 with zero words do
+    // not move; T01 drills (15,45) to Z-26 back to R-15 (G99), (40,15) back to the initial level
+    // Z10 (G98), (90,30) from R5 to Z-6; G28 G91 Z0 lifts to the reference Z0; T02 drills the
+    // first two holes to Z-45; the G83 block (line 37) has no Q.
+    let text = std::fs::read_to_string(
+        shared_dir().join("spec/examples/fanuc0m/24-o1717-drill-tap-bore.nc"),
+    )
+    .unwrap();
+    check_on(
         &Machine::default()
             .with_profile(ProfileName::Fanuc0m)
             .unwrap(),
-        vcnc::Options::default(),
+        &text,
+        "
+        select T1
+        change T1
+        spindle Clockwise 2000
+        rapid X0 Y0 Z10
+        rapid X15 Y45 Z10
+        rapid X15 Y45 Z-15
+        line X15 Y45 Z-26 F200
+        rapid X15 Y45 Z-15
+        rapid X40 Y15 Z-15
+        line X40 Y15 Z-26 F200
+        rapid X40 Y15 Z10
+        rapid X90 Y30 Z10
+        rapid X90 Y30 Z5
+        line X90 Y30 Z-6 F200
+        rapid X90 Y30 Z10
+        spindle Stopped 2000
+        rapid X90 Y30 Z0
+        select T2
+        change T2
+        spindle Clockwise 1800
+        rapid X90 Y30 Z10
+        rapid X15 Y45 Z10
+        rapid X15 Y45 Z-15
+        line X15 Y45 Z-45 F150
+        rapid X15 Y45 Z-15
+        rapid X40 Y15 Z-15
+        line X40 Y15 Z-45 F150
+        rapid X40 Y15 Z10
+        alarm cycle_data line 37",
     );
-    let alarm = run.error().expect("G83 without Q alarms");
-    assert_eq!(alarm.code, vcnc::AlarmCode::CycleData);
-    assert_eq!(alarm.span.unwrap().line, 37);
 }
 
 /// The FANUC 0M manual's O1818 (file examples/fanuc0m/25-o1818-ream-bore-backbore.nc), length
@@ -1052,4 +1109,182 @@ fn a_block_of_too_many_moves_alarms() {
         rapid X0 Y0 Z10
         alarm cycle_data line 2",
     );
+}
+
+/// Syntec 1.30 example (file 43) move by move, worked out from the blocks: the G54 block at the
+/// start does not move; G99 G81 drills the three holes from R2 to Z-15 and stays at R; G28 goes
+/// through G54 (0,0,10) to the reference point; the slot runs in the G52 system shifted by
+/// (30,30) at Z-12 with the feed of the cycle block (F1000). D02 is not given in the manual, so
+/// it holds 0 and the slot is the programmed path; H01 likewise.
+#[test]
+fn syntec_local_coordinates_example_move_by_move() {
+    let slot = [
+        (20, 0),
+        (20, 10),
+        (10, 10),
+        (10, 20),
+        (-10, 20),
+        (-10, 10),
+        (-20, 10),
+        (-20, -10),
+        (-10, -10),
+        (-10, -20),
+        (10, -20),
+        (10, -10),
+        (20, -10),
+        (20, 0),
+    ];
+    // The holes: the tool is over the first one already and goes down to R; it reaches the
+    // others over at R, where G99 left it.
+    let mut lines = vec!["
+        select T1
+        spindle Clockwise 1000
+        rapid X90 Y15 Z10
+        rapid X90 Y15 Z2
+        line X90 Y15 Z-15 F1000
+        rapid X90 Y15 Z2
+        rapid X110 Y15 Z2
+        line X110 Y15 Z-15 F1000
+        rapid X110 Y15 Z2
+        rapid X100 Y65 Z2
+        line X100 Y65 Z-15 F1000
+        rapid X100 Y65 Z2
+        spindle Stopped 1000
+        rapid X0 Y0 Z10
+        rapid X0 Y0 Z0
+        select T2
+        change T2
+        spindle Clockwise 1000
+        rapid X30 Y30 Z10
+        line X30 Y30 Z-12 F1000"
+        .to_string()];
+    for (x, y) in slot {
+        lines.push(format!("line X{} Y{} Z-12 F1000", x + 30, y + 30));
+    }
+    lines.extend(["rapid X50 Y30 Z10", "spindle Stopped 1000", "end M30"].map(String::from));
+    let text =
+        std::fs::read_to_string(shared_dir().join("spec/examples/syntec/43-g52-local-coords.nc"))
+            .expect("the example is in ../shared");
+    let machine = Machine::default()
+        .with_profile(ProfileName::Syntec)
+        .unwrap();
+    check_on(&machine, &text, &lines.join("\n"));
+}
+
+/// A move of an expected sequence: kind, end point and, for arcs, the centre (machine X Y Z).
+type Step = (&'static str, [f64; 3], Option<[f64; 3]>);
+
+/// Asserts that `segments` are the moves of `expected` (events and alarms aside), within 1 um.
+#[track_caller]
+fn assert_moves(segments: &[vcnc::Segment], expected: &[Step]) {
+    use vcnc::SegmentKind::{Arc, Line, Rapid};
+    let actual: Vec<Step> = segments
+        .iter()
+        .filter_map(|s| {
+            let to = |m: &vcnc::motion::Move| [m.to.0[0], m.to.0[1], m.to.0[2]];
+            match &s.kind {
+                Rapid { motion, .. } => Some(("rapid", to(motion), None)),
+                Line { motion, .. } => Some(("line", to(motion), None)),
+                Arc {
+                    motion,
+                    center,
+                    direction,
+                    ..
+                } => Some((direction.as_str(), to(motion), Some(center.xyz()))),
+                _ => None,
+            }
+        })
+        .collect();
+    assert_eq!(actual.len(), expected.len(), "{actual:?}");
+    let near = |a: &[f64; 3], b: &[f64; 3]| a.iter().zip(b).all(|(a, b)| (a - b).abs() < 1e-3);
+    for (i, (a, e)) in actual.iter().zip(expected).enumerate() {
+        let centres = match (a.2, e.2) {
+            (Some(a), Some(e)) => near(&a, &e),
+            (None, None) => true,
+            _ => false,
+        };
+        assert!(
+            a.0 == e.0 && near(&a.1, &e.1) && centres,
+            "move {i}: {a:?}, expected {e:?}"
+        );
+    }
+}
+
+/// Syntec 1.37 program 2 (file 49) move by move, executed literally (see the seed entry):
+/// - eight petals, the path subprogram N100 under G68 by 0, 45 ... 315 degrees, in G16 polar
+///   words: from 50 at 9.207 degrees a CCW R50 arc about the origin to 50 at 35.793 degrees,
+///   then a CCW R8 half circle (its chord is 16.0002) about the chord's middle to 50 at
+///   54.207 degrees, which is where the next petal starts (its G01 does not move);
+/// - the small flower N200 at (-70, 10): four CCW R10 half circles round the square -90..-70 by
+///   -10..10; it leaves G91 on, so `G51.1 Y-40.` mirrors about Y = 10 - 40 = -30 and the second
+///   flower runs from (-70, -70) with CW arcs;
+/// - G50 cancels scaling, not the mirror: the G134 holes (radius 75, 30 + 60k degrees) and the
+///   G137.1 grid (X 60, 80, 100 by Y -60, -80, -100, every other row backwards) are mirrored
+///   to y = -60 - y; each hole from the initial level Z0 to R2, the bottom Z-20 and back (G98).
+#[test]
+fn syntec_rotation_and_patterns_example_move_by_move() {
+    let polar = |radius: f64, degrees: f64| {
+        let r = degrees.to_radians();
+        [radius * r.cos(), radius * r.sin(), 0.0]
+    };
+    let mut expected: Vec<Step> = vec![("rapid", polar(50.0, 9.207), None)];
+    for k in 0..8 {
+        let rotation = 45.0 * f64::from(k);
+        expected.push(("ccw", polar(50.0, 35.793 + rotation), Some([0.0; 3])));
+        let middle = polar(50.0 * 9.207_f64.to_radians().cos(), 45.0 + rotation);
+        expected.push(("ccw", polar(50.0, 54.207 + rotation), Some(middle)));
+    }
+    expected.push(("rapid", [-80.0, 0.0, 0.0], None));
+    expected.push(("rapid", [-70.0, 10.0, 0.0], None));
+    for (end, centre) in [
+        ([-90.0, 10.0], [-80.0, 10.0]),
+        ([-90.0, -10.0], [-90.0, 0.0]),
+        ([-70.0, -10.0], [-80.0, -10.0]),
+        ([-70.0, 10.0], [-70.0, 0.0]),
+    ] {
+        expected.push((
+            "ccw",
+            [end[0], end[1], 0.0],
+            Some([centre[0], centre[1], 0.0]),
+        ));
+    }
+    let mirror = |p: [f64; 2]| [p[0], -60.0 - p[1], 0.0];
+    expected.push(("rapid", mirror([-70.0, 10.0]), None));
+    for (end, centre) in [
+        ([-90.0, 10.0], [-80.0, 10.0]),
+        ([-90.0, -10.0], [-90.0, 0.0]),
+        ([-70.0, -10.0], [-80.0, -10.0]),
+        ([-70.0, 10.0], [-70.0, 0.0]),
+    ] {
+        expected.push(("cw", mirror(end), Some(mirror(centre))));
+    }
+    let mut holes: Vec<[f64; 2]> = (0..6)
+        .map(|k| {
+            let p = polar(75.0, 30.0 + 60.0 * f64::from(k));
+            [p[0], p[1]]
+        })
+        .collect();
+    for j in 0..3 {
+        for i in 0..3 {
+            let i = if j % 2 == 0 { i } else { 2 - i };
+            holes.push([60.0 + 20.0 * f64::from(i), -60.0 - 20.0 * f64::from(j)]);
+        }
+    }
+    for hole in holes {
+        let [x, y, _] = mirror(hole);
+        expected.push(("rapid", [x, y, 0.0], None));
+        expected.push(("rapid", [x, y, 2.0], None));
+        expected.push(("line", [x, y, -20.0], None));
+        expected.push(("rapid", [x, y, 0.0], None));
+    }
+    let text = std::fs::read(
+        shared_dir().join("spec/examples/syntec/49-g68-rotation-8-petals-patterns.nc"),
+    )
+    .expect("the example is in ../shared");
+    let machine = Machine::default()
+        .with_profile(ProfileName::Syntec)
+        .unwrap();
+    let run = common::run(&text, &machine, vcnc::Options::default());
+    assert!(run.alarms.is_empty(), "{:?}", run.alarms);
+    assert_moves(&run.segments, &expected);
 }
