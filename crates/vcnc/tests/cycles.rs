@@ -362,6 +362,45 @@ fn a_group_01_code_cancels_the_cycle() {
 
 /// G80 clears the hole data (spec A.32): a new cycle without Z alarms; a peck cycle without Q
 /// alarms (FANUC 045); the plane cannot change inside a cycle.
+/// The combinations the manuals flag but the control runs: a bottom above R (the FANUC 0M
+/// manual's O1717, T04: `R-15. Z-10.`), and tapping without a spindle speed. Both warn at the
+/// block and move as written.
+#[test]
+fn a_bottom_above_r_and_a_tap_without_speed_warn() {
+    fanuc(
+        "G0 Z10.\nG81 X5. R-15. Z-10. F100.\nM30",
+        "
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z-15
+        line X5 Y0 Z-10 F100
+        rapid X5 Y0 Z10
+        end M30
+        alarm cycle_data line 2",
+    );
+    fanuc(
+        "M03\nG0 Z10.\nG84 X5. R2. Z-10. F100.\nM30",
+        "
+        spindle Clockwise 0
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z-10 F100
+        spindle CounterClockwise 0
+        line X5 Y0 Z2 F100
+        spindle Clockwise 0
+        rapid X5 Y0 Z10
+        end M30
+        alarm cycle_data line 3",
+    );
+    // G87 bores upwards: R below the bottom is right.
+    let trace = common::trace_with(
+        ProfileName::Fanuc,
+        "M03 S500\nG0 Z10.\nG87 X5. R-30. Z-10. Q1. F100.\nM30",
+    );
+    assert!(!trace.contains("alarm"), "{trace}");
+}
+
 #[test]
 fn missing_hole_data_and_plane_changes_alarm() {
     fanuc(

@@ -208,6 +208,36 @@ fn levels(
         )
         .with_help("FANUC alarm 045"));
     }
+    // Every cycle but G87 works from R down to the bottom; G87 from below the part upwards.
+    let upwards = cycle.kind == CycleKind::BackBore;
+    if (bottom > r_level && !upwards) || (bottom < r_level && upwards) {
+        // A misprint, most likely (the FANUC 0M manual's O1717 has one): the control runs it,
+        // the tool moves away from the part where it should cut.
+        out.push_warning(Alarm::warning(
+            AlarmCode::CycleData,
+            cmd.span,
+            format!(
+                "the hole bottom ({}) lies {} the R level ({}): this cycle {} from R to the bottom",
+                number(bottom),
+                if upwards { "below" } else { "above" },
+                number(r_level),
+                if upwards {
+                    "bores upwards"
+                } else {
+                    "machines downwards"
+                },
+            ),
+        ));
+    }
+    let tapping = matches!(cycle.kind, CycleKind::Tap | CycleKind::LeftHandTap);
+    if tapping && exec.speed <= 0.0 {
+        // The tap's pitch is F / S (F itself in G95): without a speed the feed matches no thread.
+        out.push_warning(Alarm::warning(
+            AlarmCode::CycleData,
+            cmd.span,
+            "tapping without a spindle speed: the feed cannot match the tap's pitch (F = S x pitch)",
+        ));
+    }
     let wanted = match cycle.kind {
         CycleKind::Tap => Some(SpindleState::Clockwise),
         CycleKind::LeftHandTap => Some(SpindleState::CounterClockwise),
@@ -756,4 +786,10 @@ fn spindle_words(state: SpindleState) -> &'static str {
         SpindleState::Stopped => "stopped",
         SpindleState::Oriented => "oriented and stopped",
     }
+}
+
+/// A level as the message shows it: up to three decimals, no trailing zeros.
+fn number(value: f64) -> String {
+    let text = format!("{value:.3}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
