@@ -362,6 +362,26 @@ fn a_group_01_code_cancels_the_cycle() {
 
 /// G80 clears the hole data (spec A.32): a new cycle without Z alarms; a peck cycle without Q
 /// alarms (FANUC 045); the plane cannot change inside a cycle.
+/// An M code on a cycle block with repeats acts once, before the first hole.
+#[test]
+fn an_m_code_on_a_repeated_cycle_block_acts_once() {
+    fanuc(
+        "G0 Z10.\nG91 G81 X5. Z-5. R-2. F100. K2 M08\nG80\nM30",
+        "
+        rapid X0 Y0 Z10
+        coolant on
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z8
+        line X5 Y0 Z3 F100
+        rapid X5 Y0 Z10
+        rapid X10 Y0 Z10
+        rapid X10 Y0 Z8
+        line X10 Y0 Z3 F100
+        rapid X10 Y0 Z10
+        end M30",
+    );
+}
+
 /// The combinations the manuals flag but the control runs: a bottom above R (the FANUC 0M
 /// manual's O1717, T04: `R-15. Z-10.`), and tapping without a spindle speed. Both warn at the
 /// block and move as written.
