@@ -40,6 +40,12 @@ pub(crate) struct MachineArgs {
     /// Loop passes and backward jumps allowed before a macro program is taken to loop forever.
     #[arg(long = "max-jumps", value_name = "N", default_value_t = 10_000_000)]
     pub(crate) max_jumps: u64,
+    /// The interrupt signal (Syntec's C49) comes during this block of the main program: a line
+    /// of its file (`12`) or a sequence number (`N120`); repeatable, once each. With `M96 P_`
+    /// in force, program P runs before the block; its M99 brings the tool back and runs the
+    /// block again (M99 P_ / Q_: on at that sequence number / line instead).
+    #[arg(long = "interrupt", value_name = "LINE|Nn")]
+    pub(crate) interrupt: Vec<vcnc::interp::InterruptAt>,
 }
 
 impl MachineArgs {
@@ -86,6 +92,7 @@ impl MachineArgs {
         }
         options.limits.main_program_passes = self.main_passes;
         options.limits.jumps = self.max_jumps;
+        options.interrupts.clone_from(&self.interrupt);
         Ok(options)
     }
 

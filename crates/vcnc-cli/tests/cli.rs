@@ -277,3 +277,38 @@ fn a_killed_run_leaves_a_whole_state_file() {
     let value: f64 = table[0].split('=').nth(1).unwrap().trim().parse().unwrap();
     assert!(value > 0.0, "{saved}");
 }
+
+#[test]
+fn the_interrupt_option_names_the_block_the_signal_comes_in() {
+    let dir = std::env::temp_dir().join(format!("vcnc-cli-interrupt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("O1111.nc"), "G00 Z100.\nG01\nM99\n").unwrap();
+    let main = dir.join("main.nc");
+    std::fs::write(&main, "M96 P1111\nG01 X10. F500\nY10.\nM97\nM30\n").unwrap();
+    let main = main.display().to_string();
+    let trace = |extra: &[&str]| {
+        let mut args = vec!["trace", "--profile", "syntec", "--format", "csv"];
+        args.extend_from_slice(extra);
+        args.push(&main);
+        let out = vcnc(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .filter(|l| l.starts_with("rapid") || l.starts_with("feed"))
+            .count()
+    };
+    assert_eq!(trace(&[]), 2);
+    // O1111's Z100 and the return to the interruption point, then `Y10.` again.
+    assert_eq!(trace(&["--interrupt", "3"]), 4);
+    let out = vcnc(&["check", "--interrupt", "X3", &main]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("sequence number (N12)"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

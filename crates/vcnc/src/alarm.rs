@@ -124,6 +124,11 @@ pub enum AlarmCode {
     MacroLimit,
     /// The program raised its own alarm by writing `#3000` (FANUC alarm 3000 + n).
     UserAlarm,
+    /// A warning: the interrupt signal an option named (Syntec's C49) came when the control
+    /// ignores it: no `M96 P_` in force, inside a subprogram, or in a mode that excludes
+    /// interrupts (G41/G42, G12.1, G16, G51, G51.1). Fix: name a block where M96 is in force
+    /// and none of these modes is on.
+    InterruptIgnored,
 }
 
 impl AlarmCode {
@@ -169,6 +174,7 @@ impl AlarmCode {
             LoopStructure => "loop_structure",
             MacroLimit => "macro_limit",
             UserAlarm => "user_alarm",
+            InterruptIgnored => "interrupt_ignored",
         }
     }
 
@@ -214,6 +220,7 @@ impl AlarmCode {
             LoopStructure => "V085",
             MacroLimit => "V086",
             UserAlarm => "V087",
+            InterruptIgnored => "V088",
         }
     }
 
@@ -257,6 +264,7 @@ impl AlarmCode {
         AlarmCode::LoopStructure,
         AlarmCode::MacroLimit,
         AlarmCode::UserAlarm,
+        AlarmCode::InterruptIgnored,
     ];
 }
 

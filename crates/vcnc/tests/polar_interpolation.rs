@@ -8,7 +8,6 @@ mod common;
 
 use common::plane::Element;
 use proptest::prelude::*;
-use vcnc::machine::{Axis, AxisConfig};
 use vcnc::motion::Feed;
 use vcnc::{AlarmCode, Machine, Options, ProfileName, Segment, SegmentKind};
 
@@ -17,16 +16,7 @@ const TOLERANCE: f64 = 0.001;
 
 /// A machine of `profile` with X Y Z and a C axis turning the part.
 fn machine(profile: ProfileName) -> Machine {
-    let mut machine = Machine::default().with_profile(profile).unwrap();
-    machine.axes[Axis::C.index()] = Some(AxisConfig {
-        min: -1.0e6,
-        max: 1.0e6,
-        rapid: 36000.0,
-        max_feed: 36000.0,
-        acceleration: 2000.0,
-        jerk: f64::INFINITY,
-    });
-    machine
+    common::with_c_axis(profile)
 }
 
 fn run(program: &str, machine: &Machine) -> common::Run {

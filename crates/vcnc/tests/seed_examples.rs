@@ -7,8 +7,9 @@ mod common;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
+use vcnc::interp::MemoryLibrary;
 use vcnc::machine::{ToolOffset, WorkOffsetId};
-use vcnc::{Machine, Options, ProfileName, SegmentKind};
+use vcnc::{FileId, Machine, Options, ProfileName, SegmentKind};
 
 #[derive(Deserialize, Debug)]
 struct Table {
@@ -54,6 +55,13 @@ struct Example {
     dwell_seconds: Option<f64>,
     tolerance: Option<f64>,
     skip: Option<String>,
+    /// Blocks during which the interrupt signal comes (`Options::interrupts`: `"13"` is line 13
+    /// of the example file, `"N20"` a sequence number).
+    #[serde(default)]
+    interrupts: Vec<String>,
+    /// Programs the example calls, by number: other example files.
+    #[serde(default)]
+    programs: BTreeMap<String, String>,
     #[allow(dead_code)]
     note: Option<String>,
 }
@@ -111,6 +119,30 @@ impl Example {
             }
         }
         machine
+    }
+
+    fn options(&self) -> Options {
+        let interrupts = self.interrupts.iter().map(|at| {
+            at.parse()
+                .unwrap_or_else(|e| panic!("{}: interrupts: {e}", self.name()))
+        });
+        Options {
+            interrupts: interrupts.collect(),
+            ..Options::default()
+        }
+    }
+
+    /// The example files it calls, as a program library.
+    fn library(&self, examples_dir: &Path) -> MemoryLibrary {
+        let mut library = MemoryLibrary::new();
+        for (i, (number, file)) in self.programs.iter().enumerate() {
+            let number: u32 = number.parse().expect("programs keys are program numbers");
+            let path = examples_dir.join(file);
+            let text = std::fs::read_to_string(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            library.insert(number, FileId(i as u32 + 1), &text);
+        }
+        library
     }
 
     fn program(&self, text: &str) -> String {
@@ -172,7 +204,12 @@ fn manual_examples_reach_their_expected_positions() {
         let text =
             std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let program = example.program(&text);
-        let run = common::run(program.as_bytes(), &example.machine(), Options::default());
+        let run = common::run_with_library(
+            program.as_bytes(),
+            &example.machine(),
+            example.options(),
+            Box::new(example.library(&examples_dir)),
+        );
         let fail = |what: String| format!("{} (manual {}): {what}", example.name(), example.source);
         if let Some(reason) = &example.skip {
             // A skipped example needs what vcnc does not have yet (a code, or a machine with more

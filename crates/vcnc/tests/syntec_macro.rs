@@ -435,14 +435,108 @@ fn a_loop_that_never_ends_stops_at_the_jump_limit() {
     );
 }
 
+// CASE and the nesting limit.
+
+#[test]
+fn case_runs_the_branch_of_the_first_label_equal_to_the_selector() {
+    // 0 and 4 take ELSE, 1 its branch, 2 and 3 share one of two statements.
+    check(
+        "%@MACRO\n#10 := 0;\nFOR #1 := 0 TO 4 DO\n  CASE #1 OF\n    1: #10 := #10 + 1;\n    2, 3: #10 := #10 + 10;\n       #10 := #10 + 100;\n  ELSE\n    #10 := #10 + 1000;\n  END_CASE;\nEND_FOR;\nM30;\n",
+        &[(10, v(2221.0))],
+    );
+}
+
+#[test]
+fn case_without_a_matching_label_or_else_goes_on_after_end_case() {
+    check(
+        "%@MACRO\n#2 := 5;\nCASE #2 - 1 OF\n-4: #3 := 1;\n1:\n#3 := 2;\nEND_CASE;\n#4 := 7;\nM30;\n",
+        &[(3, None), (4, v(7.0))],
+    );
+    // A vacant selector equals no label (as EQ compares): ELSE runs.
+    check(
+        "%@MACRO\nCASE #1 OF\n0: #3 := 1;\nELSE #3 := 2;\nEND_CASE;\nM30;\n",
+        &[(3, v(2.0))],
+    );
+    // ENDCASE is read too, and a selector that computes to a whole number matches.
+    check(
+        "%@MACRO\nCASE 0.1 * 30 OF\n3: #3 := 1;\nENDCASE;\nM30;\n",
+        &[(3, v(1.0))],
+    );
+}
+
+#[test]
+fn case_branches_hold_any_statement_and_nest() {
+    check(
+        "%@MACRO\n#1 := 2; #2 := 1;\nCASE #1 OF\n1: #5 := 1;\n2: IF #2 = 1 THEN\n     CASE #2 OF\n       1: #5 := 21;\n       ELSE #5 := 22;\n     END_CASE;\n   END_IF;\n   #6 := 3;\nELSE #5 := 3;\nEND_CASE;\nM30;\n",
+        &[(5, v(21.0)), (6, v(3.0))],
+    );
+    // EXIT in a CASE leaves the loop around it.
+    check(
+        "%@MACRO\n#1 := 0;\nWHILE #1 < 10 DO\n#1 := #1 + 1;\nCASE #1 OF\n3: EXIT;\nEND_CASE;\nEND_WHILE;\nM30;\n",
+        &[(1, v(3.0))],
+    );
+    let moves = ends(
+        "%@MACRO\nFOR #1 := 1 TO 2 DO\nCASE #1 OF\n1: G01 X10. F100.;\n2: G01 Y10.;\nEND_CASE;\nEND_FOR;\nM30;\n",
+        MemoryLibrary::new(),
+    );
+    assert_eq!(moves, vec![[10.0, 0.0, 0.0], [10.0, 10.0, 0.0]]);
+}
+
+#[test]
+fn case_without_its_partners_stops_where_the_run_reaches_it() {
+    for (program, line) in [
+        ("%@MACRO\n#1 := 1;\nEND_CASE;\nM30;\n", 3),
+        ("%@MACRO\n#1 := 1;\n1: #2 := 1;\nM30;\n", 3),
+        ("%@MACRO\nCASE #1 OF\n1: #2 := 1;\nM30;\n", 2),
+        (
+            "%@MACRO\n#1 := 2;\nCASE #1 OF\nELSE #2 := 1;\n2: #2 := 2;\nEND_CASE;\nM30;\n",
+            5,
+        ),
+        ("%@MACRO\nCASE 1 OF\n1: IF 1 THEN\nEND_CASE;\nM30;\n", 3),
+    ] {
+        assert_eq!(
+            alarm(program),
+            (AlarmCode::LoopStructure, line),
+            "{program}"
+        );
+    }
+}
+
+#[test]
+fn structured_statements_nest_ten_deep_and_no_deeper() {
+    let nested = |depth: usize| {
+        let mut program = String::from("%@MACRO\n");
+        for _ in 0..depth {
+            program.push_str("IF 1 THEN\n");
+        }
+        program.push_str("#1 := 1;\n");
+        for _ in 0..depth {
+            program.push_str("END_IF;\n");
+        }
+        program.push_str("M30;\n");
+        program
+    };
+    check(&nested(10), &[(1, v(1.0))]);
+    // The eleventh IF (line 12) opens one level too many.
+    assert_eq!(alarm(&nested(11)), (AlarmCode::MacroLimit, 12));
+    // Loops and CASE count alike.
+    assert_eq!(
+        alarm("%@MACRO\nWHILE 1 DO\nFOR #1 := 1 TO 2 DO\nREPEAT\nCASE 1 OF\n1: IF 1 THEN\nIF 1 THEN\nIF 1 THEN\nIF 1 THEN\nIF 1 THEN\nIF 1 THEN\nIF 1 THEN\nEND_IF;\nEND_IF;\nEND_IF;\nEND_IF;\nEND_IF;\nEND_IF;\nEND_IF;\nEND_CASE;\nUNTIL 1 END_REPEAT;\nEND_FOR;\nEND_WHILE;\nM30;\n"),
+        (AlarmCode::MacroLimit, 12)
+    );
+}
+
 #[test]
 fn what_is_not_supported_is_an_alarm_that_names_it_at_its_line_and_column() {
-    let program = "%@MACRO\n#1 := 1;\n  CASE #1 OF\n1: #2 := 1;\nEND_CASE;\nM30;\n";
+    let program = "%@MACRO\n#1 := 1;\nCASE #1 OF\n  1..5: #2 := 1;\nEND_CASE;\nM30;\n";
     let a = error_of(program, MemoryLibrary::new());
     assert_eq!(a.code, AlarmCode::NotSupportedYet);
-    assert_eq!(a.message, "`CASE` is not supported yet");
+    assert_eq!(
+        a.message,
+        "the CASE label range `1..5` is not supported yet"
+    );
     let at = line_column(program.as_bytes(), a.span.unwrap().start);
-    assert_eq!((at.line, at.column), (3, 3));
+    assert_eq!((at.line, at.column), (4, 3));
     let program = "%@MACRO\n#1 := 1 + GETARG(X1);\nM30;\n";
     let a = error_of(program, MemoryLibrary::new());
     assert_eq!(
@@ -552,6 +646,7 @@ fn mangled_macro_programs_never_panic_and_every_alarm_points_inside_the_text() {
         "%@MACRO\n#1 := 0;\nWHILE #1 < 3 DO\n  #1 := #1 + 1;\n  G01 X(#1 * 2.) F100.;\nEND_WHILE;\nM30;\n",
         "%@MACRO\nFOR #1 := 1 TO 3 BY 1 DO\n  IF #1 = 2 THEN EXIT; ELSIF #1 > 2 THEN #2 := 1; ELSE @3 := 2; END_IF;\nEND_FOR;\nREPEAT #4 := #4 + 1; UNTIL #4 > 2 END_REPEAT;\nGOTO 10;\nN10 M30;\n",
         "// c\n%@MACRO\n(* block\n comment *) #1 := ABS(-1) + MAX(2, 3); // line\nIF NOT (#1 = 4) THEN ALARM(1, \"X\"); END_IF;\nMSG(\"done\");\nM30;\n",
+        "%@MACRO\nFOR #1 := 0 TO 3 DO\n  CASE #1 OF\n    1: G01 X(#1) F100.;\n    2, -3: IF #1 = 2 THEN EXIT; END_IF;\n  ELSE\n    #2 := #2 + 1;\n  END_CASE;\nEND_FOR;\nM30;\n",
     ];
     let mut state = 0x9e37_79b9_7f4a_7c15_u64;
     let mut random = move |below: usize| {

@@ -40,6 +40,7 @@ use crate::syntax::source::{BlockSource, ParsedLines};
 use crate::syntax::{Block, BlockKind, Dialect};
 use decode::Command;
 use exec::{Executor, Flow};
+pub use macros::interrupt::InterruptAt;
 pub use macros::programs::{
     DirectoryLibrary, LoadedFiles, MemoryLibrary, ProgramLibrary, ProgramText,
 };
@@ -57,6 +58,10 @@ pub struct Options {
     pub dialect: Dialect,
     /// Limits on macro programs (loop passes, repeats of a main program ending in M99).
     pub limits: Limits,
+    /// The blocks of the main program during which the interrupt signal comes (Syntec's C49,
+    /// once each): with `M96 P_` in force, interrupt program P runs before the block; see
+    /// [`InterruptAt`].
+    pub interrupts: Vec<InterruptAt>,
 }
 
 impl Default for Options {
@@ -65,6 +70,7 @@ impl Default for Options {
             block_skip: [false; 9],
             dialect: Dialect::Iso,
             limits: Limits::default(),
+            interrupts: Vec::new(),
         }
     }
 }
@@ -548,6 +554,9 @@ impl Core {
             return;
         }
         if block.is_empty() {
+            return;
+        }
+        if self.interrupt_may_come() && self.interrupt_before(block, main_text) {
             return;
         }
         self.started = true;

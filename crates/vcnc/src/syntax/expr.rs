@@ -318,6 +318,27 @@ pub enum Statement {
         /// The whole statement.
         span: Span,
     },
+    /// `CASE selector OF`: the run goes on after the first label that equals the selector, or
+    /// after ELSE, or after END_CASE.
+    Case {
+        /// The value the labels are compared with.
+        selector: Expr,
+        /// The whole statement.
+        span: Span,
+    },
+    /// One value of a CASE label (`2:`; `2, 3:` is two of them in one block): reached in
+    /// sequence, the branch before it is over.
+    CaseLabel {
+        /// The value, a whole number as written.
+        value: f64,
+        /// The value as written.
+        span: Span,
+    },
+    /// `END_CASE` (also `ENDCASE`).
+    EndCase {
+        /// The whole statement.
+        span: Span,
+    },
     /// `EXIT`: leaves the innermost WHILE, FOR or REPEAT.
     Exit {
         /// The whole statement.
@@ -368,6 +389,9 @@ impl Statement {
             | Statement::Repeat { span }
             | Statement::Until { span, .. }
             | Statement::EndRepeat { span }
+            | Statement::Case { span, .. }
+            | Statement::CaseLabel { span, .. }
+            | Statement::EndCase { span }
             | Statement::Exit { span }
             | Statement::Wait { span }
             | Statement::Alarm { span, .. }

@@ -23,6 +23,22 @@ pub fn shared_dir() -> PathBuf {
     dir
 }
 
+/// The default machine on `profile`, with a C axis turning the part (for G12.1).
+pub fn with_c_axis(profile: vcnc::ProfileName) -> Machine {
+    let mut machine = Machine::default()
+        .with_profile(profile)
+        .expect("every built-in profile fits the default machine");
+    machine.axes[vcnc::Axis::C.index()] = Some(vcnc::machine::AxisConfig {
+        min: -1.0e6,
+        max: 1.0e6,
+        rapid: 36000.0,
+        max_feed: 36000.0,
+        acceleration: 2000.0,
+        jerk: f64::INFINITY,
+    });
+    machine
+}
+
 /// Everything a run produced, split into segments and alarms.
 pub struct Run {
     pub segments: Vec<Segment>,
@@ -52,7 +68,8 @@ pub fn run_with_library(
     collect(interpret_bytes(text, machine, options).with_library(library))
 }
 
-fn collect(items: impl Iterator<Item = Result<Segment, Alarm>>) -> Run {
+/// Everything `items` yields, split into segments and alarms.
+pub fn collect(items: impl Iterator<Item = Result<Segment, Alarm>>) -> Run {
     let mut segments = Vec::new();
     let mut alarms = Vec::new();
     for item in items {

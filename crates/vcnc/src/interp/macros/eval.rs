@@ -177,7 +177,7 @@ fn binary(op: BinaryOp, a: MacroValue, b: MacroValue, span: Span) -> Result<Macr
 
 /// EQ: both vacant, or both set and equal. The controls compare with a small tolerance (they
 /// hold about 15 significant digits); 1e-12 relative keeps `0.1+0.2 EQ 0.3` true.
-fn equal(a: MacroValue, b: MacroValue) -> bool {
+pub(crate) fn equal(a: MacroValue, b: MacroValue) -> bool {
     match (a, b) {
         (None, None) => true,
         (Some(x), Some(y)) => (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0),

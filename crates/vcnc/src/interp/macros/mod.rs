@@ -13,6 +13,7 @@
 //! size of a program held in memory.
 
 pub(crate) mod eval;
+pub(crate) mod interrupt;
 pub(crate) mod programs;
 mod structured;
 pub(crate) mod system;
@@ -80,6 +81,8 @@ struct CallFrame {
     modal: bool,
     /// The calling block.
     span: Span,
+    /// Called by the interrupt signal (M96): where it came.
+    interrupted: Option<interrupt::Interrupted>,
 }
 
 /// G66 in force.
@@ -115,6 +118,20 @@ pub(crate) struct Macros {
     resolved: Block,
     /// The line of the main program's stream that is being run (1-based).
     pub(crate) stream_line: u32,
+    /// M96's interrupt program and the signals still to come.
+    pub(crate) interrupts: interrupt::Interrupts,
+}
+
+/// Where M99 goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Return {
+    /// Back to the caller (after the calling block; an interrupt program: to the interrupted
+    /// block).
+    Caller,
+    /// P: the block with this sequence number in the caller.
+    Sequence(u32),
+    /// Q: this line of the main program (an interrupt program's return).
+    Line(u32),
 }
 
 impl Macros {
@@ -735,8 +752,12 @@ impl Core {
                 }
                 MCode::LocalSubprogramCall => self.local_call(word.span, main_text),
                 MCode::SubprogramReturn => self.subprogram_return(word.span, main_text),
-                // Interrupt programs are armed and disarmed; nothing triggers them in a
-                // simulation unless an option names the block (not yet).
+                MCode::InterruptOn => self.arm_interrupt(word.span),
+                MCode::InterruptOff => {
+                    self.disarm_interrupt();
+                    Ok(())
+                }
+                // Only the codes above are subprogram flow (`MCode::is_subprogram_flow`).
                 _ => Ok(()),
             };
         }
@@ -929,26 +950,41 @@ impl Core {
             loops,
             modal,
             span,
+            interrupted: None,
         });
         self.place = Place::stored(program, start);
         Ok(())
     }
 
-    /// M99 [P_]: back to the caller (or, in a main program, to its start).
+    /// M99 [P_] [Q_]: back to the caller (or, in a main program, to its start).
     fn subprogram_return(&mut self, span: Span, main_text: Option<&[u8]>) -> Result<(), Alarm> {
         let label = match self.command.p() {
             Some(p) => Some(Core::whole_number(p, "P (sequence number)")?),
             None => None,
         };
-        self.return_from_call(label, span, main_text)
+        // Q (a line of the main program) is read by an interrupt program's return only.
+        let line = match self.command.word(b'Q') {
+            Some(q) => Some(Core::whole_number(q, "Q (line number)")?),
+            None => None,
+        };
+        let target = match (label, line) {
+            (Some(label), _) => Return::Sequence(label),
+            (None, Some(line)) => Return::Line(line),
+            (None, None) => Return::Caller,
+        };
+        self.return_from_call(target, span, main_text)
     }
 
     fn return_from_call(
         &mut self,
-        label: Option<u32>,
+        target: Return,
         span: Span,
         main_text: Option<&[u8]>,
     ) -> Result<(), Alarm> {
+        let label = match target {
+            Return::Sequence(label) => Some(label),
+            Return::Caller | Return::Line(_) => None,
+        };
         let Some(frame) = self.macros.calls.last_mut() else {
             return self.restart_main(label, span, main_text);
         };
@@ -969,6 +1005,13 @@ impl Core {
         }
         self.macros.loops = frame.loops;
         self.place = frame.return_to;
+        if let (Some(interrupted), None) = (frame.interrupted, label) {
+            let line = match target {
+                Return::Line(line) => Some(line),
+                _ => None,
+            };
+            return self.return_from_interrupt(interrupted, line, span);
+        }
         if let Some(label) = label {
             let program = self.current_program(main_text, span)?;
             let Some(target) = program.find_label(label, None) else {
@@ -1043,7 +1086,7 @@ impl Core {
                 )
                 .with_label(frame.span, "called from here"),
             );
-            if let Err(alarm) = self.return_from_call(None, span, None) {
+            if let Err(alarm) = self.return_from_call(Return::Caller, span, None) {
                 self.fail(alarm);
             }
             return;

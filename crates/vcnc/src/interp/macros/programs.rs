@@ -294,7 +294,7 @@ impl StoredProgram {
 }
 
 /// The sequence number a block starts with, if any.
-fn sequence_number(block: &Block) -> Option<u32> {
+pub(crate) fn sequence_number(block: &Block) -> Option<u32> {
     let word = block.words.first().filter(|w| w.letter == b'N')?;
     word.number.whole().and_then(|n| u32::try_from(n).ok())
 }

@@ -1,5 +1,6 @@
-//! Running the statements of a Syntec `%@MACRO` program: IF/ELSEIF/ELSE/END_IF, WHILE,
-//! FOR, REPEAT ... UNTIL, EXIT, the public variables `@n`, and ALARM(), MSG(), WAIT() and SLEEP().
+//! Running the statements of a Syntec `%@MACRO` program: IF/ELSEIF/ELSE/END_IF, CASE/END_CASE,
+//! WHILE, FOR, REPEAT ... UNTIL, EXIT, the public variables `@n`, and ALARM(), MSG(), WAIT() and
+//! SLEEP().
 //!
 //! A macro program runs from memory: its `%@MACRO` header, read from a streamed main program,
 //! loads the program whole (as a jump does) and the run goes on there. The structured statements
@@ -22,6 +23,15 @@ use crate::syntax::Block;
 use std::sync::Arc;
 
 use super::programs::{Position, StoredProgram};
+
+/// The link of the statement at `at` of `program` (a branch a CASE or IF looks at).
+fn link_at(program: &StoredProgram, at: Position, span: Span) -> Result<Link, Alarm> {
+    match program.structure().and_then(|s| s.link(at)) {
+        Some(Ok(link)) => Ok(link),
+        Some(Err(alarm)) => Err(alarm.clone()),
+        None => Err(wrong_link(span)),
+    }
+}
 
 /// The highest public variable number.
 const PUBLIC_LAST: u32 = 165_535;
@@ -93,8 +103,15 @@ impl Core {
                 }
                 self.next_branch(program, link, span)
             }
-            Statement::ElseIf { span, .. } | Statement::Else { span } => {
-                // Reached in sequence: the branch before it ran; on to the END_IF.
+            Statement::Case { selector, span } => {
+                let (program, link) = self.link(span, main_text)?;
+                let selector = self.evaluate(selector, code)?;
+                self.case_branch(program, link, selector, span)
+            }
+            Statement::ElseIf { span, .. }
+            | Statement::Else { span }
+            | Statement::CaseLabel { span, .. } => {
+                // Reached in sequence: the branch before it ran; on to the END_IF (END_CASE).
                 let (program, link) = self.link(span, main_text)?;
                 match link {
                     Link::Branch { end, .. } => Ok(self.jump_after(program, end)),
@@ -135,6 +152,7 @@ impl Core {
                 }
             }
             Statement::EndIf { span }
+            | Statement::EndCase { span }
             | Statement::Repeat { span }
             | Statement::EndRepeat { span } => {
                 // Nothing to do, unless the statement has no partner.
@@ -213,8 +231,52 @@ impl Core {
     fn next_branch(
         &mut self,
         program: Arc<StoredProgram>,
+        link: Link,
+        span: Span,
+    ) -> Result<Next, Alarm> {
+        self.take_branch(program, link, span, |core, block| {
+            match block.statements.first() {
+                Some(&Statement::ElseIf { condition, .. }) => {
+                    Ok(eval::is_true(core.evaluate(condition, &block.code)?))
+                }
+                Some(Statement::Else { .. }) => Ok(true),
+                _ => Err(wrong_link(span)),
+            }
+        })
+    }
+
+    /// CASE: the run goes on after the first label equal to `selector` (as EQ compares: a
+    /// vacant selector equals no label), else after ELSE, else after END_CASE.
+    fn case_branch(
+        &mut self,
+        program: Arc<StoredProgram>,
+        link: Link,
+        selector: MacroValue,
+        span: Span,
+    ) -> Result<Next, Alarm> {
+        self.take_branch(program, link, span, |_, block| {
+            if let Some(alarm) = block.alarms.iter().find(|a| a.is_error()) {
+                // A label that could not be read: the CASE stops there.
+                return Err(alarm.clone());
+            }
+            match block.statements.first() {
+                Some(Statement::CaseLabel { .. }) => Ok(block.statements.iter().any(|s| {
+                    matches!(*s, Statement::CaseLabel { value, .. } if eval::equal(selector, Some(value)))
+                })),
+                Some(Statement::Else { .. }) => Ok(true),
+                _ => Err(wrong_link(span)),
+            }
+        })
+    }
+
+    /// Walks the branches from `link` on (an IF's ELSEIFs and ELSE, a CASE's labels and ELSE)
+    /// until `runs` takes one: the run goes on after it, or after the END when none does.
+    fn take_branch(
+        &mut self,
+        program: Arc<StoredProgram>,
         mut link: Link,
         span: Span,
+        mut runs: impl FnMut(&Core, &Block) -> Result<bool, Alarm>,
     ) -> Result<Next, Alarm> {
         loop {
             let Link::Branch { next, end } = link else {
@@ -226,20 +288,10 @@ impl Core {
             let Some(block) = program.block(next) else {
                 return Err(wrong_link(span));
             };
-            match block.statements.first() {
-                Some(&Statement::ElseIf { condition, span }) => {
-                    if eval::is_true(self.evaluate(condition, &block.code)?) {
-                        return Ok(self.jump_after(program, next));
-                    }
-                    link = match program.structure().and_then(|s| s.link(next)) {
-                        Some(Ok(link)) => link,
-                        Some(Err(alarm)) => return Err(alarm.clone()),
-                        None => return Err(wrong_link(span)),
-                    };
-                }
-                Some(Statement::Else { .. }) => return Ok(self.jump_after(program, next)),
-                _ => return Err(wrong_link(span)),
+            if runs(self, block)? {
+                return Ok(self.jump_after(program, next));
             }
+            link = link_at(&program, next, span)?;
         }
     }
 

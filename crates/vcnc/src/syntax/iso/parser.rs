@@ -6,7 +6,7 @@
 //! of `structured.rs` are read.
 
 mod macros;
-mod structured;
+pub(super) mod structured;
 
 use super::LineBlocks;
 use crate::alarm::{Alarm, AlarmCode};
@@ -193,7 +193,9 @@ pub(crate) fn parse_macro_statement(
         return;
     }
     let block = out.push();
-    reader.read_block(block);
+    if !reader.read_case_label(block) {
+        reader.read_block(block);
+    }
     if block.is_empty() && block.skip.is_none() && block.alarms.is_empty() {
         out.pop();
     }
@@ -479,9 +481,6 @@ impl Reader<'_, '_> {
             Format::Macro if called => {
                 Alarm::not_supported(span, &format!("the macro function `{name}`"), None)
             }
-            Format::Macro if is_structured_keyword(&name) => {
-                Alarm::not_supported(span, &format!("`{name}`"), None)
-            }
             Format::Macro => Alarm::error(
                 AlarmCode::MacroSyntax,
                 span,
@@ -753,12 +752,6 @@ pub(super) fn is_macro_header(rest: &[u8]) -> bool {
         && !rest
             .get(HEADER.len())
             .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
-}
-
-/// Statements of Syntec macro programs that vcnc does not run yet.
-fn is_structured_keyword(word: &str) -> bool {
-    const KEYWORDS: &[&str] = &["CASE", "END_CASE", "ENDCASE", "OF"];
-    KEYWORDS.contains(&word)
 }
 
 fn is_macro_keyword(word: &str) -> bool {

@@ -5,7 +5,8 @@
 //! (spec/iso-syntec-milling.md §0.1.1, seed L5031-5039): statements end with `;` wherever the
 //! line ends, `IF ... THEN`, `WHILE ... DO`, `FOR ... DO`, `ELSE` and `REPEAT` need none, several
 //! statements may share a line and one may run over several lines (a line without `;` goes on
-//! with the next), comments are `// ...` to the line end and `(* ... *)` over any number of
+//! with the next; a CASE label such as `2, 3:` is a statement of its own), comments are
+//! `// ...` to the line end and `(* ... *)` over any number of
 //! lines, and `( )` are brackets. [`parse_program`] cuts such a text into statements and reads
 //! each with the ISO reader in its macro format; a statement's block is kept with the line it
 //! starts on, so a block's place is still (line, block) as in an ISO program, and a block's span
@@ -15,6 +16,7 @@
 //! `%`, an `O1234` program number) are ISO lines. A program whose first line is anything else is
 //! an ISO program, whatever it holds: `%@MACRO` further down is not a header.
 
+use super::parser::structured::is_case_label_list;
 use super::parser::{is_macro_header, parse_macro_statement};
 use super::structure::Structure;
 use super::{parse_line, LineBlocks, SyntaxOptions};
@@ -172,6 +174,11 @@ impl<'t, 'o> Cutter<'t, 'o> {
                 (b';', _) => {
                     self.finish();
                     self.pos += 1;
+                }
+                (b':', next) if next != Some(b'=') && is_case_label_list(&self.statement) => {
+                    // `2, 3:` labels the statements after it: a statement of its own.
+                    self.take(1);
+                    self.finish();
                 }
                 (b'\n', _) => self.line_end(),
                 (b' ' | b'\t' | b'\r' | b'\x0c' | b'\x0b' | 0, _) => self.blank(1),

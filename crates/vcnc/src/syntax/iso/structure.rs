@@ -1,6 +1,8 @@
 //! Which statements of a Syntec `%@MACRO` program belong together: an IF with its ELSEIFs, ELSE
-//! and END_IF, a WHILE or FOR with its END, a REPEAT with its UNTIL, an EXIT with the loop it
-//! leaves.
+//! and END_IF, a CASE with its labels, ELSE and END_CASE, a WHILE or FOR with its END, a REPEAT
+//! with its UNTIL, an EXIT with the loop it leaves. Statements open inside one another more than
+//! [`MAX_NESTING`] deep get an alarm.
+
 //!
 //! [`Structure::scan`] walks the program once with a stack of open statements, as the control
 //! builds its table of jumps; the interpreter then jumps by looking a statement up, never by
@@ -18,6 +20,11 @@ use crate::source::Span;
 use crate::syntax::Statement;
 use std::collections::HashMap;
 
+/// How deep IF, CASE, WHILE, FOR and REPEAT may nest: the statement that opens level 11 raises
+/// [`AlarmCode::MacroLimit`] when the run reaches it. Syntec's public macro documentation gives
+/// 10 levels; the seed manual gives none (docs/DEVIATIONS.md).
+pub const MAX_NESTING: usize = 10;
+
 /// Where a block stands in a program: its line index (0 is the program's first line) and its
 /// index among the blocks of that line.
 pub type BlockPosition = (usize, usize);
@@ -25,7 +32,8 @@ pub type BlockPosition = (usize, usize);
 /// What a structured statement needs to know to jump.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Link {
-    /// IF, ELSEIF or ELSE: the next branch (ELSEIF, ELSE) or the END_IF, and the END_IF.
+    /// IF, ELSEIF or ELSE: the next branch (ELSEIF, ELSE) or the END_IF, and the END_IF; the
+    /// same for CASE, its labels, its ELSE and END_CASE.
     Branch {
         /// Where the next branch or the END_IF is.
         next: BlockPosition,
@@ -83,6 +91,7 @@ impl Structure {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kind {
     If,
+    Case,
     While,
     For,
     Repeat,
@@ -92,6 +101,7 @@ impl Kind {
     fn opener(self) -> &'static str {
         match self {
             Kind::If => "IF",
+            Kind::Case => "CASE",
             Kind::While => "WHILE",
             Kind::For => "FOR",
             Kind::Repeat => "REPEAT",
@@ -101,6 +111,7 @@ impl Kind {
     fn closer(self) -> &'static str {
         match self {
             Kind::If => "END_IF",
+            Kind::Case => "END_CASE",
             Kind::While => "END_WHILE",
             Kind::For => "END_FOR",
             Kind::Repeat => "UNTIL",
@@ -114,9 +125,11 @@ struct Open {
     kind: Kind,
     at: BlockPosition,
     span: Span,
-    /// IF: the IF and its ELSEIFs and ELSE, in order.
+    /// IF: the IF and its ELSEIFs and ELSE, in order (CASE: the CASE, its labels and ELSE).
     branches: Vec<(BlockPosition, Span)>,
     has_else: bool,
+    /// Opened deeper than [`MAX_NESTING`]: the alarm its opener raises.
+    too_deep: Option<Alarm>,
     /// Loops: the EXITs that leave this loop.
     exits: Vec<(BlockPosition, Span)>,
 }
@@ -143,6 +156,9 @@ impl Scan {
             Statement::ElseIf { .. } => self.branch(at, span, false),
             Statement::Else { .. } => self.branch(at, span, true),
             Statement::EndIf { .. } => self.close(Kind::If, at, span),
+            Statement::Case { .. } => self.push(Kind::Case, at, span),
+            Statement::CaseLabel { .. } => self.label(at, span),
+            Statement::EndCase { .. } => self.close(Kind::Case, at, span),
             Statement::WhileDo { .. } => self.push(Kind::While, at, span),
             Statement::EndWhile { .. } => self.close(Kind::While, at, span),
             Statement::For { .. } => self.push(Kind::For, at, span),
@@ -161,23 +177,75 @@ impl Scan {
     }
 
     fn push(&mut self, kind: Kind, at: BlockPosition, span: Span) {
+        let too_deep = (self.open.len() >= MAX_NESTING).then(|| {
+            Alarm::error(
+                AlarmCode::MacroLimit,
+                span,
+                format!(
+                    "{} nested {} deep: IF, CASE, WHILE, FOR and REPEAT nest at most {MAX_NESTING} deep",
+                    kind.opener(),
+                    self.open.len() + 1
+                ),
+            )
+            .with_help("move the inner part into a subprogram (M98) or a macro (G65)")
+        });
         self.open.push(Open {
             kind,
             at,
             span,
             branches: vec![(at, span)],
             has_else: false,
+            too_deep,
             exits: Vec::new(),
         });
     }
 
-    /// ELSEIF or ELSE: a branch of the innermost open IF.
+    /// A CASE label: a branch of the innermost open CASE (`2, 3:` is one branch).
+    fn label(&mut self, at: BlockPosition, span: Span) {
+        match self.open.last_mut() {
+            Some(open) if open.kind == Kind::Case && !open.has_else => {
+                if open.branches.last().map(|b| b.0) != Some(at) {
+                    open.branches.push((at, span));
+                }
+            }
+            Some(open) if open.kind == Kind::Case => {
+                let message = format!(
+                    "a CASE label after the ELSE of its CASE (line {})",
+                    open.span.line
+                );
+                self.error(at, span, &message);
+            }
+            Some(open) => {
+                let message = format!(
+                    "a CASE label inside {} (line {}): {} is missing",
+                    open.kind.opener(),
+                    open.span.line,
+                    open.kind.closer()
+                );
+                self.error(at, span, &message);
+            }
+            None => self.error(at, span, "a CASE label outside CASE"),
+        }
+    }
+
+    /// ELSEIF or ELSE: a branch of the innermost open IF (ELSE also of a CASE).
     fn branch(&mut self, at: BlockPosition, span: Span, is_else: bool) {
         let word = if is_else { "ELSE" } else { "ELSEIF" };
         match self.open.last_mut() {
-            Some(open) if open.kind == Kind::If && !open.has_else => {
+            Some(open)
+                if (open.kind == Kind::If || (open.kind == Kind::Case && is_else))
+                    && !open.has_else =>
+            {
                 open.branches.push((at, span));
                 open.has_else = is_else;
+            }
+            Some(open) if matches!(open.kind, Kind::If | Kind::Case) && is_else => {
+                let message = format!(
+                    "ELSE after the ELSE of its {} (line {})",
+                    open.kind.opener(),
+                    open.span.line
+                );
+                self.error(at, span, &message);
             }
             Some(open) if open.kind == Kind::If => {
                 let message = format!("{word} after the ELSE of its IF (line {})", open.span.line);
@@ -198,7 +266,12 @@ impl Scan {
 
     /// EXIT: leaves the innermost loop.
     fn exit(&mut self, at: BlockPosition, span: Span) {
-        match self.open.iter_mut().rev().find(|o| o.kind != Kind::If) {
+        match self
+            .open
+            .iter_mut()
+            .rev()
+            .find(|o| !matches!(o.kind, Kind::If | Kind::Case))
+        {
             Some(open) => open.exits.push((at, span)),
             None => self.error(at, span, "EXIT outside WHILE, FOR and REPEAT"),
         }
@@ -224,8 +297,9 @@ impl Scan {
         let Some(open) = self.open.pop() else {
             return;
         };
+        let (too_deep, open_at) = (open.too_deep.clone(), open.at);
         match kind {
-            Kind::If => {
+            Kind::If | Kind::Case => {
                 let next = open.branches.iter().skip(1).map(|b| b.0).chain([at]);
                 for (&(branch, _), next) in open.branches.iter().zip(next) {
                     self.links
@@ -241,6 +315,9 @@ impl Scan {
                     self.links.insert(exit, Ok(Link::Exit { end: at }));
                 }
             }
+        }
+        if let Some(alarm) = too_deep {
+            self.links.insert(open_at, Err(alarm));
         }
     }
 

@@ -879,6 +879,9 @@ pub(super) mod tests {
             Statement::EndRepeat { .. } => "end_repeat".into(),
             Statement::Exit { .. } => "exit".into(),
             Statement::Wait { .. } => "wait".into(),
+            Statement::Case { selector, .. } => format!("case {} of", p(selector)),
+            Statement::CaseLabel { value, .. } => format!("label {value}"),
+            Statement::EndCase { .. } => "end_case".into(),
         }
     }
 

@@ -1,6 +1,7 @@
 //! The keyword statements of a Syntec `%@MACRO` program: IF ... THEN, ELSEIF (ELSIF), ELSE,
 //! END_IF, WHILE ... DO, END_WHILE, FOR ... := ... TO ... BY ... DO, END_FOR, REPEAT, UNTIL,
-//! END_REPEAT, EXIT, GOTO, and the calls WAIT(), SLEEP(), ALARM() and MSG().
+//! END_REPEAT, CASE ... OF with its labels (`1:`, `2, 3:`) and END_CASE, EXIT, GOTO, and the
+//! calls WAIT(), SLEEP(), ALARM() and MSG().
 //!
 //! Each statement is read alone (`macro_program.rs` cuts the text at `;` and after THEN, DO,
 //! ELSE and REPEAT), so a keyword statement must start its statement and nothing may follow it.
@@ -29,6 +30,8 @@ enum Keyword {
     Repeat,
     Until,
     EndRepeat,
+    Case,
+    EndCase,
     Exit,
     Goto,
     Wait,
@@ -53,6 +56,9 @@ const KEYWORDS: &[(&str, Keyword)] = &[
     ("UNTIL", Keyword::Until),
     ("END_REPEAT", Keyword::EndRepeat),
     ("ENDREPEAT", Keyword::EndRepeat),
+    ("CASE", Keyword::Case),
+    ("END_CASE", Keyword::EndCase),
+    ("ENDCASE", Keyword::EndCase),
     ("EXIT", Keyword::Exit),
     ("GOTO", Keyword::Goto),
     ("WAIT", Keyword::Wait),
@@ -119,6 +125,14 @@ impl Reader<'_, '_> {
                 }
             }
             Keyword::For => self.read_for(block, start)?,
+            Keyword::Case => {
+                let selector = self.expression(block)?;
+                self.keyword(block, "OF", name)?;
+                Statement::Case {
+                    selector,
+                    span: self.span(start, self.pos),
+                }
+            }
             Keyword::Until => {
                 let condition = self.expression(block)?;
                 block.statements.push(Statement::Until {
@@ -289,6 +303,71 @@ impl Reader<'_, '_> {
         ))
     }
 
+    /// A CASE label at the cursor (`2:`, `2, -3:`), as the cutter hands it over: nothing
+    /// after its `:`. False (nothing consumed) when the statement is no label.
+    pub(super) fn read_case_label(&mut self, block: &mut Block) -> bool {
+        let rest = &self.text[self.pos..];
+        let Some(colon) = rest.iter().position(|&b| b == b':') else {
+            return false;
+        };
+        if rest.get(colon + 1) == Some(&b'=') || !is_case_label_list(&rest[..colon]) {
+            return false;
+        }
+        let end = self.pos + colon;
+        let mut start = self.pos;
+        while start < end {
+            let length = self.text[start..end]
+                .iter()
+                .position(|&b| b == b',')
+                .unwrap_or(end - start);
+            if self.read_label_value(block, start, start + length).is_err() {
+                return true;
+            }
+            start += length + 1;
+        }
+        self.pos = end + 1;
+        // The alarm is in the block already.
+        let _ = self.end_of_statement(block, "a CASE label");
+        true
+    }
+
+    /// One value of a CASE label list, the bytes `start..end` (blanks around it). A value that
+    /// cannot be read is still a label (one that equals nothing), so that the CASE reaches its
+    /// block and raises the alarm there.
+    fn read_label_value(&mut self, block: &mut Block, start: usize, end: usize) -> Read {
+        let raw = &self.text[start..end];
+        let first = start + raw.iter().take_while(|b| b.is_ascii_whitespace()).count();
+        let last = end
+            - raw
+                .iter()
+                .rev()
+                .take_while(|b| b.is_ascii_whitespace())
+                .count();
+        let text = String::from_utf8_lossy(&self.text[first..last.max(first)]).into_owned();
+        let value = text.parse::<i32>().map_or(f64::NAN, f64::from);
+        block.statements.push(Statement::CaseLabel {
+            value,
+            span: self.span(first, last),
+        });
+        if text.contains("..") {
+            block.alarms.push(Alarm::not_supported(
+                self.clamped(first, last),
+                &format!("the CASE label range `{text}`"),
+                None,
+            ));
+            return Err(Failed);
+        }
+        match value.is_nan() {
+            false => Ok(()),
+            true => Err(self.fail(
+                block,
+                first,
+                last.max(first + 1),
+                format!("`{text}`: a CASE label is a whole number (`2:`, `2, 3:`)"),
+            )),
+        }
+    }
+
     /// Nothing may follow a keyword statement but the `;` that was cut off.
     fn end_of_statement(&mut self, block: &mut Block, name: &str) -> Read {
         self.skip_blanks();
@@ -320,6 +399,15 @@ impl Reader<'_, '_> {
 }
 
 /// The statements that are their keyword alone (ELSE, END_IF, REPEAT ...), at `span`.
+/// The text before a `:` is a CASE label list: whole numbers (signs, commas and blanks
+/// between them; `..` is read to name ranges in an alarm) and at least one digit.
+pub(crate) fn is_case_label_list(text: &[u8]) -> bool {
+    text.iter().any(u8::is_ascii_digit)
+        && text
+            .iter()
+            .all(|b| b.is_ascii_digit() || b.is_ascii_whitespace() || b"+-,.".contains(b))
+}
+
 fn lone_keyword(keyword: Keyword, span: crate::source::Span) -> Option<Statement> {
     Some(match keyword {
         Keyword::Else => Statement::Else { span },
@@ -329,6 +417,7 @@ fn lone_keyword(keyword: Keyword, span: crate::source::Span) -> Option<Statement
         Keyword::Repeat => Statement::Repeat { span },
         Keyword::EndRepeat => Statement::EndRepeat { span },
         Keyword::Exit => Statement::Exit { span },
+        Keyword::EndCase => Statement::EndCase { span },
         _ => return None,
     })
 }
@@ -438,7 +527,22 @@ mod tests {
             show("IF #1 = 1 DO"),
             "alarm 10: IF needs THEN here, found `DO`"
         );
-        assert_eq!(show("CASE #1 OF"), "alarm 0: `CASE` is not supported yet");
+        assert_eq!(show("CASE #1 + 1 OF"), "case #1 1 Add of");
+        assert_eq!(
+            show("CASE #1"),
+            "alarm 6: CASE needs OF here, found the end of the statement"
+        );
+        assert_eq!(show("2, -3 :"), "label 2 | label -3");
+        assert_eq!(show("END_CASE"), "end_case");
+        assert_eq!(
+            show("1.5:"),
+            "alarm 0: `1.5`: a CASE label is a whole number (`2:`, `2, 3:`)"
+        );
+        assert_eq!(
+            show("1..3:"),
+            "alarm 0: the CASE label range `1..3` is not supported yet"
+        );
+        assert_eq!(show("1: #2 := 1"), "alarm 3: `#` after a CASE label");
         assert_eq!(
             show("#1 := GETARG(X)"),
             "alarm 6: the macro function `GETARG` is not supported yet"
