@@ -850,3 +850,44 @@ fn a_streamed_main_program_that_jumps_is_loaded_and_runs_on() {
     assert_eq!(moves.len(), 5);
     assert_eq!(moves[4], [4.0, 1.0, 0.0]);
 }
+
+/// The Syntec manual's G65 and G66 examples (files 46 and 47) call O0010, which the manual does
+/// not print. With a stand-in O0010 that moves by its arguments (`G91 G01 X#24 Y#25`), the calls
+/// themselves are checked: G65 P10 L20 runs it 20 times with X10 Y10 (#24, #25); G66 P10 L2
+/// runs it twice after each move block until G67, each time with the arguments of the G66
+/// block.
+#[test]
+fn syntec_manual_g65_and_g66_calls_with_a_stand_in_macro() {
+    let example = |name: &str| {
+        let path = common::shared_dir().join("spec/examples/syntec").join(name);
+        std::fs::read_to_string(path).expect("the example is in ../shared")
+    };
+    let stand_in = || {
+        let mut library = MemoryLibrary::new();
+        library.insert(10, FileId(7), "O0010\nG91 G01 X#24 Y#25 F100.\nM99\n");
+        library
+    };
+    let machine = Machine::default()
+        .with_profile(ProfileName::Syntec)
+        .unwrap();
+    let (segments, alarms, _) = run_with(&example("46-g65-macro-call.nc"), &machine, stand_in());
+    assert!(alarms.iter().all(|a| !a.is_error()), "{alarms:?}");
+    let expected: Vec<[f64; 3]> = (1..=20)
+        .map(|k| [10.0 * f64::from(k), 10.0 * f64::from(k), 0.0])
+        .collect();
+    assert_eq!(common::variables::move_ends(&segments), expected);
+
+    let (segments, alarms, _) = run_with(&example("47-g66-modal-macro.nc"), &machine, stand_in());
+    assert!(alarms.iter().all(|a| !a.is_error()), "{alarms:?}");
+    assert_eq!(
+        common::variables::move_ends(&segments),
+        [
+            [20.0, 0.0, 0.0],
+            [30.0, 10.0, 0.0],
+            [40.0, 20.0, 0.0],
+            [40.0, 40.0, 0.0],
+            [50.0, 50.0, 0.0],
+            [60.0, 60.0, 0.0],
+        ]
+    );
+}
