@@ -1101,6 +1101,10 @@ impl Core {
         first: usize,
         span: Span,
     ) -> Result<(u32, u32, Box<Locals>), Alarm> {
+        // The profile's letter-to-variable mapping. Every control vcnc models maps as FANUC
+        // does (the Syntec manual's G65 example passes X and Y the same way): one arm today, and
+        // a profile with another mapping must add its own here.
+        let crate::profile::MacroArguments::Fanuc = self.exec.profile.macro_arguments;
         let mut locals: Locals = [None; 33];
         let mut program = None;
         let mut repeats = 1;
