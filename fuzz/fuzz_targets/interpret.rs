@@ -11,6 +11,9 @@
 //!   labels' spans lie inside the input (`start <= end <= len`), and its message is one line;
 //! - every segment's span lies inside the input and all its numbers are finite.
 //!
+//! Each run also carries two interrupt signals (a line chosen by the input's length, and N10),
+//! so that M96 programs take their interrupt paths.
+//!
 //! `VCNC_FUZZ_ALLOW_NONFINITE=1` skips the last check, so that a long run can look for other
 //! bugs while the known overflow of huge numbers is open (see README.md).
 #![no_main]
@@ -18,6 +21,7 @@
 use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
 use vcnc::motion::{Feed, Move};
+use vcnc::interp::InterruptAt;
 use vcnc::{interpret_bytes, Alarm, Machine, Options, ProfileName, Segment, SegmentKind, Span};
 
 /// Items one block may yield: a cycle block's 100,000 moves, each with at most a spindle event
@@ -60,6 +64,12 @@ fuzz_target!(|data: &[u8]| {
         let mut error: Option<Alarm> = None;
         let mut options = Options::default();
         options.limits.jumps = JUMPS;
+        // An interrupt signal (M96) on a line and a sequence number the input chooses, so that
+        // the interrupt paths run too: the line from the input's length, N10 always.
+        options.interrupts = vec![
+            InterruptAt::Line(1 + len % 8),
+            InterruptAt::Sequence(10),
+        ];
         // Every jump may run a block once more (a subprogram call runs its blocks once per
         // call, and calls nest only as deep as the profile allows: their passes are jumps too
         // when they repeat).

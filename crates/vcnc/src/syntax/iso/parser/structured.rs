@@ -345,6 +345,8 @@ impl Reader<'_, '_> {
                 .count();
         let text = String::from_utf8_lossy(&self.text[first..last.max(first)]).into_owned();
         let value = text.parse::<i32>().map_or(f64::NAN, f64::from);
+        // A label may run over lines; a message stays on one.
+        let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
         block.statements.push(Statement::CaseLabel {
             value,
             span: self.span(first, last),
@@ -537,6 +539,11 @@ mod tests {
         assert_eq!(
             show("1.5:"),
             "alarm 0: `1.5`: a CASE label is a whole number (`2:`, `2, 3:`)"
+        );
+        // A label over two lines (a fuzz finding): the message stays on one line.
+        assert_eq!(
+            show("2\n1:"),
+            "alarm 0: `2 1`: a CASE label is a whole number (`2:`, `2, 3:`)"
         );
         assert_eq!(
             show("1..3:"),
