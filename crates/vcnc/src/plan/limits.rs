@@ -279,11 +279,17 @@ fn arc(
         return None;
     };
     let (a, b, n) = plane.axes();
-    let radius = (motion.from.0[a] - center.0[a]).hypot(motion.from.0[b] - center.0[b]);
+    // Plain square roots, not hypot: machine coordinates are far from overflow, and hypot's
+    // care costs several times a square root.
+    let norm = |x: f64, y: f64| (x * x + y * y).sqrt();
+    let radius = norm(
+        motion.from.0[a] - center.0[a],
+        motion.from.0[b] - center.0[b],
+    );
     let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
     let planar = radius * sweep;
     let axial = motion.to.0[n] - motion.from.0[n];
-    let length = planar.hypot(axial);
+    let length = norm(planar, axial);
     if length <= 1e-12 || radius <= 1e-12 {
         return Some(line(motion, Some(feed), axes, config, feed_override));
     }
@@ -318,7 +324,7 @@ fn arc(
     };
     let tangent = |point: &[f64; AXES]| {
         let (ra, rb) = (point[a] - center.0[a], point[b] - center.0[b]);
-        let r = ra.hypot(rb).max(1e-12);
+        let r = norm(ra, rb).max(1e-12);
         let mut t = [0.0; 3];
         t[a] = -sign * rb / r * p;
         t[b] = sign * ra / r * p;
