@@ -279,8 +279,9 @@ fn arc(
         return None;
     };
     let (a, b, n) = plane.axes();
-    // Plain square roots, not hypot: machine coordinates are far from overflow, and hypot's
-    // care costs several times a square root.
+    // Plain square roots, not hypot: machine coordinates are far from overflow and underflow,
+    // where hypot's care lies, and that care costs several times a square root.
+    #[allow(clippy::imprecise_flops)]
     let norm = |x: f64, y: f64| (x * x + y * y).sqrt();
     let radius = norm(
         motion.from.0[a] - center.0[a],
