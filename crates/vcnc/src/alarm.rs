@@ -101,6 +101,10 @@ pub enum AlarmCode {
     /// G12/G13 circle cutting without an offset number, or with a circle no larger than the
     /// offset (Mitsubishi P170, P233).
     CircleCutting,
+    /// A high-speed or smoothing code (G05, G05.1, G08) with a word missing or out of range
+    /// (Syntec COR-107), or switched on in exact stop or tapping mode, G61/G63 (Syntec COR-106),
+    /// or high-speed mode with inverse time feed, G93 (spec 1.8, restriction 14).
+    SmoothingCommand,
     /// A macro statement or expression that cannot be read: an unclosed bracket, `IF` without
     /// GOTO or THEN, `#` without a number. FANUC alarms PS0114/PS0118-like "format error".
     MacroSyntax,
@@ -166,6 +170,7 @@ impl AlarmCode {
             PositionOffset => "position_offset",
             CycleData => "cycle_data",
             CircleCutting => "circle_cutting",
+            SmoothingCommand => "smoothing_command",
             MacroSyntax => "macro_syntax",
             MacroArithmetic => "macro_arithmetic",
             BadVariable => "bad_variable",
@@ -212,6 +217,7 @@ impl AlarmCode {
             PositionOffset => "V061",
             CycleData => "V070",
             CircleCutting => "V071",
+            SmoothingCommand => "V072",
             MacroSyntax => "V080",
             MacroArithmetic => "V081",
             BadVariable => "V082",
@@ -256,6 +262,7 @@ impl AlarmCode {
         AlarmCode::PositionOffset,
         AlarmCode::CycleData,
         AlarmCode::CircleCutting,
+        AlarmCode::SmoothingCommand,
         AlarmCode::MacroSyntax,
         AlarmCode::MacroArithmetic,
         AlarmCode::BadVariable,

@@ -118,6 +118,28 @@ pub enum PathMode {
     Tapping,
 }
 
+/// A high-speed or smoothing mode in force for a motion (Syntec G05 and G05.1, FANUC G05.1 Q1 and
+/// G08 P1): the control may leave the programmed path by up to this much to keep its speed
+/// through the corners. Kept in whole micrometres, so that it fits beside the path mode and
+/// costs a motion no space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Smoothing(std::num::NonZeroU16);
+
+impl Smoothing {
+    /// The tolerance `mm`, rounded to a micrometre and kept within 1 um to 65 mm.
+    pub fn from_mm(mm: f64) -> Smoothing {
+        let micrometres = (mm * 1000.0).round().clamp(1.0, f64::from(u16::MAX));
+        Smoothing(
+            std::num::NonZeroU16::new(micrometres as u16).unwrap_or(std::num::NonZeroU16::MIN),
+        )
+    }
+
+    /// The tolerance, mm.
+    pub fn mm(self) -> f64 {
+        f64::from(self.0.get()) / 1000.0
+    }
+}
+
 /// A motion in space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Move {
@@ -129,6 +151,8 @@ pub struct Move {
     pub path_mode: PathMode,
     /// G09 in this block, or an exact stop the control makes anyway (e.g. before a tool change).
     pub exact_stop: bool,
+    /// The high-speed or smoothing mode in force, if any (never in G61 or G63, which suspend it).
+    pub smoothing: Option<Smoothing>,
     /// Machine minus program coordinates at the end of the move (work offset, G92, G52 and tool
     /// length together): `to - offset` is the end point in the program's coordinates.
     pub offset: [f64; AXES],

@@ -15,18 +15,32 @@ fn first_alarm(program: &str) -> (AlarmCode, u32, String, String) {
 }
 
 #[test]
-fn a_code_planned_for_later_is_named_with_its_issue() {
-    let alarm = interpret_str("G0 X1.\nG08 P1\n", &Machine::default(), Options::default())
-        .find_map(Result::err)
-        .unwrap();
+fn a_code_vcnc_does_not_run_is_named() {
+    let alarm = interpret_str(
+        "G0 X1.\nG07.1 C10.\n",
+        &Machine::default(),
+        Options::default(),
+    )
+    .find_map(Result::err)
+    .unwrap();
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
     assert_eq!(
         alarm.message,
-        "G08 (look-ahead control) is not supported yet"
+        "G07.1 (cylindrical interpolation) is not supported yet"
     );
-    assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #6"));
+    assert_eq!(alarm.help, None);
     assert_eq!(alarm.span.unwrap().line, 2);
     assert_eq!(alarm.severity, Severity::Error);
+}
+
+#[test]
+fn a_code_planned_in_an_issue_says_which() {
+    let alarm = vcnc::Alarm::not_supported(
+        vcnc::Span::new(vcnc::FileId(0), 0, 3, 1),
+        "G08 (look-ahead control)",
+        Some(6),
+    );
+    assert_eq!(alarm.help.as_deref(), Some("planned in vcnc issue #6"));
 }
 
 #[test]

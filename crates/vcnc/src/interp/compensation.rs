@@ -168,7 +168,8 @@ pub(crate) fn after_motion(
         from: MachinePos(from),
         to: MachinePos(exec.position),
         path_mode: exec.modal.path_mode,
-        exact_stop: cmd.exact_stop_once,
+        exact_stop: exec.exact_stop_once(cmd),
+        smoothing: exec.modal.smoothing_for_motion(),
         offset: exec.frames.offset_at(&exec.position),
     };
     let kind = match exec.modal.motion {

@@ -119,6 +119,15 @@ impl Executor {
         if let Some(g) = non_modal.filter(|g| g.code == GCode::Dwell) {
             super::auxiliary::dwell(self, cmd, g.order, out)?;
         }
+        let smoothing = non_modal.filter(|g| {
+            matches!(
+                g.code,
+                GCode::HighSpeedMode | GCode::PathSmoothing | GCode::LookAhead
+            )
+        });
+        if let Some(g) = smoothing {
+            super::smoothing::switch(self, cmd, g)?;
+        }
         let length_changed = super::length::apply(self, cmd, out)?;
         super::compensation::before_motion(self, cmd, out)?;
         let rotation = cmd.group(Group::Rotation).map(|g| g.code);
@@ -187,7 +196,7 @@ impl Executor {
                 }
                 _ => false,
             };
-        if let (Some(e), None) = (cmd.word(b'E'), &self.cycle) {
+        if let (Some(e), None, None) = (cmd.word(b'E'), &self.cycle, smoothing) {
             return Err(Alarm::not_supported(
                 e.span,
                 "address E outside a tapping cycle",
@@ -436,9 +445,16 @@ impl Executor {
             from,
             to: MachinePos(to),
             path_mode: self.modal.path_mode,
-            exact_stop: cmd.exact_stop_once,
+            exact_stop: self.exact_stop_once(cmd),
+            smoothing: self.modal.smoothing_for_motion(),
             offset: self.frames.offset_at(&to),
         })
+    }
+
+    /// G09 in the block, unless Syntec's high-speed mode (G05) is on, where it has no effect
+    /// (spec 1.8, restriction 6).
+    pub(crate) fn exact_stop_once(&self, cmd: &Command) -> bool {
+        cmd.exact_stop_once && self.modal.smoothing.high_speed.is_none()
     }
 
     /// The feed of a cutting move in the mode in force.

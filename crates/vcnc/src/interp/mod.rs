@@ -30,6 +30,7 @@ mod position_offset;
 mod reference;
 mod rotation;
 mod scaling;
+mod smoothing;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Machine;

@@ -1,7 +1,7 @@
 //! The modal state: one value per modal group, as the control keeps it between blocks.
 
 use crate::machine::WorkOffsetId;
-use crate::motion::{ArcDirection, PathMode, Plane};
+use crate::motion::{ArcDirection, PathMode, Plane, Smoothing};
 use crate::profile::{GCode, PowerOn};
 
 /// Group 01.
@@ -106,6 +106,32 @@ pub struct ModalState {
     pub work_offset: WorkOffsetId,
     /// Group 15.
     pub path_mode: PathMode,
+    /// The high-speed (G05) and smoothing (G05.1, G08) modes: group 00 codes whose state
+    /// persists.
+    pub smoothing: SmoothingModes,
+}
+
+/// The high-speed and smoothing modes switched on, each with its tolerance.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SmoothingModes {
+    /// Syntec G05 (high-speed high-precision contour control).
+    pub high_speed: Option<Smoothing>,
+    /// G05.1 (Syntec path smoothing, FANUC AI contour control) or FANUC G08 look-ahead.
+    pub path: Option<Smoothing>,
+}
+
+impl ModalState {
+    /// The smoothing a motion gets: the larger tolerance of the modes that are on, none in G61
+    /// or G63, which suspend them until G64 (spec 1.8 restriction 7, 1.9 restriction 5).
+    pub fn smoothing_for_motion(&self) -> Option<Smoothing> {
+        if matches!(self.path_mode, PathMode::ExactStop | PathMode::Tapping) {
+            return None;
+        }
+        match (self.smoothing.high_speed, self.smoothing.path) {
+            (Some(a), Some(b)) => Some(if a.mm() >= b.mm() { a } else { b }),
+            (a, b) => a.or(b),
+        }
+    }
 }
 
 impl ModalState {
@@ -122,6 +148,7 @@ impl ModalState {
             spindle_mode: SpindleMode::Rpm,
             work_offset: WorkOffsetId::Standard(1),
             path_mode: PathMode::Continuous,
+            smoothing: SmoothingModes::default(),
         };
         for code in [
             power_on.motion,
@@ -198,6 +225,9 @@ impl ModalState {
             | Mirror
             | ModalMacroCancel
             | MacroCall
+            | HighSpeedMode
+            | PathSmoothing
+            | LookAhead
             | ModalMacroCall
             | RotationCancel
             | Rotate

@@ -16,6 +16,10 @@ pub struct PlannerConfig {
     /// Largest distance, mm, by which a blended corner in continuous mode (G64) may cut inside
     /// the programmed corner; infinite when only segment lengths bound the blend.
     pub corner_tolerance: f64,
+    /// Largest distance, mm, by which a corner may be cut in a high-speed or smoothing mode
+    /// whose code gives no tolerance (Syntec G05 without E, its "TOL" parameter; FANUC G05.1 Q1
+    /// and G08 P1); a tolerance the program gives (E) wins.
+    pub smoothing_tolerance: f64,
     /// Share of a segment's length, at each end, that a corner blend may use.
     pub blend_length_share: f64,
     /// Share of the acceleration limit given to the normal (centripetal) acceleration on arcs and
@@ -77,6 +81,7 @@ impl PlannerConfig {
             PlannerHabits::Vcnc => PlannerConfig {
                 look_ahead: 200,
                 corner_tolerance: 0.02,
+                smoothing_tolerance: 0.01,
                 blend_length_share: 0.5,
                 normal_acceleration_share: NORMAL_SHARE,
                 unblended_acceleration_factor: 1.0,
@@ -97,6 +102,7 @@ impl PlannerConfig {
             PlannerHabits::Linuxcnc => PlannerConfig {
                 look_ahead: 200,
                 corner_tolerance: f64::INFINITY,
+                smoothing_tolerance: 0.01,
                 blend_length_share: 0.5,
                 normal_acceleration_share: NORMAL_SHARE,
                 unblended_acceleration_factor: 0.5,
@@ -125,6 +131,7 @@ pub(crate) struct PlannerFile {
     habits: Option<PlannerHabits>,
     look_ahead: Option<usize>,
     corner_tolerance: Option<f64>,
+    smoothing_tolerance: Option<f64>,
     blend_length_share: Option<f64>,
     normal_acceleration_share: Option<f64>,
     unblended_acceleration_factor: Option<f64>,
@@ -146,6 +153,7 @@ impl PlannerFile {
         let mut c = PlannerConfig::with_habits(self.habits.unwrap_or(PlannerHabits::Vcnc));
         set(&mut c.look_ahead, self.look_ahead);
         set(&mut c.corner_tolerance, self.corner_tolerance);
+        set(&mut c.smoothing_tolerance, self.smoothing_tolerance);
         set(&mut c.blend_length_share, self.blend_length_share);
         set(
             &mut c.normal_acceleration_share,
@@ -214,6 +222,8 @@ impl PlannerConfig {
             0.0,
             f64::INFINITY,
         )?;
+        // Kept in whole micrometres on every motion (crate::motion::Smoothing).
+        within("smoothing_tolerance", self.smoothing_tolerance, 0.001, 65.0)?;
         within("blend_length_share", self.blend_length_share, 0.0, 0.5)?;
         // A share of 1 would leave no tangential acceleration at an arc's top speed.
         within(

@@ -34,6 +34,8 @@ pub(crate) struct Handover {
     per_axis_rapid: bool,
     /// The block asks for an exact stop at its end (G61, G63 or G09).
     exact_stop: bool,
+    /// The corner tolerance of the high-speed or smoothing mode in force, mm.
+    smoothing: Option<f64>,
 }
 
 impl Handover {
@@ -56,6 +58,7 @@ impl Handover {
             per_axis_rapid,
             exact_stop: motion.exact_stop
                 || matches!(motion.path_mode, PathMode::ExactStop | PathMode::Tapping),
+            smoothing: motion.smoothing.map(|s| s.mm()),
         }
     }
 }
@@ -128,8 +131,14 @@ pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig)
         return Junction::CORNER_STOP;
     }
     let tan_half = sin_half / cos_half;
-    let by_tolerance = if config.corner_tolerance.is_finite() {
-        config.corner_tolerance * cos_half / (1.0 - cos_half)
+    // A corner between two moves of a high-speed or smoothing mode is cut within that mode's
+    // tolerance; any other within the machine's.
+    let tolerance = match (prev.smoothing, next.smoothing) {
+        (Some(a), Some(b)) => a.min(b),
+        _ => config.corner_tolerance,
+    };
+    let by_tolerance = if tolerance.is_finite() {
+        tolerance * cos_half / (1.0 - cos_half)
     } else {
         f64::INFINITY
     };
@@ -185,6 +194,7 @@ mod tests {
             rapid: false,
             per_axis_rapid: false,
             exact_stop,
+            smoothing: None,
         }
     }
 

@@ -3,7 +3,7 @@
 //! Codes are integers in tenths (G54.1 is 541), never floats. [`classify_g`] is the one place that
 //! maps a number to a meaning; the interpreter matches on [`GCode`].
 
-use super::Profile;
+use super::{Profile, SmoothingCodes};
 use crate::motion::ArcDirection;
 
 /// The modal groups of the FANUC-family M-series numbering (spec/iso-syntec-milling.md A.4).
@@ -170,6 +170,13 @@ pub enum GCode {
     PolarInterpolation,
     /// G13.1.
     PolarInterpolationCancel,
+    /// G05: high-speed high-precision (Syntec) or high-precision contour control (FANUC) on with
+    /// P10000 (Syntec also E alone), off with P0.
+    HighSpeedMode,
+    /// G05.1: path smoothing (Syntec Q1/Q2 with E) or AI contour control (FANUC Q1), on or off.
+    PathSmoothing,
+    /// G08 on FANUC: look-ahead control on (P1) or off (P0).
+    LookAhead,
 }
 
 impl GCode {
@@ -242,6 +249,9 @@ impl GCode {
             Rotate => "coordinate rotation",
             PolarInterpolation => "polar coordinate interpolation",
             PolarInterpolationCancel => "polar coordinate interpolation cancel",
+            HighSpeedMode => "high-speed high-precision mode",
+            PathSmoothing => "path smoothing / AI contour control",
+            LookAhead => "look-ahead control",
         }
     }
 
@@ -272,9 +282,8 @@ impl GCode {
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
-            | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_) => {
-                Group::NonModal
-            }
+            | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_)
+            | HighSpeedMode | PathSmoothing | LookAhead => Group::NonModal,
         }
     }
 }
@@ -447,6 +456,9 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         1360 if profile.hole_patterns => Pattern(PatternKind::Arc),
         1371 if profile.hole_patterns => Pattern(PatternKind::Grid),
         990 => ReturnToRLevel,
+        50 if profile.smoothing_codes != SmoothingCodes::None => HighSpeedMode,
+        51 if profile.smoothing_codes != SmoothingCodes::None => PathSmoothing,
+        80 if profile.smoothing_codes == SmoothingCodes::Fanuc => LookAhead,
         _ => return not_yet(tenths, profile),
     };
     Known(known)
@@ -455,12 +467,12 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
 /// Codes the controls have that vcnc does not run yet: (code in tenths, the issue that adds it,
 /// what it does).
 const NOT_YET: &[(i32, Option<u32>, &str)] = &[
-    (50, Some(6), "high-speed high-precision mode"),
-    (51, Some(6), "path smoothing / AI contour control"),
+    (50, None, "high-speed high-precision mode"),
+    (51, None, "path smoothing / AI contour control"),
     (62, None, "NURBS interpolation"),
     (70, None, "hypothetical axis interpolation"),
     (71, None, "cylindrical interpolation"),
-    (80, Some(6), "look-ahead control"),
+    (80, None, "look-ahead control"),
     (220, None, "stored stroke check on"),
     (230, None, "stored stroke check off"),
     (270, None, "reference position return check"),
@@ -472,7 +484,7 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (531, None, "tool axis direction control"),
     (682, None, "tilted working plane"),
     (1201, None, "machining condition selection"),
-    (1870, Some(6), "smoothness / accuracy setting"),
+    (1870, None, "smoothness / accuracy setting"),
 ];
 
 /// Codes that exist only where a profile says so: (code, the profile's switch, issue, meaning).
@@ -734,7 +746,11 @@ mod tests {
         );
         assert_eq!(classify_g(1340, &fanuc), GLookup::Unknown);
         assert_eq!(classify_g(650, &fanuc), GLookup::Known(GCode::MacroCall));
-        assert_eq!(classify_g(50, &fanuc), GLookup::NotSupported(Some(6)));
+        assert_eq!(classify_g(50, &fanuc), GLookup::Known(GCode::HighSpeedMode));
+        assert_eq!(
+            classify_g(50, &Profile::builtin(ProfileName::Fanuc0m)),
+            GLookup::NotSupported(None)
+        );
         assert_eq!(
             classify_g(121, &fanuc),
             GLookup::Known(GCode::PolarInterpolation)

@@ -105,6 +105,21 @@ pub enum MacroArguments {
     Fanuc,
 }
 
+/// The high-speed and smoothing codes of a control.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SmoothingCodes {
+    /// None that vcnc runs.
+    #[default]
+    None,
+    /// Syntec (spec iso-syntec-milling.md 1.8, 1.9): G05 P10000 [E] high-speed high-precision
+    /// mode and G05.1 Q1/Q2 E path smoothing, off with G05 P0 and G05.1 Q0.
+    Syntec,
+    /// FANUC: G05 P10000 (high-precision contour control), G05.1 Q1 (AI contour control) and
+    /// G08 P1 (look-ahead control), off with P0, Q0 and P0; none takes a tolerance.
+    Fanuc,
+}
+
 /// Where the tool offsets are among the system variables.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -373,6 +388,10 @@ pub struct Profile {
     /// their servo cycle and give no such number).
     #[serde(default = "default_polar_interpolation_tolerance")]
     pub polar_interpolation_tolerance: f64,
+    /// Which high-speed and smoothing codes the control has (they change the timing, within a
+    /// tolerance the path).
+    #[serde(default)]
+    pub smoothing_codes: SmoothingCodes,
     /// Power-on modal state.
     pub power_on: PowerOn,
 }
