@@ -362,6 +362,36 @@ fn a_group_01_code_cancels_the_cycle() {
 
 /// G80 clears the hole data (spec A.32): a new cycle without Z alarms; a peck cycle without Q
 /// alarms (FANUC 045); the plane cannot change inside a cycle.
+/// G83 with pecks shorter than the clearance (1 mm on the FANUC profile): the tool goes back
+/// into the hole only as far as R, never out past it (a fuzz finding: it used to rapid above R
+/// and feed the whole way down again). G73's retract is held at R the same way.
+#[test]
+fn a_peck_shorter_than_the_clearance_stays_below_r() {
+    fanuc(
+        "G0 Z10.\nG83 X5. R2. Z-1. Q0.5 F100.\nM30",
+        "
+        rapid X0 Y0 Z10
+        rapid X5 Y0 Z10
+        rapid X5 Y0 Z2
+        line X5 Y0 Z1.5 F100
+        rapid X5 Y0 Z2
+        line X5 Y0 Z1 F100
+        rapid X5 Y0 Z2
+        line X5 Y0 Z0.5 F100
+        rapid X5 Y0 Z2
+        rapid X5 Y0 Z1.5
+        line X5 Y0 Z0 F100
+        rapid X5 Y0 Z2
+        rapid X5 Y0 Z1
+        line X5 Y0 Z-0.5 F100
+        rapid X5 Y0 Z2
+        rapid X5 Y0 Z0.5
+        line X5 Y0 Z-1 F100
+        rapid X5 Y0 Z10
+        end M30",
+    );
+}
+
 /// An M code on a cycle block with repeats acts once, before the first hole.
 #[test]
 fn an_m_code_on_a_repeated_cycle_block_acts_once() {

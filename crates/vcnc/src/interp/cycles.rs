@@ -682,7 +682,7 @@ impl Hole<'_> {
             let next = self.next_depth(depth, q);
             if depth != self.r_level && cycle.kind == CycleKind::Peck {
                 // G83: back into the hole, stopping the clearance short of the last depth.
-                self.rapid_to(depth - down * self.exec.profile.peck_clearance)?;
+                self.rapid_to(self.short_of(depth, self.exec.profile.peck_clearance, down))?;
             }
             self.feed_to(next)?;
             depth = next;
@@ -691,8 +691,20 @@ impl Hole<'_> {
             }
             match cycle.kind {
                 CycleKind::Peck => self.rapid_to(self.r_level)?,
-                _ => self.rapid_to(depth - down * self.exec.profile.peck_retract)?,
+                _ => self.rapid_to(self.short_of(depth, self.exec.profile.peck_retract, down))?,
             }
+        }
+    }
+
+    /// The level `distance` back from `depth` towards R, never beyond R: with a peck shorter
+    /// than the clearance (or the G73 retract) the tool would otherwise rapid out of the hole
+    /// past R and feed the whole way back.
+    fn short_of(&self, depth: f64, distance: f64, down: f64) -> f64 {
+        let level = depth - down * distance;
+        if (level - self.r_level) * down < 0.0 {
+            self.r_level
+        } else {
+            level
         }
     }
 
