@@ -28,6 +28,9 @@ use vcnc::{interpret_bytes, Alarm, Machine, Options, ProfileName, Segment, Segme
 /// or a dwell beside it, and a few more.
 const ITEMS_PER_BLOCK: usize = 250_000;
 
+/// Items of one run checked before the run is left (see the loop).
+const MAX_ITEMS: usize = 1_000_000;
+
 /// Backward jumps (loop passes, GOTOs back, M99 repeats) a run may make before it stops with the
 /// limit alarm: few, so that fuzzed loops end in microseconds.
 const JUMPS: u64 = 200;
@@ -74,7 +77,9 @@ fuzz_target!(|data: &[u8]| {
         // call, and calls nest only as deep as the profile allows: their passes are jumps too
         // when they repeat).
         let per_block_limit = ITEMS_PER_BLOCK * (JUMPS as usize + 2);
-        for item in interpret_bytes(data, machine, options) {
+        // A legitimate program can be long (a loop of deep peck cycles yields millions of
+        // moves); past this many items a run has shown what it can, and the next input waits.
+        for item in interpret_bytes(data, machine, options).take(MAX_ITEMS) {
             let start = match &item {
                 Ok(segment) => segment.span.start,
                 Err(alarm) => alarm.span.map_or(0, |s| s.start),
