@@ -130,7 +130,7 @@ pub enum AlarmCode {
     UserAlarm,
     /// A warning: the interrupt signal an option named (Syntec's C49) came when the control
     /// ignores it: no `M96 P_` in force, inside a subprogram, or in a mode that excludes
-    /// interrupts (G41/G42, G12.1, G16, G51, G51.1). Fix: name a block where M96 is in force
+    /// interrupts (G41/G42, G12.1, G16, G51, G51.1, G05, G05.1). Fix: name a block where M96 is in force
     /// and none of these modes is on.
     InterruptIgnored,
 }

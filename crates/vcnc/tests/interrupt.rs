@@ -268,6 +268,8 @@ fn the_signal_is_ignored_in_the_modes_the_manual_lists() {
         ("G51 X0 Y0 P2\nG01 X10. F500\nG50\n", "G51"),
         ("G51.1 X0\nG01 X10. F500\nG50.1 X0\n", "G51.1"),
         ("G12.1\nG01 X10. F500\nG13.1\n", "G12.1"),
+        ("G05 P10000\nG01 X10. F500\nG05 P0\n", "G05"),
+        ("G05.1 Q1 E0.01\nG01 X10. F500\nG05.1 Q0\n", "G05.1"),
     ];
     for (body, mode) in cases {
         let program = format!("M96 P1\n{body}M30\n");

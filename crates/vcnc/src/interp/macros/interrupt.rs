@@ -15,7 +15,7 @@
 //!   program's file (the interrupted block is abandoned).
 //!
 //! The control ignores the signal inside a subprogram and while a mode that needs the block's
-//! start point is on (G41/G42, G12.1, G16, G51, G51.1; the manual's other modes, G05, G05.1,
+//! start point is on (G41/G42, G12.1, G16, G51, G51.1, G05, G05.1; the manual's other modes,
 //! G51.2, G114.1 and G114.3, are not run by vcnc at all). vcnc ignores it too and says so in a
 //! warning ([`AlarmCode::InterruptIgnored`]), since the user asked for a signal that then does
 //! nothing.
@@ -183,6 +183,12 @@ impl Core {
         }
         if self.exec.polar.is_some() {
             return Some("polar coordinates (G16) are on");
+        }
+        if self.exec.modal.smoothing.high_speed.is_some() {
+            return Some("high-speed high-precision mode (G05) is on");
+        }
+        if self.exec.modal.smoothing.path.is_some() {
+            return Some("path smoothing (G05.1) is on");
         }
         match &self.exec.frames.scaling {
             Some(scaling) if scaling.mirror => Some("the programmable mirror (G51.1) is on"),
