@@ -251,8 +251,13 @@ impl Iterator for Interpreted {
 
 impl Drop for Interpreted {
     fn drop(&mut self) {
-        // Without its receiver the thread's next send fails and it ends, saving the state.
+        // Without its receiver the thread's next send fails, and without the recycling sender
+        // its wait for an empty buffer does: either way it ends, saving the state. (Keeping the
+        // sender alive here left a thread that had filled the whole pool waiting for ever, and
+        // `vcnc trace | head` hung.)
         self.batches = None;
+        let (orphan, _) = sync_channel(0);
+        drop(std::mem::replace(&mut self.recycle, orphan));
         if let Some(thread) = self.thread.take() {
             let _ = thread.join();
         }
@@ -302,4 +307,40 @@ pub(crate) fn dialect(path: &Path) -> Dialect {
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     detect_dialect(&name, &std::fs::read(path).unwrap_or_default())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dropping_the_stream_early_ends_the_interpreter_thread() {
+        // Many more segments than the pool of batches holds, so the thread fills every buffer
+        // and waits for an empty one: `vcnc trace | head` stops reading just like this.
+        let mut text = String::from("G21 G90 G94 F1000\n");
+        for i in 0..20_000 {
+            text.push_str(&format!("G01 X{}. Y{}.\n", i % 100, i % 37));
+        }
+        text.push_str("M30\n");
+        let machine = Machine::default();
+        let blocks = BackgroundParser::spawn(
+            std::io::Cursor::new(text.into_bytes()),
+            FileId(0),
+            machine.profile.syntax(),
+        );
+        let interpreter = Interpreter::from_blocks(blocks, FileId(0), &machine, Options::default());
+        let mut stream = Interpreted::spawn(interpreter, None);
+        assert!(matches!(stream.next(), Some(Ok(_))));
+        // Time for the thread to fill the pool and block.
+        std::thread::sleep(Duration::from_millis(300));
+        let (done, dropped) = sync_channel(1);
+        std::thread::spawn(move || {
+            drop(stream);
+            let _ = done.send(());
+        });
+        assert!(
+            dropped.recv_timeout(Duration::from_secs(10)).is_ok(),
+            "dropping the stream waited for ever on the interpreter thread"
+        );
+    }
 }
