@@ -27,6 +27,8 @@ pub(crate) struct AxisLimits {
     pub(crate) jerk: [f64; AXES],
     /// Path speed cap, mm/s.
     pub(crate) path_speed: f64,
+    /// One past the last axis the machine has: the axes after it never limit anything.
+    span: usize,
     /// The reciprocals of the limits above (0 for none), so that projecting them onto a
     /// direction takes one division, not one per axis.
     inverse: Inverses,
@@ -71,6 +73,10 @@ impl AxisLimits {
             acceleration,
             jerk,
             path_speed: positive_or_infinite(config.max_path_rate) / 60.0,
+            span: (0..AXES)
+                .rev()
+                .find(|&i| machine.axes[i].is_some())
+                .map_or(0, |i| i + 1),
             inverse: Inverses {
                 feed: reciprocals(&feed),
                 rapid: reciprocals(&rapid),
@@ -112,30 +118,58 @@ pub(crate) struct Tangents {
     pub(crate) end: [f64; 3],
 }
 
-/// The cap a set of per-axis limits puts on the path, for a move with per-axis shares `share`
-/// (|direction component| per unit of path): min over axes of limit / share, from the limits'
-/// reciprocals `inverse`.
-fn projected(share: &[f64; AXES], inverse: &[f64; AXES]) -> f64 {
-    let mut largest = 0.0_f64;
-    for i in 0..AXES {
-        // A plain comparison, not f64::max: no NaN can reach here, and it is one instruction.
-        let demand = share[i] * inverse[i];
-        if demand > largest {
-            largest = demand;
-        }
-    }
-    1.0 / largest
+/// What the axes allow along a motion: the caps their limits put on the path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Projection {
+    /// Path speed the axes' rates (cutting or rapid) allow, mm/s.
+    speed: f64,
+    /// Path acceleration and jerk the axes allow.
+    acceleration: f64,
+    jerk: f64,
+    /// The lowest acceleration limit among the axes with a share of the motion.
+    turning: f64,
 }
 
-/// The lowest acceleration limit among the axes with a share of the motion.
-fn turning_acceleration(share: &[f64; AXES], limits: &[f64; AXES]) -> f64 {
-    let mut lowest = f64::INFINITY;
-    for i in 0..AXES {
-        if share[i] > 1e-12 && limits[i] < lowest {
-            lowest = limits[i];
+impl AxisLimits {
+    /// The caps for a move with per-axis shares `share` (|direction component| per unit of
+    /// path): for each limit, min over axes of limit / share, from the limits' reciprocals.
+    /// One pass over the axes for all of them, and only over those the machine has: an axis it
+    /// lacks has infinite limits (zero reciprocals) and never caps anything.
+    fn project(&self, share: &[f64; AXES], rapid: bool) -> Projection {
+        let rates = if rapid {
+            &self.inverse.rapid
+        } else {
+            &self.inverse.feed
+        };
+        let (mut speed, mut acceleration, mut jerk) = (0.0_f64, 0.0_f64, 0.0_f64);
+        let mut turning = f64::INFINITY;
+        for i in 0..self.span {
+            let s = share[i];
+            // Plain comparisons, not f64::max: no NaN can reach here, and each is one
+            // instruction.
+            let demand = s * rates[i];
+            if demand > speed {
+                speed = demand;
+            }
+            let demand = s * self.inverse.acceleration[i];
+            if demand > acceleration {
+                acceleration = demand;
+            }
+            let demand = s * self.inverse.jerk[i];
+            if demand > jerk {
+                jerk = demand;
+            }
+            if s > 1e-12 && self.acceleration[i] < turning {
+                turning = self.acceleration[i];
+            }
+        }
+        Projection {
+            speed: 1.0 / speed,
+            acceleration: 1.0 / acceleration,
+            jerk: 1.0 / jerk,
+            turning,
         }
     }
-    lowest
 }
 
 fn straight_path(motion: &Move) -> (f64, [f64; AXES], [f64; 3]) {
@@ -215,27 +249,23 @@ fn line(
     feed_override: f64,
 ) -> (MotionLimits, Tangents) {
     let (length, share, direction) = straight_path(motion);
-    let rates = if feed.is_some() {
-        &axes.inverse.feed
-    } else {
-        &axes.inverse.rapid
-    };
-    let axis_speed = projected(&share, rates).min(axes.path_speed);
+    let caps = axes.project(&share, feed.is_none());
+    let axis_speed = caps.speed.min(axes.path_speed);
     let programmed = feed.map(|f| programmed_speed(f, length, feed_override));
     let cruise = match programmed {
         Some(Some(v)) => v.min(axis_speed),
         _ => axis_speed,
     };
-    let acceleration = projected(&share, &axes.inverse.acceleration);
+    let acceleration = caps.acceleration;
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
     let limits = MotionLimits {
         length,
         cruise: cap_short(cruise, length, config),
         path: PathLimits {
             acceleration,
-            jerk: projected(&share, &axes.inverse.jerk),
+            jerk: caps.jerk,
         },
-        turning: turning_acceleration(&share, &axes.acceleration),
+        turning: caps.turning,
         // Only a segment that could have blended is planned with the reduced acceleration.
         unblended_acceleration: if continuous {
             acceleration * config.unblended_acceleration_factor
@@ -301,7 +331,8 @@ fn arc(
     share[a] = p;
     share[b] = p;
     share[n] = q;
-    let axis_speed = projected(&share, &axes.inverse.feed).min(axes.path_speed);
+    let caps = axes.project(&share, false);
+    let axis_speed = caps.speed.min(axes.path_speed);
     let plane_acceleration = axes.acceleration[a].min(axes.acceleration[b]);
     // v_planar^2 / r <= share * a, with v_planar = p v.
     let centripetal_speed =
@@ -332,7 +363,7 @@ fn arc(
         t[n] = axial.signum() * q;
         t
     };
-    let acceleration = projected(&share, &axes.inverse.acceleration);
+    let acceleration = caps.acceleration;
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
     let unblended_share = tangential_room.min(config.unblended_arc_tangential_share);
     let unblended_factor = if continuous {
@@ -345,9 +376,9 @@ fn arc(
         cruise: cap_short(cruise, length, config),
         path: PathLimits {
             acceleration: acceleration * tangential_room,
-            jerk: projected(&share, &axes.inverse.jerk),
+            jerk: caps.jerk,
         },
-        turning: turning_acceleration(&share, &axes.acceleration),
+        turning: caps.turning,
         unblended_acceleration: acceleration * unblended_share * unblended_factor,
         feed_unknown: programmed.is_none(),
         stop_scaled: false,
@@ -372,4 +403,62 @@ pub(crate) fn per_axis_rapid_seconds(motion: &Move, axes: &AxisLimits) -> f64 {
             Profile::new(distance, 0.0, 0.0, axes.rapid[i], limits).duration()
         })
         .fold(0.0, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::motion::MachinePos;
+
+    fn axis(rate: f64, acceleration: f64) -> crate::machine::AxisConfig {
+        crate::machine::AxisConfig {
+            min: -1e6,
+            max: 1e6,
+            rapid: rate,
+            max_feed: rate,
+            acceleration,
+            jerk: f64::INFINITY,
+        }
+    }
+
+    #[test]
+    fn the_last_axis_of_the_machine_still_limits_a_move() {
+        // X Y Z and C (the sixth axis): a move of C alone is capped by C's own limits, and a
+        // move of X alone by X's, whatever the axes in between.
+        let mut machine = Machine::default();
+        machine.axes = [
+            Some(axis(6000.0, 500.0)),
+            Some(axis(6000.0, 500.0)),
+            Some(axis(6000.0, 500.0)),
+            None,
+            None,
+            Some(axis(1200.0, 50.0)),
+        ];
+        let config = PlannerConfig::default();
+        let axes = AxisLimits::new(&machine, &config);
+        let mut to = [0.0; AXES];
+        to[5] = 90.0;
+        let c_only = axes.project(&[0.0, 0.0, 0.0, 0.0, 0.0, 1.0], false);
+        assert_eq!(c_only.speed, 20.0);
+        assert_eq!(c_only.acceleration, 50.0);
+        assert_eq!(c_only.turning, 50.0);
+        let x_only = axes.project(&[1.0, 0.0, 0.0, 0.0, 0.0, 0.0], false);
+        assert_eq!(x_only.speed, 100.0);
+        assert_eq!(x_only.turning, 500.0);
+        // Half the path on X and half on C in shares: C's cap, doubled.
+        let both = axes.project(&[0.5, 0.0, 0.0, 0.0, 0.0, 0.5], false);
+        assert_eq!(both.speed, 40.0);
+        assert_eq!(both.turning, 50.0);
+        let motion = Move {
+            from: MachinePos([0.0; AXES]),
+            to: MachinePos(to),
+            path_mode: PathMode::Continuous,
+            exact_stop: false,
+            smoothing: None,
+            offset: [0.0; AXES],
+        };
+        let (limits, _) = line(&motion, None, &axes, &config, 1.0);
+        assert_eq!(limits.length, 90.0);
+        assert_eq!(limits.path.acceleration, 50.0);
+    }
 }
