@@ -170,8 +170,9 @@ pub(crate) struct Interpreted {
     thread: Option<JoinHandle<()>>,
 }
 
-/// Segments per batch taken from the interpreter.
-const BATCH: usize = 1024;
+/// Segments per batch taken from the interpreter: small, so that the pool stays in the
+/// caches (see the batches of `vcnc trace`).
+const BATCH: usize = 256;
 
 /// Batch buffers in circulation between the interpreter's thread and the consumer.
 const POOL: usize = 4;
