@@ -42,25 +42,28 @@ pub(crate) struct Args {
 }
 
 pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
+    let stdout = std::io::stdout();
+    let (alarms, files) = write_trace(args, &mut stdout.lock())?;
+    crate::diagnostics::print_human(&files, &alarms);
+    Ok(if alarms.iter().any(Alarm::is_error) {
+        Outcome::Alarm
+    } else {
+        Outcome::Clean
+    })
+}
+
+/// Runs the program and writes its trace to `output`; returns the alarms and warnings met on
+/// the way (for the diagnostics) and the files read. A reader that goes away (`| head`) ends
+/// the run quietly.
+fn write_trace(
+    args: &Args,
+    output: &mut impl Write,
+) -> Result<(Vec<Alarm>, ProgramFiles), SetupError> {
     let machine = args.machine.machine()?;
     let options = args.machine.options()?;
     let plan_options = args.machine.plan_options()?;
     let (stream, files) = crate::program::open(&args.program, &machine, options, &args.machine)?;
-    let rotary: Vec<Axis> = [Axis::A, Axis::B, Axis::C]
-        .into_iter()
-        .filter(|a| machine.has_axis(*a))
-        .collect();
-    let mut writer = Writer {
-        out: OutBuffer::new(1 << 16),
-        memory: [Remembered::default(); 7],
-        files: files.clone(),
-        file: FileId(0),
-        file_json: String::new(),
-        file_csv: String::new(),
-        rotary,
-        work: args.work,
-    };
-    writer.set_file(FileId(0));
+    let mut writer = Writer::new(files.clone(), &machine, args.work);
     if args.format == Format::Csv {
         writer.csv_header();
     }
@@ -84,27 +87,15 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             }
         }
     });
-    let stdout = std::io::stdout();
-    let mut stdout = stdout.lock();
     let mut alarms: Vec<Alarm> = Vec::new();
-    let mut failed = false;
     let mut broken_pipe = false;
     for batch in receiver {
         for item in &batch {
-            match item {
-                Ok(timed) => match args.format {
-                    Format::Jsonl => writer.jsonl(timed),
-                    Format::Csv => writer.csv(timed),
-                },
-                Err(alarm) => {
-                    failed |= alarm.is_error();
-                    alarms.push(alarm.clone());
-                }
-            }
+            writer.item(item, args.format, &mut alarms);
         }
         let _ = recycle.try_send(batch);
         if writer.out.is_full() {
-            if stdout.write_all(writer.out.as_bytes()).is_err() {
+            if output.write_all(writer.out.as_bytes()).is_err() {
                 broken_pipe = true;
                 break;
             }
@@ -112,19 +103,13 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         }
     }
     if !broken_pipe {
-        let _ = stdout.write_all(writer.out.as_bytes());
-        let _ = stdout.flush();
+        let _ = output.write_all(writer.out.as_bytes());
+        let _ = output.flush();
     }
-    drop(stdout);
     // With both channel ends gone, the interpreter thread's next send or receive fails and it ends.
     drop(recycle);
     let _ = producer.join();
-    crate::diagnostics::print_human(&files, &alarms);
-    Ok(if failed {
-        Outcome::Alarm
-    } else {
-        Outcome::Clean
-    })
+    Ok((alarms, files))
 }
 
 /// What the planner thread hands over: a timed segment or an alarm.
@@ -227,6 +212,35 @@ fn feed_mm_per_min(feed: &Feed, segment: &Segment) -> Option<f64> {
 }
 
 impl Writer {
+    fn new(files: ProgramFiles, machine: &vcnc::Machine, work: bool) -> Writer {
+        let mut writer = Writer {
+            out: OutBuffer::new(1 << 16),
+            memory: [Remembered::default(); 7],
+            files,
+            file: FileId(0),
+            file_json: String::new(),
+            file_csv: String::new(),
+            rotary: [Axis::A, Axis::B, Axis::C]
+                .into_iter()
+                .filter(|a| machine.has_axis(*a))
+                .collect(),
+            work,
+        };
+        writer.set_file(FileId(0));
+        writer
+    }
+
+    /// One item of the planner's stream: a record, or an alarm kept for the diagnostics.
+    fn item(&mut self, item: &Item, format: Format, alarms: &mut Vec<Alarm>) {
+        match item {
+            Ok(timed) => match format {
+                Format::Jsonl => self.jsonl(timed),
+                Format::Csv => self.csv(timed),
+            },
+            Err(alarm) => alarms.push(alarm.clone()),
+        }
+    }
+
     /// Makes `file` the file named in the records; segments of a called program name its file.
     fn set_file(&mut self, file: FileId) {
         let name = self.files.path(file).display().to_string();
@@ -463,5 +477,93 @@ fn csv_field(text: &str) -> String {
         format!("\"{}\"", text.replace('"', "\"\""))
     } else {
         text.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+    use std::fmt::Write as _;
+    use vcnc::plan::PlanOptions;
+    use vcnc::{Machine, Options};
+
+    #[derive(Parser)]
+    struct Command {
+        #[command(flatten)]
+        args: Args,
+    }
+
+    /// A long program of every kind of record: lines, arcs, rapids, dwells, tool changes,
+    /// spindle and coolant events, with a block of each now and then.
+    fn long_program(blocks: usize) -> String {
+        let mut text = String::from("G21 G17 G90 G94 G54\nT1 M06\nS6000 M03\nG43 H1 Z5. F1200\n");
+        for i in 0..blocks {
+            let (x, y) = ((i * 7 % 200) as f64, (i * 13 % 150) as f64);
+            match i % 50 {
+                10 => text.push_str("G02 I5. J0.\n"),
+                11 => text.push_str("G00 X0. Y0.\n"),
+                20 => text.push_str("G04 P250\n"),
+                30 => text.push_str("M08\n"),
+                31 => text.push_str("M09\n"),
+                40 if i % 500 == 40 => text.push_str("T2 M06\nS3000 M03\nG43 H2 Z5.\n"),
+                _ => writeln!(text, "G01 X{x:.3} Y{y:.3}").unwrap(),
+            }
+        }
+        text.push_str("G00 Z50.\nM05\nM30\n");
+        text
+    }
+
+    /// The threaded pipeline (parser, interpreter and planner threads, batches between them)
+    /// writes exactly what the library's plain iterators give in one thread.
+    #[test]
+    fn streamed_trace_equals_the_trace_of_the_collected_stream() {
+        let dir = std::env::temp_dir().join(format!("vcnc-trace-unit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("long.nc");
+        let text = long_program(40_000);
+        std::fs::write(&path, &text).unwrap();
+        for format in ["jsonl", "csv"] {
+            let command = Command::parse_from([
+                "trace",
+                path.to_str().unwrap(),
+                "--format",
+                format,
+                "--work",
+            ]);
+            let args = &command.args;
+            let mut streamed = Vec::new();
+            let (alarms, _) = write_trace(args, &mut streamed).unwrap();
+            assert!(alarms.is_empty(), "{alarms:?}");
+
+            let machine = Machine::default();
+            let (_, files) =
+                crate::program::open(&args.program, &machine, Options::default(), &args.machine)
+                    .unwrap();
+            let mut writer = Writer::new(files, &machine, true);
+            if args.format == Format::Csv {
+                writer.csv_header();
+            }
+            let stream = vcnc::interpret_str(&text, &machine, Options::default());
+            let mut collected = Vec::new();
+            let mut none = Vec::new();
+            for item in Planner::new(stream, &machine, PlanOptions::default()) {
+                writer.item(&item, args.format, &mut none);
+                if writer.out.is_full() {
+                    collected.extend_from_slice(writer.out.as_bytes());
+                    writer.out.clear();
+                }
+            }
+            collected.extend_from_slice(writer.out.as_bytes());
+            assert!(
+                streamed.len() > 1_000_000,
+                "{format}: {} bytes",
+                streamed.len()
+            );
+            assert!(
+                streamed == collected,
+                "{format}: the streamed trace differs from the collected one"
+            );
+        }
     }
 }
