@@ -4,7 +4,7 @@
 //! `VCNC_BLESS=1 cargo test -p vcnc-cli --test golden`.
 //!
 //! The programs are the bundled example and examples printed in the controllers' manuals, read
-//! from `../shared/spec/examples` (each file's header names its manual and lines), chosen to
+//! from `../shared/spec/examples` (or `$VCNC_SHARED/spec/examples`; each file's header names its manual and lines), chosen to
 //! cover the stages of the pipeline: arcs and helices, cutter compensation, scaling, mirror,
 //! rotation, polar coordinates, canned cycles and hole patterns, smoothing modes, exact stop
 //! and continuous mode, subprograms and interrupts.
@@ -70,7 +70,7 @@ const PROGRAMS: &[(&str, Folder, &str)] = &[
 enum Folder {
     /// The repository's root.
     Repository,
-    /// `../shared/spec/examples`.
+    /// `../shared/spec/examples`, or `$VCNC_SHARED/spec/examples`.
     Examples,
 }
 
@@ -78,7 +78,9 @@ fn folder(which: Folder) -> PathBuf {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
     match which {
         Folder::Repository => root,
-        Folder::Examples => root.join("../shared/spec/examples"),
+        Folder::Examples => std::env::var_os("VCNC_SHARED")
+            .map_or_else(|| root.join("../shared"), PathBuf::from)
+            .join("spec/examples"),
     }
 }
 
