@@ -1,12 +1,12 @@
 //! G02/G03: circular and helical interpolation in the selected plane.
 
 use super::arc::{arc_center, in_plane, ArcSpec};
-use super::decode::Command;
+use super::decode::{Command, Value};
 use super::exec::Executor;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::AXES;
-use crate::motion::{ArcDirection, MachinePos, SegmentKind};
+use crate::motion::{ArcDirection, Feed, MachinePos, SegmentKind};
 
 /// Moves along an arc from the current position to `target` (machine coordinates).
 ///
@@ -23,13 +23,6 @@ pub(crate) fn arc(
     target: [f64; AXES],
     out: &mut Output,
 ) -> Result<(), Alarm> {
-    if let (Some(l), true) = (cmd.l(), exec.profile.arc_l_is_spiral) {
-        return Err(Alarm::not_supported(
-            l.span,
-            "spiral and conical interpolation (G02/G03 with L)",
-            None,
-        ));
-    }
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
     let scaling = exec.frames.scaling;
@@ -84,6 +77,9 @@ pub(crate) fn arc(
         ArcSpec::Center { offset, span }
     };
     let feed = exec.cutting_feed(cmd)?;
+    if let (Some(turns), true) = (cmd.l(), exec.profile.arc_l_is_spiral) {
+        return spiral(exec, cmd, spec, turns, direction, target, feed, out);
+    }
     let start = in_plane(plane, &exec.position);
     let end = in_plane(plane, &target);
     if let ArcSpec::Radius { span, .. } = spec {
@@ -129,6 +125,43 @@ pub(crate) fn arc(
         },
     );
     Ok(())
+}
+
+/// G02/G03 with L on Syntec: a spiral (or, with the third axis, a cone) about the I J K centre.
+#[allow(clippy::too_many_arguments)]
+fn spiral(
+    exec: &mut Executor,
+    cmd: &Command,
+    spec: ArcSpec,
+    turns: Value,
+    direction: ArcDirection,
+    target: [f64; AXES],
+    feed: Feed,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let ArcSpec::Center { offset, span } = spec else {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            cmd.r().map_or(cmd.span, |r| r.span),
+            "a spiral (G02/G03 with L) takes its centre from I J K, not R",
+        ));
+    };
+    if out.comp.is_some() || out.polar_interp.is_some() {
+        return Err(Alarm::not_supported(
+            turns.span,
+            "a spiral (G02/G03 with L) under cutter compensation or G12.1",
+            None,
+        ));
+    }
+    let spiral = super::spiral::Spiral {
+        direction,
+        target,
+        offset,
+        centre_span: span,
+        turns,
+        feed,
+    };
+    super::spiral::run(exec, cmd, &spiral, out)
 }
 
 fn plane_name(plane: crate::motion::Plane) -> &'static str {

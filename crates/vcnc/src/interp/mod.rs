@@ -31,6 +31,7 @@ mod reference;
 mod rotation;
 mod scaling;
 mod smoothing;
+mod spiral;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Machine;
