@@ -265,7 +265,13 @@ fn a_killed_run_leaves_a_whole_state_file() {
         ])
         .spawn()
         .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
+    // Wait for the first save (the run saves at most twice a second), however loaded the
+    // machine is, then let it save a few more times before the kill can land in one.
+    let started = std::time::Instant::now();
+    while !state.exists() && started.elapsed() < std::time::Duration::from_secs(60) {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(1200));
     child.kill().unwrap();
     let _ = child.wait();
     let saved = std::fs::read_to_string(&state).expect("saved while running");
