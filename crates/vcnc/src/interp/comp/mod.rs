@@ -217,7 +217,6 @@ impl Compensator {
                 (self.side, self.radius) = setting;
                 self.tool
             }
-            None if start_up => self.tool,
             None => {
                 // After an end perpendicular to the last element: straight to this one's start.
                 (self.side, self.radius) = setting;
