@@ -411,6 +411,26 @@ fn a_mirrored_axis_swaps_g41_and_g42() {
 }
 
 #[test]
+fn a_mirror_commanded_in_offset_mode_swaps_g41_and_g42_from_there_on() {
+    // The rule is a state (spec 1.29: while one plane axis is mirrored G41 and G42 act the
+    // other way), so G51.1 after G41 gives what G51.1 before it gives. Program path (0,0) ->
+    // (-10,0) -> (-50,0) -> (-50,50), mirrored about X0: (10,0) -> (50,0) -> (50,50), G41
+    // acting as G42, on the right. Start-up end (10,0) + 5 * (0,-1); the corner turns left,
+    // away from the tool: y=-5 meets x=55 at (55,-5); the last line ends perpendicular at
+    // (55,50), then G40 to (50,60). The mirror image of the unmirrored path's (-55,-5).
+    for first in ["G41 D1\nG51.1 X0", "G51.1 X0\nG41 D1"] {
+        case(
+            5.0,
+            &format!("{first}\nG1 X-10. Y0 F100.\nX-50.\nY50.\nG40 X-50. Y60."),
+            "line X10 Y-5 Z0 F100
+             line X55 Y-5 Z0 F100
+             line X55 Y50 Z0 F100
+             line X50 Y60 Z0 F100",
+        );
+    }
+}
+
+#[test]
 fn an_inner_corner_on_a_step_shorter_than_the_radius_is_interference() {
     // A 3 mm step between two lines, G41 inside the first corner: the compensated lines y=5
     // and x=45 meet beyond the step's end. The control stops before the first line moves.
