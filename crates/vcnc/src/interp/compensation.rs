@@ -46,8 +46,8 @@ pub(crate) fn before_motion(
     if let Some(comp) = out.comp.as_mut() {
         if comp.reversed() != reversed(exec) {
             // G51.1 or G50.1 (or a negative G51 factor) in offset mode: while one plane axis is
-            // mirrored G41 and G42 act the other way (spec 1.29), from the next element on,
-            // whichever came first.
+            // mirrored G41 and G42 act the other way (spec 1.29), so the side changes from the
+            // next element on, as if the mirror had come before G41/G42.
             let left = comp.left();
             change(exec, comp, left);
         }
