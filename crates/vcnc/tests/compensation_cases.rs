@@ -244,6 +244,85 @@ fn a_full_circle_with_a_start_up_from_its_centre() {
     );
 }
 
+/// Start-up and cancel round the inside of a corner (the material angle at the corner 180
+/// degrees or more) end perpendicular to the next and to the last element as everywhere else:
+/// the FANUC 0M manual says the start-up vector is always perpendicular to the next path
+/// (001:L970, spec A.22 rule 6), and its example 1 starts up at such a corner (B, start-up
+/// (-5,0)); the spec reads the cancel the same way ("cancel at an inside corner leaves the
+/// vector perpendicular to the last offset block"). The intersection of the paths, which a
+/// corner in offset mode takes, is not used: the start-up and the cancel block are not
+/// compensated themselves.
+#[test]
+fn start_up_and_cancel_inside_a_line_line_corner_are_perpendicular() {
+    // G41: the start-up along +X turns left into +Y (inner), the cancel along -X turns left
+    // again (inner). Start-up end (0,0) + 5 * (-1,0); the last line ends at (0,50) + 5 * (-1,0).
+    // The intersections would have been (-5,5) and (-5,45).
+    // G42, the same contour mirrored across the X axis: both turns go right, towards the tool;
+    // the normal on the right of -Y is -X, so the points mirror too.
+    for (code, y) in [("G41", "50"), ("G42", "-50")] {
+        case(
+            5.0,
+            &format!("G0 X-20. Y0\nG1 {code} X0 Y0 D1 F100.\nY{y}.\nG40 X-20."),
+            &format!(
+                "rapid X-20 Y0 Z0
+                 line X-5 Y0 Z0 F100
+                 line X-5 Y{y} Z0 F100
+                 line X-20 Y{y} Z0 F100"
+            ),
+        );
+    }
+}
+
+#[test]
+fn start_up_inside_a_hexagon_vertex_lands_half_a_radius_from_the_closing_edge() {
+    // The corner of corpus boreyko_O00100 (G41, a start-up along +X into a hexagon's vertex,
+    // the next edge turning left by 120 degrees towards (-25,43.3013), direction
+    // (-0.5,0.86603)). Start-up end: 5 * (-0.86603,-0.5) = (-4.3301,-2.5). The edge that closes
+    // the hexagon at this vertex arrives along (0.5,0.86603), its tool side normal
+    // (-0.86603,0.5): the start-up point is 5 * (0.75 - 0.25) = 2.5 from it, half a radius,
+    // as on the control. The edge ends at (-25,43.3013) + (-4.3301,-2.5) and the cancel along
+    // -X turns left again (inner): perpendicular, then the G40 move.
+    case(
+        5.0,
+        "G0 X-20. Y0
+         G1 G41 X0 Y0 D1 F100.
+         X-25. Y43.3013
+         G40 X-45.",
+        "rapid X-20 Y0 Z0
+         line X-4.3301 Y-2.5 Z0 F100
+         line X-29.3301 Y40.8013 Z0 F100
+         line X-45 Y43.3013 Z0 F100",
+    );
+}
+
+#[test]
+fn start_up_into_an_arc_and_cancel_from_it_inside_the_corner_are_perpendicular() {
+    // G41: the start-up along (1,1) turns left by 45 degrees into a counter-clockwise R40 arc
+    // about (-40,0), whose start tangent is +Y. Start-up end: the radius towards the centre,
+    // (-5,0); the tool is inside the arc, R35, which ends at (-40,35). The arc ends heading -X
+    // and the cancel runs -Y (a left turn, inner): the arc's end stays perpendicular, (-40,35).
+    // G42, mirrored across the X axis: the start-up along (1,-1) turns right into a clockwise
+    // arc starting along -Y; the cancel turns right again. The same points with Y negated.
+    for (code, arc, minus, plus) in [("G41", "G3", "-", ""), ("G42", "G2", "", "-")] {
+        case(
+            5.0,
+            &format!(
+                "G0 X-20. Y{minus}20.
+                 G1 {code} X0 Y0 D1 F100.
+                 {arc} X-40. Y{plus}40. I-40. J0
+                 G1 G40 X-40. Y{plus}10."
+            ),
+            &format!(
+                "rapid X-20 Y{minus}20 Z0
+                 line X-5 Y0 Z0 F100
+                 arc {} xy X-40 Y{plus}35 Z0 C(-40,0,0) F100
+                 line X-40 Y{plus}10 Z0 F100",
+                if arc == "G3" { "ccw" } else { "cw" }
+            ),
+        );
+    }
+}
+
 #[test]
 fn a_rapid_start_up_and_cancel() {
     case(
@@ -329,6 +408,26 @@ fn a_mirrored_axis_swaps_g41_and_g42() {
          line X-45 Y50 Z0 F100
          line X-50 Y60 Z0 F100",
     );
+}
+
+#[test]
+fn a_mirror_commanded_in_offset_mode_swaps_g41_and_g42_from_there_on() {
+    // The rule is a state (spec 1.29: while one plane axis is mirrored G41 and G42 act the
+    // other way), so G51.1 after G41 gives what G51.1 before it gives. Program path (0,0) ->
+    // (-10,0) -> (-50,0) -> (-50,50), mirrored about X0: (10,0) -> (50,0) -> (50,50), G41
+    // acting as G42, on the right. Start-up end (10,0) + 5 * (0,-1); the corner turns left,
+    // away from the tool: y=-5 meets x=55 at (55,-5); the last line ends perpendicular at
+    // (55,50), then G40 to (50,60). The mirror image of the unmirrored path's (-55,-5).
+    for first in ["G41 D1\nG51.1 X0", "G51.1 X0\nG41 D1"] {
+        case(
+            5.0,
+            &format!("{first}\nG1 X-10. Y0 F100.\nX-50.\nY50.\nG40 X-50. Y60."),
+            "line X10 Y-5 Z0 F100
+             line X55 Y-5 Z0 F100
+             line X55 Y50 Z0 F100
+             line X50 Y60 Z0 F100",
+        );
+    }
 }
 
 #[test]

@@ -397,6 +397,92 @@ fn codes_that_move_the_coordinate_system_are_refused_in_the_mode() {
 }
 
 #[test]
+fn rotation_scaling_mirror_polar_words_and_cycles_are_refused_in_the_mode() {
+    // Spec 1.13.2 rule 3 lists what the mode allows (G01-G03, G04, G40-G42, G65-G67); the
+    // codes that turn these transforms on or off, and the canned cycles, are not in it.
+    for block in [
+        "G68 R45.",
+        "G69",
+        "G51 P2.",
+        "G50",
+        "G51.1 X0",
+        "G50.1",
+        "G16",
+        "G15",
+        "G80",
+        "G83 Z-1. R1. Q1.",
+    ] {
+        let program = format!("G0 X10. C0.\nG12.1\n{block}\nG13.1\nM30");
+        let run = run(&program, &machine(ProfileName::Fanuc));
+        let alarm = run.error().unwrap_or_else(|| panic!("{block}: no alarm"));
+        assert_eq!(alarm.code, AlarmCode::WordNotAllowed, "{block}: {alarm:?}");
+        assert_eq!(alarm.span.unwrap().line, 3, "{block}");
+        assert!(
+            alarm
+                .message
+                .ends_with("cannot be commanded during polar coordinate interpolation (G12.1)"),
+            "{block}: {}",
+            alarm.message
+        );
+    }
+}
+
+#[test]
+fn g12_1_under_rotation_scaling_mirror_polar_words_or_a_cycle_is_not_supported_yet() {
+    // The manuals do not say how the mode composes with them (docs/DEVIATIONS.md): an alarm that
+    // names the combination, at the G12.1 block, before anything moves in the mode.
+    for (before, what) in [
+        ("G68 R45.", "coordinate rotation"),
+        ("G51 P2.", "scaling or mirror image"),
+        ("G51.1 X0", "scaling or mirror image"),
+        ("G16", "polar coordinate command"),
+        ("G81 Z-1. R1. F100.", "a canned cycle"),
+    ] {
+        let program = format!("G0 X10. C0.\n{before}\nG12.1\nG1 X5. F100.\nM30");
+        let run = run(&program, &machine(ProfileName::Fanuc));
+        let alarm = run.error().unwrap_or_else(|| panic!("{before}: no alarm"));
+        assert_eq!(
+            alarm.code,
+            AlarmCode::NotSupportedYet,
+            "{before}: {alarm:?}"
+        );
+        assert_eq!(alarm.span.unwrap().line, 3, "{before}");
+        assert!(alarm.message.contains(what), "{before}: {}", alarm.message);
+        assert!(run.segments.iter().all(|s| s.span.line < 3));
+    }
+}
+
+#[test]
+fn system_variable_4021_holds_the_polar_interpolation_mode() {
+    // FANUC's modal group 21 is G12.1/G13.1 (G13.1 at power-on); #4021 reads it as 12.1 or
+    // 13.1. A control without the function has nothing in that group.
+    let program = "#1=#4021\nG0 X10. C0.\nG12.1\n#2=#4021\nG1 X5. F100.\nG13.1\n#3=#4021\nM30";
+    for (profile, expected) in [
+        (ProfileName::Fanuc, [12.1, 13.1]),
+        (ProfileName::Syntec, [12.1, 13.1]),
+        (ProfileName::Mitsubishi, [12.1, 13.1]),
+    ] {
+        let values = variables(program, &machine(profile));
+        assert_eq!(
+            [values[1], values[2], values[3]],
+            [Some(expected[1]), Some(expected[0]), Some(expected[1])],
+            "{profile:?}"
+        );
+    }
+    let values = variables("#1=#4021\nM30", &machine(ProfileName::Fanuc0m));
+    assert_eq!(values[1], Some(0.0));
+}
+
+/// Variables #0-#9 after `program` ran without an alarm.
+fn variables(program: &str, machine: &Machine) -> Vec<Option<f64>> {
+    let mut interpreter = vcnc::interpret_str(program, machine, Options::default());
+    for item in interpreter.by_ref() {
+        assert!(item.is_ok(), "{item:?}");
+    }
+    (0..10).map(|n| interpreter.variable(n)).collect()
+}
+
+#[test]
 fn incremental_c_and_a_full_circle_about_an_off_centre_point() {
     let program = "G0 X20. C0.\nG12.1\nG91 G1 C5. F100.\nG90 G2 I-5. J-5.\nG13.1\nM30";
     let run = run_without_alarm(program);

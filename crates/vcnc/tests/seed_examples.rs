@@ -21,12 +21,26 @@ struct Point {
     x: Option<f64>,
     y: Option<f64>,
     z: Option<f64>,
+    /// The rotary axis C, degrees (machines with `c_axis`).
+    c: Option<f64>,
 }
 
 impl Point {
-    fn axes(&self) -> [(usize, Option<f64>); 3] {
-        [(0, self.x), (1, self.y), (2, self.z)]
+    fn axes(&self) -> [(usize, Option<f64>); 4] {
+        [(0, self.x), (1, self.y), (2, self.z), (5, self.c)]
     }
+
+    /// True when every axis the point gives is within `tolerance` of `position`.
+    fn matches(&self, position: &[f64; 6], tolerance: f64) -> bool {
+        self.axes()
+            .iter()
+            .all(|&(i, v)| v.map_or(true, |v| close(position[i], v, tolerance)))
+    }
+}
+
+/// The letter of a position's axis index.
+fn letter(index: usize) -> char {
+    "XYZABC".as_bytes()[index] as char
 }
 
 #[derive(Deserialize, Debug)]
@@ -37,6 +51,9 @@ struct Example {
     source: String,
     id: Option<String>,
     start: Option<Point>,
+    /// The machine has a rotary axis C (polar coordinate interpolation needs one).
+    #[serde(default)]
+    c_axis: bool,
     prelude: Option<String>,
     lines: Option<Vec<usize>>,
     #[serde(default)]
@@ -50,6 +67,9 @@ struct Example {
     reference_points: BTreeMap<String, Point>,
     end: Option<Point>,
     points: Option<Vec<Point>>,
+    /// Positions some motions end at, in this order, other motions between them allowed: for
+    /// paths the control cuts into pieces of its own (G12.1), whose count is not the manual's.
+    visits: Option<Vec<Point>>,
     feed_length: Option<f64>,
     rapid_length: Option<f64>,
     dwell_seconds: Option<f64>,
@@ -75,7 +95,11 @@ impl Example {
     }
 
     fn machine(&self) -> Machine {
-        let mut machine = Machine::default().with_profile(self.profile).unwrap();
+        let mut machine = if self.c_axis {
+            common::with_c_axis(self.profile)
+        } else {
+            Machine::default().with_profile(self.profile).unwrap()
+        };
         if let Some(start) = self.start {
             for (i, v) in start.axes() {
                 machine.start[i] = v.unwrap_or(0.0);
@@ -240,7 +264,7 @@ fn manual_examples_reach_their_expected_positions() {
                     if !close(last[i], expected, tolerance) {
                         failures.push(fail(format!(
                             "end {} is {:.4}, expected {expected}",
-                            "XYZ".as_bytes()[i] as char,
+                            letter(i),
                             last[i]
                         )));
                     }
@@ -263,12 +287,27 @@ fn manual_examples_reach_their_expected_positions() {
                                 failures.push(fail(format!(
                                     "motion {} {} is {:.4}, expected {expected}",
                                     k + 1,
-                                    "XYZ".as_bytes()[i] as char,
+                                    letter(i),
                                     actual[i]
                                 )));
                             }
                         }
                     }
+                }
+            }
+        }
+        if let Some(visits) = &example.visits {
+            let mut next = 0;
+            for (k, point) in visits.iter().enumerate() {
+                match motions[next..]
+                    .iter()
+                    .position(|m| point.matches(m, tolerance))
+                {
+                    Some(i) => next += i + 1,
+                    None => failures.push(fail(format!(
+                        "visit {} {point:?} is not reached after visit {k}",
+                        k + 1
+                    ))),
                 }
             }
         }

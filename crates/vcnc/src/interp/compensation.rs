@@ -40,7 +40,16 @@ pub(crate) fn before_motion(
         exec.radius_offset_number = exec.offset_number(word, letter)?;
         if let Some(comp) = out.comp.as_mut() {
             let left = comp.left();
-            comp.change(setting(exec, left), left);
+            change(exec, comp, left);
+        }
+    }
+    if let Some(comp) = out.comp.as_mut() {
+        if comp.reversed() != reversed(exec) {
+            // G51.1 or G50.1 (or a negative G51 factor) in offset mode: while one plane axis is
+            // mirrored G41 and G42 act the other way (spec 1.29), so the side changes from the
+            // next element on, as if the mirror had come before G41/G42.
+            let left = comp.left();
+            change(exec, comp, left);
         }
     }
     if out.comp.is_some() {
@@ -80,15 +89,17 @@ pub(crate) fn before_motion(
             match out.comp.as_mut() {
                 None => {
                     let (a, b, _) = exec.modal.plane.axes();
-                    out.comp = Some(Compensator::new(
+                    let mut comp = Compensator::new(
                         setting,
                         (a, b),
                         &exec.position,
                         left,
                         exec.profile.cutter_comp_look_ahead,
-                    ));
+                    );
+                    comp.set_reversed(reversed(exec));
+                    out.comp = Some(comp);
                 }
-                Some(comp) => comp.change(setting, left),
+                Some(comp) => change(exec, comp, left),
             }
         }
         GCode::CutterCompCancel => {
@@ -112,6 +123,19 @@ pub(crate) fn h_names_radius_offset(exec: &Executor, cmd: &Command) -> bool {
         && cmd.group(Group::LengthComp).is_none()
 }
 
+/// G41 (`left`) or G42, the D number in force or the mirroring changed in offset mode: the
+/// side and radius for the next element.
+fn change(exec: &Executor, comp: &mut Compensator, left: bool) {
+    comp.change(setting(exec, left), left);
+    comp.set_reversed(reversed(exec));
+}
+
+/// True when exactly one axis of the plane is mirrored (G51.1, or G51 with a negative factor).
+fn reversed(exec: &Executor) -> bool {
+    let (a, b, _) = exec.modal.plane.axes();
+    exec.frames.scaling.is_some_and(|s| s.reverses((a, b)))
+}
+
 /// The side and radius of G41 (`left`) or G42 with the D number in force: a negative offset
 /// and a mirrored plane axis (spec 1.29) each swap the side.
 fn setting(exec: &Executor, left: bool) -> (Side, f64) {
@@ -126,8 +150,7 @@ fn setting(exec: &Executor, left: bool) -> (Side, f64) {
         offset
     };
     let side = Side::of(left, offset);
-    let (a, b, _) = exec.modal.plane.axes();
-    let side = if exec.frames.scaling.is_some_and(|s| s.reverses((a, b))) {
+    let side = if reversed(exec) {
         match side {
             Side::Left => Side::Right,
             Side::Right => Side::Left,

@@ -12,7 +12,10 @@
 //!   is outside the arc (G41 with G02, G42 with G03) and smaller when inside.
 //! - Start-up (type A): the start-up block ends at the programmed end point plus the radius
 //!   perpendicular to the next element's start. Cancel and a block followed by no motion in the
-//!   plane: the vector at the end of the block is perpendicular to the block's own end.
+//!   plane: the vector at the end of the block is perpendicular to the block's own end. Both
+//!   hold round the inside of a corner too, where a corner in offset mode would take the
+//!   intersection: the FANUC 0M manual has the start-up vector always perpendicular to the next
+//!   path (seed 001 L970), and its example 1 starts up so at an inner corner.
 //! - An inner corner: the tool centre stops where the two compensated elements intersect.
 //! - An outer corner whose angle on the material side is 90 degrees or more: the tool centre
 //!   goes to the intersection of the tangent lines at the ends of the two compensated elements

@@ -54,6 +54,8 @@ pub(crate) struct Compensator {
     next: Option<(Side, f64)>,
     /// G41 (true) or G42 in force, before the sign of the offset and mirroring decide the side.
     left: bool,
+    /// One axis of the plane was mirrored when the side was last worked out.
+    reversed: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -104,6 +106,7 @@ impl Compensator {
             suspended: false,
             next: None,
             left,
+            reversed: false,
         }
     }
 
@@ -217,7 +220,6 @@ impl Compensator {
                 (self.side, self.radius) = setting;
                 self.tool
             }
-            None if start_up => self.tool,
             None => {
                 // After an end perpendicular to the last element: straight to this one's start.
                 (self.side, self.radius) = setting;
@@ -411,6 +413,16 @@ impl Compensator {
     /// G41 (true) or G42 in force.
     pub(crate) fn left(&self) -> bool {
         self.left
+    }
+
+    /// True when one axis of the plane was mirrored when the side was last worked out.
+    pub(crate) fn reversed(&self) -> bool {
+        self.reversed
+    }
+
+    /// Records whether one axis of the plane is mirrored for the side last worked out.
+    pub(crate) fn set_reversed(&mut self, reversed: bool) {
+        self.reversed = reversed;
     }
 
     /// An alarm stops the control: the pending element never moves.
