@@ -24,8 +24,9 @@
 //! centre the angle keeps its last value; leaving it, C turns within a piece shorter than the
 //! tolerance.
 //!
-//! Every piece carries its block's feed: mm/min along the contour, which the control keeps as
-//! the tangential speed (G93 inverse time is shared out over the pieces). Rapids are cut the same
+//! The control keeps the block's feed as the speed along the contour on the part, so every piece
+//! carries the time its share of the contour takes, as an inverse-time feed (G93's block time is
+//! shared out the same way). Rapids are cut the same
 //! way and stay rapids, on the Cartesian straight line.
 //!
 //! What it must never do: cost anything when the mode is off (the queue asks for the stage only
@@ -37,7 +38,9 @@ use super::frames::sin_cos_degrees;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
-use crate::motion::{arc_sweep, ArcDirection, Feed, MachinePos, Move, Plane, Segment, SegmentKind};
+use crate::motion::{
+    arc_sweep, ArcDirection, Feed, MachinePos, Move, PathMode, Plane, Segment, SegmentKind,
+};
 use crate::profile::{GCode, Group};
 
 /// The linear axis of the plane: the radius.
@@ -407,6 +410,8 @@ impl Converter {
             return;
         };
         let motion = *motion;
+        // The contour's length on the part: the control keeps F along it.
+        let contour = segment.length();
         let start = self.last;
         let mut cut = Cut {
             converter: self,
@@ -420,10 +425,16 @@ impl Converter {
         let count = ends.len();
         let mut from = (0.0, start);
         for (i, end) in ends.into_iter().enumerate() {
+            // The block's exact stop (G09, G61) is at its end, not between its pieces.
+            let last = i + 1 == count;
             let piece = Move {
                 from: MachinePos(from.1),
                 to: MachinePos(end.machine),
-                exact_stop: motion.exact_stop && i + 1 == count,
+                exact_stop: motion.exact_stop && last,
+                path_mode: match motion.path_mode {
+                    PathMode::ExactStop if !last => PathMode::Continuous,
+                    mode => mode,
+                },
                 ..motion
             };
             let kind = match segment.kind {
@@ -434,7 +445,7 @@ impl Converter {
                 SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => {
                     SegmentKind::Line {
                         motion: piece,
-                        feed: piece_feed(feed, end.t - from.0),
+                        feed: piece_feed(feed, end.t - from.0, contour),
                     }
                 }
                 other => other,
@@ -519,11 +530,20 @@ impl Cut<'_> {
     }
 }
 
-/// The feed of a piece covering `share` of its block: the block's, but for G93, whose time is
-/// shared out.
-fn piece_feed(feed: Feed, share: f64) -> Feed {
+/// The feed of a piece covering `share` of its block, whose contour on the part is `length` mm
+/// long. The control keeps F along the contour while the piece moves X and C: the piece gets the
+/// time its share of the contour takes at F, as an inverse-time feed, so that the planner (which
+/// measures X Y Z travel) times it as the control moves it. G93's block time is shared out the
+/// same way; a G95 feed without a spindle speed stays as it is (the planner's rule for it).
+fn piece_feed(feed: Feed, share: f64, length: f64) -> Feed {
+    if share <= 0.0 {
+        return feed;
+    }
     match feed {
-        Feed::InverseTime(f) if share > 0.0 => Feed::InverseTime(f / share),
-        other => other,
+        Feed::InverseTime(f) => Feed::InverseTime(f / share),
+        _ => match feed.mm_per_min(length) {
+            Some(f) if f > 0.0 && length > 0.0 => Feed::InverseTime(f / (share * length)),
+            _ => feed,
+        },
     }
 }
