@@ -6,6 +6,7 @@
 mod cmd;
 mod diagnostics;
 mod numbers;
+mod planned;
 mod program;
 mod setup;
 

@@ -8,13 +8,14 @@
 
 use super::{Outcome, SetupError};
 use crate::numbers::{OutBuffer, Remembered};
+use crate::planned::{Item, PlannedBatches};
 use crate::program::ProgramFiles;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
 use vcnc::motion::{EndKind, Feed, Move, SpindleState, StopKind};
-use vcnc::plan::{Planner, TimedSegment};
+use vcnc::plan::TimedSegment;
 use vcnc::{Alarm, Axis, FileId, Segment, SegmentKind};
 
 /// Output format of the trace.
@@ -67,62 +68,27 @@ fn write_trace(
     if args.format == Format::Csv {
         writer.csv_header();
     }
-    // The interpreter and the planner run on their own thread and hand over timed segments in
-    // batches, so that reading, interpreting and planning overlap with formatting and writing on
-    // a second core. A fixed pool of batch buffers goes round between the two: no allocation, no
-    // fresh pages, bounded memory.
-    let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Item>>(POOL);
-    let (recycle, recycled) = std::sync::mpsc::sync_channel::<Vec<Item>>(POOL);
-    for _ in 0..POOL {
-        let _ = recycle.try_send(Vec::with_capacity(BATCH));
-    }
-    let mut planner = Planner::new(stream, &machine, plan_options);
-    let producer = std::thread::spawn(move || {
-        while let Ok(mut batch) = recycled.recv() {
-            batch.clear();
-            batch.extend(planner.by_ref().take(BATCH));
-            let more = batch.len() == BATCH;
-            if sender.send(batch).is_err() || !more {
-                return;
-            }
-        }
-    });
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut broken_pipe = false;
-    for batch in receiver {
-        for item in &batch {
+    PlannedBatches::spawn(stream, &machine, plan_options).for_each(|batch| {
+        for item in batch {
             writer.item(item, args.format, &mut alarms);
         }
-        let _ = recycle.try_send(batch);
         if writer.out.is_full() {
             if output.write_all(writer.out.as_bytes()).is_err() {
                 broken_pipe = true;
-                break;
+                return false;
             }
             writer.out.clear();
         }
-    }
+        true
+    });
     if !broken_pipe {
         let _ = output.write_all(writer.out.as_bytes());
         let _ = output.flush();
     }
-    // With both channel ends gone, the interpreter thread's next send or receive fails and it ends.
-    drop(recycle);
-    let _ = producer.join();
     Ok((alarms, files))
 }
-
-/// What the planner thread hands over: a timed segment or an alarm.
-type Item = Result<TimedSegment, Alarm>;
-
-/// Segments per batch handed from the planner thread to the writer. Small enough that the
-/// batches in circulation stay in the processors' caches (a timed segment is a few hundred
-/// bytes: 4096 of them were 1.5 MB a batch, read back from memory by the other core), large
-/// enough that handing them over costs nothing per segment.
-const BATCH: usize = 512;
-
-/// Batch buffers in circulation between the two threads.
-const POOL: usize = 4;
 
 /// The bytes that introduce a JSON key after a previous field: `key!("x")` is `,"x":`.
 macro_rules! key {
@@ -485,7 +451,7 @@ mod tests {
     use super::*;
     use clap::Parser;
     use std::fmt::Write as _;
-    use vcnc::plan::PlanOptions;
+    use vcnc::plan::{PlanOptions, Planner};
     use vcnc::{Machine, Options};
 
     #[derive(Parser)]

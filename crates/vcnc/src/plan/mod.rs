@@ -123,6 +123,11 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Planner<I> {
         &self.source
     }
 
+    /// The stream being planned, taking the planner apart.
+    pub fn into_source(self) -> I {
+        self.source
+    }
+
     fn pull(&mut self) {
         match self.source.next() {
             None => {
