@@ -156,15 +156,10 @@ impl<R: Read> ReaderLines<R> {
 
 impl<R: Read> LineSource for ReaderLines<R> {
     fn next_line(&mut self) -> io::Result<Option<Line<'_>>> {
-        let mut searched = 0;
-        let newline = loop {
-            if let Some(i) = memchr_newline(&self.buffer[self.start + searched..self.end]) {
-                break Some(self.start + searched + i);
-            }
-            searched = self.end - self.start;
-            if !self.refill()? {
-                break None;
-            }
+        // The common case, a whole line in the buffer, stays short; reading more is out of line.
+        let newline = match memchr_newline(&self.buffer[self.start..self.end]) {
+            Some(i) => Some(self.start + i),
+            None => self.refill_to_newline()?,
         };
         let (line_end, next) = match newline {
             Some(i) => (i, i + 1),
@@ -183,6 +178,23 @@ impl<R: Read> LineSource for ReaderLines<R> {
             offset: clamp_offset(usize::try_from(file_offset).unwrap_or(usize::MAX)),
             number: self.number,
         }))
+    }
+}
+
+impl<R: Read> ReaderLines<R> {
+    /// Reads until the unread bytes hold a `\n` (its index in the buffer) or the reader ends
+    /// (`None`): the unread bytes, known to hold none, are not searched again.
+    #[cold]
+    fn refill_to_newline(&mut self) -> io::Result<Option<usize>> {
+        loop {
+            let searched = self.end - self.start;
+            if !self.refill()? {
+                return Ok(None);
+            }
+            if let Some(i) = memchr_newline(&self.buffer[self.start + searched..self.end]) {
+                return Ok(Some(self.start + searched + i));
+            }
+        }
     }
 }
 
