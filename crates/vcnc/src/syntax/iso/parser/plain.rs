@@ -133,9 +133,7 @@ fn skip_blank_run(mut bytes: &[u8]) -> &[u8] {
 /// `[+|-]` and an unsigned decimal; the number and the bytes after it.
 #[inline(always)]
 fn signed_number(bytes: &[u8]) -> Option<(Number, &[u8])> {
-    // Most numbers start with a digit: one test sends them past the two signs.
     let (negative, unsigned) = match bytes {
-        [b'0'..=b'9', ..] => (false, bytes),
         [b'-', rest @ ..] => (true, rest),
         [b'+', rest @ ..] => (false, rest),
         _ => (false, bytes),
