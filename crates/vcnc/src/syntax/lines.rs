@@ -105,8 +105,8 @@ pub struct ReaderLines<R> {
     /// The unread bytes are `buffer[start..end]`.
     start: usize,
     end: usize,
-    /// File offset of `buffer[start]`.
-    offset: u64,
+    /// File offset of `buffer[0]`: it changes only when the buffer is refilled, not per line.
+    buffer_offset: u64,
     number: u32,
     eof: bool,
 }
@@ -119,7 +119,7 @@ impl<R: Read> ReaderLines<R> {
             buffer: vec![0; 256 * 1024],
             start: 0,
             end: 0,
-            offset: 0,
+            buffer_offset: 0,
             number: 0,
             eof: false,
         }
@@ -131,6 +131,7 @@ impl<R: Read> ReaderLines<R> {
             return Ok(false);
         }
         self.buffer.copy_within(self.start..self.end, 0);
+        self.buffer_offset += self.start as u64;
         self.end -= self.start;
         self.start = 0;
         if self.end == self.buffer.len() {
@@ -167,8 +168,7 @@ impl<R: Read> LineSource for ReaderLines<R> {
             None => return Ok(None),
         };
         let line_start = self.start;
-        let file_offset = self.offset;
-        self.offset += (next - line_start) as u64;
+        let file_offset = self.buffer_offset + line_start as u64;
         self.start = next;
         self.number += 1;
         let line = &self.buffer[line_start..line_end];
