@@ -105,8 +105,8 @@ pub struct ReaderLines<R> {
     /// The unread bytes are `buffer[start..end]`.
     start: usize,
     end: usize,
-    /// File offset of `buffer[start]`.
-    offset: u64,
+    /// File offset of `buffer[0]`: it changes only when the buffer is refilled, not per line.
+    buffer_offset: u64,
     number: u32,
     eof: bool,
 }
@@ -119,7 +119,7 @@ impl<R: Read> ReaderLines<R> {
             buffer: vec![0; 256 * 1024],
             start: 0,
             end: 0,
-            offset: 0,
+            buffer_offset: 0,
             number: 0,
             eof: false,
         }
@@ -131,6 +131,7 @@ impl<R: Read> ReaderLines<R> {
             return Ok(false);
         }
         self.buffer.copy_within(self.start..self.end, 0);
+        self.buffer_offset += self.start as u64;
         self.end -= self.start;
         self.start = 0;
         if self.end == self.buffer.len() {
@@ -156,15 +157,10 @@ impl<R: Read> ReaderLines<R> {
 
 impl<R: Read> LineSource for ReaderLines<R> {
     fn next_line(&mut self) -> io::Result<Option<Line<'_>>> {
-        let mut searched = 0;
-        let newline = loop {
-            if let Some(i) = memchr_newline(&self.buffer[self.start + searched..self.end]) {
-                break Some(self.start + searched + i);
-            }
-            searched = self.end - self.start;
-            if !self.refill()? {
-                break None;
-            }
+        // The common case, a whole line in the buffer, stays short; reading more is out of line.
+        let newline = match memchr_newline(&self.buffer[self.start..self.end]) {
+            Some(i) => Some(self.start + i),
+            None => self.refill_to_newline()?,
         };
         let (line_end, next) = match newline {
             Some(i) => (i, i + 1),
@@ -172,8 +168,7 @@ impl<R: Read> LineSource for ReaderLines<R> {
             None => return Ok(None),
         };
         let line_start = self.start;
-        let file_offset = self.offset;
-        self.offset += (next - line_start) as u64;
+        let file_offset = self.buffer_offset + line_start as u64;
         self.start = next;
         self.number += 1;
         let line = &self.buffer[line_start..line_end];
@@ -183,6 +178,23 @@ impl<R: Read> LineSource for ReaderLines<R> {
             offset: clamp_offset(usize::try_from(file_offset).unwrap_or(usize::MAX)),
             number: self.number,
         }))
+    }
+}
+
+impl<R: Read> ReaderLines<R> {
+    /// Reads until the unread bytes hold a `\n` (its index in the buffer) or the reader ends
+    /// (`None`): the unread bytes, known to hold none, are not searched again.
+    #[cold]
+    fn refill_to_newline(&mut self) -> io::Result<Option<usize>> {
+        loop {
+            let searched = self.end - self.start;
+            if !self.refill()? {
+                return Ok(None);
+            }
+            if let Some(i) = memchr_newline(&self.buffer[self.start + searched..self.end]) {
+                return Ok(Some(self.start + searched + i));
+            }
+        }
     }
 }
 

@@ -123,6 +123,7 @@ impl Block {
     }
 
     /// Empties the block for reuse, keeping its allocation.
+    #[inline]
     pub fn clear(&mut self) {
         self.span = Span::default();
         self.skip = None;

@@ -56,14 +56,22 @@ impl LineBlocks {
     }
 
     /// A cleared block at the end of the set.
+    #[inline(always)]
     pub(crate) fn push(&mut self) -> &mut super::Block {
         if self.len == self.blocks.len() {
-            self.blocks.push(super::Block::new());
+            self.add_block();
         } else {
             self.blocks[self.len].clear();
         }
         self.len += 1;
         &mut self.blocks[self.len - 1]
+    }
+
+    /// A new block for a line with more blocks than any before it: rare once the set has been
+    /// used, so kept out of the way of the reader's loop.
+    #[cold]
+    fn add_block(&mut self) {
+        self.blocks.push(super::Block::new());
     }
 
     /// Drops the last block (it turned out to be empty).

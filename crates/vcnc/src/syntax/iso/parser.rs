@@ -6,6 +6,7 @@
 //! of `structured.rs` are read.
 
 mod macros;
+mod plain;
 pub(super) mod structured;
 
 use super::LineBlocks;
@@ -13,6 +14,7 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
 use crate::syntax::lines::Line;
 use crate::syntax::{BlockKind, Number, Word};
+use plain::{fast_number, read_plain_line, POWERS_OF_TEN};
 
 /// How a text is read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,7 +50,7 @@ impl Default for SyntaxOptions {
 /// Reads the blocks of one line into `out` (which is reset first).
 pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &mut LineBlocks) {
     out.reset();
-    if parse_plain_line(line, file, out) {
+    if read_plain_line(line, file, out) {
         return;
     }
     out.reset();
@@ -81,61 +83,6 @@ fn parse_any_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &m
             break;
         }
     }
-}
-
-/// The common line of a CAM program, read in one pass: one block of plain words (`X-12.5`, a
-/// letter right before its number), separated by blanks, nothing else. Returns false for every
-/// other line (comments, `;`, `/`, `%`, `#`, extended addresses, blanks inside numbers, alarms),
-/// which [`parse_line`] then reads the general way: the blocks are the same either way (checked
-/// by a differential test).
-#[inline(always)]
-fn parse_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> bool {
-    let text = line.text;
-    let is_blank = |b: &u8| matches!(b, b' ' | b'\t' | b'\x0c' | b'\x0b' | b'\r' | 0);
-    let Some(start) = text.iter().position(|b| !is_blank(b)) else {
-        return false;
-    };
-    let span = |from: usize, to: usize| {
-        let at = |p: usize| {
-            line.offset
-                .saturating_add(u32::try_from(p).unwrap_or(u32::MAX))
-        };
-        Span::new(file, at(from), at(to), line.number)
-    };
-    let block = out.push();
-    let mut pos = start;
-    while pos < text.len() {
-        let letter = text[pos];
-        if !letter.is_ascii_alphabetic() {
-            return false;
-        }
-        let (negative, sign) = match text.get(pos + 1) {
-            Some(b'-') => (true, 1),
-            Some(b'+') => (false, 1),
-            _ => (false, 0),
-        };
-        let number_start = pos + 1 + sign;
-        let Some((number, length)) = fast_number(&text[number_start..], negative) else {
-            return false;
-        };
-        let end = number_start + length;
-        if text.get(end) == Some(&b'=') {
-            return false;
-        }
-        block.words.push(Word {
-            letter: letter.to_ascii_uppercase(),
-            index: 0,
-            number,
-            span: span(pos, end),
-            expr: None,
-        });
-        pos = end;
-        while pos < text.len() && is_blank(&text[pos]) {
-            pos += 1;
-        }
-    }
-    block.span = span(start, text.len());
-    true
 }
 
 #[derive(PartialEq, Eq)]
@@ -639,76 +586,6 @@ impl Reader<'_, '_> {
     }
 }
 
-/// The common case of [`Reader::read_number`]: `digits [. digits]` with at most 18 digits and
-/// nothing after it that could continue the number (a blank followed by more digits, a second
-/// point). Returns the number and the bytes it took; `None` sends the caller to the general path,
-/// which gives the same value (checked by the tests).
-#[inline(always)]
-fn fast_number(bytes: &[u8], negative: bool) -> Option<(Number, usize)> {
-    let (mut mantissa, mut rest) = digit_run(0, bytes);
-    let mut digits = bytes.len() - rest.len();
-    let decimal_point = rest.first() == Some(&b'.');
-    let mut fraction_digits = 0;
-    if decimal_point {
-        let after_point = &rest[1..];
-        (mantissa, rest) = digit_run(mantissa, after_point);
-        fraction_digits = after_point.len() - rest.len();
-        digits += fraction_digits;
-    }
-    let i = bytes.len() - rest.len();
-    if digits == 0 || digits > 18 {
-        return None;
-    }
-    match bytes.get(i) {
-        Some(b'.') => return None,
-        Some(b' ' | b'\t') => {
-            // Blanks inside a number are ignored (`X1 2.5`): only a blank before the next word
-            // ends it.
-            let next = bytes[i..].iter().find(|b| !matches!(b, b' ' | b'\t'));
-            if matches!(next, Some(b'0'..=b'9' | b'.')) {
-                return None;
-            }
-        }
-        _ => {}
-    }
-    // At most 18 digits: the mantissa is below 2^53 only up to 15 digits, so `scale` checks.
-    let magnitude = if mantissa < (1u64 << 53) {
-        mantissa as f64 / POWERS_OF_TEN[fraction_digits]
-    } else {
-        scale(mantissa, -(fraction_digits as i32))
-    };
-    let value = if negative { -magnitude } else { magnitude };
-    Some((
-        Number {
-            value,
-            decimal_point,
-            negative,
-        },
-        i,
-    ))
-}
-
-/// Reads the digits at the start of `bytes` into `mantissa` (wrapping: the caller refuses more
-/// than 18 digits); returns it and the bytes after the digits.
-#[inline(always)]
-fn digit_run(mut mantissa: u64, mut bytes: &[u8]) -> (u64, &[u8]) {
-    while let [byte, rest @ ..] = bytes {
-        let digit = byte.wrapping_sub(b'0');
-        if digit > 9 {
-            break;
-        }
-        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(digit));
-        bytes = rest;
-    }
-    (mantissa, bytes)
-}
-
-/// The powers of ten that are exact in f64.
-const POWERS_OF_TEN: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-];
-
 /// `mantissa * 10^exponent`, correctly rounded for the exponents a G-code number can have: the
 /// powers of ten up to 10^22 are exact in f64, so one multiplication or division rounds once.
 fn scale(mantissa: u64, exponent: i32) -> f64 {
@@ -865,110 +742,6 @@ mod tests {
         let alarm = &blocks[0].alarms[0];
         assert_eq!(alarm.code, AlarmCode::MissingValue);
         assert_eq!(alarm.span.unwrap().start, 3);
-    }
-
-    #[test]
-    fn the_fast_and_the_general_number_paths_agree() {
-        for text in [
-            "0",
-            "1.",
-            ".5",
-            "1.833",
-            "123456.789",
-            "0.0010",
-            "000012",
-            "99999.9999",
-            "1.000000000000001",
-        ] {
-            for negative in [false, true] {
-                let (fast, _) = fast_number(text.as_bytes(), negative).unwrap();
-                assert_eq!(Some(fast), general_number(text, negative), "{text}");
-            }
-        }
-    }
-
-    /// A number read by the general digit reader.
-    fn general_number(text: &str, negative: bool) -> Option<Number> {
-        let options = SyntaxOptions::default();
-        let mut reader = Reader {
-            text: text.as_bytes(),
-            pos: 0,
-            file: FileId(0),
-            base: 0,
-            line: 1,
-            options: &options,
-            format: Format::Iso,
-            line_breaks: &[],
-        };
-        reader.read_digits(0, b'X', negative, &mut Block::new())
-    }
-
-    proptest::proptest! {
-        #[test]
-        fn the_fast_path_reads_what_the_general_path_reads(
-            whole in "[0-9]{0,12}",
-            point in proptest::bool::ANY,
-            fraction in "[0-9]{0,9}",
-            negative in proptest::bool::ANY,
-        ) {
-            let text = if point { format!("{whole}.{fraction}") } else { whole.clone() };
-            let general = general_number(&text, negative);
-            match fast_number(text.as_bytes(), negative) {
-                Some((fast, length)) => {
-                    proptest::prop_assert_eq!(Some(fast), general);
-                    proptest::prop_assert_eq!(length, text.len());
-                }
-                None => proptest::prop_assert!(general.is_none() || text.len() > 18),
-            }
-        }
-    }
-
-    /// Every line through the general reader alone.
-    fn parse_general(text: &str) -> Vec<Block> {
-        let line = Line {
-            text: text.as_bytes(),
-            offset: 7,
-            number: 3,
-        };
-        let mut out = LineBlocks::new();
-        parse_any_line(line, FileId(1), &SyntaxOptions::default(), &mut out);
-        out.as_slice().to_vec()
-    }
-
-    proptest::proptest! {
-        #[test]
-        fn plain_lines_read_the_same_on_both_paths(
-            text in "[ \t]{0,2}([GXYZIJKRFSMNgx][-+]?[0-9]{0,4}[.]?[0-9]{0,4}[ \t=;(#]{0,2}){0,6}",
-        ) {
-            let line = Line { text: text.as_bytes(), offset: 7, number: 3 };
-            let mut out = LineBlocks::new();
-            parse_line(line, FileId(1), &SyntaxOptions::default(), &mut out);
-            proptest::prop_assert_eq!(out.as_slice().to_vec(), parse_general(&text));
-        }
-    }
-
-    #[test]
-    fn plain_and_general_lines_agree_on_examples() {
-        for text in [
-            "G01 X54.808 Y30.491 Z-1.288",
-            "G02 X51.438 Y26.151 R11.700  \r",
-            "  g1x1y2",
-            "X1 2.5",
-            "N10 G1 X1. (comment)",
-            "F2=100",
-            "G1 X+.5 Y-0. Z",
-            "",
-            "   ",
-        ] {
-            let line = Line {
-                text: text.as_bytes(),
-                offset: 7,
-                number: 3,
-            };
-            let mut out = LineBlocks::new();
-            parse_line(line, FileId(1), &SyntaxOptions::default(), &mut out);
-            assert_eq!(out.as_slice().to_vec(), parse_general(text), "{text:?}");
-        }
     }
 
     #[test]

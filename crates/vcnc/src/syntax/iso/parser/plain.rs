@@ -1,0 +1,450 @@
+//! The reader's fast path: the common line of a CAM program, and the common number.
+//!
+//! A CAM program is hundreds of thousands of lines like `G01 X54.808 Y30.491`: plain words (a
+//! letter right before a decimal number) separated by blanks, nothing else. [`read_plain_line`]
+//! reads such a line in one pass over its bytes and gives up on anything else, which the general
+//! reader then reads; [`fast_number`] does the same for the number of one word inside the
+//! general reader.
+//!
+//! Invariant: the fast path gives exactly the blocks the general reader gives (values to the
+//! bit, spans, decimal points, signs), or nothing. The differential tests at the bottom check it,
+//! word by word and line by line. It never raises an alarm: a line that needs one is not plain.
+
+use super::super::LineBlocks;
+use crate::source::{FileId, Span};
+use crate::syntax::lines::Line;
+use crate::syntax::{Number, Word};
+
+/// The most digits the fast path reads in one number. Below 10^15 every mantissa is an integer
+/// that f64 holds exactly, and so is every power of ten it is divided by (up to 10^22): one
+/// division then rounds once, correctly, as the general reader's does. Longer numbers, rare in a
+/// program, take the general reader.
+const MAX_DIGITS: usize = 15;
+
+/// Reads `line` into one block of `out` when it is a plain line: blanks, then words such as
+/// `X-12.5`, `g1` or `Y.5` (a letter, an optional sign, digits with an optional decimal point),
+/// each followed by blanks or directly by the next word's letter. Returns false for any other
+/// line (comments, `;`, `/`, `%`, `#`, `=`, a blank inside a number, a blank line, a number the
+/// general reader would refuse); the block it may have begun is then to be thrown away.
+#[inline(always)]
+pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> bool {
+    let text = line.text;
+    // A span is the line's offset plus a position in the line. When the end of the line fits in
+    // u32, that sum never overflows (the general reader saturates: it takes the other lines).
+    let Some(line_end) = u32::try_from(text.len())
+        .ok()
+        .and_then(|length| line.offset.checked_add(length))
+    else {
+        return false;
+    };
+    // The offset in the file of the start of `rest`, a tail of the line.
+    let offset_of = |rest: &[u8]| line_end - rest.len() as u32;
+    let first_word = skip_blanks(text);
+    if first_word.is_empty() {
+        return false;
+    }
+    let block = out.push();
+    let mut rest = first_word;
+    while let [letter, after_letter @ ..] = rest {
+        // An ASCII letter and its capital differ in bit 5 alone: one mask tests for a letter and
+        // gives the capital.
+        let capital = letter & !0x20;
+        if !capital.is_ascii_uppercase() {
+            return false;
+        }
+        let Some((number, after_number)) = signed_number(after_letter) else {
+            return false;
+        };
+        block.words.push(Word {
+            letter: capital,
+            index: 0,
+            number,
+            span: Span::new(file, offset_of(rest), offset_of(after_number), line.number),
+            expr: None,
+        });
+        // What follows a word must be the next word's letter, after blanks or none: a digit or
+        // a point there (`X1 2.5`, `X1.2.3`), `=` (`F2=100`) or anything else is refused by the
+        // letter test above, and the general reader decides.
+        rest = skip_blanks(after_number);
+    }
+    block.span = Span::new(file, offset_of(first_word), line_end, line.number);
+    true
+}
+
+/// The common case of the general reader's number: `digits [. digits]` (or `. digits`) with at
+/// most [`MAX_DIGITS`] digits and nothing after it that could continue the number (a blank
+/// followed by more digits, a second point). Returns the number and the bytes it took; `None`
+/// sends the caller to the general path, which gives the same value (checked by the tests).
+#[inline(always)]
+pub(super) fn fast_number(bytes: &[u8], negative: bool) -> Option<(Number, usize)> {
+    let (decimal, rest) = unsigned_decimal(bytes)?;
+    match rest.first() {
+        Some(b'.') => return None,
+        Some(b' ' | b'\t') => {
+            // Blanks inside a number are ignored (`X1 2.5`): only a blank before the next word
+            // ends it.
+            let next = rest.iter().find(|b| !matches!(b, b' ' | b'\t'));
+            if matches!(next, Some(b'0'..=b'9' | b'.')) {
+                return None;
+            }
+        }
+        _ => {}
+    }
+    Some((decimal.number(negative), bytes.len() - rest.len()))
+}
+
+/// The powers of ten that are exact in f64.
+pub(super) const POWERS_OF_TEN: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// The blanks the reader skips between words (a line end is never inside a line).
+fn is_blank(byte: u8) -> bool {
+    matches!(byte, b' ' | b'\t' | b'\x0c' | b'\x0b' | b'\r' | 0)
+}
+
+/// `bytes` from its first byte that is not a blank.
+#[inline(always)]
+fn skip_blanks(bytes: &[u8]) -> &[u8] {
+    // One space is what usually stands between two words: stepping over it first spares the
+    // common case the loop.
+    let bytes = match bytes {
+        [b' ', rest @ ..] => rest,
+        _ => bytes,
+    };
+    match bytes {
+        [first, ..] if is_blank(*first) => skip_blank_run(bytes),
+        _ => bytes,
+    }
+}
+
+/// `bytes` from its first byte that is not a blank, for any run of blanks.
+fn skip_blank_run(mut bytes: &[u8]) -> &[u8] {
+    while let [first, rest @ ..] = bytes {
+        if !is_blank(*first) {
+            break;
+        }
+        bytes = rest;
+    }
+    bytes
+}
+
+/// `[+|-]` and an unsigned decimal; the number and the bytes after it.
+#[inline(always)]
+fn signed_number(bytes: &[u8]) -> Option<(Number, &[u8])> {
+    let (negative, unsigned) = match bytes {
+        [b'-', rest @ ..] => (true, rest),
+        [b'+', rest @ ..] => (false, rest),
+        _ => (false, bytes),
+    };
+    let (decimal, rest) = unsigned_decimal(unsigned)?;
+    Some((decimal.number(negative), rest))
+}
+
+/// A decimal number as its digits read it: `12.50` is 1250 with two fraction digits.
+#[derive(Clone, Copy, Debug)]
+struct Decimal {
+    /// The digits as one integer, below 10^[`MAX_DIGITS`].
+    mantissa: u64,
+    /// How many of the digits stand after the point (at most [`MAX_DIGITS`]).
+    fraction_digits: usize,
+    /// The number has a decimal point (`X25.` and `X25` differ on most profiles).
+    decimal_point: bool,
+}
+
+impl Decimal {
+    /// The value, correctly rounded: both operands of the division are exact (see
+    /// [`MAX_DIGITS`]), so it rounds once.
+    #[inline(always)]
+    fn number(self, negative: bool) -> Number {
+        // Below 2^53 the mantissa converts exactly either way; from i64 it takes one
+        // instruction on x86-64, from u64 six.
+        let mantissa = self.mantissa as i64 as f64;
+        let magnitude = mantissa / POWERS_OF_TEN[self.fraction_digits];
+        Number {
+            value: if negative { -magnitude } else { magnitude },
+            decimal_point: self.decimal_point,
+            negative,
+        }
+    }
+}
+
+/// `digits [. [digits]]` or `. digits` at the start of `bytes`, with one to [`MAX_DIGITS`]
+/// digits; the decimal and the bytes after it.
+#[inline(always)]
+fn unsigned_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
+    // One loop over digits and point: the point is rare enough per byte that testing for it
+    // only on bytes that are not digits costs less than a second loop for the fraction.
+    let mut mantissa = 0u64;
+    let mut length = 0;
+    let mut point = None;
+    while let Some(&byte) = bytes.get(length) {
+        // Widened before the subtraction, the digit needs no second widening to be added.
+        let digit = u64::from(byte).wrapping_sub(u64::from(b'0'));
+        if digit <= 9 {
+            // Wrapping: past MAX_DIGITS digits the number is refused below.
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(digit);
+        } else if byte == b'.' && point.is_none() {
+            point = Some(length);
+        } else {
+            break;
+        }
+        length += 1;
+    }
+    let digits = length - usize::from(point.is_some());
+    if digits == 0 || digits > MAX_DIGITS {
+        return None;
+    }
+    let decimal = Decimal {
+        mantissa,
+        fraction_digits: point.map_or(0, |point| length - point - 1),
+        decimal_point: point.is_some(),
+    };
+    Some((decimal, &bytes[length..]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{parse_any_line, parse_line, Format, Reader, SyntaxOptions};
+    use super::*;
+    use crate::syntax::Block;
+
+    /// A number read by the general digit reader.
+    fn general_number(text: &str, negative: bool) -> Option<Number> {
+        let options = SyntaxOptions::default();
+        let mut reader = Reader {
+            text: text.as_bytes(),
+            pos: 0,
+            file: FileId(0),
+            base: 0,
+            line: 1,
+            options: &options,
+            format: Format::Iso,
+            line_breaks: &[],
+        };
+        reader.read_digits(0, b'X', negative, &mut Block::new())
+    }
+
+    /// Equal numbers, to the bit: `==` on f64 takes -0 for 0.
+    fn same_number(a: Number, b: Number) -> bool {
+        a == b && a.value.to_bits() == b.value.to_bits()
+    }
+
+    fn line(text: &str, offset: u32) -> Line<'_> {
+        Line {
+            text: text.as_bytes(),
+            offset,
+            number: 3,
+        }
+    }
+
+    /// The blocks of a line as `read` gives them: `parse_line` (which takes the fast path when it
+    /// can) or `parse_any_line` (the general reader alone).
+    fn read_with(
+        read: fn(Line<'_>, FileId, &SyntaxOptions, &mut LineBlocks),
+        text: &str,
+        offset: u32,
+    ) -> Vec<Block> {
+        let mut out = LineBlocks::new();
+        read(
+            line(text, offset),
+            FileId(1),
+            &SyntaxOptions::default(),
+            &mut out,
+        );
+        out.as_slice().to_vec()
+    }
+
+    /// True when the fast path takes the line.
+    fn is_plain(text: &str) -> bool {
+        read_plain_line(line(text, 7), FileId(1), &mut LineBlocks::new())
+    }
+
+    /// Both paths give the same blocks, every value the same to the bit.
+    fn assert_same_blocks(text: &str, offset: u32) {
+        let fast = read_with(parse_line, text, offset);
+        let general = read_with(parse_any_line, text, offset);
+        assert_eq!(fast, general, "{text:?}");
+        let values = |blocks: &[Block]| -> Vec<u64> {
+            blocks
+                .iter()
+                .flat_map(|b| b.words.iter().map(|w| w.number.value.to_bits()))
+                .collect()
+        };
+        assert_eq!(values(&fast), values(&general), "{text:?}");
+    }
+
+    #[test]
+    fn the_fast_and_the_general_number_paths_agree() {
+        for text in [
+            "0",
+            "1.",
+            ".5",
+            "0.",
+            "1.833",
+            "123456.789",
+            "0.0010",
+            "000012",
+            "99999.9999",
+            "25",
+            "999999999999999",
+            "1.00000000000001",
+            "000000000000001",
+            ".000000000000001",
+            "2.22044604925031",
+        ] {
+            for negative in [false, true] {
+                let (fast, length) = fast_number(text.as_bytes(), negative).expect(text);
+                let general = general_number(text, negative).expect(text);
+                assert!(same_number(fast, general), "{text}: {fast:?} {general:?}");
+                assert_eq!(length, text.len());
+            }
+        }
+    }
+
+    #[test]
+    fn the_fast_number_path_leaves_the_rest_to_the_general_one() {
+        // No digits, more digits than the fast path reads, a second point, a blank inside.
+        for text in [
+            "",
+            ".",
+            "-1",
+            "+1",
+            "1.000000000000001",
+            "0000000000000001",
+            "12345678901234567890",
+            "1.2.",
+            "1 2",
+            "1\t.5",
+            "1. .5",
+        ] {
+            assert_eq!(fast_number(text.as_bytes(), false), None, "{text:?}");
+        }
+    }
+
+    #[test]
+    fn numbers_without_a_decimal_point_say_so() {
+        // Most profiles read `X25` in least input increments: the flag must survive the fast path.
+        let blocks = read_with(parse_line, "G1 X25 Y25. Z-0", 0);
+        let point: Vec<bool> = blocks[0]
+            .words
+            .iter()
+            .map(|w| w.number.decimal_point)
+            .collect();
+        assert_eq!(point, [false, false, true, false]);
+        assert!(blocks[0].words[3].number.negative);
+        assert_eq!(
+            blocks[0].words[3].number.value.to_bits(),
+            (-0.0f64).to_bits()
+        );
+    }
+
+    #[test]
+    fn cam_lines_take_the_fast_path_and_others_do_not() {
+        for text in [
+            "G01 X54.808 Y30.491 Z-1.288",
+            "G02 X51.438 Y26.151 R11.700  \r",
+            "  g1x1y2",
+            "N10 G1 X+.5 Y-0. F1500.",
+        ] {
+            assert!(is_plain(text), "{text:?}");
+        }
+        for text in [
+            "",
+            "   ",
+            "X1 2.5",
+            "N10 G1 X1. (comment)",
+            "F2=100",
+            "G1 X1.;",
+            "G1 X",
+            "#1=2",
+            "/G1 X1.",
+            "%",
+            "GOTO10",
+            "X1.000000000000001",
+        ] {
+            assert!(!is_plain(text), "{text:?}");
+        }
+    }
+
+    #[test]
+    fn plain_and_general_lines_agree_on_examples() {
+        for text in [
+            "G01 X54.808 Y30.491 Z-1.288",
+            "G02 X51.438 Y26.151 R11.700  \r",
+            "  g1x1y2",
+            "X1 2.5",
+            "X1 .5",
+            "X1. .5",
+            "X1.2.3",
+            "X1\r2",
+            "\0X1\x0bY2\x0c",
+            "N10 G1 X1. (comment)",
+            "F2=100",
+            "F2 =100",
+            "G1 X+.5 Y-0. Z",
+            "X. Y1",
+            "X- Y1",
+            "X+ Y1",
+            "X-. Y1",
+            "X00012 Y-000.0100",
+            "X999999999999999 Y0.00000000000001",
+            "X1.000000000000001 Y1",
+            "X12345678901234567890",
+            "G1 X1 e5",
+            "G1 X1;Y2",
+            "G1 X1 #1=2",
+            "",
+            "   ",
+        ] {
+            assert_same_blocks(text, 7);
+        }
+    }
+
+    #[test]
+    fn lines_at_the_end_of_a_4_gib_file_read_the_same_on_both_paths() {
+        // Spans saturate there; the fast path leaves such lines to the general reader.
+        for offset in [u32::MAX - 20, u32::MAX - 5, u32::MAX] {
+            assert_same_blocks("G1 X1.5 Y-2.", offset);
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn the_fast_path_reads_what_the_general_path_reads(
+            whole in "[0-9]{0,18}",
+            point in proptest::bool::ANY,
+            fraction in "[0-9]{0,18}",
+            negative in proptest::bool::ANY,
+        ) {
+            let text = if point { format!("{whole}.{fraction}") } else { whole.clone() };
+            let general = general_number(&text, negative);
+            match fast_number(text.as_bytes(), negative) {
+                Some((fast, length)) => {
+                    let general = general.expect("the general path reads what the fast one does");
+                    proptest::prop_assert!(same_number(fast, general), "{:?} {:?}", fast, general);
+                    proptest::prop_assert_eq!(length, text.len());
+                }
+                None => {
+                    let digits = text.len() - usize::from(point);
+                    proptest::prop_assert!(general.is_none() || digits > MAX_DIGITS);
+                }
+            }
+        }
+
+        #[test]
+        fn plain_lines_read_the_same_on_both_paths(
+            text in "[ \t]{0,2}([GXYZIJKRFSMNgx][-+]?[0-9]{0,4}[.]?[0-9]{0,4}[ \t=;(#]{0,2}){0,6}",
+        ) {
+            assert_same_blocks(&text, 7);
+        }
+
+        #[test]
+        fn any_line_of_word_characters_reads_the_same_on_both_paths(
+            text in "[GXYgx0-9.+\\- \t\r\x0b\x00=;(#/%]{0,24}",
+        ) {
+            assert_same_blocks(&text, 7);
+        }
+    }
+}
