@@ -112,7 +112,7 @@ pub enum SmoothingCodes {
     /// None that vcnc runs.
     #[default]
     None,
-    /// Syntec (spec iso-syntec-milling.md 1.8, 1.9): G05 P10000 [E] high-speed high-precision
+    /// Syntec (spec iso-syntec-milling.md 1.8, 1.9): G05 P10000 (E optional) high-speed high-precision
     /// mode and G05.1 Q1/Q2 E path smoothing, off with G05 P0 and G05.1 Q0.
     Syntec,
     /// FANUC: G05 P10000 (high-precision contour control), G05.1 Q1 (AI contour control) and
