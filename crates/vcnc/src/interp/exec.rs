@@ -42,6 +42,8 @@ pub(crate) struct Executor {
     pub(crate) polar: Option<super::polar::PolarPoint>,
     /// The canned cycle in force.
     pub(crate) cycle: Option<super::cycles::Cycle>,
+    /// Where the last G31 ended, program coordinates (FANUC #5061-#5066).
+    pub(crate) skip_position: [f64; AXES],
 }
 
 /// What one block did to the flow of the program.
@@ -93,6 +95,7 @@ impl Executor {
             machine_axes: std::array::from_fn(|i| machine.axes[i].is_some()),
             polar: None,
             cycle: None,
+            skip_position: [0.0; AXES],
             profile,
             machine: machine.clone(),
         }
@@ -186,6 +189,10 @@ impl Executor {
                 Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
                 Some(GCode::MachineCoordinates) => super::coords::g53(self, cmd, out)?,
                 Some(GCode::Dwell) => true,
+                Some(GCode::Skip) => {
+                    super::skip::g31(self, cmd, out)?;
+                    true
+                }
                 Some(GCode::CircleCutting(direction)) => {
                     super::circle_cutting::run(self, cmd, direction, out)?;
                     true

@@ -30,6 +30,7 @@ mod position_offset;
 mod reference;
 mod rotation;
 mod scaling;
+mod skip;
 mod smoothing;
 mod spiral;
 

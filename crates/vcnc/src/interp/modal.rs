@@ -200,6 +200,7 @@ impl ModalState {
             ContinuousMode => self.path_mode = PathMode::Continuous,
             ExtendedWorkOffset
             | Dwell
+            | Skip
             | ExactStopOnce
             | DataInput
             | ReferenceReturn

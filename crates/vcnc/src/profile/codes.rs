@@ -62,6 +62,8 @@ pub enum GCode {
     ArcCounterClockwise,
     /// G04.
     Dwell,
+    /// G31: a cutting move that a skip signal (a probe) may end early.
+    Skip,
     /// G09: exact stop for this block.
     ExactStopOnce,
     /// G10.
@@ -189,6 +191,7 @@ impl GCode {
             ArcClockwise => "circular/helical interpolation CW",
             ArcCounterClockwise => "circular/helical interpolation CCW",
             Dwell => "dwell",
+            Skip => "skip function",
             ExactStopOnce => "exact stop, one block",
             DataInput => "programmable data input (work and tool offsets)",
             PlaneXy => "XY plane",
@@ -280,7 +283,7 @@ impl GCode {
             PolarCancel | Polar => Group::Polar,
             PolarInterpolation | PolarInterpolationCancel => Group::PolarInterpolation,
             MirrorCancel | Mirror => Group::Mirror,
-            Dwell | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
+            Dwell | Skip | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
             | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_)
             | HighSpeedMode | PathSmoothing | LookAhead => Group::NonModal,
@@ -399,6 +402,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         280 => ReferenceReturn,
         290 => ReturnFromReference,
         300 => NthReferenceReturn,
+        310 => Skip,
         400 => CutterCompCancel,
         410 => CutterCompLeft,
         420 => CutterCompRight,
@@ -476,7 +480,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (220, None, "stored stroke check on"),
     (230, None, "stored stroke check off"),
     (270, None, "reference position return check"),
-    (310, None, "skip function"),
     (330, None, "thread cutting"),
     (370, None, "automatic tool length measurement"),
     (371, None, "automatic tool length measurement II"),

@@ -216,8 +216,9 @@ pub(crate) fn read(
             let program = exec.program_position();
             axis_of(number, 5041).and_then(|a| length(program[a]))
         }
-        // Skip positions and servo deviations: no probe, no servo lag.
-        5061..=5066 | 5101..=5106 => Some(0.0),
+        5061..=5066 => axis_of(number, 5061).and_then(|a| length(exec.skip_position[a])),
+        // Servo deviations: no servo lag.
+        5101..=5106 => Some(0.0),
         5081..=5086 => {
             let a = axis_of(number, 5081).unwrap_or(0);
             if a == 2 {
