@@ -203,7 +203,8 @@ impl Executor {
                 }
                 _ => false,
             };
-        if let (Some(e), None, None) = (cmd.word(b'E'), &self.cycle, smoothing) {
+        let threading = self.modal.motion == MotionMode::Thread;
+        if let (Some(e), None, None, false) = (cmd.word(b'E'), &self.cycle, smoothing, threading) {
             return Err(Alarm::not_supported(
                 e.span,
                 "address E outside a tapping cycle",
@@ -414,6 +415,7 @@ impl Executor {
             MotionMode::Arc(direction) => {
                 super::circular::arc(self, cmd, direction, machine_target, out)
             }
+            MotionMode::Thread => super::thread::g33(self, cmd, machine_target, out),
         }
     }
 

@@ -33,6 +33,7 @@ mod scaling;
 mod skip;
 mod smoothing;
 mod spiral;
+mod thread;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Machine;

@@ -13,6 +13,8 @@ pub enum MotionMode {
     Linear,
     /// G02 / G03.
     Arc(ArcDirection),
+    /// G33.
+    Thread,
 }
 
 /// Group 03.
@@ -176,6 +178,7 @@ impl ModalState {
             Linear => self.motion = MotionMode::Linear,
             ArcClockwise => self.motion = MotionMode::Arc(ArcDirection::Clockwise),
             ArcCounterClockwise => self.motion = MotionMode::Arc(ArcDirection::CounterClockwise),
+            Thread => self.motion = MotionMode::Thread,
             PlaneXy => self.plane = Plane::Xy,
             PlaneZx => self.plane = Plane::Zx,
             PlaneYz => self.plane = Plane::Yz,

@@ -211,6 +211,11 @@ impl MotionLimits {
     ) -> Option<(MotionLimits, Tangents)> {
         match &segment.kind {
             SegmentKind::Rapid { motion, .. } => Some(line(motion, None, axes, config, 1.0)),
+            // The control locks the override at 100 % where the feed is tied to the spindle
+            // (G63 tapping mode, G33 threads).
+            SegmentKind::Line { motion, feed } if motion.path_mode == PathMode::Tapping => {
+                Some(line(motion, Some(feed), axes, config, 1.0))
+            }
             SegmentKind::Line { motion, feed } => {
                 Some(line(motion, Some(feed), axes, config, feed_override))
             }

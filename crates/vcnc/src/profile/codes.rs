@@ -60,6 +60,8 @@ pub enum GCode {
     ArcClockwise,
     /// G03.
     ArcCounterClockwise,
+    /// G33: thread cutting, the feed tied to the spindle (F is the lead).
+    Thread,
     /// G04.
     Dwell,
     /// G31: a cutting move that a skip signal (a probe) may end early.
@@ -190,6 +192,7 @@ impl GCode {
             Linear => "linear interpolation",
             ArcClockwise => "circular/helical interpolation CW",
             ArcCounterClockwise => "circular/helical interpolation CCW",
+            Thread => "thread cutting",
             Dwell => "dwell",
             Skip => "skip function",
             ExactStopOnce => "exact stop, one block",
@@ -262,7 +265,7 @@ impl GCode {
     pub fn group(self) -> Group {
         use GCode::*;
         match self {
-            Rapid | Linear | ArcClockwise | ArcCounterClockwise => Group::Motion,
+            Rapid | Linear | ArcClockwise | ArcCounterClockwise | Thread => Group::Motion,
             PlaneXy | PlaneZx | PlaneYz => Group::Plane,
             Absolute | Incremental => Group::Distance,
             InverseTimeFeed | FeedPerMinute | FeedPerRevolution => Group::FeedMode,
@@ -403,6 +406,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         290 => ReturnFromReference,
         300 => NthReferenceReturn,
         310 => Skip,
+        330 => Thread,
         400 => CutterCompCancel,
         410 => CutterCompLeft,
         420 => CutterCompRight,
@@ -480,7 +484,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (220, None, "stored stroke check on"),
     (230, None, "stored stroke check off"),
     (270, None, "reference position return check"),
-    (330, None, "thread cutting"),
     (370, None, "automatic tool length measurement"),
     (371, None, "automatic tool length measurement II"),
     (434, None, "tool centre point control"),

@@ -297,6 +297,7 @@ fn motion_code(mode: MotionMode) -> f64 {
         MotionMode::Linear => 10.0,
         MotionMode::Arc(ArcDirection::Clockwise) => 20.0,
         MotionMode::Arc(ArcDirection::CounterClockwise) => 30.0,
+        MotionMode::Thread => 330.0,
     }
 }
 
