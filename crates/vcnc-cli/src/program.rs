@@ -10,6 +10,7 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
+use vcnc::checks::TravelLimits;
 use vcnc::interp::{DirectoryLibrary, LoadedFiles, PersistentVariables};
 use vcnc::syntax::source::BackgroundParser;
 use vcnc::syntax::{detect_dialect, Dialect};
@@ -82,7 +83,8 @@ pub(crate) fn open(
     if let Some(state) = &state {
         interpreter = interpreter.with_persistent_variables(&state.load()?);
     }
-    Ok((Interpreted::spawn(interpreter, state), files))
+    let travel = TravelLimits::new((), machine);
+    Ok((Interpreted::spawn(interpreter, state, travel), files))
 }
 
 /// The machine state file: the persistent macro variables between runs.
@@ -181,7 +183,11 @@ const POOL: usize = 4;
 const SAVE_INTERVAL: Duration = Duration::from_millis(500);
 
 impl Interpreted {
-    fn spawn(mut interpreter: FileInterpreter, state: Option<StateFile>) -> Interpreted {
+    fn spawn(
+        mut interpreter: FileInterpreter,
+        state: Option<StateFile>,
+        mut travel: TravelLimits<()>,
+    ) -> Interpreted {
         let (sender, batches) = sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
         let (recycle, recycled) = sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
         for _ in 0..POOL {
@@ -196,7 +202,9 @@ impl Interpreted {
             let mut spare = None;
             while let Some(mut batch) = spare.take().or_else(|| recycled.recv().ok()) {
                 batch.clear();
+                // The travel check cuts the stream at a move beyond the machine's travel.
                 let more = interpreter.next_batch(&mut batch, BATCH);
+                let more = travel.check_batch(&mut batch) && more;
                 counter.store(interpreter.blocks_executed(), Ordering::Release);
                 if saver.due() {
                     saver.save(&interpreter);
@@ -330,7 +338,7 @@ mod tests {
             machine.profile.syntax(),
         );
         let interpreter = Interpreter::from_blocks(blocks, FileId(0), &machine, Options::default());
-        let mut stream = Interpreted::spawn(interpreter, None);
+        let mut stream = Interpreted::spawn(interpreter, None, TravelLimits::new((), &machine));
         assert!(matches!(stream.next(), Some(Ok(_))));
         // Time for the thread to fill the pool and block.
         std::thread::sleep(Duration::from_millis(300));

@@ -318,3 +318,24 @@ fn the_interrupt_option_names_the_block_the_signal_comes_in() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+#[test]
+fn a_move_beyond_the_machine_travel_is_an_overtravel_alarm() {
+    // The default machine's X goes from -1000 to 1000 mm.
+    let program = temp_program("overtravel.nc", "G90 G00 X500.\nG01 X1200. F1000.\nM30\n");
+    let output = vcnc(&["check", "--format", "json", &program]);
+    assert_eq!(output.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(text.contains("V073"), "{text}");
+    assert!(
+        text.contains("\"line\": 2") || text.contains("\"line\":2"),
+        "{text}"
+    );
+    let trace = vcnc(&["trace", &program]);
+    let records = String::from_utf8_lossy(&trace.stdout);
+    assert_eq!(
+        records.lines().count(),
+        1,
+        "only the move inside the travel: {records}"
+    );
+}

@@ -105,6 +105,9 @@ pub enum AlarmCode {
     /// (Syntec COR-107), or switched on in exact stop or tapping mode, G61/G63 (Syntec COR-106),
     /// or high-speed mode with inverse time feed, G93 (spec 1.8, restriction 14).
     SmoothingCommand,
+    /// A move that would take an axis beyond the machine's travel (the machine file's `min` and
+    /// `max`): the control's stored stroke limit 1 (FANUC OT0500/OT0501).
+    Overtravel,
     /// A macro statement or expression that cannot be read: an unclosed bracket, `IF` without
     /// GOTO or THEN, `#` without a number. FANUC alarms PS0114/PS0118-like "format error".
     MacroSyntax,
@@ -171,6 +174,7 @@ impl AlarmCode {
             CycleData => "cycle_data",
             CircleCutting => "circle_cutting",
             SmoothingCommand => "smoothing_command",
+            Overtravel => "overtravel",
             MacroSyntax => "macro_syntax",
             MacroArithmetic => "macro_arithmetic",
             BadVariable => "bad_variable",
@@ -218,6 +222,7 @@ impl AlarmCode {
             CycleData => "V070",
             CircleCutting => "V071",
             SmoothingCommand => "V072",
+            Overtravel => "V073",
             MacroSyntax => "V080",
             MacroArithmetic => "V081",
             BadVariable => "V082",
@@ -263,6 +268,7 @@ impl AlarmCode {
         AlarmCode::CycleData,
         AlarmCode::CircleCutting,
         AlarmCode::SmoothingCommand,
+        AlarmCode::Overtravel,
         AlarmCode::MacroSyntax,
         AlarmCode::MacroArithmetic,
         AlarmCode::BadVariable,

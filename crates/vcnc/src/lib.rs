@@ -27,6 +27,7 @@
 #![warn(missing_docs)]
 
 pub mod alarm;
+pub mod checks;
 pub mod interp;
 pub mod machine;
 pub mod motion;

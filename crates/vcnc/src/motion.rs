@@ -370,3 +370,42 @@ pub fn helix_length(motion: &Move, center: &MachinePos, plane: Plane, sweep: f64
     let axial = motion.to.0[n] - motion.from.0[n];
     planar.hypot(axial)
 }
+
+/// Calls `visit` with each point where an arc reaches its extremes along the plane's axes (0,
+/// 90, 180, 270 degrees) that lies inside its sweep. The normal axis is taken at the start
+/// (helix ends are added by the caller). A callback, not a list: the summary and the travel
+/// check run once per segment of the stream and must not allocate.
+pub(crate) fn for_arc_extreme_points(
+    motion: &Move,
+    center: [f64; 3],
+    direction: ArcDirection,
+    plane: Plane,
+    sweep: f64,
+    mut visit: impl FnMut([f64; 3]),
+) {
+    let (a, b, _) = plane.axes();
+    let start = motion.from.xyz();
+    let radius = (start[a] - center[a]).hypot(start[b] - center[b]);
+    let start_angle = (start[b] - center[b]).atan2(start[a] - center[a]);
+    // The four axis directions as (angle, cos, sin), exact.
+    let quadrants = [
+        (0.0, 1.0, 0.0),
+        (1.0, 0.0, 1.0),
+        (2.0, -1.0, 0.0),
+        (3.0, 0.0, -1.0),
+    ];
+    for (quadrant, cos, sin) in quadrants {
+        let angle = quadrant * std::f64::consts::FRAC_PI_2;
+        let mut delta = match direction {
+            ArcDirection::CounterClockwise => angle - start_angle,
+            ArcDirection::Clockwise => start_angle - angle,
+        };
+        delta = delta.rem_euclid(std::f64::consts::TAU);
+        if delta <= sweep {
+            let mut p = start;
+            p[a] = center[a] + radius * cos;
+            p[b] = center[b] + radius * sin;
+            visit(p);
+        }
+    }
+}

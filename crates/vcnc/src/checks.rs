@@ -1,0 +1,210 @@
+//! Checks over the motion stream: what the control watches while the axes move, downstream of
+//! the interpreter (DESIGN: consumers).
+//!
+//! [`TravelLimits`] is the control's stored stroke limit 1: no axis may go beyond the machine's
+//! travel, the `min` and `max` of each axis in the machine file, in machine coordinates. A
+//! line or a rapid stays inside if its end does (a straight move between two points inside a
+//! box stays inside it; a per-axis rapid moves each axis between its two ends too); an arc
+//! also through its extremes in the plane. The first move that would leave the travel becomes
+//! an [`AlarmCode::Overtravel`] alarm at its block and the stream ends there: the control stops
+//! the axes at the limit (FANUC OT0500/OT0501). Checking before the move, vcnc leaves the
+//! move out: the position stays at the block's start.
+
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::{Axis, Machine, AXES};
+use crate::motion::{arc_sweep, for_arc_extreme_points, Segment, SegmentKind};
+
+/// Slack for rounding, mm: a move ending on its limit is inside.
+const SLACK: f64 = 1e-6;
+
+/// The travel check over a stream of segments (an iterator adapter; see the module doc).
+pub struct TravelLimits<I> {
+    source: I,
+    limits: Limits,
+    stopped: bool,
+}
+
+/// Each axis's travel, `None` for an axis the machine does not have.
+#[derive(Clone, Copy, Debug)]
+struct Limits([Option<(f64, f64)>; AXES]);
+
+impl<I> TravelLimits<I> {
+    /// Checks `source` against the travel of `machine`'s axes.
+    pub fn new(source: I, machine: &Machine) -> TravelLimits<I> {
+        TravelLimits {
+            source,
+            limits: Limits(std::array::from_fn(|i| {
+                machine.axes[i].as_ref().map(|a| (a.min, a.max))
+            })),
+            stopped: false,
+        }
+    }
+
+    /// The stream being checked.
+    pub fn source(&self) -> &I {
+        &self.source
+    }
+
+    /// Checks a batch of the stream in place (for consumers that take the interpreter's
+    /// batches): the first segment that leaves the travel is replaced by its alarm and the
+    /// rest of the batch dropped. Returns false once the stream has stopped.
+    pub fn check_batch(&mut self, batch: &mut Vec<Result<Segment, Alarm>>) -> bool {
+        if self.stopped {
+            batch.clear();
+            return false;
+        }
+        let failed = batch.iter().enumerate().find_map(|(i, item)| match item {
+            Ok(segment) => self.limits.check(segment).map(|alarm| (i, alarm)),
+            Err(_) => None,
+        });
+        if let Some((at, alarm)) = failed {
+            batch.truncate(at);
+            batch.push(Err(alarm));
+            self.stopped = true;
+        }
+        !self.stopped
+    }
+}
+
+impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for TravelLimits<I> {
+    type Item = Result<Segment, Alarm>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.stopped {
+            return None;
+        }
+        let item = self.source.next()?;
+        if let Ok(segment) = &item {
+            if let Some(alarm) = self.limits.check(segment) {
+                self.stopped = true;
+                return Some(Err(alarm));
+            }
+        }
+        Some(item)
+    }
+}
+
+impl Limits {
+    /// The overtravel alarm of `segment`, if it leaves the travel.
+    fn check(&self, segment: &Segment) -> Option<Alarm> {
+        let motion = segment.motion()?;
+        if let Some(alarm) = self.point(segment, &motion.to.0) {
+            return Some(alarm);
+        }
+        if let SegmentKind::Arc {
+            center,
+            direction,
+            plane,
+            extra_turns,
+            ..
+        } = &segment.kind
+        {
+            let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
+            let mut found = None;
+            for_arc_extreme_points(motion, center.xyz(), *direction, *plane, sweep, |p| {
+                if found.is_none() {
+                    let mut point = motion.to.0;
+                    point[..3].copy_from_slice(&p);
+                    found = self.point(segment, &point);
+                }
+            });
+            return found;
+        }
+        None
+    }
+
+    /// The alarm for a point beyond the travel of one of its axes.
+    fn point(&self, segment: &Segment, point: &[f64; AXES]) -> Option<Alarm> {
+        for (i, limits) in self.0.iter().enumerate() {
+            let Some((min, max)) = *limits else { continue };
+            let value = point[i];
+            if value >= min - SLACK && value <= max + SLACK {
+                continue;
+            }
+            let (side, limit) = if value > max { ("+", max) } else { ("-", min) };
+            let letter = Axis::ALL[i].letter() as char;
+            return Some(
+                Alarm::error(
+                    AlarmCode::Overtravel,
+                    segment.span,
+                    format!(
+                        "{side}{letter} overtravel: the move takes {letter} to {value:.3}, \
+                         beyond the machine's travel limit {limit:.3} (machine coordinates)"
+                    ),
+                )
+                .with_help(format!(
+                    "the machine file gives the travel ([axes.{}] min and max); FANUC stops \
+                     with OT0500/OT0501 (stored stroke limit 1)",
+                    letter.to_ascii_lowercase()
+                )),
+            );
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{interpret_str, Options};
+
+    fn checked(program: &str) -> Vec<Result<Segment, Alarm>> {
+        let machine = Machine::default();
+        TravelLimits::new(
+            interpret_str(program, &machine, Options::default()),
+            &machine,
+        )
+        .collect()
+    }
+
+    #[test]
+    fn a_move_beyond_the_travel_stops_the_stream_at_its_block() {
+        // The default machine: X Y Z from -1000 to 1000.
+        let items = checked("G90 G00 X900.\nG01 X1000. F1000.\nX1000.5\nX0\nM30\n");
+        assert_eq!(items.len(), 3, "{items:?}");
+        assert!(items[1].is_ok(), "a move that ends on the limit is inside");
+        let alarm = items[2].as_ref().unwrap_err();
+        assert_eq!(alarm.code, AlarmCode::Overtravel);
+        assert_eq!(alarm.span.unwrap().line, 3);
+        assert!(
+            alarm.message.starts_with("+X overtravel"),
+            "{}",
+            alarm.message
+        );
+    }
+
+    #[test]
+    fn an_arc_is_checked_through_its_extremes() {
+        // A half circle of radius 5 about X900 Y-5 ends and stays inside; one of radius 20
+        // about X990 Y0, clockwise from the top, passes X1010 on its way to the bottom.
+        let inside = checked("G90 G00 X900.\nG02 X900. Y-10. J-5. F500.\nM30\n");
+        assert!(inside.iter().all(Result::is_ok), "{inside:?}");
+        let bulging = checked("G90 G00 X990. Y20.\nG02 X990. Y-20. J-20. F500.\nM30\n");
+        let alarm = bulging.last().unwrap().as_ref().unwrap_err();
+        assert_eq!(alarm.code, AlarmCode::Overtravel);
+        assert_eq!(alarm.span.unwrap().line, 2);
+    }
+
+    #[test]
+    fn a_batch_is_cut_at_the_first_move_beyond_the_travel() {
+        let machine = Machine::default();
+        let mut batch: Vec<_> = interpret_str(
+            "G90 G00 Z-999.\nZ-1001.\nZ0\nM30\n",
+            &machine,
+            Options::default(),
+        )
+        .collect();
+        let mut check = TravelLimits::new((), &machine);
+        assert!(!check.check_batch(&mut batch));
+        assert_eq!(batch.len(), 2);
+        assert!(batch[0].is_ok());
+        assert!(batch[1]
+            .as_ref()
+            .unwrap_err()
+            .message
+            .starts_with("-Z overtravel"));
+        let mut more = vec![Ok(batch[0].clone().unwrap())];
+        assert!(!check.check_batch(&mut more));
+        assert!(more.is_empty(), "nothing after the stop");
+    }
+}
