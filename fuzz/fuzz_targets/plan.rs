@@ -1,6 +1,7 @@
-//! Fuzz target: arbitrary bytes through the interpreter and the planner, on the FANUC and
-//! Syntec profiles of the default machine (S-curve profiles) and of the same machine with
-//! LinuxCNC's habits (trapezoids, blending rules).
+//! Fuzz target: arbitrary bytes through the interpreter, the travel check and the planner (as
+//! the command line runs them), on the FANUC and Syntec profiles of the default machine
+//! (S-curve profiles) and of the same machine with LinuxCNC's habits (trapezoids, blending
+//! rules).
 //!
 //! Properties (a broken one is a crash, and libFuzzer keeps the input):
 //! - no panic, and the run ends (the interpreter's own bounds hold; see `interpret.rs`);
@@ -12,6 +13,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
+use vcnc::checks::TravelLimits;
 use vcnc::plan::{PlanOptions, Planner, PlannerConfig, PlannerHabits};
 use vcnc::{interpret_bytes, Machine, Options, ProfileName};
 
@@ -42,7 +44,7 @@ fuzz_target!(|data: &[u8]| {
     for machine in machines() {
         let mut options = Options::default();
         options.limits.jumps = JUMPS;
-        let stream = interpret_bytes(data, machine, options);
+        let stream = TravelLimits::new(interpret_bytes(data, machine, options), machine);
         let mut clock = 0.0_f64;
         for item in Planner::new(stream, machine, PlanOptions::default()).take(MAX_ITEMS) {
             let Ok(timed) = item else { continue };
