@@ -12,7 +12,9 @@
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, AXES};
-use crate::motion::{arc_sweep, for_arc_extreme_points, Segment, SegmentKind};
+use crate::motion::{
+    arc_sweep, for_arc_extreme_points, MachinePos, Move, Plane, Segment, SegmentKind,
+};
 
 /// Slack for rounding, mm: a move ending on its limit is inside.
 const SLACK: f64 = 1e-6;
@@ -24,18 +26,31 @@ pub struct TravelLimits<I> {
     stopped: bool,
 }
 
-/// Each axis's travel, `None` for an axis the machine does not have.
+/// Each axis's travel with the slack added, infinite for an axis the machine does not have:
+/// one comparison per axis and bound, no branch on the axes' presence in the common case.
 #[derive(Clone, Copy, Debug)]
-struct Limits([Option<(f64, f64)>; AXES]);
+struct Limits {
+    low: [f64; AXES],
+    high: [f64; AXES],
+}
 
 impl<I> TravelLimits<I> {
     /// Checks `source` against the travel of `machine`'s axes.
     pub fn new(source: I, machine: &Machine) -> TravelLimits<I> {
         TravelLimits {
             source,
-            limits: Limits(std::array::from_fn(|i| {
-                machine.axes[i].as_ref().map(|a| (a.min, a.max))
-            })),
+            limits: Limits {
+                low: std::array::from_fn(|i| {
+                    machine.axes[i]
+                        .as_ref()
+                        .map_or(f64::NEG_INFINITY, |a| a.min - SLACK)
+                }),
+                high: std::array::from_fn(|i| {
+                    machine.axes[i]
+                        .as_ref()
+                        .map_or(f64::INFINITY, |a| a.max + SLACK)
+                }),
+            },
             stopped: false,
         }
     }
@@ -86,60 +101,76 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for TravelLimits<I> {
 
 impl Limits {
     /// The overtravel alarm of `segment`, if it leaves the travel.
+    #[inline]
     fn check(&self, segment: &Segment) -> Option<Alarm> {
         let motion = segment.motion()?;
-        if let Some(alarm) = self.point(segment, &motion.to.0) {
-            return Some(alarm);
+        if !self.inside(&motion.to.0) {
+            return Some(self.alarm(segment, &motion.to.0));
         }
-        if let SegmentKind::Arc {
-            center,
-            direction,
-            plane,
-            extra_turns,
-            ..
-        } = &segment.kind
-        {
-            let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
-            let mut found = None;
-            for_arc_extreme_points(motion, center.xyz(), *direction, *plane, sweep, |p| {
-                if found.is_none() {
+        match &segment.kind {
+            SegmentKind::Arc {
+                center,
+                direction,
+                plane,
+                extra_turns,
+                ..
+            } if !self.circle_inside(motion, center, *plane) => {
+                let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
+                let mut found = None;
+                for_arc_extreme_points(motion, center.xyz(), *direction, *plane, sweep, |p| {
                     let mut point = motion.to.0;
                     point[..3].copy_from_slice(&p);
-                    found = self.point(segment, &point);
-                }
-            });
-            return found;
+                    if found.is_none() && !self.inside(&point) {
+                        found = Some(self.alarm(segment, &point));
+                    }
+                });
+                found
+            }
+            _ => None,
         }
-        None
     }
 
-    /// The alarm for a point beyond the travel of one of its axes.
-    fn point(&self, segment: &Segment, point: &[f64; AXES]) -> Option<Alarm> {
-        for (i, limits) in self.0.iter().enumerate() {
-            let Some((min, max)) = *limits else { continue };
-            let value = point[i];
-            if value >= min - SLACK && value <= max + SLACK {
-                continue;
-            }
-            let (side, limit) = if value > max { ("+", max) } else { ("-", min) };
-            let letter = Axis::ALL[i].letter() as char;
-            return Some(
-                Alarm::error(
-                    AlarmCode::Overtravel,
-                    segment.span,
-                    format!(
-                        "{side}{letter} overtravel: the move takes {letter} to {value:.3}, \
-                         beyond the machine's travel limit {limit:.3} (machine coordinates)"
-                    ),
-                )
-                .with_help(format!(
-                    "the machine file gives the travel ([axes.{}] min and max); FANUC stops \
-                     with OT0500/OT0501 (stored stroke limit 1)",
-                    letter.to_ascii_lowercase()
-                )),
-            );
-        }
-        None
+    #[inline]
+    fn inside(&self, point: &[f64; AXES]) -> bool {
+        (0..AXES).all(|i| point[i] >= self.low[i] && point[i] <= self.high[i])
+    }
+
+    /// True when the arc's whole circle lies inside the travel in its plane: then no point of
+    /// it can leave, and its extremes need no angles (most arcs).
+    fn circle_inside(&self, motion: &Move, center: &MachinePos, plane: Plane) -> bool {
+        let (a, b, _) = plane.axes();
+        let radius = (motion.from.0[a] - center.0[a]).hypot(motion.from.0[b] - center.0[b]);
+        [a, b]
+            .iter()
+            .all(|&i| center.0[i] - radius >= self.low[i] && center.0[i] + radius <= self.high[i])
+    }
+
+    /// The alarm for `point`, which lies beyond the travel of one of its axes.
+    #[cold]
+    fn alarm(&self, segment: &Segment, point: &[f64; AXES]) -> Alarm {
+        let i = (0..AXES)
+            .find(|&i| point[i] < self.low[i] || point[i] > self.high[i])
+            .unwrap_or(0);
+        let value = point[i];
+        let (side, limit) = if value > self.high[i] {
+            ("+", self.high[i] - SLACK)
+        } else {
+            ("-", self.low[i] + SLACK)
+        };
+        let letter = Axis::ALL[i].letter() as char;
+        Alarm::error(
+            AlarmCode::Overtravel,
+            segment.span,
+            format!(
+                "{side}{letter} overtravel: the move takes {letter} to {value:.3}, \
+                 beyond the machine's travel limit {limit:.3} (machine coordinates)"
+            ),
+        )
+        .with_help(format!(
+            "the machine file gives the travel ([axes.{}] min and max); FANUC stops with \
+             OT0500/OT0501 (stored stroke limit 1)",
+            letter.to_ascii_lowercase()
+        ))
     }
 }
 
