@@ -10,7 +10,7 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
-use vcnc::checks::TravelLimits;
+use vcnc::checks::TravelCheck;
 use vcnc::interp::{DirectoryLibrary, LoadedFiles, PersistentVariables};
 use vcnc::syntax::source::BackgroundParser;
 use vcnc::syntax::{detect_dialect, Dialect};
@@ -83,7 +83,7 @@ pub(crate) fn open(
     if let Some(state) = &state {
         interpreter = interpreter.with_persistent_variables(&state.load()?);
     }
-    let travel = TravelLimits::new((), machine);
+    let travel = TravelCheck::new(machine);
     Ok((Interpreted::spawn(interpreter, state, travel), files))
 }
 
@@ -186,7 +186,7 @@ impl Interpreted {
     fn spawn(
         mut interpreter: FileInterpreter,
         state: Option<StateFile>,
-        mut travel: TravelLimits<()>,
+        mut travel: TravelCheck,
     ) -> Interpreted {
         let (sender, batches) = sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
         let (recycle, recycled) = sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
@@ -338,7 +338,7 @@ mod tests {
             machine.profile.syntax(),
         );
         let interpreter = Interpreter::from_blocks(blocks, FileId(0), &machine, Options::default());
-        let mut stream = Interpreted::spawn(interpreter, None, TravelLimits::new((), &machine));
+        let mut stream = Interpreted::spawn(interpreter, None, TravelCheck::new(&machine));
         assert!(matches!(stream.next(), Some(Ok(_))));
         // Time for the thread to fill the pool and block.
         std::thread::sleep(Duration::from_millis(300));

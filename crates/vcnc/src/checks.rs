@@ -8,7 +8,8 @@
 //! also through its extremes in the plane. The first move that would leave the travel becomes
 //! an [`AlarmCode::Overtravel`] alarm at its block and the stream ends there: the control stops
 //! the axes at the limit (FANUC OT0500/OT0501). Checking before the move, vcnc leaves the
-//! move out: the position stays at the block's start.
+//! move out: the position stays at the block's start. [`TravelCheck`] is the same check for a
+//! consumer that takes the stream in batches.
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, AXES};
@@ -22,6 +23,12 @@ const SLACK: f64 = 1e-6;
 /// The travel check over a stream of segments (an iterator adapter; see the module doc).
 pub struct TravelLimits<I> {
     source: I,
+    check: TravelCheck,
+}
+
+/// The travel check itself, for a consumer that takes the stream in batches.
+#[derive(Clone, Debug)]
+pub struct TravelCheck {
     limits: Limits,
     stopped: bool,
 }
@@ -39,6 +46,38 @@ impl<I> TravelLimits<I> {
     pub fn new(source: I, machine: &Machine) -> TravelLimits<I> {
         TravelLimits {
             source,
+            check: TravelCheck::new(machine),
+        }
+    }
+
+    /// The stream being checked.
+    pub fn source(&self) -> &I {
+        &self.source
+    }
+}
+
+impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for TravelLimits<I> {
+    type Item = Result<Segment, Alarm>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.check.stopped {
+            return None;
+        }
+        let item = self.source.next()?;
+        if let Ok(segment) = &item {
+            if let Some(alarm) = self.check.limits.check(segment) {
+                self.check.stopped = true;
+                return Some(Err(alarm));
+            }
+        }
+        Some(item)
+    }
+}
+
+impl TravelCheck {
+    /// The check of `machine`'s travel.
+    pub fn new(machine: &Machine) -> TravelCheck {
+        TravelCheck {
             limits: Limits {
                 low: std::array::from_fn(|i| {
                     machine.axes[i]
@@ -55,14 +94,9 @@ impl<I> TravelLimits<I> {
         }
     }
 
-    /// The stream being checked.
-    pub fn source(&self) -> &I {
-        &self.source
-    }
-
-    /// Checks a batch of the stream in place (for consumers that take the interpreter's
-    /// batches): the first segment that leaves the travel is replaced by its alarm and the
-    /// rest of the batch dropped. Returns false once the stream has stopped.
+    /// Checks the next batch of the stream in place: the first segment that leaves the
+    /// travel is replaced by its alarm and the rest of the batch dropped. Returns false once
+    /// the stream has stopped (and empties every later batch).
     pub fn check_batch(&mut self, batch: &mut Vec<Result<Segment, Alarm>>) -> bool {
         if self.stopped {
             batch.clear();
@@ -78,24 +112,6 @@ impl<I> TravelLimits<I> {
             self.stopped = true;
         }
         !self.stopped
-    }
-}
-
-impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for TravelLimits<I> {
-    type Item = Result<Segment, Alarm>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        if self.stopped {
-            return None;
-        }
-        let item = self.source.next()?;
-        if let Ok(segment) = &item {
-            if let Some(alarm) = self.limits.check(segment) {
-                self.stopped = true;
-                return Some(Err(alarm));
-            }
-        }
-        Some(item)
     }
 }
 
@@ -225,7 +241,7 @@ mod tests {
             Options::default(),
         )
         .collect();
-        let mut check = TravelLimits::new((), &machine);
+        let mut check = TravelCheck::new(&machine);
         assert!(!check.check_batch(&mut batch));
         assert_eq!(batch.len(), 2);
         assert!(batch[0].is_ok());
