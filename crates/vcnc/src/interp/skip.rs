@@ -14,7 +14,6 @@ use super::decode::Command;
 use super::exec::Executor;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::motion::SegmentKind;
 
 /// Runs a G31 block.
 ///
@@ -32,18 +31,8 @@ pub(crate) fn g31(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
         )
         .with_help("FANUC alarm 035: skip cutting cannot be commanded in cutter compensation"));
     }
-    let target = exec.target_program(cmd);
-    if let Some(point) = super::polar::point(exec, cmd) {
-        exec.polar = Some(point);
-    }
-    let moves_z = cmd.axis(crate::machine::Axis::Z.index()).is_some();
-    let machine_target = exec.machine_target(&target, moves_z);
-    if !super::exec::same_place(&machine_target, &exec.position) {
-        let feed = exec.cutting_feed(cmd)?;
-        let mut motion = exec.move_to(machine_target, cmd)?;
-        motion.exact_stop = true;
-        out.push(cmd, SegmentKind::Line { motion, feed });
-    }
+    let target = exec.block_target(cmd, false, out)?;
+    exec.feed_to(target, cmd, true, out)?;
     exec.skip_position = exec.program_position();
     Ok(())
 }
