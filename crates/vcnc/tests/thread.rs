@@ -77,6 +77,11 @@ fn a_thread_needs_a_lead_and_no_cutter_compensation() {
             "G90 S100 M03 F100.\nG41 D1 G01 X10.\nG33 Z-10. F1.\nM30\n",
             AlarmCode::NotSupportedYet,
         ),
+        // E is threads per inch on the Mitsubishi profile only.
+        (
+            "G90 S100 M03\nG33 Z-10. E8.\nM30\n",
+            AlarmCode::NotSupportedYet,
+        ),
     ];
     for (program, code) in cases {
         let run = run(

@@ -203,8 +203,8 @@ impl Executor {
                 }
                 _ => false,
             };
-        let threading = self.modal.motion == MotionMode::Thread;
-        if let (Some(e), None, None, false) = (cmd.word(b'E'), &self.cycle, smoothing, threading) {
+        let thread_e = self.profile.thread_e_per_inch && self.modal.motion == MotionMode::Thread;
+        if let (Some(e), None, None, false) = (cmd.word(b'E'), &self.cycle, smoothing, thread_e) {
             return Err(Alarm::not_supported(
                 e.span,
                 "address E outside a tapping cycle",

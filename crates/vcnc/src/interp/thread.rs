@@ -31,7 +31,7 @@ pub(crate) fn g33(
             None,
         ));
     }
-    let lead = match cmd.word(b'E') {
+    let lead = match cmd.word(b'E').filter(|_| exec.profile.thread_e_per_inch) {
         Some(e) if e.number.value > 0.0 => 25.4 / e.number.value,
         Some(e) => {
             return Err(Alarm::error(

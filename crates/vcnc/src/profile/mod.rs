@@ -264,6 +264,10 @@ pub struct Profile {
     /// L in a G02/G03 block is the number of turns of a spiral (Syntec, spec 1.6).
     #[serde(default)]
     pub arc_l_is_spiral: bool,
+    /// E in a G33 block gives threads per inch (Mitsubishi, spec B.10); elsewhere E in G33 is
+    /// refused like any E outside a tapping cycle.
+    #[serde(default)]
+    pub thread_e_per_inch: bool,
     /// Mitsubishi's G12/G13 circle cutting exists.
     #[serde(default)]
     pub g12_g13_circle_cutting: bool,
