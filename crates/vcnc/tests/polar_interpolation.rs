@@ -441,26 +441,25 @@ fn rotation_scaling_mirror_polar_words_and_cycles_are_refused_in_the_mode() {
 }
 
 #[test]
-fn g12_1_under_rotation_scaling_mirror_polar_words_or_a_cycle_is_not_supported_yet() {
-    // The manuals do not say how the mode composes with them (docs/DEVIATIONS.md): an alarm that
-    // names the combination, at the G12.1 block, before anything moves in the mode.
-    for (before, what) in [
-        ("G68 R45.", "coordinate rotation"),
-        ("G51 P2.", "scaling or mirror image"),
-        ("G51.1 X0", "scaling or mirror image"),
-        ("G16", "polar coordinate command"),
-        ("G81 Z-1. R1. F100.", "a canned cycle"),
+fn g12_1_under_rotation_scaling_mirror_polar_words_or_a_cycle_is_refused() {
+    // The mode allows no transform or cycle (spec 1.13.2 rules 3 and 5): one left on from before
+    // G12.1 would apply to every block of the mode, so the control refuses G12.1, at its block,
+    // before anything moves in the mode, and says what to cancel.
+    for (before, what, cancel) in [
+        ("G68 R45.", "coordinate rotation", "G69"),
+        ("G51 P2.", "scaling or mirror image", "G50"),
+        ("G51.1 X0", "scaling or mirror image", "G50.1"),
+        ("G16", "polar coordinate command", "G15"),
+        ("G81 Z-1. R1. F100.", "a canned cycle", "G80"),
     ] {
         let program = format!("G0 X10. C0.\n{before}\nG12.1\nG1 X5. F100.\nM30");
         let run = run(&program, &machine(ProfileName::Fanuc));
         let alarm = run.error().unwrap_or_else(|| panic!("{before}: no alarm"));
-        assert_eq!(
-            alarm.code,
-            AlarmCode::NotSupportedYet,
-            "{before}: {alarm:?}"
-        );
+        assert_eq!(alarm.code, AlarmCode::WordNotAllowed, "{before}: {alarm:?}");
         assert_eq!(alarm.span.unwrap().line, 3, "{before}");
         assert!(alarm.message.contains(what), "{before}: {}", alarm.message);
+        let help = alarm.help.as_deref().unwrap_or_default();
+        assert!(help.contains(cancel), "{before}: {help}");
         assert!(run.segments.iter().all(|s| s.span.line < 3));
     }
 }

@@ -204,23 +204,38 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
     Ok(())
 }
 
-/// The transforms vcnc does not combine with G12.1.
+/// G12.1 while a transform or a canned cycle is in force: an alarm, as on the control. The mode
+/// allows only motion, dwell, compensation and macro calls (spec 1.13.2 rule 3) and no change of
+/// the coordinate system (rule 5); a rotation, scaling, mirror, G16 or cycle left on would apply
+/// to every block of the mode, so the control refuses G12.1 until it is cancelled.
 fn refuse_transforms(exec: &Executor, g: GWord) -> Result<(), Alarm> {
     let active = [
-        (exec.frames.rotated(), "coordinate rotation (G68, G92.1 R)"),
+        (
+            exec.frames.rotated(),
+            "coordinate rotation (G68, G92.1 R)",
+            "G69",
+        ),
         (
             exec.frames.scaling.is_some(),
             "scaling or mirror image (G51, G51.1)",
+            "G50 or G50.1",
         ),
-        (exec.polar.is_some(), "polar coordinate command (G16)"),
-        (exec.cycle.is_some(), "a canned cycle"),
+        (
+            exec.polar.is_some(),
+            "polar coordinate command (G16)",
+            "G15",
+        ),
+        (exec.cycle.is_some(), "a canned cycle", "G80"),
     ];
-    match active.iter().find(|(on, _)| *on) {
-        Some((_, what)) => Err(Alarm::not_supported(
+    match active.iter().find(|(on, ..)| *on) {
+        Some((_, what, cancel)) => Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
             g.span,
-            &format!("G12.1 while {what} is on"),
-            None,
-        )),
+            format!("G12.1 cannot be commanded while {what} is on"),
+        )
+        .with_help(format!(
+            "polar coordinate interpolation allows no transform or cycle: cancel it with {cancel} before G12.1"
+        ))),
         None => Ok(()),
     }
 }
