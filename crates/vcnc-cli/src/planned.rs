@@ -1,89 +1,224 @@
-//! The planner on a thread of its own, handing timed segments over in batches.
+//! The interpreter's batches with their timings, planned on the consumer's thread.
 //!
-//! Reading, interpreting and planning then overlap with whatever the consumer does with the
-//! timed segments (formatting a trace, adding up a summary) on the other core. A fixed pool of
-//! batch buffers goes round between the two threads: no allocation after the start, bounded
-//! memory.
+//! The planner's [`Timeline`] takes the items by reference and gives their timings back in
+//! order once the look-ahead has passed them; meanwhile the batches wait here, in the buffers
+//! the interpreter filled. A segment is never copied on its way from the interpreter to the
+//! consumer (a trace's writer, a run's summary): planning adds the arithmetic and nothing else.
+//! On two cores a thread of its own for the planner gained nothing (the interpreter's and the
+//! parser's threads keep the other core busy) and cost the copies of every segment into and out
+//! of it.
 
-use crate::program::Interpreted;
-use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
-use std::thread::JoinHandle;
-use vcnc::plan::{PlanOptions, Planner, TimedSegment};
-use vcnc::{Alarm, Machine};
+use crate::program::{Interpreted, POOL};
+use std::collections::VecDeque;
+use vcnc::plan::{PlanOptions, Timeline, Timing};
+use vcnc::{Alarm, Machine, Segment};
 
-/// What the planner thread hands over: a timed segment or an alarm.
-pub(crate) type Item = Result<TimedSegment, Alarm>;
+/// An item of the interpreter's stream.
+pub(crate) type Item = Result<Segment, Alarm>;
 
-/// Timed segments per batch. Small enough that the batches in circulation stay in the
-/// processors' caches (a timed segment is a few hundred bytes: 4096 of them were 1.5 MB a
-/// batch, read back from memory by the other core), large enough that handing them over costs
-/// nothing per segment.
-const BATCH: usize = 512;
-
-/// Batch buffers in circulation between the two threads.
-const POOL: usize = 4;
-
-/// A planner running on its own thread.
-pub(crate) struct PlannedBatches {
-    batches: Receiver<Vec<Item>>,
-    recycle: SyncSender<Vec<Item>>,
-    thread: JoinHandle<Interpreted>,
+/// A stream handed over a batch at a time, in buffers that go back to it.
+pub(crate) trait Batches {
+    /// The next batch (None at the end of the stream).
+    fn next_batch(&mut self) -> Option<Vec<Item>>;
+    /// Gives a batch's buffer back.
+    fn recycle(&self, batch: Vec<Item>);
 }
 
-impl PlannedBatches {
-    /// Starts planning `stream` for `machine`.
-    pub(crate) fn spawn(
-        stream: Interpreted,
-        machine: &Machine,
-        options: PlanOptions,
-    ) -> PlannedBatches {
-        let (sender, batches) = sync_channel::<Vec<Item>>(POOL);
-        let (recycle, recycled) = sync_channel::<Vec<Item>>(POOL);
-        for _ in 0..POOL {
-            let _ = recycle.try_send(Vec::with_capacity(BATCH));
-        }
-        let mut planner = Planner::new(stream, machine, options);
-        let thread = std::thread::spawn(move || {
-            while let Ok(mut batch) = recycled.recv() {
-                batch.clear();
-                batch.extend(planner.by_ref().take(BATCH));
-                let more = batch.len() == BATCH;
-                if sender.send(batch).is_err() || !more {
-                    break;
-                }
-            }
-            planner.into_source()
-        });
-        PlannedBatches {
-            batches,
-            recycle,
-            thread,
-        }
+impl Batches for Interpreted {
+    fn next_batch(&mut self) -> Option<Vec<Item>> {
+        Interpreted::next_batch(self)
     }
 
-    /// Gives every batch to `consume`, in order, until the stream ends or `consume` returns
-    /// false; then stops the planner and returns the interpreter's stream (to ask it how many
-    /// blocks it ran).
-    pub(crate) fn for_each(self, mut consume: impl FnMut(&[Item]) -> bool) -> Interpreted {
-        let PlannedBatches {
-            batches,
-            recycle,
-            thread,
-        } = self;
-        for batch in &batches {
-            let go_on = consume(&batch);
-            let _ = recycle.try_send(batch);
-            if !go_on {
+    fn recycle(&self, batch: Vec<Item>) {
+        Interpreted::recycle(self, batch);
+    }
+}
+
+/// A batch from the interpreter and the timings of its first items.
+struct Held {
+    items: Vec<Item>,
+    timings: Vec<Timing>,
+}
+
+impl Held {
+    fn is_complete(&self) -> bool {
+        self.timings.len() == self.items.len()
+    }
+}
+
+/// Gives `consume` every batch of `stream` with the timings of its items, in order, until the
+/// stream ends or `consume` returns false; returns the stream (to ask it how many blocks it
+/// ran).
+pub(crate) fn for_each_timed<S: Batches>(
+    mut stream: S,
+    machine: &Machine,
+    options: PlanOptions,
+    mut consume: impl FnMut(&[Item], &[Timing]) -> bool,
+) -> S {
+    let mut timeline = Timeline::new(machine, options);
+    let mut held: VecDeque<Held> = VecDeque::new();
+    let mut spare_timings: Vec<Vec<Timing>> = Vec::new();
+    // The first held batch whose timings are not all known.
+    let mut filling = 0;
+    let mut go_on = true;
+    while go_on {
+        let Some(items) = stream.next_batch() else {
+            timeline.finish();
+            deal(&mut timeline, &mut held, &mut filling);
+            break;
+        };
+        let keep_all = held.len() + 1 < POOL;
+        let first_new = match held.back_mut() {
+            // The interpreter must always have a buffer to fill: when this side would keep the
+            // last but one, the new items join the newest batch kept (tiny batches come from
+            // macro loops that rarely move; big ones finish their timings long before).
+            Some(last) if !keep_all => {
+                let first_new = last.items.len();
+                let mut items = items;
+                last.items.append(&mut items);
+                stream.recycle(items);
+                first_new
+            }
+            _ => {
+                let timings = spare_timings.pop().unwrap_or_default();
+                held.push_back(Held { items, timings });
+                0
+            }
+        };
+        let newest = held.len() - 1;
+        for index in first_new..held[newest].items.len() {
+            match &held[newest].items[index] {
+                Ok(segment) => timeline.push(segment),
+                Err(_) => timeline.push_alarm(),
+            }
+            deal(&mut timeline, &mut held, &mut filling);
+        }
+        while held.front().is_some_and(Held::is_complete) {
+            let Some(mut done) = held.pop_front() else {
+                break;
+            };
+            filling = filling.saturating_sub(1);
+            go_on = go_on && consume(&done.items, &done.timings);
+            stream.recycle(done.items);
+            done.timings.clear();
+            spare_timings.push(done.timings);
+        }
+    }
+    if go_on {
+        for done in held.drain(..) {
+            if !consume(&done.items, &done.timings) {
                 break;
             }
         }
-        // With both channel ends gone, the planner thread's next send or receive fails and it
-        // ends.
-        drop(batches);
-        drop(recycle);
-        match thread.join() {
-            Ok(stream) => stream,
-            Err(panic) => std::panic::resume_unwind(panic),
+    }
+    stream
+}
+
+/// Gives the timings the timeline has made final to the held batches, in order.
+fn deal(timeline: &mut Timeline, held: &mut VecDeque<Held>, filling: &mut usize) {
+    while let Some(timing) = timeline.next_timing() {
+        while held.get(*filling).is_some_and(Held::is_complete) {
+            *filling += 1;
         }
+        // Every timing belongs to an item pushed, and every item pushed is held.
+        if let Some(batch) = held.get_mut(*filling) {
+            batch.timings.push(timing);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+    use vcnc::plan::Planner;
+    use vcnc::{interpret_str, Options};
+
+    /// A stream in batches of a given size that counts the buffers not given back.
+    struct Fake {
+        items: std::vec::IntoIter<Item>,
+        size: usize,
+        out: Cell<usize>,
+    }
+
+    impl Batches for Fake {
+        fn next_batch(&mut self) -> Option<Vec<Item>> {
+            // The consumer asks for a batch only while the interpreter has a buffer to fill it
+            // in: with every buffer out, the interpreter would wait for one, and both for ever.
+            assert!(self.out.get() < POOL, "the consumer keeps every buffer");
+            let batch: Vec<Item> = self.items.by_ref().take(self.size).collect();
+            if batch.is_empty() {
+                return None;
+            }
+            self.out.set(self.out.get() + 1);
+            Some(batch)
+        }
+
+        fn recycle(&self, _: Vec<Item>) {
+            self.out.set(self.out.get() - 1);
+        }
+    }
+
+    fn program() -> String {
+        let mut text = String::from("G21 G90 G94 F1200\n");
+        for i in 0..1000 {
+            text.push_str(&format!("G1 X{}. Y{}.\n", i % 37, i % 23));
+            if i % 300 == 299 {
+                text.push_str("G4 P100\n");
+            }
+        }
+        text + "M30\n"
+    }
+
+    #[test]
+    fn batches_of_any_size_get_the_planners_timings_and_keep_a_buffer_free() {
+        let machine = Machine::default();
+        let text = program();
+        let expected: Vec<(Item, Timing)> = Planner::new(
+            interpret_str(&text, &machine, Options::default()),
+            &machine,
+            PlanOptions::default(),
+        )
+        .map(|item| match item {
+            Ok(timed) => (Ok(timed.segment), timed.timing()),
+            Err(alarm) => (Err(alarm), Timing::default()),
+        })
+        .collect();
+        // One item a batch (a macro loop that rarely moves) up to batches longer than the
+        // look-ahead window.
+        for size in [1, 2, 7, 100, 256, 5000] {
+            let fake = Fake {
+                items: interpret_str(&text, &machine, Options::default())
+                    .collect::<Vec<_>>()
+                    .into_iter(),
+                size,
+                out: Cell::new(0),
+            };
+            let mut got = Vec::new();
+            for_each_timed(fake, &machine, PlanOptions::default(), |items, timings| {
+                assert_eq!(items.len(), timings.len());
+                got.extend(items.iter().cloned().zip(timings.iter().copied()));
+                true
+            });
+            assert_eq!(got, expected, "batches of {size}");
+        }
+    }
+
+    #[test]
+    fn a_consumer_that_stops_gets_no_more_batches() {
+        let machine = Machine::default();
+        let fake = Fake {
+            items: interpret_str(&program(), &machine, Options::default())
+                .collect::<Vec<_>>()
+                .into_iter(),
+            size: 10,
+            out: Cell::new(0),
+        };
+        let mut calls = 0;
+        for_each_timed(fake, &machine, PlanOptions::default(), |_, _| {
+            calls += 1;
+            calls < 3
+        });
+        assert_eq!(calls, 3);
     }
 }

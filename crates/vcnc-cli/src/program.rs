@@ -176,8 +176,10 @@ pub(crate) struct Interpreted {
 /// caches (see the batches of `vcnc trace`).
 const BATCH: usize = 256;
 
-/// Batch buffers in circulation between the interpreter's thread and the consumer.
-const POOL: usize = 4;
+/// Batch buffers in circulation between the interpreter's thread and the consumer. A consumer
+/// that keeps batches (see `planned.rs`) keeps fewer than this, so that the interpreter always
+/// has one to fill.
+pub(crate) const POOL: usize = 4;
 
 /// Least time between two saves of the state file while a program runs.
 const SAVE_INTERVAL: Duration = Duration::from_millis(500);
@@ -227,6 +229,28 @@ impl Interpreted {
             blocks,
             thread: Some(thread),
         }
+    }
+
+    /// The next batch of items, whole, in the buffer the interpreter filled (None once the
+    /// stream has ended). Give the buffer back with [`Interpreted::recycle`] when done with it:
+    /// the interpreter has only [`POOL`] of them.
+    pub(crate) fn next_batch(&mut self) -> Option<Vec<Result<Segment, Alarm>>> {
+        if !self.items.is_empty() {
+            return Some(Vec::from(std::mem::take(&mut self.items)));
+        }
+        let batch = self.batches.as_ref()?.recv();
+        match batch {
+            Ok(batch) => Some(batch),
+            Err(_) => {
+                self.batches = None;
+                None
+            }
+        }
+    }
+
+    /// Gives a batch's buffer back to the interpreter.
+    pub(crate) fn recycle(&self, batch: Vec<Result<Segment, Alarm>>) {
+        let _ = self.recycle.try_send(batch);
     }
 
     /// Blocks the interpreter has run so far (all of them once the stream has ended).

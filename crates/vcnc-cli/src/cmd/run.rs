@@ -1,12 +1,13 @@
 //! `vcnc run`: run a program and print the summary a CNC programmer wants.
 
 use super::{Outcome, SetupError};
+use crate::planned::for_each_timed;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use serde_json::json;
 use std::path::PathBuf;
 use vcnc::motion::EndKind;
-use vcnc::plan::{Planner, TimeKind, TimeReport};
+use vcnc::plan::{TimeKind, TimeReport};
 use vcnc::summary::{Extents, Summary};
 use vcnc::{Alarm, SegmentKind};
 
@@ -41,24 +42,26 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let options = args.machine.options()?;
     let plan_options = args.machine.plan_options()?;
     let (stream, files) = crate::program::open(&args.program, &machine, options, &args.machine)?;
-    let mut planner = Planner::new(stream, &machine, plan_options);
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut end = None;
-    for item in planner.by_ref() {
-        match item {
-            Ok(timed) => {
-                if let SegmentKind::End { kind } = timed.segment.kind {
-                    end = Some(kind);
+    let stream = for_each_timed(stream, &machine, plan_options, |items, timings| {
+        for (item, timing) in items.iter().zip(timings) {
+            match item {
+                Ok(segment) => {
+                    if let SegmentKind::End { kind } = segment.kind {
+                        end = Some(kind);
+                    }
+                    summary.add(segment);
+                    report.add(segment, timing);
                 }
-                summary.add(&timed.segment);
-                report.add(&timed);
+                Err(alarm) => alarms.push(alarm.clone()),
             }
-            Err(alarm) => alarms.push(alarm),
         }
-    }
-    let blocks = planner.source().blocks_executed();
+        true
+    });
+    let blocks = stream.blocks_executed();
     let error = alarms.iter().find(|a| a.is_error());
     let result = match (error, end) {
         (Some(alarm), _) => format!(

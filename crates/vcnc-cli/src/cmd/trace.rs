@@ -8,14 +8,14 @@
 
 use super::{Outcome, SetupError};
 use crate::numbers::{OutBuffer, Remembered};
-use crate::planned::{Item, PlannedBatches};
+use crate::planned::{for_each_timed, Item};
 use crate::program::ProgramFiles;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
 use vcnc::motion::{EndKind, Feed, Move, SpindleState, StopKind};
-use vcnc::plan::TimedSegment;
+use vcnc::plan::Timing;
 use vcnc::{Alarm, Axis, FileId, Segment, SegmentKind};
 
 /// Output format of the trace.
@@ -70,9 +70,9 @@ fn write_trace(
     }
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut broken_pipe = false;
-    PlannedBatches::spawn(stream, &machine, plan_options).for_each(|batch| {
-        for item in batch {
-            writer.item(item, args.format, &mut alarms);
+    for_each_timed(stream, &machine, plan_options, |items, timings| {
+        for (item, timing) in items.iter().zip(timings) {
+            writer.item(item, timing, args.format, &mut alarms);
         }
         if writer.out.is_full() {
             if output.write_all(writer.out.as_bytes()).is_err() {
@@ -197,11 +197,11 @@ impl Writer {
     }
 
     /// One item of the planner's stream: a record, or an alarm kept for the diagnostics.
-    fn item(&mut self, item: &Item, format: Format, alarms: &mut Vec<Alarm>) {
+    fn item(&mut self, item: &Item, timing: &Timing, format: Format, alarms: &mut Vec<Alarm>) {
         match item {
-            Ok(timed) => match format {
-                Format::Jsonl => self.jsonl(timed),
-                Format::Csv => self.csv(timed),
+            Ok(segment) => match format {
+                Format::Jsonl => self.jsonl(segment, timing),
+                Format::Csv => self.csv(segment, timing),
             },
             Err(alarm) => alarms.push(alarm.clone()),
         }
@@ -245,8 +245,7 @@ impl Writer {
         self.out.byte(b'"');
     }
 
-    fn jsonl(&mut self, timed: &TimedSegment) {
-        let segment = &timed.segment;
+    fn jsonl(&mut self, segment: &Segment, timing: &Timing) {
         if segment.span.file != self.file {
             self.set_file(segment.span.file);
         }
@@ -259,8 +258,8 @@ impl Writer {
             self.key(key!("n"));
             self.out.unsigned(u64::from(n));
         }
-        self.number(key!("t"), timed.t);
-        self.number(key!("dt"), timed.dt);
+        self.number(key!("t"), timing.t);
+        self.number(key!("dt"), timing.dt);
         if let Some(motion) = record.motion {
             let to = motion.to.0;
             self.field(key!("x"), 0, to[0]);
@@ -334,8 +333,7 @@ impl Writer {
         });
     }
 
-    fn csv(&mut self, timed: &TimedSegment) {
-        let segment = &timed.segment;
+    fn csv(&mut self, segment: &Segment, timing: &Timing) {
         if segment.span.file != self.file {
             self.set_file(segment.span.file);
         }
@@ -350,9 +348,9 @@ impl Writer {
             self.out.unsigned(u64::from(n));
         }
         self.out.byte(b',');
-        self.out.decimal(timed.t);
+        self.out.decimal(timing.t);
         self.out.byte(b',');
-        self.out.decimal(timed.dt);
+        self.out.decimal(timing.dt);
         let axes = 3 + self.rotary.len();
         match record.motion {
             Some(motion) => {
@@ -480,7 +478,7 @@ mod tests {
         text
     }
 
-    /// The threaded pipeline (parser, interpreter and planner threads, batches between them)
+    /// The threaded pipeline (parser and interpreter threads, batches timed on the writer's)
     /// writes exactly what the library's plain iterators give in one thread.
     #[test]
     fn streamed_trace_equals_the_trace_of_the_collected_stream() {
@@ -514,7 +512,11 @@ mod tests {
             let mut collected = Vec::new();
             let mut none = Vec::new();
             for item in Planner::new(stream, &machine, PlanOptions::default()) {
-                writer.item(&item, args.format, &mut none);
+                let (item, timing) = match item {
+                    Ok(timed) => (Ok(timed.segment), timed.timing()),
+                    Err(alarm) => (Err(alarm), Timing::default()),
+                };
+                writer.item(&item, &timing, args.format, &mut none);
                 if writer.out.is_full() {
                     collected.extend_from_slice(writer.out.as_bytes());
                     writer.out.clear();

@@ -17,9 +17,8 @@
 
 use super::config::PlannerConfig;
 use super::corner::{junction, Handover};
-use super::limits::{AxisLimits, MotionLimits, Tangents};
+use super::limits::{MotionLimits, Tangents};
 use super::profile::{reachable_speed_up_to, Profile};
-use crate::alarm::Alarm;
 use crate::motion::Segment;
 use std::collections::VecDeque;
 
@@ -37,16 +36,21 @@ pub(crate) struct Planned {
     /// Planned entry and exit speeds, mm/s.
     pub(crate) entry: f64,
     pub(crate) exit: f64,
+    /// The duration of a rapid with each axis at its own rate, which the path speeds do not
+    /// time (they only make its neighbours stop).
+    pub(crate) per_axis_seconds: Option<f64>,
 }
 
-/// One item of the window.
-pub(crate) struct Slot {
-    /// Alarms are rare and large: boxed, they keep the slots small to move.
-    pub(crate) item: Result<Segment, Box<Alarm>>,
-    /// None for events, alarms and motions of zero length.
-    pub(crate) planned: Option<Planned>,
+/// One item of the window. The window holds only what timing needs: the segments themselves
+/// stay with the caller, in the same order (see [`super::Timeline`]), so that a slot is small
+/// to move and a segment is never copied for planning.
+pub(crate) enum Slot {
+    /// A motion being planned.
+    Motion(Planned),
+    /// An item whose duration is known when it enters: an event, an alarm, a motion of zero
+    /// length.
+    Fixed(f64),
 }
-
 pub(crate) struct Window {
     slots: VecDeque<Slot>,
     capacity: usize,
@@ -77,31 +81,38 @@ impl Window {
         }
         self.ready -= 1;
         let slot = self.slots.pop_front()?;
-        if let Some(planned) = &slot.planned {
+        if let Slot::Motion(planned) = &slot {
             self.start_speed = planned.exit;
         }
         Some(slot)
     }
 
-    /// Adds an alarm: it takes no time and does not interrupt the motion.
-    pub(crate) fn push_alarm(&mut self, alarm: Alarm) {
-        self.slots.push_back(Slot {
-            item: Err(Box::new(alarm)),
-            planned: None,
-        });
+    /// Adds an item that takes no time and does not interrupt the motion (an alarm).
+    pub(crate) fn push_timeless(&mut self) {
+        self.slots.push_back(Slot::Fixed(0.0));
         self.release_if_full();
     }
 
-    /// Adds a motion with its limits (None: a motion of zero length).
+    /// Adds an event that takes `seconds`: the machine comes to rest before it, so the window
+    /// is planned to a stop, and the event is final at once.
+    pub(crate) fn push_event(&mut self, seconds: f64) {
+        self.stop();
+        self.slots.push_back(Slot::Fixed(seconds));
+        self.ready += 1;
+    }
+
+    /// Adds a motion with its limits (None: a motion of zero length); `per_axis_seconds` is the
+    /// duration of a rapid with each axis at its own rate.
     pub(crate) fn push_motion(
         &mut self,
-        segment: Segment,
+        segment: &Segment,
         limits: Option<(MotionLimits, Tangents)>,
+        per_axis_seconds: Option<f64>,
         config: &PlannerConfig,
     ) {
         let planned = match (limits, segment.motion()) {
             (Some((mut limits, tangents)), Some(motion)) if limits.length > 0.0 => {
-                let handover = Handover::new(&segment, motion, &limits, tangents);
+                let handover = Handover::new(segment, motion, &limits, tangents);
                 let mut max_entry = 0.0;
                 let mut lead_in = 0.0;
                 if let Some(prev) = &self.last {
@@ -121,30 +132,28 @@ impl Window {
                     }
                 }
                 self.last = Some(handover);
-                Some(Planned {
+                Slot::Motion(Planned {
                     limits,
                     lead_in,
                     max_entry,
                     backward: f64::NAN,
                     entry: 0.0,
                     exit: 0.0,
+                    per_axis_seconds,
                 })
             }
-            _ => None,
+            _ => Slot::Fixed(0.0),
         };
-        self.slots.push_back(Slot {
-            item: Ok(segment),
-            planned,
-        });
+        self.slots.push_back(planned);
         self.release_if_full();
     }
 
     fn last_planned(&mut self) -> Option<&mut Planned> {
         // Almost always the last slot; a search only behind an alarm or a zero-length motion.
-        if self.slots.back().is_some_and(|s| s.planned.is_some()) {
-            return self.slots.back_mut().and_then(|s| s.planned.as_mut());
+        if let Some(Slot::Motion(_)) = self.slots.back() {
+            return self.slots.back_mut().and_then(Slot::planned);
         }
-        self.slots.iter_mut().rev().find_map(|s| s.planned.as_mut())
+        self.slots.iter_mut().rev().find_map(Slot::planned)
     }
 
     /// The motion comes to rest here (an event, or the end of the stream): everything in the
@@ -177,12 +186,7 @@ impl Window {
     /// at a corner that limits the speed, usually a few motions back.
     fn backward_pass(&mut self) {
         let mut next_entry = 0.0;
-        for planned in self
-            .slots
-            .iter_mut()
-            .rev()
-            .filter_map(|s| s.planned.as_mut())
-        {
+        for planned in self.slots.iter_mut().rev().filter_map(Slot::planned) {
             let limits = &planned.limits;
             let entry =
                 reachable_speed_up_to(next_entry, planned.max_entry, limits.length, limits.path);
@@ -199,7 +203,7 @@ impl Window {
     fn forward_pass(&mut self, release: usize) {
         let mut previous: Option<&mut Planned> = None;
         for (index, slot) in self.slots.iter_mut().enumerate() {
-            let Some(planned) = slot.planned.as_mut() else {
+            let Some(planned) = slot.planned() else {
                 continue;
             };
             // The first motion continues from a motion that has already left: its entry is fixed.
@@ -229,18 +233,19 @@ impl Window {
     }
 }
 
-/// The timed result of a slot's motion: its profile (None for a per-axis rapid) and duration.
-pub(crate) fn time_motion(
-    segment: &Segment,
-    planned: &Planned,
-    axes: &AxisLimits,
-) -> (Option<Profile>, f64) {
-    if let crate::motion::SegmentKind::Rapid {
-        motion,
-        per_axis: true,
-    } = &segment.kind
-    {
-        return (None, super::limits::per_axis_rapid_seconds(motion, axes));
+impl Slot {
+    fn planned(&mut self) -> Option<&mut Planned> {
+        match self {
+            Slot::Motion(planned) => Some(planned),
+            Slot::Fixed(_) => None,
+        }
+    }
+}
+
+/// The timed result of a planned motion: its profile (None for a per-axis rapid) and duration.
+pub(crate) fn time_motion(planned: &Planned) -> (Option<Profile>, f64) {
+    if let Some(seconds) = planned.per_axis_seconds {
+        return (None, seconds);
     }
     let limits = &planned.limits;
     let profile = Profile::new(

@@ -47,10 +47,11 @@ pub use report::{BlockTime, TimeKind, TimeReport, SLOWEST};
 
 use crate::alarm::Alarm;
 use crate::machine::Machine;
-use crate::motion::Segment;
+use crate::motion::{Segment, SegmentKind};
 use events::EventClock;
-use limits::{AxisLimits, MotionLimits};
-use lookahead::{time_motion, Window};
+use limits::{per_axis_rapid_seconds, AxisLimits, MotionLimits};
+use lookahead::{time_motion, Slot, Window};
+use std::collections::VecDeque;
 
 /// Choices of a planning run that are not part of the machine.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,6 +65,20 @@ impl Default for PlanOptions {
     fn default() -> PlanOptions {
         PlanOptions { feed_override: 1.0 }
     }
+}
+
+/// When one item of the stream runs: what the planner adds to it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timing {
+    /// Start time, seconds from the start of the program.
+    pub t: f64,
+    /// Duration, seconds.
+    pub dt: f64,
+    /// The path speed profile of an interpolated motion (None for events, alarms, per-axis
+    /// rapids and motions of zero length).
+    pub profile: Option<Profile>,
+    /// The feed could not be known (G95 without a spindle speed): timed at the axes' limit.
+    pub feed_unknown: bool,
 }
 
 /// A segment with its place in time.
@@ -82,13 +97,54 @@ pub struct TimedSegment {
     pub feed_unknown: bool,
 }
 
-/// The planner over a motion stream: an iterator of timed segments and the stream's alarms.
-pub struct Planner<I> {
-    source: I,
-    source_done: bool,
+impl TimedSegment {
+    /// `segment` at `timing`.
+    pub fn new(segment: Segment, timing: Timing) -> TimedSegment {
+        TimedSegment {
+            segment,
+            t: timing.t,
+            dt: timing.dt,
+            profile: timing.profile,
+            feed_unknown: timing.feed_unknown,
+        }
+    }
+
+    /// Its timing, without the segment.
+    pub fn timing(&self) -> Timing {
+        Timing {
+            t: self.t,
+            dt: self.dt,
+            profile: self.profile,
+            feed_unknown: self.feed_unknown,
+        }
+    }
+}
+
+/// The planner's core, apart from any stream: the items of a stream go in by reference, and
+/// their timings come out in the same order once they are final (a motion's when the look-ahead
+/// has passed it). The caller keeps the items meanwhile, so that planning never copies a
+/// segment; [`Planner`] is this with a queue of its own, as an iterator.
+///
+/// ```
+/// use vcnc::plan::{PlanOptions, Timeline};
+/// use vcnc::{interpret_str, Machine, Options};
+///
+/// let machine = Machine::default();
+/// let items: Vec<_> = interpret_str("G1 X100. F3000.\nM30\n", &machine, Options::default())
+///     .collect();
+/// let mut timeline = Timeline::new(&machine, PlanOptions::default());
+/// for item in &items {
+///     match item {
+///         Ok(segment) => timeline.push(segment),
+///         Err(_) => timeline.push_alarm(),
+///     }
+/// }
+/// timeline.finish();
+/// let timings: Vec<_> = std::iter::from_fn(|| timeline.next_timing()).collect();
+/// assert_eq!(timings.len(), items.len());
+/// ```
+pub struct Timeline {
     window: Window,
-    /// An event waiting until the motions before it have left.
-    pending_event: Option<Segment>,
     axes: AxisLimits,
     config: PlannerConfig,
     feed_override: f64,
@@ -96,25 +152,95 @@ pub struct Planner<I> {
     clock: f64,
 }
 
-impl<I: Iterator<Item = Result<Segment, Alarm>>> Planner<I> {
-    /// A planner for `machine` over `source`.
-    pub fn new(source: I, machine: &Machine, options: PlanOptions) -> Planner<I> {
+impl Timeline {
+    /// A timeline for `machine`.
+    pub fn new(machine: &Machine, options: PlanOptions) -> Timeline {
         let config = machine.planner.clone();
         let feed_override = if options.feed_override > 0.0 && options.feed_override.is_finite() {
             options.feed_override
         } else {
             1.0
         };
-        Planner {
-            source,
-            source_done: false,
+        Timeline {
             window: Window::new(config.look_ahead),
-            pending_event: None,
             axes: AxisLimits::new(machine, &config),
             config,
             feed_override,
             events: EventClock::default(),
             clock: 0.0,
+        }
+    }
+
+    /// The next segment of the stream.
+    pub fn push(&mut self, segment: &Segment) {
+        if segment.motion().is_some() {
+            let limits = MotionLimits::of(segment, &self.axes, &self.config, self.feed_override);
+            let per_axis_seconds = match &segment.kind {
+                SegmentKind::Rapid {
+                    motion,
+                    per_axis: true,
+                } => Some(per_axis_rapid_seconds(motion, &self.axes)),
+                _ => None,
+            };
+            self.window
+                .push_motion(segment, limits, per_axis_seconds, &self.config);
+        } else {
+            // The machine stops before an event; the end of the program too.
+            let seconds = self.events.seconds(&segment.kind, &self.config);
+            self.window.push_event(seconds);
+        }
+    }
+
+    /// The next item of the stream is an alarm: it takes no time and does not interrupt the
+    /// motion.
+    pub fn push_alarm(&mut self) {
+        self.window.push_timeless();
+    }
+
+    /// The stream has ended: the machine comes to rest after its last motion, and every timing
+    /// becomes final.
+    pub fn finish(&mut self) {
+        self.window.stop();
+    }
+
+    /// The timing of the oldest item pushed whose timing has not been taken, once it is final.
+    pub fn next_timing(&mut self) -> Option<Timing> {
+        let (dt, profile, feed_unknown) = match self.window.pop_ready()? {
+            Slot::Fixed(seconds) => (seconds, None, false),
+            Slot::Motion(planned) => {
+                let (profile, dt) = time_motion(&planned);
+                (dt, profile, planned.limits.feed_unknown)
+            }
+        };
+        let t = self.clock;
+        self.clock += dt;
+        Some(Timing {
+            t,
+            dt,
+            profile,
+            feed_unknown,
+        })
+    }
+}
+
+/// The planner over a motion stream: an iterator of timed segments and the stream's alarms.
+pub struct Planner<I> {
+    source: I,
+    source_done: bool,
+    timeline: Timeline,
+    /// The items given to the timeline whose timings are not final yet, oldest first.
+    waiting: VecDeque<Result<Segment, Alarm>>,
+}
+
+impl<I: Iterator<Item = Result<Segment, Alarm>>> Planner<I> {
+    /// A planner for `machine` over `source`.
+    pub fn new(source: I, machine: &Machine, options: PlanOptions) -> Planner<I> {
+        let timeline = Timeline::new(machine, options);
+        Planner {
+            source,
+            source_done: false,
+            waiting: VecDeque::with_capacity(timeline.config.look_ahead + 1),
+            timeline,
         }
     }
 
@@ -127,38 +253,6 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Planner<I> {
     pub fn into_source(self) -> I {
         self.source
     }
-
-    fn pull(&mut self) {
-        match self.source.next() {
-            None => {
-                self.source_done = true;
-                self.window.stop();
-            }
-            Some(Err(alarm)) => self.window.push_alarm(alarm),
-            Some(Ok(segment)) if segment.motion().is_some() => {
-                let limits =
-                    MotionLimits::of(&segment, &self.axes, &self.config, self.feed_override);
-                self.window.push_motion(segment, limits, &self.config);
-            }
-            Some(Ok(segment)) => {
-                // The machine stops before an event; the end of the program too.
-                self.window.stop();
-                self.pending_event = Some(segment);
-            }
-        }
-    }
-
-    fn timed(&mut self, segment: Segment, dt: f64, profile: Option<Profile>) -> TimedSegment {
-        let t = self.clock;
-        self.clock += dt;
-        TimedSegment {
-            segment,
-            t,
-            dt,
-            profile,
-            feed_unknown: false,
-        }
-    }
 }
 
 impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for Planner<I> {
@@ -166,27 +260,26 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for Planner<I> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if let Some(slot) = self.window.pop_ready() {
-                let segment = match slot.item {
-                    Ok(segment) => segment,
-                    Err(alarm) => return Some(Err(*alarm)),
-                };
-                let Some(planned) = slot.planned else {
-                    return Some(Ok(self.timed(segment, 0.0, None)));
-                };
-                let (profile, dt) = time_motion(&segment, &planned, &self.axes);
-                let mut timed = self.timed(segment, dt, profile);
-                timed.feed_unknown = planned.limits.feed_unknown;
-                return Some(Ok(timed));
-            }
-            if let Some(event) = self.pending_event.take() {
-                let dt = self.events.seconds(&event.kind, &self.config);
-                return Some(Ok(self.timed(event, dt, None)));
+            if let Some(timing) = self.timeline.next_timing() {
+                let item = self.waiting.pop_front()?;
+                return Some(item.map(|segment| TimedSegment::new(segment, timing)));
             }
             if self.source_done {
                 return None;
             }
-            self.pull();
+            match self.source.next() {
+                None => {
+                    self.source_done = true;
+                    self.timeline.finish();
+                }
+                Some(item) => {
+                    match &item {
+                        Ok(segment) => self.timeline.push(segment),
+                        Err(_) => self.timeline.push_alarm(),
+                    }
+                    self.waiting.push_back(item);
+                }
+            }
         }
     }
 }

@@ -5,8 +5,8 @@
 //! blocks. The segments of one block come one after another in the stream, so a block's time is
 //! complete when the next block's first segment arrives.
 
-use super::TimedSegment;
-use crate::motion::SegmentKind;
+use super::Timing;
+use crate::motion::{Segment, SegmentKind};
 use crate::source::Span;
 use std::collections::BTreeMap;
 
@@ -90,24 +90,22 @@ impl TimeReport {
         TimeReport::default()
     }
 
-    /// Adds one timed segment.
-    pub fn add(&mut self, timed: &TimedSegment) {
-        let kind = TimeKind::of(&timed.segment.kind);
-        if let SegmentKind::ToolChange { tool } = timed.segment.kind {
+    /// Adds one segment with its timing.
+    pub fn add(&mut self, segment: &Segment, timing: &Timing) {
+        let kind = TimeKind::of(&segment.kind);
+        if let SegmentKind::ToolChange { tool } = segment.kind {
             self.tool = Some(tool);
         }
-        self.total = self.total.max(timed.t + timed.dt);
-        self.by_kind[kind as usize] += timed.dt;
-        *self.by_tool.entry(self.tool).or_insert(0.0) += timed.dt;
-        let span = timed.segment.span;
+        let dt = timing.dt;
+        self.total = self.total.max(timing.t + dt);
+        self.by_kind[kind as usize] += dt;
+        *self.by_tool.entry(self.tool).or_insert(0.0) += dt;
+        let span = segment.span;
         match &mut self.current {
-            Some(block) if same_block(block.span, span) => block.seconds += timed.dt,
+            Some(block) if same_block(block.span, span) => block.seconds += dt,
             _ => {
                 self.close_block();
-                self.current = Some(BlockTime {
-                    span,
-                    seconds: timed.dt,
-                });
+                self.current = Some(BlockTime { span, seconds: dt });
             }
         }
     }
@@ -162,7 +160,8 @@ mod tests {
         let stream = interpret_str(program, &machine, Options::default());
         let mut report = TimeReport::new();
         for item in Planner::new(stream, &machine, PlanOptions::default()) {
-            report.add(&item.expect("no alarm"));
+            let timed = item.expect("no alarm");
+            report.add(&timed.segment, &timed.timing());
         }
         report
     }
