@@ -337,13 +337,20 @@ pub fn arc_sweep(
         motion.from.0[b] - center.0[b],
     );
     let end = (motion.to.0[a] - center.0[a], motion.to.0[b] - center.0[b]);
-    let angle_start = start.1.atan2(start.0);
-    let angle_end = end.1.atan2(end.0);
+    // The angle from start to end, counter-clockwise, in (-pi, pi]: one atan2 of the two
+    // vectors' cross and dot products, not the difference of two (atan2 is most of an arc's
+    // planning time).
+    let cross = start.0 * end.1 - start.1 * end.0;
+    let dot = start.0 * end.0 + start.1 * end.1;
+    let turn = cross.atan2(dot);
     let mut sweep = match direction {
-        ArcDirection::CounterClockwise => angle_end - angle_start,
-        ArcDirection::Clockwise => angle_start - angle_end,
+        ArcDirection::CounterClockwise => turn,
+        ArcDirection::Clockwise => -turn,
     };
     let tau = std::f64::consts::TAU;
+    if sweep < 0.0 {
+        sweep += tau;
+    }
     // A full circle (end on start) sweeps 2 pi, never 0.
     if sweep <= 1e-12 {
         sweep += tau;

@@ -14,6 +14,7 @@
 
 use super::config::PlannerConfig;
 use super::limits::{MotionLimits, Tangents};
+use super::{greater, lesser};
 use crate::motion::{Move, PathMode, Segment, SegmentKind};
 
 /// Turns smaller than this (radians) are tangent: no corner at all.
@@ -115,7 +116,7 @@ pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig)
     if cos_turn.is_nan() {
         return Junction::STOP;
     }
-    let cos_turn = cos_turn.clamp(-1.0, 1.0);
+    let cos_turn = greater(-1.0, lesser(1.0, cos_turn));
     let tangent = cos_turn >= TANGENT_ANGLE.cos();
     if prev.exact_stop && !(tangent && config.exact_stop_passes_tangents) {
         return Junction::CORNER_STOP;
@@ -142,15 +143,15 @@ pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig)
     } else {
         f64::INFINITY
     };
-    let shorter = prev.length.min(next.length);
+    let shorter = lesser(prev.length, next.length);
     let by_length = config.blend_length_share * shorter / tan_half;
     // The blend turns in the plane of the two moves: each axis that moves may carry the whole
     // normal acceleration somewhere on it.
-    let acceleration = prev.turning.min(next.turning);
+    let acceleration = lesser(prev.turning, next.turning);
     let normal = config.normal_acceleration_share * acceleration;
     // No larger arc than the speed of the two segments needs: it would only cut more corner.
-    let wanted = prev.cruise.min(next.cruise);
-    let radius = by_tolerance.min(by_length).min(wanted * wanted / normal);
+    let wanted = lesser(prev.cruise, next.cruise);
+    let radius = lesser(lesser(by_length, by_tolerance), wanted * wanted / normal);
     let turn = 2.0 * half_turn(tan_half);
     Junction {
         speed: (normal * radius).sqrt(),

@@ -19,6 +19,7 @@ use super::config::PlannerConfig;
 use super::corner::{junction, Handover};
 use super::limits::{MotionLimits, Tangents};
 use super::profile::{reachable_speed_up_to, Profile};
+use super::{greater, lesser};
 use crate::motion::Segment;
 use std::collections::VecDeque;
 
@@ -117,8 +118,8 @@ impl Window {
                 let mut lead_in = 0.0;
                 if let Some(prev) = &self.last {
                     let junction = junction(prev, &handover, config);
-                    max_entry = junction.speed.min(prev.cruise).min(limits.cruise);
-                    limits.length = (limits.length - junction.leg).max(0.0);
+                    max_entry = lesser(lesser(prev.cruise, junction.speed), limits.cruise);
+                    limits.length = greater(0.0, limits.length - junction.leg);
                     lead_in = junction.arc;
                     let stop_factor = if junction.corner_stop {
                         config.stop_acceleration_factor
@@ -127,7 +128,7 @@ impl Window {
                     };
                     limits.scale_acceleration(stop_factor);
                     if let Some(prev) = self.last_planned() {
-                        prev.limits.length = (prev.limits.length - junction.leg).max(0.0);
+                        prev.limits.length = greater(0.0, prev.limits.length - junction.leg);
                         prev.limits.scale_acceleration(stop_factor);
                     }
                 }

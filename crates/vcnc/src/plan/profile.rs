@@ -11,6 +11,8 @@
 //! Invariants: speeds are mm/s (or deg/s), lengths mm, times s, all finite and non-negative for
 //! finite non-negative input; nothing here panics or loops without bound on any input.
 
+use super::{greater, lesser};
+
 /// The limits along the path that shape a profile: tangential acceleration and jerk.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PathLimits {
@@ -169,7 +171,7 @@ pub(crate) fn reachable_speed_up_to(
     if ramp_distance(speed, cap, limits) <= distance {
         return cap;
     }
-    reachable_speed(speed, distance, limits).min(cap)
+    lesser(cap, reachable_speed(speed, distance, limits))
 }
 
 /// Seconds of the fastest ramp between `from` and `to` (the same as [`Ramp::duration`], without
@@ -242,11 +244,11 @@ impl Profile {
         // An axis without limits gives infinite caps; huge finite ones keep the arithmetic free
         // of inf - inf and take no measurable time.
         let limits = PathLimits {
-            acceleration: limits.acceleration.min(HUGE_ACCELERATION),
+            acceleration: lesser(HUGE_ACCELERATION, limits.acceleration),
             jerk: limits.jerk,
         };
-        let length = length.max(0.0);
-        let cruise = cruise.min(HUGE_SPEED).max(entry).max(exit);
+        let length = greater(0.0, length);
+        let cruise = greater(greater(lesser(HUGE_SPEED, cruise), entry), exit);
         // Most segments reach their cruise speed: the ramps to it settle the profile.
         let (mut up_time, mut down_time) = (
             ramp_time(entry, cruise, limits),
