@@ -3,14 +3,16 @@
 //! at 40,000 and 400,000 motion blocks, on the default machine (S-curves, corner blends).
 //!
 //! - `plan/N`: the motion stream is interpreted once, before timing, into memory; the bench times
-//!   `vcnc::plan::Planner` alone over it. The issue's target (#6): at least 5 million segments
-//!   per second on one core.
+//!   `vcnc::plan::Planner` alone over it (the iterator, which moves every segment through a queue
+//!   of its own). The issue's target (#6): at least 5 million segments per second on one core.
+//! - `timeline/N`: the same with `vcnc::plan::Timeline`, the planner's core as the command line
+//!   uses it: segments by reference, timings back in order.
 //! - `interp_plan/N`: interpreting and planning together, as `vcnc run` does; compare with the
 //!   `interp` bench for what planning adds (the issue allows 30 % on the 400,000-block program).
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::time::Duration;
-use vcnc::plan::{PlanOptions, Planner};
+use vcnc::plan::{PlanOptions, Planner, Timeline};
 use vcnc::{interpret_str, Machine, Options, Segment};
 
 #[path = "support/cam_program.rs"]
@@ -39,6 +41,44 @@ fn plan(c: &mut Criterion) {
                 b.iter(|| {
                     let stream = segments.iter().copied().map(Ok);
                     total_seconds(Planner::new(stream, &machine, PlanOptions::default()))
+                });
+            },
+        );
+    }
+    group.finish();
+}
+
+fn timeline(c: &mut Criterion) {
+    let machine = Machine::default();
+    let mut group = c.benchmark_group("timeline");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(2))
+        .measurement_time(Duration::from_secs(6));
+    for blocks in SIZES {
+        let text = cam_program::program(blocks);
+        let segments: Vec<Segment> = interpret_str(&text, &machine, Options::default())
+            .map(|item| item.expect("the benchmark program runs without alarms"))
+            .collect();
+        group.throughput(Throughput::Elements(segments.len() as u64));
+        group.bench_with_input(
+            BenchmarkId::from_parameter(blocks),
+            &segments,
+            |b, segments| {
+                b.iter(|| {
+                    let mut timeline = Timeline::new(&machine, PlanOptions::default());
+                    let mut end = 0.0;
+                    for segment in segments {
+                        timeline.push(segment);
+                        while let Some(timing) = timeline.next_timing() {
+                            end = black_box(timing.t + timing.dt);
+                        }
+                    }
+                    timeline.finish();
+                    while let Some(timing) = timeline.next_timing() {
+                        end = black_box(timing.t + timing.dt);
+                    }
+                    end
                 });
             },
         );
@@ -78,5 +118,5 @@ fn total_seconds(
     end
 }
 
-criterion_group!(benches, plan, interp_plan);
+criterion_group!(benches, plan, timeline, interp_plan);
 criterion_main!(benches);
