@@ -10,7 +10,10 @@
 //! - `interp_plan/N`: interpreting and planning together, as `vcnc run` does; compare with the
 //!   `interp` bench for what planning adds (the issue allows 30 % on the 400,000-block program).
 
-use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::measurement::WallTime;
+use criterion::{
+    black_box, criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, Throughput,
+};
 use std::time::Duration;
 use vcnc::plan::{PlanOptions, Planner, Timeline};
 use vcnc::{interpret_str, Machine, Options, Segment};
@@ -23,11 +26,7 @@ const SIZES: [usize; 2] = [40_000, 400_000];
 
 fn plan(c: &mut Criterion) {
     let machine = Machine::default();
-    let mut group = c.benchmark_group("plan");
-    group
-        .sample_size(10)
-        .warm_up_time(Duration::from_secs(2))
-        .measurement_time(Duration::from_secs(6));
+    let mut group = group(c, "plan", 6);
     for blocks in SIZES {
         let text = cam_program::program(blocks);
         let segments: Vec<Segment> = interpret_str(&text, &machine, Options::default())
@@ -50,11 +49,7 @@ fn plan(c: &mut Criterion) {
 
 fn timeline(c: &mut Criterion) {
     let machine = Machine::default();
-    let mut group = c.benchmark_group("timeline");
-    group
-        .sample_size(10)
-        .warm_up_time(Duration::from_secs(2))
-        .measurement_time(Duration::from_secs(6));
+    let mut group = group(c, "timeline", 6);
     for blocks in SIZES {
         let text = cam_program::program(blocks);
         let segments: Vec<Segment> = interpret_str(&text, &machine, Options::default())
@@ -88,11 +83,7 @@ fn timeline(c: &mut Criterion) {
 
 fn interp_plan(c: &mut Criterion) {
     let machine = Machine::default();
-    let mut group = c.benchmark_group("interp_plan");
-    group
-        .sample_size(10)
-        .warm_up_time(Duration::from_secs(2))
-        .measurement_time(Duration::from_secs(8));
+    let mut group = group(c, "interp_plan", 8);
     for blocks in SIZES {
         let text = cam_program::program(blocks);
         group.throughput(Throughput::Elements(blocks as u64));
@@ -104,6 +95,16 @@ fn interp_plan(c: &mut Criterion) {
         });
     }
     group.finish();
+}
+
+/// A group of few samples (each runs a whole program) measured for `seconds`.
+fn group<'a>(c: &'a mut Criterion, name: &str, seconds: u64) -> BenchmarkGroup<'a, WallTime> {
+    let mut group = c.benchmark_group(name);
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(2))
+        .measurement_time(Duration::from_secs(seconds));
+    group
 }
 
 /// Runs the planner to the end; the program's time, so nothing is optimised away.
