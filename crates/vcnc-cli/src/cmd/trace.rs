@@ -7,7 +7,7 @@
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
 
 use super::{Outcome, SetupError};
-use crate::numbers::{OutBuffer, Remembered};
+use crate::numbers::{FixedText, OutBuffer, PaddedText, RecordText, Remembered};
 use crate::planned::{Item, PlannedBatches};
 use crate::program::ProgramFiles;
 use crate::setup::MachineArgs;
@@ -71,9 +71,7 @@ fn write_trace(
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut broken_pipe = false;
     PlannedBatches::spawn(stream, &machine, plan_options).for_each(|batch| {
-        for item in batch {
-            writer.item(item, args.format, &mut alarms);
-        }
+        writer.batch(batch, args.format, &mut alarms);
         if writer.out.is_full() {
             if output.write_all(writer.out.as_bytes()).is_err() {
                 broken_pipe = true;
@@ -105,42 +103,47 @@ struct Writer {
     files: ProgramFiles,
     /// The file of the last record, and its name as a JSON field and as a CSV field.
     file: FileId,
-    file_json: String,
-    file_csv: String,
+    file_json: PaddedText,
+    file_csv: PaddedText,
     rotary: Vec<Axis>,
     work: bool,
 }
 
 /// The parts of a record, shared by both formats.
 struct Record<'a> {
-    /// The kind's name (CSV).
-    kind: &'static str,
-    /// The start of the kind's JSON object, up to the `line` key.
-    head: &'static [u8],
+    kind: &'static KindText,
     motion: Option<&'a Move>,
     feed: Option<f64>,
     arc: Option<([f64; 3], &'static str, &'static str)>,
 }
 
-/// A kind's name and the start of its JSON object, both written once here.
-macro_rules! kind {
-    ($kind:literal) => {
-        (
-            $kind,
-            concat!("{\"kind\":\"", $kind, "\",\"line\":").as_bytes(),
-        )
-    };
+/// How a record of one kind starts: its JSON object up to the `line` key, and its CSV field
+/// with the comma after it.
+struct KindText {
+    json: FixedText,
+    csv: FixedText,
 }
 
+/// The [`KindText`] of a kind, written once here.
+macro_rules! kind {
+    ($kind:literal) => {{
+        const TEXT: KindText = KindText {
+            json: FixedText::join(&["{\"kind\":\"", $kind, "\",\"line\":"]),
+            csv: FixedText::join(&[$kind, ","]),
+        };
+        &TEXT
+    }};
+}
+
+#[inline(always)]
 fn record(segment: &Segment) -> Record<'_> {
     let mut record = Record {
-        kind: "",
-        head: b"",
+        kind: kind!("other"),
         motion: segment.motion(),
         feed: None,
         arc: None,
     };
-    (record.kind, record.head) = match &segment.kind {
+    record.kind = match &segment.kind {
         SegmentKind::Rapid { .. } => kind!("rapid"),
         SegmentKind::Line { feed, .. } => {
             record.feed = feed_mm_per_min(feed, segment);
@@ -184,8 +187,8 @@ impl Writer {
             memory: [Remembered::default(); 7],
             files,
             file: FileId(0),
-            file_json: String::new(),
-            file_csv: String::new(),
+            file_json: PaddedText::default(),
+            file_csv: PaddedText::default(),
             rotary: [Axis::A, Axis::B, Axis::C]
                 .into_iter()
                 .filter(|a| machine.has_axis(*a))
@@ -196,14 +199,18 @@ impl Writer {
         writer
     }
 
-    /// One item of the planner's stream: a record, or an alarm kept for the diagnostics.
-    fn item(&mut self, item: &Item, format: Format, alarms: &mut Vec<Alarm>) {
-        match item {
-            Ok(timed) => match format {
-                Format::Jsonl => self.jsonl(timed),
-                Format::Csv => self.csv(timed),
-            },
-            Err(alarm) => alarms.push(alarm.clone()),
+    /// Items of the planner's stream: records, and alarms kept for the diagnostics. The format
+    /// is chosen once for the batch.
+    fn batch(&mut self, batch: &[Item], format: Format, alarms: &mut Vec<Alarm>) {
+        match format {
+            Format::Jsonl => batch.iter().for_each(|item| match item {
+                Ok(timed) => self.jsonl(timed),
+                Err(alarm) => alarms.push(alarm.clone()),
+            }),
+            Format::Csv => batch.iter().for_each(|item| match item {
+                Ok(timed) => self.csv(timed),
+                Err(alarm) => alarms.push(alarm.clone()),
+            }),
         }
     }
 
@@ -211,38 +218,12 @@ impl Writer {
     fn set_file(&mut self, file: FileId) {
         let name = self.files.path(file).display().to_string();
         self.file = file;
-        self.file_json = format!(
+        let json = format!(
             ",\"file\":{}",
             serde_json::to_string(&name).unwrap_or_else(|_| "\"\"".into())
         );
-        self.file_csv = csv_field(&name);
-    }
-
-    /// Writes a key given as its full prefix, `,"x":` (see [`key!`]); inlined, so that the
-    /// constant prefix is copied without a call.
-    #[inline(always)]
-    fn key(&mut self, key: &'static [u8]) {
-        self.out.put_in_record(key);
-    }
-
-    #[inline(always)]
-    fn number(&mut self, key: &'static [u8], value: f64) {
-        self.key(key);
-        self.out.decimal(value);
-    }
-
-    /// A number of field `slot` (0 to 5: the axes, 6: the feed), whose text is remembered.
-    #[inline(always)]
-    fn field(&mut self, key: &'static [u8], slot: usize, value: f64) {
-        self.key(key);
-        self.out.remembered(&mut self.memory[slot], value);
-    }
-
-    fn text(&mut self, key: &'static [u8], value: &str) {
-        self.key(key);
-        self.out.byte(b'"');
-        self.out.put_in_record(value.as_bytes());
-        self.out.byte(b'"');
+        self.file_json = PaddedText::new(json.as_bytes());
+        self.file_csv = PaddedText::new(csv_field(&name).as_bytes());
     }
 
     fn jsonl(&mut self, timed: &TimedSegment) {
@@ -251,81 +232,54 @@ impl Writer {
             self.set_file(segment.span.file);
         }
         let record = record(segment);
-        self.out.start_record(self.file_json.len());
-        self.out.put_in_record(record.head);
-        self.out.unsigned(u64::from(segment.span.line));
-        self.out.put_in_record(self.file_json.as_bytes());
+        let mut text = self.out.record(self.file_json.room());
+        text.fixed(&record.kind.json);
+        text.unsigned(b"", u64::from(segment.span.line));
+        text.padded(&self.file_json);
         if let Some(n) = segment.sequence {
-            self.key(key!("n"));
-            self.out.unsigned(u64::from(n));
+            text.unsigned(key!("n"), u64::from(n));
         }
-        self.number(key!("t"), timed.t);
-        self.number(key!("dt"), timed.dt);
+        text.decimal(key!("t"), timed.t);
+        text.decimal(key!("dt"), timed.dt);
         if let Some(motion) = record.motion {
             let to = motion.to.0;
-            self.field(key!("x"), 0, to[0]);
-            self.field(key!("y"), 1, to[1]);
-            self.field(key!("z"), 2, to[2]);
-            for i in 0..self.rotary.len() {
-                let axis = self.rotary[i];
+            text.remembered(key!("x"), &mut self.memory[0], to[0]);
+            text.remembered(key!("y"), &mut self.memory[1], to[1]);
+            text.remembered(key!("z"), &mut self.memory[2], to[2]);
+            for &axis in &self.rotary {
                 let key: &'static [u8] = match axis {
                     Axis::A => key!("a"),
                     Axis::B => key!("b"),
                     _ => key!("c"),
                 };
-                self.field(key, axis.index(), to[axis.index()]);
+                text.remembered(key, &mut self.memory[axis.index()], to[axis.index()]);
             }
             if let Some(f) = record.feed {
-                self.field(key!("f"), 6, f);
+                text.remembered(key!("f"), &mut self.memory[6], f);
             }
             if let Some((center, dir, plane)) = record.arc {
-                self.number(key!("cx"), center[0]);
-                self.number(key!("cy"), center[1]);
-                self.number(key!("cz"), center[2]);
-                self.text(key!("dir"), dir);
-                self.text(key!("plane"), plane);
+                text.decimal(key!("cx"), center[0]);
+                text.decimal(key!("cy"), center[1]);
+                text.decimal(key!("cz"), center[2]);
+                quoted(&mut text, key!("dir"), dir);
+                quoted(&mut text, key!("plane"), plane);
             }
             if self.work {
                 let work = motion.work_to();
-                self.number(key!("wx"), work[0]);
-                self.number(key!("wy"), work[1]);
-                self.number(key!("wz"), work[2]);
+                text.decimal(key!("wx"), work[0]);
+                text.decimal(key!("wy"), work[1]);
+                text.decimal(key!("wz"), work[2]);
             }
         }
-        self.event_fields(&segment.kind);
-        self.out.put_in_record(b"}\n");
-    }
-
-    fn event_fields(&mut self, kind: &SegmentKind) {
-        match *kind {
-            SegmentKind::Dwell { seconds } => self.number(key!("seconds"), seconds),
-            SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => {
-                self.key(key!("tool"));
-                self.out.unsigned(u64::from(tool));
-            }
-            SegmentKind::Spindle { state, speed } => {
-                self.text(key!("state"), spindle_name(state));
-                self.number(key!("speed"), speed);
-            }
-            SegmentKind::Coolant { on } => {
-                self.key(key!("on"));
-                self.out.put_in_record(if on { b"true" } else { b"false" });
-            }
-            SegmentKind::Stop { kind } => self.text(key!("stop"), stop_name(kind)),
-            SegmentKind::Auxiliary { code } => {
-                self.key(key!("code"));
-                self.out.unsigned(u64::from(code));
-            }
-            SegmentKind::End { kind } => self.text(key!("end"), end_name(kind)),
-            _ => {}
-        }
+        event_fields(&mut text, &segment.kind);
+        text.put(b"}\n");
     }
 
     fn csv_header(&mut self) {
         self.out.put(b"kind,line,file,n,t,dt,x,y,z");
         for i in 0..self.rotary.len() {
-            self.out.byte(b',');
-            self.out.byte(self.rotary[i].letter().to_ascii_lowercase());
+            self.out
+                .put(&[b',', self.rotary[i].letter().to_ascii_lowercase()]);
         }
         self.out.put(if self.work {
             b",f,cx,cy,cz,dir,plane,wx,wy,wz,value\n".as_slice()
@@ -340,60 +294,89 @@ impl Writer {
             self.set_file(segment.span.file);
         }
         let record = record(segment);
-        self.out.put(record.kind.as_bytes());
-        self.out.byte(b',');
-        self.out.unsigned(u64::from(segment.span.line));
-        self.out.byte(b',');
-        self.out.put(self.file_csv.as_bytes());
-        self.out.byte(b',');
+        let mut text = self.out.record(self.file_csv.room());
+        text.fixed(&record.kind.csv);
+        text.unsigned(b"", u64::from(segment.span.line));
+        text.byte(b',');
+        text.padded(&self.file_csv);
+        text.byte(b',');
         if let Some(n) = segment.sequence {
-            self.out.unsigned(u64::from(n));
+            text.unsigned(b"", u64::from(n));
         }
-        self.out.byte(b',');
-        self.out.decimal(timed.t);
-        self.out.byte(b',');
-        self.out.decimal(timed.dt);
-        let axes = 3 + self.rotary.len();
+        text.decimal(b",", timed.t);
+        text.decimal(b",", timed.dt);
         match record.motion {
             Some(motion) => {
                 for i in [0, 1, 2]
                     .into_iter()
                     .chain(self.rotary.iter().map(|a| a.index()))
                 {
-                    self.out.byte(b',');
-                    self.out.remembered(&mut self.memory[i], motion.to.0[i]);
+                    text.remembered(b",", &mut self.memory[i], motion.to.0[i]);
                 }
             }
-            None => (0..axes).for_each(|_| self.out.byte(b',')),
+            None => (0..3 + self.rotary.len()).for_each(|_| text.byte(b',')),
         }
-        self.out.byte(b',');
+        text.byte(b',');
         if let Some(f) = record.feed {
-            self.out.remembered(&mut self.memory[6], f);
+            text.remembered(b"", &mut self.memory[6], f);
         }
         match record.arc {
             Some((center, dir, plane)) => {
                 for c in center {
-                    self.out.byte(b',');
-                    self.out.decimal(c);
+                    text.decimal(b",", c);
                 }
-                self.out.put(format!(",{dir},{plane}").as_bytes());
+                text.byte(b',');
+                text.put(dir.as_bytes());
+                text.byte(b',');
+                text.put(plane.as_bytes());
             }
-            None => self.out.put(b",,,,,"),
+            None => text.put(b",,,,,"),
         }
         if self.work {
             match record.motion {
                 Some(motion) => {
                     for w in &motion.work_to()[..3] {
-                        self.out.byte(b',');
-                        self.out.decimal(*w);
+                        text.decimal(b",", *w);
                     }
                 }
-                None => self.out.put(b",,,"),
+                None => text.put(b",,,"),
             }
         }
-        self.out.byte(b',');
-        self.out.put(csv_value(&segment.kind).as_bytes());
-        self.out.byte(b'\n');
+        text.byte(b',');
+        if record.motion.is_none() {
+            text.put(csv_value(&segment.kind).as_bytes());
+        }
+        text.byte(b'\n');
+    }
+}
+
+/// Writes `key` and `value` as a JSON string (`value` needs no escapes).
+fn quoted(text: &mut RecordText<'_>, key: &'static [u8], value: &str) {
+    text.put(key);
+    text.byte(b'"');
+    text.put(value.as_bytes());
+    text.byte(b'"');
+}
+
+/// The fields of an event record.
+fn event_fields(text: &mut RecordText<'_>, kind: &SegmentKind) {
+    match *kind {
+        SegmentKind::Dwell { seconds } => text.decimal(key!("seconds"), seconds),
+        SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => {
+            text.unsigned(key!("tool"), u64::from(tool));
+        }
+        SegmentKind::Spindle { state, speed } => {
+            quoted(text, key!("state"), spindle_name(state));
+            text.decimal(key!("speed"), speed);
+        }
+        SegmentKind::Coolant { on } => {
+            text.put(key!("on"));
+            text.put(if on { b"true" } else { b"false" });
+        }
+        SegmentKind::Stop { kind } => quoted(text, key!("stop"), stop_name(kind)),
+        SegmentKind::Auxiliary { code } => text.unsigned(key!("code"), u64::from(code)),
+        SegmentKind::End { kind } => quoted(text, key!("end"), end_name(kind)),
+        _ => {}
     }
 }
 
@@ -514,7 +497,7 @@ mod tests {
             let mut collected = Vec::new();
             let mut none = Vec::new();
             for item in Planner::new(stream, &machine, PlanOptions::default()) {
-                writer.item(&item, args.format, &mut none);
+                writer.batch(std::slice::from_ref(&item), args.format, &mut none);
                 if writer.out.is_full() {
                     collected.extend_from_slice(writer.out.as_bytes());
                     writer.out.clear();
