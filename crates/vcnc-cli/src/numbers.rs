@@ -34,8 +34,9 @@ static DIGITS3: [u32; 1024] = {
 };
 
 /// Every number below 1000 as text without leading zeros in the three low bytes (first digit
-/// lowest), and its length in the high byte: a whole number below 1000 is one load and one
-/// store. Padded to 1024 entries like [`DIGITS3`].
+/// lowest), and its length in the two high bits: a whole number below 1000 is one load and one
+/// store, and a length the compiler knows is at most 3. Padded to 1024 entries like
+/// [`DIGITS3`].
 static TEXT3: [u32; 1024] = {
     let mut table = [0; 1024];
     let mut i = 0;
@@ -43,7 +44,7 @@ static TEXT3: [u32; 1024] = {
         let len = 1 + (i >= 10) as u32 + (i >= 100) as u32;
         // The digits, leading zeros dropped, and `b'0'` added to each.
         let text = (DIGITS3[i] | 0x30_3030) >> (8 * (3 - len));
-        table[i] = text | len << 24;
+        table[i] = text | len << 30;
         i += 1;
     }
     table
@@ -70,10 +71,10 @@ fn write_below_million(out: &mut [u8; 7], value: u32) -> usize {
     if value < 1000 {
         let text = TEXT3[value as usize];
         out[..4].copy_from_slice(&text.to_le_bytes());
-        (text >> 24) as usize
+        (text >> 30) as usize
     } else {
         let high = TEXT3[((value / 1000) & 1023) as usize];
-        let len = (high >> 24) as usize;
+        let len = (high >> 30) as usize;
         let low = DIGITS3[(value % 1000) as usize] | 0x30_3030;
         out[..4].copy_from_slice(&high.to_le_bytes());
         out[len..len + 4].copy_from_slice(&low.to_le_bytes());
@@ -86,27 +87,50 @@ fn write_below_million(out: &mut [u8; 7], value: u32) -> usize {
 /// formatter: no machine position comes near).
 #[inline(always)]
 fn write_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
-    let scaled = value * 1e6;
-    if scaled.is_nan() || scaled.abs() >= 9.0e15 {
+    let magnitude = (value * 1e6).abs();
+    // One comparison, false for NaN too.
+    let in_range = magnitude < 9.0e15;
+    if !in_range {
         return None;
     }
-    // Round half away from zero without a call to libm's `round` and without a branch: the
-    // same sums as `scaled + 0.5` and `scaled - 0.5` chosen by sign (-0.0 gives -0.5, which
-    // truncates to 0 as +0.5 does).
-    let micro = (scaled + 0.5f64.copysign(scaled)) as i64;
+    // Round half away from zero without a call to libm's `round`: `magnitude + 0.5` is the
+    // magnitude of the sum `scaled + 0.5` or `scaled - 0.5` that the sign would choose, as
+    // floating-point rounding is the same for both signs.
+    let micro = (magnitude + 0.5) as i64 as u64;
+    if micro == 0 {
+        // Never `-0`.
+        out[0] = b'0';
+        return Some(1);
+    }
     out[0] = b'-';
-    let sign = usize::from(micro < 0);
-    let micro = micro.unsigned_abs();
+    let sign = usize::from(value.is_sign_negative());
     let whole = micro / 1_000_000;
     let fraction = (micro % 1_000_000) as u32;
-    let len = sign + write_unsigned(&mut out[sign..], whole);
-    // The point and the decimals as one word. Its zero bytes at the high end are the trailing
-    // zeros: they are dropped, and the point with them when no decimal is left.
+    if whole >= 1_000_000 {
+        return Some(write_long_decimal(out, sign, whole, fraction));
+    }
+    let whole_text: &mut [u8; 7] = (&mut out[sign..sign + 7]).try_into().expect("seven bytes");
+    let len = sign + write_below_million(whole_text, whole as u32);
+    Some(len + write_decimals(&mut out[len..len + 8], fraction))
+}
+
+/// Writes the point and the six decimals of `fraction` (micrometres, below 10^6) as one word at
+/// the start of `out`; returns how many of its bytes are kept. The word's zero bytes at the high
+/// end are the trailing zeros: they are dropped, and the point with them when no decimal is left.
+#[inline(always)]
+fn write_decimals(out: &mut [u8], fraction: u32) -> usize {
     let decimals = digits6(fraction) << 8;
-    let kept = (71 - decimals.leading_zeros() as usize) / 8;
-    let tail: &mut [u8; 8] = (&mut out[len..len + 8]).try_into().expect("eight bytes");
-    *tail = (decimals | ZEROS << 8 | u64::from(b'.')).to_le_bytes();
-    Some(len + kept)
+    out[..8].copy_from_slice(&(decimals | ZEROS << 8 | u64::from(b'.')).to_le_bytes());
+    (71 - decimals.leading_zeros() as usize) / 8
+}
+
+/// [`write_decimal`] for values of seven to ten integer digits, far beyond any machine
+/// position: kept out of line so that the lengths on the short path stay small for the
+/// compiler, which then checks no bounds there.
+#[inline(never)]
+fn write_long_decimal(out: &mut [u8; SHORT], sign: usize, whole: u64, fraction: u32) -> usize {
+    let len = sign + write_long_unsigned(&mut out[sign..], whole);
+    len + write_decimals(&mut out[len..], fraction)
 }
 
 /// Writes the digits of `value` at the start of `out`, followed by junk up to the seventh byte
