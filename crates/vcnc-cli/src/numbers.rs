@@ -50,6 +50,18 @@ static TEXT3: [u32; 1024] = {
     table
 };
 
+/// Every number below 1000 as three digits of text, leading zeros included (first digit
+/// lowest): the low part of a larger number. Padded to 1024 entries like [`DIGITS3`].
+static ZERO_FILLED3: [u32; 1024] = {
+    let mut table = [0; 1024];
+    let mut i = 0;
+    while i < 1000 {
+        table[i] = DIGITS3[i] | 0x30_3030;
+        i += 1;
+    }
+    table
+};
+
 /// `b'0'` in the six low bytes: added to the digits of [`digits6`], it gives their text.
 const ZEROS: u64 = 0x3030_3030_3030;
 
@@ -75,7 +87,7 @@ fn write_below_million(out: &mut [u8; 7], value: u32) -> usize {
     } else {
         let high = TEXT3[((value / 1000) & 1023) as usize];
         let len = (high >> 30) as usize;
-        let low = DIGITS3[(value % 1000) as usize] | 0x30_3030;
+        let low = ZERO_FILLED3[(value % 1000) as usize];
         out[..4].copy_from_slice(&high.to_le_bytes());
         out[len..len + 4].copy_from_slice(&low.to_le_bytes());
         len + 3
@@ -88,15 +100,12 @@ fn write_below_million(out: &mut [u8; 7], value: u32) -> usize {
 #[inline(always)]
 fn write_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
     let magnitude = (value * 1e6).abs();
-    // One comparison, false for NaN too.
-    let in_range = magnitude < 9.0e15;
-    if !in_range {
-        return None;
+    // One comparison, false for NaN too. Below it, the whole part is below 10^6.
+    let short = magnitude < 999_999_999_999.0;
+    if !short {
+        return write_long_decimal(out, value);
     }
-    // Round half away from zero without a call to libm's `round`: `magnitude + 0.5` is the
-    // magnitude of the sum `scaled + 0.5` or `scaled - 0.5` that the sign would choose, as
-    // floating-point rounding is the same for both signs.
-    let micro = (magnitude + 0.5) as i64 as u64;
+    let micro = micrometres(magnitude);
     if micro == 0 {
         // Never `-0`.
         out[0] = b'0';
@@ -104,14 +113,19 @@ fn write_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
     }
     out[0] = b'-';
     let sign = usize::from(value.is_sign_negative());
-    let whole = micro / 1_000_000;
+    let whole = (micro / 1_000_000) as u32;
     let fraction = (micro % 1_000_000) as u32;
-    if whole >= 1_000_000 {
-        return Some(write_long_decimal(out, sign, whole, fraction));
-    }
     let whole_text: &mut [u8; 7] = (&mut out[sign..sign + 7]).try_into().expect("seven bytes");
-    let len = sign + write_below_million(whole_text, whole as u32);
+    let len = sign + write_below_million(whole_text, whole);
     Some(len + write_decimals(&mut out[len..len + 8], fraction))
+}
+
+/// `magnitude` (micrometres, not NaN, below 2^63) rounded half up to a whole number, without a
+/// call to libm's `round`: the magnitude of `scaled + 0.5` or `scaled - 0.5` chosen by the sign
+/// of `scaled`, as floating-point rounding is the same for both signs.
+#[inline(always)]
+fn micrometres(magnitude: f64) -> u64 {
+    (magnitude + 0.5) as i64 as u64
 }
 
 /// Writes the point and the six decimals of `fraction` (micrometres, below 10^6) as one word at
@@ -121,16 +135,31 @@ fn write_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
 fn write_decimals(out: &mut [u8], fraction: u32) -> usize {
     let decimals = digits6(fraction) << 8;
     out[..8].copy_from_slice(&(decimals | ZEROS << 8 | u64::from(b'.')).to_le_bytes());
-    (71 - decimals.leading_zeros() as usize) / 8
+    // With the point and k decimals kept, the last decimal that is not 0 (1 to 9) is in byte k:
+    // its highest bit is bit 8k to 8k + 3, or 8k + 1 to 8k + 4 in the word doubled, whose added
+    // low bit makes it never 0 (so the count needs no case for 0) and gives 0 kept for no
+    // decimal at all.
+    ((decimals << 1 | 1).ilog2() as usize).div_ceil(8)
 }
 
-/// [`write_decimal`] for values of seven to ten integer digits, far beyond any machine
-/// position: kept out of line so that the lengths on the short path stay small for the
-/// compiler, which then checks no bounds there.
+/// [`write_decimal`] for values of a million and more, far beyond any machine position: up to
+/// ten integer digits, or `None`. Out of line, so that the short path needs no check of the
+/// whole part's size, and its lengths stay small enough for the compiler to check no bounds.
+#[cold]
 #[inline(never)]
-fn write_long_decimal(out: &mut [u8; SHORT], sign: usize, whole: u64, fraction: u32) -> usize {
-    let len = sign + write_long_unsigned(&mut out[sign..], whole);
-    len + write_decimals(&mut out[len..], fraction)
+fn write_long_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
+    let magnitude = (value * 1e6).abs();
+    // False for NaN too.
+    let in_range = magnitude < 9.0e15;
+    if !in_range {
+        return None;
+    }
+    // Not 0: the magnitude is at least 999,999,999,999.
+    let micro = micrometres(magnitude);
+    out[0] = b'-';
+    let sign = usize::from(value.is_sign_negative());
+    let len = sign + write_unsigned(&mut out[sign..], micro / 1_000_000);
+    Some(len + write_decimals(&mut out[len..], (micro % 1_000_000) as u32))
 }
 
 /// Writes the digits of `value` at the start of `out`, followed by junk up to the seventh byte
@@ -254,18 +283,24 @@ impl PaddedText {
 /// record, and copying their text costs less than formatting them again.
 ///
 /// It always holds the text of the value of `bits`, so that one comparison tells whether the
-/// text can be reused: at first, and after a value that went through the general formatter,
-/// the text of 0.
+/// text can be reused: at first, and after a value whose text is longer than
+/// [`Remembered::LONGEST`] or went through the general formatter, the text of 0.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Remembered {
     bits: u64,
     len: usize,
-    text: [u8; SHORT],
+    text: [u8; Remembered::LONGEST],
+}
+
+impl Remembered {
+    /// The longest text remembered: longer ones are rare (ten significant digits), and a
+    /// shorter block is copied with fewer moves.
+    const LONGEST: usize = 16;
 }
 
 impl Default for Remembered {
     fn default() -> Remembered {
-        let mut text = [0; SHORT];
+        let mut text = [0; Remembered::LONGEST];
         text[0] = b'0';
         Remembered {
             bits: 0.0f64.to_bits(),
@@ -341,8 +376,12 @@ impl OutBuffer {
             self.grow_to(self.len + long + SLACK);
         }
         let OutBuffer { bytes, len, .. } = self;
+        let room = &mut bytes[*len..];
+        // True after the growth above; said again where the compiler sees it, so that the
+        // bounds checks of the windows at the record's start (constant offsets) fold into it.
+        assert!(room.len() >= SLACK, "a record's room");
         RecordText {
-            room: &mut bytes[*len..],
+            room,
             len: 0,
             taken: len,
         }
@@ -465,17 +504,23 @@ impl RecordText<'_> {
         let number: &mut [u8; SHORT] = (&mut window[key.len()..key.len() + SHORT])
             .try_into()
             .expect("a number's room");
+        let (short, _) = number
+            .split_first_chunk_mut::<{ Remembered::LONGEST }>()
+            .expect("room");
         let bits = value.to_bits();
         if bits == memory.bits {
-            *number = memory.text;
+            *short = memory.text;
             self.advance(key.len() + memory.len);
             return;
         }
         match write_decimal(number, value) {
             Some(len) => {
-                memory.text = *number;
-                memory.bits = bits;
-                memory.len = len;
+                *memory = if len <= Remembered::LONGEST {
+                    let text = *number.first_chunk().expect("room");
+                    Remembered { bits, len, text }
+                } else {
+                    Remembered::default()
+                };
                 self.advance(key.len() + len);
             }
             None => {
@@ -683,13 +728,18 @@ mod tests {
                 3.25,
                 1e20,
                 1e20,
+                0.0,
+                -8999999999.123456,
+                -8999999999.123456,
+                -0.0,
             ] {
                 record.remembered(b" ", &mut memory, value);
             }
         }
         assert_eq!(
             text(&out),
-            " 1.5 1.5 -2 -2 0 null null 0 3.25 100000000000000000000 100000000000000000000"
+            " 1.5 1.5 -2 -2 0 null null 0 3.25 100000000000000000000 100000000000000000000 0 \
+             -8999999999.123456 -8999999999.123456 0"
         );
     }
 

@@ -147,6 +147,24 @@ fn arc_index(direction: ArcDirection, plane: Plane) -> (usize, usize) {
     (by_direction, by_plane)
 }
 
+impl<'a> Record<'a> {
+    /// A cutting move's record, at a feed per minute.
+    #[inline(always)]
+    fn fed(
+        kind: &'static KindText,
+        motion: &'a Move,
+        feed: f64,
+        arc: Option<([f64; 3], ArcDirection, Plane)>,
+    ) -> Record<'a> {
+        Record {
+            kind,
+            motion: Some(motion),
+            feed: Some(feed),
+            arc,
+        }
+    }
+}
+
 /// How a record of one kind starts: its JSON object up to the `line` key, and its CSV field
 /// with the comma after it.
 struct KindText {
@@ -256,24 +274,36 @@ impl Writer {
                 self.set_file(segment.span.file);
             }
             // The most common record, a line at a feed per minute, has a copy of the record
-            // function of its own, in which the compiler knows which fields the record has:
-            // -35 instructions a record (callgrind).
+            // function of its own, in which the compiler knows which fields the record has
+            // instead of testing them field by field.
             match &segment.kind {
                 SegmentKind::Line {
                     motion,
                     feed: Feed::PerMinute(feed),
                     ..
-                } => self.write::<JSON>(
-                    timed,
-                    Record {
-                        kind: kind!("feed"),
-                        motion: Some(motion),
-                        feed: Some(*feed),
-                        arc: None,
-                    },
-                ),
-                _ => self.write::<JSON>(timed, record(segment)),
+                } => self.write::<JSON>(timed, Record::fed(kind!("feed"), motion, *feed, None)),
+                _ => self.write_other::<JSON>(timed),
             }
+        }
+    }
+
+    /// Every record but a line at a feed per minute, out of line: the loop above keeps its
+    /// registers for the common record. Arcs at a feed per minute have a copy of their own.
+    #[inline(never)]
+    fn write_other<const JSON: bool>(&mut self, timed: &TimedSegment) {
+        match &timed.segment.kind {
+            SegmentKind::Arc {
+                motion,
+                feed: Feed::PerMinute(feed),
+                center,
+                direction,
+                plane,
+                ..
+            } => {
+                let arc = Some((center.xyz(), *direction, *plane));
+                self.write::<JSON>(timed, Record::fed(kind!("arc"), motion, *feed, arc));
+            }
+            _ => self.write::<JSON>(timed, record(&timed.segment)),
         }
     }
 
