@@ -223,8 +223,8 @@ impl FixedText {
     /// The room a fixed text takes, and the longest text it holds.
     pub(crate) const SIZE: usize = 32;
 
-    /// The pieces of `parts` one after the other; fails to compile when they are longer than
-    /// [`FixedText::SIZE`].
+    /// The pieces of `parts` one after the other; fails to compile (or panics, made at run
+    /// time) when they are longer than [`FixedText::SIZE`].
     pub(crate) const fn join(parts: &[&str]) -> FixedText {
         let mut text = FixedText {
             bytes: [0; FixedText::SIZE],

@@ -97,7 +97,9 @@ macro_rules! key {
 
 struct Writer {
     out: OutBuffer,
-    /// The text of the last x y z a b c and f written: most records repeat some of them.
+    /// The text of the last z, a, b, c and f written, by axis index (6: f): most records repeat
+    /// some of them. x and y are not remembered: in contouring they repeat in about one record
+    /// in a hundred, and remembering costs a little on every record that does not repeat.
     memory: [Remembered; 7],
     /// The program files, for the name of a called program's file.
     files: ProgramFiles,
@@ -404,11 +406,17 @@ impl Writer {
         text.decimal(b",", timed.dt);
         match record.motion {
             Some(motion) => {
+                let to = motion.to.0;
                 for i in [0, 1, 2]
                     .into_iter()
                     .chain(self.rotary.iter().map(|a| a.index()))
                 {
-                    text.remembered(b",", &mut self.memory[i], motion.to.0[i]);
+                    // x and y are not remembered: see `memory`.
+                    if i < 2 {
+                        text.decimal(b",", to[i]);
+                    } else {
+                        text.remembered(b",", &mut self.memory[i], to[i]);
+                    }
                 }
             }
             None => (0..3 + self.rotary.len()).for_each(|_| text.byte(b',')),
