@@ -2,124 +2,329 @@
 //! `-0`, written into a buffer that flushes in large pieces.
 //!
 //! Traces of millions of segments spend most of their time here, so this avoids the general float
-//! formatter, writes digits straight into the buffer's free room (which is never shorter than
-//! [`SLACK`]: no bounds to grow in the middle of a record), and remembers the text of values that
-//! repeat from record to record (z, feed).
+//! formatter and the buffer's bookkeeping per field. A record is written through a
+//! [`RecordText`], which makes room once for the whole record and keeps its own cursor. Numbers
+//! are written in place as whole words, three digits at a time from tables: the whole part from
+//! a table of texts without leading zeros, the six decimals as one word whose trailing zeros are
+//! dropped by counting its zero bytes; no loop and no division instruction. Constant texts are
+//! copied as fixed-size blocks, and the text of values that repeat from record to record (z,
+//! feed) is remembered.
 
-/// Two decimal digits for every number below 100: formatting two digits per step halves the
-/// number of divisions.
-const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
-2021222324252627282930313233343536373839\
-4041424344454647484950515253545556575859\
-6061626364656667686970717273747576777879\
-8081828384858687888990919293949596979899";
-
-/// The longest text [`write_decimal`] writes: sign, ten integer digits, point, six decimals.
+/// The longest text [`write_decimal`] writes, with the bytes past its end that it may overwrite:
+/// sign, ten integer digits, point, six decimals, and junk up to a whole word.
 const SHORT: usize = 24;
+
+/// The longest text [`write_unsigned`] writes, with the junk after a short one.
+const UNSIGNED: usize = 20;
+
+/// The longest key a field is written with (`,"seconds":`).
+const KEY: usize = 16;
+
+/// Every number below 1000 as three digits, one per byte (values 0 to 9, not yet text), the
+/// first digit in the lowest byte: the byte order in which little-endian words are written.
+/// Padded to 1024 entries, so that an index masked to ten bits needs no bounds check.
+static DIGITS3: [u32; 1024] = {
+    let mut table = [0; 1024];
+    let mut i = 0;
+    while i < 1000 {
+        table[i] = (i / 100) as u32 | ((i / 10 % 10) as u32) << 8 | ((i % 10) as u32) << 16;
+        i += 1;
+    }
+    table
+};
+
+/// Every number below 1000 as text without leading zeros in the three low bytes (first digit
+/// lowest), and its length in the two high bits: a whole number below 1000 is one load and one
+/// store, and a length the compiler knows is at most 3. Padded to 1024 entries like
+/// [`DIGITS3`].
+static TEXT3: [u32; 1024] = {
+    let mut table = [0; 1024];
+    let mut i = 0;
+    while i < 1000 {
+        let len = 1 + (i >= 10) as u32 + (i >= 100) as u32;
+        // The digits, leading zeros dropped, and `b'0'` added to each.
+        let text = (DIGITS3[i] | 0x30_3030) >> (8 * (3 - len));
+        table[i] = text | len << 30;
+        i += 1;
+    }
+    table
+};
+
+/// Every number below 1000 as three digits of text, leading zeros included (first digit
+/// lowest): the low part of a larger number. Padded to 1024 entries like [`DIGITS3`].
+static ZERO_FILLED3: [u32; 1024] = {
+    let mut table = [0; 1024];
+    let mut i = 0;
+    while i < 1000 {
+        table[i] = DIGITS3[i] | 0x30_3030;
+        i += 1;
+    }
+    table
+};
+
+/// `b'0'` in the six low bytes: added to the digits of [`digits6`], it gives their text.
+const ZEROS: u64 = 0x3030_3030_3030;
+
+/// The six digits of `value` (below 10^6), leading zeros included, one per byte in the six low
+/// bytes of the word (first digit lowest); the two high bytes are zero.
+#[inline(always)]
+fn digits6(value: u32) -> u64 {
+    let high = value / 1000;
+    let low = value % 1000;
+    // `high` is below 1000 for every value this is given: the mask only spares a bounds check.
+    u64::from(DIGITS3[(high & 1023) as usize]) | u64::from(DIGITS3[low as usize]) << 24
+}
+
+/// Writes `value` (below 10^6) at the start of `out`, followed by junk up to the seventh byte;
+/// returns its length. Whole millimetres and seconds are mostly below 1000: one branch that
+/// is predicted field by field is cheaper than finding the length of six digits.
+#[inline(always)]
+fn write_below_million(out: &mut [u8; 7], value: u32) -> usize {
+    if value < 1000 {
+        let text = TEXT3[value as usize];
+        out[..4].copy_from_slice(&text.to_le_bytes());
+        (text >> 30) as usize
+    } else {
+        let high = TEXT3[((value / 1000) & 1023) as usize];
+        let len = (high >> 30) as usize;
+        let low = ZERO_FILLED3[(value % 1000) as usize];
+        out[..4].copy_from_slice(&high.to_le_bytes());
+        out[len..len + 4].copy_from_slice(&low.to_le_bytes());
+        len + 3
+    }
+}
 
 /// Writes `value` rounded to 1e-6 at the start of `out`; returns its length, or `None` when the
 /// value is not finite or has more than ten integer digits (those go through the general
 /// formatter: no machine position comes near).
 #[inline(always)]
 fn write_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
-    let scaled = value * 1e6;
-    if scaled.is_nan() || scaled.abs() >= 9.0e15 {
-        return None;
+    let magnitude = (value * 1e6).abs();
+    // One comparison, false for NaN too. Below it, the whole part is below 10^6.
+    let short = magnitude < 999_999_999_999.0;
+    if !short {
+        return write_long_decimal(out, value);
     }
-    // Round half away from zero without a call to libm's `round`.
-    let micro = if scaled >= 0.0 {
-        (scaled + 0.5) as i64
-    } else {
-        (scaled - 0.5) as i64
-    };
+    let micro = micrometres(magnitude);
     if micro == 0 {
+        // Never `-0`.
         out[0] = b'0';
         return Some(1);
     }
     out[0] = b'-';
-    let mut len = usize::from(micro < 0);
-    let micro = micro.unsigned_abs();
-    len += write_unsigned(&mut out[len..], micro / 1_000_000);
+    let sign = usize::from(value.is_sign_negative());
+    let whole = (micro / 1_000_000) as u32;
     let fraction = (micro % 1_000_000) as u32;
-    if fraction != 0 {
-        out[len] = b'.';
-        let pairs = [fraction / 10_000, fraction / 100 % 100, fraction % 100];
-        for (k, pair) in pairs.iter().enumerate() {
-            let i = *pair as usize * 2;
-            out[len + 1 + 2 * k] = PAIRS[i];
-            out[len + 2 + 2 * k] = PAIRS[i + 1];
-        }
-        // Trailing zeros are trimmed: keep up to the last pair that is not zero, and drop its
-        // second digit when that is a zero.
-        let kept = match pairs {
-            [_, _, last] if last != 0 => 6 - usize::from(last % 10 == 0),
-            [_, middle, _] if middle != 0 => 4 - usize::from(middle % 10 == 0),
-            [first, _, _] => 2 - usize::from(first % 10 == 0),
-        };
-        len += 1 + kept;
-    }
-    Some(len)
+    let whole_text: &mut [u8; 7] = (&mut out[sign..sign + 7]).try_into().expect("seven bytes");
+    let len = sign + write_below_million(whole_text, whole);
+    Some(len + write_decimals(&mut out[len..len + 8], fraction))
 }
 
-/// Writes the digits of `value` at the start of `out`, which must have room for them (20 at
-/// most); returns how many.
+/// `magnitude` (micrometres, not NaN, below 2^63) rounded half up to a whole number, without a
+/// call to libm's `round`: the magnitude of `scaled + 0.5` or `scaled - 0.5` chosen by the sign
+/// of `scaled`, as floating-point rounding is the same for both signs.
 #[inline(always)]
-fn write_unsigned(out: &mut [u8], mut value: u64) -> usize {
-    // Coordinates mostly have few integer digits: compare before taking the logarithm.
-    let len = match value {
-        0..=9 => 1,
-        10..=99 => 2,
-        100..=999 => 3,
-        _ => value.ilog10() as usize + 1,
-    };
-    let mut i = len;
-    while value >= 100 {
-        let pair = (value % 100) as usize * 2;
-        value /= 100;
-        i -= 2;
-        out[i] = PAIRS[pair];
-        out[i + 1] = PAIRS[pair + 1];
+fn micrometres(magnitude: f64) -> u64 {
+    (magnitude + 0.5) as i64 as u64
+}
+
+/// Writes the point and the six decimals of `fraction` (micrometres, below 10^6) as one word at
+/// the start of `out`; returns how many of its bytes are kept. The word's zero bytes at the high
+/// end are the trailing zeros: they are dropped, and the point with them when no decimal is left.
+#[inline(always)]
+fn write_decimals(out: &mut [u8], fraction: u32) -> usize {
+    let decimals = digits6(fraction) << 8;
+    out[..8].copy_from_slice(&(decimals | ZEROS << 8 | u64::from(b'.')).to_le_bytes());
+    // With the point and k decimals kept, the last decimal that is not 0 (1 to 9) is in byte k:
+    // its highest bit is bit 8k to 8k + 3, or 8k + 1 to 8k + 4 in the word doubled, whose added
+    // low bit makes it never 0 (so the count needs no case for 0) and gives 0 kept for no
+    // decimal at all.
+    ((decimals << 1 | 1).ilog2() as usize).div_ceil(8)
+}
+
+/// [`write_decimal`] for values of a million and more, far beyond any machine position: up to
+/// ten integer digits, or `None`. Out of line, so that the short path needs no check of the
+/// whole part's size, and its lengths stay small enough for the compiler to check no bounds.
+#[cold]
+#[inline(never)]
+fn write_long_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
+    let magnitude = (value * 1e6).abs();
+    // False for NaN too.
+    let in_range = magnitude < 9.0e15;
+    if !in_range {
+        return None;
     }
-    if value >= 10 {
-        let pair = value as usize * 2;
-        out[0] = PAIRS[pair];
-        out[1] = PAIRS[pair + 1];
+    // Not 0: the magnitude is at least 999,999,999,999.
+    let micro = micrometres(magnitude);
+    out[0] = b'-';
+    let sign = usize::from(value.is_sign_negative());
+    let len = sign + write_unsigned(&mut out[sign..], micro / 1_000_000);
+    Some(len + write_decimals(&mut out[len..], (micro % 1_000_000) as u32))
+}
+
+/// Writes the digits of `value` at the start of `out`, followed by junk up to the seventh byte
+/// when there are fewer; `out` must hold [`UNSIGNED`] bytes (seven for a value below 10^6).
+/// Returns how many digits.
+#[inline(always)]
+fn write_unsigned(out: &mut [u8], value: u64) -> usize {
+    if value < 1_000_000 {
+        write_below_million(
+            (&mut out[..7]).try_into().expect("seven bytes"),
+            value as u32,
+        )
     } else {
-        out[0] = b'0' + value as u8;
+        write_long_unsigned(out, value)
     }
-    len
+}
+
+/// [`write_unsigned`] for values of seven digits and more: line numbers of long programs, times
+/// past eleven days.
+#[inline(never)]
+fn write_long_unsigned(out: &mut [u8], value: u64) -> usize {
+    if value >= 1_000_000_000_000 {
+        return write_huge_unsigned(out, value);
+    }
+    let len = write_below_million(
+        (&mut out[..7]).try_into().expect("seven bytes"),
+        (value / 1_000_000) as u32,
+    );
+    let low = digits6((value % 1_000_000) as u32) | ZEROS;
+    out[len..len + 8].copy_from_slice(&low.to_le_bytes());
+    len + 6
+}
+
+/// [`write_unsigned`] for values of thirteen digits and more, which no trace has.
+#[cold]
+#[inline(never)]
+fn write_huge_unsigned(out: &mut [u8], mut value: u64) -> usize {
+    let mut digits = [0; UNSIGNED];
+    let mut start = UNSIGNED;
+    loop {
+        start -= 1;
+        digits[start] = b'0' + (value % 10) as u8;
+        value /= 10;
+        if value == 0 {
+            break;
+        }
+    }
+    out[..UNSIGNED - start].copy_from_slice(&digits[start..]);
+    UNSIGNED - start
+}
+
+/// A short constant text, padded to a fixed size so that it is copied as one block of
+/// [`FixedText::SIZE`] bytes (a few moves) instead of a call to `memcpy`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FixedText {
+    bytes: [u8; FixedText::SIZE],
+    len: usize,
+}
+
+impl FixedText {
+    /// The room a fixed text takes, and the longest text it holds.
+    pub(crate) const SIZE: usize = 32;
+
+    /// The pieces of `parts` one after the other; fails to compile (or panics, made at run
+    /// time) when they are longer than [`FixedText::SIZE`].
+    pub(crate) const fn join(parts: &[&str]) -> FixedText {
+        let mut text = FixedText {
+            bytes: [0; FixedText::SIZE],
+            len: 0,
+        };
+        let mut part = 0;
+        while part < parts.len() {
+            let bytes = parts[part].as_bytes();
+            let mut i = 0;
+            while i < bytes.len() {
+                text.bytes[text.len] = bytes[i];
+                text.len += 1;
+                i += 1;
+            }
+            part += 1;
+        }
+        text
+    }
+
+    /// The text.
+    #[cfg(test)]
+    pub(crate) fn as_bytes(&self) -> &[u8] {
+        &self.bytes[..self.len]
+    }
+}
+
+/// A text of any length (a file name), kept with zeros after it up to a multiple of
+/// [`PaddedText::BLOCK`] bytes, at least one block, so that it is copied in blocks without a
+/// call to `memcpy`: in one block when it is short.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PaddedText {
+    bytes: Vec<u8>,
+    len: usize,
+}
+
+impl PaddedText {
+    const BLOCK: usize = 32;
+
+    /// Keeps `text`.
+    pub(crate) fn new(text: &[u8]) -> PaddedText {
+        let mut bytes = text.to_vec();
+        bytes.resize(text.len().next_multiple_of(Self::BLOCK).max(Self::BLOCK), 0);
+        PaddedText {
+            bytes,
+            len: text.len(),
+        }
+    }
+
+    /// Its length with the padding: the room it takes in a record.
+    pub(crate) fn room(&self) -> usize {
+        self.bytes.len()
+    }
 }
 
 /// The text of the last value written in one field of a record: z and f repeat from record to
 /// record, and copying their text costs less than formatting them again.
+///
+/// It always holds the text of the value of `bits`, so that one comparison tells whether the
+/// text can be reused: at first, and after a value whose text is longer than
+/// [`Remembered::LONGEST`] or went through the general formatter, the text of 0.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Remembered {
     bits: u64,
-    /// 0 when nothing is remembered.
     len: usize,
-    text: [u8; SHORT],
+    text: [u8; Remembered::LONGEST],
+}
+
+impl Remembered {
+    /// The longest text remembered: longer ones are rare (ten significant digits), and a
+    /// shorter block is copied with fewer moves.
+    const LONGEST: usize = 16;
 }
 
 impl Default for Remembered {
     fn default() -> Remembered {
+        let mut text = [0; Remembered::LONGEST];
+        text[0] = b'0';
         Remembered {
-            bits: 0,
-            len: 0,
-            text: [0; SHORT],
+            bits: 0.0f64.to_bits(),
+            len: 1,
+            text,
         }
     }
 }
 
-/// Room that is always free at the end of an [`OutBuffer`] after a [`OutBuffer::put`] or
-/// [`OutBuffer::start_record`]: more than any record needs apart from its variable texts (file
-/// names), which `put` and `start_record` make room for.
-const SLACK: usize = 4096;
+/// The longest text of a number that [`write_decimal`] does not take: `-` and the 309 digits of
+/// `f64::MAX` (never an exponent).
+const GENERAL: usize = 310;
+
+/// Room that is always free at the end of an [`OutBuffer`] after a [`OutBuffer::put`], and that
+/// [`OutBuffer::record`] gives a record: more than any record needs apart from its padded texts
+/// (file names), which `record` makes room for. A record has at most 16 numbers (t, dt, six
+/// axes, f, three centre and three work coordinates), each at most [`GENERAL`] long with its key,
+/// and a few hundred bytes more.
+const SLACK: usize = 16 * (KEY + GENERAL) + 1024;
 
 /// Where a trace's text is assembled before it is written out in large pieces.
 ///
-/// After a `put`, the bytes after `len` are at least [`SLACK`] long, so numbers are written in
-/// place and remembered ones copied as one fixed-size block; a record is a few hundred bytes and
-/// starts with a `put`.
+/// After a `put`, the bytes after `len` are at least [`SLACK`] long; a record starts with
+/// [`OutBuffer::record`], which makes room for it once.
 #[derive(Debug)]
 pub(crate) struct OutBuffer {
     bytes: Vec<u8>,
@@ -154,7 +359,6 @@ impl OutBuffer {
     }
 
     /// Appends any bytes.
-    #[inline(always)]
     pub(crate) fn put(&mut self, text: &[u8]) {
         let end = self.len + text.len();
         if end + SLACK > self.bytes.len() {
@@ -164,85 +368,23 @@ impl OutBuffer {
         self.len = end;
     }
 
-    /// Makes room for a record of at most [`SLACK`] bytes plus `long` bytes of variable text:
-    /// the record's pieces are then written with the `*_in_record` methods, which do not check.
+    /// Starts a record of at most [`SLACK`] bytes plus `long` bytes of padded text: its pieces
+    /// are written into the returned room, and the buffer takes them when it is dropped.
     #[inline(always)]
-    pub(crate) fn start_record(&mut self, long: usize) {
+    pub(crate) fn record(&mut self, long: usize) -> RecordText<'_> {
         if self.len + long + SLACK > self.bytes.len() {
             self.grow_to(self.len + long + SLACK);
         }
-    }
-
-    /// Appends bytes inside a record started with [`OutBuffer::start_record`] (a slice index
-    /// panics, never writes out of bounds, if the record is longer than it said).
-    #[inline(always)]
-    pub(crate) fn put_in_record(&mut self, text: &[u8]) {
-        self.bytes[self.len..self.len + text.len()].copy_from_slice(text);
-        self.len += text.len();
-    }
-
-    /// Appends one byte.
-    #[inline(always)]
-    pub(crate) fn byte(&mut self, byte: u8) {
-        self.bytes[self.len] = byte;
-        self.len += 1;
-    }
-
-    /// The free room at the cursor where a number is written.
-    #[inline(always)]
-    fn window(&mut self) -> &mut [u8; SHORT] {
-        let window = &mut self.bytes[self.len..self.len + SHORT];
-        window.try_into().expect("the slack holds a number")
-    }
-
-    /// Appends `value` rounded to 1e-6.
-    #[inline(always)]
-    pub(crate) fn decimal(&mut self, value: f64) {
-        match write_decimal(self.window(), value) {
-            Some(len) => self.len += len,
-            None => self.general(value),
+        let OutBuffer { bytes, len, .. } = self;
+        let room = &mut bytes[*len..];
+        // True after the growth above; said again where the compiler sees it, so that the
+        // bounds checks of the windows at the record's start (constant offsets) fold into it.
+        assert!(room.len() >= SLACK, "a record's room");
+        RecordText {
+            room,
+            len: 0,
+            taken: len,
         }
-    }
-
-    /// Appends `value` rounded to 1e-6, reusing the text of `memory` when the value is the same
-    /// as last time.
-    #[inline(always)]
-    pub(crate) fn remembered(&mut self, memory: &mut Remembered, value: f64) {
-        let bits = value.to_bits();
-        if bits == memory.bits && memory.len > 0 {
-            *self.window() = memory.text;
-            self.len += memory.len;
-            return;
-        }
-        match write_decimal(self.window(), value) {
-            Some(len) => {
-                memory.text = *self.window();
-                memory.bits = bits;
-                memory.len = len;
-                self.len += len;
-            }
-            None => {
-                memory.len = 0;
-                self.general(value);
-            }
-        }
-    }
-
-    /// Values [`write_decimal`] does not take: `null` for NaN and infinities, else every digit.
-    #[cold]
-    fn general(&mut self, value: f64) {
-        if value.is_finite() {
-            self.put(format!("{value}").as_bytes());
-        } else {
-            self.put(b"null");
-        }
-    }
-
-    /// Appends an unsigned integer.
-    #[inline(always)]
-    pub(crate) fn unsigned(&mut self, value: u64) {
-        let len = write_unsigned(&mut self.bytes[self.len..self.len + 20], value);
-        self.len += len;
     }
 
     #[cold]
@@ -251,30 +393,226 @@ impl OutBuffer {
     }
 }
 
+/// The room where one record is written, with its own cursor; the record's text joins the
+/// buffer when this is dropped.
+///
+/// Every piece is written into a fixed-size window of the room, so that a field takes one
+/// bounds check (a slice index panics, never writes out of bounds, if a record were longer
+/// than [`SLACK`]), and numbers and constant texts are written as whole words, with junk after
+/// them that the next piece overwrites.
+#[derive(Debug)]
+pub(crate) struct RecordText<'a> {
+    room: &'a mut [u8],
+    /// A u32, far more than a record's length, so that the end of a window (its start plus a
+    /// constant) cannot overflow and its bounds check is one comparison.
+    len: u32,
+    /// The buffer's length, to which the record's is added at the end.
+    taken: &'a mut usize,
+}
+
+impl Drop for RecordText<'_> {
+    fn drop(&mut self) {
+        *self.taken += self.len as usize;
+    }
+}
+
+impl RecordText<'_> {
+    /// Moves the cursor past `written` bytes.
+    #[inline(always)]
+    fn advance(&mut self, written: usize) {
+        self.len += written as u32;
+    }
+
+    /// The `N` bytes of room at the cursor.
+    #[inline(always)]
+    fn window<const N: usize>(&mut self) -> &mut [u8; N] {
+        let start = self.len as usize;
+        let window = &mut self.room[start..start + N];
+        window.try_into().expect("a window of N bytes")
+    }
+
+    /// Appends any bytes (a constant is copied without a call).
+    #[inline(always)]
+    pub(crate) fn put(&mut self, text: &[u8]) {
+        let start = self.len as usize;
+        self.room[start..start + text.len()].copy_from_slice(text);
+        self.advance(text.len());
+    }
+
+    /// Appends one byte.
+    #[inline(always)]
+    pub(crate) fn byte(&mut self, byte: u8) {
+        self.window::<1>()[0] = byte;
+        self.len += 1;
+    }
+
+    /// Appends a short constant text.
+    #[inline(always)]
+    pub(crate) fn fixed(&mut self, text: &FixedText) {
+        *self.window() = text.bytes;
+        self.advance(text.len);
+    }
+
+    /// Appends a text of any length.
+    #[inline(always)]
+    pub(crate) fn padded(&mut self, text: &PaddedText) {
+        let (first, rest) = text.bytes.split_at(PaddedText::BLOCK);
+        self.window::<{ PaddedText::BLOCK }>()
+            .copy_from_slice(first);
+        if !rest.is_empty() {
+            self.padded_rest(rest);
+        }
+        self.advance(text.len);
+    }
+
+    /// The blocks of a padded text after its first.
+    #[inline(never)]
+    fn padded_rest(&mut self, rest: &[u8]) {
+        let start = self.len;
+        for block in rest.chunks_exact(PaddedText::BLOCK) {
+            self.len += PaddedText::BLOCK as u32;
+            self.window::<{ PaddedText::BLOCK }>()
+                .copy_from_slice(block);
+        }
+        self.len = start;
+    }
+
+    /// Appends `key` (a constant of at most [`KEY`] bytes: `,"x":` or `,`) and `value` rounded
+    /// to 1e-6.
+    #[inline(always)]
+    pub(crate) fn decimal(&mut self, key: &[u8], value: f64) {
+        let window: &mut [u8; KEY + SHORT] = self.window();
+        window[..key.len()].copy_from_slice(key);
+        let number = (&mut window[key.len()..key.len() + SHORT])
+            .try_into()
+            .expect("a number's room");
+        match write_decimal(number, value) {
+            Some(len) => self.advance(key.len() + len),
+            None => {
+                self.advance(key.len());
+                self.general(value);
+            }
+        }
+    }
+
+    /// Appends `key` and `value` rounded to 1e-6, reusing the text of `memory` when the value
+    /// is the same as last time.
+    #[inline(always)]
+    pub(crate) fn remembered(&mut self, key: &[u8], memory: &mut Remembered, value: f64) {
+        let window: &mut [u8; KEY + SHORT] = self.window();
+        window[..key.len()].copy_from_slice(key);
+        let number: &mut [u8; SHORT] = (&mut window[key.len()..key.len() + SHORT])
+            .try_into()
+            .expect("a number's room");
+        let (short, _) = number
+            .split_first_chunk_mut::<{ Remembered::LONGEST }>()
+            .expect("room");
+        let bits = value.to_bits();
+        if bits == memory.bits {
+            *short = memory.text;
+            self.advance(key.len() + memory.len);
+            return;
+        }
+        match write_decimal(number, value) {
+            Some(len) => {
+                *memory = if len <= Remembered::LONGEST {
+                    let text = *number.first_chunk().expect("room");
+                    Remembered { bits, len, text }
+                } else {
+                    Remembered::default()
+                };
+                self.advance(key.len() + len);
+            }
+            None => {
+                *memory = Remembered::default();
+                self.advance(key.len());
+                self.general(value);
+            }
+        }
+    }
+
+    /// Values [`write_decimal`] does not take: `null` for NaN and infinities, else every digit.
+    #[cold]
+    #[inline(never)]
+    fn general(&mut self, value: f64) {
+        if value.is_finite() {
+            self.put(format!("{value}").as_bytes());
+        } else {
+            self.put(b"null");
+        }
+    }
+
+    /// Appends `key` (a constant, as for [`RecordText::decimal`]) and an unsigned integer.
+    #[inline(always)]
+    pub(crate) fn unsigned(&mut self, key: &[u8], value: u64) {
+        let window: &mut [u8; KEY + UNSIGNED] = self.window();
+        window[..key.len()].copy_from_slice(key);
+        let len = write_unsigned(&mut window[key.len()..key.len() + UNSIGNED], value);
+        self.advance(key.len() + len);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    fn text(out: &OutBuffer) -> String {
+        String::from_utf8(out.as_bytes().to_vec()).unwrap()
+    }
 
     fn show(value: f64) -> String {
         let mut out = OutBuffer::new(64);
-        out.decimal(value);
-        String::from_utf8(out.as_bytes().to_vec()).unwrap()
+        out.record(0).decimal(b"", value);
+        text(&out)
+    }
+
+    /// The text the trace has always given, made the plain way: `value` rounded half away from
+    /// zero to a whole number of micrometres in floating point (as `write_decimal` does),
+    /// then printed by `format!` with six decimals and trimmed.
+    fn reference(value: f64) -> String {
+        let scaled = value * 1e6;
+        if scaled.is_nan() || scaled.abs() >= 9.0e15 {
+            return if value.is_finite() {
+                format!("{value}")
+            } else {
+                "null".to_string()
+            };
+        }
+        let micro = if scaled >= 0.0 {
+            (scaled + 0.5) as i64
+        } else {
+            (scaled - 0.5) as i64
+        };
+        let sign = if micro < 0 { "-" } else { "" };
+        let micro = micro.unsigned_abs();
+        let text = format!("{sign}{}.{:06}", micro / 1_000_000, micro % 1_000_000);
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
     }
 
     #[test]
     fn decimals_are_trimmed_and_rounded() {
         assert_eq!(show(0.0), "0");
+        assert_eq!(show(-0.0), "0");
         assert_eq!(show(-0.0000001), "0");
+        assert_eq!(show(-0.0000005), "-0.000001");
         assert_eq!(show(12.5), "12.5");
         assert_eq!(show(-1.833), "-1.833");
         assert_eq!(show(72.80109889), "72.801099");
         assert_eq!(show(100.0), "100");
         assert_eq!(show(0.000001), "0.000001");
+        assert_eq!(show(0.1), "0.1");
+        assert_eq!(show(-0.25), "-0.25");
+        assert_eq!(show(999999.9999996), "1000000");
         assert_eq!(show(-123456.5), "-123456.5");
         assert_eq!(show(1234567.000123), "1234567.000123");
         assert_eq!(show(-999999999.999999), "-999999999.999999");
+        assert_eq!(show(8999999999.5), "8999999999.5");
         assert_eq!(show(1.0e10), "10000000000");
+        assert_eq!(show(-1.0e300), format!("{}", -1.0e300));
+        assert_eq!(show(f64::MAX), format!("{}", f64::MAX));
         assert_eq!(show(f64::NAN), "null");
+        assert_eq!(show(f64::INFINITY), "null");
         assert_eq!(show(f64::NEG_INFINITY), "null");
     }
 
@@ -301,32 +639,129 @@ mod tests {
             if text.contains('.') {
                 assert!(!text.ends_with('0') && !text.ends_with('.'), "{text}");
             }
+            assert_eq!(text, reference(value));
         }
     }
 
     #[test]
-    fn unsigned_integers_have_every_digit() {
-        for n in [0u64, 7, 10, 99, 100, 12345, u64::MAX] {
-            let mut out = OutBuffer::new(64);
-            out.unsigned(n);
-            assert_eq!(
-                String::from_utf8(out.as_bytes().to_vec()).unwrap(),
-                n.to_string()
-            );
+    fn every_six_digit_fraction_is_written_as_the_reference_writes_it() {
+        for micro in 0..1_000_000 {
+            for whole in [0.0, 7.0, -42.0] {
+                let value = whole + f64::from(micro) * 1e-6;
+                assert_eq!(show(value), reference(value), "{value}");
+            }
         }
+    }
+
+    #[test]
+    fn digits_of_every_number_below_a_million() {
+        for value in 0..1_000_000u32 {
+            let mut out = [0; 7];
+            let len = write_below_million(&mut out, value);
+            assert_eq!(&out[..len], value.to_string().as_bytes());
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn any_float_is_written_as_the_reference_writes_it(value in any::<f64>()) {
+            prop_assert_eq!(show(value), reference(value));
+        }
+
+        #[test]
+        fn machine_sized_values_are_written_as_the_reference_writes_it(
+            value in -1.0e7..1.0e7f64,
+        ) {
+            prop_assert_eq!(show(value), reference(value));
+        }
+
+        #[test]
+        fn halves_of_a_micrometre_round_as_the_reference_rounds_them(
+            micro in -10_000_000_000_000i64..10_000_000_000_000,
+            nudge in -2i64..=2,
+        ) {
+            // x.xxxxxx5 and its neighbouring floats: where rounding in floating point decides.
+            let value = (micro as f64 + 0.5) / 1e6;
+            let value = f64::from_bits((value.to_bits() as i64 + nudge) as u64);
+            prop_assert_eq!(show(value), reference(value));
+        }
+
+        #[test]
+        fn unsigned_integers_have_every_digit(value in any::<u64>()) {
+            let mut out = OutBuffer::new(64);
+            out.record(0).unsigned(b"", value);
+            prop_assert_eq!(text(&out), value.to_string());
+        }
+    }
+
+    #[test]
+    fn unsigned_integers_of_every_length_have_every_digit() {
+        let mut value = 1u64;
+        for _ in 0..20 {
+            for n in [value - 1, value, value + 1, value.saturating_mul(9)] {
+                let mut out = OutBuffer::new(64);
+                out.record(0).unsigned(b",\"n\":", n);
+                assert_eq!(text(&out), format!(",\"n\":{n}"));
+            }
+            value = value.saturating_mul(10);
+        }
+        let mut out = OutBuffer::new(64);
+        out.record(0).unsigned(b"", u64::MAX);
+        assert_eq!(text(&out), u64::MAX.to_string());
     }
 
     #[test]
     fn remembered_text_follows_the_value() {
         let mut out = OutBuffer::new(64);
         let mut memory = Remembered::default();
-        for value in [1.5, 1.5, -2.0, -2.0, 0.0, f64::NAN, f64::NAN, 0.0, 3.25] {
-            out.remembered(&mut memory, value);
-            out.byte(b' ');
+        {
+            let mut record = out.record(0);
+            for value in [
+                1.5,
+                1.5,
+                -2.0,
+                -2.0,
+                0.0,
+                f64::NAN,
+                f64::NAN,
+                0.0,
+                3.25,
+                1e20,
+                1e20,
+                0.0,
+                -8999999999.123456,
+                -8999999999.123456,
+                -0.0,
+            ] {
+                record.remembered(b" ", &mut memory, value);
+            }
         }
         assert_eq!(
-            String::from_utf8(out.as_bytes().to_vec()).unwrap(),
-            "1.5 1.5 -2 -2 0 null null 0 3.25 "
+            text(&out),
+            " 1.5 1.5 -2 -2 0 null null 0 3.25 100000000000000000000 100000000000000000000 0 \
+             -8999999999.123456 -8999999999.123456 0"
+        );
+    }
+
+    #[test]
+    fn texts_are_joined_in_order() {
+        let mut out = OutBuffer::new(64);
+        const HEAD: FixedText = FixedText::join(&["{\"kind\":\"", "tool_select", "\",\"line\":"]);
+        assert_eq!(HEAD.as_bytes(), b"{\"kind\":\"tool_select\",\"line\":");
+        for name in ["", "a.nc", "/a/rather/long/path/to/a/program/file.nc"] {
+            let file = PaddedText::new(name.as_bytes());
+            let mut record = out.record(file.room());
+            record.fixed(&HEAD);
+            record.unsigned(b"", 12);
+            record.padded(&file);
+            record.byte(b'|');
+            record.put(b"}\n");
+        }
+        assert_eq!(
+            text(&out),
+            "{\"kind\":\"tool_select\",\"line\":12|}\n\
+             {\"kind\":\"tool_select\",\"line\":12a.nc|}\n\
+             {\"kind\":\"tool_select\",\"line\":12/a/rather/long/path/to/a/program/file.nc|}\n"
         );
     }
 
@@ -335,10 +770,21 @@ mod tests {
         let mut out = OutBuffer::new(16);
         let long = vec![b'a'; 3 * SLACK];
         out.put(&long);
-        out.decimal(-1.25);
-        out.unsigned(42);
+        let name = PaddedText::new(&long);
+        {
+            let mut record = out.record(name.room());
+            record.padded(&name);
+            record.decimal(b"", -1.25);
+            record.unsigned(b"", 42);
+            for _ in 0..16 {
+                record.decimal(b",\"seconds\":", -f64::MAX);
+            }
+        }
         assert!(out.is_full());
-        assert_eq!(out.as_bytes().len(), 3 * SLACK + 5 + 2);
-        assert!(out.as_bytes().ends_with(b"-1.2542"));
+        let general = format!(",\"seconds\":{}", -f64::MAX);
+        assert_eq!(general.len(), 11 + GENERAL);
+        assert_eq!(out.as_bytes().len(), 6 * SLACK + 5 + 2 + 16 * general.len());
+        assert!(out.as_bytes()[..6 * SLACK + 7].ends_with(b"a-1.2542"));
+        assert!(out.as_bytes().ends_with(general.as_bytes()));
     }
 }

@@ -123,22 +123,21 @@ fn jsonl(out: &mut numbers::OutBuffer, memory: &mut [numbers::Remembered; 4], se
         ),
         _ => ("event", None, None),
     };
-    out.put(b"{\"kind\":\"");
-    out.put(kind.as_bytes());
-    out.put(b"\",\"line\":");
-    out.unsigned(u64::from(segment.span.line));
-    out.put(b",\"file\":\"/tmp/p400k.nc\"");
+    let mut text = out.record(0);
+    text.put(b"{\"kind\":\"");
+    text.put(kind.as_bytes());
+    text.put(b"\",\"line\":");
+    text.unsigned(b"", u64::from(segment.span.line));
+    text.put(b",\"file\":\"/tmp/p400k.nc\"");
     if let Some(motion) = segment.motion() {
         for (slot, key) in [&b",\"x\":"[..], b",\"y\":", b",\"z\":"]
             .into_iter()
             .enumerate()
         {
-            out.put(key);
-            out.remembered(&mut memory[slot], motion.to.0[slot]);
+            text.remembered(key, &mut memory[slot], motion.to.0[slot]);
         }
         if let Some(f) = feed.and_then(|feed| per_minute(feed, segment)) {
-            out.put(b",\"f\":");
-            out.remembered(&mut memory[3], f);
+            text.remembered(b",\"f\":", &mut memory[3], f);
         }
         if let Some((center, dir, plane)) = arc {
             for (key, value) in [
@@ -146,17 +145,16 @@ fn jsonl(out: &mut numbers::OutBuffer, memory: &mut [numbers::Remembered; 4], se
                 (b",\"cy\":", center[1]),
                 (b",\"cz\":", center[2]),
             ] {
-                out.put(key);
-                out.decimal(value);
+                text.decimal(key, value);
             }
-            out.put(b",\"dir\":\"");
-            out.put(dir.as_bytes());
-            out.put(b"\",\"plane\":\"");
-            out.put(plane.as_bytes());
-            out.byte(b'"');
+            text.put(b",\"dir\":\"");
+            text.put(dir.as_bytes());
+            text.put(b"\",\"plane\":\"");
+            text.put(plane.as_bytes());
+            text.byte(b'"');
         }
     }
-    out.put(b"}\n");
+    text.put(b"}\n");
 }
 
 fn per_minute(feed: &Feed, segment: &Segment) -> Option<f64> {

@@ -7,14 +7,14 @@
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
 
 use super::{Outcome, SetupError};
-use crate::numbers::{OutBuffer, Remembered};
+use crate::numbers::{FixedText, OutBuffer, PaddedText, RecordText, Remembered};
 use crate::planned::{for_each_timed, Item};
 use crate::program::ProgramFiles;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
-use vcnc::motion::{EndKind, Feed, Move, SpindleState, StopKind};
+use vcnc::motion::{ArcDirection, EndKind, Feed, Move, Plane, SpindleState, StopKind};
 use vcnc::plan::Timing;
 use vcnc::{Alarm, Axis, FileId, Segment, SegmentKind};
 
@@ -71,9 +71,7 @@ fn write_trace(
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut broken_pipe = false;
     for_each_timed(stream, &machine, plan_options, |items, timings| {
-        for (item, timing) in items.iter().zip(timings) {
-            writer.item(item, timing, args.format, &mut alarms);
-        }
+        writer.batch(items, timings, args.format, &mut alarms);
         if writer.out.is_full() {
             if output.write_all(writer.out.as_bytes()).is_err() {
                 broken_pipe = true;
@@ -99,48 +97,103 @@ macro_rules! key {
 
 struct Writer {
     out: OutBuffer,
-    /// The text of the last x y z a b c and f written: most records repeat some of them.
+    /// The text of the last z, a, b, c and f written, by axis index (6: f): most records repeat
+    /// some of them. x and y are not remembered: in contouring they repeat in about one record
+    /// in a hundred, and remembering costs a little on every record that does not repeat.
     memory: [Remembered; 7],
     /// The program files, for the name of a called program's file.
     files: ProgramFiles,
     /// The file of the last record, and its name as a JSON field and as a CSV field.
     file: FileId,
-    file_json: String,
-    file_csv: String,
+    file_json: PaddedText,
+    file_csv: PaddedText,
     rotary: Vec<Axis>,
     work: bool,
+    arc_words: [[ArcWords; 3]; 2],
 }
 
 /// The parts of a record, shared by both formats.
 struct Record<'a> {
-    /// The kind's name (CSV).
-    kind: &'static str,
-    /// The start of the kind's JSON object, up to the `line` key.
-    head: &'static [u8],
+    kind: &'static KindText,
     motion: Option<&'a Move>,
     feed: Option<f64>,
-    arc: Option<([f64; 3], &'static str, &'static str)>,
+    arc: Option<([f64; 3], ArcDirection, Plane)>,
 }
 
-/// A kind's name and the start of its JSON object, both written once here.
+/// An arc's direction and plane: the end of its JSON object, `,"dir":"cw","plane":"xy"`, and its
+/// CSV fields, `,cw,xy`.
+struct ArcWords {
+    json: FixedText,
+    csv: FixedText,
+}
+
+/// The [`ArcWords`] of every direction and plane, indexed by [`arc_index`]; made once, from the
+/// names the library gives.
+fn arc_words() -> [[ArcWords; 3]; 2] {
+    [ArcDirection::Clockwise, ArcDirection::CounterClockwise].map(|direction| {
+        [Plane::Xy, Plane::Zx, Plane::Yz].map(|plane| {
+            let (direction, plane) = (direction.as_str(), plane.as_str());
+            ArcWords {
+                json: FixedText::join(&[",\"dir\":\"", direction, "\",\"plane\":\"", plane, "\""]),
+                csv: FixedText::join(&[",", direction, ",", plane]),
+            }
+        })
+    })
+}
+
+/// Where the words of an arc are in [`arc_words`]: by direction, then by the plane's normal
+/// axis (Z for XY, Y for ZX, X for YZ).
+fn arc_index(direction: ArcDirection, plane: Plane) -> (usize, usize) {
+    let by_direction = usize::from(direction == ArcDirection::CounterClockwise);
+    let by_plane = 2 - plane.axes().2;
+    (by_direction, by_plane)
+}
+
+impl<'a> Record<'a> {
+    /// A cutting move's record, at a feed per minute.
+    #[inline(always)]
+    fn fed(
+        kind: &'static KindText,
+        motion: &'a Move,
+        feed: f64,
+        arc: Option<([f64; 3], ArcDirection, Plane)>,
+    ) -> Record<'a> {
+        Record {
+            kind,
+            motion: Some(motion),
+            feed: Some(feed),
+            arc,
+        }
+    }
+}
+
+/// How a record of one kind starts: its JSON object up to the `line` key, and its CSV field
+/// with the comma after it.
+struct KindText {
+    json: FixedText,
+    csv: FixedText,
+}
+
+/// The [`KindText`] of a kind, written once here.
 macro_rules! kind {
-    ($kind:literal) => {
-        (
-            $kind,
-            concat!("{\"kind\":\"", $kind, "\",\"line\":").as_bytes(),
-        )
-    };
+    ($kind:literal) => {{
+        const TEXT: KindText = KindText {
+            json: FixedText::join(&["{\"kind\":\"", $kind, "\",\"line\":"]),
+            csv: FixedText::join(&[$kind, ","]),
+        };
+        &TEXT
+    }};
 }
 
+#[inline(always)]
 fn record(segment: &Segment) -> Record<'_> {
     let mut record = Record {
-        kind: "",
-        head: b"",
+        kind: kind!("other"),
         motion: segment.motion(),
         feed: None,
         arc: None,
     };
-    (record.kind, record.head) = match &segment.kind {
+    record.kind = match &segment.kind {
         SegmentKind::Rapid { .. } => kind!("rapid"),
         SegmentKind::Line { feed, .. } => {
             record.feed = feed_mm_per_min(feed, segment);
@@ -154,7 +207,7 @@ fn record(segment: &Segment) -> Record<'_> {
             ..
         } => {
             record.feed = feed_mm_per_min(feed, segment);
-            record.arc = Some((center.xyz(), direction.as_str(), plane.as_str()));
+            record.arc = Some((center.xyz(), *direction, *plane));
             kind!("arc")
         }
         SegmentKind::Dwell { .. } => kind!("dwell"),
@@ -184,26 +237,102 @@ impl Writer {
             memory: [Remembered::default(); 7],
             files,
             file: FileId(0),
-            file_json: String::new(),
-            file_csv: String::new(),
+            file_json: PaddedText::default(),
+            file_csv: PaddedText::default(),
             rotary: [Axis::A, Axis::B, Axis::C]
                 .into_iter()
                 .filter(|a| machine.has_axis(*a))
                 .collect(),
             work,
+            arc_words: arc_words(),
         };
         writer.set_file(FileId(0));
         writer
     }
 
-    /// One item of the planner's stream: a record, or an alarm kept for the diagnostics.
-    fn item(&mut self, item: &Item, timing: &Timing, format: Format, alarms: &mut Vec<Alarm>) {
-        match item {
-            Ok(segment) => match format {
-                Format::Jsonl => self.jsonl(segment, timing),
-                Format::Csv => self.csv(segment, timing),
-            },
-            Err(alarm) => alarms.push(alarm.clone()),
+    /// Items of the planner's stream: records, and alarms kept for the diagnostics. The format
+    /// is chosen once for the batch.
+    fn batch(
+        &mut self,
+        items: &[Item],
+        timings: &[Timing],
+        format: Format,
+        alarms: &mut Vec<Alarm>,
+    ) {
+        match format {
+            Format::Jsonl => self.records::<true>(items, timings, alarms),
+            Format::Csv => self.records::<false>(items, timings, alarms),
+        }
+    }
+
+    /// [`Writer::batch`] in one format, JSON lines or CSV, whose record function is inlined
+    /// here.
+    #[inline(always)]
+    fn records<const JSON: bool>(
+        &mut self,
+        items: &[Item],
+        timings: &[Timing],
+        alarms: &mut Vec<Alarm>,
+    ) {
+        for (item, timing) in items.iter().zip(timings) {
+            let segment = match item {
+                Ok(segment) => segment,
+                Err(alarm) => {
+                    alarms.push(alarm.clone());
+                    continue;
+                }
+            };
+            if segment.span.file != self.file {
+                self.set_file(segment.span.file);
+            }
+            // The most common record, a line at a feed per minute, has a copy of the record
+            // function of its own, in which the compiler knows which fields the record has
+            // instead of testing them field by field.
+            match &segment.kind {
+                SegmentKind::Line {
+                    motion,
+                    feed: Feed::PerMinute(feed),
+                    ..
+                } => self.write::<JSON>(
+                    segment,
+                    timing,
+                    Record::fed(kind!("feed"), motion, *feed, None),
+                ),
+                _ => self.write_other::<JSON>(segment, timing),
+            }
+        }
+    }
+
+    /// Every record but a line at a feed per minute, out of line: the loop above keeps its
+    /// registers for the common record. Arcs at a feed per minute have a copy of their own.
+    #[inline(never)]
+    fn write_other<const JSON: bool>(&mut self, segment: &Segment, timing: &Timing) {
+        match &segment.kind {
+            SegmentKind::Arc {
+                motion,
+                feed: Feed::PerMinute(feed),
+                center,
+                direction,
+                plane,
+                ..
+            } => {
+                let arc = Some((center.xyz(), *direction, *plane));
+                self.write::<JSON>(
+                    segment,
+                    timing,
+                    Record::fed(kind!("arc"), motion, *feed, arc),
+                );
+            }
+            _ => self.write::<JSON>(segment, timing, record(segment)),
+        }
+    }
+
+    #[inline(always)]
+    fn write<const JSON: bool>(&mut self, segment: &Segment, timing: &Timing, record: Record<'_>) {
+        if JSON {
+            self.jsonl(segment, timing, record);
+        } else {
+            self.csv(segment, timing, record);
         }
     }
 
@@ -211,120 +340,65 @@ impl Writer {
     fn set_file(&mut self, file: FileId) {
         let name = self.files.path(file).display().to_string();
         self.file = file;
-        self.file_json = format!(
+        let json = format!(
             ",\"file\":{}",
             serde_json::to_string(&name).unwrap_or_else(|_| "\"\"".into())
         );
-        self.file_csv = csv_field(&name);
-    }
-
-    /// Writes a key given as its full prefix, `,"x":` (see [`key!`]); inlined, so that the
-    /// constant prefix is copied without a call.
-    #[inline(always)]
-    fn key(&mut self, key: &'static [u8]) {
-        self.out.put_in_record(key);
+        self.file_json = PaddedText::new(json.as_bytes());
+        self.file_csv = PaddedText::new(csv_field(&name).as_bytes());
     }
 
     #[inline(always)]
-    fn number(&mut self, key: &'static [u8], value: f64) {
-        self.key(key);
-        self.out.decimal(value);
-    }
-
-    /// A number of field `slot` (0 to 5: the axes, 6: the feed), whose text is remembered.
-    #[inline(always)]
-    fn field(&mut self, key: &'static [u8], slot: usize, value: f64) {
-        self.key(key);
-        self.out.remembered(&mut self.memory[slot], value);
-    }
-
-    fn text(&mut self, key: &'static [u8], value: &str) {
-        self.key(key);
-        self.out.byte(b'"');
-        self.out.put_in_record(value.as_bytes());
-        self.out.byte(b'"');
-    }
-
-    fn jsonl(&mut self, segment: &Segment, timing: &Timing) {
-        if segment.span.file != self.file {
-            self.set_file(segment.span.file);
-        }
-        let record = record(segment);
-        self.out.start_record(self.file_json.len());
-        self.out.put_in_record(record.head);
-        self.out.unsigned(u64::from(segment.span.line));
-        self.out.put_in_record(self.file_json.as_bytes());
+    fn jsonl(&mut self, segment: &Segment, timing: &Timing, record: Record<'_>) {
+        let mut text = self.out.record(self.file_json.room());
+        text.fixed(&record.kind.json);
+        text.unsigned(b"", u64::from(segment.span.line));
+        text.padded(&self.file_json);
         if let Some(n) = segment.sequence {
-            self.key(key!("n"));
-            self.out.unsigned(u64::from(n));
+            text.unsigned(key!("n"), u64::from(n));
         }
-        self.number(key!("t"), timing.t);
-        self.number(key!("dt"), timing.dt);
+        text.decimal(key!("t"), timing.t);
+        text.decimal(key!("dt"), timing.dt);
         if let Some(motion) = record.motion {
             let to = motion.to.0;
-            self.field(key!("x"), 0, to[0]);
-            self.field(key!("y"), 1, to[1]);
-            self.field(key!("z"), 2, to[2]);
-            for i in 0..self.rotary.len() {
-                let axis = self.rotary[i];
+            text.decimal(key!("x"), to[0]);
+            text.decimal(key!("y"), to[1]);
+            text.remembered(key!("z"), &mut self.memory[2], to[2]);
+            for &axis in &self.rotary {
                 let key: &'static [u8] = match axis {
                     Axis::A => key!("a"),
                     Axis::B => key!("b"),
                     _ => key!("c"),
                 };
-                self.field(key, axis.index(), to[axis.index()]);
+                text.remembered(key, &mut self.memory[axis.index()], to[axis.index()]);
             }
             if let Some(f) = record.feed {
-                self.field(key!("f"), 6, f);
+                text.remembered(key!("f"), &mut self.memory[6], f);
             }
-            if let Some((center, dir, plane)) = record.arc {
-                self.number(key!("cx"), center[0]);
-                self.number(key!("cy"), center[1]);
-                self.number(key!("cz"), center[2]);
-                self.text(key!("dir"), dir);
-                self.text(key!("plane"), plane);
+            if let Some((center, direction, plane)) = record.arc {
+                text.decimal(key!("cx"), center[0]);
+                text.decimal(key!("cy"), center[1]);
+                text.decimal(key!("cz"), center[2]);
+                let (by_direction, by_plane) = arc_index(direction, plane);
+                text.fixed(&self.arc_words[by_direction][by_plane].json);
             }
             if self.work {
                 let work = motion.work_to();
-                self.number(key!("wx"), work[0]);
-                self.number(key!("wy"), work[1]);
-                self.number(key!("wz"), work[2]);
+                text.decimal(key!("wx"), work[0]);
+                text.decimal(key!("wy"), work[1]);
+                text.decimal(key!("wz"), work[2]);
             }
+        } else {
+            event_fields(&mut text, &segment.kind);
         }
-        self.event_fields(&segment.kind);
-        self.out.put_in_record(b"}\n");
-    }
-
-    fn event_fields(&mut self, kind: &SegmentKind) {
-        match *kind {
-            SegmentKind::Dwell { seconds } => self.number(key!("seconds"), seconds),
-            SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => {
-                self.key(key!("tool"));
-                self.out.unsigned(u64::from(tool));
-            }
-            SegmentKind::Spindle { state, speed } => {
-                self.text(key!("state"), spindle_name(state));
-                self.number(key!("speed"), speed);
-            }
-            SegmentKind::Coolant { on } => {
-                self.key(key!("on"));
-                self.out.put_in_record(if on { b"true" } else { b"false" });
-            }
-            SegmentKind::Stop { kind } => self.text(key!("stop"), stop_name(kind)),
-            SegmentKind::Auxiliary { code } => {
-                self.key(key!("code"));
-                self.out.unsigned(u64::from(code));
-            }
-            SegmentKind::End { kind } => self.text(key!("end"), end_name(kind)),
-            _ => {}
-        }
+        text.put(b"}\n");
     }
 
     fn csv_header(&mut self) {
         self.out.put(b"kind,line,file,n,t,dt,x,y,z");
         for i in 0..self.rotary.len() {
-            self.out.byte(b',');
-            self.out.byte(self.rotary[i].letter().to_ascii_lowercase());
+            self.out
+                .put(&[b',', self.rotary[i].letter().to_ascii_lowercase()]);
         }
         self.out.put(if self.work {
             b",f,cx,cy,cz,dir,plane,wx,wy,wz,value\n".as_slice()
@@ -333,65 +407,95 @@ impl Writer {
         });
     }
 
-    fn csv(&mut self, segment: &Segment, timing: &Timing) {
-        if segment.span.file != self.file {
-            self.set_file(segment.span.file);
-        }
-        let record = record(segment);
-        self.out.put(record.kind.as_bytes());
-        self.out.byte(b',');
-        self.out.unsigned(u64::from(segment.span.line));
-        self.out.byte(b',');
-        self.out.put(self.file_csv.as_bytes());
-        self.out.byte(b',');
+    #[inline(always)]
+    fn csv(&mut self, segment: &Segment, timing: &Timing, record: Record<'_>) {
+        let mut text = self.out.record(self.file_csv.room());
+        text.fixed(&record.kind.csv);
+        text.unsigned(b"", u64::from(segment.span.line));
+        text.byte(b',');
+        text.padded(&self.file_csv);
+        text.byte(b',');
         if let Some(n) = segment.sequence {
-            self.out.unsigned(u64::from(n));
+            text.unsigned(b"", u64::from(n));
         }
-        self.out.byte(b',');
-        self.out.decimal(timing.t);
-        self.out.byte(b',');
-        self.out.decimal(timing.dt);
-        let axes = 3 + self.rotary.len();
+        text.decimal(b",", timing.t);
+        text.decimal(b",", timing.dt);
         match record.motion {
             Some(motion) => {
+                let to = motion.to.0;
                 for i in [0, 1, 2]
                     .into_iter()
                     .chain(self.rotary.iter().map(|a| a.index()))
                 {
-                    self.out.byte(b',');
-                    self.out.remembered(&mut self.memory[i], motion.to.0[i]);
+                    // x and y are not remembered: see `memory`.
+                    if i < 2 {
+                        text.decimal(b",", to[i]);
+                    } else {
+                        text.remembered(b",", &mut self.memory[i], to[i]);
+                    }
                 }
             }
-            None => (0..axes).for_each(|_| self.out.byte(b',')),
+            None => (0..3 + self.rotary.len()).for_each(|_| text.byte(b',')),
         }
-        self.out.byte(b',');
+        text.byte(b',');
         if let Some(f) = record.feed {
-            self.out.remembered(&mut self.memory[6], f);
+            text.remembered(b"", &mut self.memory[6], f);
         }
         match record.arc {
-            Some((center, dir, plane)) => {
+            Some((center, direction, plane)) => {
                 for c in center {
-                    self.out.byte(b',');
-                    self.out.decimal(c);
+                    text.decimal(b",", c);
                 }
-                self.out.put(format!(",{dir},{plane}").as_bytes());
+                let (by_direction, by_plane) = arc_index(direction, plane);
+                text.fixed(&self.arc_words[by_direction][by_plane].csv);
             }
-            None => self.out.put(b",,,,,"),
+            None => text.put(b",,,,,"),
         }
         if self.work {
             match record.motion {
                 Some(motion) => {
                     for w in &motion.work_to()[..3] {
-                        self.out.byte(b',');
-                        self.out.decimal(*w);
+                        text.decimal(b",", *w);
                     }
                 }
-                None => self.out.put(b",,,"),
+                None => text.put(b",,,"),
             }
         }
-        self.out.byte(b',');
-        self.out.put(csv_value(&segment.kind).as_bytes());
-        self.out.byte(b'\n');
+        text.byte(b',');
+        if record.motion.is_none() {
+            text.put(csv_value(&segment.kind).as_bytes());
+        }
+        text.byte(b'\n');
+    }
+}
+
+/// Writes `key` and `value` as a JSON string (`value` needs no escapes).
+fn quoted(text: &mut RecordText<'_>, key: &'static [u8], value: &str) {
+    text.put(key);
+    text.byte(b'"');
+    text.put(value.as_bytes());
+    text.byte(b'"');
+}
+
+/// The fields of an event record.
+fn event_fields(text: &mut RecordText<'_>, kind: &SegmentKind) {
+    match *kind {
+        SegmentKind::Dwell { seconds } => text.decimal(key!("seconds"), seconds),
+        SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => {
+            text.unsigned(key!("tool"), u64::from(tool));
+        }
+        SegmentKind::Spindle { state, speed } => {
+            quoted(text, key!("state"), spindle_name(state));
+            text.decimal(key!("speed"), speed);
+        }
+        SegmentKind::Coolant { on } => {
+            text.put(key!("on"));
+            text.put(if on { b"true" } else { b"false" });
+        }
+        SegmentKind::Stop { kind } => quoted(text, key!("stop"), stop_name(kind)),
+        SegmentKind::Auxiliary { code } => text.unsigned(key!("code"), u64::from(code)),
+        SegmentKind::End { kind } => quoted(text, key!("end"), end_name(kind)),
+        _ => {}
     }
 }
 
@@ -478,6 +582,26 @@ mod tests {
         text
     }
 
+    #[test]
+    fn arc_words_name_the_direction_and_plane_of_every_arc() {
+        let words = arc_words();
+        for direction in [ArcDirection::Clockwise, ArcDirection::CounterClockwise] {
+            for plane in [Plane::Xy, Plane::Zx, Plane::Yz] {
+                let (by_direction, by_plane) = arc_index(direction, plane);
+                let (direction, plane) = (direction.as_str(), plane.as_str());
+                let words = &words[by_direction][by_plane];
+                assert_eq!(
+                    words.json.as_bytes(),
+                    format!(",\"dir\":\"{direction}\",\"plane\":\"{plane}\"").as_bytes()
+                );
+                assert_eq!(
+                    words.csv.as_bytes(),
+                    format!(",{direction},{plane}").as_bytes()
+                );
+            }
+        }
+    }
+
     /// The threaded pipeline (parser and interpreter threads, batches timed on the writer's)
     /// writes exactly what the library's plain iterators give in one thread.
     #[test]
@@ -516,7 +640,8 @@ mod tests {
                     Ok(timed) => (Ok(timed.segment), timed.timing()),
                     Err(alarm) => (Err(alarm), Timing::default()),
                 };
-                writer.item(&item, &timing, args.format, &mut none);
+                let (item, timing) = (std::slice::from_ref(&item), std::slice::from_ref(&timing));
+                writer.batch(item, timing, args.format, &mut none);
                 if writer.out.is_full() {
                     collected.extend_from_slice(writer.out.as_bytes());
                     writer.out.clear();
