@@ -9,7 +9,6 @@
 //! of it.
 
 use crate::program::{Interpreted, POOL};
-use std::collections::VecDeque;
 use vcnc::plan::{PlanOptions, Timeline, Timing};
 use vcnc::{Alarm, Machine, Segment};
 
@@ -56,7 +55,9 @@ pub(crate) fn for_each_timed<S: Batches>(
     mut consume: impl FnMut(&[Item], &[Timing]) -> bool,
 ) -> S {
     let mut timeline = Timeline::new(machine, options);
-    let mut held: VecDeque<Held> = VecDeque::new();
+    // A few batches at most (fewer than the interpreter's pool): a vector, whose front is
+    // removed by moving the two or three others.
+    let mut held: Vec<Held> = Vec::with_capacity(POOL);
     let mut spare_timings: Vec<Vec<Timing>> = Vec::new();
     // The first held batch whose timings are not all known.
     let mut filling = 0;
@@ -68,7 +69,7 @@ pub(crate) fn for_each_timed<S: Batches>(
             break;
         };
         let keep_all = held.len() + 1 < POOL;
-        let first_new = match held.back_mut() {
+        let first_new = match held.last_mut() {
             // The interpreter must always have a buffer to fill: when this side would keep the
             // last but one, the new items join the newest batch kept (tiny batches come from
             // macro loops that rarely move; big ones finish their timings long before).
@@ -81,7 +82,7 @@ pub(crate) fn for_each_timed<S: Batches>(
             }
             _ => {
                 let timings = spare_timings.pop().unwrap_or_default();
-                held.push_back(Held { items, timings });
+                held.push(Held { items, timings });
                 0
             }
         };
@@ -93,10 +94,8 @@ pub(crate) fn for_each_timed<S: Batches>(
             }
             deal(&mut timeline, &mut held, &mut filling);
         }
-        while held.front().is_some_and(Held::is_complete) {
-            let Some(mut done) = held.pop_front() else {
-                break;
-            };
+        while held.first().is_some_and(Held::is_complete) {
+            let mut done = held.remove(0);
             filling = filling.saturating_sub(1);
             go_on = go_on && consume(&done.items, &done.timings);
             stream.recycle(done.items);
@@ -115,7 +114,7 @@ pub(crate) fn for_each_timed<S: Batches>(
 }
 
 /// Gives the timings the timeline has made final to the held batches, in order.
-fn deal(timeline: &mut Timeline, held: &mut VecDeque<Held>, filling: &mut usize) {
+fn deal(timeline: &mut Timeline, held: &mut [Held], filling: &mut usize) {
     while let Some(timing) = timeline.next_timing() {
         while held.get(*filling).is_some_and(Held::is_complete) {
             *filling += 1;

@@ -96,9 +96,6 @@ pub struct Timing {
     pub t: f64,
     /// Duration, seconds.
     pub dt: f64,
-    /// The path speed profile of an interpolated motion (None for events, alarms, per-axis
-    /// rapids and motions of zero length).
-    pub profile: Option<Profile>,
     /// The feed could not be known (G95 without a spindle speed): timed at the axes' limit.
     pub feed_unknown: bool,
 }
@@ -120,13 +117,13 @@ pub struct TimedSegment {
 }
 
 impl TimedSegment {
-    /// `segment` at `timing`.
-    pub fn new(segment: Segment, timing: Timing) -> TimedSegment {
+    /// `segment` at `timing`, with its speed profile.
+    pub fn new(segment: Segment, timing: Timing, profile: Option<Profile>) -> TimedSegment {
         TimedSegment {
             segment,
             t: timing.t,
             dt: timing.dt,
-            profile: timing.profile,
+            profile,
             feed_unknown: timing.feed_unknown,
         }
     }
@@ -136,7 +133,6 @@ impl TimedSegment {
         Timing {
             t: self.t,
             dt: self.dt,
-            profile: self.profile,
             feed_unknown: self.feed_unknown,
         }
     }
@@ -227,6 +223,13 @@ impl Timeline {
 
     /// The timing of the oldest item pushed whose timing has not been taken, once it is final.
     pub fn next_timing(&mut self) -> Option<Timing> {
+        self.next_timing_and_profile().map(|(timing, _)| timing)
+    }
+
+    /// [`Timeline::next_timing`] with the speed profile of the motion (None for events,
+    /// alarms, per-axis rapids and motions of zero length).
+    #[inline(always)]
+    pub fn next_timing_and_profile(&mut self) -> Option<(Timing, Option<Profile>)> {
         let (dt, profile, feed_unknown) = match self.window.pop_ready()? {
             Slot::Fixed(seconds) => (seconds, None, false),
             Slot::Motion(planned) => {
@@ -236,12 +239,14 @@ impl Timeline {
         };
         let t = self.clock;
         self.clock += dt;
-        Some(Timing {
-            t,
-            dt,
+        Some((
+            Timing {
+                t,
+                dt,
+                feed_unknown,
+            },
             profile,
-            feed_unknown,
-        })
+        ))
     }
 }
 
@@ -282,9 +287,9 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for Planner<I> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if let Some(timing) = self.timeline.next_timing() {
+            if let Some((timing, profile)) = self.timeline.next_timing_and_profile() {
                 let item = self.waiting.pop_front()?;
-                return Some(item.map(|segment| TimedSegment::new(segment, timing)));
+                return Some(item.map(|segment| TimedSegment::new(segment, timing, profile)));
             }
             if self.source_done {
                 return None;
