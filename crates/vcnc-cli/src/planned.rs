@@ -71,8 +71,9 @@ pub(crate) fn for_each_timed<S: Batches>(
         let keep_all = held.len() + 1 < POOL;
         let first_new = match held.last_mut() {
             // The interpreter must always have a buffer to fill: when this side would keep the
-            // last but one, the new items join the newest batch kept (tiny batches come from
-            // macro loops that rarely move; big ones finish their timings long before).
+            // last but one, the new items join the newest batch kept. That happens with tiny
+            // batches (a macro loop that rarely moves) or a look-ahead longer than a few
+            // batches; what is kept then grows with the look-ahead window, its only buffer.
             Some(last) if !keep_all => {
                 let first_new = last.items.len();
                 let mut items = items;
