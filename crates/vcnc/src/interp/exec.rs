@@ -5,7 +5,7 @@
 //! G52, G28, G29, G30, G53), the motion, then program stops and ends (M00, M01, M02, M30).
 //! Each part is a function of its own module; this file only sequences them.
 
-use super::decode::{Command, Value};
+use super::decode::{Command, GWord, Value};
 use super::frames::Frames;
 use super::modal::{FeedMode, LengthComp, ModalState, MotionMode, Units};
 use super::Output;
@@ -102,6 +102,7 @@ impl Executor {
     }
 
     /// The current position in program coordinates.
+    #[inline(always)]
     pub(crate) fn program_position(&self) -> [f64; AXES] {
         self.frames.to_program(&self.position)
     }
@@ -112,6 +113,35 @@ impl Executor {
     /// The alarm that stops the program at this block.
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.apply_modal(cmd)?;
+        if cmd.is_plain() && self.cycle.is_none() && out.comp.is_none() {
+            return self.run_plain(cmd, out);
+        }
+        self.run_stages(cmd, out)
+    }
+
+    /// The block of a CAM program (a motion code, axis and centre words, F) outside canned
+    /// cycles and cutter compensation: every stage of [`Executor::run_stages`] but the feed and
+    /// the motion would find nothing to do in it, so they are not asked.
+    // Inlined into `run`: the common block pays for one call, not two.
+    #[inline(always)]
+    fn run_plain(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
+        self.set_feed(cmd)?;
+        if cmd.has_axis_words() || has_center_words(cmd) {
+            self.motion(cmd, false, out)?;
+        }
+        if self.modal.feed_mode == FeedMode::InverseTime {
+            // G93: F is not modal (spec 1.56): every cutting block needs its own.
+            self.feed = None;
+        }
+        Ok(Flow::Next)
+    }
+
+    /// Runs the stages of a block after its modal codes, in the control's order.
+    ///
+    /// # Errors
+    /// The alarm that stops the program at this block.
+    #[inline(never)]
+    fn run_stages(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         super::cycles::apply_codes(self, cmd)?;
         self.set_feed(cmd)?;
         if cmd.has_auxiliary_words() {
@@ -233,27 +263,7 @@ impl Executor {
     fn apply_modal(&mut self, cmd: &Command) -> Result<(), Alarm> {
         for g in cmd.g_codes() {
             match g.code {
-                GCode::ExtendedWorkOffset => {
-                    let p = cmd.p().ok_or_else(|| {
-                        Alarm::error(
-                            AlarmCode::WorkOffsetOutOfRange,
-                            g.span,
-                            "G54.1 needs P (1 to the number of extended offsets)",
-                        )
-                    })?;
-                    let n = p.number.whole().unwrap_or(-1);
-                    if n < 1 || n > i64::from(self.profile.g54_1_count) {
-                        return Err(Alarm::error(
-                            AlarmCode::WorkOffsetOutOfRange,
-                            p.span,
-                            format!(
-                                "G54.1 P{n}: this control has P1 to P{}",
-                                self.profile.g54_1_count
-                            ),
-                        ));
-                    }
-                    self.modal.work_offset = WorkOffsetId::Extended(n as u32);
-                }
+                GCode::ExtendedWorkOffset => self.extended_work_offset(cmd, g)?,
                 GCode::FeedPerMinute | GCode::FeedPerRevolution | GCode::InverseTimeFeed => {
                     let before = self.modal.feed_mode;
                     self.modal.apply(g.code);
@@ -281,6 +291,32 @@ impl Executor {
             }
         }
         self.frames.select(self.modal.work_offset);
+        Ok(())
+    }
+
+    /// G54.1 P: the extended work offset P (kept out of line: it is rare, and inlined, its P
+    /// was read for every block).
+    #[inline(never)]
+    fn extended_work_offset(&mut self, cmd: &Command, g: GWord) -> Result<(), Alarm> {
+        let p = cmd.p().ok_or_else(|| {
+            Alarm::error(
+                AlarmCode::WorkOffsetOutOfRange,
+                g.span,
+                "G54.1 needs P (1 to the number of extended offsets)",
+            )
+        })?;
+        let n = p.number.whole().unwrap_or(-1);
+        if n < 1 || n > i64::from(self.profile.g54_1_count) {
+            return Err(Alarm::error(
+                AlarmCode::WorkOffsetOutOfRange,
+                p.span,
+                format!(
+                    "G54.1 P{n}: this control has P1 to P{}",
+                    self.profile.g54_1_count
+                ),
+            ));
+        }
+        self.modal.work_offset = WorkOffsetId::Extended(n as u32);
         Ok(())
     }
 
@@ -339,6 +375,7 @@ impl Executor {
     }
 
     /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
+    #[inline(always)]
     pub(crate) fn target_program(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.cartesian_target(cmd);
         if let Some(point) = super::polar::point(self, cmd) {
@@ -349,6 +386,7 @@ impl Executor {
     }
 
     /// The target of the axis words read as Cartesian coordinates.
+    #[inline(always)]
     fn cartesian_target(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.program_position();
         let incremental = self.modal.distance == super::modal::DistanceMode::Incremental;
@@ -378,6 +416,7 @@ impl Executor {
 
     /// Machine coordinates for a program target; the length vector follows the compensation in
     /// force when the block moves Z (or changes the compensation).
+    #[inline(always)]
     pub(crate) fn machine_target(&mut self, target: &[f64; AXES], moves_z: bool) -> [f64; AXES] {
         if moves_z {
             self.frames.length_vector = self.active_length();
@@ -501,24 +540,13 @@ impl Executor {
     ///
     /// # Errors
     /// [`AlarmCode::NoFeedRate`] when no F is in force (FANUC alarm 011).
+    // Inlined: out of line, the feed came back through memory (30 instructions a block).
+    #[inline(always)]
     pub(crate) fn cutting_feed(&self, cmd: &Command) -> Result<Feed, Alarm> {
-        let Some(f) = self.feed else {
-            let what = match self.modal.feed_mode {
-                FeedMode::InverseTime => {
-                    "in G93 inverse-time mode every cutting block needs its own F"
-                }
-                _ => "cutting move before any feed rate (F) was programmed",
-            };
-            return Err(Alarm::error(AlarmCode::NoFeedRate, cmd.span, what)
-                .with_help("add an F word to this block or an earlier one (FANUC alarm 011)"));
+        let f = match self.feed {
+            Some(f) if f != 0.0 => f,
+            _ => return Err(self.no_feed(cmd)),
         };
-        if f == 0.0 {
-            return Err(Alarm::error(
-                AlarmCode::NoFeedRate,
-                cmd.f().map_or(cmd.span, |v| v.span),
-                "feed rate is zero",
-            ));
-        }
         Ok(match self.modal.feed_mode {
             FeedMode::PerMinute => Feed::PerMinute(f),
             FeedMode::PerRevolution => Feed::PerRevolution {
@@ -527,6 +555,26 @@ impl Executor {
             },
             FeedMode::InverseTime => Feed::InverseTime(f),
         })
+    }
+
+    /// The alarm of a cutting move without a feed in force, or with a zero feed.
+    #[cold]
+    fn no_feed(&self, cmd: &Command) -> Alarm {
+        if self.feed.is_none() {
+            let what = match self.modal.feed_mode {
+                FeedMode::InverseTime => {
+                    "in G93 inverse-time mode every cutting block needs its own F"
+                }
+                _ => "cutting move before any feed rate (F) was programmed",
+            };
+            return Alarm::error(AlarmCode::NoFeedRate, cmd.span, what)
+                .with_help("add an F word to this block or an earlier one (FANUC alarm 011)");
+        }
+        Alarm::error(
+            AlarmCode::NoFeedRate,
+            cmd.f().map_or(cmd.span, |v| v.span),
+            "feed rate is zero",
+        )
     }
 }
 
