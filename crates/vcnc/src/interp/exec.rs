@@ -623,3 +623,72 @@ pub(crate) fn stop(cmd: &Command, kind: StopKind, out: &mut Output) {
 pub(crate) fn same_place(a: &[f64; AXES], b: &[f64; AXES]) -> bool {
     a.iter().zip(b).all(|(p, q)| (p - q).abs() <= 1e-10)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::interp::decode::decode;
+    use crate::source::FileId;
+    use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
+    use crate::syntax::lines::Line;
+
+    /// Runs the blocks of `program` on two executors, one through `run` (which takes the plain
+    /// path where it can) and one through all the stages; they must queue the same items, end
+    /// each block the same way and be left in the same state. True when every block ran (the
+    /// first alarm ends the comparison).
+    fn assert_plain_path_agrees(program: &str) -> bool {
+        let machine = Machine::default();
+        let mut fast = Executor::new(&machine);
+        let mut full = fast.clone();
+        let (mut fast_out, mut full_out) = (Output::default(), Output::default());
+        let mut cmd = Command::default();
+        let mut blocks = LineBlocks::new();
+        for (number, text) in (1..).zip(program.lines()) {
+            let line = Line {
+                text: text.as_bytes(),
+                offset: 0,
+                number,
+            };
+            parse_line(line, FileId(0), &SyntaxOptions::default(), &mut blocks);
+            for block in blocks.as_slice() {
+                if decode(block, &fast.profile, &fast.machine_axes, &mut cmd).is_err() {
+                    return false;
+                }
+                let by_run = fast.run(&cmd, &mut fast_out);
+                let by_stages = full
+                    .apply_modal(&cmd)
+                    .and_then(|()| full.run_stages(&cmd, &mut full_out));
+                assert_eq!(by_run, by_stages, "{text:?} in {program:?}");
+                assert_eq!(fast_out.items, full_out.items, "{text:?} in {program:?}");
+                assert_eq!(fast.position, full.position, "{text:?}");
+                assert_eq!(fast.modal, full.modal, "{text:?}");
+                assert_eq!(fast.feed, full.feed, "{text:?}");
+                if by_run.is_err() {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    #[test]
+    fn plain_blocks_run_the_same_on_the_short_path_and_through_every_stage() {
+        assert!(assert_plain_path_agrees(
+            "G21 G17 G90 G94\nG00 X0. Y0. Z5.\nG01 Z-1. F1500.\nX2.221 Y2.696\n\
+             G02 X12.221 Y2.696 I5. J0.\nG03 X2.221 Y2.696 R5.\nG91 G01 X1. Y-1.\n\
+             G20 G90 X1. Y1. F10.\nG18 G02 X2. Z1. R3.\nG93 G01 X5. F2.\nG00 X1.\n",
+        ));
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_plain_program_runs_the_same_on_both_paths(
+            blocks in proptest::collection::vec(
+                "(G0[0-3] |G9[0134] |G1[789] |G2[01] )?(X-?[0-9]{1,2}\\.[0-9]? )?(Y-?[0-9]{1,2} )?(Z-?[0-9]\\. )?((I-?[0-9]\\. J-?[0-9]\\. )|(R[0-9]{1,2}\\. ))?(F[0-9]{1,3}\\.)?",
+                1..12,
+            ),
+        ) {
+            assert_plain_path_agrees(&blocks.join("\n"));
+        }
+    }
+}
