@@ -453,14 +453,16 @@ impl<B: BlockSource> Interpreter<B> {
             Place::Stream { block } => {
                 // The next line is read and its first block run in the same step: most lines
                 // have one block.
-                if *block >= self.source.blocks().len() {
+                let mut blocks = self.source.blocks();
+                if *block >= blocks.len() {
                     match self.source.advance() {
                         Ok(true) => *block = 0,
                         Ok(false) => return self.core.end_of_text(),
                         Err(error) => return self.core.read_failed(&error),
                     }
+                    blocks = self.source.blocks();
                 }
-                if let Some(next) = self.source.blocks().get(*block) {
+                if let Some(next) = blocks.get(*block) {
                     *block += 1;
                     self.core.macros.stream_line = next.span.line;
                     self.core.run_block(next, self.source.text());
