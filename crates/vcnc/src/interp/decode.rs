@@ -188,6 +188,19 @@ impl Command {
         })
     }
 
+    /// The axis words present with their axes, in axis order.
+    #[inline(always)]
+    pub(crate) fn axis_words(&self) -> impl Iterator<Item = (Axis, &Value)> + '_ {
+        // The set bits of the mask, lowest first; each axis's slot from a table.
+        let mut mask = self.axis_mask;
+        std::iter::from_fn(move || {
+            let index = mask.trailing_zeros() as usize;
+            mask &= mask.wrapping_sub(1);
+            let axis = *Axis::ALL.get(index)?;
+            Some((axis, &self.values[AXIS_SLOT[index]]))
+        })
+    }
+
     /// Moves the word of axis `from`, if any, to the slot of axis `to`, which must be empty: in
     /// G12.1 the rotary axis's address names the plane's hypothetical second axis.
     pub(crate) fn move_axis_word(&mut self, from: Axis, to: Axis) {
@@ -299,6 +312,17 @@ const AXIS_BIT: [u8; 26] = {
         i += 1;
     }
     bits
+};
+
+/// The address-letter slot of each axis, by axis index.
+const AXIS_SLOT: [usize; crate::machine::AXES] = {
+    let mut slots = [0; crate::machine::AXES];
+    let mut i = 0;
+    while i < slots.len() {
+        slots[i] = (Axis::ALL[i].letter() - b'A') as usize;
+        i += 1;
+    }
+    slots
 };
 
 /// The letter-mask bits of the words of a plain block (see [`Command::is_plain`]).

@@ -290,7 +290,10 @@ impl Executor {
                 code => self.modal.apply(code),
             }
         }
-        self.frames.select(self.modal.work_offset);
+        // Only a work-offset code (G54-G59, G54.1) changes the system in use.
+        if cmd.group(Group::WorkOffset).is_some() {
+            self.frames.select(self.modal.work_offset);
+        }
         Ok(())
     }
 
@@ -390,12 +393,10 @@ impl Executor {
     fn cartesian_target(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.program_position();
         let incremental = self.modal.distance == super::modal::DistanceMode::Incremental;
-        for axis in cmd.axes_present() {
-            if let Some(value) = &cmd.axis(axis.index()) {
-                let v = self.axis_value(axis, value);
-                let i = axis.index();
-                target[i] = if incremental { target[i] + v } else { v };
-            }
+        for (axis, value) in cmd.axis_words() {
+            let v = self.axis_value(axis, value);
+            let i = axis.index();
+            target[i] = if incremental { target[i] + v } else { v };
         }
         target
     }
