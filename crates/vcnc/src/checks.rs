@@ -148,12 +148,7 @@ impl Limits {
 
     #[inline]
     fn inside(&self, point: &[f64; AXES]) -> bool {
-        // Every bound compared, without a branch per comparison: the compiler makes a few
-        // vector comparisons of this (a third of the instructions of `all`), and NaN is outside
-        // either way.
-        (0..AXES).fold(true, |inside, i| {
-            inside & (point[i] >= self.low[i]) & (point[i] <= self.high[i])
-        })
+        (0..AXES).all(|i| point[i] >= self.low[i] && point[i] <= self.high[i])
     }
 
     /// True when the arc's whole circle lies inside the travel in its plane: then no point of
