@@ -15,7 +15,7 @@ use crate::source::Span;
 use crate::syntax::{Block, Number, Word};
 
 /// A value as written, with where it was written and its position among the block's words.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub(crate) struct Value {
     pub(crate) number: Number,
     pub(crate) span: Span,
@@ -34,8 +34,9 @@ pub(crate) struct GWord {
 /// Number of modal-group slots (see [`group_slot`]).
 const GROUP_SLOTS: usize = 19;
 
-/// The block, sorted. Storage is compact (indexes into two short lists) because a command is
-/// cleared and refilled for every block: clearing costs a few dozen bytes, not kilobytes.
+/// The block, sorted. A command is cleared and refilled for every block, so what is present is
+/// kept in bit masks: clearing them forgets the slots behind them, which are overwritten when a
+/// later block writes them and never read before.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Command {
     pub(crate) span: Span,
@@ -44,12 +45,16 @@ pub(crate) struct Command {
     pub(crate) exact_stop_once: bool,
     /// Syntec's `F2=`: a canned cycle's retract feed.
     pub(crate) retract_feed: Option<Value>,
-    /// Per address letter A-Z: 1 + index into `values`, 0 when absent (G, M and N are kept apart).
-    letters: [u8; 26],
+    /// Bit i set when address letter `A + i` has its value in `values[i]` (G, M and N are kept
+    /// apart).
+    letters: u32,
+    /// The value of each address letter A-Z; only those in `letters` mean anything.
+    values: [Value; 26],
     /// Bit i set when the axis word of axis index i is present.
     axis_mask: u8,
-    values: Vec<Value>,
-    /// Per group slot: 1 + index into `g_words`, 0 when absent (the last code written wins).
+    /// Bit i set when group slot i has a code of the block, `groups[i]` (1 + its index into
+    /// `g_words`; the last code written wins).
+    group_mask: u32,
     groups: [u8; GROUP_SLOTS],
     g_words: Vec<GWord>,
     m: Vec<Value>,
@@ -61,15 +66,30 @@ pub(crate) struct Command {
     /// G65 or G66: the block is a macro call; the words from this index on are its arguments
     /// and were not decoded.
     pub(crate) macro_call: Option<(GWord, usize)>,
+    /// The last G code classified, kept from block to block (not cleared): a command is
+    /// decoded with one profile all its life, the executor's.
+    last_g: Option<LastG>,
+}
+
+/// A G word's value (its bits) and the code and group it is on the profile.
+#[derive(Clone, Copy, Debug)]
+struct LastG {
+    bits: u64,
+    code: GCode,
+    group: Group,
 }
 
 impl Command {
     /// The G code of a group, if the block has one.
+    #[inline(always)]
     pub(crate) fn group(&self, group: Group) -> Option<GWord> {
-        match self.groups[group_slot(group)] {
-            0 => None,
-            i => Some(self.g_words[usize::from(i) - 1]),
+        let slot = group_slot(group);
+        if self.group_mask & (1 << slot) == 0 {
+            return None;
         }
+        self.g_words
+            .get(usize::from(self.groups[slot]).wrapping_sub(1))
+            .copied()
     }
 
     /// Every G code of the block in force, one per group, in the order written.
@@ -78,21 +98,24 @@ impl Command {
         self.g_words
             .iter()
             .enumerate()
-            .filter(|(i, g)| usize::from(self.groups[group_slot(g.code.group())]) == i + 1)
+            .filter(|(i, g)| self.group_index(g.code.group()) == Some(*i))
             .map(|(_, g)| *g)
     }
 
+    /// The index into `g_words` of the code of a group in force, if the block has one.
+    fn group_index(&self, group: Group) -> Option<usize> {
+        let slot = group_slot(group);
+        (self.group_mask & (1 << slot) != 0).then(|| usize::from(self.groups[slot]) - 1)
+    }
+
     /// The value of an address letter (`b'R'`), if the block has it.
+    #[inline(always)]
     pub(crate) fn word(&self, letter: u8) -> Option<Value> {
-        match self
-            .letters
-            .get(usize::from(letter.wrapping_sub(b'A')))
-            .copied()
-            .unwrap_or(0)
-        {
-            0 => None,
-            i => Some(self.values[usize::from(i) - 1]),
+        let slot = usize::from(letter.wrapping_sub(b'A'));
+        if slot >= self.values.len() || self.letters & (1 << slot) == 0 {
+            return None;
         }
+        Some(self.values[slot])
     }
 
     /// The axis word of axis index `i` (X Y Z A B C).
@@ -165,13 +188,27 @@ impl Command {
         })
     }
 
+    /// The axis words present with their axes, in axis order.
+    #[inline(always)]
+    pub(crate) fn axis_words(&self) -> impl Iterator<Item = (Axis, &Value)> + '_ {
+        // The set bits of the mask, lowest first; each axis's slot from a table.
+        let mut mask = self.axis_mask;
+        std::iter::from_fn(move || {
+            let index = mask.trailing_zeros() as usize;
+            mask &= mask.wrapping_sub(1);
+            let axis = *Axis::ALL.get(index)?;
+            Some((axis, &self.values[AXIS_SLOT[index]]))
+        })
+    }
+
     /// Moves the word of axis `from`, if any, to the slot of axis `to`, which must be empty: in
     /// G12.1 the rotary axis's address names the plane's hypothetical second axis.
     pub(crate) fn move_axis_word(&mut self, from: Axis, to: Axis) {
         let slot = |axis: Axis| usize::from(axis.letter() - b'A');
         let (from, to) = (slot(from), slot(to));
-        if self.letters[from] != 0 {
-            self.letters[to] = std::mem::take(&mut self.letters[from]);
+        if self.letters & (1 << from) != 0 {
+            self.values[to] = self.values[from];
+            self.letters = (self.letters & !(1 << from)) | (1 << to);
             self.axis_mask = (self.axis_mask & !AXIS_BIT[from]) | AXIS_BIT[to];
         }
     }
@@ -181,9 +218,23 @@ impl Command {
         !self.m.is_empty() || self.s().is_some() || self.t().is_some()
     }
 
+    /// True when the block has nothing but a motion, plane, distance, feed or unit code, axis
+    /// words, I J K R and F (and N, G09): the words of almost every block of a CAM program, which
+    /// the executor runs on a short path (`Executor::run_plain`). Any other code or word, M
+    /// codes included, takes the full sequence of stages.
+    #[inline(always)]
+    pub(crate) fn is_plain(&self) -> bool {
+        self.group_mask & !PLAIN_GROUPS == 0
+            && self.letters & !PLAIN_LETTERS == 0
+            && self.m.is_empty()
+            && self.retract_feed.is_none()
+    }
+
     /// True when I, J, K or R is present.
+    #[inline(always)]
     pub(crate) fn has_center_words(&self) -> bool {
-        (0..3).any(|i| self.center(i).is_some()) || self.r().is_some()
+        const CENTER: u32 = 1 << (b'I' - b'A') | 1 << (b'J' - b'A') | 1 << (b'K' - b'A');
+        self.letters & (CENTER | 1 << (b'R' - b'A')) != 0
     }
 
     /// Clears the command for reuse, keeping its allocations.
@@ -192,10 +243,9 @@ impl Command {
         self.sequence = None;
         self.exact_stop_once = false;
         self.retract_feed = None;
-        self.letters = [0; 26];
+        self.letters = 0;
         self.axis_mask = 0;
-        self.values.clear();
-        self.groups = [0; GROUP_SLOTS];
+        self.group_mask = 0;
         self.g_words.clear();
         self.m.clear();
         self.warnings.clear();
@@ -207,21 +257,47 @@ impl Command {
     ///
     /// # Errors
     /// [`AlarmCode::DuplicateAddress`] when the letter was already written in the block.
+    // Inlined: out of line, the value and the result went through memory for every word.
+    #[inline(always)]
     fn set(&mut self, word: &Word, value: Value) -> Result<(), Alarm> {
-        let slot = usize::from(word.letter - b'A');
-        if self.letters[slot] != 0 {
-            let previous = self.values[usize::from(self.letters[slot]) - 1];
-            return Err(Alarm::error(
-                AlarmCode::DuplicateAddress,
-                word.span,
-                format!("address {} appears twice in the block", word.letter as char),
-            )
-            .with_label(previous.span, "first written here"));
+        let slot = usize::from(word.letter.wrapping_sub(b'A'));
+        let Some(stored) = self.values.get_mut(slot) else {
+            return Err(not_an_address(word));
+        };
+        if self.letters & (1 << slot) != 0 {
+            return Err(duplicate(word, stored));
         }
-        self.values.push(value);
-        self.letters[slot] = u8::try_from(self.values.len()).unwrap_or(u8::MAX);
+        *stored = value;
+        self.letters |= 1 << slot;
         self.axis_mask |= AXIS_BIT[slot];
         Ok(())
+    }
+}
+
+/// An address letter written twice in a block; `previous` is the first.
+#[cold]
+fn duplicate(word: &Word, previous: &Value) -> Alarm {
+    Alarm::error(
+        AlarmCode::DuplicateAddress,
+        word.span,
+        format!("address {} appears twice in the block", word.letter as char),
+    )
+    .with_label(previous.span, "first written here")
+}
+
+/// A word whose letter is no address (the front ends give only letters A to Z).
+#[cold]
+fn not_an_address(word: &Word) -> Alarm {
+    Alarm::not_supported(word.span, &format!("address {}", word.letter as char), None)
+}
+
+impl Command {
+    /// Records a G code of group slot `slot`, which wins over any earlier one of its group.
+    #[inline(always)]
+    fn set_group(&mut self, slot: usize, g: GWord) {
+        self.g_words.push(g);
+        self.groups[slot] = u8::try_from(self.g_words.len()).unwrap_or(u8::MAX);
+        self.group_mask |= 1 << slot;
     }
 }
 
@@ -238,7 +314,38 @@ const AXIS_BIT: [u8; 26] = {
     bits
 };
 
-fn group_slot(group: Group) -> usize {
+/// The address-letter slot of each axis, by axis index.
+const AXIS_SLOT: [usize; crate::machine::AXES] = {
+    let mut slots = [0; crate::machine::AXES];
+    let mut i = 0;
+    while i < slots.len() {
+        slots[i] = (Axis::ALL[i].letter() - b'A') as usize;
+        i += 1;
+    }
+    slots
+};
+
+/// The letter-mask bits of the words of a plain block (see [`Command::is_plain`]).
+const PLAIN_LETTERS: u32 = {
+    let mut bits = 0u32;
+    let letters = *b"XYZABCIJKRF";
+    let mut i = 0;
+    while i < letters.len() {
+        bits |= 1 << (letters[i] - b'A');
+        i += 1;
+    }
+    bits
+};
+
+/// The group-mask bits of the codes of a plain block (see [`Command::is_plain`]): none of them
+/// is read after the modal state is set, but by the motion itself.
+const PLAIN_GROUPS: u32 = (1 << group_slot(Group::Motion))
+    | (1 << group_slot(Group::Plane))
+    | (1 << group_slot(Group::Distance))
+    | (1 << group_slot(Group::FeedMode))
+    | (1 << group_slot(Group::Units));
+
+const fn group_slot(group: Group) -> usize {
     match group {
         Group::NonModal => 0,
         Group::Motion => 1,
@@ -422,6 +529,42 @@ pub(crate) fn decode(
 }
 
 fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> Result<(), Alarm> {
+    // A CAM program writes the same motion code block after block: the last code read is
+    // remembered by its value, and classified again only when the value changes.
+    let bits = word.number.value.to_bits();
+    let (code, group) = match out.last_g {
+        Some(last) if last.bits == bits => (last.code, last.group),
+        _ => {
+            let code = classify_g_word(word, profile)?;
+            let group = code.group();
+            out.last_g = Some(LastG { bits, code, group });
+            (code, group)
+        }
+    };
+    if code == GCode::ExactStopOnce {
+        out.exact_stop_once = true;
+        return Ok(());
+    }
+    let new = GWord {
+        code,
+        span: word.span,
+        order,
+    };
+    if let Some(previous) = out.group(group) {
+        if previous.code != code {
+            same_group(word, previous, group, profile, out)?;
+        }
+    }
+    out.set_group(group_slot(group), new);
+    Ok(())
+}
+
+/// The G code of a G word on `profile`.
+///
+/// # Errors
+/// A value that is no G code, a code this profile does not have or vcnc does not support yet.
+#[inline(never)]
+fn classify_g_word(word: &Word, profile: &Profile) -> Result<GCode, Alarm> {
     let Some(tenths) = word.number.tenths().filter(|t| *t >= 0) else {
         return Err(Alarm::error(
             AlarmCode::UnknownGCode,
@@ -429,64 +572,62 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
             format!("G{} is not a G code", word.number.value),
         ));
     };
-    let code = match classify_g(tenths, profile) {
-        GLookup::Known(code) => code,
+    match classify_g(tenths, profile) {
+        GLookup::Known(code) => Ok(code),
         GLookup::NotSupported(issue) => {
             let what = match not_supported_description(tenths, profile) {
                 Some(meaning) => format!("{} ({meaning})", g_name(tenths)),
                 None => g_name(tenths),
             };
-            return Err(Alarm::not_supported(word.span, &what, issue));
+            Err(Alarm::not_supported(word.span, &what, issue))
         }
-        GLookup::Unknown => {
-            return Err(Alarm::error(
-                AlarmCode::UnknownGCode,
-                word.span,
-                format!(
-                    "{} does not exist on the {} profile",
-                    g_name(tenths),
-                    profile.name
-                ),
-            ))
-        }
-    };
-    if code == GCode::ExactStopOnce {
-        out.exact_stop_once = true;
-        return Ok(());
+        GLookup::Unknown => Err(Alarm::error(
+            AlarmCode::UnknownGCode,
+            word.span,
+            format!(
+                "{} does not exist on the {} profile",
+                g_name(tenths),
+                profile.name
+            ),
+        )),
     }
-    let slot = group_slot(code.group());
-    let new = GWord {
-        code,
-        span: word.span,
-        order,
-    };
-    if let Some(previous) = out.group(code.group()) {
-        if previous.code != code {
-            let message = format!(
-                "two G codes of one modal group in a block: {} wins",
-                g_name(tenths)
+}
+
+/// A second code of one group in a block, `word` after `previous`: the later one wins with a
+/// warning where the profile says so, otherwise the block is refused.
+///
+/// # Errors
+/// [`AlarmCode::SameGroupGCodes`] where the profile refuses such blocks, and always for
+/// non-modal codes.
+#[cold]
+fn same_group(
+    word: &Word,
+    previous: GWord,
+    group: Group,
+    profile: &Profile,
+    out: &mut Command,
+) -> Result<(), Alarm> {
+    match profile.same_group {
+        SameGroupRule::LastWins if group != Group::NonModal => {
+            // The word was classified, so its value is a code in tenths.
+            let name = word
+                .number
+                .tenths()
+                .map_or_else(|| format!("G{}", word.number.value), g_name);
+            let message = format!("two G codes of one modal group in a block: {name} wins");
+            out.warnings.push(
+                Alarm::warning(AlarmCode::SameGroupGCodes, word.span, message)
+                    .with_label(previous.span, "overridden by the later code"),
             );
-            match profile.same_group {
-                SameGroupRule::LastWins if code.group() != crate::profile::Group::NonModal => {
-                    out.warnings.push(
-                        Alarm::warning(AlarmCode::SameGroupGCodes, word.span, message)
-                            .with_label(previous.span, "overridden by the later code"),
-                    );
-                }
-                _ => {
-                    return Err(Alarm::error(
-                        AlarmCode::SameGroupGCodes,
-                        word.span,
-                        "two G codes of one group in a block",
-                    )
-                    .with_label(previous.span, "the other code"));
-                }
-            }
+            Ok(())
         }
+        _ => Err(Alarm::error(
+            AlarmCode::SameGroupGCodes,
+            word.span,
+            "two G codes of one group in a block",
+        )
+        .with_label(previous.span, "the other code")),
     }
-    out.g_words.push(new);
-    out.groups[slot] = u8::try_from(out.g_words.len()).unwrap_or(u8::MAX);
-    Ok(())
 }
 
 fn whole(word: &Word) -> Result<(), Alarm> {

@@ -5,7 +5,7 @@
 //! G52, G28, G29, G30, G53), the motion, then program stops and ends (M00, M01, M02, M30).
 //! Each part is a function of its own module; this file only sequences them.
 
-use super::decode::{Command, Value};
+use super::decode::{Command, GWord, Value};
 use super::frames::Frames;
 use super::modal::{FeedMode, LengthComp, ModalState, MotionMode, Units};
 use super::Output;
@@ -102,6 +102,7 @@ impl Executor {
     }
 
     /// The current position in program coordinates.
+    #[inline(always)]
     pub(crate) fn program_position(&self) -> [f64; AXES] {
         self.frames.to_program(&self.position)
     }
@@ -112,6 +113,35 @@ impl Executor {
     /// The alarm that stops the program at this block.
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.apply_modal(cmd)?;
+        if cmd.is_plain() && self.cycle.is_none() && out.comp.is_none() {
+            return self.run_plain(cmd, out);
+        }
+        self.run_stages(cmd, out)
+    }
+
+    /// The block of a CAM program (a motion code, axis and centre words, F) outside canned
+    /// cycles and cutter compensation: every stage of [`Executor::run_stages`] but the feed and
+    /// the motion would find nothing to do in it, so they are not asked.
+    // Inlined into `run`: the common block pays for one call, not two.
+    #[inline(always)]
+    fn run_plain(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
+        self.set_feed(cmd)?;
+        if cmd.has_axis_words() || has_center_words(cmd) {
+            self.motion(cmd, false, out)?;
+        }
+        if self.modal.feed_mode == FeedMode::InverseTime {
+            // G93: F is not modal (spec 1.56): every cutting block needs its own.
+            self.feed = None;
+        }
+        Ok(Flow::Next)
+    }
+
+    /// Runs the stages of a block after its modal codes, in the control's order.
+    ///
+    /// # Errors
+    /// The alarm that stops the program at this block.
+    #[inline(never)]
+    fn run_stages(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         super::cycles::apply_codes(self, cmd)?;
         self.set_feed(cmd)?;
         if cmd.has_auxiliary_words() {
@@ -233,27 +263,7 @@ impl Executor {
     fn apply_modal(&mut self, cmd: &Command) -> Result<(), Alarm> {
         for g in cmd.g_codes() {
             match g.code {
-                GCode::ExtendedWorkOffset => {
-                    let p = cmd.p().ok_or_else(|| {
-                        Alarm::error(
-                            AlarmCode::WorkOffsetOutOfRange,
-                            g.span,
-                            "G54.1 needs P (1 to the number of extended offsets)",
-                        )
-                    })?;
-                    let n = p.number.whole().unwrap_or(-1);
-                    if n < 1 || n > i64::from(self.profile.g54_1_count) {
-                        return Err(Alarm::error(
-                            AlarmCode::WorkOffsetOutOfRange,
-                            p.span,
-                            format!(
-                                "G54.1 P{n}: this control has P1 to P{}",
-                                self.profile.g54_1_count
-                            ),
-                        ));
-                    }
-                    self.modal.work_offset = WorkOffsetId::Extended(n as u32);
-                }
+                GCode::ExtendedWorkOffset => self.extended_work_offset(cmd, g)?,
                 GCode::FeedPerMinute | GCode::FeedPerRevolution | GCode::InverseTimeFeed => {
                     let before = self.modal.feed_mode;
                     self.modal.apply(g.code);
@@ -280,7 +290,36 @@ impl Executor {
                 code => self.modal.apply(code),
             }
         }
-        self.frames.select(self.modal.work_offset);
+        // Only a work-offset code (G54-G59, G54.1) changes the system in use.
+        if cmd.group(Group::WorkOffset).is_some() {
+            self.frames.select(self.modal.work_offset);
+        }
+        Ok(())
+    }
+
+    /// G54.1 P: the extended work offset P (kept out of line: it is rare, and inlined, its P
+    /// was read for every block).
+    #[inline(never)]
+    fn extended_work_offset(&mut self, cmd: &Command, g: GWord) -> Result<(), Alarm> {
+        let p = cmd.p().ok_or_else(|| {
+            Alarm::error(
+                AlarmCode::WorkOffsetOutOfRange,
+                g.span,
+                "G54.1 needs P (1 to the number of extended offsets)",
+            )
+        })?;
+        let n = p.number.whole().unwrap_or(-1);
+        if n < 1 || n > i64::from(self.profile.g54_1_count) {
+            return Err(Alarm::error(
+                AlarmCode::WorkOffsetOutOfRange,
+                p.span,
+                format!(
+                    "G54.1 P{n}: this control has P1 to P{}",
+                    self.profile.g54_1_count
+                ),
+            ));
+        }
+        self.modal.work_offset = WorkOffsetId::Extended(n as u32);
         Ok(())
     }
 
@@ -339,6 +378,7 @@ impl Executor {
     }
 
     /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
+    #[inline(always)]
     pub(crate) fn target_program(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.cartesian_target(cmd);
         if let Some(point) = super::polar::point(self, cmd) {
@@ -349,15 +389,14 @@ impl Executor {
     }
 
     /// The target of the axis words read as Cartesian coordinates.
+    #[inline(always)]
     fn cartesian_target(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.program_position();
         let incremental = self.modal.distance == super::modal::DistanceMode::Incremental;
-        for axis in cmd.axes_present() {
-            if let Some(value) = &cmd.axis(axis.index()) {
-                let v = self.axis_value(axis, value);
-                let i = axis.index();
-                target[i] = if incremental { target[i] + v } else { v };
-            }
+        for (axis, value) in cmd.axis_words() {
+            let v = self.axis_value(axis, value);
+            let i = axis.index();
+            target[i] = if incremental { target[i] + v } else { v };
         }
         target
     }
@@ -378,6 +417,7 @@ impl Executor {
 
     /// Machine coordinates for a program target; the length vector follows the compensation in
     /// force when the block moves Z (or changes the compensation).
+    #[inline(always)]
     pub(crate) fn machine_target(&mut self, target: &[f64; AXES], moves_z: bool) -> [f64; AXES] {
         if moves_z {
             self.frames.length_vector = self.active_length();
@@ -501,24 +541,13 @@ impl Executor {
     ///
     /// # Errors
     /// [`AlarmCode::NoFeedRate`] when no F is in force (FANUC alarm 011).
+    // Inlined: out of line, the feed came back through memory (30 instructions a block).
+    #[inline(always)]
     pub(crate) fn cutting_feed(&self, cmd: &Command) -> Result<Feed, Alarm> {
-        let Some(f) = self.feed else {
-            let what = match self.modal.feed_mode {
-                FeedMode::InverseTime => {
-                    "in G93 inverse-time mode every cutting block needs its own F"
-                }
-                _ => "cutting move before any feed rate (F) was programmed",
-            };
-            return Err(Alarm::error(AlarmCode::NoFeedRate, cmd.span, what)
-                .with_help("add an F word to this block or an earlier one (FANUC alarm 011)"));
+        let f = match self.feed {
+            Some(f) if f != 0.0 => f,
+            _ => return Err(self.no_feed(cmd)),
         };
-        if f == 0.0 {
-            return Err(Alarm::error(
-                AlarmCode::NoFeedRate,
-                cmd.f().map_or(cmd.span, |v| v.span),
-                "feed rate is zero",
-            ));
-        }
         Ok(match self.modal.feed_mode {
             FeedMode::PerMinute => Feed::PerMinute(f),
             FeedMode::PerRevolution => Feed::PerRevolution {
@@ -527,6 +556,26 @@ impl Executor {
             },
             FeedMode::InverseTime => Feed::InverseTime(f),
         })
+    }
+
+    /// The alarm of a cutting move without a feed in force, or with a zero feed.
+    #[cold]
+    fn no_feed(&self, cmd: &Command) -> Alarm {
+        if self.feed.is_none() {
+            let what = match self.modal.feed_mode {
+                FeedMode::InverseTime => {
+                    "in G93 inverse-time mode every cutting block needs its own F"
+                }
+                _ => "cutting move before any feed rate (F) was programmed",
+            };
+            return Alarm::error(AlarmCode::NoFeedRate, cmd.span, what)
+                .with_help("add an F word to this block or an earlier one (FANUC alarm 011)");
+        }
+        Alarm::error(
+            AlarmCode::NoFeedRate,
+            cmd.f().map_or(cmd.span, |v| v.span),
+            "feed rate is zero",
+        )
     }
 }
 
@@ -574,4 +623,73 @@ pub(crate) fn stop(cmd: &Command, kind: StopKind, out: &mut Output) {
 /// program meant to repeat; a real control, counting in increments, does not move there.
 pub(crate) fn same_place(a: &[f64; AXES], b: &[f64; AXES]) -> bool {
     a.iter().zip(b).all(|(p, q)| (p - q).abs() <= 1e-10)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::interp::decode::decode;
+    use crate::source::FileId;
+    use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
+    use crate::syntax::lines::Line;
+
+    /// Runs the blocks of `program` on two executors, one through `run` (which takes the plain
+    /// path where it can) and one through all the stages; they must queue the same items, end
+    /// each block the same way and be left in the same state. True when every block ran (the
+    /// first alarm ends the comparison).
+    fn assert_plain_path_agrees(program: &str) -> bool {
+        let machine = Machine::default();
+        let mut fast = Executor::new(&machine);
+        let mut full = fast.clone();
+        let (mut fast_out, mut full_out) = (Output::default(), Output::default());
+        let mut cmd = Command::default();
+        let mut blocks = LineBlocks::new();
+        for (number, text) in (1..).zip(program.lines()) {
+            let line = Line {
+                text: text.as_bytes(),
+                offset: 0,
+                number,
+            };
+            parse_line(line, FileId(0), &SyntaxOptions::default(), &mut blocks);
+            for block in blocks.as_slice() {
+                if decode(block, &fast.profile, &fast.machine_axes, &mut cmd).is_err() {
+                    return false;
+                }
+                let by_run = fast.run(&cmd, &mut fast_out);
+                let by_stages = full
+                    .apply_modal(&cmd)
+                    .and_then(|()| full.run_stages(&cmd, &mut full_out));
+                assert_eq!(by_run, by_stages, "{text:?} in {program:?}");
+                assert_eq!(fast_out.items, full_out.items, "{text:?} in {program:?}");
+                assert_eq!(fast.position, full.position, "{text:?}");
+                assert_eq!(fast.modal, full.modal, "{text:?}");
+                assert_eq!(fast.feed, full.feed, "{text:?}");
+                if by_run.is_err() {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    #[test]
+    fn plain_blocks_run_the_same_on_the_short_path_and_through_every_stage() {
+        assert!(assert_plain_path_agrees(
+            "G21 G17 G90 G94\nG00 X0. Y0. Z5.\nG01 Z-1. F1500.\nX2.221 Y2.696\n\
+             G02 X12.221 Y2.696 I5. J0.\nG03 X2.221 Y2.696 R5.\nG91 G01 X1. Y-1.\n\
+             G20 G90 X1. Y1. F10.\nG18 G02 X2. Z1. R3.\nG93 G01 X5. F2.\nG00 X1.\n",
+        ));
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_plain_program_runs_the_same_on_both_paths(
+            blocks in proptest::collection::vec(
+                "(G0[0-3] |G9[0134] |G1[789] |G2[01] )?(X-?[0-9]{1,2}\\.[0-9]? )?(Y-?[0-9]{1,2} )?(Z-?[0-9]\\. )?((I-?[0-9]\\. J-?[0-9]\\. )|(R[0-9]{1,2}\\. ))?(F[0-9]{1,3}\\.)?",
+                1..12,
+            ),
+        ) {
+            assert_plain_path_agrees(&blocks.join("\n"));
+        }
+    }
 }

@@ -220,10 +220,22 @@ impl Frames {
     }
 
     /// Program coordinates of a machine position, with the applied tool length vector.
+    // Inlined for the common case, a translation only: every block asks.
+    #[inline(always)]
     pub(crate) fn to_program(&self, machine: &[f64; AXES]) -> [f64; AXES] {
         let shift = &self.shift;
         let mut program: [f64; AXES] = std::array::from_fn(|i| machine[i] - shift[i]);
         program[2] -= self.length_vector;
+        if self.scaling.is_none() && !self.rotated() {
+            return program;
+        }
+        self.unturn(program)
+    }
+
+    /// The program coordinates of a point already shifted back: the rotations and the scaling
+    /// undone.
+    #[inline(never)]
+    fn unturn(&self, mut program: [f64; AXES]) -> [f64; AXES] {
         if let Some(rotation) = &self.preset_rotation {
             rotation.turn(&mut program, -rotation.sin);
         }
@@ -239,8 +251,22 @@ impl Frames {
     }
 
     /// Machine coordinates of a program position, with tool length vector `length`.
+    #[inline(always)]
     pub(crate) fn to_machine(&self, program: &[f64; AXES], length: f64) -> [f64; AXES] {
+        let turned = if self.scaling.is_none() && !self.rotated() {
+            *program
+        } else {
+            self.turn(program)
+        };
         let shift = &self.shift;
+        let mut machine: [f64; AXES] = std::array::from_fn(|i| turned[i] + shift[i]);
+        machine[2] += length;
+        machine
+    }
+
+    /// A program position scaled and turned, before the shift.
+    #[inline(never)]
+    fn turn(&self, program: &[f64; AXES]) -> [f64; AXES] {
         let mut turned = *program;
         if let Some(scaling) = &self.scaling {
             for ((p, c), f) in turned.iter_mut().zip(scaling.center).zip(scaling.factor) {
@@ -253,8 +279,6 @@ impl Frames {
         if let Some(rotation) = &self.preset_rotation {
             rotation.turn(&mut turned, rotation.sin);
         }
-        let mut machine: [f64; AXES] = std::array::from_fn(|i| turned[i] + shift[i]);
-        machine[2] += length;
-        machine
+        turned
     }
 }

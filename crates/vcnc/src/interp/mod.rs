@@ -451,28 +451,21 @@ impl<B: BlockSource> Interpreter<B> {
     fn step(&mut self) {
         match &mut self.core.place {
             Place::Stream { block } => {
-                let blocks = self.source.blocks();
-                if *block < blocks.len() {
-                    let index = *block;
-                    *block += 1;
-                    self.core.macros.stream_line = blocks[index].span.line;
-                    self.core.run_block(&blocks[index], self.source.text());
-                    return;
-                }
-                match self.source.advance() {
-                    Ok(true) => *block = 0,
-                    Ok(false) => self.core.end_of_text(),
-                    Err(error) => {
-                        self.core.out.stop(Alarm {
-                            code: AlarmCode::ReadError,
-                            severity: crate::alarm::Severity::Error,
-                            message: format!("cannot read the program: {error}"),
-                            span: None,
-                            labels: Vec::new(),
-                            help: None,
-                        });
-                        self.core.done = true;
+                // The next line is read and its first block run in the same step: most lines
+                // have one block.
+                let mut blocks = self.source.blocks();
+                if *block >= blocks.len() {
+                    match self.source.advance() {
+                        Ok(true) => *block = 0,
+                        Ok(false) => return self.core.end_of_text(),
+                        Err(error) => return self.core.read_failed(&error),
                     }
+                    blocks = self.source.blocks();
+                }
+                if let Some(next) = blocks.get(*block) {
+                    *block += 1;
+                    self.core.macros.stream_line = next.span.line;
+                    self.core.run_block(next, self.source.text());
                 }
             }
             Place::Stored {
@@ -499,6 +492,20 @@ impl<B: BlockSource> Interpreter<B> {
 }
 
 impl Core {
+    /// The program text cannot be read: the run ends here.
+    #[cold]
+    fn read_failed(&mut self, error: &std::io::Error) {
+        self.out.stop(Alarm {
+            code: AlarmCode::ReadError,
+            severity: crate::alarm::Severity::Error,
+            message: format!("cannot read the program: {error}"),
+            span: None,
+            labels: Vec::new(),
+            help: None,
+        });
+        self.done = true;
+    }
+
     fn end_of_text(&mut self) {
         let span = self.last_span;
         self.out.push_warning(
@@ -524,7 +531,26 @@ impl Core {
 
     /// Runs one block of the program, from the stream or from memory. `main_text` is the
     /// block source's text, when it has it (jumps need it).
+    // Inlined, with the rare kinds of block out of line: this runs for every block.
+    #[inline(always)]
     fn run_block(&mut self, block: &Block, main_text: Option<&[u8]>) {
+        let ordinary = block.alarms.is_empty()
+            && block.skip.is_none()
+            && block.kind == BlockKind::Words
+            && !self.interrupt_may_come();
+        if !ordinary {
+            return self.run_unusual_block(block, main_text);
+        }
+        if block.is_empty() {
+            return;
+        }
+        self.run_contents(block, main_text);
+    }
+
+    /// [`Core::run_block`] for a block with alarms, a block skip, a tape mark or a macro
+    /// header, or while an interrupt signal may come.
+    #[inline(never)]
+    fn run_unusual_block(&mut self, block: &Block, main_text: Option<&[u8]>) {
         for alarm in &block.alarms {
             if alarm.is_error() {
                 self.out.stop(alarm.clone());
@@ -563,6 +589,12 @@ impl Core {
         if self.interrupt_may_come() && self.interrupt_before(block, main_text) {
             return;
         }
+        self.run_contents(block, main_text);
+    }
+
+    /// Runs a block that is neither empty nor skipped: its statements, or its words.
+    #[inline(always)]
+    fn run_contents(&mut self, block: &Block, main_text: Option<&[u8]>) {
         self.started = true;
         self.last_span = block.span;
         if block.has_macro() {

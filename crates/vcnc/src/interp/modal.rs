@@ -171,6 +171,8 @@ impl ModalState {
 
     /// Sets the group of `code` to it. Codes of other kinds (one-shot, cancels of features that
     /// are never on) change nothing here.
+    // Inlined: the executor applies the codes of every block.
+    #[inline(always)]
     pub fn apply(&mut self, code: GCode) {
         use GCode::*;
         match code {

@@ -34,8 +34,16 @@ pub(crate) fn g15(exec: &mut Executor) {
 
 /// The polar point a block in G16 programs, when it has a word of the plane: the radius from the
 /// plane's first axis word, the angle from the second's, the others kept.
+#[inline(always)]
 pub(crate) fn point(exec: &Executor, cmd: &Command) -> Option<PolarPoint> {
+    // Out of G16, the common case, this is one test in the caller.
     let previous = exec.polar?;
+    point_from(exec, cmd, previous)
+}
+
+/// [`point`] in G16, from the previous polar point.
+#[inline(never)]
+fn point_from(exec: &Executor, cmd: &Command, previous: PolarPoint) -> Option<PolarPoint> {
     let (a, b, _) = exec.modal.plane.axes();
     let radius_word = cmd.axis(a);
     let angle_word = cmd.axis(b);

@@ -130,6 +130,19 @@ impl Block {
         self.kind = BlockKind::Words;
         self.words.clear();
         self.comment = None;
+        // A block of plain words, the common one, has nothing more to clear: one test for it.
+        if !self.alarms.is_empty()
+            | !self.statements.is_empty()
+            | !self.code.is_empty()
+            | self.message.is_some()
+        {
+            self.clear_contents();
+        }
+    }
+
+    /// Empties what only blocks with alarms, statements or expressions hold.
+    #[cold]
+    fn clear_contents(&mut self) {
         self.alarms.clear();
         self.statements.clear();
         self.code.clear();

@@ -90,7 +90,6 @@ pub struct BackgroundParser {
     batch: Vec<LineBlocks>,
     index: usize,
     thread: Option<JoinHandle<()>>,
-    empty: LineBlocks,
 }
 
 impl BackgroundParser {
@@ -160,7 +159,6 @@ impl BackgroundParser {
             batch: Vec::new(),
             index: 0,
             thread: Some(thread),
-            empty: LineBlocks::new(),
         }
     }
 }
@@ -187,9 +185,10 @@ impl BlockSource for BackgroundParser {
     }
 
     fn blocks(&self) -> &[Block] {
-        self.batch
-            .get(self.index)
-            .map_or(self.empty.as_slice(), LineBlocks::as_slice)
+        match self.batch.get(self.index) {
+            Some(line) => line.as_slice(),
+            None => &[],
+        }
     }
 }
 

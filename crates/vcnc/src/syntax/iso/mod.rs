@@ -47,7 +47,8 @@ impl LineBlocks {
 
     /// The blocks of the last line read.
     pub fn as_slice(&self) -> &[super::Block] {
-        &self.blocks[..self.len]
+        // `len` never exceeds the blocks made; no panic path in the interpreter's loop either way.
+        self.blocks.get(..self.len).unwrap_or_default()
     }
 
     /// Forgets the blocks, keeping their allocations.

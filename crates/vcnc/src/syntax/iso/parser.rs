@@ -48,6 +48,9 @@ impl Default for SyntaxOptions {
 }
 
 /// Reads the blocks of one line into `out` (which is reset first).
+// Inlined into the reading loops, with the general reader out of line: the common line costs no
+// call.
+#[inline(always)]
 pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &mut LineBlocks) {
     out.reset();
     if read_plain_line(line, file, out) {
@@ -58,6 +61,7 @@ pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &m
 }
 
 /// Reads the blocks of any line, character by character.
+#[inline(never)]
 fn parse_any_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &mut LineBlocks) {
     let mut reader = Reader {
         text: line.text,
