@@ -1,6 +1,7 @@
 //! `vcnc check`: run programs and report only their alarms and warnings.
 
 use super::{Outcome, SetupError};
+use crate::program::Parsing;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::path::PathBuf;
@@ -34,7 +35,13 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let mut outcome = Outcome::Clean;
     let mut reports = Vec::new();
     for path in &args.programs {
-        let (stream, files) = crate::program::open(path, &machine, options.clone(), &args.machine)?;
+        let (stream, files) = crate::program::open(
+            path,
+            &machine,
+            options.clone(),
+            &args.machine,
+            Parsing::for_consumer(false),
+        )?;
         let alarms: Vec<Alarm> = stream.filter_map(Result::err).collect();
         let failed = alarms.iter().any(Alarm::is_error);
         if failed {

@@ -2,6 +2,7 @@
 
 use super::{Outcome, SetupError};
 use crate::planned::for_each_timed;
+use crate::program::Parsing;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use serde_json::json;
@@ -41,7 +42,13 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let machine = args.machine.machine()?;
     let options = args.machine.options()?;
     let plan_options = args.machine.plan_options()?;
-    let (stream, files) = crate::program::open(&args.program, &machine, options, &args.machine)?;
+    let (stream, files) = crate::program::open(
+        &args.program,
+        &machine,
+        options,
+        &args.machine,
+        Parsing::for_consumer(true),
+    )?;
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();

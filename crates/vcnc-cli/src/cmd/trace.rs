@@ -9,7 +9,7 @@
 use super::{Outcome, SetupError};
 use crate::numbers::{FixedText, OutBuffer, PaddedText, RecordText, Remembered};
 use crate::planned::{for_each_timed, Item};
-use crate::program::ProgramFiles;
+use crate::program::{Parsing, ProgramFiles};
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
@@ -63,7 +63,13 @@ fn write_trace(
     let machine = args.machine.machine()?;
     let options = args.machine.options()?;
     let plan_options = args.machine.plan_options()?;
-    let (stream, files) = crate::program::open(&args.program, &machine, options, &args.machine)?;
+    let (stream, files) = crate::program::open(
+        &args.program,
+        &machine,
+        options,
+        &args.machine,
+        Parsing::for_consumer(true),
+    )?;
     let mut writer = Writer::new(files.clone(), &machine, args.work);
     if args.format == Format::Csv {
         writer.csv_header();
@@ -625,9 +631,14 @@ mod tests {
             assert!(alarms.is_empty(), "{alarms:?}");
 
             let machine = Machine::default();
-            let (_, files) =
-                crate::program::open(&args.program, &machine, Options::default(), &args.machine)
-                    .unwrap();
+            let (_, files) = crate::program::open(
+                &args.program,
+                &machine,
+                Options::default(),
+                &args.machine,
+                Parsing::Ahead,
+            )
+            .unwrap();
             let mut writer = Writer::new(files, &machine, true);
             if args.format == Format::Csv {
                 writer.csv_header();
