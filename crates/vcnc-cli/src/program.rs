@@ -158,6 +158,29 @@ pub(crate) fn open(
     Ok((Interpreted::spawn(interpreter, state, travel), files))
 }
 
+/// A program opened for a command that plans it (`run`, `trace`).
+pub(crate) struct Planned {
+    pub(crate) machine: Machine,
+    pub(crate) plan_options: vcnc::plan::PlanOptions,
+    pub(crate) stream: Interpreted,
+    pub(crate) files: ProgramFiles,
+}
+
+/// Opens `path` on the machine and with the options of `setup`, for a consumer that keeps a
+/// core busy.
+pub(crate) fn open_planned(path: &Path, setup: &MachineArgs) -> Result<Planned, String> {
+    let machine = setup.machine()?;
+    let options = setup.options()?;
+    let plan_options = setup.plan_options()?;
+    let (stream, files) = open(path, &machine, options, setup, Parsing::for_consumer(true))?;
+    Ok(Planned {
+        machine,
+        plan_options,
+        stream,
+        files,
+    })
+}
+
 /// The machine state file: the persistent macro variables between runs.
 pub(crate) struct StateFile {
     path: PathBuf,

@@ -2,7 +2,7 @@
 
 use super::{Outcome, SetupError};
 use crate::planned::for_each_timed;
-use crate::program::Parsing;
+use crate::program::{open_planned, Planned};
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use serde_json::json;
@@ -39,16 +39,12 @@ const PLAN_NOTE: &str = "planned: per-axis speed, acceleration and jerk, look-ah
 exact stops, dwell, tool change and spindle times from the machine file";
 
 pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
-    let machine = args.machine.machine()?;
-    let options = args.machine.options()?;
-    let plan_options = args.machine.plan_options()?;
-    let (stream, files) = crate::program::open(
-        &args.program,
-        &machine,
-        options,
-        &args.machine,
-        Parsing::for_consumer(true),
-    )?;
+    let Planned {
+        machine,
+        plan_options,
+        stream,
+        files,
+    } = open_planned(&args.program, &args.machine)?;
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();

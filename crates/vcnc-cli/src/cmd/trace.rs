@@ -9,7 +9,7 @@
 use super::{Outcome, SetupError};
 use crate::numbers::{FixedText, OutBuffer, PaddedText, RecordText, Remembered};
 use crate::planned::{for_each_timed, Item};
-use crate::program::{Parsing, ProgramFiles};
+use crate::program::{open_planned, Planned, ProgramFiles};
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
@@ -60,16 +60,12 @@ fn write_trace(
     args: &Args,
     output: &mut impl Write,
 ) -> Result<(Vec<Alarm>, ProgramFiles), SetupError> {
-    let machine = args.machine.machine()?;
-    let options = args.machine.options()?;
-    let plan_options = args.machine.plan_options()?;
-    let (stream, files) = crate::program::open(
-        &args.program,
-        &machine,
-        options,
-        &args.machine,
-        Parsing::for_consumer(true),
-    )?;
+    let Planned {
+        machine,
+        plan_options,
+        stream,
+        files,
+    } = open_planned(&args.program, &args.machine)?;
     let mut writer = Writer::new(files.clone(), &machine, args.work);
     if args.format == Format::Csv {
         writer.csv_header();
@@ -636,7 +632,7 @@ mod tests {
                 &machine,
                 Options::default(),
                 &args.machine,
-                Parsing::Ahead,
+                crate::program::Parsing::Ahead,
             )
             .unwrap();
             let mut writer = Writer::new(files, &machine, true);
