@@ -127,7 +127,14 @@ impl Executor {
     fn run_plain(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.set_feed(cmd)?;
         if cmd.has_axis_words() || has_center_words(cmd) {
-            self.motion(cmd, false, out)?;
+            if self.modal.motion == MotionMode::Linear {
+                // The line, most blocks of a CAM program, is built here: through `motion`, out
+                // of line, every block paid a call and its result came back through memory.
+                let machine_target = self.block_target(cmd, false, out)?;
+                self.feed_to(machine_target, cmd, false, out)?;
+            } else {
+                self.motion(cmd, false, out)?;
+            }
         }
         if self.modal.feed_mode == FeedMode::InverseTime {
             // G93: F is not modal (spec 1.56): every cutting block needs its own.
