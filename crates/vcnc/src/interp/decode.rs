@@ -66,9 +66,10 @@ pub(crate) struct Command {
     /// G65 or G66: the block is a macro call; the words from this index on are its arguments
     /// and were not decoded.
     pub(crate) macro_call: Option<(GWord, usize)>,
-    /// The last G code classified, kept from block to block (not cleared): a command is
-    /// decoded with one profile all its life, the executor's.
-    last_g: Option<LastG>,
+    /// G codes classified before, kept from block to block (not cleared): a command is decoded
+    /// with one profile all its life, the executor's. A small cache indexed by the value
+    /// ([`LastG::slot`]): CAM programs switch between three motion codes all along.
+    last_g: [Option<LastG>; LastG::SLOTS],
 }
 
 /// A G word's value (its bits) and the code and group it is on the profile.
@@ -77,6 +78,18 @@ struct LastG {
     bits: u64,
     code: GCode,
     group: Group,
+}
+
+impl LastG {
+    /// Entries of the cache of classified G codes.
+    const SLOTS: usize = 8;
+
+    /// The cache entry of a G word's value: a multiplicative hash of its bits, whose top bits
+    /// put G00, G01, G02 and G03 in four different entries.
+    #[inline(always)]
+    fn slot(bits: u64) -> usize {
+        (bits.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 61) as usize
+    }
 }
 
 impl Command {
@@ -529,15 +542,20 @@ pub(crate) fn decode(
 }
 
 fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> Result<(), Alarm> {
-    // A CAM program writes the same motion code block after block: the last code read is
-    // remembered by its value, and classified again only when the value changes.
+    // A CAM program writes the same few motion codes block after block: the codes read are
+    // remembered by their values, and a value is classified again only when its entry holds
+    // another. Remembering the last one alone, every switch between G01 and G02 or G03
+    // classified again (16 instructions a block on the CAM benchmark).
     let bits = word.number.value.to_bits();
-    let (code, group) = match out.last_g {
-        Some(last) if last.bits == bits => (last.code, last.group),
+    let entry = out.last_g.get_mut(LastG::slot(bits));
+    let (code, group) = match entry {
+        Some(Some(last)) if last.bits == bits => (last.code, last.group),
         _ => {
             let code = classify_g_word(word, profile)?;
             let group = code.group();
-            out.last_g = Some(LastG { bits, code, group });
+            if let Some(entry) = out.last_g.get_mut(LastG::slot(bits)) {
+                *entry = Some(LastG { bits, code, group });
+            }
             (code, group)
         }
     };
@@ -646,4 +664,21 @@ fn whole(word: &Word) -> Result<(), Alarm> {
         ));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_motion_codes_take_different_entries_of_the_g_code_cache() {
+        let slots: Vec<usize> = [0.0f64, 1.0, 2.0, 3.0]
+            .iter()
+            .map(|g| LastG::slot(g.to_bits()))
+            .collect();
+        for (i, a) in slots.iter().enumerate() {
+            assert!(*a < LastG::SLOTS);
+            assert!(slots[i + 1..].iter().all(|b| b != a), "{slots:?}");
+        }
+    }
 }

@@ -210,11 +210,18 @@ impl Frames {
 
     /// Machine minus program coordinates at the machine position `at`: the plain offset, or,
     /// when the program system is scaled or turned, the difference at that point.
-    #[inline]
+    // Inlined, with the scaled or turned case out of line: every move asks.
+    #[inline(always)]
     pub(crate) fn offset_at(&self, at: &[f64; AXES]) -> [f64; AXES] {
         if self.scaling.is_none() && !self.rotated() {
             return self.offset();
         }
+        self.transformed_offset_at(at)
+    }
+
+    /// [`Frames::offset_at`] when the program system is scaled or turned.
+    #[inline(never)]
+    fn transformed_offset_at(&self, at: &[f64; AXES]) -> [f64; AXES] {
         let program = self.to_program(at);
         std::array::from_fn(|i| at[i] - program[i])
     }

@@ -125,6 +125,8 @@ pub struct SmoothingModes {
 impl ModalState {
     /// The smoothing a motion gets: the larger tolerance of the modes that are on, none in G61
     /// or G63, which suspend them until G64 (spec 1.8 restriction 7, 1.9 restriction 5).
+    // Inlined: every move asks, and out of line the answer cost a call.
+    #[inline(always)]
     pub fn smoothing_for_motion(&self) -> Option<Smoothing> {
         if matches!(self.path_mode, PathMode::ExactStop | PathMode::Tapping) {
             return None;

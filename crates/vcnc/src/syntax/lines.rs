@@ -156,6 +156,9 @@ impl<R: Read> ReaderLines<R> {
 }
 
 impl<R: Read> LineSource for ReaderLines<R> {
+    // Inlined into the parsing loop: out of line, every line paid a call and its line was
+    // returned through memory.
+    #[inline(always)]
     fn next_line(&mut self) -> io::Result<Option<Line<'_>>> {
         // The common case, a whole line in the buffer, stays short; reading more is out of line.
         let newline = match memchr_newline(&self.buffer[self.start..self.end]) {
@@ -200,6 +203,7 @@ impl<R: Read> ReaderLines<R> {
 
 /// The first `\n` in `bytes`, eight bytes at a time: a byte equal to `\n` becomes zero after
 /// the XOR, and the classic has-zero-byte test finds it without a branch per byte.
+#[inline(always)]
 fn memchr_newline(bytes: &[u8]) -> Option<usize> {
     const ONES: u64 = 0x0101_0101_0101_0101;
     const HIGHS: u64 = 0x8080_8080_8080_8080;
