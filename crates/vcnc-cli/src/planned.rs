@@ -89,10 +89,7 @@ pub(crate) fn for_each_timed<S: Batches>(
         };
         let newest = held.len() - 1;
         for index in first_new..held[newest].items.len() {
-            match &held[newest].items[index] {
-                Ok(segment) => timeline.push(segment),
-                Err(_) => timeline.push_alarm(),
-            }
+            timeline.push_item(&held[newest].items[index]);
             deal(&mut timeline, &mut held, &mut filling);
         }
         while held.first().is_some_and(Held::is_complete) {

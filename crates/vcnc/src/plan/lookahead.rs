@@ -20,7 +20,7 @@ use super::corner::{junction, Handover};
 use super::limits::{MotionLimits, Tangents};
 use super::profile::{reachable_speed_up_to, Profile};
 use super::{greater, lesser};
-use crate::motion::Segment;
+use crate::motion::{Move, Segment};
 use std::collections::VecDeque;
 
 /// A motion's place in the plan.
@@ -107,12 +107,13 @@ impl Window {
     pub(crate) fn push_motion(
         &mut self,
         segment: &Segment,
+        motion: &Move,
         limits: Option<(MotionLimits, Tangents)>,
         per_axis_seconds: Option<f64>,
         config: &PlannerConfig,
     ) {
-        let planned = match (limits, segment.motion()) {
-            (Some((mut limits, tangents)), Some(motion)) if limits.length > 0.0 => {
+        let planned = match limits {
+            Some((mut limits, tangents)) if limits.length > 0.0 => {
                 let handover = Handover::new(segment, motion, &limits, tangents);
                 let mut max_entry = 0.0;
                 let mut lead_in = 0.0;

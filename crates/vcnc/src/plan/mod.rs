@@ -152,10 +152,7 @@ impl TimedSegment {
 ///     .collect();
 /// let mut timeline = Timeline::new(&machine, PlanOptions::default());
 /// for item in &items {
-///     match item {
-///         Ok(segment) => timeline.push(segment),
-///         Err(_) => timeline.push_alarm(),
-///     }
+///     timeline.push_item(item);
 /// }
 /// timeline.finish();
 /// let timings: Vec<_> = std::iter::from_fn(|| timeline.next_timing()).collect();
@@ -189,9 +186,18 @@ impl Timeline {
         }
     }
 
+    /// The next item of the stream: a segment, or an alarm.
+    #[inline]
+    pub fn push_item(&mut self, item: &Result<Segment, Alarm>) {
+        match item {
+            Ok(segment) => self.push(segment),
+            Err(_) => self.push_alarm(),
+        }
+    }
+
     /// The next segment of the stream.
     pub fn push(&mut self, segment: &Segment) {
-        if segment.motion().is_some() {
+        if let Some(motion) = segment.motion() {
             let limits = MotionLimits::of(segment, &self.axes, &self.config, self.feed_override);
             let per_axis_seconds = match &segment.kind {
                 SegmentKind::Rapid {
@@ -201,7 +207,7 @@ impl Timeline {
                 _ => None,
             };
             self.window
-                .push_motion(segment, limits, per_axis_seconds, &self.config);
+                .push_motion(segment, motion, limits, per_axis_seconds, &self.config);
         } else {
             // The machine stops before an event; the end of the program too.
             let seconds = self.events.seconds(&segment.kind, &self.config);
@@ -300,10 +306,7 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for Planner<I> {
                     self.timeline.finish();
                 }
                 Some(item) => {
-                    match &item {
-                        Ok(segment) => self.timeline.push(segment),
-                        Err(_) => self.timeline.push_alarm(),
-                    }
+                    self.timeline.push_item(&item);
                     self.waiting.push_back(item);
                 }
             }
