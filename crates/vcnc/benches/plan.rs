@@ -25,31 +25,35 @@ mod cam_program;
 const SIZES: [usize; 2] = [40_000, 400_000];
 
 fn plan(c: &mut Criterion) {
-    let machine = Machine::default();
-    let mut group = group(c, "plan", 6);
-    for blocks in SIZES {
-        let text = cam_program::program(blocks);
-        let segments: Vec<Segment> = interpret_str(&text, &machine, Options::default())
-            .map(|item| item.expect("the benchmark program runs without alarms"))
-            .collect();
-        group.throughput(Throughput::Elements(segments.len() as u64));
-        group.bench_with_input(
-            BenchmarkId::from_parameter(blocks),
-            &segments,
-            |b, segments| {
-                b.iter(|| {
-                    let stream = segments.iter().copied().map(Ok);
-                    total_seconds(Planner::new(stream, &machine, PlanOptions::default()))
-                });
-            },
-        );
-    }
-    group.finish();
+    over_segments(c, "plan", |segments, machine| {
+        let stream = segments.iter().copied().map(Ok);
+        total_seconds(Planner::new(stream, machine, PlanOptions::default()))
+    });
 }
 
 fn timeline(c: &mut Criterion) {
+    over_segments(c, "timeline", |segments, machine| {
+        let mut timeline = Timeline::new(machine, PlanOptions::default());
+        let mut end = 0.0;
+        for segment in segments {
+            timeline.push(segment);
+            while let Some(timing) = timeline.next_timing() {
+                end = black_box(timing.t + timing.dt);
+            }
+        }
+        timeline.finish();
+        while let Some(timing) = timeline.next_timing() {
+            end = black_box(timing.t + timing.dt);
+        }
+        end
+    });
+}
+
+/// A group named `name` timing `run` over the motion stream of each program size, interpreted
+/// into memory before timing; `run` returns the program's time.
+fn over_segments(c: &mut Criterion, name: &str, run: impl Fn(&[Segment], &Machine) -> f64) {
     let machine = Machine::default();
-    let mut group = group(c, "timeline", 6);
+    let mut group = group(c, name, 6);
     for blocks in SIZES {
         let text = cam_program::program(blocks);
         let segments: Vec<Segment> = interpret_str(&text, &machine, Options::default())
@@ -59,23 +63,7 @@ fn timeline(c: &mut Criterion) {
         group.bench_with_input(
             BenchmarkId::from_parameter(blocks),
             &segments,
-            |b, segments| {
-                b.iter(|| {
-                    let mut timeline = Timeline::new(&machine, PlanOptions::default());
-                    let mut end = 0.0;
-                    for segment in segments {
-                        timeline.push(segment);
-                        while let Some(timing) = timeline.next_timing() {
-                            end = black_box(timing.t + timing.dt);
-                        }
-                    }
-                    timeline.finish();
-                    while let Some(timing) = timeline.next_timing() {
-                        end = black_box(timing.t + timing.dt);
-                    }
-                    end
-                });
-            },
+            |b, segments| b.iter(|| run(segments, &machine)),
         );
     }
     group.finish();
