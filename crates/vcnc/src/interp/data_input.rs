@@ -84,19 +84,8 @@ fn extended_offset(
     let Some(p) = cmd.p() else {
         return Ok(exec.modal.work_offset);
     };
-    let n = p.number.whole().unwrap_or(-1);
-    if n < 1 || n > i64::from(exec.profile.g54_1_count) {
-        return Err(Alarm::error(
-            AlarmCode::WorkOffsetOutOfRange,
-            p.span,
-            format!(
-                "P{n}: this control has G54.1 P1 to P{}",
-                exec.profile.g54_1_count
-            ),
-        )
-        .with_label(span, "in this G10"));
-    }
-    Ok(WorkOffsetId::Extended(n as u32))
+    exec.extended_offset(&p)
+        .map_err(|alarm| alarm.with_label(span, "in this G10"))
 }
 
 fn set_work_offset(exec: &mut Executor, cmd: &Command, id: WorkOffsetId) {

@@ -315,6 +315,15 @@ impl Executor {
                 "G54.1 needs P (1 to the number of extended offsets)",
             )
         })?;
+        self.modal.work_offset = self.extended_offset(&p)?;
+        Ok(())
+    }
+
+    /// The extended work offset (G54.1) numbered by `p`, as G54.1 and G10 name it.
+    ///
+    /// # Errors
+    /// [`AlarmCode::WorkOffsetOutOfRange`] for a number the control does not have.
+    pub(crate) fn extended_offset(&self, p: &Value) -> Result<WorkOffsetId, Alarm> {
         let n = p.number.whole().unwrap_or(-1);
         if n < 1 || n > i64::from(self.profile.g54_1_count) {
             return Err(Alarm::error(
@@ -326,8 +335,7 @@ impl Executor {
                 ),
             ));
         }
-        self.modal.work_offset = WorkOffsetId::Extended(n as u32);
-        Ok(())
+        Ok(WorkOffsetId::Extended(n as u32))
     }
 
     fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
