@@ -14,7 +14,7 @@
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, AXES};
 use crate::motion::{
-    arc_sweep, for_arc_extreme_points, MachinePos, Move, Plane, Segment, SegmentKind,
+    arc_sweep, for_arc_extreme_points, ArcDirection, MachinePos, Move, Plane, Segment, SegmentKind,
 };
 
 /// Slack for rounding, mm: a move ending on its limit is inside.
@@ -117,45 +117,75 @@ impl TravelCheck {
 
 impl Limits {
     /// The overtravel alarm of `segment`, if it leaves the travel.
-    #[inline]
+    #[inline(always)]
     fn check(&self, segment: &Segment) -> Option<Alarm> {
-        let motion = segment.motion()?;
-        if !self.inside(&motion.to.0) {
-            return Some(self.alarm(segment, &motion.to.0));
-        }
-        match &segment.kind {
+        // One `match` on the kind: lines and rapids need only their end (most of a stream).
+        let (motion, arc) = match &segment.kind {
+            SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => (motion, None),
             SegmentKind::Arc {
+                motion,
                 center,
                 direction,
                 plane,
                 extra_turns,
                 ..
-            } if !self.circle_inside(motion, center, *plane) => {
-                let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
-                let mut found = None;
-                for_arc_extreme_points(motion, center.xyz(), *direction, *plane, sweep, |p| {
-                    let mut point = motion.to.0;
-                    point[..3].copy_from_slice(&p);
-                    if found.is_none() && !self.inside(&point) {
-                        found = Some(self.alarm(segment, &point));
-                    }
-                });
-                found
-            }
-            _ => None,
+            } => (motion, Some((center, *direction, *plane, *extra_turns))),
+            _ => return None,
+        };
+        if !self.inside(&motion.to.0) {
+            return Some(self.alarm(segment, &motion.to.0));
         }
+        let (center, direction, plane, extra_turns) = arc?;
+        if self.circle_inside(motion, center, plane) {
+            return None;
+        }
+        self.arc_extremes_alarm(segment, motion, center, direction, plane, extra_turns)
     }
 
-    #[inline]
+    /// The overtravel alarm of an arc whose circle leaves the travel, if a point of the arc
+    /// itself does (kept out of line: most arcs stay well inside).
+    #[inline(never)]
+    fn arc_extremes_alarm(
+        &self,
+        segment: &Segment,
+        motion: &Move,
+        center: &MachinePos,
+        direction: ArcDirection,
+        plane: Plane,
+        extra_turns: u32,
+    ) -> Option<Alarm> {
+        let sweep = arc_sweep(motion, center, direction, plane, extra_turns);
+        let mut found = None;
+        for_arc_extreme_points(motion, center.xyz(), direction, plane, sweep, |p| {
+            let mut point = motion.to.0;
+            point[..3].copy_from_slice(&p);
+            if found.is_none() && !self.inside(&point) {
+                found = Some(self.alarm(segment, &point));
+            }
+        });
+        found
+    }
+
+    /// True when every coordinate of `point` is within its axis's travel (NaN is not).
+    #[inline(always)]
     fn inside(&self, point: &[f64; AXES]) -> bool {
-        (0..AXES).all(|i| point[i] >= self.low[i] && point[i] <= self.high[i])
+        // Every axis compared, without a branch per axis: the comparisons go two by two in
+        // vector instructions, and this runs for every move of the stream.
+        (0..AXES).fold(true, |inside, i| {
+            inside & (point[i] >= self.low[i]) & (point[i] <= self.high[i])
+        })
     }
 
     /// True when the arc's whole circle lies inside the travel in its plane: then no point of
     /// it can leave, and its extremes need no angles (most arcs).
     fn circle_inside(&self, motion: &Move, center: &MachinePos, plane: Plane) -> bool {
         let (a, b, _) = plane.axes();
-        let radius = (motion.from.0[a] - center.0[a]).hypot(motion.from.0[b] - center.0[b]);
+        // An upper bound of the radius is all this test needs: a circle found inside with it is
+        // inside, and the others get the exact test of their extremes.
+        let radius = radius_bound(
+            motion.from.0[a] - center.0[a],
+            motion.from.0[b] - center.0[b],
+        );
         [a, b]
             .iter()
             .all(|&i| center.0[i] - radius >= self.low[i] && center.0[i] + radius <= self.high[i])
@@ -188,6 +218,16 @@ impl Limits {
             letter.to_ascii_lowercase()
         ))
     }
+}
+
+/// A number at least the length of the vector (x, y), and within a millionth of a micrometre of
+/// it on a machine's scale. The square root of the sum of squares is within a few units in the
+/// last place of the length (and several times cheaper than `hypot`); the factor puts it above,
+/// and the tiny term covers squares too small for a double.
+#[allow(clippy::imprecise_flops)]
+#[inline(always)]
+fn radius_bound(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt() * (1.0 + 1e-12) + 1e-150
 }
 
 #[cfg(test)]
@@ -230,6 +270,23 @@ mod tests {
         let alarm = bulging.last().unwrap().as_ref().unwrap_err();
         assert_eq!(alarm.code, AlarmCode::Overtravel);
         assert_eq!(alarm.span.unwrap().line, 2);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn the_radius_bound_is_never_below_the_radius(
+            x in -1.0e4..1.0e4f64, y in -1.0e4..1.0e4f64, scale in -200i32..200,
+        ) {
+            let factor = 10f64.powi(scale);
+            let (x, y) = (x * factor, y * factor);
+            let (bound, exact) = (radius_bound(x, y), x.hypot(y));
+            proptest::prop_assert!(bound >= exact, "{x} {y}: {bound}");
+            // Squares beyond what a double holds make the bound infinite: the circle then gets
+            // the exact test.
+            if bound.is_finite() {
+                proptest::prop_assert!(bound - exact <= 2e-12 * exact + 1e-149, "{x} {y}: {bound}");
+            }
+        }
     }
 
     #[test]

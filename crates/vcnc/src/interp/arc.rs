@@ -31,9 +31,9 @@ pub(crate) fn arc_center(
     match spec {
         ArcSpec::Center { offset, span } => {
             let center = (start.0 + offset.0, start.1 + offset.1);
-            let r_start = offset.0.hypot(offset.1);
-            let r_end = (end.0 - center.0).hypot(end.1 - center.1);
-            if r_start == 0.0 {
+            let r_start = length_of(offset);
+            let r_end = length_of((end.0 - center.0, end.1 - center.1));
+            if offset == (0.0, 0.0) {
                 return Err(Alarm::error(
                     AlarmCode::ArcWithoutCenter,
                     span,
@@ -94,6 +94,16 @@ pub(crate) fn arc_center(
             Ok((mid.0 + side * h * left.0, mid.1 + side * h * left.1))
         }
     }
+}
+
+/// The length of a vector in the plane, for the radius check of the centre form: the square
+/// root of the sum of squares, not `hypot`, which costs several times more. The check compares
+/// two radii with a tolerance of micrometres: a difference of a few units in the last place
+/// does not matter there (and positions stay far below where the squares would overflow).
+#[allow(clippy::imprecise_flops)]
+#[inline(always)]
+fn length_of((x, y): (f64, f64)) -> f64 {
+    (x * x + y * y).sqrt()
 }
 
 /// Plane coordinates (first, second) of a position.
@@ -163,6 +173,39 @@ mod tests {
         )
         .unwrap_err();
         assert_eq!(error.code, AlarmCode::ArcEndNotOnCircle);
+    }
+
+    #[test]
+    fn only_a_centre_offset_of_zero_is_on_the_start_point() {
+        let center = |offset| ArcSpec::Center { offset, span: SPAN };
+        let cw = ArcDirection::Clockwise;
+        let error = arc_center((1.0, 1.0), (1.0, 1.0), center((0.0, -0.0)), cw, 0.01);
+        assert_eq!(error.unwrap_err().code, AlarmCode::ArcWithoutCenter);
+        // The squares of this offset are below what a double holds: its length is not zero.
+        let tiny = arc_center((0.0, 0.0), (0.0, 0.0), center((1e-170, 0.0)), cw, 0.01);
+        assert!(tiny.is_ok(), "{tiny:?}");
+    }
+
+    proptest! {
+        #[test]
+        fn the_centre_form_accepts_what_the_exact_radii_accept(
+            sx in -500.0..500.0f64, sy in -500.0..500.0f64,
+            ox in -50.0..50.0f64, oy in -50.0..50.0f64,
+            turn in 0.0..6.3f64, stretch in -0.02..0.02f64,
+        ) {
+            let tolerance = 0.01;
+            let radius = ox.hypot(oy);
+            prop_assume!(radius > 1e-3);
+            let center = (sx + ox, sy + oy);
+            let end_radius = radius + stretch;
+            let end = (center.0 + end_radius * turn.cos(), center.1 + end_radius * turn.sin());
+            let exact = ((end.0 - center.0).hypot(end.1 - center.1) - radius).abs();
+            // Within a nanometre of the tolerance the two may round differently.
+            prop_assume!((exact - tolerance).abs() > 1e-9);
+            let spec = ArcSpec::Center { offset: (ox, oy), span: SPAN };
+            let got = arc_center((sx, sy), end, spec, ArcDirection::Clockwise, tolerance);
+            prop_assert_eq!(got.is_ok(), exact <= tolerance, "{:?}", got);
+        }
     }
 
     #[test]

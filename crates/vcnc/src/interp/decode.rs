@@ -50,11 +50,12 @@ pub(crate) struct Command {
     letters: u32,
     /// The value of each address letter A-Z; only those in `letters` mean anything.
     values: [Value; 26],
-    /// Bit i set when the axis word of axis index i is present.
-    axis_mask: u8,
     /// Bit i set when group slot i has a code of the block, `groups[i]` (1 + its index into
     /// `g_words`; the last code written wins).
     group_mask: u32,
+    /// A code of the block was overridden by a later one of its group (then not every code in
+    /// `g_words` is in force).
+    overridden: bool,
     groups: [u8; GROUP_SLOTS],
     g_words: Vec<GWord>,
     m: Vec<Value>,
@@ -107,11 +108,12 @@ impl Command {
 
     /// Every G code of the block in force, one per group, in the order written.
     pub(crate) fn g_codes(&self) -> impl Iterator<Item = GWord> + '_ {
-        // A code overridden by a later one of its group is not in force.
+        // A code overridden by a later one of its group is not in force. Most blocks override
+        // none: their codes are all in force, without a look at each code's group.
         self.g_words
             .iter()
             .enumerate()
-            .filter(|(i, g)| self.group_index(g.code.group()) == Some(*i))
+            .filter(|(i, g)| !self.overridden || self.group_index(g.code.group()) == Some(*i))
             .map(|(_, g)| *g)
     }
 
@@ -186,14 +188,23 @@ impl Command {
     }
 
     /// True when any axis word is present.
+    #[inline(always)]
     pub(crate) fn has_axis_words(&self) -> bool {
-        self.axis_mask != 0
+        self.letters & AXIS_LETTERS != 0
+    }
+
+    /// Bit i set when the axis word of axis index i is present: X Y Z are letter bits 23 to
+    /// 25, A B C letter bits 0 to 2 (computed from the letters, not kept beside them: one `or`
+    /// less for every word).
+    #[inline(always)]
+    fn axis_mask(&self) -> u8 {
+        (((self.letters >> (b'X' - b'A')) & 0b111) | ((self.letters & 0b111) << 3)) as u8
     }
 
     /// The axes whose words are present, in axis order.
     pub(crate) fn axes_present(&self) -> impl Iterator<Item = Axis> + '_ {
         // The set bits of the mask, lowest first: no test for the absent axes.
-        let mut mask = self.axis_mask;
+        let mut mask = self.axis_mask();
         std::iter::from_fn(move || {
             let index = mask.trailing_zeros() as usize;
             mask &= mask.wrapping_sub(1);
@@ -205,7 +216,7 @@ impl Command {
     #[inline(always)]
     pub(crate) fn axis_words(&self) -> impl Iterator<Item = (Axis, &Value)> + '_ {
         // The set bits of the mask, lowest first; each axis's slot from a table.
-        let mut mask = self.axis_mask;
+        let mut mask = self.axis_mask();
         std::iter::from_fn(move || {
             let index = mask.trailing_zeros() as usize;
             mask &= mask.wrapping_sub(1);
@@ -222,7 +233,6 @@ impl Command {
         if self.letters & (1 << from) != 0 {
             self.values[to] = self.values[from];
             self.letters = (self.letters & !(1 << from)) | (1 << to);
-            self.axis_mask = (self.axis_mask & !AXIS_BIT[from]) | AXIS_BIT[to];
         }
     }
 
@@ -257,8 +267,8 @@ impl Command {
         self.exact_stop_once = false;
         self.retract_feed = None;
         self.letters = 0;
-        self.axis_mask = 0;
         self.group_mask = 0;
+        self.overridden = false;
         self.g_words.clear();
         self.m.clear();
         self.warnings.clear();
@@ -282,9 +292,56 @@ impl Command {
         }
         *stored = value;
         self.letters |= 1 << slot;
-        self.axis_mask |= AXIS_BIT[slot];
         Ok(())
     }
+
+    /// Records the word of a letter of the decoder's plain letters (`bit` is its letter bit,
+    /// `order` its index in the block).
+    ///
+    /// # Errors
+    /// [`AlarmCode::DuplicateAddress`] when the letter was already written in the block.
+    #[inline(always)]
+    fn set_plain(&mut self, word: &Word, bit: u32, order: usize) -> Result<(), Alarm> {
+        let slot = bit.trailing_zeros() as usize;
+        let Some(stored) = self.values.get_mut(slot) else {
+            return Err(not_an_address(word));
+        };
+        if self.letters & bit != 0 {
+            return Err(duplicate(word, stored));
+        }
+        // Built in its slot, from the word: built before, it went through the stack.
+        *stored = Value {
+            number: word.number,
+            span: word.span,
+            order,
+        };
+        self.letters |= bit;
+        Ok(())
+    }
+}
+
+/// A word whose value is beyond what the control reads.
+#[cold]
+fn word_out_of_range(word: &Word, profile: &Profile) -> Alarm {
+    Alarm::error(
+        AlarmCode::ValueOutOfRange,
+        word.span,
+        format!(
+            "{} is out of range: the control reads values up to {}",
+            word.letter as char, profile.max_word_value
+        ),
+    )
+}
+
+/// An axis word for an axis the machine does not have.
+#[cold]
+fn axis_not_on_machine(word: &Word) -> Alarm {
+    Alarm::error(
+        AlarmCode::AxisNotOnMachine,
+        word.span,
+        format!("the machine has no {} axis", word.letter as char),
+    )
+    .with_help("add the axis to the machine file (`[axes.a]` ...) or remove the word")
 }
 
 /// An address letter written twice in a block; `previous` is the first.
@@ -308,24 +365,54 @@ impl Command {
     /// Records a G code of group slot `slot`, which wins over any earlier one of its group.
     #[inline(always)]
     fn set_group(&mut self, slot: usize, g: GWord) {
+        self.overridden |= self.group_mask & (1 << slot) != 0;
         self.g_words.push(g);
         self.groups[slot] = u8::try_from(self.g_words.len()).unwrap_or(u8::MAX);
         self.group_mask |= 1 << slot;
     }
 }
 
-/// The axis-mask bit of each address letter A-Z (0 for letters that are not axes): a table, not
-/// a `match`, because this runs for every word.
-const AXIS_BIT: [u8; 26] = {
-    let mut bits = [0u8; 26];
+/// The letter bits of the axis letters X Y Z A B C.
+const AXIS_LETTERS: u32 = letter_bits(b"XYZABC");
+
+/// The letter bits of the address letters whose words are recorded as written whatever the
+/// machine: the centre words, R, P, Q and E (their values are checked where they are used).
+const UNCHECKED_LETTERS: u32 = letter_bits(b"IJKRPQE");
+
+/// The bit of each of `letters` in a letter mask (bit i for letter `A + i`).
+const fn letter_bits(letters: &[u8]) -> u32 {
+    let mut bits = 0u32;
     let mut i = 0;
-    while i < Axis::ALL.len() {
-        let axis = Axis::ALL[i];
-        bits[(axis.letter() - b'A') as usize] = 1 << axis.index();
+    while i < letters.len() {
+        bits |= 1 << (letters[i] - b'A');
         i += 1;
     }
     bits
-};
+}
+
+/// The bit of a word's address letter in a letter mask, 0 for a byte that is no letter A-Z
+/// (the front ends give only letters; a stray byte takes the general path and its alarm).
+#[inline(always)]
+fn letter_bit(letter: u8) -> u32 {
+    let slot = u32::from(letter.wrapping_sub(b'A'));
+    if slot < 26 {
+        1 << slot
+    } else {
+        0
+    }
+}
+
+/// The letters [`decode`] records with no check but the duplicate one: the axes `machine_axes`
+/// names (by axis index) and [`UNCHECKED_LETTERS`]. Computed once per machine: most words of a
+/// program are of these letters, and one mask test sorts them out.
+pub(crate) fn plain_letters(machine_axes: &[bool; crate::machine::AXES]) -> u32 {
+    Axis::ALL
+        .iter()
+        .filter(|axis| machine_axes[axis.index()])
+        .fold(UNCHECKED_LETTERS, |bits, axis| {
+            bits | 1 << (axis.letter() - b'A')
+        })
+}
 
 /// The address-letter slot of each axis, by axis index.
 const AXIS_SLOT: [usize; crate::machine::AXES] = {
@@ -339,16 +426,7 @@ const AXIS_SLOT: [usize; crate::machine::AXES] = {
 };
 
 /// The letter-mask bits of the words of a plain block (see [`Command::is_plain`]).
-const PLAIN_LETTERS: u32 = {
-    let mut bits = 0u32;
-    let letters = *b"XYZABCIJKRF";
-    let mut i = 0;
-    while i < letters.len() {
-        bits |= 1 << (letters[i] - b'A');
-        i += 1;
-    }
-    bits
-};
+const PLAIN_LETTERS: u32 = letter_bits(b"XYZABCIJKRF");
 
 /// The group-mask bits of the codes of a plain block (see [`Command::is_plain`]): none of them
 /// is read after the modal state is set, but by the motion itself.
@@ -382,7 +460,8 @@ const fn group_slot(group: Group) -> usize {
     }
 }
 
-/// Sorts the words of `block` into `out`.
+/// Sorts the words of `block` into `out`; `plain_letters` are the letters recorded as written
+/// (see [`plain_letters`]).
 ///
 /// # Errors
 /// The first alarm of the block: unknown or unsupported G codes, addresses written twice,
@@ -390,45 +469,31 @@ const fn group_slot(group: Group) -> usize {
 pub(crate) fn decode(
     block: &Block,
     profile: &Profile,
-    machine_axes: &[bool; crate::machine::AXES],
+    plain_letters: u32,
     out: &mut Command,
 ) -> Result<(), Alarm> {
     out.clear();
     out.span = block.span;
     for (order, word) in block.words.iter().enumerate() {
         if word.number.value.abs() > profile.max_word_value {
-            return Err(Alarm::error(
-                AlarmCode::ValueOutOfRange,
-                word.span,
-                format!(
-                    "{} is out of range: the control reads values up to {}",
-                    word.letter as char, profile.max_word_value
-                ),
-            ));
+            return Err(word_out_of_range(word, profile));
+        }
+        // Axis words are most of every program: one mask test records them (and the other
+        // letters taken as written) before the G test and the `match`, whose jump table
+        // mispredicts when letters alternate word after word.
+        let bit = letter_bit(word.letter);
+        if bit & plain_letters != 0 {
+            out.set_plain(word, bit, order)?;
+            continue;
+        }
+        if bit & AXIS_LETTERS != 0 {
+            return Err(axis_not_on_machine(word));
         }
         let value = Value {
             number: word.number,
             span: word.span,
             order,
         };
-        // Axis words and G codes are most of every program: test for them before the `match`,
-        // whose jump table mispredicts when letters alternate word after word.
-        let slot = usize::from(word.letter.wrapping_sub(b'A'));
-        if AXIS_BIT.get(slot).is_some_and(|bit| *bit != 0) {
-            let index = AXIS_BIT[slot].trailing_zeros() as usize;
-            if !machine_axes[index] {
-                return Err(Alarm::error(
-                    AlarmCode::AxisNotOnMachine,
-                    word.span,
-                    format!("the machine has no {} axis", word.letter as char),
-                )
-                .with_help(
-                    "add the axis to the machine file (`[axes.a]` ...) or remove the word",
-                ));
-            }
-            out.set(word, value)?;
-            continue;
-        }
         if word.letter == b'G' {
             decode_g(word, order, profile, out)?;
             if let Some(call) = out
@@ -488,6 +553,8 @@ pub(crate) fn decode(
                 whole(word)?;
                 out.set(word, value)?;
             }
+            // The letters of `UNCHECKED_LETTERS` are recorded above; these arms are for a caller
+            // whose plain letters leave them out.
             b'I' => out.set(word, value)?,
             b'J' => out.set(word, value)?,
             b'K' => out.set(word, value)?,
@@ -669,6 +736,109 @@ fn whole(word: &Word) -> Result<(), Alarm> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::machine::Machine;
+    use crate::source::FileId;
+    use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
+    use crate::syntax::lines::Line;
+
+    /// Decodes the one block of `text` on a machine with the axes `machine_axes`.
+    fn decoded(text: &str, machine_axes: [bool; 6]) -> Result<Command, Alarm> {
+        let profile = Machine::default().profile;
+        let mut blocks = LineBlocks::new();
+        let line = Line {
+            text: text.as_bytes(),
+            offset: 0,
+            number: 1,
+        };
+        parse_line(line, FileId(0), &SyntaxOptions::default(), &mut blocks);
+        let block = &blocks.as_slice()[0];
+        let mut cmd = Command::default();
+        decode(block, &profile, plain_letters(&machine_axes), &mut cmd).map(|()| cmd)
+    }
+
+    /// What decoding must make of words of the letters X Y Z A B C I J K R P Q E: each
+    /// letter's first value, the first alarm's code and word index.
+    fn expected(
+        words: &[(u8, i32)],
+        machine_axes: [bool; 6],
+    ) -> Result<Vec<(u8, f64)>, (AlarmCode, usize)> {
+        let mut seen: Vec<(u8, f64)> = Vec::new();
+        for (i, &(letter, value)) in words.iter().enumerate() {
+            if let Some(axis) = Axis::from_letter(letter) {
+                if !machine_axes[axis.index()] {
+                    return Err((AlarmCode::AxisNotOnMachine, i));
+                }
+            }
+            if seen.iter().any(|(l, _)| *l == letter) {
+                return Err((AlarmCode::DuplicateAddress, i));
+            }
+            seen.push((letter, f64::from(value)));
+        }
+        Ok(seen)
+    }
+
+    #[test]
+    fn an_axis_the_machine_lacks_is_an_alarm_with_help() {
+        let alarm = decoded("G01 X1. B2.", [true, true, true, true, false, false]).unwrap_err();
+        assert_eq!(alarm.code, AlarmCode::AxisNotOnMachine);
+        assert_eq!(alarm.message, "the machine has no B axis");
+        assert!(alarm.help.is_some());
+    }
+
+    #[test]
+    fn codes_overridden_in_their_group_are_not_in_force() {
+        let cmd = decoded("G00 G01 G90 X1.", [true; 6]);
+        assert!(cmd.is_ok(), "{cmd:?}");
+        if let Ok(cmd) = cmd {
+            let codes: Vec<GCode> = cmd.g_codes().map(|g| g.code).collect();
+            assert_eq!(codes, [GCode::Linear, GCode::Absolute]);
+        }
+        let cmd = decoded("G01 G90 X1.", [true; 6]).unwrap();
+        let codes: Vec<GCode> = cmd.g_codes().map(|g| g.code).collect();
+        assert_eq!(codes, [GCode::Linear, GCode::Absolute]);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn words_are_recorded_as_written_or_refused(
+            words in proptest::collection::vec(
+                (proptest::sample::select(b"XYZABCIJKRPQE".to_vec()), -999i32..999),
+                1..8,
+            ),
+            machine_axes in proptest::array::uniform6(proptest::bool::ANY),
+        ) {
+            let text: String = words
+                .iter()
+                .map(|(letter, value)| format!("{}{value}. ", *letter as char))
+                .collect();
+            let machine_axes = [true, true, true, machine_axes[3], machine_axes[4], machine_axes[5]];
+            match (decoded(&text, machine_axes), expected(&words, machine_axes)) {
+                (Ok(cmd), Ok(values)) => {
+                    for letter in b'A'..=b'Z' {
+                        let want = values.iter().find(|(l, _)| *l == letter).map(|(_, v)| *v);
+                        proptest::prop_assert_eq!(cmd.word(letter).map(|v| v.number.value), want);
+                    }
+                    let axes: Vec<(Axis, f64)> =
+                        cmd.axis_words().map(|(axis, v)| (axis, v.number.value)).collect();
+                    let want: Vec<(Axis, f64)> = Axis::ALL
+                        .iter()
+                        .filter_map(|axis| {
+                            values.iter().find(|(l, _)| *l == axis.letter()).map(|(_, v)| (*axis, *v))
+                        })
+                        .collect();
+                    proptest::prop_assert_eq!(cmd.has_axis_words(), !want.is_empty());
+                    proptest::prop_assert_eq!(cmd.axes_present().count(), want.len());
+                    proptest::prop_assert_eq!(axes, want);
+                }
+                (Err(alarm), Err((code, index))) => {
+                    proptest::prop_assert_eq!(alarm.code, code);
+                    let start = text.split(' ').take(index).map(|w| w.len() + 1).sum::<usize>();
+                    proptest::prop_assert_eq!(alarm.span.map(|s| s.start as usize), Some(start));
+                }
+                (got, want) => proptest::prop_assert!(false, "{text:?}: {got:?} against {want:?}"),
+            }
+        }
+    }
 
     #[test]
     fn the_motion_codes_take_different_entries_of_the_g_code_cache() {

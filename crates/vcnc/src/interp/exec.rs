@@ -38,6 +38,8 @@ pub(crate) struct Executor {
     pub(crate) intermediate: [Option<f64>; AXES],
     /// Which axes the machine has, by axis index.
     pub(crate) machine_axes: [bool; AXES],
+    /// The letters decoding records as written on this machine (`decode::plain_letters`).
+    pub(crate) plain_letters: u32,
     /// G16: the last polar point, while polar coordinate command is on.
     pub(crate) polar: Option<super::polar::PolarPoint>,
     /// The canned cycle in force.
@@ -80,6 +82,7 @@ impl Executor {
         let modal = ModalState::power_on(&profile.power_on);
         let mut frames = Frames::new(machine);
         frames.select(modal.work_offset);
+        let machine_axes = std::array::from_fn(|i| machine.axes[i].is_some());
         Executor {
             modal,
             frames,
@@ -92,7 +95,8 @@ impl Executor {
             length_offset_number: 0,
             radius_offset_number: 0,
             intermediate: [None; AXES],
-            machine_axes: std::array::from_fn(|i| machine.axes[i].is_some()),
+            machine_axes,
+            plain_letters: super::decode::plain_letters(&machine_axes),
             polar: None,
             cycle: None,
             skip_position: [0.0; AXES],
@@ -130,8 +134,7 @@ impl Executor {
             if self.modal.motion == MotionMode::Linear {
                 // The line, most blocks of a CAM program, is built here: through `motion`, out
                 // of line, every block paid a call and its result came back through memory.
-                let machine_target = self.block_target(cmd, false, out)?;
-                self.feed_to(machine_target, cmd, false, out)?;
+                self.plain_line(cmd, out)?;
             } else {
                 self.motion(cmd, false, out)?;
             }
@@ -141,6 +144,27 @@ impl Executor {
             self.feed = None;
         }
         Ok(Flow::Next)
+    }
+
+    /// A G01 block on the short path: [`Executor::feed_to`] the block's target, with the line
+    /// built where it is queued.
+    #[inline(always)]
+    fn plain_line(&mut self, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+        let to = self.block_target(cmd, false, out)?;
+        let Some(items) = out.direct() else {
+            return self.feed_to(to, cmd, false, out);
+        };
+        if same_place(&to, &self.position) {
+            return Ok(());
+        }
+        let feed = self.cutting_feed(cmd)?;
+        let motion = self.move_to(to, cmd)?;
+        items.push(Ok(crate::motion::Segment {
+            kind: SegmentKind::Line { motion, feed },
+            span: cmd.span,
+            sequence: cmd.sequence,
+        }));
+        Ok(())
     }
 
     /// Runs the stages of a block after its modal codes, in the control's order.
@@ -644,6 +668,8 @@ pub(crate) fn stop(cmd: &Command, kind: StopKind, out: &mut Output) {
 /// Two machine positions the control cannot tell apart: every axis within a millionth of the
 /// finest input increment. Rotations and scaling leave rounding of about 1e-14 mm on a point the
 /// program meant to repeat; a real control, counting in increments, does not move there.
+// Inlined: every move asks, and out of line both positions went through memory.
+#[inline(always)]
 pub(crate) fn same_place(a: &[f64; AXES], b: &[f64; AXES]) -> bool {
     a.iter().zip(b).all(|(p, q)| (p - q).abs() <= 1e-10)
 }
@@ -675,7 +701,7 @@ mod tests {
             };
             parse_line(line, FileId(0), &SyntaxOptions::default(), &mut blocks);
             for block in blocks.as_slice() {
-                if decode(block, &fast.profile, &fast.machine_axes, &mut cmd).is_err() {
+                if decode(block, &fast.profile, fast.plain_letters, &mut cmd).is_err() {
                     return false;
                 }
                 let by_run = fast.run(&cmd, &mut fast_out);

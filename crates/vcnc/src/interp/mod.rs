@@ -123,6 +123,14 @@ impl Output {
         }
     }
 
+    /// The queue itself when neither cutter compensation nor polar coordinate interpolation is
+    /// on: a segment pushed there is built in place (built before the test, as for [`Output::push`],
+    /// it was built on the stack and copied over, about 30 instructions).
+    #[inline(always)]
+    pub(crate) fn direct(&mut self) -> Option<&mut Vec<Result<Segment, Alarm>>> {
+        (self.comp.is_none() && self.polar_interp.is_none()).then_some(&mut self.items)
+    }
+
     /// A segment through cutter compensation and polar coordinate interpolation, whichever is on
     /// (kept out of line: the plain path is the hot one).
     #[inline(never)]
@@ -609,7 +617,7 @@ impl Core {
         let decoded = decode::decode(
             block,
             &self.exec.profile,
-            &self.exec.machine_axes,
+            self.exec.plain_letters,
             &mut self.command,
         );
         if !self.command.warnings.is_empty() {
