@@ -113,17 +113,14 @@ pub(crate) fn arc(
     center[b] = center_plane.1;
     super::exec::check_position(&center, cmd)?;
     let motion = exec.move_to(target, cmd)?;
-    out.push(
-        cmd,
-        SegmentKind::Arc {
-            motion,
-            center: MachinePos(center),
-            direction,
-            plane,
-            extra_turns: 0,
-            feed,
-        },
-    );
+    out.push_with(cmd, || SegmentKind::Arc {
+        motion,
+        center: MachinePos(center),
+        direction,
+        plane,
+        extra_turns: 0,
+        feed,
+    });
     Ok(())
 }
 

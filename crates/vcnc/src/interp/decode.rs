@@ -107,14 +107,15 @@ impl Command {
     }
 
     /// Every G code of the block in force, one per group, in the order written.
-    pub(crate) fn g_codes(&self) -> impl Iterator<Item = GWord> + '_ {
+    pub(crate) fn g_codes(&self) -> impl Iterator<Item = &GWord> + '_ {
         // A code overridden by a later one of its group is not in force. Most blocks override
-        // none: their codes are all in force, without a look at each code's group.
+        // none: their codes are all in force, without a look at each code's group. The codes
+        // are lent, not copied: the executor reads one field of most.
         self.g_words
             .iter()
             .enumerate()
             .filter(|(i, g)| !self.overridden || self.group_index(g.code.group()) == Some(*i))
-            .map(|(_, g)| *g)
+            .map(|(_, g)| g)
     }
 
     /// The index into `g_words` of the code of a group in force, if the block has one.
@@ -486,14 +487,6 @@ pub(crate) fn decode(
             out.set_plain(word, bit, order)?;
             continue;
         }
-        if bit & AXIS_LETTERS != 0 {
-            return Err(axis_not_on_machine(word));
-        }
-        let value = Value {
-            number: word.number,
-            span: word.span,
-            order,
-        };
         if word.letter == b'G' {
             decode_g(word, order, profile, out)?;
             if let Some(call) = out
@@ -512,97 +505,123 @@ pub(crate) fn decode(
             }
             continue;
         }
-        match word.letter {
-            b'M' => {
-                whole(word)?;
-                if let MLookup::Known(code) = classify_m(word.number.value as u32, profile) {
-                    if code.is_subprogram_flow() {
-                        if let Some((_, first)) = out.subprogram {
-                            return Err(Alarm::error(
-                                AlarmCode::WordNotAllowed,
-                                word.span,
-                                "two subprogram codes in one block",
-                            )
-                            .with_label(first.span, "the first one"));
-                        }
-                        out.subprogram = Some((code, value));
-                        continue;
-                    }
-                }
-                if out.m.len() >= profile.m_codes_per_block as usize && !out.m.is_empty() {
-                    let dropped = out.m.remove(0);
-                    out.warnings.push(
-                        Alarm::warning(
+        decode_other(word, order, profile, out)?;
+    }
+    Ok(())
+}
+
+/// Decodes a word that is neither of the plain letters nor a G code: N, M, F, S, T, H, D, L, O,
+/// and the alarms of letters that are no address here.
+///
+/// # Errors
+/// The word's alarm (see [`decode`]).
+// Out of line: inlined, the loop over the words kept the addresses these rare arms use in
+// registers or on the stack, set up for every block (about 25 instructions).
+#[inline(never)]
+fn decode_other(
+    word: &Word,
+    order: usize,
+    profile: &Profile,
+    out: &mut Command,
+) -> Result<(), Alarm> {
+    if letter_bit(word.letter) & AXIS_LETTERS != 0 {
+        return Err(axis_not_on_machine(word));
+    }
+    let value = Value {
+        number: word.number,
+        span: word.span,
+        order,
+    };
+    match word.letter {
+        b'M' => {
+            whole(word)?;
+            if let MLookup::Known(code) = classify_m(word.number.value as u32, profile) {
+                if code.is_subprogram_flow() {
+                    if let Some((_, first)) = out.subprogram {
+                        return Err(Alarm::error(
                             AlarmCode::WordNotAllowed,
-                            dropped.span,
-                            format!(
-                                "this control runs {} M code(s) per block: this one is ignored",
-                                profile.m_codes_per_block
-                            ),
+                            word.span,
+                            "two subprogram codes in one block",
                         )
-                        .with_label(word.span, "the later M code that runs"),
-                    );
+                        .with_label(first.span, "the first one"));
+                    }
+                    out.subprogram = Some((code, value));
+                    return Ok(());
                 }
-                out.m.push(value);
             }
-            b'N' => {
-                whole(word)?;
-                out.sequence = u32::try_from(word.number.value as i64).ok();
+            if out.m.len() >= profile.m_codes_per_block as usize && !out.m.is_empty() {
+                let dropped = out.m.remove(0);
+                out.warnings.push(
+                    Alarm::warning(
+                        AlarmCode::WordNotAllowed,
+                        dropped.span,
+                        format!(
+                            "this control runs {} M code(s) per block: this one is ignored",
+                            profile.m_codes_per_block
+                        ),
+                    )
+                    .with_label(word.span, "the later M code that runs"),
+                );
             }
-            b'O' => {
-                whole(word)?;
-                out.set(word, value)?;
-            }
-            // The letters of `UNCHECKED_LETTERS` are recorded above; these arms are for a caller
-            // whose plain letters leave them out.
-            b'I' => out.set(word, value)?,
-            b'J' => out.set(word, value)?,
-            b'K' => out.set(word, value)?,
-            b'R' => out.set(word, value)?,
-            b'F' if word.index == 0 => out.set(word, value)?,
-            b'S' if word.index == 0 => out.set(word, value)?,
-            b'T' => {
-                whole(word)?;
-                out.set(word, value)?;
-            }
-            b'H' => {
-                whole(word)?;
-                out.set(word, value)?;
-            }
-            b'D' => {
-                whole(word)?;
-                out.set(word, value)?;
-            }
-            b'P' => out.set(word, value)?,
-            b'Q' => out.set(word, value)?,
-            // Syntec's threads per inch of a tapping cycle.
-            b'E' => out.set(word, value)?,
-            b'L' => {
-                whole(word)?;
-                out.set(word, value)?;
-            }
-            b'F' if word.index == 2 => out.retract_feed = Some(value),
-            b'F' | b'S' => {
-                return Err(Alarm::not_supported(
-                    word.span,
-                    &format!("extended address {}{}=", word.letter as char, word.index),
-                    if word.letter == b'F' { Some(4) } else { None },
-                ));
-            }
-            b'U' | b'V' | b'W' => {
-                return Err(Alarm::error(
-                    AlarmCode::AxisNotOnMachine,
-                    word.span,
-                    format!("the machine has no {} axis", word.letter as char),
-                ));
-            }
-            other => {
-                return Err(Alarm::not_supported(
-                    word.span,
-                    &format!("address {}", other as char),
-                    None,
-                ));
-            }
+            out.m.push(value);
+        }
+        b'N' => {
+            whole(word)?;
+            out.sequence = u32::try_from(word.number.value as i64).ok();
+        }
+        b'O' => {
+            whole(word)?;
+            out.set(word, value)?;
+        }
+        // The letters of `UNCHECKED_LETTERS` are recorded above; these arms are for a caller
+        // whose plain letters leave them out.
+        b'I' => out.set(word, value)?,
+        b'J' => out.set(word, value)?,
+        b'K' => out.set(word, value)?,
+        b'R' => out.set(word, value)?,
+        b'F' if word.index == 0 => out.set(word, value)?,
+        b'S' if word.index == 0 => out.set(word, value)?,
+        b'T' => {
+            whole(word)?;
+            out.set(word, value)?;
+        }
+        b'H' => {
+            whole(word)?;
+            out.set(word, value)?;
+        }
+        b'D' => {
+            whole(word)?;
+            out.set(word, value)?;
+        }
+        b'P' => out.set(word, value)?,
+        b'Q' => out.set(word, value)?,
+        // Syntec's threads per inch of a tapping cycle.
+        b'E' => out.set(word, value)?,
+        b'L' => {
+            whole(word)?;
+            out.set(word, value)?;
+        }
+        b'F' if word.index == 2 => out.retract_feed = Some(value),
+        b'F' | b'S' => {
+            return Err(Alarm::not_supported(
+                word.span,
+                &format!("extended address {}{}=", word.letter as char, word.index),
+                if word.letter == b'F' { Some(4) } else { None },
+            ));
+        }
+        b'U' | b'V' | b'W' => {
+            return Err(Alarm::error(
+                AlarmCode::AxisNotOnMachine,
+                word.span,
+                format!("the machine has no {} axis", word.letter as char),
+            ));
+        }
+        other => {
+            return Err(Alarm::not_supported(
+                word.span,
+                &format!("address {}", other as char),
+                None,
+            ));
         }
     }
     Ok(())

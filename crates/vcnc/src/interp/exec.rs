@@ -294,7 +294,7 @@ impl Executor {
     fn apply_modal(&mut self, cmd: &Command) -> Result<(), Alarm> {
         for g in cmd.g_codes() {
             match g.code {
-                GCode::ExtendedWorkOffset => self.extended_work_offset(cmd, g)?,
+                GCode::ExtendedWorkOffset => self.extended_work_offset(cmd, *g)?,
                 GCode::FeedPerMinute | GCode::FeedPerRevolution | GCode::InverseTimeFeed => {
                     let before = self.modal.feed_mode;
                     self.modal.apply(g.code);

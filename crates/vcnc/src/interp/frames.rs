@@ -260,11 +260,18 @@ impl Frames {
     /// Machine coordinates of a program position, with tool length vector `length`.
     #[inline(always)]
     pub(crate) fn to_machine(&self, program: &[f64; AXES], length: f64) -> [f64; AXES] {
-        let turned = if self.scaling.is_none() && !self.rotated() {
-            *program
-        } else {
-            self.turn(program)
-        };
+        // The point is shifted where it is: a copy of it for a common exit cost every block six
+        // moves.
+        if self.scaling.is_none() && !self.rotated() {
+            return self.shifted(program, length);
+        }
+        self.shifted(&self.turn(program), length)
+    }
+
+    /// Machine coordinates of a point already scaled and turned, with tool length vector
+    /// `length`.
+    #[inline(always)]
+    fn shifted(&self, turned: &[f64; AXES], length: f64) -> [f64; AXES] {
         let shift = &self.shift;
         let mut machine: [f64; AXES] = std::array::from_fn(|i| turned[i] + shift[i]);
         machine[2] += length;

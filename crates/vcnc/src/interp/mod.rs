@@ -131,6 +131,21 @@ impl Output {
         (self.comp.is_none() && self.polar_interp.is_none()).then_some(&mut self.items)
     }
 
+    /// Records a segment of the block `cmd`, made by `kind` on the queue's own path and on the
+    /// compensated one apart: made before the test, a large segment was built on the stack and
+    /// copied into the queue.
+    #[inline(always)]
+    pub(crate) fn push_with(&mut self, cmd: &Command, kind: impl FnOnce() -> SegmentKind) {
+        match self.direct() {
+            Some(items) => items.push(Ok(Segment {
+                kind: kind(),
+                span: cmd.span,
+                sequence: cmd.sequence,
+            })),
+            None => self.push_compensated(cmd, kind()),
+        }
+    }
+
     /// A segment through cutter compensation and polar coordinate interpolation, whichever is on
     /// (kept out of line: the plain path is the hot one).
     #[inline(never)]
