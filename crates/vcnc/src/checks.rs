@@ -119,7 +119,14 @@ impl Limits {
     /// The overtravel alarm of `segment`, if it leaves the travel.
     #[inline(always)]
     fn check(&self, segment: &Segment) -> Option<Alarm> {
-        // One `match` on the kind: lines and rapids need only their end (most of a stream).
+        // Lines first (most of a stream), then one `match` on the kind: rapids, like lines, need
+        // only their end.
+        if let SegmentKind::Line { motion, .. } = &segment.kind {
+            if self.inside(&motion.to.0) {
+                return None;
+            }
+            return Some(self.alarm(segment, &motion.to.0));
+        }
         let (motion, arc) = match &segment.kind {
             SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => (motion, None),
             SegmentKind::Arc {

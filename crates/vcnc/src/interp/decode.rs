@@ -134,6 +134,22 @@ impl Command {
         Some(self.values[slot])
     }
 
+    /// The value of an address letter (`b'X'`), lent, if the block has it.
+    #[inline(always)]
+    pub(crate) fn word_ref(&self, letter: u8) -> Option<&Value> {
+        let slot = usize::from(letter.wrapping_sub(b'A'));
+        if slot >= self.values.len() || self.letters & (1 << slot) == 0 {
+            return None;
+        }
+        self.values.get(slot)
+    }
+
+    /// True when an axis word of a rotary axis (A, B, C) is present.
+    #[inline(always)]
+    pub(crate) fn has_rotary_words(&self) -> bool {
+        self.letters & letter_bits(b"ABC") != 0
+    }
+
     /// The axis word of axis index `i` (X Y Z A B C).
     pub(crate) fn axis(&self, i: usize) -> Option<Value> {
         self.word(b"XYZABC"[i])
