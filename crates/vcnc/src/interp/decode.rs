@@ -319,7 +319,7 @@ impl Command {
     /// [`AlarmCode::DuplicateAddress`] when the letter was already written in the block.
     #[inline(always)]
     fn set_plain(&mut self, word: &Word, bit: u32, order: usize) -> Result<(), Alarm> {
-        let slot = bit.trailing_zeros() as usize;
+        let slot = usize::from(word.letter.wrapping_sub(b'A'));
         let Some(stored) = self.values.get_mut(slot) else {
             return Err(not_an_address(word));
         };
@@ -379,10 +379,10 @@ fn not_an_address(word: &Word) -> Alarm {
 }
 
 impl Command {
-    /// Records a G code of group slot `slot`, which wins over any earlier one of its group.
+    /// Records a G code of group slot `slot`, which wins over any earlier one of its group (the
+    /// caller marks the block `overridden` then).
     #[inline(always)]
     fn set_group(&mut self, slot: usize, g: GWord) {
-        self.overridden |= self.group_mask & (1 << slot) != 0;
         self.g_words.push(g);
         self.groups[slot] = u8::try_from(self.g_words.len()).unwrap_or(u8::MAX);
         self.group_mask |= 1 << slot;
@@ -411,13 +411,19 @@ const fn letter_bits(letters: &[u8]) -> u32 {
 /// (the front ends give only letters; a stray byte takes the general path and its alarm).
 #[inline(always)]
 fn letter_bit(letter: u8) -> u32 {
-    let slot = u32::from(letter.wrapping_sub(b'A'));
-    if slot < 26 {
-        1 << slot
-    } else {
-        0
-    }
+    LETTER_BIT[usize::from(letter)]
 }
+
+/// [`letter_bit`] of every byte: a table, one load for every word of a program.
+static LETTER_BIT: [u32; 256] = {
+    let mut bits = [0u32; 256];
+    let mut letter = b'A';
+    while letter <= b'Z' {
+        bits[letter as usize] = 1 << (letter - b'A');
+        letter += 1;
+    }
+    bits
+};
 
 /// The letters [`decode`] records with no check but the duplicate one: the axes `machine_axes`
 /// names (by axis index) and [`UNCHECKED_LETTERS`]. Computed once per machine: most words of a
@@ -670,12 +676,14 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
         span: word.span,
         order,
     };
-    if let Some(previous) = out.group(group) {
-        if previous.code != code {
+    let slot = group_slot(group);
+    if out.group_mask & (1 << slot) != 0 {
+        out.overridden = true;
+        if let Some(previous) = out.group(group).filter(|previous| previous.code != code) {
             same_group(word, previous, group, profile, out)?;
         }
     }
-    out.set_group(group_slot(group), new);
+    out.set_group(slot, new);
     Ok(())
 }
 
@@ -810,6 +818,18 @@ mod tests {
             seen.push((letter, f64::from(value)));
         }
         Ok(seen)
+    }
+
+    #[test]
+    fn only_the_letters_a_to_z_have_a_letter_bit() {
+        for byte in 0..=u8::MAX {
+            let want = if byte.is_ascii_uppercase() {
+                1 << (byte - b'A')
+            } else {
+                0
+            };
+            assert_eq!(letter_bit(byte), want, "{byte}");
+        }
     }
 
     #[test]
