@@ -17,11 +17,9 @@
 
 use super::config::PlannerConfig;
 use super::corner::{junction, Handover};
-use super::limits::{MotionLimits, Tangents};
+use super::limits::MotionLimits;
 use super::profile::{reachable_speed_up_to, Profile};
 use super::{greater, lesser};
-use crate::motion::{Move, Segment};
-use std::collections::VecDeque;
 
 /// A motion's place in the plan.
 #[derive(Clone, Copy, Debug)]
@@ -45,6 +43,7 @@ pub(crate) struct Planned {
 /// One item of the window. The window holds only what timing needs: the segments themselves
 /// stay with the caller, in the same order (see [`super::Timeline`]), so that a slot is small
 /// to move and a segment is never copied for planning.
+#[derive(Clone, Copy, Debug)]
 pub(crate) enum Slot {
     /// A motion being planned.
     Motion(Planned),
@@ -52,8 +51,15 @@ pub(crate) enum Slot {
     /// length.
     Fixed(f64),
 }
+
+/// The window's slots are `slots[front..]`, oldest first. It is a plain vector whose start
+/// moves as slots leave, rather than a ring: the passes run over one contiguous slice and every
+/// access is a plain index. The slots that have left are dropped in one move when the vector is
+/// full, about once per `capacity` slots.
 pub(crate) struct Window {
-    slots: VecDeque<Slot>,
+    slots: Vec<Slot>,
+    /// The first slot still in the window.
+    front: usize,
     capacity: usize,
     /// Slots at the front whose speeds are final.
     ready: usize,
@@ -67,7 +73,8 @@ impl Window {
     pub(crate) fn new(capacity: usize) -> Window {
         let capacity = capacity.max(2);
         Window {
-            slots: VecDeque::with_capacity(capacity + 1),
+            slots: Vec::with_capacity(2 * capacity + 2),
+            front: 0,
             capacity,
             ready: 0,
             start_speed: 0.0,
@@ -75,22 +82,47 @@ impl Window {
         }
     }
 
+    /// The slots in the window, oldest first.
+    #[inline(always)]
+    fn window(&mut self) -> &mut [Slot] {
+        &mut self.slots[self.front..]
+    }
+
+    /// How many slots are in the window.
+    #[inline(always)]
+    fn len(&self) -> usize {
+        self.slots.len() - self.front
+    }
+
+    #[inline(always)]
+    fn push_slot(&mut self, slot: Slot) {
+        if self.slots.len() == self.slots.capacity() && self.front > 0 {
+            // Full: drop the slots that have left (the moved rest is at most a window).
+            self.slots.drain(..self.front);
+            self.front = 0;
+        }
+        self.slots.push(slot);
+    }
+
     /// A final slot, if one is ready.
-    pub(crate) fn pop_ready(&mut self) -> Option<Slot> {
+    #[inline(always)]
+    pub(crate) fn pop_ready(&mut self) -> Option<&Slot> {
         if self.ready == 0 {
             return None;
         }
+        let slot = self.slots.get(self.front)?;
         self.ready -= 1;
-        let slot = self.slots.pop_front()?;
-        if let Slot::Motion(planned) = &slot {
+        self.front += 1;
+        if let Slot::Motion(planned) = slot {
             self.start_speed = planned.exit;
         }
         Some(slot)
     }
 
-    /// Adds an item that takes no time and does not interrupt the motion (an alarm).
+    /// Adds an item that takes no time and does not interrupt the motion (an alarm, a motion
+    /// of zero length).
     pub(crate) fn push_timeless(&mut self) {
-        self.slots.push_back(Slot::Fixed(0.0));
+        self.push_slot(Slot::Fixed(0.0));
         self.release_if_full();
     }
 
@@ -98,64 +130,65 @@ impl Window {
     /// is planned to a stop, and the event is final at once.
     pub(crate) fn push_event(&mut self, seconds: f64) {
         self.stop();
-        self.slots.push_back(Slot::Fixed(seconds));
+        self.push_slot(Slot::Fixed(seconds));
         self.ready += 1;
     }
 
-    /// Adds a motion with its limits (None: a motion of zero length); `per_axis_seconds` is the
-    /// duration of a rapid with each axis at its own rate.
+    /// Adds a motion of positive length with its limits, its handover to the next motion and
+    /// its start tangent; `per_axis_seconds` is the duration of a rapid with each axis at its
+    /// own rate.
+    #[inline(always)]
     pub(crate) fn push_motion(
         &mut self,
-        segment: &Segment,
-        motion: &Move,
-        limits: Option<(MotionLimits, Tangents)>,
+        mut limits: MotionLimits,
+        handover: Handover,
+        start: &[f64; 3],
         per_axis_seconds: Option<f64>,
         config: &PlannerConfig,
     ) {
-        let planned = match limits {
-            Some((mut limits, tangents)) if limits.length > 0.0 => {
-                let handover = Handover::new(segment, motion, &limits, tangents);
-                let mut max_entry = 0.0;
-                let mut lead_in = 0.0;
-                if let Some(prev) = &self.last {
-                    let junction = junction(prev, &handover, config);
-                    max_entry = lesser(lesser(prev.cruise, junction.speed), limits.cruise);
-                    limits.length = greater(0.0, limits.length - junction.leg);
-                    lead_in = junction.arc;
-                    let stop_factor = if junction.corner_stop {
-                        config.stop_acceleration_factor
-                    } else {
-                        1.0
-                    };
-                    limits.scale_acceleration(stop_factor);
-                    if let Some(prev) = self.last_planned() {
-                        prev.limits.length = greater(0.0, prev.limits.length - junction.leg);
-                        prev.limits.scale_acceleration(stop_factor);
-                    }
-                }
-                self.last = Some(handover);
-                Slot::Motion(Planned {
-                    limits,
-                    lead_in,
-                    max_entry,
-                    backward: f64::NAN,
-                    entry: 0.0,
-                    exit: 0.0,
-                    per_axis_seconds,
-                })
+        let mut max_entry = 0.0;
+        let mut lead_in = 0.0;
+        if let Some(prev) = &self.last {
+            let junction = junction(prev, &handover, start, config);
+            max_entry = lesser(lesser(prev.cruise, junction.speed), limits.cruise);
+            limits.length = greater(0.0, limits.length - junction.leg);
+            lead_in = junction.arc;
+            // A factor of 1 scales nothing: only a stop at a corner scales the acceleration.
+            let stop_factor = config.stop_acceleration_factor;
+            if junction.corner_stop {
+                limits.scale_acceleration(stop_factor);
             }
-            _ => Slot::Fixed(0.0),
-        };
-        self.slots.push_back(planned);
+            if let Some(prev) = self.last_planned() {
+                prev.limits.length = greater(0.0, prev.limits.length - junction.leg);
+                if junction.corner_stop {
+                    prev.limits.scale_acceleration(stop_factor);
+                }
+            }
+        }
+        self.last = Some(handover);
+        self.push_slot(Slot::Motion(Planned {
+            limits,
+            lead_in,
+            max_entry,
+            backward: f64::NAN,
+            entry: 0.0,
+            exit: 0.0,
+            per_axis_seconds,
+        }));
         self.release_if_full();
     }
 
+    #[inline(always)]
     fn last_planned(&mut self) -> Option<&mut Planned> {
         // Almost always the last slot; a search only behind an alarm or a zero-length motion.
-        if let Some(Slot::Motion(_)) = self.slots.back() {
-            return self.slots.back_mut().and_then(Slot::planned);
-        }
-        self.slots.iter_mut().rev().find_map(Slot::planned)
+        let window = self.window();
+        let index = match window.last() {
+            Some(Slot::Motion(_)) => window.len() - 1,
+            _ => window
+                .iter()
+                .rposition(|slot| matches!(slot, Slot::Motion(_)))?,
+        };
+        window[index].planned()
     }
 
     /// The motion comes to rest here (an event, or the end of the stream): everything in the
@@ -165,13 +198,14 @@ impl Window {
         if let Some(last) = self.last_planned() {
             last.limits.path.acceleration = last.limits.unblended_acceleration;
         }
-        self.plan(self.slots.len());
+        self.plan(self.len());
         self.last = None;
     }
 
+    #[inline(always)]
     fn release_if_full(&mut self) {
-        if self.slots.len() >= self.capacity && self.ready == 0 {
-            self.plan(self.slots.len() / 2);
+        if self.len() >= self.capacity && self.ready == 0 {
+            self.plan(self.len() / 2);
         }
     }
 
@@ -188,7 +222,7 @@ impl Window {
     /// at a corner that limits the speed, usually a few motions back.
     fn backward_pass(&mut self) {
         let mut next_entry = 0.0;
-        for planned in self.slots.iter_mut().rev().filter_map(Slot::planned) {
+        for planned in self.window().iter_mut().rev().filter_map(Slot::planned) {
             let limits = &planned.limits;
             let entry =
                 reachable_speed_up_to(next_entry, planned.max_entry, limits.length, limits.path);
@@ -204,13 +238,14 @@ impl Window {
     /// motion after the released slots (whose entry is the last released motion's exit).
     fn forward_pass(&mut self, release: usize) {
         let mut previous: Option<&mut Planned> = None;
-        for (index, slot) in self.slots.iter_mut().enumerate() {
+        let start_speed = self.start_speed;
+        for (index, slot) in self.window().iter_mut().enumerate() {
             let Some(planned) = slot.planned() else {
                 continue;
             };
             // The first motion continues from a motion that has already left: its entry is fixed.
             planned.entry = match previous.take() {
-                None => self.start_speed,
+                None => start_speed,
                 Some(previous) => {
                     let limits = &previous.limits;
                     let entry = reachable_speed_up_to(
@@ -236,6 +271,7 @@ impl Window {
 }
 
 impl Slot {
+    #[inline(always)]
     fn planned(&mut self) -> Option<&mut Planned> {
         match self {
             Slot::Motion(planned) => Some(planned),
@@ -245,6 +281,7 @@ impl Slot {
 }
 
 /// The timed result of a planned motion: its profile (None for a per-axis rapid) and duration.
+#[inline(always)]
 pub(crate) fn time_motion(planned: &Planned) -> (Option<Profile>, f64) {
     if let Some(seconds) = planned.per_axis_seconds {
         return (None, seconds);
