@@ -337,6 +337,7 @@ pub(crate) struct ArcPath<'a> {
 }
 
 /// The limits of an arc.
+#[inline(always)]
 pub(crate) fn arc(
     path: &ArcPath<'_>,
     axes: &AxisLimits,
@@ -398,20 +399,27 @@ pub(crate) fn arc(
         ArcDirection::CounterClockwise => 1.0,
         ArcDirection::Clockwise => -1.0,
     };
-    // The tangent at a point of the arc `r` from the centre.
-    let tangent = |point: &[f64; AXES], r: f64| {
-        let (ra, rb) = (point[a] - center.0[a], point[b] - center.0[b]);
-        let mut t = [0.0; 3];
-        t[a] = -sign * rb / r * p;
-        t[b] = sign * ra / r * p;
-        t[n] = axial.signum() * q;
-        t
-    };
     let end = &motion.to.0;
+    let (c, axes_abn) = (&center.0, (a, b, n));
+    let normal_component = axial.signum() * q;
     // The start is `radius` from the centre (the floor only matters to a NaN).
-    let start_tangent = tangent(&motion.from.0, radius.max(1e-12));
-    let end_radius = norm(end[a] - center.0[a], end[b] - center.0[b]).max(1e-12);
-    let end_tangent = tangent(end, end_radius);
+    let start_tangent = arc_tangent(
+        (motion.from.0[a] - c[a], motion.from.0[b] - c[b]),
+        radius.max(1e-12),
+        sign,
+        p,
+        axes_abn,
+        normal_component,
+    );
+    let (ra, rb) = (end[a] - c[a], end[b] - c[b]);
+    let end_tangent = arc_tangent(
+        (ra, rb),
+        norm(ra, rb).max(1e-12),
+        sign,
+        p,
+        axes_abn,
+        normal_component,
+    );
     let acceleration = caps.acceleration;
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
     let unblended_share = tangential_room.min(config.unblended_arc_tangential_share);
@@ -437,6 +445,25 @@ pub(crate) fn arc(
         turning: caps.turning,
     };
     bounded((limits, ends))
+}
+
+/// The unit tangent of an arc at the point `(ra, rb)` from its centre in the plane of axes
+/// `(a, b)`, `r` from it: the planar share `p` turned a quarter in the arc's direction (`sign`
+/// 1 counter-clockwise), with `normal` on the normal axis `n`.
+#[inline(always)]
+fn arc_tangent(
+    (ra, rb): (f64, f64),
+    r: f64,
+    sign: f64,
+    p: f64,
+    (a, b, n): (usize, usize, usize),
+    normal: f64,
+) -> [f64; 3] {
+    let mut t = [0.0; 3];
+    t[a] = -sign * rb / r * p;
+    t[b] = sign * ra / r * p;
+    t[n] = normal;
+    t
 }
 
 /// A rapid with each axis at its own rate (a dog-leg): every axis starts and stops on its own,

@@ -52,14 +52,16 @@ pub(crate) enum Slot {
     Fixed(f64),
 }
 
-/// The window's slots are `slots[front..]`, oldest first. It is a plain vector whose start
-/// moves as slots leave, rather than a ring: the passes run over one contiguous slice and every
-/// access is a plain index. The slots that have left are dropped in one move when the vector is
-/// full, about once per `capacity` slots.
+/// The window: a ring of slots whose length is a power of two, so that a slot's place is its
+/// index masked, with no division and no wrap test (a `VecDeque` of any capacity needs one).
+/// The window is the `len` slots from `head` on, oldest first. The ring doubles if a consumer
+/// leaves final slots in it while more arrive; otherwise it holds a window and a slot or two.
 pub(crate) struct Window {
-    slots: Vec<Slot>,
-    /// The first slot still in the window.
-    front: usize,
+    ring: Vec<Slot>,
+    /// The ring's place of the first slot in the window.
+    head: usize,
+    /// Slots in the window.
+    len: usize,
     capacity: usize,
     /// Slots at the front whose speeds are final.
     ready: usize,
@@ -73,8 +75,9 @@ impl Window {
     pub(crate) fn new(capacity: usize) -> Window {
         let capacity = capacity.max(2);
         Window {
-            slots: Vec::with_capacity(2 * capacity + 2),
-            front: 0,
+            ring: vec![Slot::Fixed(0.0); (capacity + 1).next_power_of_two()],
+            head: 0,
+            len: 0,
             capacity,
             ready: 0,
             start_speed: 0.0,
@@ -82,26 +85,48 @@ impl Window {
         }
     }
 
-    /// The slots in the window, oldest first.
+    /// The ring's place of the window's slot `index`.
     #[inline(always)]
-    fn window(&mut self) -> &mut [Slot] {
-        &mut self.slots[self.front..]
+    fn place(&self, index: usize) -> usize {
+        (self.head + index) & (self.ring.len() - 1)
     }
 
-    /// How many slots are in the window.
+    /// The window's slots, oldest first, as the two pieces of the ring they take.
     #[inline(always)]
-    fn len(&self) -> usize {
-        self.slots.len() - self.front
+    fn pieces(&mut self) -> (&mut [Slot], &mut [Slot]) {
+        let end = self.head + self.len;
+        let size = self.ring.len();
+        if end <= size {
+            (&mut self.ring[self.head..end], &mut [])
+        } else {
+            let (wrapped, first) = self.ring.split_at_mut(self.head);
+            (first, &mut wrapped[..end - size])
+        }
     }
 
     #[inline(always)]
     fn push_slot(&mut self, slot: Slot) {
-        if self.slots.len() == self.slots.capacity() && self.front > 0 {
-            // Full: drop the slots that have left (the moved rest is at most a window).
-            self.slots.drain(..self.front);
-            self.front = 0;
+        if self.len == self.ring.len() {
+            self.grow();
         }
-        self.slots.push(slot);
+        let place = self.place(self.len);
+        if let Some(free) = self.ring.get_mut(place) {
+            *free = slot;
+        }
+        self.len += 1;
+    }
+
+    /// Doubles the ring, its window first.
+    #[cold]
+    fn grow(&mut self) {
+        let size = 2 * self.ring.len();
+        let (first, second) = self.pieces();
+        let mut ring = Vec::with_capacity(size);
+        ring.extend_from_slice(first);
+        ring.extend_from_slice(second);
+        ring.resize(size, Slot::Fixed(0.0));
+        self.ring = ring;
+        self.head = 0;
     }
 
     /// A final slot, if one is ready.
@@ -110,9 +135,11 @@ impl Window {
         if self.ready == 0 {
             return None;
         }
-        let slot = self.slots.get(self.front)?;
+        let place = self.head;
+        self.head = self.place(1);
         self.ready -= 1;
-        self.front += 1;
+        self.len -= 1;
+        let slot = self.ring.get(place)?;
         if let Slot::Motion(planned) = slot {
             self.start_speed = planned.exit;
         }
@@ -181,14 +208,16 @@ impl Window {
     #[inline(always)]
     fn last_planned(&mut self) -> Option<&mut Planned> {
         // Almost always the last slot; a search only behind an alarm or a zero-length motion.
-        let window = self.window();
-        let index = match window.last() {
-            Some(Slot::Motion(_)) => window.len() - 1,
-            _ => window
-                .iter()
-                .rposition(|slot| matches!(slot, Slot::Motion(_)))?,
-        };
-        window[index].planned()
+        let last = self.place(self.len.checked_sub(1)?);
+        if let Some(Slot::Motion(_)) = self.ring.get(last) {
+            return self.ring.get_mut(last).and_then(Slot::planned);
+        }
+        let (first, second) = self.pieces();
+        second
+            .iter_mut()
+            .rev()
+            .chain(first.iter_mut().rev())
+            .find_map(Slot::planned)
     }
 
     /// The motion comes to rest here (an event, or the end of the stream): everything in the
@@ -198,14 +227,14 @@ impl Window {
         if let Some(last) = self.last_planned() {
             last.limits.path.acceleration = last.limits.unblended_acceleration;
         }
-        self.plan(self.len());
+        self.plan(self.len);
         self.last = None;
     }
 
     #[inline(always)]
     fn release_if_full(&mut self) {
-        if self.len() >= self.capacity && self.ready == 0 {
-            self.plan(self.len() / 2);
+        if self.len >= self.capacity && self.ready == 0 {
+            self.plan(self.len / 2);
         }
     }
 
@@ -222,7 +251,9 @@ impl Window {
     /// at a corner that limits the speed, usually a few motions back.
     fn backward_pass(&mut self) {
         let mut next_entry = 0.0;
-        for planned in self.window().iter_mut().rev().filter_map(Slot::planned) {
+        let (first, second) = self.pieces();
+        let slots = second.iter_mut().rev().chain(first.iter_mut().rev());
+        for planned in slots.filter_map(Slot::planned) {
             let limits = &planned.limits;
             let entry =
                 reachable_speed_up_to(next_entry, planned.max_entry, limits.length, limits.path);
@@ -239,7 +270,8 @@ impl Window {
     fn forward_pass(&mut self, release: usize) {
         let mut previous: Option<&mut Planned> = None;
         let start_speed = self.start_speed;
-        for (index, slot) in self.window().iter_mut().enumerate() {
+        let (first, second) = self.pieces();
+        for (index, slot) in first.iter_mut().chain(second.iter_mut()).enumerate() {
             let Some(planned) = slot.planned() else {
                 continue;
             };
@@ -296,4 +328,46 @@ pub(crate) fn time_motion(planned: &Planned) -> (Option<Profile>, f64) {
     )
     .with_lead_in(planned.lead_in);
     (Some(profile), profile.duration())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn fixed_seconds(slot: &Slot) -> Option<f64> {
+        match slot {
+            Slot::Fixed(seconds) => Some(*seconds),
+            Slot::Motion(_) => None,
+        }
+    }
+
+    proptest! {
+        /// The ring gives the slots back in the order they came, across its wrap and while it
+        /// grows (a consumer that takes nothing for a while).
+        #[test]
+        fn slots_leave_the_ring_in_the_order_they_came(
+            takes in proptest::collection::vec(0_usize..40, 1..60),
+        ) {
+            let mut window = Window::new(4);
+            let (mut pushed, mut popped) = (0_u32, 0_u32);
+            for take in takes {
+                // Events are final at once; a few between each round of taking.
+                for _ in 0..(take % 7 + 1) {
+                    window.push_event(f64::from(pushed));
+                    pushed += 1;
+                }
+                for _ in 0..take {
+                    let Some(slot) = window.pop_ready() else { break };
+                    prop_assert_eq!(fixed_seconds(slot), Some(f64::from(popped)));
+                    popped += 1;
+                }
+            }
+            while let Some(slot) = window.pop_ready() {
+                prop_assert_eq!(fixed_seconds(slot), Some(f64::from(popped)));
+                popped += 1;
+            }
+            prop_assert_eq!(popped, pushed);
+        }
+    }
 }

@@ -197,7 +197,7 @@ impl Timeline {
     }
 
     /// The next item of the stream: a segment, or an alarm.
-    #[inline]
+    #[inline(always)]
     pub fn push_item(&mut self, item: &Result<Segment, Alarm>) {
         match item {
             Ok(segment) => self.push(segment),
@@ -208,6 +208,7 @@ impl Timeline {
     /// The next segment of the stream.
     // One match on the kind decides everything that depends on it: the limits, the class of
     // the motion for its junctions, the per-axis time of a dog-leg rapid.
+    #[inline(always)]
     pub fn push(&mut self, segment: &Segment) {
         let (axes, config) = (&self.axes, &self.config);
         let (motion, (limits, ends), class, per_axis_seconds) = match &segment.kind {
@@ -279,6 +280,9 @@ impl Timeline {
     }
 
     /// The timing of the oldest item pushed whose timing has not been taken, once it is final.
+    // Inlined into the caller's loop, as the push is: a call each would cost more than
+    // the common path of either.
+    #[inline(always)]
     pub fn next_timing(&mut self) -> Option<Timing> {
         self.next_timing_and_profile().map(|(timing, _)| timing)
     }
