@@ -13,53 +13,61 @@
 //! (LinuxCNC's plain G64).
 
 use super::config::PlannerConfig;
-use super::limits::{MotionLimits, Tangents};
-use super::{greater, lesser};
-use crate::motion::{Move, PathMode, Segment, SegmentKind};
+use super::limits::{Ends, MotionLimits};
+use super::{finite, greater, lesser};
+use crate::motion::{Move, PathMode, Smoothing};
 
 /// Turns smaller than this (radians) are tangent: no corner at all.
 const TANGENT_ANGLE: f64 = 1e-6;
 
-/// How a motion meets its neighbours, as far as a junction is concerned: small, because the
-/// last one is kept for the next junction.
+/// The kind of a motion, as far as a junction is concerned.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum MotionClass {
+    /// A line or an arc at a feed.
+    Cutting,
+    /// An interpolated rapid.
+    Rapid,
+    /// A rapid with each axis at its own rate: it stops at both ends.
+    PerAxisRapid,
+}
+
+/// How a motion meets the next one, as far as their junction is concerned: small, because the
+/// last one is kept for the next junction. (The next motion's start tangent is passed beside
+/// it: a motion's start only matters to its junction with the previous one.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Handover {
-    tangents: Tangents,
+    /// Unit tangent over X Y Z at the motion's end (zero without XYZ travel).
+    end: [f64; 3],
     /// The motion's whole length, mm (before any blend shortens it).
     length: f64,
     /// Its cruise speed, mm/s.
     pub(crate) cruise: f64,
-    /// Its turning acceleration (see [`MotionLimits::turning`]), mm/s^2.
+    /// Its turning acceleration (see [`Ends::turning`]), mm/s^2.
     turning: f64,
-    rapid: bool,
-    per_axis_rapid: bool,
+    class: MotionClass,
     /// The block asks for an exact stop at its end (G61, G63 or G09).
     exact_stop: bool,
-    /// The corner tolerance of the high-speed or smoothing mode in force, mm.
-    smoothing: Option<f64>,
+    /// The high-speed or smoothing mode in force.
+    smoothing: Option<Smoothing>,
 }
 
 impl Handover {
+    #[inline(always)]
     pub(crate) fn new(
-        segment: &Segment,
+        class: MotionClass,
         motion: &Move,
         limits: &MotionLimits,
-        tangents: Tangents,
+        ends: &Ends,
     ) -> Handover {
-        let (rapid, per_axis_rapid) = match segment.kind {
-            SegmentKind::Rapid { per_axis, .. } => (true, per_axis),
-            _ => (false, false),
-        };
         Handover {
-            tangents,
+            end: ends.end,
             length: limits.length,
             cruise: limits.cruise,
-            turning: limits.turning,
-            rapid,
-            per_axis_rapid,
+            turning: ends.turning,
+            class,
             exact_stop: motion.exact_stop
                 || matches!(motion.path_mode, PathMode::ExactStop | PathMode::Tapping),
-            smoothing: motion.smoothing.map(|s| s.mm()),
+            smoothing: motion.smoothing,
         }
     }
 }
@@ -103,15 +111,22 @@ impl Junction {
     }
 }
 
-/// The junction of `prev` and `next`.
-pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig) -> Junction {
-    if prev.per_axis_rapid || next.per_axis_rapid {
+/// The junction of `prev` and `next`, which starts along `next_start`.
+#[inline(always)]
+pub(crate) fn junction(
+    prev: &Handover,
+    next: &Handover,
+    next_start: &[f64; 3],
+    config: &PlannerConfig,
+) -> Junction {
+    use MotionClass::{Cutting, PerAxisRapid};
+    if prev.class == PerAxisRapid || next.class == PerAxisRapid {
         return Junction::STOP;
     }
-    if prev.rapid != next.rapid && config.stop_between_rapid_and_feed {
+    if (prev.class == Cutting) != (next.class == Cutting) && config.stop_between_rapid_and_feed {
         return Junction::STOP;
     }
-    let (u, w) = (prev.tangents.end, next.tangents.start);
+    let (u, w) = (&prev.end, next_start);
     let cos_turn = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
     if cos_turn.is_nan() {
         return Junction::STOP;
@@ -135,10 +150,10 @@ pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig)
     // A corner between two moves of a high-speed or smoothing mode is cut within that mode's
     // tolerance; any other within the machine's.
     let tolerance = match (prev.smoothing, next.smoothing) {
-        (Some(a), Some(b)) => a.min(b),
+        (Some(a), Some(b)) => a.mm().min(b.mm()),
         _ => config.corner_tolerance,
     };
-    let by_tolerance = if tolerance.is_finite() {
+    let by_tolerance = if finite(tolerance) {
         tolerance * cos_half / (1.0 - cos_half)
     } else {
         f64::INFINITY
@@ -165,6 +180,7 @@ pub(crate) fn junction(prev: &Handover, next: &Handover, config: &PlannerConfig)
 /// angle here). Most corners of CAM paths turn by a few degrees: there the series of atan,
 /// whose first left-out term is below 2e-11 of the angle, costs a few multiplications instead
 /// of a call into libm.
+#[inline(always)]
 fn half_turn(tan_half: f64) -> f64 {
     const SERIES_LIMIT: f64 = 0.2;
     if tan_half > SERIES_LIMIT {
@@ -185,18 +201,19 @@ mod tests {
 
     fn handover(direction: [f64; 3], exact_stop: bool) -> Handover {
         Handover {
-            tangents: Tangents {
-                start: direction,
-                end: direction,
-            },
+            end: direction,
             length: 100.0,
             cruise: 100.0,
             turning: 1000.0,
-            rapid: false,
-            per_axis_rapid: false,
+            class: MotionClass::Cutting,
             exact_stop,
             smoothing: None,
         }
+    }
+
+    /// The junction of a motion along `u` with one along `w`.
+    fn junction(u: &Handover, w: &Handover, config: &PlannerConfig) -> Junction {
+        super::junction(u, w, &w.end, config)
     }
 
     #[test]

@@ -10,10 +10,10 @@
 //! does not have, or a limit that is not a positive number, limits nothing.
 
 use super::config::PlannerConfig;
-use super::lesser;
 use super::profile::{PathLimits, Profile};
+use super::{finite, lesser};
 use crate::machine::{Machine, AXES};
-use crate::motion::{arc_sweep, ArcDirection, Feed, Move, PathMode, Segment, SegmentKind};
+use crate::motion::{arc_sweep, ArcDirection, Feed, MachinePos, Move, PathMode, Plane};
 
 /// Per-axis limits of a machine, in seconds-based units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,7 +29,7 @@ pub(crate) struct AxisLimits {
     /// Path speed cap, mm/s.
     pub(crate) path_speed: f64,
     /// One past the last axis the machine has: the axes after it never limit anything.
-    span: usize,
+    pub(crate) span: usize,
     /// The reciprocals of the limits above (0 for none), so that projecting them onto a
     /// direction takes one division, not one per axis.
     inverse: Inverses,
@@ -101,22 +101,24 @@ pub(crate) struct MotionLimits {
     /// The tangential acceleration when the segment ends without blending into a next motion
     /// (see `PlannerConfig::unblended_acceleration_factor`).
     pub(crate) unblended_acceleration: f64,
-    /// Acceleration available for turning (corner blends): the lowest limit of the axes that
-    /// move, mm/s^2.
-    pub(crate) turning: f64,
     /// The feed could not be known (G95 without a spindle speed): timed at the axis limit.
     pub(crate) feed_unknown: bool,
     /// The acceleration has been scaled for a stop at one of its ends.
     pub(crate) stop_scaled: bool,
 }
 
-/// Unit tangents over X Y Z at the start and at the end of a motion (zero for a move without
-/// XYZ travel): what the junctions with its neighbours need. Kept apart from [`MotionLimits`],
-/// which stays in the look-ahead window for the whole passage of the motion.
+/// What the junctions with a motion's neighbours need besides its limits: the unit tangents
+/// over X Y Z at its start and at its end (zero for a move without XYZ travel) and the
+/// acceleration available for turning. Kept apart from [`MotionLimits`], which stays in the
+/// look-ahead window for the whole passage of the motion, while this is needed only until the
+/// next motion has entered.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Tangents {
+pub(crate) struct Ends {
     pub(crate) start: [f64; 3],
     pub(crate) end: [f64; 3],
+    /// Acceleration available for turning (corner blends): the lowest limit of the axes that
+    /// move, mm/s^2.
+    pub(crate) turning: f64,
 }
 
 /// What the axes allow along a motion: the caps their limits put on the path.
@@ -137,6 +139,21 @@ impl AxisLimits {
     /// One pass over the axes for all of them, and only over those the machine has: an axis it
     /// lacks has infinite limits (zero reciprocals) and never caps anything.
     fn project(&self, share: &[f64; AXES], rapid: bool) -> Projection {
+        self.project_first(&share[..self.span], rapid)
+    }
+
+    /// [`AxisLimits::project`] over X Y Z alone, for a machine without further axes or a move
+    /// that moves no other axis (an arc). The three iterations are unrolled; an axis among X Y Z
+    /// that the machine lacks caps nothing, as in the general loop.
+    #[inline(always)]
+    fn project_xyz(&self, share: &[f64; 3], rapid: bool) -> Projection {
+        self.project_first(share, rapid)
+    }
+
+    /// The caps from the shares of the first `share.len()` axes (the others do not move, or the
+    /// machine does not have them).
+    #[inline(always)]
+    fn project_first(&self, share: &[f64], rapid: bool) -> Projection {
         let rates = if rapid {
             &self.inverse.rapid
         } else {
@@ -144,8 +161,7 @@ impl AxisLimits {
         };
         let (mut speed, mut acceleration, mut jerk) = (0.0_f64, 0.0_f64, 0.0_f64);
         let mut turning = f64::INFINITY;
-        for i in 0..self.span {
-            let s = share[i];
+        for (i, &s) in share.iter().enumerate() {
             // Plain comparisons, not f64::max: no NaN can reach here, and each is one
             // instruction.
             let demand = s * rates[i];
@@ -173,7 +189,25 @@ impl AxisLimits {
     }
 }
 
+/// Length, the axes' caps and the unit direction over X Y Z of a straight move.
 #[inline(always)]
+fn straight(motion: &Move, axes: &AxisLimits, rapid: bool) -> (f64, Projection, [f64; 3]) {
+    let (from, to) = (&motion.from.0, &motion.to.0);
+    let delta = [to[0] - from[0], to[1] - from[1], to[2] - from[2]];
+    let linear = (delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2]).sqrt();
+    // The common case: a machine without axes after Z, and a move with X Y Z travel. Its
+    // shares are the absolute values of its direction, and only X Y Z can cap it; the general
+    // path below gives the same values over all six axes.
+    if axes.span <= 3 && linear > 1e-9 {
+        let per_length = 1.0 / linear;
+        let direction = delta.map(|d| d * per_length);
+        let share = direction.map(f64::abs);
+        return (linear, axes.project_xyz(&share, rapid), direction);
+    }
+    let (length, share, direction) = straight_path(motion);
+    (length, axes.project(&share, rapid), direction)
+}
+
 fn straight_path(motion: &Move) -> (f64, [f64; AXES], [f64; 3]) {
     let delta: [f64; AXES] = std::array::from_fn(|i| motion.to.0[i] - motion.from.0[i]);
     let linear = (delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2]).sqrt();
@@ -197,40 +231,14 @@ fn straight_path(motion: &Move) -> (f64, [f64; AXES], [f64; 3]) {
 }
 
 /// The programmed path speed, mm/s, of a cutting move, or None when it cannot be known.
+#[inline(always)]
 fn programmed_speed(feed: &Feed, length: f64, feed_override: f64) -> Option<f64> {
     feed.mm_per_min(length)
-        .filter(|f| *f > 0.0 && f.is_finite())
+        .filter(|&f| f > 0.0 && finite(f))
         .map(|f| f / 60.0 * feed_override)
 }
 
 impl MotionLimits {
-    /// The limits of a rapid, line or arc; None for events.
-    // Inlined into the timeline's push, with `line`: the limits and tangents are built where
-    // they are kept instead of being returned through three calls (about 60 instructions a
-    // segment, callgrind).
-    #[inline(always)]
-    pub(crate) fn of(
-        segment: &Segment,
-        axes: &AxisLimits,
-        config: &PlannerConfig,
-        feed_override: f64,
-    ) -> Option<(MotionLimits, Tangents)> {
-        match &segment.kind {
-            SegmentKind::Rapid { motion, .. } => Some(line(motion, None, axes, config, 1.0)),
-            // The control locks the override at 100 % where the feed is tied to the spindle
-            // (G63 tapping mode, G33 threads).
-            SegmentKind::Line { motion, feed } if motion.path_mode == PathMode::Tapping => {
-                Some(line(motion, Some(feed), axes, config, 1.0))
-            }
-            SegmentKind::Line { motion, feed } => {
-                Some(line(motion, Some(feed), axes, config, feed_override))
-            }
-            SegmentKind::Arc { .. } => arc(segment, axes, config, feed_override),
-            _ => None,
-        }
-        .map(|(limits, tangents)| (limits.bounded(), tangents))
-    }
-
     /// Scales the acceleration for a stop at one end (see
     /// `PlannerConfig::stop_acceleration_factor`); a second stop does not scale it again.
     pub(crate) fn scale_acceleration(&mut self, factor: f64) {
@@ -240,28 +248,42 @@ impl MotionLimits {
             self.unblended_acceleration *= factor;
         }
     }
-
-    /// Caps infinite limits (axes the machine does not limit) at values far beyond any machine,
-    /// so that the planner's arithmetic never meets inf - inf.
-    fn bounded(mut self) -> MotionLimits {
-        self.cruise = lesser(1e9, self.cruise);
-        self.path.acceleration = lesser(1e12, self.path.acceleration);
-        self.unblended_acceleration = lesser(1e12, self.unblended_acceleration);
-        self.turning = lesser(1e12, self.turning);
-        self
-    }
 }
 
+/// Caps infinite limits (axes the machine does not limit) at values far beyond any machine,
+/// so that the planner's arithmetic never meets inf - inf.
 #[inline(always)]
-fn line(
+fn bounded((mut limits, mut ends): (MotionLimits, Ends)) -> (MotionLimits, Ends) {
+    limits.cruise = lesser(1e9, limits.cruise);
+    limits.path.acceleration = lesser(1e12, limits.path.acceleration);
+    limits.unblended_acceleration = lesser(1e12, limits.unblended_acceleration);
+    ends.turning = lesser(1e12, ends.turning);
+    (limits, ends)
+}
+
+/// The limits of a straight move, a rapid when `feed` is None.
+// Inlined into the timeline's push: the limits and ends are built where they are kept instead
+// of being returned through calls (about 60 instructions a segment, callgrind).
+#[inline(always)]
+pub(crate) fn line(
     motion: &Move,
     feed: Option<&Feed>,
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
-) -> (MotionLimits, Tangents) {
-    let (length, share, direction) = straight_path(motion);
-    let caps = axes.project(&share, feed.is_none());
+) -> (MotionLimits, Ends) {
+    bounded(unbounded_line(motion, feed, axes, config, feed_override))
+}
+
+#[inline(always)]
+fn unbounded_line(
+    motion: &Move,
+    feed: Option<&Feed>,
+    axes: &AxisLimits,
+    config: &PlannerConfig,
+    feed_override: f64,
+) -> (MotionLimits, Ends) {
+    let (length, caps, direction) = straight(motion, axes, feed.is_none());
     let axis_speed = lesser(axes.path_speed, caps.speed);
     let programmed = feed.map(|f| programmed_speed(f, length, feed_override));
     let cruise = match programmed {
@@ -277,7 +299,6 @@ fn line(
             acceleration,
             jerk: caps.jerk,
         },
-        turning: caps.turning,
         // Only a segment that could have blended is planned with the reduced acceleration.
         unblended_acceleration: if continuous {
             acceleration * config.unblended_acceleration_factor
@@ -287,14 +308,16 @@ fn line(
         feed_unknown: matches!(programmed, Some(None)),
         stop_scaled: false,
     };
-    let tangents = Tangents {
+    let ends = Ends {
         start: direction,
         end: direction,
+        turning: caps.turning,
     };
-    (limits, tangents)
+    (limits, ends)
 }
 
 /// LinuxCNC spends at least a fixed time on a segment, whatever its length.
+#[inline(always)]
 fn cap_short(speed: f64, length: f64, config: &PlannerConfig) -> f64 {
     if config.min_segment_seconds > 0.0 {
         speed.min(length / config.min_segment_seconds)
@@ -303,23 +326,32 @@ fn cap_short(speed: f64, length: f64, config: &PlannerConfig) -> f64 {
     }
 }
 
-fn arc(
-    segment: &Segment,
+/// An arc's geometry, as [`arc`] takes it.
+pub(crate) struct ArcPath<'a> {
+    pub(crate) motion: &'a Move,
+    pub(crate) center: &'a MachinePos,
+    pub(crate) direction: ArcDirection,
+    pub(crate) plane: Plane,
+    pub(crate) extra_turns: u32,
+    pub(crate) feed: &'a Feed,
+}
+
+/// The limits of an arc.
+#[inline(always)]
+pub(crate) fn arc(
+    path: &ArcPath<'_>,
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
-) -> Option<(MotionLimits, Tangents)> {
-    let SegmentKind::Arc {
+) -> (MotionLimits, Ends) {
+    let ArcPath {
         motion,
         center,
         direction,
         plane,
         extra_turns,
         feed,
-    } = &segment.kind
-    else {
-        return None;
-    };
+    } = *path;
     let (a, b, n) = plane.axes();
     // Plain square roots, not hypot: machine coordinates are far from overflow and underflow,
     // where hypot's care lies, and that care costs several times a square root.
@@ -329,21 +361,22 @@ fn arc(
         motion.from.0[a] - center.0[a],
         motion.from.0[b] - center.0[b],
     );
-    let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
+    let sweep = arc_sweep(motion, center, direction, plane, extra_turns);
     let planar = radius * sweep;
     let axial = motion.to.0[n] - motion.from.0[n];
     let length = norm(planar, axial);
     if length <= 1e-12 || radius <= 1e-12 {
-        return Some(line(motion, Some(feed), axes, config, feed_override));
+        return line(motion, Some(feed), axes, config, feed_override);
     }
     // The tangent turns through the plane, so each plane axis carries the whole planar share
-    // somewhere on a long enough arc; taking it everywhere is the safe side.
+    // somewhere on a long enough arc; taking it everywhere is the safe side. The plane's axes
+    // are among X Y Z, and no other axis moves.
     let (p, q) = (planar / length, axial.abs() / length);
-    let mut share = [0.0; AXES];
+    let mut share = [0.0; 3];
     share[a] = p;
     share[b] = p;
     share[n] = q;
-    let caps = axes.project(&share, false);
+    let caps = axes.project_xyz(&share, false);
     let axis_speed = caps.speed.min(axes.path_speed);
     let plane_acceleration = axes.acceleration[a].min(axes.acceleration[b]);
     // v_planar^2 / r <= share * a, with v_planar = p v.
@@ -353,7 +386,7 @@ fn arc(
     // The tangent keeps what the normal acceleration at the arc's top speed leaves over. The top
     // speed, not the feed, sets it, so a faster feed never makes an arc accelerate harder.
     let normal = (p * top).powi(2) / radius;
-    let tangential_room = if plane_acceleration.is_finite() {
+    let tangential_room = if finite(plane_acceleration) {
         (1.0 - (normal / plane_acceleration).powi(2))
             .max(0.0)
             .sqrt()
@@ -366,15 +399,27 @@ fn arc(
         ArcDirection::CounterClockwise => 1.0,
         ArcDirection::Clockwise => -1.0,
     };
-    let tangent = |point: &[f64; AXES]| {
-        let (ra, rb) = (point[a] - center.0[a], point[b] - center.0[b]);
-        let r = norm(ra, rb).max(1e-12);
-        let mut t = [0.0; 3];
-        t[a] = -sign * rb / r * p;
-        t[b] = sign * ra / r * p;
-        t[n] = axial.signum() * q;
-        t
-    };
+    let end = &motion.to.0;
+    let (c, axes_abn) = (&center.0, (a, b, n));
+    let normal_component = axial.signum() * q;
+    // The start is `radius` from the centre (the floor only matters to a NaN).
+    let start_tangent = arc_tangent(
+        (motion.from.0[a] - c[a], motion.from.0[b] - c[b]),
+        radius.max(1e-12),
+        sign,
+        p,
+        axes_abn,
+        normal_component,
+    );
+    let (ra, rb) = (end[a] - c[a], end[b] - c[b]);
+    let end_tangent = arc_tangent(
+        (ra, rb),
+        norm(ra, rb).max(1e-12),
+        sign,
+        p,
+        axes_abn,
+        normal_component,
+    );
     let acceleration = caps.acceleration;
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
     let unblended_share = tangential_room.min(config.unblended_arc_tangential_share);
@@ -390,16 +435,35 @@ fn arc(
             acceleration: acceleration * tangential_room,
             jerk: caps.jerk,
         },
-        turning: caps.turning,
         unblended_acceleration: acceleration * unblended_share * unblended_factor,
         feed_unknown: programmed.is_none(),
         stop_scaled: false,
     };
-    let tangents = Tangents {
-        start: tangent(&motion.from.0),
-        end: tangent(&motion.to.0),
+    let ends = Ends {
+        start: start_tangent,
+        end: end_tangent,
+        turning: caps.turning,
     };
-    Some((limits, tangents))
+    bounded((limits, ends))
+}
+
+/// The unit tangent of an arc at the point `(ra, rb)` from its centre in the plane of axes
+/// `(a, b)`, `r` from it: the planar share `p` turned a quarter in the arc's direction (`sign`
+/// 1 counter-clockwise), with `normal` on the normal axis `n`.
+#[inline(always)]
+fn arc_tangent(
+    (ra, rb): (f64, f64),
+    r: f64,
+    sign: f64,
+    p: f64,
+    (a, b, n): (usize, usize, usize),
+    normal: f64,
+) -> [f64; 3] {
+    let mut t = [0.0; 3];
+    t[a] = -sign * rb / r * p;
+    t[b] = sign * ra / r * p;
+    t[n] = normal;
+    t
 }
 
 /// A rapid with each axis at its own rate (a dog-leg): every axis starts and stops on its own,
@@ -420,7 +484,7 @@ pub(crate) fn per_axis_rapid_seconds(motion: &Move, axes: &AxisLimits) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::motion::MachinePos;
+    use proptest::prelude::*;
 
     fn axis(rate: f64, acceleration: f64) -> crate::machine::AxisConfig {
         crate::machine::AxisConfig {
@@ -472,5 +536,90 @@ mod tests {
         let (limits, _) = line(&motion, None, &axes, &config, 1.0);
         assert_eq!(limits.length, 90.0);
         assert_eq!(limits.path.acceleration, 50.0);
+    }
+
+    /// A machine with X Y Z of the given limits, one of them absent (`absent` 0 to 2; 3: none),
+    /// and no further axes.
+    fn xyz_machine(
+        rates: [f64; 3],
+        accelerations: [f64; 3],
+        jerks: [f64; 3],
+        absent: usize,
+    ) -> Machine {
+        let mut machine = Machine::default();
+        machine.axes = std::array::from_fn(|i| {
+            (i < 3 && i != absent).then(|| crate::machine::AxisConfig {
+                jerk: jerks[i],
+                ..axis(rates[i], accelerations[i])
+            })
+        });
+        machine
+    }
+
+    fn projection_bits(p: &Projection) -> [u64; 4] {
+        [p.speed, p.acceleration, p.jerk, p.turning].map(f64::to_bits)
+    }
+
+    fn limit() -> impl Strategy<Value = f64> {
+        prop_oneof![Just(f64::INFINITY), 1.0..1e6_f64]
+    }
+
+    proptest! {
+        #[test]
+        fn the_xyz_fast_path_gives_the_general_path_to_the_bit(
+            from in proptest::array::uniform6(-500.0..500.0_f64),
+            delta in proptest::array::uniform6(prop_oneof![
+                Just(0.0),
+                -50.0..50.0_f64,
+                -1e-8..1e-8_f64,
+            ]),
+            rates in proptest::array::uniform3(100.0..50_000.0_f64),
+            accelerations in proptest::array::uniform3(limit()),
+            jerks in proptest::array::uniform3(limit()),
+            absent in 0_usize..4,
+            rapid in any::<bool>(),
+        ) {
+            let machine = xyz_machine(rates, accelerations, jerks, absent);
+            let axes = AxisLimits::new(&machine, &PlannerConfig::default());
+            prop_assert!(axes.span <= 3);
+            let to: [f64; AXES] = std::array::from_fn(|i| from[i] + delta[i]);
+            let motion = Move {
+                from: MachinePos(from),
+                to: MachinePos(to),
+                path_mode: PathMode::Continuous,
+                exact_stop: false,
+                smoothing: None,
+                offset: [0.0; AXES],
+            };
+            let (length, caps, direction) = straight(&motion, &axes, rapid);
+            let (general_length, share, general_direction) = straight_path(&motion);
+            let general_caps = axes.project(&share, rapid);
+            prop_assert_eq!(length.to_bits(), general_length.to_bits());
+            prop_assert_eq!(projection_bits(&caps), projection_bits(&general_caps));
+            prop_assert_eq!(direction.map(f64::to_bits), general_direction.map(f64::to_bits));
+        }
+
+        #[test]
+        fn the_xyz_projection_of_an_arc_is_the_general_one_on_any_machine(
+            share in proptest::array::uniform3(prop_oneof![Just(0.0), 0.0..1.0_f64]),
+            rates in proptest::array::uniform3(100.0..50_000.0_f64),
+            accelerations in proptest::array::uniform3(limit()),
+            jerks in proptest::array::uniform3(limit()),
+            absent in 0_usize..4,
+        ) {
+            // A machine with a C axis of tight limits: it never moves in an arc, and must not cap
+            // it.
+            let mut machine = xyz_machine(rates, accelerations, jerks, absent);
+            machine.axes[5] = Some(axis(10.0, 1.0));
+            let axes = AxisLimits::new(&machine, &PlannerConfig::default());
+            let mut padded = [0.0; AXES];
+            padded[..3].copy_from_slice(&share);
+            for rapid in [false, true] {
+                prop_assert_eq!(
+                    projection_bits(&axes.project_xyz(&share, rapid)),
+                    projection_bits(&axes.project(&padded, rapid))
+                );
+            }
+        }
     }
 }

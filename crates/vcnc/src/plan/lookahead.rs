@@ -17,11 +17,9 @@
 
 use super::config::PlannerConfig;
 use super::corner::{junction, Handover};
-use super::limits::{MotionLimits, Tangents};
+use super::limits::MotionLimits;
 use super::profile::{reachable_speed_up_to, Profile};
 use super::{greater, lesser};
-use crate::motion::{Move, Segment};
-use std::collections::VecDeque;
 
 /// A motion's place in the plan.
 #[derive(Clone, Copy, Debug)]
@@ -45,6 +43,7 @@ pub(crate) struct Planned {
 /// One item of the window. The window holds only what timing needs: the segments themselves
 /// stay with the caller, in the same order (see [`super::Timeline`]), so that a slot is small
 /// to move and a segment is never copied for planning.
+#[derive(Clone, Copy, Debug)]
 pub(crate) enum Slot {
     /// A motion being planned.
     Motion(Planned),
@@ -52,8 +51,17 @@ pub(crate) enum Slot {
     /// length.
     Fixed(f64),
 }
+
+/// The window: a ring of slots whose length is a power of two, so that a slot's place is its
+/// index masked, with no division and no wrap test (a `VecDeque` of any capacity needs one).
+/// The window is the `len` slots from `head` on, oldest first. The ring doubles if a consumer
+/// leaves final slots in it while more arrive; otherwise it holds a window and a slot or two.
 pub(crate) struct Window {
-    slots: VecDeque<Slot>,
+    ring: Vec<Slot>,
+    /// The ring's place of the first slot in the window.
+    head: usize,
+    /// Slots in the window.
+    len: usize,
     capacity: usize,
     /// Slots at the front whose speeds are final.
     ready: usize,
@@ -67,7 +75,9 @@ impl Window {
     pub(crate) fn new(capacity: usize) -> Window {
         let capacity = capacity.max(2);
         Window {
-            slots: VecDeque::with_capacity(capacity + 1),
+            ring: vec![Slot::Fixed(0.0); (capacity + 1).next_power_of_two()],
+            head: 0,
+            len: 0,
             capacity,
             ready: 0,
             start_speed: 0.0,
@@ -75,22 +85,71 @@ impl Window {
         }
     }
 
+    /// The ring's place of the window's slot `index`.
+    #[inline(always)]
+    fn place(&self, index: usize) -> usize {
+        (self.head + index) & (self.ring.len() - 1)
+    }
+
+    /// The window's slots, oldest first, as the two pieces of the ring they take.
+    #[inline(always)]
+    fn pieces(&mut self) -> (&mut [Slot], &mut [Slot]) {
+        let end = self.head + self.len;
+        let size = self.ring.len();
+        if end <= size {
+            (&mut self.ring[self.head..end], &mut [])
+        } else {
+            let (wrapped, first) = self.ring.split_at_mut(self.head);
+            (first, &mut wrapped[..end - size])
+        }
+    }
+
+    #[inline(always)]
+    fn push_slot(&mut self, slot: Slot) {
+        if self.len == self.ring.len() {
+            self.grow();
+        }
+        let place = self.place(self.len);
+        if let Some(free) = self.ring.get_mut(place) {
+            *free = slot;
+        }
+        self.len += 1;
+    }
+
+    /// Doubles the ring, its window first.
+    #[cold]
+    fn grow(&mut self) {
+        let size = 2 * self.ring.len();
+        let (first, second) = self.pieces();
+        let mut ring = Vec::with_capacity(size);
+        ring.extend_from_slice(first);
+        ring.extend_from_slice(second);
+        ring.resize(size, Slot::Fixed(0.0));
+        self.ring = ring;
+        self.head = 0;
+    }
+
     /// A final slot, if one is ready.
-    pub(crate) fn pop_ready(&mut self) -> Option<Slot> {
+    #[inline(always)]
+    pub(crate) fn pop_ready(&mut self) -> Option<&Slot> {
         if self.ready == 0 {
             return None;
         }
+        let place = self.head;
+        self.head = self.place(1);
         self.ready -= 1;
-        let slot = self.slots.pop_front()?;
-        if let Slot::Motion(planned) = &slot {
+        self.len -= 1;
+        let slot = self.ring.get(place)?;
+        if let Slot::Motion(planned) = slot {
             self.start_speed = planned.exit;
         }
         Some(slot)
     }
 
-    /// Adds an item that takes no time and does not interrupt the motion (an alarm).
+    /// Adds an item that takes no time and does not interrupt the motion (an alarm, a motion
+    /// of zero length).
     pub(crate) fn push_timeless(&mut self) {
-        self.slots.push_back(Slot::Fixed(0.0));
+        self.push_slot(Slot::Fixed(0.0));
         self.release_if_full();
     }
 
@@ -98,64 +157,67 @@ impl Window {
     /// is planned to a stop, and the event is final at once.
     pub(crate) fn push_event(&mut self, seconds: f64) {
         self.stop();
-        self.slots.push_back(Slot::Fixed(seconds));
+        self.push_slot(Slot::Fixed(seconds));
         self.ready += 1;
     }
 
-    /// Adds a motion with its limits (None: a motion of zero length); `per_axis_seconds` is the
-    /// duration of a rapid with each axis at its own rate.
+    /// Adds a motion of positive length with its limits, its handover to the next motion and
+    /// its start tangent; `per_axis_seconds` is the duration of a rapid with each axis at its
+    /// own rate.
+    #[inline(always)]
     pub(crate) fn push_motion(
         &mut self,
-        segment: &Segment,
-        motion: &Move,
-        limits: Option<(MotionLimits, Tangents)>,
+        mut limits: MotionLimits,
+        handover: Handover,
+        start: &[f64; 3],
         per_axis_seconds: Option<f64>,
         config: &PlannerConfig,
     ) {
-        let planned = match limits {
-            Some((mut limits, tangents)) if limits.length > 0.0 => {
-                let handover = Handover::new(segment, motion, &limits, tangents);
-                let mut max_entry = 0.0;
-                let mut lead_in = 0.0;
-                if let Some(prev) = &self.last {
-                    let junction = junction(prev, &handover, config);
-                    max_entry = lesser(lesser(prev.cruise, junction.speed), limits.cruise);
-                    limits.length = greater(0.0, limits.length - junction.leg);
-                    lead_in = junction.arc;
-                    let stop_factor = if junction.corner_stop {
-                        config.stop_acceleration_factor
-                    } else {
-                        1.0
-                    };
-                    limits.scale_acceleration(stop_factor);
-                    if let Some(prev) = self.last_planned() {
-                        prev.limits.length = greater(0.0, prev.limits.length - junction.leg);
-                        prev.limits.scale_acceleration(stop_factor);
-                    }
-                }
-                self.last = Some(handover);
-                Slot::Motion(Planned {
-                    limits,
-                    lead_in,
-                    max_entry,
-                    backward: f64::NAN,
-                    entry: 0.0,
-                    exit: 0.0,
-                    per_axis_seconds,
-                })
+        let mut max_entry = 0.0;
+        let mut lead_in = 0.0;
+        if let Some(prev) = &self.last {
+            let junction = junction(prev, &handover, start, config);
+            max_entry = lesser(lesser(prev.cruise, junction.speed), limits.cruise);
+            limits.length = greater(0.0, limits.length - junction.leg);
+            lead_in = junction.arc;
+            // A factor of 1 scales nothing: only a stop at a corner scales the acceleration.
+            let stop_factor = config.stop_acceleration_factor;
+            if junction.corner_stop {
+                limits.scale_acceleration(stop_factor);
             }
-            _ => Slot::Fixed(0.0),
-        };
-        self.slots.push_back(planned);
+            if let Some(prev) = self.last_planned() {
+                prev.limits.length = greater(0.0, prev.limits.length - junction.leg);
+                if junction.corner_stop {
+                    prev.limits.scale_acceleration(stop_factor);
+                }
+            }
+        }
+        self.last = Some(handover);
+        self.push_slot(Slot::Motion(Planned {
+            limits,
+            lead_in,
+            max_entry,
+            backward: f64::NAN,
+            entry: 0.0,
+            exit: 0.0,
+            per_axis_seconds,
+        }));
         self.release_if_full();
     }
 
+    #[inline(always)]
     fn last_planned(&mut self) -> Option<&mut Planned> {
         // Almost always the last slot; a search only behind an alarm or a zero-length motion.
-        if let Some(Slot::Motion(_)) = self.slots.back() {
-            return self.slots.back_mut().and_then(Slot::planned);
+        let last = self.place(self.len.checked_sub(1)?);
+        if let Some(Slot::Motion(_)) = self.ring.get(last) {
+            return self.ring.get_mut(last).and_then(Slot::planned);
         }
-        self.slots.iter_mut().rev().find_map(Slot::planned)
+        let (first, second) = self.pieces();
+        second
+            .iter_mut()
+            .rev()
+            .chain(first.iter_mut().rev())
+            .find_map(Slot::planned)
     }
 
     /// The motion comes to rest here (an event, or the end of the stream): everything in the
@@ -165,13 +227,14 @@ impl Window {
         if let Some(last) = self.last_planned() {
             last.limits.path.acceleration = last.limits.unblended_acceleration;
         }
-        self.plan(self.slots.len());
+        self.plan(self.len);
         self.last = None;
     }
 
+    #[inline(always)]
     fn release_if_full(&mut self) {
-        if self.slots.len() >= self.capacity && self.ready == 0 {
-            self.plan(self.slots.len() / 2);
+        if self.len >= self.capacity && self.ready == 0 {
+            self.plan(self.len / 2);
         }
     }
 
@@ -188,7 +251,9 @@ impl Window {
     /// at a corner that limits the speed, usually a few motions back.
     fn backward_pass(&mut self) {
         let mut next_entry = 0.0;
-        for planned in self.slots.iter_mut().rev().filter_map(Slot::planned) {
+        let (first, second) = self.pieces();
+        let slots = second.iter_mut().rev().chain(first.iter_mut().rev());
+        for planned in slots.filter_map(Slot::planned) {
             let limits = &planned.limits;
             let entry =
                 reachable_speed_up_to(next_entry, planned.max_entry, limits.length, limits.path);
@@ -204,13 +269,15 @@ impl Window {
     /// motion after the released slots (whose entry is the last released motion's exit).
     fn forward_pass(&mut self, release: usize) {
         let mut previous: Option<&mut Planned> = None;
-        for (index, slot) in self.slots.iter_mut().enumerate() {
+        let start_speed = self.start_speed;
+        let (first, second) = self.pieces();
+        for (index, slot) in first.iter_mut().chain(second.iter_mut()).enumerate() {
             let Some(planned) = slot.planned() else {
                 continue;
             };
             // The first motion continues from a motion that has already left: its entry is fixed.
             planned.entry = match previous.take() {
-                None => self.start_speed,
+                None => start_speed,
                 Some(previous) => {
                     let limits = &previous.limits;
                     let entry = reachable_speed_up_to(
@@ -236,6 +303,7 @@ impl Window {
 }
 
 impl Slot {
+    #[inline(always)]
     fn planned(&mut self) -> Option<&mut Planned> {
         match self {
             Slot::Motion(planned) => Some(planned),
@@ -245,6 +313,7 @@ impl Slot {
 }
 
 /// The timed result of a planned motion: its profile (None for a per-axis rapid) and duration.
+#[inline(always)]
 pub(crate) fn time_motion(planned: &Planned) -> (Option<Profile>, f64) {
     if let Some(seconds) = planned.per_axis_seconds {
         return (None, seconds);
@@ -259,4 +328,46 @@ pub(crate) fn time_motion(planned: &Planned) -> (Option<Profile>, f64) {
     )
     .with_lead_in(planned.lead_in);
     (Some(profile), profile.duration())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn fixed_seconds(slot: &Slot) -> Option<f64> {
+        match slot {
+            Slot::Fixed(seconds) => Some(*seconds),
+            Slot::Motion(_) => None,
+        }
+    }
+
+    proptest! {
+        /// The ring gives the slots back in the order they came, across its wrap and while it
+        /// grows (a consumer that takes nothing for a while).
+        #[test]
+        fn slots_leave_the_ring_in_the_order_they_came(
+            takes in proptest::collection::vec(0_usize..40, 1..60),
+        ) {
+            let mut window = Window::new(4);
+            let (mut pushed, mut popped) = (0_u32, 0_u32);
+            for take in takes {
+                // Events are final at once; a few between each round of taking.
+                for _ in 0..(take % 7 + 1) {
+                    window.push_event(f64::from(pushed));
+                    pushed += 1;
+                }
+                for _ in 0..take {
+                    let Some(slot) = window.pop_ready() else { break };
+                    prop_assert_eq!(fixed_seconds(slot), Some(f64::from(popped)));
+                    popped += 1;
+                }
+            }
+            while let Some(slot) = window.pop_ready() {
+                prop_assert_eq!(fixed_seconds(slot), Some(f64::from(popped)));
+                popped += 1;
+            }
+            prop_assert_eq!(popped, pushed);
+        }
+    }
 }

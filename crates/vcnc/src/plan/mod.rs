@@ -47,9 +47,10 @@ pub use report::{BlockTime, TimeKind, TimeReport, SLOWEST};
 
 use crate::alarm::Alarm;
 use crate::machine::Machine;
-use crate::motion::{Segment, SegmentKind};
+use crate::motion::{PathMode, Segment, SegmentKind};
+use corner::{Handover, MotionClass};
 use events::EventClock;
-use limits::{per_axis_rapid_seconds, AxisLimits, MotionLimits};
+use limits::{arc, line, per_axis_rapid_seconds, ArcPath, AxisLimits};
 use lookahead::{time_motion, Slot, Window};
 use std::collections::VecDeque;
 
@@ -73,6 +74,15 @@ pub(crate) fn greater(a: f64, b: f64) -> f64 {
     } else {
         a
     }
+}
+
+/// `value` is neither infinite nor NaN: the same as `f64::is_finite`, in two instructions of
+/// the floating-point unit. (The compiler turns `is_finite` and `abs() < INFINITY` alike into
+/// about seven integer instructions on the bits.) Zero times a finite number is zero, times an
+/// infinite one or NaN it is NaN.
+#[inline(always)]
+pub(crate) fn finite(value: f64) -> bool {
+    value * 0.0 == 0.0
 }
 
 /// Choices of a planning run that are not part of the machine.
@@ -187,7 +197,7 @@ impl Timeline {
     }
 
     /// The next item of the stream: a segment, or an alarm.
-    #[inline]
+    #[inline(always)]
     pub fn push_item(&mut self, item: &Result<Segment, Alarm>) {
         match item {
             Ok(segment) => self.push(segment),
@@ -196,22 +206,64 @@ impl Timeline {
     }
 
     /// The next segment of the stream.
+    // One match on the kind decides everything that depends on it: the limits, the class of
+    // the motion for its junctions, the per-axis time of a dog-leg rapid.
+    #[inline(always)]
     pub fn push(&mut self, segment: &Segment) {
-        if let Some(motion) = segment.motion() {
-            let limits = MotionLimits::of(segment, &self.axes, &self.config, self.feed_override);
-            let per_axis_seconds = match &segment.kind {
-                SegmentKind::Rapid {
+        let (axes, config) = (&self.axes, &self.config);
+        let (motion, (limits, ends), class, per_axis_seconds) = match &segment.kind {
+            SegmentKind::Line { motion, feed } => {
+                // The control locks the override at 100 % where the feed is tied to the
+                // spindle (G63 tapping mode, G33 threads).
+                let feed_override = if motion.path_mode == PathMode::Tapping {
+                    1.0
+                } else {
+                    self.feed_override
+                };
+                let limits = line(motion, Some(feed), axes, config, feed_override);
+                (motion, limits, MotionClass::Cutting, None)
+            }
+            SegmentKind::Arc {
+                motion,
+                center,
+                direction,
+                plane,
+                extra_turns,
+                feed,
+            } => {
+                let path = ArcPath {
                     motion,
-                    per_axis: true,
-                } => Some(per_axis_rapid_seconds(motion, &self.axes)),
-                _ => None,
-            };
+                    center,
+                    direction: *direction,
+                    plane: *plane,
+                    extra_turns: *extra_turns,
+                    feed,
+                };
+                let limits = arc(&path, axes, config, self.feed_override);
+                (motion, limits, MotionClass::Cutting, None)
+            }
+            SegmentKind::Rapid { motion, per_axis } => {
+                let limits = line(motion, None, axes, config, 1.0);
+                if *per_axis {
+                    let seconds = per_axis_rapid_seconds(motion, axes);
+                    (motion, limits, MotionClass::PerAxisRapid, Some(seconds))
+                } else {
+                    (motion, limits, MotionClass::Rapid, None)
+                }
+            }
+            _ => {
+                // The machine stops before an event; the end of the program too.
+                let seconds = self.events.seconds(&segment.kind, &self.config);
+                self.window.push_event(seconds);
+                return;
+            }
+        };
+        if limits.length > 0.0 {
+            let handover = Handover::new(class, motion, &limits, &ends);
             self.window
-                .push_motion(segment, motion, limits, per_axis_seconds, &self.config);
+                .push_motion(limits, handover, &ends.start, per_axis_seconds, config);
         } else {
-            // The machine stops before an event; the end of the program too.
-            let seconds = self.events.seconds(&segment.kind, &self.config);
-            self.window.push_event(seconds);
+            self.window.push_timeless();
         }
     }
 
@@ -228,6 +280,9 @@ impl Timeline {
     }
 
     /// The timing of the oldest item pushed whose timing has not been taken, once it is final.
+    // Inlined into the caller's loop, as the push is: a call each would cost more than
+    // the common path of either.
+    #[inline(always)]
     pub fn next_timing(&mut self) -> Option<Timing> {
         self.next_timing_and_profile().map(|(timing, _)| timing)
     }
@@ -237,9 +292,9 @@ impl Timeline {
     #[inline(always)]
     pub fn next_timing_and_profile(&mut self) -> Option<(Timing, Option<Profile>)> {
         let (dt, profile, feed_unknown) = match self.window.pop_ready()? {
-            Slot::Fixed(seconds) => (seconds, None, false),
+            Slot::Fixed(seconds) => (*seconds, None, false),
             Slot::Motion(planned) => {
-                let (profile, dt) = time_motion(&planned);
+                let (profile, dt) = time_motion(planned);
                 (dt, profile, planned.limits.feed_unknown)
             }
         };
@@ -310,6 +365,41 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for Planner<I> {
                     self.waiting.push_back(item);
                 }
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn finite_agrees_with_is_finite_on_the_special_values() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            f64::from_bits(1),
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for value in values {
+            assert_eq!(finite(value), value.is_finite(), "{value}");
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn finite_agrees_with_is_finite_on_any_bits(bits in any::<u64>()) {
+            let value = f64::from_bits(bits);
+            prop_assert_eq!(finite(value), value.is_finite());
         }
     }
 }

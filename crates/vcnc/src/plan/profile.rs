@@ -11,7 +11,7 @@
 //! Invariants: speeds are mm/s (or deg/s), lengths mm, times s, all finite and non-negative for
 //! finite non-negative input; nothing here panics or loops without bound on any input.
 
-use super::{greater, lesser};
+use super::{finite, greater, lesser};
 
 /// The limits along the path that shape a profile: tangential acceleration and jerk.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,7 +24,7 @@ pub struct PathLimits {
 
 impl PathLimits {
     fn is_trapezoid(&self) -> bool {
-        !self.jerk.is_finite()
+        !finite(self.jerk)
     }
 
     /// The speed change above which an S-curve reaches full acceleration: a^2 / j.
@@ -176,6 +176,7 @@ pub(crate) fn reachable_speed_up_to(
 
 /// Seconds of the fastest ramp between `from` and `to` (the same as [`Ramp::duration`], without
 /// building the ramp).
+#[inline(always)]
 fn ramp_time(from: f64, to: f64, limits: PathLimits) -> f64 {
     let change = (to - from).abs();
     let a = limits.acceleration;
@@ -240,6 +241,9 @@ impl Profile {
     /// The fastest profile over `length` from `entry` to `exit` that stays under `cruise` and
     /// `limits`. The look-ahead passes only ask for feasible end speeds; a pair that is slightly
     /// out of reach (rounding) gets the closest feasible profile rather than an error.
+    // Inlined: the planner's callers that only want the duration then skip building the rest;
+    // the rare profile that does not reach its cruise speed is worked out in `peaked`.
+    #[inline(always)]
     pub fn new(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimits) -> Profile {
         // An axis without limits gives infinite caps; huge finite ones keep the arithmetic free
         // of inf - inf and take no measurable time.
@@ -257,12 +261,7 @@ impl Profile {
         let mut rest = length - 0.5 * ((entry + cruise) * up_time + (cruise + exit) * down_time);
         let mut peak = cruise;
         if rest < 0.0 {
-            peak = peak_speed(length, entry, exit, cruise, limits);
-            (up_time, down_time) = (
-                ramp_time(entry, peak, limits),
-                ramp_time(peak, exit, limits),
-            );
-            rest = length - 0.5 * ((entry + peak) * up_time + (peak + exit) * down_time);
+            (peak, up_time, down_time, rest) = peaked(length, entry, exit, cruise, limits);
         }
         let cruise_time = if rest > 0.0 && peak > 0.0 {
             rest / peak
@@ -285,6 +284,7 @@ impl Profile {
     /// The same profile after `distance` passed at the entry speed (a corner blend's arc). At a
     /// standstill there is no arc to pass: the distance is the ramps' business then, and the
     /// look-ahead never plans a blend at zero speed.
+    #[inline(always)]
     pub fn with_lead_in(mut self, distance: f64) -> Profile {
         if distance > 0.0 && self.entry > 1e-9 {
             self.lead_in_time = distance / self.entry;
@@ -294,6 +294,7 @@ impl Profile {
     }
 
     /// Seconds the segment takes.
+    #[inline(always)]
     pub fn duration(&self) -> f64 {
         self.lead_in_time + self.up_time + self.cruise_time + self.down_time
     }
@@ -329,6 +330,27 @@ impl Profile {
             Ramp::new(self.peak, self.exit, self.limits).acceleration_at(t - t_up - t_cruise)
         }
     }
+}
+
+/// The peak speed, the durations of the ramps up to it and down from it, and the length left
+/// over (not positive, but for rounding) of a profile whose ramps to its cruise speed do not fit
+/// in its length.
+#[cold]
+#[inline(never)]
+fn peaked(
+    length: f64,
+    entry: f64,
+    exit: f64,
+    cruise: f64,
+    limits: PathLimits,
+) -> (f64, f64, f64, f64) {
+    let peak = peak_speed(length, entry, exit, cruise, limits);
+    let (up_time, down_time) = (
+        ramp_time(entry, peak, limits),
+        ramp_time(peak, exit, limits),
+    );
+    let rest = length - 0.5 * ((entry + peak) * up_time + (peak + exit) * down_time);
+    (peak, up_time, down_time, rest)
 }
 
 /// The peak speed of the fastest profile when the ramps up to the cruise speed and down from it
