@@ -6,7 +6,7 @@ use std::fs::File;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::sync::mpsc::{sync_channel, Receiver, RecvError, SyncSender, TryRecvError};
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -29,6 +29,7 @@ pub(crate) type FileInterpreter = Interpreter<FileBlocks>;
 /// takes turns with them (measured on the 400,000-block program, two cores: 0.81 times the
 /// wall time of `trace` and 0.87 times that of `run` without it). `check`, which only counts what
 /// comes, leaves a core free for it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Parsing {
     /// On a thread of its own, a few hundred lines ahead.
     Ahead,
@@ -36,14 +37,37 @@ pub(crate) enum Parsing {
     InLine,
 }
 
-impl Parsing {
-    /// The parsing for a consumer that keeps a core busy itself (`busy`) or not, on this machine.
-    pub(crate) fn for_consumer(busy: bool) -> Parsing {
+/// How the consumer of the interpreter's batches waits for the next one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Waiting {
+    /// Spinning a little before it sleeps: for a consumer with a core of its own that is a little
+    /// faster than the interpreter, so that the interpreter never has to wake it (a system call
+    /// on the slower thread for each batch).
+    Spin,
+    /// Asleep at once: for a consumer that does little, whose spinning would take a core from the
+    /// parser's and the interpreter's threads.
+    Sleep,
+}
+
+/// The threads of a run: where the file is parsed and how the consumer waits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Layout {
+    pub(crate) parsing: Parsing,
+    pub(crate) waiting: Waiting,
+}
+
+impl Layout {
+    /// The layout for a consumer that keeps a core busy itself (`busy`: planning, writing) or
+    /// not (counting alarms), on this machine.
+    pub(crate) fn for_consumer(busy: bool) -> Layout {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-        if busy && cores < 3 {
-            Parsing::InLine
-        } else {
-            Parsing::Ahead
+        Layout {
+            parsing: if busy && cores < 3 {
+                Parsing::InLine
+            } else {
+                Parsing::Ahead
+            },
+            waiting: if busy { Waiting::Spin } else { Waiting::Sleep },
         }
     }
 }
@@ -106,7 +130,7 @@ pub(crate) fn open(
     machine: &Machine,
     mut options: Options,
     setup: &MachineArgs,
-    parsing: Parsing,
+    layout: Layout,
 ) -> Result<(Interpreted, ProgramFiles), String> {
     let mut head = Vec::with_capacity(4096);
     let file = File::open(path).map_err(|e| format!("cannot open {}: {e}", path.display()))?;
@@ -120,7 +144,7 @@ pub(crate) fn open(
     options.dialect = detect_dialect(&name, &head);
     let file = File::open(path).map_err(|e| format!("cannot open {}: {e}", path.display()))?;
     let syntax = machine.profile.syntax();
-    let blocks = match parsing {
+    let blocks = match layout.parsing {
         Parsing::Ahead => {
             let length = file.metadata().map_or(0, |m| m.len());
             FileBlocks::Ahead(BackgroundParser::spawn_expecting(
@@ -155,7 +179,10 @@ pub(crate) fn open(
         interpreter = interpreter.with_persistent_variables(&state.load()?);
     }
     let travel = TravelCheck::new(machine);
-    Ok((Interpreted::spawn(interpreter, state, travel), files))
+    Ok((
+        Interpreted::spawn(interpreter, state, travel, layout.waiting),
+        files,
+    ))
 }
 
 /// A program opened for a command that plans it (`run`, `trace`).
@@ -172,7 +199,7 @@ pub(crate) fn open_planned(path: &Path, setup: &MachineArgs) -> Result<Planned, 
     let machine = setup.machine()?;
     let options = setup.options()?;
     let plan_options = setup.plan_options()?;
-    let (stream, files) = open(path, &machine, options, setup, Parsing::for_consumer(true))?;
+    let (stream, files) = open(path, &machine, options, setup, Layout::for_consumer(true))?;
     Ok(Planned {
         machine,
         plan_options,
@@ -262,6 +289,7 @@ pub(crate) struct Interpreted {
     /// None once the interpreter thread has ended (or is told to, on drop).
     batches: Option<Receiver<Vec<Result<Segment, Alarm>>>>,
     recycle: SyncSender<Vec<Result<Segment, Alarm>>>,
+    waiting: Waiting,
     blocks: Arc<AtomicU64>,
     thread: Option<JoinHandle<()>>,
 }
@@ -283,6 +311,7 @@ impl Interpreted {
         mut interpreter: FileInterpreter,
         state: Option<StateFile>,
         mut travel: TravelCheck,
+        waiting: Waiting,
     ) -> Interpreted {
         let (sender, batches) = sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
         let (recycle, recycled) = sync_channel::<Vec<Result<Segment, Alarm>>>(POOL);
@@ -320,6 +349,7 @@ impl Interpreted {
             items: VecDeque::new(),
             batches: Some(batches),
             recycle,
+            waiting,
             blocks,
             thread: Some(thread),
         }
@@ -332,7 +362,7 @@ impl Interpreted {
         if !self.items.is_empty() {
             return Some(Vec::from(std::mem::take(&mut self.items)));
         }
-        let batch = self.batches.as_ref()?.recv();
+        let batch = receive(self.batches.as_ref()?, self.waiting);
         match batch {
             Ok(batch) => Some(batch),
             Err(_) => {
@@ -361,7 +391,7 @@ impl Iterator for Interpreted {
             if let Some(item) = self.items.pop_front() {
                 return Some(item);
             }
-            let batch = self.batches.as_ref()?.recv();
+            let batch = receive(self.batches.as_ref()?, self.waiting);
             // The emptied buffer goes back; converting between Vec and VecDeque moves nothing.
             let empty = Vec::from(std::mem::take(&mut self.items));
             let _ = self.recycle.try_send(empty);
@@ -387,6 +417,32 @@ impl Drop for Interpreted {
         drop(std::mem::replace(&mut self.recycle, orphan));
         if let Some(thread) = self.thread.take() {
             let _ = thread.join();
+        }
+    }
+}
+
+/// How long a consumer that spins ([`Waiting::Spin`]) spins before it sleeps: longer than the
+/// interpreter takes for a batch ([`BATCH`] blocks of a CAM program take about 50 µs), so that
+/// it sleeps only when the interpreter is held up (a long macro loop, a slow disk).
+const SPIN: Duration = Duration::from_micros(200);
+
+/// The next value of `channel`, waited for as `waiting` says.
+fn receive<T>(channel: &Receiver<T>, waiting: Waiting) -> Result<T, RecvError> {
+    if waiting == Waiting::Sleep {
+        return channel.recv();
+    }
+    let start = Instant::now();
+    loop {
+        // The clock is read now and then: a call to it costs more than a look at the channel.
+        for _ in 0..64 {
+            match channel.try_recv() {
+                Ok(value) => return Ok(value),
+                Err(TryRecvError::Disconnected) => return Err(RecvError),
+                Err(TryRecvError::Empty) => std::hint::spin_loop(),
+            }
+        }
+        if start.elapsed() > SPIN {
+            return channel.recv();
         }
     }
 }
@@ -461,7 +517,12 @@ mod tests {
             &machine,
             Options::default(),
         );
-        let mut stream = Interpreted::spawn(interpreter, None, TravelCheck::new(&machine));
+        let mut stream = Interpreted::spawn(
+            interpreter,
+            None,
+            TravelCheck::new(&machine),
+            Waiting::Spin,
+        );
         assert!(matches!(stream.next(), Some(Ok(_))));
         // Time for the thread to fill the pool and block.
         std::thread::sleep(Duration::from_millis(300));

@@ -1,7 +1,7 @@
 //! `vcnc check`: run programs and report only their alarms and warnings.
 
 use super::{Outcome, SetupError};
-use crate::program::Parsing;
+use crate::program::Layout;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::path::PathBuf;
@@ -40,7 +40,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             &machine,
             options.clone(),
             &args.machine,
-            Parsing::for_consumer(false),
+            Layout::for_consumer(false),
         )?;
         let alarms: Vec<Alarm> = stream.filter_map(Result::err).collect();
         let failed = alarms.iter().any(Alarm::is_error);

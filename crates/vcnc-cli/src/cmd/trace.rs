@@ -632,7 +632,10 @@ mod tests {
                 &machine,
                 Options::default(),
                 &args.machine,
-                crate::program::Parsing::Ahead,
+                crate::program::Layout {
+                    parsing: crate::program::Parsing::Ahead,
+                    waiting: crate::program::Waiting::Sleep,
+                },
             )
             .unwrap();
             let mut writer = Writer::new(files, &machine, true);
