@@ -26,7 +26,7 @@ pub(crate) fn arc(
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
     // Borrowed: a copy of the scaling (two arrays of six) cost every arc about 30 instructions.
-    let scaling = exec.frames.scaling.as_ref();
+    let scaling = exec.frames.scaling();
     // A mirror of one plane axis (or a negative factor) reverses the arc.
     let direction = match scaling {
         Some(s) if s.reverses((a, b)) => match direction {
@@ -69,7 +69,7 @@ pub(crate) fn arc(
             offset = scaling.arc_vector((a, b), offset);
         }
         // I J K are a vector in the programmed (unrotated) coordinates.
-        for rotation in [&exec.frames.rotation, &exec.frames.preset_rotation]
+        for rotation in [exec.frames.rotation(), exec.frames.preset_rotation()]
             .into_iter()
             .flatten()
         {
