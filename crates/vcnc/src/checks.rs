@@ -102,9 +102,24 @@ impl TravelCheck {
             batch.clear();
             return false;
         }
-        let failed = batch.iter().enumerate().find_map(|(i, item)| match item {
-            Ok(segment) => self.limits.check(segment).map(|alarm| (i, alarm)),
-            Err(_) => None,
+        let limits = &self.limits;
+        let failed = batch.iter().enumerate().find_map(|(i, item)| {
+            // A line inside the travel, most of a stream, is recognised by its own tag, the
+            // whole item's: matched through the result and then the kind, every segment paid
+            // for decoding the kind's tag from the niche of the result's.
+            if let Ok(Segment {
+                kind: SegmentKind::Line { motion, .. },
+                ..
+            }) = item
+            {
+                if limits.inside(&motion.to.0) {
+                    return None;
+                }
+            }
+            match item {
+                Ok(segment) => limits.check(segment).map(|alarm| (i, alarm)),
+                Err(_) => None,
+            }
         });
         if let Some((at, alarm)) = failed {
             batch.truncate(at);
@@ -293,6 +308,31 @@ mod tests {
             if bound.is_finite() {
                 proptest::prop_assert!(bound - exact <= 2e-12 * exact + 1e-149, "{x} {y}: {bound}");
             }
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn a_checked_batch_is_the_checked_stream(
+            moves in proptest::collection::vec(
+                (0..3u8, -1003.0..1003.0f64, -1003.0..1003.0f64, -2.0..2.0f64),
+                1..12,
+            ),
+        ) {
+            // Lines, rapids and arcs whose ends and bulges fall on both sides of the default
+            // machine's travel (-1000 to 1000 on X, Y and Z).
+            let mut program = String::from("G90 G17 F1000.\n");
+            for (kind, x, y, bulge) in moves {
+                let code = ["G00", "G01", "G02"][usize::from(kind)];
+                let radius = if kind == 2 { format!(" R{:.3}", 1500.0 + bulge) } else { String::new() };
+                program.push_str(&format!("{code} X{x:.3} Y{y:.3}{radius}\n"));
+            }
+            program.push_str("M30\n");
+            let machine = Machine::default();
+            let mut batch: Vec<_> =
+                interpret_str(&program, &machine, Options::default()).collect();
+            TravelCheck::new(&machine).check_batch(&mut batch);
+            proptest::prop_assert_eq!(batch, checked(&program), "{}", program);
         }
     }
 

@@ -133,7 +133,7 @@ fn change(exec: &Executor, comp: &mut Compensator, left: bool) {
 /// True when exactly one axis of the plane is mirrored (G51.1, or G51 with a negative factor).
 fn reversed(exec: &Executor) -> bool {
     let (a, b, _) = exec.modal.plane.axes();
-    exec.frames.scaling.is_some_and(|s| s.reverses((a, b)))
+    exec.frames.scaling().is_some_and(|s| s.reverses((a, b)))
 }
 
 /// The side and radius of G41 (`left`) or G42 with the D number in force: a negative offset
@@ -192,7 +192,7 @@ pub(crate) fn after_motion(
         to: MachinePos(exec.position),
         path_mode: exec.modal.path_mode,
         exact_stop: exec.exact_stop_once(cmd),
-        smoothing: exec.modal.smoothing_for_motion(),
+        smoothing: exec.motion_smoothing(),
         offset: exec.frames.offset_at(&exec.position),
     };
     let kind = match exec.modal.motion {

@@ -139,7 +139,7 @@ fn preset_with_rotation(exec: &mut Executor, cmd: &Command) -> Result<bool, Alar
         }
     }
     let degrees = cmd.r().map_or(0.0, |r| exec.angle(&r));
-    exec.frames.preset_rotation =
-        (degrees != 0.0).then(|| Rotation::new((0, 1), (0.0, 0.0), degrees));
+    exec.frames
+        .set_preset_rotation((degrees != 0.0).then(|| Rotation::new((0, 1), (0.0, 0.0), degrees)));
     Ok(true)
 }

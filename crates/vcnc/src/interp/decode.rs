@@ -67,6 +67,9 @@ pub(crate) struct Command {
     /// G65 or G66: the block is a macro call; the words from this index on are its arguments
     /// and were not decoded.
     pub(crate) macro_call: Option<(GWord, usize)>,
+    /// True when `subprogram` or `macro_call` is set: one test after every block instead of
+    /// two (see [`Command::has_calls`]).
+    calls: bool,
     /// G codes classified before, kept from block to block (not cleared): a command is decoded
     /// with one profile all its life, the executor's. A small cache indexed by the value
     /// ([`LastG::slot`]): CAM programs switch between three motion codes all along.
@@ -291,6 +294,24 @@ impl Command {
         self.warnings.clear();
         self.subprogram = None;
         self.macro_call = None;
+        self.calls = false;
+    }
+
+    /// True when the block calls or returns: a subprogram code (M98, M99 ...) or a macro call
+    /// (G65, G66).
+    #[inline(always)]
+    pub(crate) fn has_calls(&self) -> bool {
+        debug_assert_eq!(
+            self.calls,
+            self.subprogram.is_some() || self.macro_call.is_some()
+        );
+        self.calls
+    }
+
+    /// Records a subprogram call, return or interrupt code of the block.
+    pub(crate) fn set_subprogram(&mut self, code: MCode, value: Value) {
+        self.subprogram = Some((code, value));
+        self.calls = true;
     }
 
     /// Records the value of an address letter.
@@ -516,6 +537,7 @@ pub(crate) fn decode(
                 .filter(|g| g.code == GCode::MacroCall)
             {
                 out.macro_call = Some((call, order + 1));
+                out.calls = true;
                 break;
             }
             if let Some(call) = out
@@ -523,6 +545,7 @@ pub(crate) fn decode(
                 .filter(|g| g.code == GCode::ModalMacroCall && g.order == order)
             {
                 out.macro_call = Some((call, order + 1));
+                out.calls = true;
                 break;
             }
             continue;
@@ -567,7 +590,7 @@ fn decode_other(
                         )
                         .with_label(first.span, "the first one"));
                     }
-                    out.subprogram = Some((code, value));
+                    out.set_subprogram(code, value);
                     return Ok(());
                 }
             }

@@ -46,6 +46,9 @@ pub(crate) struct Executor {
     pub(crate) cycle: Option<super::cycles::Cycle>,
     /// Where the last G31 ended, program coordinates (FANUC #5061-#5066).
     pub(crate) skip_position: [f64; AXES],
+    /// [`ModalState::smoothing_for_motion`] of `modal`, kept: every move needs it, and it
+    /// changes only with the path mode (G61-G64) and the smoothing modes (G05, G05.1, G08).
+    motion_smoothing: Option<crate::motion::Smoothing>,
 }
 
 /// What one block did to the flow of the program.
@@ -84,7 +87,6 @@ impl Executor {
         frames.select(modal.work_offset);
         let machine_axes = std::array::from_fn(|i| machine.axes[i].is_some());
         Executor {
-            modal,
             frames,
             position: machine.start,
             feed: profile.default_feed,
@@ -100,9 +102,17 @@ impl Executor {
             polar: None,
             cycle: None,
             skip_position: [0.0; AXES],
+            motion_smoothing: modal.smoothing_for_motion(),
+            modal,
             profile,
             machine: machine.clone(),
         }
+    }
+
+    /// The smoothing of the moves to come: [`ModalState::smoothing_for_motion`], kept.
+    #[inline(always)]
+    pub(crate) fn motion_smoothing(&self) -> Option<crate::motion::Smoothing> {
+        self.motion_smoothing
     }
 
     /// The current position in program coordinates.
@@ -190,7 +200,9 @@ impl Executor {
             )
         });
         if let Some(g) = smoothing {
-            super::smoothing::switch(self, cmd, g)?;
+            let switched = super::smoothing::switch(self, cmd, g);
+            self.motion_smoothing = self.modal.smoothing_for_motion();
+            switched?;
         }
         let length_changed = super::length::apply(self, cmd, out)?;
         super::compensation::before_motion(self, cmd, out)?;
@@ -324,6 +336,10 @@ impl Executor {
         // Only a work-offset code (G54-G59, G54.1) changes the system in use.
         if cmd.group(Group::WorkOffset).is_some() {
             self.frames.select(self.modal.work_offset);
+        }
+        // Only a path-mode code (G61-G64) changes the smoothing of the moves here.
+        if cmd.group(Group::PathMode).is_some() {
+            self.motion_smoothing = self.modal.smoothing_for_motion();
         }
         Ok(())
     }
@@ -569,6 +585,7 @@ impl Executor {
     #[inline(always)]
     pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Result<Move, Alarm> {
         check_position(&to, cmd)?;
+        debug_assert_eq!(self.motion_smoothing, self.modal.smoothing_for_motion());
         let from = MachinePos(self.position);
         self.position = to;
         Ok(Move {
@@ -576,7 +593,7 @@ impl Executor {
             to: MachinePos(to),
             path_mode: self.modal.path_mode,
             exact_stop: self.exact_stop_once(cmd),
-            smoothing: self.modal.smoothing_for_motion(),
+            smoothing: self.motion_smoothing,
             offset: self.frames.offset_at(&to),
         })
     }

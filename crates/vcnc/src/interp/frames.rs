@@ -32,11 +32,14 @@ pub(crate) struct Frames {
     /// offset does, so it is recomputed then.
     shift: [f64; AXES],
     /// G68, while it is on.
-    pub(crate) rotation: Option<Rotation>,
+    rotation: Option<Rotation>,
     /// Syntec's G92.1 with K R: the program system turned about its new origin, outside G68.
-    pub(crate) preset_rotation: Option<Rotation>,
+    preset_rotation: Option<Rotation>,
     /// G51 or G51.1, while it is on.
-    pub(crate) scaling: Option<Scaling>,
+    scaling: Option<Scaling>,
+    /// True when one of the three above is on: every block converts points between program
+    /// and machine coordinates, and asked of the three, each conversion tested two words.
+    transformed: bool,
 }
 
 /// G51 scaling or G51.1 mirror: each axis' programmed coordinate is stretched about a centre,
@@ -149,9 +152,47 @@ impl Frames {
             rotation: None,
             preset_rotation: None,
             scaling: None,
+            transformed: false,
         };
         frames.recompute();
         frames
+    }
+
+    /// G68's rotation, while it is on.
+    pub(crate) fn rotation(&self) -> Option<&Rotation> {
+        self.rotation.as_ref()
+    }
+
+    /// Syntec's rotated G92.1, while it is on.
+    pub(crate) fn preset_rotation(&self) -> Option<&Rotation> {
+        self.preset_rotation.as_ref()
+    }
+
+    /// G51 or G51.1, while it is on.
+    pub(crate) fn scaling(&self) -> Option<&Scaling> {
+        self.scaling.as_ref()
+    }
+
+    /// Sets or ends G68's rotation.
+    pub(crate) fn set_rotation(&mut self, rotation: Option<Rotation>) {
+        self.rotation = rotation;
+        self.note_transforms();
+    }
+
+    /// Sets or ends Syntec's rotated G92.1.
+    pub(crate) fn set_preset_rotation(&mut self, rotation: Option<Rotation>) {
+        self.preset_rotation = rotation;
+        self.note_transforms();
+    }
+
+    /// Sets or ends G51 or G51.1.
+    pub(crate) fn set_scaling(&mut self, scaling: Option<Scaling>) {
+        self.scaling = scaling;
+        self.note_transforms();
+    }
+
+    fn note_transforms(&mut self) {
+        self.transformed = self.scaling.is_some() || self.rotated();
     }
 
     /// Selects the work coordinate system in use.
@@ -213,7 +254,7 @@ impl Frames {
     // Inlined, with the scaled or turned case out of line: every move asks.
     #[inline(always)]
     pub(crate) fn offset_at(&self, at: &[f64; AXES]) -> [f64; AXES] {
-        if self.scaling.is_none() && !self.rotated() {
+        if !self.transformed {
             return self.offset();
         }
         self.transformed_offset_at(at)
@@ -233,7 +274,7 @@ impl Frames {
         let shift = &self.shift;
         let mut program: [f64; AXES] = std::array::from_fn(|i| machine[i] - shift[i]);
         program[2] -= self.length_vector;
-        if self.scaling.is_none() && !self.rotated() {
+        if !self.transformed {
             return program;
         }
         self.unturn(program)
@@ -262,7 +303,7 @@ impl Frames {
     pub(crate) fn to_machine(&self, program: &[f64; AXES], length: f64) -> [f64; AXES] {
         // The point is shifted where it is: a copy of it for a common exit cost every block six
         // moves.
-        if self.scaling.is_none() && !self.rotated() {
+        if !self.transformed {
             return self.shifted(program, length);
         }
         self.shifted(&self.turn(program), length)

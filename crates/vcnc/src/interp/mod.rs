@@ -647,7 +647,8 @@ impl Core {
         if self.macros.in_call() && self.exec.profile.end_in_subprogram_returns {
             // Syntec: M02/M30 in a subprogram return to the caller.
             if let Some(end) = self.command.take_program_end() {
-                self.command.subprogram = Some((crate::profile::MCode::SubprogramReturn, end));
+                self.command
+                    .set_subprogram(crate::profile::MCode::SubprogramReturn, end);
             }
         }
         if self.out.polar_interp.is_some() {
@@ -666,11 +667,7 @@ impl Core {
         } else {
             self.after_compensated_block(flow);
         }
-        if !self.done
-            && (self.command.subprogram.is_some()
-                || self.command.macro_call.is_some()
-                || self.macros.modal_call.is_some())
-        {
+        if !self.done && (self.command.has_calls() || self.macros.modal_call.is_some()) {
             if let Err(alarm) = self.run_calls(block, main_text) {
                 self.fail(alarm);
             }

@@ -216,7 +216,7 @@ fn refuse_transforms(exec: &Executor, g: GWord) -> Result<(), Alarm> {
             "G69",
         ),
         (
-            exec.frames.scaling.is_some(),
+            exec.frames.scaling().is_some(),
             "scaling or mirror image (G51, G51.1)",
             "G50 or G50.1",
         ),

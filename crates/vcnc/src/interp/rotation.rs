@@ -21,7 +21,8 @@ use crate::machine::Axis;
 /// None today; kept fallible like the other coordinate codes.
 pub(crate) fn g68(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
     let (a, b, _) = exec.modal.plane.axes();
-    let previous = exec.frames.rotation.take();
+    let previous = exec.frames.rotation().copied();
+    exec.frames.set_rotation(None);
     // With the old rotation removed, this is the position in work coordinates.
     let here = exec.program_position();
     let word = |axis: usize| {
@@ -34,11 +35,12 @@ pub(crate) fn g68(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
         (DistanceMode::Incremental, Some(previous)) => previous.degrees + angle,
         _ => angle,
     };
-    exec.frames.rotation = Some(Rotation::new((a, b), center, degrees));
+    exec.frames
+        .set_rotation(Some(Rotation::new((a, b), center, degrees)));
     Ok(())
 }
 
 /// G69: no rotation from here on.
 pub(crate) fn g69(exec: &mut Executor) {
-    exec.frames.rotation = None;
+    exec.frames.set_rotation(None);
 }

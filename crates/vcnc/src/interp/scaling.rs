@@ -31,7 +31,7 @@ pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
             "G51 needs a scale factor: P for every axis named, or I J K for X Y Z",
         ));
     }
-    exec.frames.scaling = None;
+    exec.frames.set_scaling(None);
     let here = exec.program_position();
     let mut scaling = Scaling {
         center: here,
@@ -52,7 +52,7 @@ pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
         }
         scaling.factor[i] = f;
     }
-    exec.frames.scaling = Some(scaling);
+    exec.frames.set_scaling(Some(scaling));
     Ok(())
 }
 
@@ -62,7 +62,8 @@ pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
 /// With scaling on.
 pub(crate) fn g51_1(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
     refuse_both(exec, cmd, true)?;
-    let previous = exec.frames.scaling.take();
+    let previous = exec.frames.scaling().copied();
+    exec.frames.set_scaling(None);
     let here = exec.program_position();
     let mut mirror = previous.unwrap_or(Scaling {
         center: here,
@@ -79,20 +80,20 @@ pub(crate) fn g51_1(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
         };
         mirror.factor[i] = -1.0;
     }
-    exec.frames.scaling = Some(mirror);
+    exec.frames.set_scaling(Some(mirror));
     Ok(())
 }
 
 /// G50 (scaling off) or G50.1 (mirror off): only the one it names.
 pub(crate) fn cancel(exec: &mut Executor, mirror: bool) {
-    if exec.frames.scaling.is_some_and(|s| s.mirror == mirror) {
-        exec.frames.scaling = None;
+    if exec.frames.scaling().is_some_and(|s| s.mirror == mirror) {
+        exec.frames.set_scaling(None);
     }
 }
 
 /// Scaling and mirror cannot be on together (Syntec spec 1.28, 1.29).
 fn refuse_both(exec: &Executor, cmd: &Command, mirror: bool) -> Result<(), Alarm> {
-    match exec.frames.scaling {
+    match exec.frames.scaling().copied() {
         Some(active) if active.mirror != mirror => Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             cmd.span,

@@ -159,7 +159,11 @@ pub(crate) fn read(
             1901..=1916 => {
                 return Ok(axis_of(number, 1901).map_or(Some(0.0), |a| length(exec.frames.g92(a))))
             }
-            1930 => return Ok(Some(exec.frames.preset_rotation.map_or(0.0, |r| r.degrees))),
+            1930 => {
+                return Ok(Some(
+                    exec.frames.preset_rotation().map_or(0.0, |r| r.degrees),
+                ))
+            }
             _ => {}
         }
     }
@@ -348,7 +352,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
             CycleReturn::RLevel => 990.0,
         },
         11 => {
-            if exec.frames.scaling.is_some() {
+            if exec.frames.scaling().is_some() {
                 510.0
             } else {
                 500.0
@@ -371,7 +375,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
             PathMode::Continuous => 640.0,
         },
         16 => {
-            if exec.frames.rotation.is_some() {
+            if exec.frames.rotation().is_some() {
                 680.0
             } else {
                 690.0
