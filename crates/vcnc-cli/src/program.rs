@@ -433,17 +433,18 @@ fn receive<T>(channel: &Receiver<T>, waiting: Waiting) -> Result<T, RecvError> {
     }
     let start = Instant::now();
     loop {
-        // The clock is read now and then: a call to it costs more than a look at the channel.
-        for _ in 0..64 {
-            match channel.try_recv() {
-                Ok(value) => return Ok(value),
-                Err(TryRecvError::Disconnected) => return Err(RecvError),
-                Err(TryRecvError::Empty) => std::hint::spin_loop(),
-            }
+        match channel.try_recv() {
+            Ok(value) => return Ok(value),
+            Err(TryRecvError::Disconnected) => return Err(RecvError),
+            Err(TryRecvError::Empty) => {}
         }
         if start.elapsed() > SPIN {
             return channel.recv();
         }
+        // Yielding, not a busy loop: on a machine whose cores all have work (the interpreter
+        // sharing this core with another process, parallel runs in a CI job), the processor
+        // goes to whoever can use it; on an idle core the call returns at once.
+        std::thread::yield_now();
     }
 }
 
