@@ -368,9 +368,10 @@ impl PaddedText {
         }
     }
 
-    /// Its length with the padding: the room it takes in a record.
-    pub(crate) fn room(&self) -> usize {
-        Self::BLOCK + self.rest.len()
+    /// Its length with the padding: the room it takes in a record. A u32 (as its length), so
+    /// that the room of a record with it is known not to overflow.
+    pub(crate) fn room(&self) -> u32 {
+        (Self::BLOCK + self.rest.len()) as u32
     }
 }
 
@@ -402,6 +403,40 @@ impl Default for Remembered {
             bits: 0.0f64.to_bits(),
             len: 1,
             text,
+        }
+    }
+}
+
+/// The text of the last run of fields written at one place of a record, with the values they
+/// were written from: at the end of the common record, z, f and the record's end repeat from
+/// record to record together, and copying their text costs less than writing each field.
+///
+/// When it holds a text, it is the text of the values of `values`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RememberedRun {
+    /// The bits of the values the text was written from, `None` before the first run and after
+    /// a run longer than [`RememberedRun::LONGEST`].
+    values: Option<[u64; 2]>,
+    /// A byte, so that the compiler knows a bound of the record's length after it.
+    len: u8,
+    text: [u8; RememberedRun::LONGEST],
+}
+
+impl RememberedRun {
+    /// The longest run remembered: two short fields and a little more.
+    const LONGEST: usize = 48;
+}
+
+/// Where a run of fields starts in a record: see [`RecordText::reused`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RunStart(u32);
+
+impl Default for RememberedRun {
+    fn default() -> RememberedRun {
+        RememberedRun {
+            values: None,
+            len: 0,
+            text: [0; RememberedRun::LONGEST],
         }
     }
 }
@@ -474,14 +509,16 @@ impl OutBuffer {
     /// with its padding, then at most [`FIELDS`] bytes: its pieces are written into the returned
     /// room, and the buffer takes them when it is dropped.
     #[inline(always)]
-    pub(crate) fn record(&mut self, long: usize) -> RecordText<'_> {
-        if self.len + long + SLACK > self.bytes.len() {
-            self.grow_to(self.len + long + SLACK);
+    pub(crate) fn record(&mut self, long: u32) -> RecordText<'_> {
+        let need = long as usize + SLACK;
+        if self.len + need > self.bytes.len() {
+            self.grow_to(self.len + need);
         }
         let OutBuffer { bytes, len, .. } = self;
         let room = &mut bytes[*len..];
         // True after the growth above; said again where the compiler sees it, so that the
-        // bounds checks of the windows at the record's start (constant offsets) fold into it.
+        // bounds checks of the windows at the record's start (constant offsets) and of the
+        // fields after a short padded text fold into it.
         assert!(room.len() >= SLACK, "a record's room");
         RecordText {
             room,
@@ -564,20 +601,26 @@ impl RecordText<'_> {
         self.advance(usize::from(text.len));
     }
 
-    /// Appends a text of any length, the record's only one; the room after it is [`FIELDS`]
-    /// bytes.
+    /// Appends a text of any length, the record's only one; the room after it is at least
+    /// [`FIELDS`] bytes.
     #[inline(always)]
     pub(crate) fn padded(&mut self, text: &PaddedText) {
         *self.window() = text.first;
-        let start = self.len as usize;
-        if !text.rest.is_empty() {
+        if text.len <= PaddedText::BLOCK as u32 {
+            // The common case, a short text: the cursor stays below `HEAD` + `BLOCK` for the
+            // compiler, and the room as it is holds the fields after it.
+            self.advance(text.len as usize);
+        } else {
+            let start = self.len as usize;
             copy_blocks(&mut self.room[start + PaddedText::BLOCK..], &text.rest);
+            // The room starts again after the text, with a constant length: the compiler can
+            // bound the cursor again.
+            let end = start + text.len as usize;
+            let room = std::mem::take(&mut self.room);
+            self.room = &mut room[end..end + FIELDS];
+            self.before += end;
+            self.len = 0;
         }
-        let end = start + text.len as usize;
-        let room = std::mem::take(&mut self.room);
-        self.room = &mut room[end..end + FIELDS];
-        self.before += end;
-        self.len = 0;
     }
 
     /// Appends `key` and `value` rounded to 1e-6.
@@ -638,12 +681,61 @@ impl RecordText<'_> {
         self.advance(len);
     }
 
+    /// Appends the text of the run `memory` holds if it was written from the values of
+    /// `values` (their bits), and says whether it did. When it did not, the caller writes the
+    /// fields after a [`RecordText::run_start`] and gives them to [`RecordText::remember_run`].
+    /// (Two calls rather than one taking the writing as a closure: a closure is not always
+    /// inlined, and the record's room would leave the registers.)
+    #[inline(always)]
+    pub(crate) fn reused(&mut self, memory: &RememberedRun, values: [u64; 2]) -> bool {
+        if memory.values != Some(values) {
+            return false;
+        }
+        *self.window() = memory.text;
+        self.advance(usize::from(memory.len));
+        true
+    }
+
+    /// Where a run of fields starts.
+    #[inline(always)]
+    pub(crate) fn run_start(&self) -> RunStart {
+        RunStart(self.len)
+    }
+
+    /// Keeps in `memory` the text written since `start`, from the values of `values`.
+    #[inline(always)]
+    pub(crate) fn remember_run(
+        &self,
+        start: RunStart,
+        memory: &mut RememberedRun,
+        values: [u64; 2],
+    ) {
+        let start = start.0;
+        *memory = match u8::try_from(self.len - start) {
+            Ok(len) if usize::from(len) <= RememberedRun::LONGEST => {
+                let start = start as usize;
+                RememberedRun {
+                    values: Some(values),
+                    len,
+                    text: self.room[start..start + RememberedRun::LONGEST]
+                        .try_into()
+                        .expect("a run's room"),
+                }
+            }
+            _ => RememberedRun::default(),
+        };
+    }
+
     /// Appends `key` and an unsigned integer.
     #[inline(always)]
     pub(crate) fn unsigned(&mut self, key: impl Into<Key>, value: u64) {
         let key = &key.into();
         let window: &mut [u8; KEY + UNSIGNED] = self.window();
-        *window.first_chunk_mut().expect("room") = key.block;
+        // The digits overwrite the block of an empty key (a constant: the test is the
+        // compiler's).
+        if key.len != 0 {
+            *window.first_chunk_mut().expect("room") = key.block;
+        }
         let len = write_unsigned(&mut window[key.len()..key.len() + UNSIGNED], value);
         self.advance(key.len() + len);
     }
@@ -903,6 +995,41 @@ mod tests {
             " 1.5 1.5 -2 -2 0 null null 0 3.25 100000000000000000000 100000000000000000000 0 \
              -8999999999.123456 -8999999999.123456 0"
         );
+    }
+
+    #[test]
+    fn a_remembered_run_is_the_text_of_its_fields() {
+        let mut out = OutBuffer::new(64);
+        let mut expected = String::new();
+        let mut run = RememberedRun::default();
+        let mut memory = [Remembered::default(); 2];
+        for (z, f) in [
+            (1.5, 1500.0),
+            (1.5, 1500.0),
+            (-2.25, 1500.0),
+            (-2.25, 1500.0),
+            (-2.25, 800.0),
+            (1.0e20, 1.0),
+            (1.0e20, 1.0),
+            (-1.0e300, 1.0),
+            (-1.0e300, 1.0),
+            (f64::NAN, 2.0),
+            (f64::NAN, 2.0),
+            (0.0, 2.0),
+            (-0.0, 2.0),
+        ] {
+            let values = [f64::to_bits(z), f64::to_bits(f)];
+            let mut record = out.record(0);
+            if !record.reused(&run, values) {
+                let start = record.run_start();
+                record.remembered(Key::new(",\"z\":"), &mut memory[0], z);
+                record.remembered(Key::new(",\"f\":"), &mut memory[1], f);
+                record.put(b"}\n");
+                record.remember_run(start, &mut run, values);
+            }
+            expected += &format!(",\"z\":{},\"f\":{}}}\n", reference(z), reference(f));
+        }
+        assert_eq!(text(&out), expected);
     }
 
     #[test]

@@ -7,7 +7,9 @@
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
 
 use super::{Outcome, SetupError};
-use crate::numbers::{FixedText, Key, OutBuffer, PaddedText, RecordText, Remembered};
+use crate::numbers::{
+    FixedText, Key, OutBuffer, PaddedText, RecordText, Remembered, RememberedRun,
+};
 use crate::planned::{for_each_timed, Item};
 use crate::program::{open_planned, Planned, ProgramFiles};
 use crate::setup::MachineArgs;
@@ -110,6 +112,12 @@ struct Writer {
     /// some of them. x and y are not remembered: in contouring they repeat in about one record
     /// in a hundred, and remembering costs a little on every record that does not repeat.
     memory: [Remembered; 7],
+    /// The text of the end of the last record that ended with z, f and nothing else: see
+    /// [`Writer::jsonl`].
+    end: RememberedRun,
+    /// True when a motion's record has no field after z but f and the arc's: no rotary axis,
+    /// no work coordinates.
+    plain_end: bool,
     /// The program files, for the name of a called program's file.
     files: ProgramFiles,
     /// The file of the last record, and its name as a JSON field and as a CSV field.
@@ -244,6 +252,7 @@ impl Writer {
         let mut writer = Writer {
             out: OutBuffer::new(1 << 16),
             memory: [Remembered::default(); 7],
+            end: RememberedRun::default(),
             files,
             file: FileId(0),
             file_json: PaddedText::default(),
@@ -254,7 +263,9 @@ impl Writer {
                 .collect(),
             work,
             arc_words: arc_words(),
+            plain_end: false,
         };
+        writer.plain_end = writer.rotary.is_empty() && !work;
         writer.set_file(FileId(0));
         writer
     }
@@ -372,6 +383,19 @@ impl Writer {
             let to = &motion.to.0;
             text.decimal(key!("x"), to[0]);
             text.decimal(key!("y"), to[1]);
+            if let (true, Some(f), None) = (self.plain_end, record.feed, record.arc) {
+                // The end of the common record, a line at a feed: z and f mostly repeat
+                // together.
+                let values = [to[2].to_bits(), f.to_bits()];
+                if !text.reused(&self.end, values) {
+                    let start = text.run_start();
+                    text.remembered(key!("z"), &mut self.memory[2], to[2]);
+                    text.remembered(key!("f"), &mut self.memory[6], f);
+                    text.put(b"}\n");
+                    text.remember_run(start, &mut self.end, values);
+                }
+                return;
+            }
             text.remembered(key!("z"), &mut self.memory[2], to[2]);
             // The fields after the rotary axes are written by two copies of the same code: in
             // the one without the loop over the axes, the compiler can bound the record's
