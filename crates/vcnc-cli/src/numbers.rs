@@ -81,48 +81,79 @@ fn digits6(value: u32) -> u64 {
 #[inline(always)]
 fn write_below_million(out: &mut [u8; 7], value: u32) -> usize {
     if value < 1000 {
-        let text = TEXT3[value as usize];
-        out[..4].copy_from_slice(&text.to_le_bytes());
-        (text >> 30) as usize
+        write_below_thousand(out, value)
     } else {
-        let high = TEXT3[((value / 1000) & 1023) as usize];
-        let len = (high >> 30) as usize;
-        let low = ZERO_FILLED3[(value % 1000) as usize];
-        out[..4].copy_from_slice(&high.to_le_bytes());
-        out[len..len + 4].copy_from_slice(&low.to_le_bytes());
-        len + 3
+        write_thousands(out, value)
     }
 }
 
-/// Writes `value` rounded to 1e-6 at the start of `out`; returns its length, or `None` when the
-/// value is not finite or has more than ten integer digits (those go through the general
-/// formatter: no machine position comes near).
+/// [`write_below_million`] for `value` below 1000: one load and one store.
 #[inline(always)]
-fn write_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
-    let magnitude = (value * 1e6).abs();
-    // One comparison, false for NaN too. Below it, the whole part is below 10^6.
-    let short = magnitude < 999_999_999_999.0;
-    if !short {
-        return write_long_decimal(out, value);
-    }
-    let micro = micrometres(magnitude);
-    if micro == 0 {
-        // Never `-0`.
-        out[0] = b'0';
-        return Some(1);
-    }
-    out[0] = b'-';
-    let sign = usize::from(value.is_sign_negative());
-    let whole = (micro / 1_000_000) as u32;
-    let fraction = (micro % 1_000_000) as u32;
-    let whole_text: &mut [u8; 7] = (&mut out[sign..sign + 7]).try_into().expect("seven bytes");
-    let len = sign + write_below_million(whole_text, whole);
-    Some(len + write_decimals(&mut out[len..len + 8], fraction))
+fn write_below_thousand(out: &mut [u8; 7], value: u32) -> usize {
+    // `value` is below 1000: the mask only spares a bounds check.
+    let text = TEXT3[(value & 1023) as usize];
+    out[..4].copy_from_slice(&text.to_le_bytes());
+    (text >> 30) as usize
 }
 
-/// `magnitude` (micrometres, not NaN, below 2^63) rounded half up to a whole number, without a
-/// call to libm's `round`: the magnitude of `scaled + 0.5` or `scaled - 0.5` chosen by the sign
-/// of `scaled`, as floating-point rounding is the same for both signs.
+/// [`write_below_million`] for `value` from 1000 to 999,999.
+#[inline(always)]
+fn write_thousands(out: &mut [u8; 7], value: u32) -> usize {
+    let high = TEXT3[((value / 1000) & 1023) as usize];
+    let len = (high >> 30) as usize;
+    let low = ZERO_FILLED3[(value % 1000) as usize];
+    out[..4].copy_from_slice(&high.to_le_bytes());
+    out[len..len + 4].copy_from_slice(&low.to_le_bytes());
+    len + 3
+}
+
+/// Writes `key` and `value` rounded to 1e-6 at the start of `out`; returns the length of both,
+/// or `None` when the value is not finite or has more than ten integer digits (those go through
+/// the general formatter: no machine position comes near), with the key written.
+#[inline(always)]
+fn write_decimal(out: &mut [u8; KEY + SHORT], key: &Key, value: f64) -> Option<usize> {
+    // The key and a minus sign after it, as one block: whether the sign stays is known later.
+    *out.first_chunk_mut().expect("room for the key") = key.block;
+    let key_len = key.len();
+    let number: &mut [u8; SHORT] = (&mut out[key_len..key_len + SHORT])
+        .try_into()
+        .expect("a number's room");
+    // NaN gives 0 and magnitudes past 2^63 saturate: the tests of `micro` and `whole` below
+    // sort both out, so that no test of the float is needed on the way of a common number.
+    let micro = micrometres((value * 1e6).abs());
+    let whole = micro / 1_000_000;
+    let fraction = (micro % 1_000_000) as u32;
+    if micro == 0 {
+        if value.is_nan() {
+            return None;
+        }
+        // Never `-0`.
+        number[0] = b'0';
+        return Some(key_len + 1);
+    }
+    let sign = usize::from(value.is_sign_negative());
+    let whole_text: &mut [u8; 7] = (&mut number[sign..sign + 7])
+        .try_into()
+        .expect("seven bytes");
+    // Machine positions and durations are mostly below 1000: one branch that is predicted field
+    // by field is cheaper than finding the length of six digits.
+    let len = sign
+        + if whole < 1000 {
+            write_below_thousand(whole_text, whole as u32)
+        } else if whole < 1_000_000 {
+            write_thousands(whole_text, whole as u32)
+        } else {
+            // Never more than `SHORT`: the minimum tells the compiler, which does not see the
+            // length through the call, so that the fields after this one need no bounds check.
+            return write_long_decimal(number, value).map(|len| key_len + len.min(SHORT));
+        };
+    Some(key_len + len + write_decimals(&mut number[len..len + 8], fraction))
+}
+
+/// `magnitude` (micrometres, not negative) rounded half up to a whole number, without a call to
+/// libm's `round`: the magnitude of `scaled + 0.5` or `scaled - 0.5` chosen by the sign of
+/// `scaled`, as floating-point rounding is the same for both signs. NaN gives 0, and magnitudes
+/// of 2^63 and more give `i64::MAX` (Rust's conversions saturate).
 #[inline(always)]
 fn micrometres(magnitude: f64) -> u64 {
     (magnitude + 0.5) as i64 as u64
@@ -142,9 +173,9 @@ fn write_decimals(out: &mut [u8], fraction: u32) -> usize {
     ((decimals << 1 | 1).ilog2() as usize).div_ceil(8)
 }
 
-/// [`write_decimal`] for values of a million and more, far beyond any machine position: up to
-/// ten integer digits, or `None`. Out of line, so that the short path needs no check of the
-/// whole part's size, and its lengths stay small enough for the compiler to check no bounds.
+/// [`write_decimal`]'s number for values of a million and more, far beyond any machine position:
+/// up to ten integer digits, or `None`. Out of line, so that the short path's lengths stay small
+/// enough for the compiler to check no bounds.
 #[cold]
 #[inline(never)]
 fn write_long_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
@@ -154,7 +185,7 @@ fn write_long_decimal(out: &mut [u8; SHORT], value: f64) -> Option<usize> {
     if !in_range {
         return None;
     }
-    // Not 0: the magnitude is at least 999,999,999,999.
+    // Not 0: the whole part is a million or more.
     let micro = micrometres(magnitude);
     out[0] = b'-';
     let sign = usize::from(value.is_sign_negative());
@@ -173,7 +204,9 @@ fn write_unsigned(out: &mut [u8], value: u64) -> usize {
             value as u32,
         )
     } else {
-        write_long_unsigned(out, value)
+        // Never more than `UNSIGNED`: the minimum tells the compiler, which does not see the
+        // length through the call, so that the fields after this one need no bounds check.
+        write_long_unsigned(out, value).min(UNSIGNED)
     }
 }
 
@@ -211,12 +244,69 @@ fn write_huge_unsigned(out: &mut [u8], mut value: u64) -> usize {
     UNSIGNED - start
 }
 
+/// A field's key (`,"x":`, `,` or nothing), followed by minus signs up to [`KEY`] bytes: a
+/// number's key and its sign, when it is negative, are written as one block.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Key {
+    block: [u8; KEY],
+    /// A byte, so that the compiler knows a bound of the record's length after it.
+    len: u8,
+}
+
+impl Key {
+    /// The key `text`, shorter than [`KEY`]; fails to compile (or panics, made at run time)
+    /// when it is longer.
+    pub(crate) const fn new(text: &str) -> Key {
+        Key::from_bytes(text.as_bytes())
+    }
+
+    /// [`Key::new`] of bytes.
+    const fn from_bytes(text: &[u8]) -> Key {
+        assert!(text.len() < KEY, "a key's length");
+        let mut block = [b'-'; KEY];
+        let mut i = 0;
+        while i < text.len() {
+            block[i] = text[i];
+            i += 1;
+        }
+        Key {
+            block,
+            len: text.len() as u8,
+        }
+    }
+
+    fn len(&self) -> usize {
+        usize::from(self.len)
+    }
+
+    /// The key's text.
+    pub(crate) fn as_bytes(&self) -> &[u8] {
+        &self.block[..self.len()]
+    }
+}
+
+/// A key made of bytes when the record is written, for callers that have no constant [`Key`]
+/// (the `interp` bench of the library): the compiler does not fold the block into a constant.
+impl From<&[u8]> for Key {
+    fn from(text: &[u8]) -> Key {
+        Key::from_bytes(text)
+    }
+}
+
+/// As for `&[u8]`.
+impl<const N: usize> From<&[u8; N]> for Key {
+    fn from(text: &[u8; N]) -> Key {
+        Key::from_bytes(text)
+    }
+}
+
 /// A short constant text, padded to a fixed size so that it is copied as one block of
 /// [`FixedText::SIZE`] bytes (a few moves) instead of a call to `memcpy`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FixedText {
     bytes: [u8; FixedText::SIZE],
-    len: usize,
+    /// A byte, so that the compiler knows a bound of the record's length after it.
+    len: u8,
 }
 
 impl FixedText {
@@ -235,7 +325,7 @@ impl FixedText {
             let bytes = parts[part].as_bytes();
             let mut i = 0;
             while i < bytes.len() {
-                text.bytes[text.len] = bytes[i];
+                text.bytes[text.len as usize] = bytes[i];
                 text.len += 1;
                 i += 1;
             }
@@ -247,7 +337,7 @@ impl FixedText {
     /// The text.
     #[cfg(test)]
     pub(crate) fn as_bytes(&self) -> &[u8] {
-        &self.bytes[..self.len]
+        &self.bytes[..usize::from(self.len)]
     }
 }
 
@@ -256,8 +346,11 @@ impl FixedText {
 /// call to `memcpy`: in one block when it is short.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PaddedText {
-    bytes: Vec<u8>,
-    len: usize,
+    /// The first block, and the blocks after it (empty for a short text).
+    first: [u8; PaddedText::BLOCK],
+    rest: Vec<u8>,
+    /// A u32, so that the cursor after the text cannot overflow.
+    len: u32,
 }
 
 impl PaddedText {
@@ -267,15 +360,18 @@ impl PaddedText {
     pub(crate) fn new(text: &[u8]) -> PaddedText {
         let mut bytes = text.to_vec();
         bytes.resize(text.len().next_multiple_of(Self::BLOCK).max(Self::BLOCK), 0);
+        let rest = bytes.split_off(Self::BLOCK);
         PaddedText {
-            bytes,
-            len: text.len(),
+            first: bytes.try_into().expect("one block"),
+            rest,
+            len: u32::try_from(text.len()).expect("a text shorter than 4 GiB"),
         }
     }
 
-    /// Its length with the padding: the room it takes in a record.
-    pub(crate) fn room(&self) -> usize {
-        self.bytes.len()
+    /// Its length with the padding: the room it takes in a record. A u32 (as its length), so
+    /// that the room of a record with it is known not to overflow.
+    pub(crate) fn room(&self) -> u32 {
+        (Self::BLOCK + self.rest.len()) as u32
     }
 }
 
@@ -288,7 +384,8 @@ impl PaddedText {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Remembered {
     bits: u64,
-    len: usize,
+    /// A byte, so that the compiler knows a bound of the record's length after it.
+    len: u8,
     text: [u8; Remembered::LONGEST],
 }
 
@@ -310,16 +407,56 @@ impl Default for Remembered {
     }
 }
 
+/// The text of the last run of fields written at one place of a record, with the values they
+/// were written from: at the end of the common record, z, f and the record's end repeat from
+/// record to record together, and copying their text costs less than writing each field.
+///
+/// When it holds a text, it is the text of the values of `values`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RememberedRun {
+    /// The bits of the values the text was written from, `None` before the first run and after
+    /// a run longer than [`RememberedRun::LONGEST`].
+    values: Option<[u64; 2]>,
+    /// A byte, so that the compiler knows a bound of the record's length after it.
+    len: u8,
+    text: [u8; RememberedRun::LONGEST],
+}
+
+impl RememberedRun {
+    /// The longest run remembered: two short fields and a little more.
+    const LONGEST: usize = 48;
+}
+
+/// Where a run of fields starts in a record: see [`RecordText::reused`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RunStart(u32);
+
+impl Default for RememberedRun {
+    fn default() -> RememberedRun {
+        RememberedRun {
+            values: None,
+            len: 0,
+            text: [0; RememberedRun::LONGEST],
+        }
+    }
+}
+
 /// The longest text of a number that [`write_decimal`] does not take: `-` and the 309 digits of
 /// `f64::MAX` (never an exponent).
 const GENERAL: usize = 310;
 
+/// The room a record has after its padded text (or from its start when it has none): more than
+/// any record needs. A record has at most 16 numbers (t, dt, six axes, f, three centre and three
+/// work coordinates), each at most [`GENERAL`] long with its key, and a few hundred bytes more.
+const FIELDS: usize = 16 * (KEY + GENERAL) + 1024;
+
+/// The room a record has before its padded text: its kind, line and a comma.
+const HEAD: usize = 64;
+
 /// Room that is always free at the end of an [`OutBuffer`] after a [`OutBuffer::put`], and that
-/// [`OutBuffer::record`] gives a record: more than any record needs apart from its padded texts
-/// (file names), which `record` makes room for. A record has at most 16 numbers (t, dt, six
-/// axes, f, three centre and three work coordinates), each at most [`GENERAL`] long with its key,
-/// and a few hundred bytes more.
-const SLACK: usize = 16 * (KEY + GENERAL) + 1024;
+/// [`OutBuffer::record`] gives a record besides its padded text (a file name), which `record`
+/// makes room for.
+const SLACK: usize = HEAD + FIELDS;
 
 /// Where a trace's text is assembled before it is written out in large pieces.
 ///
@@ -368,21 +505,25 @@ impl OutBuffer {
         self.len = end;
     }
 
-    /// Starts a record of at most [`SLACK`] bytes plus `long` bytes of padded text: its pieces
-    /// are written into the returned room, and the buffer takes them when it is dropped.
+    /// Starts a record of at most [`HEAD`] bytes, then at most one padded text of `long` bytes
+    /// with its padding, then at most [`FIELDS`] bytes: its pieces are written into the returned
+    /// room, and the buffer takes them when it is dropped.
     #[inline(always)]
-    pub(crate) fn record(&mut self, long: usize) -> RecordText<'_> {
-        if self.len + long + SLACK > self.bytes.len() {
-            self.grow_to(self.len + long + SLACK);
+    pub(crate) fn record(&mut self, long: u32) -> RecordText<'_> {
+        let need = long as usize + SLACK;
+        if self.len + need > self.bytes.len() {
+            self.grow_to(self.len + need);
         }
         let OutBuffer { bytes, len, .. } = self;
         let room = &mut bytes[*len..];
         // True after the growth above; said again where the compiler sees it, so that the
-        // bounds checks of the windows at the record's start (constant offsets) fold into it.
+        // bounds checks of the windows at the record's start (constant offsets) and of the
+        // fields after a short padded text fold into it.
         assert!(room.len() >= SLACK, "a record's room");
         RecordText {
             room,
             len: 0,
+            before: 0,
             taken: len,
         }
     }
@@ -396,23 +537,30 @@ impl OutBuffer {
 /// The room where one record is written, with its own cursor; the record's text joins the
 /// buffer when this is dropped.
 ///
-/// Every piece is written into a fixed-size window of the room, so that a field takes one
-/// bounds check (a slice index panics, never writes out of bounds, if a record were longer
-/// than [`SLACK`]), and numbers and constant texts are written as whole words, with junk after
-/// them that the next piece overwrites.
+/// Every piece is written into a fixed-size window of the room, so that a field takes at most
+/// one bounds check (a slice index panics, never writes out of bounds, if a record were longer
+/// than its room), and numbers and constant texts are written as whole words, with junk after
+/// them that the next piece overwrites. After the padded text the room is [`FIELDS`] bytes
+/// from the cursor, a constant: as long as the compiler can bound the cursor (no loop, every
+/// length bounded), the windows of the fields that follow need no check at all.
+///
+/// No function out of line takes the room itself (`&mut self`): the compiler keeps it and the
+/// cursor in registers.
 #[derive(Debug)]
 pub(crate) struct RecordText<'a> {
     room: &'a mut [u8],
     /// A u32, far more than a record's length, so that the end of a window (its start plus a
     /// constant) cannot overflow and its bounds check is one comparison.
     len: u32,
+    /// The record's bytes before the room: the room starts again after a padded text.
+    before: usize,
     /// The buffer's length, to which the record's is added at the end.
     taken: &'a mut usize,
 }
 
 impl Drop for RecordText<'_> {
     fn drop(&mut self) {
-        *self.taken += self.len as usize;
+        *self.taken += self.before + self.len as usize;
     }
 }
 
@@ -450,106 +598,175 @@ impl RecordText<'_> {
     #[inline(always)]
     pub(crate) fn fixed(&mut self, text: &FixedText) {
         *self.window() = text.bytes;
-        self.advance(text.len);
+        self.advance(usize::from(text.len));
     }
 
-    /// Appends a text of any length.
+    /// Appends a text of any length, the record's only one; the room after it is at least
+    /// [`FIELDS`] bytes.
     #[inline(always)]
     pub(crate) fn padded(&mut self, text: &PaddedText) {
-        let (first, rest) = text.bytes.split_at(PaddedText::BLOCK);
-        self.window::<{ PaddedText::BLOCK }>()
-            .copy_from_slice(first);
-        if !rest.is_empty() {
-            self.padded_rest(rest);
+        *self.window() = text.first;
+        if text.len <= PaddedText::BLOCK as u32 {
+            // The common case, a short text: the cursor stays below `HEAD` + `BLOCK` for the
+            // compiler, and the room as it is holds the fields after it.
+            self.advance(text.len as usize);
+        } else {
+            let start = self.len as usize;
+            copy_blocks(&mut self.room[start + PaddedText::BLOCK..], &text.rest);
+            // The room starts again after the text, with a constant length: the compiler can
+            // bound the cursor again.
+            let end = start + text.len as usize;
+            let room = std::mem::take(&mut self.room);
+            self.room = &mut room[end..end + FIELDS];
+            self.before += end;
+            self.len = 0;
         }
-        self.advance(text.len);
     }
 
-    /// The blocks of a padded text after its first.
-    #[inline(never)]
-    fn padded_rest(&mut self, rest: &[u8]) {
-        let start = self.len;
-        for block in rest.chunks_exact(PaddedText::BLOCK) {
-            self.len += PaddedText::BLOCK as u32;
-            self.window::<{ PaddedText::BLOCK }>()
-                .copy_from_slice(block);
-        }
-        self.len = start;
-    }
-
-    /// Appends `key` (a constant of at most [`KEY`] bytes: `,"x":` or `,`) and `value` rounded
-    /// to 1e-6.
+    /// Appends `key` and `value` rounded to 1e-6.
     #[inline(always)]
-    pub(crate) fn decimal(&mut self, key: &[u8], value: f64) {
-        let window: &mut [u8; KEY + SHORT] = self.window();
-        window[..key.len()].copy_from_slice(key);
-        let number = (&mut window[key.len()..key.len() + SHORT])
-            .try_into()
-            .expect("a number's room");
-        match write_decimal(number, value) {
-            Some(len) => self.advance(key.len() + len),
-            None => {
-                self.advance(key.len());
-                self.general(value);
-            }
-        }
+    pub(crate) fn decimal(&mut self, key: impl Into<Key>, value: f64) {
+        let key = &key.into();
+        let window: &mut [u8; KEY + GENERAL] = self.window();
+        let len = match write_decimal(
+            window.first_chunk_mut().expect("a field's room"),
+            key,
+            value,
+        ) {
+            Some(len) => len,
+            None => key.len() + general(&mut window[key.len()..key.len() + GENERAL], value),
+        };
+        self.advance(len);
     }
 
     /// Appends `key` and `value` rounded to 1e-6, reusing the text of `memory` when the value
     /// is the same as last time.
     #[inline(always)]
-    pub(crate) fn remembered(&mut self, key: &[u8], memory: &mut Remembered, value: f64) {
-        let window: &mut [u8; KEY + SHORT] = self.window();
-        window[..key.len()].copy_from_slice(key);
-        let number: &mut [u8; SHORT] = (&mut window[key.len()..key.len() + SHORT])
-            .try_into()
-            .expect("a number's room");
-        let (short, _) = number
-            .split_first_chunk_mut::<{ Remembered::LONGEST }>()
-            .expect("room");
+    pub(crate) fn remembered(&mut self, key: impl Into<Key>, memory: &mut Remembered, value: f64) {
+        let key = &key.into();
+        let window: &mut [u8; KEY + GENERAL] = self.window();
         let bits = value.to_bits();
         if bits == memory.bits {
-            *short = memory.text;
-            self.advance(key.len() + memory.len);
+            *window.first_chunk_mut().expect("room") = key.block;
+            let text: &mut [u8; Remembered::LONGEST] = (&mut window
+                [key.len()..key.len() + Remembered::LONGEST])
+                .try_into()
+                .expect("room");
+            *text = memory.text;
+            self.advance(key.len() + usize::from(memory.len));
             return;
         }
-        match write_decimal(number, value) {
+        let len = match write_decimal(
+            window.first_chunk_mut().expect("a field's room"),
+            key,
+            value,
+        ) {
             Some(len) => {
-                *memory = if len <= Remembered::LONGEST {
-                    let text = *number.first_chunk().expect("room");
-                    Remembered { bits, len, text }
-                } else {
-                    Remembered::default()
+                let number = &window[key.len()..];
+                *memory = match u8::try_from(len - key.len()) {
+                    Ok(len) if usize::from(len) <= Remembered::LONGEST => Remembered {
+                        bits,
+                        len,
+                        text: *number.first_chunk().expect("room"),
+                    },
+                    _ => Remembered::default(),
                 };
-                self.advance(key.len() + len);
+                len
             }
             None => {
                 *memory = Remembered::default();
-                self.advance(key.len());
-                self.general(value);
+                key.len() + general(&mut window[key.len()..key.len() + GENERAL], value)
             }
-        }
+        };
+        self.advance(len);
     }
 
-    /// Values [`write_decimal`] does not take: `null` for NaN and infinities, else every digit.
-    #[cold]
-    #[inline(never)]
-    fn general(&mut self, value: f64) {
-        if value.is_finite() {
-            self.put(format!("{value}").as_bytes());
-        } else {
-            self.put(b"null");
-        }
-    }
-
-    /// Appends `key` (a constant, as for [`RecordText::decimal`]) and an unsigned integer.
+    /// Appends the text of the run `memory` holds if it was written from the values of
+    /// `values` (their bits), and says whether it did. When it did not, the caller writes the
+    /// fields after a [`RecordText::run_start`] and gives them to [`RecordText::remember_run`].
+    /// (Two calls rather than one taking the writing as a closure: a closure is not always
+    /// inlined, and the record's room would leave the registers.)
     #[inline(always)]
-    pub(crate) fn unsigned(&mut self, key: &[u8], value: u64) {
+    pub(crate) fn reused(&mut self, memory: &RememberedRun, values: [u64; 2]) -> bool {
+        if memory.values != Some(values) {
+            return false;
+        }
+        *self.window() = memory.text;
+        self.advance(usize::from(memory.len));
+        true
+    }
+
+    /// Where a run of fields starts.
+    #[inline(always)]
+    pub(crate) fn run_start(&self) -> RunStart {
+        RunStart(self.len)
+    }
+
+    /// Keeps in `memory` the text written since `start`, from the values of `values`.
+    #[inline(always)]
+    pub(crate) fn remember_run(
+        &self,
+        start: RunStart,
+        memory: &mut RememberedRun,
+        values: [u64; 2],
+    ) {
+        let start = start.0;
+        *memory = match u8::try_from(self.len - start) {
+            Ok(len) if usize::from(len) <= RememberedRun::LONGEST => {
+                let start = start as usize;
+                RememberedRun {
+                    values: Some(values),
+                    len,
+                    text: self.room[start..start + RememberedRun::LONGEST]
+                        .try_into()
+                        .expect("a run's room"),
+                }
+            }
+            _ => RememberedRun::default(),
+        };
+    }
+
+    /// Appends `key` and an unsigned integer.
+    #[inline(always)]
+    pub(crate) fn unsigned(&mut self, key: impl Into<Key>, value: u64) {
+        let key = &key.into();
         let window: &mut [u8; KEY + UNSIGNED] = self.window();
-        window[..key.len()].copy_from_slice(key);
+        // The digits overwrite the block of an empty key (a constant: the test is the
+        // compiler's).
+        if key.len != 0 {
+            *window.first_chunk_mut().expect("room") = key.block;
+        }
         let len = write_unsigned(&mut window[key.len()..key.len() + UNSIGNED], value);
         self.advance(key.len() + len);
     }
+}
+
+/// Copies the blocks of a padded text after its first to the start of `room`.
+#[inline(never)]
+fn copy_blocks(room: &mut [u8], blocks: &[u8]) {
+    room[..blocks.len()].copy_from_slice(blocks);
+}
+
+/// Values [`write_decimal`] does not take, written at the start of `out` ([`GENERAL`] bytes):
+/// `null` for NaN and infinities, else every digit. Returns the length.
+#[inline(always)]
+fn general(out: &mut [u8], value: f64) -> usize {
+    // Never more than `GENERAL`: the minimum tells the compiler, which does not see the length
+    // through the call, so that the fields after this one need no bounds check.
+    write_general(out, value).min(GENERAL)
+}
+
+/// [`general`], out of line.
+#[cold]
+#[inline(never)]
+fn write_general(out: &mut [u8], value: f64) -> usize {
+    let text = if value.is_finite() {
+        format!("{value}")
+    } else {
+        "null".to_string()
+    };
+    out[..text.len()].copy_from_slice(text.as_bytes());
+    text.len()
 }
 
 #[cfg(test)]
@@ -563,7 +780,7 @@ mod tests {
 
     fn show(value: f64) -> String {
         let mut out = OutBuffer::new(64);
-        out.record(0).decimal(b"", value);
+        out.record(0).decimal(Key::new(""), value);
         text(&out)
     }
 
@@ -607,6 +824,17 @@ mod tests {
         assert_eq!(show(-123456.5), "-123456.5");
         assert_eq!(show(1234567.000123), "1234567.000123");
         assert_eq!(show(-999999999.999999), "-999999999.999999");
+        // Where the short path ends: a whole part of 999,999 and the first of a million.
+        assert_eq!(show(999999.9999994), "999999.999999");
+        assert_eq!(show(-999999.9999994), "-999999.999999");
+        assert_eq!(show(999999.9999996), "1000000");
+        assert_eq!(show(-1000000.0000004), "-1000000");
+        assert_eq!(show(1000000.0000006), "1000000.000001");
+        assert_eq!(show(4.9e-7), "0");
+        assert_eq!(show(-4.9e-7), "0");
+        assert_eq!(show(5.0e-7), reference(5.0e-7));
+        assert_eq!(show(f64::MIN_POSITIVE), "0");
+        assert_eq!(show(-f64::MIN_POSITIVE), "0");
         assert_eq!(show(8999999999.5), "8999999999.5");
         assert_eq!(show(1.0e10), "10000000000");
         assert_eq!(show(-1.0e300), format!("{}", -1.0e300));
@@ -687,9 +915,35 @@ mod tests {
         }
 
         #[test]
+        fn a_key_and_its_number_are_the_key_and_the_reference_text(
+            value in prop_oneof![any::<f64>(), -2.0e6..2.0e6f64],
+            key in 0usize..4,
+            remember in any::<bool>(),
+        ) {
+            // The key's block carries the number's minus sign: keys of every length, constant
+            // and made when the record is written, before numbers of both signs.
+            let keys = [",\"x\":", ",", "", ",\"seconds\":_xxx"];
+            let key = keys[key];
+            let mut out = OutBuffer::new(64);
+            let mut memory = Remembered::default();
+            {
+                let mut record = out.record(0);
+                if remember {
+                    record.remembered(Key::new(key), &mut memory, value);
+                    record.remembered(key.as_bytes(), &mut memory, value);
+                } else {
+                    record.decimal(Key::new(key), value);
+                    record.decimal(key.as_bytes(), value);
+                }
+            }
+            let field = format!("{key}{}", reference(value));
+            prop_assert_eq!(text(&out), format!("{field}{field}"));
+        }
+
+        #[test]
         fn unsigned_integers_have_every_digit(value in any::<u64>()) {
             let mut out = OutBuffer::new(64);
-            out.record(0).unsigned(b"", value);
+            out.record(0).unsigned(Key::new(""), value);
             prop_assert_eq!(text(&out), value.to_string());
         }
     }
@@ -700,13 +954,13 @@ mod tests {
         for _ in 0..20 {
             for n in [value - 1, value, value + 1, value.saturating_mul(9)] {
                 let mut out = OutBuffer::new(64);
-                out.record(0).unsigned(b",\"n\":", n);
+                out.record(0).unsigned(Key::new(",\"n\":"), n);
                 assert_eq!(text(&out), format!(",\"n\":{n}"));
             }
             value = value.saturating_mul(10);
         }
         let mut out = OutBuffer::new(64);
-        out.record(0).unsigned(b"", u64::MAX);
+        out.record(0).unsigned(Key::new(""), u64::MAX);
         assert_eq!(text(&out), u64::MAX.to_string());
     }
 
@@ -733,7 +987,7 @@ mod tests {
                 -8999999999.123456,
                 -0.0,
             ] {
-                record.remembered(b" ", &mut memory, value);
+                record.remembered(Key::new(" "), &mut memory, value);
             }
         }
         assert_eq!(
@@ -741,6 +995,41 @@ mod tests {
             " 1.5 1.5 -2 -2 0 null null 0 3.25 100000000000000000000 100000000000000000000 0 \
              -8999999999.123456 -8999999999.123456 0"
         );
+    }
+
+    #[test]
+    fn a_remembered_run_is_the_text_of_its_fields() {
+        let mut out = OutBuffer::new(64);
+        let mut expected = String::new();
+        let mut run = RememberedRun::default();
+        let mut memory = [Remembered::default(); 2];
+        for (z, f) in [
+            (1.5, 1500.0),
+            (1.5, 1500.0),
+            (-2.25, 1500.0),
+            (-2.25, 1500.0),
+            (-2.25, 800.0),
+            (1.0e20, 1.0),
+            (1.0e20, 1.0),
+            (-1.0e300, 1.0),
+            (-1.0e300, 1.0),
+            (f64::NAN, 2.0),
+            (f64::NAN, 2.0),
+            (0.0, 2.0),
+            (-0.0, 2.0),
+        ] {
+            let values = [f64::to_bits(z), f64::to_bits(f)];
+            let mut record = out.record(0);
+            if !record.reused(&run, values) {
+                let start = record.run_start();
+                record.remembered(Key::new(",\"z\":"), &mut memory[0], z);
+                record.remembered(Key::new(",\"f\":"), &mut memory[1], f);
+                record.put(b"}\n");
+                record.remember_run(start, &mut run, values);
+            }
+            expected += &format!(",\"z\":{},\"f\":{}}}\n", reference(z), reference(f));
+        }
+        assert_eq!(text(&out), expected);
     }
 
     #[test]
@@ -752,7 +1041,7 @@ mod tests {
             let file = PaddedText::new(name.as_bytes());
             let mut record = out.record(file.room());
             record.fixed(&HEAD);
-            record.unsigned(b"", 12);
+            record.unsigned(Key::new(""), 12);
             record.padded(&file);
             record.byte(b'|');
             record.put(b"}\n");
@@ -774,10 +1063,10 @@ mod tests {
         {
             let mut record = out.record(name.room());
             record.padded(&name);
-            record.decimal(b"", -1.25);
-            record.unsigned(b"", 42);
+            record.decimal(Key::new(""), -1.25);
+            record.unsigned(Key::new(""), 42);
             for _ in 0..16 {
-                record.decimal(b",\"seconds\":", -f64::MAX);
+                record.decimal(Key::new(",\"seconds\":"), -f64::MAX);
             }
         }
         assert!(out.is_full());

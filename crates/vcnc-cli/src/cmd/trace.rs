@@ -7,7 +7,9 @@
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
 
 use super::{Outcome, SetupError};
-use crate::numbers::{FixedText, OutBuffer, PaddedText, RecordText, Remembered};
+use crate::numbers::{
+    FixedText, Key, OutBuffer, PaddedText, RecordText, Remembered, RememberedRun,
+};
 use crate::planned::{for_each_timed, Item};
 use crate::program::{open_planned, Planned, ProgramFiles};
 use crate::setup::MachineArgs;
@@ -90,12 +92,19 @@ fn write_trace(
     Ok((alarms, files))
 }
 
-/// The bytes that introduce a JSON key after a previous field: `key!("x")` is `,"x":`.
+/// The key of a JSON field after a previous field: `key!("x")` is `,"x":`.
 macro_rules! key {
-    ($name:literal) => {
-        concat!(",\"", $name, "\":").as_bytes()
-    };
+    ($name:literal) => {{
+        const KEY: Key = Key::new(concat!(",\"", $name, "\":"));
+        KEY
+    }};
 }
+
+/// The key of a CSV field after a previous field.
+const COMMA: Key = Key::new(",");
+
+/// No key: a CSV field after a comma already written, or a JSON number after its key.
+const NO_KEY: Key = Key::new("");
 
 struct Writer {
     out: OutBuffer,
@@ -103,6 +112,12 @@ struct Writer {
     /// some of them. x and y are not remembered: in contouring they repeat in about one record
     /// in a hundred, and remembering costs a little on every record that does not repeat.
     memory: [Remembered; 7],
+    /// The text of the end of the last record that ended with z, f and nothing else: see
+    /// [`Writer::jsonl`].
+    end: RememberedRun,
+    /// True when a motion's record has no field after z but f and the arc's: no rotary axis,
+    /// no work coordinates.
+    plain_end: bool,
     /// The program files, for the name of a called program's file.
     files: ProgramFiles,
     /// The file of the last record, and its name as a JSON field and as a CSV field.
@@ -237,6 +252,7 @@ impl Writer {
         let mut writer = Writer {
             out: OutBuffer::new(1 << 16),
             memory: [Remembered::default(); 7],
+            end: RememberedRun::default(),
             files,
             file: FileId(0),
             file_json: PaddedText::default(),
@@ -247,7 +263,9 @@ impl Writer {
                 .collect(),
             work,
             arc_words: arc_words(),
+            plain_end: false,
         };
+        writer.plain_end = writer.rotary.is_empty() && !work;
         writer.set_file(FileId(0));
         writer
     }
@@ -354,7 +372,7 @@ impl Writer {
     fn jsonl(&mut self, segment: &Segment, timing: &Timing, record: Record<'_>) {
         let mut text = self.out.record(self.file_json.room());
         text.fixed(&record.kind.json);
-        text.unsigned(b"", u64::from(segment.span.line));
+        text.unsigned(NO_KEY, u64::from(segment.span.line));
         text.padded(&self.file_json);
         if let Some(n) = segment.sequence {
             text.unsigned(key!("n"), u64::from(n));
@@ -362,38 +380,55 @@ impl Writer {
         text.decimal(key!("t"), timing.t);
         text.decimal(key!("dt"), timing.dt);
         if let Some(motion) = record.motion {
-            let to = motion.to.0;
+            let to = &motion.to.0;
             text.decimal(key!("x"), to[0]);
             text.decimal(key!("y"), to[1]);
+            if let (true, Some(f), None) = (self.plain_end, record.feed, record.arc) {
+                // The end of the common record, a line at a feed: z and f mostly repeat
+                // together.
+                let values = [to[2].to_bits(), f.to_bits()];
+                if !text.reused(&self.end, values) {
+                    let start = text.run_start();
+                    text.remembered(key!("z"), &mut self.memory[2], to[2]);
+                    text.remembered(key!("f"), &mut self.memory[6], f);
+                    text.put(b"}\n");
+                    text.remember_run(start, &mut self.end, values);
+                }
+                return;
+            }
             text.remembered(key!("z"), &mut self.memory[2], to[2]);
-            for &axis in &self.rotary {
-                let key: &'static [u8] = match axis {
-                    Axis::A => key!("a"),
-                    Axis::B => key!("b"),
-                    _ => key!("c"),
-                };
-                text.remembered(key, &mut self.memory[axis.index()], to[axis.index()]);
-            }
-            if let Some(f) = record.feed {
-                text.remembered(key!("f"), &mut self.memory[6], f);
-            }
-            if let Some((center, direction, plane)) = record.arc {
-                text.decimal(key!("cx"), center[0]);
-                text.decimal(key!("cy"), center[1]);
-                text.decimal(key!("cz"), center[2]);
-                let (by_direction, by_plane) = arc_index(direction, plane);
-                text.fixed(&self.arc_words[by_direction][by_plane].json);
-            }
-            if self.work {
-                let work = motion.work_to();
-                text.decimal(key!("wx"), work[0]);
-                text.decimal(key!("wy"), work[1]);
-                text.decimal(key!("wz"), work[2]);
+            // The fields after the rotary axes are written by two copies of the same code: in
+            // the one without the loop over the axes, the compiler can bound the record's
+            // length and checks no window.
+            if self.rotary.is_empty() {
+                jsonl_end(
+                    &mut text,
+                    &mut self.memory[6],
+                    &self.arc_words,
+                    self.work,
+                    &record,
+                );
+            } else {
+                for &axis in &self.rotary {
+                    let key = match axis {
+                        Axis::A => key!("a"),
+                        Axis::B => key!("b"),
+                        _ => key!("c"),
+                    };
+                    text.remembered(key, &mut self.memory[axis.index()], to[axis.index()]);
+                }
+                jsonl_end(
+                    &mut text,
+                    &mut self.memory[6],
+                    &self.arc_words,
+                    self.work,
+                    &record,
+                );
             }
         } else {
             event_fields(&mut text, &segment.kind);
+            text.put(b"}\n");
         }
-        text.put(b"}\n");
     }
 
     fn csv_header(&mut self) {
@@ -413,15 +448,15 @@ impl Writer {
     fn csv(&mut self, segment: &Segment, timing: &Timing, record: Record<'_>) {
         let mut text = self.out.record(self.file_csv.room());
         text.fixed(&record.kind.csv);
-        text.unsigned(b"", u64::from(segment.span.line));
+        text.unsigned(NO_KEY, u64::from(segment.span.line));
         text.byte(b',');
         text.padded(&self.file_csv);
         text.byte(b',');
         if let Some(n) = segment.sequence {
-            text.unsigned(b"", u64::from(n));
+            text.unsigned(NO_KEY, u64::from(n));
         }
-        text.decimal(b",", timing.t);
-        text.decimal(b",", timing.dt);
+        text.decimal(COMMA, timing.t);
+        text.decimal(COMMA, timing.dt);
         match record.motion {
             Some(motion) => {
                 let to = motion.to.0;
@@ -431,9 +466,9 @@ impl Writer {
                 {
                     // x and y are not remembered: see `memory`.
                     if i < 2 {
-                        text.decimal(b",", to[i]);
+                        text.decimal(COMMA, to[i]);
                     } else {
-                        text.remembered(b",", &mut self.memory[i], to[i]);
+                        text.remembered(COMMA, &mut self.memory[i], to[i]);
                     }
                 }
             }
@@ -441,12 +476,12 @@ impl Writer {
         }
         text.byte(b',');
         if let Some(f) = record.feed {
-            text.remembered(b"", &mut self.memory[6], f);
+            text.remembered(NO_KEY, &mut self.memory[6], f);
         }
         match record.arc {
             Some((center, direction, plane)) => {
                 for c in center {
-                    text.decimal(b",", c);
+                    text.decimal(COMMA, c);
                 }
                 let (by_direction, by_plane) = arc_index(direction, plane);
                 text.fixed(&self.arc_words[by_direction][by_plane].csv);
@@ -457,7 +492,7 @@ impl Writer {
             match record.motion {
                 Some(motion) => {
                     for w in &motion.work_to()[..3] {
-                        text.decimal(b",", *w);
+                        text.decimal(COMMA, *w);
                     }
                 }
                 None => text.put(b",,,"),
@@ -471,9 +506,38 @@ impl Writer {
     }
 }
 
+/// The fields of a motion's JSON record after its axes, and the record's end. Not a method: the
+/// record's text borrows the writer's buffer.
+#[inline(always)]
+fn jsonl_end(
+    text: &mut RecordText<'_>,
+    feed_memory: &mut Remembered,
+    arc_words: &[[ArcWords; 3]; 2],
+    work: bool,
+    record: &Record<'_>,
+) {
+    if let Some(f) = record.feed {
+        text.remembered(key!("f"), feed_memory, f);
+    }
+    if let Some((center, direction, plane)) = record.arc {
+        text.decimal(key!("cx"), center[0]);
+        text.decimal(key!("cy"), center[1]);
+        text.decimal(key!("cz"), center[2]);
+        let (by_direction, by_plane) = arc_index(direction, plane);
+        text.fixed(&arc_words[by_direction][by_plane].json);
+    }
+    if let (true, Some(motion)) = (work, record.motion) {
+        let work = motion.work_to();
+        text.decimal(key!("wx"), work[0]);
+        text.decimal(key!("wy"), work[1]);
+        text.decimal(key!("wz"), work[2]);
+    }
+    text.put(b"}\n");
+}
+
 /// Writes `key` and `value` as a JSON string (`value` needs no escapes).
-fn quoted(text: &mut RecordText<'_>, key: &'static [u8], value: &str) {
-    text.put(key);
+fn quoted(text: &mut RecordText<'_>, key: Key, value: &str) {
+    text.put(key.as_bytes());
     text.byte(b'"');
     text.put(value.as_bytes());
     text.byte(b'"');
@@ -491,7 +555,7 @@ fn event_fields(text: &mut RecordText<'_>, kind: &SegmentKind) {
             text.decimal(key!("speed"), speed);
         }
         SegmentKind::Coolant { on } => {
-            text.put(key!("on"));
+            text.put(key!("on").as_bytes());
             text.put(if on { b"true" } else { b"false" });
         }
         SegmentKind::Stop { kind } => quoted(text, key!("stop"), stop_name(kind)),
