@@ -4,7 +4,9 @@
 //! hands out lines with their byte offset and line number, from text in memory
 //! ([`TextLines`]) or from any reader ([`ReaderLines`]), so a program of any length runs in
 //! constant memory. Line ends (`\n`, `\r\n`) are stripped; bytes are passed on as they are
-//! (comments may be Latin-1).
+//! (comments may be Latin-1). A reader that finds a line's end itself as it reads the line (the
+//! ISO front end's reader of plain lines) takes the text at hand instead
+//! ([`LineSource::unread`]) and then skips the line ([`LineSource::skip_line`]).
 
 use std::io::{self, Read};
 
@@ -31,6 +33,21 @@ pub trait LineSource {
     /// follow M30 in the same file need it. `None` for streamed text.
     fn text(&self) -> Option<&[u8]> {
         None
+    }
+
+    /// The text not yet handed out, as far as it is at hand, as one [`Line`]: from the start of
+    /// the next line (its offset and number) to wherever the text at hand ends, which may be
+    /// inside that line or several lines further, line ends included. A reader that finds the
+    /// end of the line itself reads it from here, then calls [`LineSource::skip_line`]. `None`
+    /// when nothing is at hand.
+    fn unread(&self) -> Option<Line<'_>> {
+        None
+    }
+
+    /// Moves past the next line when it is the first `length` bytes of [`LineSource::unread`]'s
+    /// text, its `\n` included: it will not be handed out.
+    fn skip_line(&mut self, length: usize) {
+        let _ = length;
     }
 }
 
@@ -73,6 +90,19 @@ impl<'a> TextLines<'a> {
 impl LineSource for TextLines<'_> {
     fn text(&self) -> Option<&[u8]> {
         Some(self.text)
+    }
+
+    fn unread(&self) -> Option<Line<'_>> {
+        Some(Line {
+            text: self.text.get(self.position..)?,
+            offset: clamp_offset(self.position),
+            number: self.number.wrapping_add(1),
+        })
+    }
+
+    fn skip_line(&mut self, length: usize) {
+        self.position += length;
+        self.number += 1;
     }
 
     fn next_line(&mut self) -> io::Result<Option<Line<'_>>> {
@@ -156,6 +186,25 @@ impl<R: Read> ReaderLines<R> {
 }
 
 impl<R: Read> LineSource for ReaderLines<R> {
+    // Inlined into the parsing loop, with `skip_line`: the common line is read straight from the
+    // buffer, and its end found by the reader of its words.
+    #[inline(always)]
+    fn unread(&self) -> Option<Line<'_>> {
+        let file_offset = self.buffer_offset + self.start as u64;
+        Some(Line {
+            text: self.buffer.get(self.start..self.end)?,
+            offset: clamp_offset(usize::try_from(file_offset).unwrap_or(usize::MAX)),
+            number: self.number.wrapping_add(1),
+        })
+    }
+
+    #[inline(always)]
+    fn skip_line(&mut self, length: usize) {
+        debug_assert!(length <= self.end - self.start, "a line of the unread text");
+        self.start += length;
+        self.number += 1;
+    }
+
     // Inlined into the parsing loop: out of line, every line paid a call and its line was
     // returned through memory.
     #[inline(always)]
@@ -302,6 +351,32 @@ mod tests {
             memchr_newline(&[0x0b, 0x8a, 0x0a, 0, 0, 0, 0, 0, 0]),
             Some(2)
         );
+    }
+
+    #[test]
+    fn a_skipped_line_is_not_handed_out_and_the_next_one_keeps_its_place() {
+        let text = b"G0 X1\r\nG1 Y2\nM30";
+        let mut a = TextLines::new(text);
+        let mut b = ReaderLines::new(Trickle {
+            data: text,
+            chunk: 4,
+        });
+        // The reader has nothing at hand before its first read.
+        assert!(b.unread().is_none_or(|unread| unread.text.is_empty()));
+        assert_eq!(b.next_line().unwrap().unwrap().text, b"G0 X1");
+        a.next_line().unwrap();
+        for source in [&mut a as &mut dyn LineSource, &mut b] {
+            let unread = source.unread().unwrap();
+            assert_eq!((unread.offset, unread.number), (7, 2));
+            if unread.text.starts_with(b"G1 Y2\n") {
+                source.skip_line(6);
+            } else {
+                // Cut short by the reader: the line is read as usual.
+                source.next_line().unwrap();
+            }
+            let line = source.next_line().unwrap().unwrap();
+            assert_eq!((line.text, line.offset, line.number), (&b"M30"[..], 13, 3));
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! and parses on a thread of its own, a few hundred lines ahead, so that a consumer with a second
 //! core spends its time interpreting; both give the same blocks (checked by the tests).
 
-use super::iso::{parse_line, LineBlocks, SyntaxOptions};
+use super::iso::{parse_line, parse_plain_line_in, LineBlocks, SyntaxOptions};
 use super::lines::{LineSource, ReaderLines};
 use super::Block;
 use crate::source::FileId;
@@ -52,16 +52,7 @@ impl<L: LineSource> ParsedLines<L> {
 
 impl<L: LineSource> BlockSource for ParsedLines<L> {
     fn advance(&mut self) -> io::Result<bool> {
-        match self.lines.next_line()? {
-            Some(line) => {
-                parse_line(line, self.file, &self.syntax, &mut self.blocks);
-                Ok(true)
-            }
-            None => {
-                self.blocks.reset();
-                Ok(false)
-            }
-        }
+        read_next_line(&mut self.lines, self.file, &self.syntax, &mut self.blocks)
     }
 
     fn blocks(&self) -> &[Block] {
@@ -70,6 +61,35 @@ impl<L: LineSource> BlockSource for ParsedLines<L> {
 
     fn text(&self) -> Option<&[u8]> {
         self.lines.text()
+    }
+}
+
+/// Reads the next line of `lines` into `out`; false (and `out` empty) at the end of the text.
+///
+/// The common line, a plain one, is read straight from the text at hand, its end found by the
+/// reader of its words: searching for it first cost a second pass over every line.
+#[inline(always)]
+fn read_next_line<L: LineSource>(
+    lines: &mut L,
+    file: FileId,
+    syntax: &SyntaxOptions,
+    out: &mut LineBlocks,
+) -> io::Result<bool> {
+    if let Some(unread) = lines.unread() {
+        if let Some(length) = parse_plain_line_in(unread, file, out) {
+            lines.skip_line(length);
+            return Ok(true);
+        }
+    }
+    match lines.next_line()? {
+        Some(line) => {
+            parse_line(line, file, syntax, out);
+            Ok(true)
+        }
+        None => {
+            out.reset();
+            Ok(false)
+        }
     }
 }
 
@@ -131,15 +151,12 @@ impl BackgroundParser {
             while let Ok(mut batch) = recycled.recv() {
                 let mut filled = 0;
                 while filled < BATCH {
-                    match lines.next_line() {
-                        Ok(Some(line)) => {
-                            if batch.len() <= filled {
-                                batch.push(LineBlocks::new());
-                            }
-                            parse_line(line, file, &syntax, &mut batch[filled]);
-                            filled += 1;
-                        }
-                        Ok(None) => break,
+                    if batch.len() <= filled {
+                        batch.push(LineBlocks::new());
+                    }
+                    match read_next_line(&mut lines, file, &syntax, &mut batch[filled]) {
+                        Ok(true) => filled += 1,
+                        Ok(false) => break,
                         Err(error) => {
                             let _ = send_batch.send(Err(error));
                             return;
@@ -242,6 +259,98 @@ mod tests {
                 expected_bytes,
             ));
             assert_eq!(a, b, "expecting {expected_bytes} bytes");
+        }
+    }
+
+    /// A line source that hands out lines one by one and nothing else: every line takes the
+    /// path of [`LineSource::next_line`] and [`parse_line`].
+    struct OneByOne<L>(L);
+
+    impl<L: LineSource> LineSource for OneByOne<L> {
+        fn next_line(&mut self) -> io::Result<Option<crate::syntax::lines::Line<'_>>> {
+            self.0.next_line()
+        }
+    }
+
+    /// A reader that hands out at most `chunk` bytes per read, so that lines are cut where the
+    /// reader's buffer ends.
+    struct Trickle<'a> {
+        data: &'a [u8],
+        chunk: usize,
+    }
+
+    impl Read for Trickle<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+            let n = self.chunk.min(buf.len()).min(self.data.len());
+            buf[..n].copy_from_slice(&self.data[..n]);
+            self.data = &self.data[n..];
+            Ok(n)
+        }
+    }
+
+    /// The blocks of every line of `text` as text, values to the bit (`{:?}` tells -0 from 0),
+    /// as each source gives them.
+    fn blocks_by_every_source(text: &[u8]) -> Vec<String> {
+        let read = |source: &mut dyn BlockSource| format!("{:?}", collect(source));
+        let syntax = SyntaxOptions::default();
+        let file = FileId(2);
+        vec![
+            read(&mut ParsedLines::new(
+                OneByOne(TextLines::new(text)),
+                file,
+                syntax,
+            )),
+            read(&mut ParsedLines::new(TextLines::new(text), file, syntax)),
+            read(&mut ParsedLines::new(ReaderLines::new(text), file, syntax)),
+            read(&mut ParsedLines::new(
+                ReaderLines::new(Trickle {
+                    data: text,
+                    chunk: 5,
+                }),
+                file,
+                syntax,
+            )),
+            read(&mut BackgroundParser::spawn(
+                io::Cursor::new(text.to_vec()),
+                file,
+                syntax,
+            )),
+        ]
+    }
+
+    #[test]
+    fn lines_read_from_the_text_at_hand_are_the_lines_handed_out_one_by_one() {
+        let text = b"G01 X11.280 Y5.659 Z-1.464\r\nG02 X51.438 Y26.151 R11.700  \r\r\n\n \r\n\
+            X1 (C)\ng1x1y2\r\n\0X1\x0bY2\x0c\nX1\rY2\nN10 G1 X+.5\n  \tG1 X1\nF2=100\nG1 X1";
+        let sources = blocks_by_every_source(text);
+        for other in &sources[1..] {
+            assert_eq!(&sources[0], other);
+        }
+        // The end of a CRLF line's block is before its `\r`, as on the line handed out.
+        let mut lines = ParsedLines::new(TextLines::new(text), FileId(0), SyntaxOptions::default());
+        assert!(lines.advance().unwrap());
+        assert_eq!(lines.blocks()[0].span.end, 26);
+        assert!(lines.advance().unwrap());
+        assert_eq!(lines.blocks()[0].span.end, 26 + 2 + 30);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_text_reads_the_same_from_the_text_at_hand_and_line_by_line(
+            lines in proptest::collection::vec(
+                "[ \t]{0,2}([GXYgx][-+]?[0-9]{0,3}[.]?[0-9]{0,3}[ \t\r\x00(;=]{0,2}){0,4}[\r]{0,2}",
+                0..12,
+            ),
+            final_newline in proptest::bool::ANY,
+        ) {
+            let mut text = lines.join("\n");
+            if final_newline {
+                text.push('\n');
+            }
+            let sources = blocks_by_every_source(text.as_bytes());
+            for other in &sources[1..] {
+                proptest::prop_assert_eq!(&sources[0], other);
+            }
         }
     }
 

@@ -17,6 +17,7 @@ mod parser;
 mod program;
 pub mod structure;
 
+pub(crate) use parser::parse_plain_line_in;
 pub use parser::{parse_line, SyntaxOptions};
 pub use program::{parse_program, ProgramBlocks};
 

@@ -14,7 +14,7 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
 use crate::syntax::lines::Line;
 use crate::syntax::{BlockKind, Number, Word};
-use plain::{fast_number, read_plain_line, POWERS_OF_TEN};
+use plain::{fast_number, read_plain_line, read_plain_line_in, POWERS_OF_TEN};
 
 /// How a text is read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,6 +58,22 @@ pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &m
     }
     out.reset();
     parse_any_line(line, file, options, out);
+}
+
+/// Reads the first line of `unread` (text from the start of a line on, line ends included) into
+/// `out` (which is reset first) when it is a plain line whose `\n` is in `unread`, as
+/// [`parse_line`] would read it: how many bytes the line takes with its `\n`. `None` leaves the
+/// line to [`parse_line`] (`out` then holds nothing to keep).
+// Inlined into the reading loops: the common line is read straight from the reader's buffer,
+// and its end is found on the way instead of by a search of its own.
+#[inline(always)]
+pub(crate) fn parse_plain_line_in(
+    unread: Line<'_>,
+    file: FileId,
+    out: &mut LineBlocks,
+) -> Option<usize> {
+    out.reset();
+    read_plain_line_in(unread, file, out)
 }
 
 /// Reads the blocks of any line, character by character.

@@ -3,8 +3,9 @@
 //! A CAM program is hundreds of thousands of lines like `G01 X54.808 Y30.491`: plain words (a
 //! letter right before a decimal number) separated by blanks, nothing else. [`read_plain_line`]
 //! reads such a line in one pass over its bytes and gives up on anything else, which the general
-//! reader then reads; [`fast_number`] does the same for the number of one word inside the
-//! general reader.
+//! reader then reads; [`read_plain_line_in`] reads it from the text at hand, before the line is
+//! cut out, and finds its `\n` on the way (no search of its own for it); [`fast_number`] does the
+//! same for the number of one word inside the general reader.
 //!
 //! Invariant: the fast path gives exactly the blocks the general reader gives (values to the
 //! bit, spans, decimal points, signs), or nothing. The differential tests at the bottom check it,
@@ -28,20 +29,50 @@ const MAX_DIGITS: usize = 15;
 /// general reader would refuse); the block it may have begun is then to be thrown away.
 #[inline(always)]
 pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> bool {
+    read_plain_words(line, file, out) == Some(LineEnd::TextEnd)
+}
+
+/// Reads the first line of `unread` (text from the start of a line on, its line end included)
+/// into one block of `out` when it is a plain line ended by `\n`, as [`read_plain_line`] reads
+/// the line without its line end: how many bytes the line takes with its `\n`, or `None` for a
+/// line that is not plain or whose `\n` is not in `unread` (the block it may have begun is then
+/// to be thrown away).
+#[inline(always)]
+pub(super) fn read_plain_line_in(
+    unread: Line<'_>,
+    file: FileId,
+    out: &mut LineBlocks,
+) -> Option<usize> {
+    match read_plain_words(unread, file, out)? {
+        LineEnd::Newline(at) => Some(at + 1),
+        LineEnd::TextEnd => None,
+    }
+}
+
+/// Where a plain line read by [`read_plain_words`] ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LineEnd {
+    /// At the end of the text.
+    TextEnd,
+    /// At a `\n`, at this position in the text.
+    Newline(usize),
+}
+
+/// The reader of both: the words of `line.text` up to its end or its first `\n`, into one block
+/// of `out`, and where the line ended; `None` when the line is not plain.
+#[inline(always)]
+fn read_plain_words(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> Option<LineEnd> {
     let text = line.text;
-    // A span is the line's offset plus a position in the line. When the end of the line fits in
+    // A span is the line's offset plus a position in the text. When the end of the text fits in
     // u32, that sum never overflows (the general reader saturates: it takes the other lines).
-    let Some(line_end) = u32::try_from(text.len())
+    let text_end = u32::try_from(text.len())
         .ok()
-        .and_then(|length| line.offset.checked_add(length))
-    else {
-        return false;
-    };
-    // The offset in the file of the start of `rest`, a tail of the line.
-    let offset_of = |rest: &[u8]| line_end - rest.len() as u32;
+        .and_then(|length| line.offset.checked_add(length))?;
+    // The offset in the file of the start of `rest`, a tail of the text.
+    let offset_of = |rest: &[u8]| text_end - rest.len() as u32;
     let first_word = skip_blanks(text);
-    if first_word.is_empty() {
-        return false;
+    if matches!(first_word, [] | [b'\n', ..]) {
+        return None;
     }
     let block = out.push();
     let mut rest = first_word;
@@ -50,11 +81,12 @@ pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks
         // gives the capital.
         let capital = letter & !0x20;
         if !capital.is_ascii_uppercase() {
-            return false;
+            if *letter == b'\n' {
+                break;
+            }
+            return None;
         }
-        let Some((number, after_number)) = signed_number(after_letter) else {
-            return false;
-        };
+        let (number, after_number) = signed_number(after_letter)?;
         block.words.push(Word {
             letter: capital,
             index: 0,
@@ -67,8 +99,19 @@ pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks
         // letter test above, and the general reader decides.
         rest = skip_blanks(after_number);
     }
+    let end = text.len() - rest.len();
+    let (line_end, ended) = if rest.is_empty() {
+        (text_end, LineEnd::TextEnd)
+    } else {
+        // A line handed out whole has lost the `\r` of its `\r\n`: its span ends before it.
+        let carriage_return = end.checked_sub(1).and_then(|last| text.get(last)) == Some(&b'\r');
+        (
+            offset_of(rest) - u32::from(carriage_return),
+            LineEnd::Newline(end),
+        )
+    };
     block.span = Span::new(file, offset_of(first_word), line_end, line.number);
-    true
+    Some(ended)
 }
 
 /// The common case of the general reader's number: `digits [. digits]` (or `. digits`) with at
@@ -403,6 +446,41 @@ mod tests {
         ] {
             assert_same_blocks(text, 7);
         }
+    }
+
+    #[test]
+    fn a_line_read_with_its_line_end_reads_as_the_line_without_it() {
+        for (unread, line_length) in [
+            ("G01 X54.808 Y30.491\nG1 X1", 19),
+            ("G01 X54.808 Y30.491\r\nG1 X1", 19),
+            ("G02 X1 R2  \r\r\n", 12),
+            ("  g1x1y2\n(comment)\n", 8),
+            ("X1\rY2\n", 5),
+        ] {
+            let mut fast = LineBlocks::new();
+            let taken = read_plain_line_in(line(unread, 7), FileId(1), &mut fast);
+            assert_eq!(taken, Some(unread.find('\n').unwrap() + 1), "{unread:?}");
+            let mut by_line = LineBlocks::new();
+            assert!(read_plain_line(
+                line(&unread[..line_length], 7),
+                FileId(1),
+                &mut by_line
+            ));
+            assert_eq!(fast.as_slice(), by_line.as_slice(), "{unread:?}");
+        }
+        // Not plain, or not ended by `\n` where the text at hand ends: left to the line reader.
+        for unread in [
+            "G1 X1",
+            "G1 X1 (C)\n",
+            "\nG1 X1\n",
+            " \r\nG1\n",
+            "G1 X1.2.3\n",
+        ] {
+            let taken = read_plain_line_in(line(unread, 7), FileId(1), &mut LineBlocks::new());
+            assert_eq!(taken, None, "{unread:?}");
+        }
+        // A line handed out whole never holds a `\n`; if one did, it would not be plain.
+        assert!(!is_plain("G1 X1\nG1 X2"));
     }
 
     #[test]
