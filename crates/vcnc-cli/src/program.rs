@@ -521,12 +521,8 @@ mod tests {
             &machine,
             Options::default(),
         );
-        let mut stream = Interpreted::spawn(
-            interpreter,
-            None,
-            TravelCheck::new(&machine),
-            Waiting::Spin,
-        );
+        let mut stream =
+            Interpreted::spawn(interpreter, None, TravelCheck::new(&machine), Waiting::Spin);
         assert!(matches!(stream.next(), Some(Ok(_))));
         // Time for the thread to fill the pool and block.
         std::thread::sleep(Duration::from_millis(300));
