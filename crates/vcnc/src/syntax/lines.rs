@@ -282,7 +282,7 @@ fn clamp_offset(offset: usize) -> u32 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     fn collect(source: &mut dyn LineSource) -> Vec<(String, u32, u32)> {
@@ -297,10 +297,11 @@ mod tests {
         lines
     }
 
-    /// A reader that hands out at most `chunk` bytes per read, to cross buffer boundaries.
-    struct Trickle<'a> {
-        data: &'a [u8],
-        chunk: usize,
+    /// A reader that hands out at most `chunk` bytes per read, so that lines are cut where a
+    /// reader's buffer ends (the line sources' and the parsers' tests).
+    pub(crate) struct Trickle<'a> {
+        pub(crate) data: &'a [u8],
+        pub(crate) chunk: usize,
     }
 
     impl Read for Trickle<'_> {

@@ -225,6 +225,7 @@ impl Drop for BackgroundParser {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::syntax::lines::tests::Trickle;
     use crate::syntax::lines::TextLines;
 
     fn collect(source: &mut dyn BlockSource) -> Vec<Vec<Block>> {
@@ -269,22 +270,6 @@ mod tests {
     impl<L: LineSource> LineSource for OneByOne<L> {
         fn next_line(&mut self) -> io::Result<Option<crate::syntax::lines::Line<'_>>> {
             self.0.next_line()
-        }
-    }
-
-    /// A reader that hands out at most `chunk` bytes per read, so that lines are cut where the
-    /// reader's buffer ends.
-    struct Trickle<'a> {
-        data: &'a [u8],
-        chunk: usize,
-    }
-
-    impl Read for Trickle<'_> {
-        fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
-            let n = self.chunk.min(buf.len()).min(self.data.len());
-            buf[..n].copy_from_slice(&self.data[..n]);
-            self.data = &self.data[n..];
-            Ok(n)
         }
     }
 
