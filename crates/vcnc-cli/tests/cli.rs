@@ -320,6 +320,49 @@ fn the_interrupt_option_names_the_block_the_signal_comes_in() {
 }
 
 #[test]
+fn an_overtravel_stops_the_program_at_its_block() {
+    // The control stops at the move beyond the travel: the blocks after it never run, so they
+    // are not counted and their macro variables are not written (the command line checked the
+    // travel a batch of blocks at a time, after the interpreter had run the whole batch).
+    let state = std::env::temp_dir().join(format!("vcnc-overtravel-{}.toml", std::process::id()));
+    let _ = std::fs::remove_file(&state);
+    let state_arg = state.display().to_string();
+    let program = temp_program(
+        "overtravel_stops.nc",
+        "#500=1
+G90 G00 X500.
+G00 X5000.
+#500=2
+#501=3
+M30
+",
+    );
+    for command in ["run", "check", "trace"] {
+        let output = vcnc(&[command, "--state", &state_arg, &program]);
+        assert_eq!(output.status.code(), Some(1), "{command}");
+        let saved = std::fs::read_to_string(&state).unwrap();
+        assert!(saved.contains("\"#500\" = 1.0"), "{command}: {saved}");
+        assert!(!saved.contains("#501"), "{command}: {saved}");
+        if command == "run" {
+            let summary = String::from_utf8_lossy(&output.stdout);
+            let executed = summary
+                .lines()
+                .find(|line| line.contains("blocks executed"))
+                .unwrap_or_default();
+            assert!(executed.trim_end().ends_with(" 3"), "{summary}");
+        }
+    }
+    // Without a state file `trace` checks the travel a batch at a time (the blocks after the
+    // alarm may run, unseen): the stream is the same, cut at the same move.
+    let with_state = vcnc(&["trace", "--state", &state_arg, &program]);
+    let without = vcnc(&["trace", &program]);
+    assert_eq!(with_state.stdout, without.stdout);
+    assert_eq!(with_state.stderr, without.stderr);
+    assert_eq!(with_state.status.code(), without.status.code());
+    let _ = std::fs::remove_file(&state);
+}
+
+#[test]
 fn a_move_beyond_the_machine_travel_is_an_overtravel_alarm() {
     // The default machine's X goes from -1000 to 1000 mm.
     let program = temp_program("overtravel.nc", "G90 G00 X500.\nG01 X1200. F1000.\nM30\n");

@@ -98,12 +98,26 @@ impl TravelCheck {
     /// travel is replaced by its alarm and the rest of the batch dropped. Returns false once
     /// the stream has stopped (and empties every later batch).
     pub fn check_batch(&mut self, batch: &mut Vec<Result<Segment, Alarm>>) -> bool {
+        let all = 0..batch.len();
+        self.check_items(batch, all)
+    }
+
+    /// [`TravelCheck::check_batch`] for the items in `range` of `items` alone (the ones before
+    /// it have passed; the ones after are not final yet): at the first that leaves the travel,
+    /// `items` is cut and its alarm added.
+    #[inline(always)]
+    fn check_items(
+        &mut self,
+        items: &mut Vec<Result<Segment, Alarm>>,
+        range: std::ops::Range<usize>,
+    ) -> bool {
         if self.stopped {
-            batch.clear();
+            items.truncate(range.start);
             return false;
         }
         let limits = &self.limits;
-        let failed = batch.iter().enumerate().find_map(|(i, item)| {
+        let start = range.start;
+        let failed = items[range].iter().enumerate().find_map(|(i, item)| {
             // A line inside the travel, most of a stream, is recognised by its own tag, the
             // whole item's: matched through the result and then the kind, every segment paid
             // for decoding the kind's tag from the niche of the result's.
@@ -117,16 +131,29 @@ impl TravelCheck {
                 }
             }
             match item {
-                Ok(segment) => limits.check(segment).map(|alarm| (i, alarm)),
+                Ok(segment) => limits.check(segment).map(|alarm| (start + i, alarm)),
                 Err(_) => None,
             }
         });
         if let Some((at, alarm)) = failed {
-            batch.truncate(at);
-            batch.push(Err(alarm));
+            items.truncate(at);
+            items.push(Err(alarm));
             self.stopped = true;
         }
         !self.stopped
+    }
+}
+
+/// The travel checked block by block as the interpreter runs
+/// ([`crate::Interpreter::next_batch_checked`], which calls it after every block: inlined there).
+impl crate::interp::ReleasedCheck for TravelCheck {
+    #[inline(always)]
+    fn check_released(
+        &mut self,
+        items: &mut Vec<Result<Segment, Alarm>>,
+        released: std::ops::Range<usize>,
+    ) -> bool {
+        self.check_items(items, released)
     }
 }
 

@@ -44,7 +44,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         plan_options,
         stream,
         files,
-    } = open_planned(&args.program, &args.machine)?;
+    } = open_planned(&args.program, &args.machine, true)?;
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();

@@ -67,7 +67,7 @@ fn write_trace(
         plan_options,
         stream,
         files,
-    } = open_planned(&args.program, &args.machine)?;
+    } = open_planned(&args.program, &args.machine, false)?;
     let mut writer = Writer::new(files.clone(), &machine, args.work);
     if args.format == Format::Csv {
         writer.csv_header();
@@ -699,6 +699,7 @@ mod tests {
                 crate::program::Layout {
                     parsing: crate::program::Parsing::Ahead,
                     waiting: crate::program::Waiting::Sleep,
+                    stopping: crate::program::Stopping::AfterTheBatch,
                 },
             )
             .unwrap();

@@ -270,6 +270,18 @@ impl Output {
     }
 }
 
+/// A check of the stream's items as the blocks release them ([`Interpreter::next_batch_checked`]).
+pub trait ReleasedCheck {
+    /// Looks at the items in the range `released` of `items` (the ones before it have passed;
+    /// the ones after it are held by compensation and may still change) and, to stop the
+    /// program at one of them, cuts `items` there, adds its alarm and returns false.
+    fn check_released(
+        &mut self,
+        items: &mut Vec<Result<Segment, Alarm>>,
+        released: std::ops::Range<usize>,
+    ) -> bool;
+}
+
 /// Blocks run at most by one call of [`Interpreter::next_batch`].
 const STEPS_PER_BATCH: u32 = 1 << 16;
 
@@ -445,14 +457,12 @@ impl<B: BlockSource> Interpreter<B> {
     /// be empty); returns false when nothing more will come. The same items as
     /// [`Iterator::next`] gives, with fewer moves: consumers of long streams use this.
     pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
-        // The executor writes straight into the caller's vector: no item is moved twice.
+        // The loop of `next_batch_checked` without the check, written out: the common path.
         let base = out.len();
         let leftover = std::mem::take(&mut self.core.out.items);
         out.extend(leftover);
         self.core.out.held = self.core.out.held.map(|h| h + base);
         std::mem::swap(&mut self.core.out.items, out);
-        // A macro loop may run long without moving: the caller gets control back now and then
-        // (to save state, to show progress) with whatever is ready, possibly nothing.
         let mut steps = 0u32;
         while !self.core.done && self.core.out.releasable() < at_least && steps < STEPS_PER_BATCH {
             self.step();
@@ -468,6 +478,73 @@ impl<B: BlockSource> Interpreter<B> {
             self.core.out.held = Some(0);
         }
         !(self.core.done && out.is_empty() && self.core.out.items.is_empty())
+    }
+
+    /// [`Interpreter::next_batch`] with `check` of the items as the blocks release them. When
+    /// the check stops the program at an item, the interpreter stops at that block, as the
+    /// control does (a travel check, [`crate::checks::TravelCheck`]): the blocks after it are not
+    /// run, so they neither count as executed nor write macro variables.
+    pub fn next_batch_checked(
+        &mut self,
+        out: &mut Vec<Result<Segment, Alarm>>,
+        at_least: usize,
+        check: &mut impl ReleasedCheck,
+    ) -> bool {
+        // The executor writes straight into the caller's vector: no item is moved twice.
+        let base = out.len();
+        let leftover = std::mem::take(&mut self.core.out.items);
+        out.extend(leftover);
+        self.core.out.held = self.core.out.held.map(|h| h + base);
+        std::mem::swap(&mut self.core.out.items, out);
+        // Items before `checked` have passed the check (those of `out` passed it before).
+        let mut checked = base;
+        // A macro loop may run long without moving: the caller gets control back now and then
+        // (to save state, to show progress) with whatever is ready, possibly nothing.
+        let mut steps = 0u32;
+        while !self.core.done && self.core.out.releasable() < at_least && steps < STEPS_PER_BATCH {
+            self.step();
+            steps += 1;
+            let released = self.core.out.releasable();
+            if released > checked {
+                if !check.check_released(&mut self.core.out.items, checked..released) {
+                    self.stop_checked();
+                }
+                checked = released;
+            }
+        }
+        if self.core.done {
+            self.core.out.finish();
+            // The end of the program releases what compensation held.
+            let released = self.core.out.items.len();
+            if released > checked
+                && !check.check_released(&mut self.core.out.items, checked..released)
+            {
+                self.stop_checked();
+            }
+        }
+        self.return_batch(out)
+    }
+
+    /// Hands the items of a batch over in `out` (what compensation holds stays); false when
+    /// nothing more will come.
+    #[inline(always)]
+    fn return_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>) -> bool {
+        std::mem::swap(&mut self.core.out.items, out);
+        if let Some(held) = self.core.out.held {
+            // What waits for compensation stays here.
+            self.core.out.items = out.split_off(held);
+            self.core.out.held = Some(0);
+        }
+        !(self.core.done && out.is_empty() && self.core.out.items.is_empty())
+    }
+
+    /// A check cut the queue at an item and added its alarm: nothing after it runs. What
+    /// compensation or G12.1 held is dropped with the cut (those blocks never moved).
+    fn stop_checked(&mut self) {
+        self.core.out.held = None;
+        self.core.out.comp = None;
+        self.core.out.polar_interp = None;
+        self.core.done = true;
     }
 
     /// Reads and runs until something is queued or the program is over.
