@@ -614,38 +614,16 @@ fn decode_other(
             whole(word)?;
             out.sequence = u32::try_from(word.number.value as i64).ok();
         }
-        b'O' => {
+        // Numbers that must be whole: program number, tool, offset numbers, repeat count.
+        b'O' | b'T' | b'H' | b'D' | b'L' => {
             whole(word)?;
             out.set(word, value)?;
         }
         // The letters of `UNCHECKED_LETTERS` are recorded above; these arms are for a caller
-        // whose plain letters leave them out.
-        b'I' => out.set(word, value)?,
-        b'J' => out.set(word, value)?,
-        b'K' => out.set(word, value)?,
-        b'R' => out.set(word, value)?,
-        b'F' if word.index == 0 => out.set(word, value)?,
-        b'S' if word.index == 0 => out.set(word, value)?,
-        b'T' => {
-            whole(word)?;
-            out.set(word, value)?;
-        }
-        b'H' => {
-            whole(word)?;
-            out.set(word, value)?;
-        }
-        b'D' => {
-            whole(word)?;
-            out.set(word, value)?;
-        }
-        b'P' => out.set(word, value)?,
-        b'Q' => out.set(word, value)?,
-        // Syntec's threads per inch of a tapping cycle.
-        b'E' => out.set(word, value)?,
-        b'L' => {
-            whole(word)?;
-            out.set(word, value)?;
-        }
+        // whose plain letters leave them out. E is Syntec's threads per inch of a tapping
+        // cycle.
+        b'I' | b'J' | b'K' | b'R' | b'P' | b'Q' | b'E' => out.set(word, value)?,
+        b'F' | b'S' if word.index == 0 => out.set(word, value)?,
         b'F' if word.index == 2 => out.retract_feed = Some(value),
         b'F' | b'S' => {
             return Err(Alarm::not_supported(
