@@ -282,6 +282,20 @@ pub trait ReleasedCheck {
     ) -> bool;
 }
 
+/// No check: [`Interpreter::next_batch`].
+struct NoCheck;
+
+impl ReleasedCheck for NoCheck {
+    #[inline(always)]
+    fn check_released(
+        &mut self,
+        _: &mut Vec<Result<Segment, Alarm>>,
+        _: std::ops::Range<usize>,
+    ) -> bool {
+        true
+    }
+}
+
 /// Blocks run at most by one call of [`Interpreter::next_batch`].
 const STEPS_PER_BATCH: u32 = 1 << 16;
 
@@ -457,27 +471,7 @@ impl<B: BlockSource> Interpreter<B> {
     /// be empty); returns false when nothing more will come. The same items as
     /// [`Iterator::next`] gives, with fewer moves: consumers of long streams use this.
     pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
-        // The loop of `next_batch_checked` without the check, written out: the common path.
-        let base = out.len();
-        let leftover = std::mem::take(&mut self.core.out.items);
-        out.extend(leftover);
-        self.core.out.held = self.core.out.held.map(|h| h + base);
-        std::mem::swap(&mut self.core.out.items, out);
-        let mut steps = 0u32;
-        while !self.core.done && self.core.out.releasable() < at_least && steps < STEPS_PER_BATCH {
-            self.step();
-            steps += 1;
-        }
-        if self.core.done {
-            self.core.out.finish();
-        }
-        std::mem::swap(&mut self.core.out.items, out);
-        if let Some(held) = self.core.out.held {
-            // What waits for compensation stays here.
-            self.core.out.items = out.split_off(held);
-            self.core.out.held = Some(0);
-        }
-        !(self.core.done && out.is_empty() && self.core.out.items.is_empty())
+        self.next_batch_checked(out, at_least, &mut NoCheck)
     }
 
     /// [`Interpreter::next_batch`] with `check` of the items as the blocks release them. When
