@@ -363,6 +363,49 @@ M30
 }
 
 #[test]
+fn the_interpreter_stops_soon_after_an_overtravel_the_consumer_finds() {
+    // Without a state file `trace` checks the travel on the writer's side, while the
+    // interpreter's thread runs ahead. Here it runs into an endless loop that moves nothing, so
+    // it never hands a batch over to learn that the consumer has gone: it must be told, or the
+    // command waits until the loop limit (ten million passes) ends the loop, as it does when
+    // nothing stops the program before the loop.
+    let program = |first_move: &str| {
+        format!(
+            "G90 G00 X500.
+G00 X{first_move}
+#1=0
+WHILE [#1 LT 1] DO 1
+#2=#2+1
+END 1
+M30
+"
+        )
+    };
+    let timed = |name: &str, text: &str| {
+        let path = temp_program(name, text);
+        let started = std::time::Instant::now();
+        let output = vcnc(&["trace", &path]);
+        (output, started.elapsed())
+    };
+    let (looped, to_the_limit) = timed("overtravel_loop_inside.nc", &program("5."));
+    assert!(
+        String::from_utf8_lossy(&looped.stderr).contains("loop"),
+        "{}",
+        String::from_utf8_lossy(&looped.stderr)
+    );
+    let (stopped, took) = timed("overtravel_then_loop.nc", &program("5000."));
+    assert_eq!(stopped.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&stopped.stderr);
+    assert!(stderr.contains("V073"), "{stderr}");
+    // The loop limit takes 10 million passes; the interpreter is told to stop within one
+    // batch's worth of blocks (65,536).
+    assert!(
+        took * 4 < to_the_limit,
+        "{took:?} after the overtravel, {to_the_limit:?} to the loop limit"
+    );
+}
+
+#[test]
 fn a_move_beyond_the_machine_travel_is_an_overtravel_alarm() {
     // The default machine's X goes from -1000 to 1000 mm.
     let program = temp_program("overtravel.nc", "G90 G00 X500.\nG01 X1200. F1000.\nM30\n");

@@ -699,7 +699,7 @@ mod tests {
                 crate::program::Layout {
                     parsing: crate::program::Parsing::Ahead,
                     waiting: crate::program::Waiting::Sleep,
-                    stopping: crate::program::Stopping::AfterTheBatch,
+                    stopping: crate::program::Stopping::ByTheConsumer,
                 },
             )
             .unwrap();
