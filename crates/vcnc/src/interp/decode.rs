@@ -70,6 +70,10 @@ pub(crate) struct Command {
     /// True when `subprogram` or `macro_call` is set: one test after every block instead of
     /// two (see [`Command::has_calls`]).
     calls: bool,
+    /// True when one of the fields that few blocks set (N, G09, `F2=`, an overridden code, M
+    /// codes, warnings, calls) may hold something: only then does [`Command::reset`] clear
+    /// them (clearing every field for every block cost about 20 instructions).
+    rare: bool,
     /// G codes classified before, kept from block to block (not cleared): a command is decoded
     /// with one profile all its life, the executor's. A small cache indexed by the value
     /// ([`LastG::slot`]): CAM programs switch between three motion codes all along.
@@ -107,6 +111,13 @@ impl Command {
         self.g_words
             .get(usize::from(self.groups[slot]).wrapping_sub(1))
             .copied()
+    }
+
+    /// True when the block's G codes, if it has any, are all of the motion group (G00-G03,
+    /// G33; G09 aside): almost every block of a CAM program.
+    #[inline(always)]
+    pub(crate) fn only_motion_codes(&self) -> bool {
+        self.group_mask & !(1 << group_slot(Group::Motion)) == 0
     }
 
     /// Every G code of the block in force, one per group, in the order written.
@@ -280,21 +291,48 @@ impl Command {
         self.letters & (CENTER | 1 << (b'R' - b'A')) != 0
     }
 
-    /// Clears the command for reuse, keeping its allocations.
-    pub(crate) fn clear(&mut self) {
-        self.span = Span::default();
+    /// Clears the command for reuse as the command of the block at `span`, keeping its
+    /// allocations.
+    #[inline(always)]
+    pub(crate) fn reset(&mut self, span: Span) {
+        self.span = span;
+        self.letters = 0;
+        self.group_mask = 0;
+        self.g_words.clear();
+        if self.rare {
+            self.clear_rare();
+        }
+        debug_assert!(self.rare_fields_are_clear());
+    }
+
+    /// Clears the fields few blocks set (see `rare`).
+    #[inline(never)]
+    fn clear_rare(&mut self) {
         self.sequence = None;
         self.exact_stop_once = false;
         self.retract_feed = None;
-        self.letters = 0;
-        self.group_mask = 0;
         self.overridden = false;
-        self.g_words.clear();
         self.m.clear();
         self.warnings.clear();
         self.subprogram = None;
         self.macro_call = None;
         self.calls = false;
+        self.rare = false;
+    }
+
+    /// True when every field of `rare` holds what [`Command::clear_rare`] leaves: a field set
+    /// without `rare` would otherwise leak into the next block.
+    fn rare_fields_are_clear(&self) -> bool {
+        self.rare
+            || (self.sequence.is_none()
+                && !self.exact_stop_once
+                && self.retract_feed.is_none()
+                && !self.overridden
+                && self.m.is_empty()
+                && self.warnings.is_empty()
+                && self.subprogram.is_none()
+                && self.macro_call.is_none()
+                && !self.calls)
     }
 
     /// True when the block calls or returns: a subprogram code (M98, M99 ...) or a macro call
@@ -312,6 +350,7 @@ impl Command {
     pub(crate) fn set_subprogram(&mut self, code: MCode, value: Value) {
         self.subprogram = Some((code, value));
         self.calls = true;
+        self.rare = true;
     }
 
     /// Records the value of an address letter.
@@ -516,8 +555,7 @@ pub(crate) fn decode(
     plain_letters: u32,
     out: &mut Command,
 ) -> Result<(), Alarm> {
-    out.clear();
-    out.span = block.span;
+    out.reset(block.span);
     for (order, word) in block.words.iter().enumerate() {
         if word.number.value.abs() > profile.max_word_value {
             return Err(word_out_of_range(word, profile));
@@ -538,6 +576,7 @@ pub(crate) fn decode(
             {
                 out.macro_call = Some((call, order + 1));
                 out.calls = true;
+                out.rare = true;
                 break;
             }
             if let Some(call) = out
@@ -546,6 +585,7 @@ pub(crate) fn decode(
             {
                 out.macro_call = Some((call, order + 1));
                 out.calls = true;
+                out.rare = true;
                 break;
             }
             continue;
@@ -579,6 +619,7 @@ fn decode_other(
     };
     match word.letter {
         b'M' => {
+            out.rare = true;
             whole(word)?;
             if let MLookup::Known(code) = classify_m(word.number.value as u32, profile) {
                 if code.is_subprogram_flow() {
@@ -612,6 +653,7 @@ fn decode_other(
         }
         b'N' => {
             whole(word)?;
+            out.rare = true;
             out.sequence = u32::try_from(word.number.value as i64).ok();
         }
         // Numbers that must be whole: program number, tool, offset numbers, repeat count.
@@ -624,7 +666,10 @@ fn decode_other(
         // cycle.
         b'I' | b'J' | b'K' | b'R' | b'P' | b'Q' | b'E' => out.set(word, value)?,
         b'F' | b'S' if word.index == 0 => out.set(word, value)?,
-        b'F' if word.index == 2 => out.retract_feed = Some(value),
+        b'F' if word.index == 2 => {
+            out.rare = true;
+            out.retract_feed = Some(value);
+        }
         b'F' | b'S' => {
             return Err(Alarm::not_supported(
                 word.span,
@@ -670,6 +715,7 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
     };
     if code == GCode::ExactStopOnce {
         out.exact_stop_once = true;
+        out.rare = true;
         return Ok(());
     }
     let new = GWord {
@@ -680,6 +726,7 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
     let slot = group_slot(group);
     if out.group_mask & (1 << slot) != 0 {
         out.overridden = true;
+        out.rare = true;
         if let Some(previous) = out.group(group).filter(|previous| previous.code != code) {
             same_group(word, previous, group, profile, out)?;
         }
@@ -892,6 +939,68 @@ mod tests {
                     proptest::prop_assert_eq!(alarm.span.map(|s| s.start as usize), Some(start));
                 }
                 (got, want) => proptest::prop_assert!(false, "{text:?}: {got:?} against {want:?}"),
+            }
+        }
+    }
+
+    /// What a block's command holds that a later block could see: every field but the slots
+    /// the masks say are empty.
+    fn contents(cmd: &Command) -> String {
+        let letters: Vec<(char, f64)> = (b'A'..=b'Z')
+            .filter_map(|l| cmd.word(l).map(|v| (l as char, v.number.value)))
+            .collect();
+        let codes: Vec<GCode> = cmd.g_codes().map(|g| g.code).collect();
+        format!(
+            "{:?} {:?} {} {:?} {} {:?} {:?} {:?} {:?} {:?} {} {}",
+            cmd.sequence,
+            letters,
+            cmd.exact_stop_once,
+            cmd.retract_feed,
+            cmd.overridden,
+            codes,
+            cmd.m_codes(),
+            cmd.warnings,
+            cmd.subprogram,
+            cmd.macro_call,
+            cmd.has_calls(),
+            cmd.group_mask,
+        )
+    }
+
+    #[test]
+    fn a_reused_command_keeps_nothing_of_the_block_before() {
+        let profile = Machine::default().profile;
+        let axes = plain_letters(&[true; 6]);
+        let mut fresh = Command::default();
+        let mut reused = Command::default();
+        for before in [
+            "N10 G01 X1.",
+            "G09 G01 X1.",
+            "G00 G01 X1.",
+            "M03 S100",
+            "M03 M08 M05",
+            "M98 P100",
+            "G65 P100 A1.",
+            "G04 P1",
+        ] {
+            for after in ["X2. Y3.", "G01 X2.", "G02 X2. R1.", "F100.", "G90 G00 Z1."] {
+                let parsed = |text: &str| {
+                    let mut blocks = LineBlocks::new();
+                    let line = Line {
+                        text: text.as_bytes(),
+                        offset: 0,
+                        number: 1,
+                    };
+                    parse_line(line, FileId(0), &SyntaxOptions::default(), &mut blocks);
+                    blocks.as_slice()[0].clone()
+                };
+                let (before_block, after_block) = (parsed(before), parsed(after));
+                decode(&before_block, &profile, axes, &mut reused).unwrap();
+                assert_ne!(contents(&reused), contents(&Command::default()), "{before}");
+                decode(&after_block, &profile, axes, &mut reused).unwrap();
+                decode(&after_block, &profile, axes, &mut fresh).unwrap();
+                assert_eq!(contents(&reused), contents(&fresh), "{before} then {after}");
+                fresh = Command::default();
             }
         }
     }
