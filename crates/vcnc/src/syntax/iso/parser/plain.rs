@@ -75,6 +75,9 @@ fn read_plain_words(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> Optio
         return None;
     }
     let block = out.push();
+    // The block's start, file and line are known now: stored at once, they are not kept live
+    // through the words (only the end is stored at the end).
+    block.span = Span::new(file, offset_of(first_word), 0, line.number);
     let mut rest = first_word;
     while let [letter, after_letter @ ..] = rest {
         // An ASCII letter and its capital differ in bit 5 alone: one mask tests for a letter and
@@ -110,7 +113,7 @@ fn read_plain_words(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> Optio
             LineEnd::Newline(end),
         )
     };
-    block.span = Span::new(file, offset_of(first_word), line_end, line.number);
+    block.span.end = line_end;
     Some(ended)
 }
 
