@@ -5,7 +5,9 @@
 //! reads such a line in one pass over its bytes and gives up on anything else, which the general
 //! reader then reads; [`read_plain_line_in`] reads it from the text at hand, before the line is
 //! cut out, and finds its `\n` on the way (no search of its own for it); [`fast_number`] does the
-//! same for the number of one word inside the general reader.
+//! same for the number of one word inside the general reader. In the text at hand, which runs
+//! on past the line, the digits of a number are read from fixed windows ([`windowed_decimal`]):
+//! the compiler unrolls that loop, and no digit pays an end-of-text test.
 //!
 //! Invariant: the fast path gives exactly the blocks the general reader gives (values to the
 //! bit, spans, decimal points, signs), or nothing. The differential tests at the bottom check it,
@@ -29,21 +31,23 @@ const MAX_DIGITS: usize = 15;
 /// general reader would refuse); the block it may have begun is then to be thrown away.
 #[inline(always)]
 pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> bool {
-    read_plain_words(line, file, out) == Some(LineEnd::TextEnd)
+    read_plain_words::<false>(line, file, out) == Some(LineEnd::TextEnd)
 }
 
 /// Reads the first line of `unread` (text from the start of a line on, its line end included)
 /// into one block of `out` when it is a plain line ended by `\n`, as [`read_plain_line`] reads
 /// the line without its line end: how many bytes the line takes with its `\n`, or `None` for a
-/// line that is not plain or whose `\n` is not in `unread` (the block it may have begun is then
-/// to be thrown away).
+/// line that is not plain, whose `\n` is not in `unread`, or with a number closer than [`RUN`]
+/// bytes to the end of `unread` (the block it may have begun is then to be thrown away).
 #[inline(always)]
 pub(super) fn read_plain_line_in(
     unread: Line<'_>,
     file: FileId,
     out: &mut LineBlocks,
 ) -> Option<usize> {
-    match read_plain_words(unread, file, out)? {
+    // The text at hand runs past the line, nearly always far enough for the numbers' windows;
+    // a number too close to its end leaves the line to the line reader.
+    match read_plain_words::<true>(unread, file, out)? {
         LineEnd::Newline(at) => Some(at + 1),
         LineEnd::TextEnd => None,
     }
@@ -59,9 +63,15 @@ enum LineEnd {
 }
 
 /// The reader of both: the words of `line.text` up to its end or its first `\n`, into one block
-/// of `out`, and where the line ended; `None` when the line is not plain.
+/// of `out`, and where the line ended; `None` when the line is not plain. `WINDOWED` reads the
+/// numbers with [`windowed_decimal`] (also `None` when the text ends too close after one), else
+/// with [`unsigned_decimal`].
 #[inline(always)]
-fn read_plain_words(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> Option<LineEnd> {
+fn read_plain_words<const WINDOWED: bool>(
+    line: Line<'_>,
+    file: FileId,
+    out: &mut LineBlocks,
+) -> Option<LineEnd> {
     let text = line.text;
     // A span is the line's offset plus a position in the text. When the end of the text fits in
     // u32, that sum never overflows (the general reader saturates: it takes the other lines).
@@ -89,7 +99,7 @@ fn read_plain_words(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> Optio
             }
             return None;
         }
-        let (number, after_number) = signed_number(after_letter)?;
+        let (number, after_number) = signed_number::<WINDOWED>(after_letter)?;
         block.words.push(Word {
             letter: capital,
             index: 0,
@@ -176,20 +186,25 @@ fn skip_blank_run(mut bytes: &[u8]) -> &[u8] {
     bytes
 }
 
-/// `[+|-]` and an unsigned decimal; the number and the bytes after it.
+/// `[+|-]` and an unsigned decimal, read as [`read_plain_words`] says; the number and the bytes
+/// after it.
 #[inline(always)]
-fn signed_number(bytes: &[u8]) -> Option<(Number, &[u8])> {
+fn signed_number<const WINDOWED: bool>(bytes: &[u8]) -> Option<(Number, &[u8])> {
     let (negative, unsigned) = match bytes {
         [b'-', rest @ ..] => (true, rest),
         [b'+', rest @ ..] => (false, rest),
         _ => (false, bytes),
     };
-    let (decimal, rest) = unsigned_decimal(unsigned)?;
+    let (decimal, rest) = if WINDOWED {
+        windowed_decimal(unsigned)?
+    } else {
+        unsigned_decimal(unsigned)?
+    };
     Some((decimal.number(negative), rest))
 }
 
 /// A decimal number as its digits read it: `12.50` is 1250 with two fraction digits.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Decimal {
     /// The digits as one integer, below 10^[`MAX_DIGITS`].
     mantissa: u64,
@@ -217,6 +232,61 @@ impl Decimal {
             negative,
         }
     }
+}
+
+/// [`unsigned_decimal`] where `bytes` runs on far enough after the number: its digits are read
+/// from windows of [`RUN`] bytes, with no end test per digit (the compiler unrolls the loop of
+/// [`digit_run`]). `None` as well when `bytes` ends too close after the number.
+#[inline(always)]
+fn windowed_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
+    let window = bytes.first_chunk::<RUN>()?;
+    let (whole, whole_digits) = digit_run(0, window);
+    let after_whole = bytes.get(whole_digits..).unwrap_or_default();
+    let (decimal, rest) = match after_whole {
+        [b'.', fraction @ ..] => {
+            let window = fraction.first_chunk::<RUN>()?;
+            let (mantissa, fraction_digits) = digit_run(whole, window);
+            let decimal = Decimal {
+                mantissa,
+                fraction_digits,
+                decimal_point: true,
+            };
+            (decimal, fraction.get(fraction_digits..).unwrap_or_default())
+        }
+        _ => {
+            let decimal = Decimal {
+                mantissa: whole,
+                fraction_digits: 0,
+                decimal_point: false,
+            };
+            (decimal, after_whole)
+        }
+    };
+    let digits = whole_digits + decimal.fraction_digits;
+    if digits == 0 || digits > MAX_DIGITS {
+        return None;
+    }
+    Some((decimal, rest))
+}
+
+/// The bytes [`digit_run`] reads: one more than [`MAX_DIGITS`], so that a run that fills them
+/// is refused.
+const RUN: usize = MAX_DIGITS + 1;
+
+/// The digits at the start of `bytes` appended to `mantissa`, and how many there are (`RUN`
+/// when all are digits: the run may go on, and the number is too long).
+#[inline(always)]
+fn digit_run(mut mantissa: u64, bytes: &[u8; RUN]) -> (u64, usize) {
+    for (count, &byte) in bytes.iter().enumerate() {
+        // Widened before the subtraction, the digit needs no second widening to be added.
+        let digit = u64::from(byte).wrapping_sub(u64::from(b'0'));
+        if digit > 9 {
+            return (mantissa, count);
+        }
+        // Wrapping: a number of more than MAX_DIGITS digits is refused by the caller.
+        mantissa = mantissa.wrapping_mul(10).wrapping_add(digit);
+    }
+    (mantissa, RUN)
 }
 
 /// `digits [. [digits]]` or `. digits` at the start of `bytes`, with one to [`MAX_DIGITS`]
@@ -322,6 +392,28 @@ mod tests {
                 .collect()
         };
         assert_eq!(values(&fast), values(&general), "{text:?}");
+        // Read from text at hand that runs on past its `\n` (as the reader of a file takes it),
+        // the line gives the same blocks as the line handed out without its line end.
+        if !text.contains('\n') {
+            let handed_out = text.strip_suffix('\r').unwrap_or(text);
+            let unread = format!("{text}\n{NEXT_LINE}");
+            let mut at_hand = LineBlocks::new();
+            let taken = read_plain_line_in(line(&unread, offset), FileId(1), &mut at_hand);
+            if let Some(taken) = taken {
+                assert_eq!(taken, text.len() + 1, "{text:?}");
+                let general = read_with(parse_any_line, handed_out, offset);
+                assert_eq!(at_hand.as_slice(), general, "{text:?}");
+                assert_eq!(values(at_hand.as_slice()), values(&general), "{text:?}");
+            } else {
+                // Refused only when the line is not plain, or when the text at hand runs past
+                // 4 GiB (where spans saturate).
+                let past_4_gib = u32::try_from(unread.len())
+                    .ok()
+                    .and_then(|length| offset.checked_add(length))
+                    .is_none();
+                assert!(past_4_gib || !is_plain(handed_out), "{text:?}");
+            }
+        }
     }
 
     #[test]
@@ -350,6 +442,56 @@ mod tests {
                 assert_eq!(length, text.len());
             }
         }
+    }
+
+    /// The windowed reader reads what the byte-by-byte one reads, or leaves it when `bytes` ends
+    /// too close after the number.
+    fn assert_windowed_agrees(bytes: &[u8]) {
+        let by_byte = unsigned_decimal(bytes).map(|(decimal, rest)| (decimal, rest.len()));
+        match windowed_decimal(bytes).map(|(decimal, rest)| (decimal, rest.len())) {
+            Some(windowed) => assert_eq!(Some(windowed), by_byte, "{bytes:?}"),
+            None => assert!(
+                by_byte.is_none_or(|(_, rest)| rest < RUN),
+                "{bytes:?}: windowed refused {by_byte:?}"
+            ),
+        }
+    }
+
+    #[test]
+    fn the_windowed_and_the_byte_by_byte_readers_agree() {
+        for text in [
+            "0",
+            "1.",
+            ".5",
+            "54.808",
+            "-1",
+            ".",
+            "",
+            "1.2.3",
+            "1 2",
+            "999999999999999",
+            "9999999999999999",
+            "99999999.9999999",
+            "99999999.99999999",
+            "1.00000000000001",
+            "1.000000000000001",
+            "000000000000001",
+            "0000000000000001",
+            ".000000000000001",
+            "123456789012345678901234567890.5",
+        ] {
+            // Every length of text after the number, from none to more than the windows need,
+            // with what may follow a number: a blank, a letter, a line end, a point.
+            for after in [" ", "X", "\n", "."] {
+                for length in 0..=2 * RUN {
+                    let bytes = format!("{text}{}", after.repeat(length));
+                    assert_windowed_agrees(bytes.as_bytes());
+                }
+            }
+        }
+        // A number with text enough after it is read by the windows.
+        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\n").is_some());
+        assert!(windowed_decimal(b"54.808\n").is_none());
     }
 
     #[test]
@@ -451,6 +593,10 @@ mod tests {
         }
     }
 
+    /// What follows a line in the tests of text at hand: enough for the number windows of the
+    /// line before it.
+    const NEXT_LINE: &str = "G01 X1.5 (the next line: text for the windows of the line before)\n";
+
     #[test]
     fn a_line_read_with_its_line_end_reads_as_the_line_without_it() {
         for (unread, line_length) in [
@@ -460,6 +606,7 @@ mod tests {
             ("  g1x1y2\n(comment)\n", 8),
             ("X1\rY2\n", 5),
         ] {
+            let unread = &format!("{unread}{NEXT_LINE}");
             let mut fast = LineBlocks::new();
             let taken = read_plain_line_in(line(unread, 7), FileId(1), &mut fast);
             assert_eq!(taken, Some(unread.find('\n').unwrap() + 1), "{unread:?}");
@@ -487,6 +634,19 @@ mod tests {
     }
 
     #[test]
+    fn a_number_too_close_to_the_end_of_the_text_at_hand_leaves_the_line_to_the_line_reader() {
+        let read =
+            |unread: &str| read_plain_line_in(line(unread, 7), FileId(1), &mut LineBlocks::new());
+        // A number's windows take RUN bytes from its first digit and from the first digit after
+        // its point: the line's `\n` and what follows it count.
+        let tail = |length: usize| "\n".repeat(length);
+        assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 1))), Some(8));
+        assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 2))), None);
+        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 2))), Some(7));
+        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 3))), None);
+    }
+
+    #[test]
     fn lines_at_the_end_of_a_4_gib_file_read_the_same_on_both_paths() {
         // Spans saturate there; the fast path leaves such lines to the general reader.
         for offset in [u32::MAX - 20, u32::MAX - 5, u32::MAX] {
@@ -503,6 +663,9 @@ mod tests {
             negative in proptest::bool::ANY,
         ) {
             let text = if point { format!("{whole}.{fraction}") } else { whole.clone() };
+            for after in ["", " ", "X1.5 Y-2.", "\nG01 X54.808 Y30.491 Z-1.288\n"] {
+                assert_windowed_agrees(format!("{text}{after}").as_bytes());
+            }
             let general = general_number(&text, negative);
             match fast_number(text.as_bytes(), negative) {
                 Some((fast, length)) => {
