@@ -37,7 +37,7 @@ pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks
 /// Reads the first line of `unread` (text from the start of a line on, its line end included)
 /// into one block of `out` when it is a plain line ended by `\n`, as [`read_plain_line`] reads
 /// the line without its line end: how many bytes the line takes with its `\n`, or `None` for a
-/// line that is not plain, whose `\n` is not in `unread`, or with a number closer than [`RUN`]
+/// line that is not plain, whose `\n` is not in `unread`, or with a word closer than [`RUN`] + 2
 /// bytes to the end of `unread` (the block it may have begun is then to be thrown away).
 #[inline(always)]
 pub(super) fn read_plain_line_in(
@@ -97,6 +97,11 @@ fn read_plain_words<const WINDOWED: bool>(
             if *letter == b'\n' {
                 break;
             }
+            return None;
+        }
+        // The windows need RUN bytes after the letter and the sign: tested once here, the
+        // tests of the sign and of the first window fold into it.
+        if WINDOWED && rest.len() < RUN + 2 {
             return None;
         }
         let (number, after_number) = signed_number::<WINDOWED>(after_letter)?;
@@ -637,13 +642,16 @@ mod tests {
     fn a_number_too_close_to_the_end_of_the_text_at_hand_leaves_the_line_to_the_line_reader() {
         let read =
             |unread: &str| read_plain_line_in(line(unread, 7), FileId(1), &mut LineBlocks::new());
-        // A number's windows take RUN bytes from its first digit and from the first digit after
-        // its point: the line's `\n` and what follows it count.
+        // A word takes RUN + 2 bytes from its letter on (letter, sign, window), and a number's
+        // windows RUN bytes from its first digit and from the first digit after its point: the
+        // line's `\n` and what follows it count.
         let tail = |length: usize| "\n".repeat(length);
         assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 1))), Some(8));
         assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 2))), None);
-        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 2))), Some(7));
-        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 3))), None);
+        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 1))), Some(7));
+        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 2))), None);
+        assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 2))), Some(8));
+        assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 3))), None);
     }
 
     #[test]
