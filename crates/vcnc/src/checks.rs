@@ -31,6 +31,10 @@ pub struct TravelLimits<I> {
 pub struct TravelCheck {
     limits: Limits,
     stopped: bool,
+    /// The machine has X, Y and Z and no other axis: a move's other three coordinates have no
+    /// travel to leave, and only three are compared (about 20 instructions a move less on the
+    /// consumer's thread).
+    xyz_only: bool,
 }
 
 /// Each axis's travel with the slack added, infinite for an axis the machine does not have:
@@ -65,7 +69,13 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for TravelLimits<I> {
         }
         let item = self.source.next()?;
         if let Ok(segment) = &item {
-            if let Some(alarm) = self.check.limits.check(segment) {
+            let limits = &self.check.limits;
+            let alarm = if self.check.xyz_only {
+                limits.check::<3>(segment)
+            } else {
+                limits.check::<AXES>(segment)
+            };
+            if let Some(alarm) = alarm {
                 self.check.stopped = true;
                 return Some(Err(alarm));
             }
@@ -91,6 +101,7 @@ impl TravelCheck {
                 }),
             },
             stopped: false,
+            xyz_only: (0..AXES).all(|i| machine.axes[i].is_some() == (i < 3)),
         }
     }
 
@@ -99,14 +110,19 @@ impl TravelCheck {
     /// the stream has stopped (and empties every later batch).
     pub fn check_batch(&mut self, batch: &mut Vec<Result<Segment, Alarm>>) -> bool {
         let all = 0..batch.len();
-        self.check_items(batch, all)
+        if self.xyz_only {
+            self.check_items::<3>(batch, all)
+        } else {
+            self.check_items::<AXES>(batch, all)
+        }
     }
 
     /// [`TravelCheck::check_batch`] for the items in `range` of `items` alone (the ones before
     /// it have passed; the ones after are not final yet): at the first that leaves the travel,
     /// `items` is cut and its alarm added.
+    /// Only the first `N` coordinates are compared: the machine has no other axis.
     #[inline(always)]
-    fn check_items(
+    fn check_items<const N: usize>(
         &mut self,
         items: &mut Vec<Result<Segment, Alarm>>,
         range: std::ops::Range<usize>,
@@ -126,12 +142,12 @@ impl TravelCheck {
                 ..
             }) = item
             {
-                if limits.inside(&motion.to.0) {
+                if limits.inside::<N>(&motion.to.0) {
                     return None;
                 }
             }
             match item {
-                Ok(segment) => limits.check(segment).map(|alarm| (start + i, alarm)),
+                Ok(segment) => limits.check::<N>(segment).map(|alarm| (start + i, alarm)),
                 Err(_) => None,
             }
         });
@@ -153,18 +169,23 @@ impl crate::interp::ReleasedCheck for TravelCheck {
         items: &mut Vec<Result<Segment, Alarm>>,
         released: std::ops::Range<usize>,
     ) -> bool {
-        self.check_items(items, released)
+        if self.xyz_only {
+            self.check_items::<3>(items, released)
+        } else {
+            self.check_items::<AXES>(items, released)
+        }
     }
 }
 
 impl Limits {
-    /// The overtravel alarm of `segment`, if it leaves the travel.
+    /// The overtravel alarm of `segment`, if it leaves the travel of its first `N` axes (the
+    /// others are not the machine's).
     #[inline(always)]
-    fn check(&self, segment: &Segment) -> Option<Alarm> {
+    fn check<const N: usize>(&self, segment: &Segment) -> Option<Alarm> {
         // Lines first (most of a stream), then one `match` on the kind: rapids, like lines, need
         // only their end.
         if let SegmentKind::Line { motion, .. } = &segment.kind {
-            if self.inside(&motion.to.0) {
+            if self.inside::<N>(&motion.to.0) {
                 return None;
             }
             return Some(self.alarm(segment, &motion.to.0));
@@ -181,7 +202,7 @@ impl Limits {
             } => (motion, Some((center, *direction, *plane, *extra_turns))),
             _ => return None,
         };
-        if !self.inside(&motion.to.0) {
+        if !self.inside::<N>(&motion.to.0) {
             return Some(self.alarm(segment, &motion.to.0));
         }
         let (center, direction, plane, extra_turns) = arc?;
@@ -208,19 +229,20 @@ impl Limits {
         for_arc_extreme_points(motion, center.xyz(), direction, plane, sweep, |p| {
             let mut point = motion.to.0;
             point[..3].copy_from_slice(&p);
-            if found.is_none() && !self.inside(&point) {
+            if found.is_none() && !self.inside::<AXES>(&point) {
                 found = Some(self.alarm(segment, &point));
             }
         });
         found
     }
 
-    /// True when every coordinate of `point` is within its axis's travel (NaN is not).
+    /// True when each of the first `N` coordinates of `point` is within its axis's travel
+    /// (NaN is not).
     #[inline(always)]
-    fn inside(&self, point: &[f64; AXES]) -> bool {
+    fn inside<const N: usize>(&self, point: &[f64; AXES]) -> bool {
         // Every axis compared, without a branch per axis: the comparisons go two by two in
         // vector instructions, and this runs for every move of the stream.
-        (0..AXES).fold(true, |inside, i| {
+        (0..N.min(AXES)).fold(true, |inside, i| {
             inside & (point[i] >= self.low[i]) & (point[i] <= self.high[i])
         })
     }
@@ -358,9 +380,35 @@ mod tests {
             let machine = Machine::default();
             let mut batch: Vec<_> =
                 interpret_str(&program, &machine, Options::default()).collect();
-            TravelCheck::new(&machine).check_batch(&mut batch);
+            let check = TravelCheck::new(&machine);
+            proptest::prop_assert!(check.xyz_only);
+            // The three-axis comparison the default machine gets against all six.
+            let mut six_axes = TravelCheck { xyz_only: false, ..check.clone() };
+            let mut compared_on_six = batch.clone();
+            six_axes.check_batch(&mut compared_on_six);
+            check.clone().check_batch(&mut batch);
+            proptest::prop_assert_eq!(&batch, &compared_on_six, "{}", program);
             proptest::prop_assert_eq!(batch, checked(&program), "{}", program);
         }
+    }
+
+    #[test]
+    fn a_rotary_axis_is_checked_on_a_machine_that_has_one() {
+        // With an A axis the check compares every coordinate, not only X, Y and Z.
+        let text = format!(
+            "{}\n[axes.a]\nmin = -10.0\nmax = 10.0\nrapid = 3600.0\nmax_feed = 3600.0\nacceleration = 2000.0\njerk = 50000.0\n",
+            crate::machine::DEFAULT_MACHINE_TOML
+        );
+        let machine = Machine::from_toml(&text).unwrap();
+        let mut check = TravelCheck::new(&machine);
+        assert!(!check.xyz_only);
+        let mut batch: Vec<_> =
+            interpret_str("G90 G00 A5.\nG00 A20.\nM30\n", &machine, Options::default()).collect();
+        assert!(!check.check_batch(&mut batch));
+        assert_eq!(batch.len(), 2, "{batch:?}");
+        let alarm = batch[1].as_ref().unwrap_err();
+        assert_eq!(alarm.code, AlarmCode::Overtravel);
+        assert!(alarm.message.contains('A'), "{}", alarm.message);
     }
 
     #[test]
