@@ -11,7 +11,7 @@
 
 use super::config::PlannerConfig;
 use super::profile::{PathLimits, Profile};
-use super::{finite, lesser};
+use super::{finite, greater, lesser};
 use crate::machine::{Machine, AXES};
 use crate::motion::{arc_sweep, ArcDirection, Feed, MachinePos, Move, PathMode, Plane};
 
@@ -30,6 +30,9 @@ pub(crate) struct AxisLimits {
     pub(crate) path_speed: f64,
     /// One past the last axis the machine has: the axes after it never limit anything.
     pub(crate) span: usize,
+    /// X, Y and Z have the same acceleration and the same jerk (as on most machines; or none
+    /// of them is there): see [`AxisLimits::project_xyz`].
+    uniform_xyz: bool,
     /// The reciprocals of the limits above (0 for none), so that projecting them onto a
     /// direction takes one division, not one per axis.
     inverse: Inverses,
@@ -68,6 +71,7 @@ impl AxisLimits {
         let rapid = field(|a| a.rapid, 1.0 / 60.0);
         let acceleration = field(|a| a.acceleration, 1.0);
         let jerk = field(|a| a.jerk, 1.0);
+        let same_on_xyz = |values: &[f64; AXES]| values[1] == values[0] && values[2] == values[0];
         AxisLimits {
             feed,
             rapid,
@@ -78,6 +82,7 @@ impl AxisLimits {
                 .rev()
                 .find(|&i| machine.axes[i].is_some())
                 .map_or(0, |i| i + 1),
+            uniform_xyz: same_on_xyz(&acceleration) && same_on_xyz(&jerk),
             inverse: Inverses {
                 feed: reciprocals(&feed),
                 rapid: reciprocals(&rapid),
@@ -147,7 +152,48 @@ impl AxisLimits {
     /// that the machine lacks caps nothing, as in the general loop.
     #[inline(always)]
     fn project_xyz(&self, share: &[f64; 3], rapid: bool) -> Projection {
+        if self.uniform_xyz {
+            return self.project_uniform_xyz(share, rapid);
+        }
         self.project_first(share, rapid)
+    }
+
+    /// [`AxisLimits::project_xyz`] on a machine whose X, Y and Z have the same acceleration and
+    /// jerk. Then the largest share caps both, and gives the same caps as the general loop to
+    /// the bit: a product rounded is never smaller than one of a smaller share rounded, so the
+    /// largest product is that of the largest share. The turning acceleration is the axes' one,
+    /// since a move with X Y Z travel has a share of at least 1/sqrt(3) on one of them.
+    #[inline(always)]
+    fn project_uniform_xyz(&self, share: &[f64; 3], rapid: bool) -> Projection {
+        let rates = if rapid {
+            &self.inverse.rapid
+        } else {
+            &self.inverse.feed
+        };
+        let mut speed = 0.0_f64;
+        let mut largest = 0.0_f64;
+        for (i, &s) in share.iter().enumerate() {
+            let demand = s * rates[i];
+            if demand > speed {
+                speed = demand;
+            }
+            if s > largest {
+                largest = s;
+            }
+        }
+        // The general loop starts from 0 too: a share of 0 everywhere caps nothing.
+        let acceleration = greater(0.0, largest * self.inverse.acceleration[0]);
+        let jerk = greater(0.0, largest * self.inverse.jerk[0]);
+        Projection {
+            speed: 1.0 / speed,
+            acceleration: 1.0 / acceleration,
+            jerk: 1.0 / jerk,
+            turning: if largest > 1e-12 {
+                self.acceleration[0]
+            } else {
+                f64::INFINITY
+            },
+        }
     }
 
     /// The caps from the shares of the first `share.len()` axes (the others do not move, or the
@@ -578,7 +624,14 @@ mod tests {
             jerks in proptest::array::uniform3(limit()),
             absent in 0_usize..4,
             rapid in any::<bool>(),
+            uniform in any::<bool>(),
         ) {
+            // Half the machines have the same acceleration and jerk on X Y Z.
+            let (accelerations, jerks) = if uniform {
+                ([accelerations[0]; 3], [jerks[0]; 3])
+            } else {
+                (accelerations, jerks)
+            };
             let machine = xyz_machine(rates, accelerations, jerks, absent);
             let axes = AxisLimits::new(&machine, &PlannerConfig::default());
             prop_assert!(axes.span <= 3);
@@ -606,7 +659,13 @@ mod tests {
             accelerations in proptest::array::uniform3(limit()),
             jerks in proptest::array::uniform3(limit()),
             absent in 0_usize..4,
+            uniform in any::<bool>(),
         ) {
+            let (accelerations, jerks) = if uniform {
+                ([accelerations[0]; 3], [jerks[0]; 3])
+            } else {
+                (accelerations, jerks)
+            };
             // A machine with a C axis of tight limits: it never moves in an arc, and must not cap
             // it.
             let mut machine = xyz_machine(rates, accelerations, jerks, absent);
