@@ -639,6 +639,26 @@ impl RecordText<'_> {
         self.advance(len);
     }
 
+    /// Appends `key` and `value` rounded to 1e-6, copying the text `memory` holds when it is
+    /// the text of `value`, and leaving `memory` as it is: for a field that often has the value
+    /// of another (an arc's centre in Z, the end's Z).
+    #[inline(always)]
+    pub(crate) fn decimal_as(&mut self, key: impl Into<Key>, memory: &Remembered, value: f64) {
+        let key = &key.into();
+        if value.to_bits() != memory.bits {
+            self.decimal(*key, value);
+            return;
+        }
+        let window: &mut [u8; KEY + Remembered::LONGEST] = self.window();
+        *window.first_chunk_mut().expect("room") = key.block;
+        let text: &mut [u8; Remembered::LONGEST] = (&mut window
+            [key.len()..key.len() + Remembered::LONGEST])
+            .try_into()
+            .expect("room");
+        *text = memory.text;
+        self.advance(key.len() + usize::from(memory.len));
+    }
+
     /// Appends `key` and `value` rounded to 1e-6, reusing the text of `memory` when the value
     /// is the same as last time.
     #[inline(always)]
@@ -938,6 +958,24 @@ mod tests {
             }
             let field = format!("{key}{}", reference(value));
             prop_assert_eq!(text(&out), format!("{field}{field}"));
+        }
+
+        #[test]
+        fn a_number_written_as_a_remembered_one_is_its_reference_text(
+            value in prop_oneof![any::<f64>(), -2.0e6..2.0e6f64],
+            other in prop_oneof![any::<f64>(), -2.0e6..2.0e6f64],
+            same in any::<bool>(),
+        ) {
+            // The memory holds the text of the value or of another; it is copied only in the
+            // first case, and stays as it was in both.
+            let mut out = OutBuffer::new(64);
+            let mut memory = Remembered::default();
+            out.record(0).remembered(Key::new(""), &mut memory, if same { value } else { other });
+            out.clear();
+            let before = (memory.bits, memory.len, memory.text);
+            out.record(0).decimal_as(Key::new(",\"cz\":"), &memory, value);
+            prop_assert_eq!(text(&out), format!(",\"cz\":{}", reference(value)));
+            prop_assert_eq!((memory.bits, memory.len, memory.text), before);
         }
 
         #[test]
