@@ -284,6 +284,49 @@ fn programmed_speed(feed: &Feed, length: f64, feed_override: f64) -> Option<f64>
         .map(|f| f / 60.0 * feed_override)
 }
 
+/// The path speed of the last feed per minute met, kept for the moves after it: consecutive
+/// moves mostly share their feed and override, and comparing them costs less than working the
+/// speed out again (a test of the feed, a division and a multiplication).
+///
+/// It always holds the speed [`programmed_speed`] gives for a feed per minute of `feed` under
+/// `feed_override` (their bits), at first for a feed that is not a number.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FeedSpeeds {
+    feed: u64,
+    feed_override: u64,
+    speed: Option<f64>,
+}
+
+impl Default for FeedSpeeds {
+    fn default() -> FeedSpeeds {
+        FeedSpeeds {
+            feed: f64::NAN.to_bits(),
+            feed_override: 1.0_f64.to_bits(),
+            speed: programmed_speed(&Feed::PerMinute(f64::NAN), 0.0, 1.0),
+        }
+    }
+}
+
+impl FeedSpeeds {
+    /// [`programmed_speed`], from the kept speed when the feed per minute and the override are
+    /// those of last time.
+    #[inline(always)]
+    pub(crate) fn speed(&mut self, feed: &Feed, length: f64, feed_override: f64) -> Option<f64> {
+        let Feed::PerMinute(per_minute) = *feed else {
+            return programmed_speed(feed, length, feed_override);
+        };
+        let key = (per_minute.to_bits(), feed_override.to_bits());
+        if key != (self.feed, self.feed_override) {
+            *self = FeedSpeeds {
+                feed: key.0,
+                feed_override: key.1,
+                speed: programmed_speed(feed, length, feed_override),
+            };
+        }
+        self.speed
+    }
+}
+
 impl MotionLimits {
     /// Scales the acceleration for a stop at one end (see
     /// `PlannerConfig::stop_acceleration_factor`); a second stop does not scale it again.
@@ -313,7 +356,7 @@ fn bounded((mut limits, mut ends): (MotionLimits, Ends)) -> (MotionLimits, Ends)
 #[inline(always)]
 pub(crate) fn line(
     motion: &Move,
-    feed: Option<&Feed>,
+    feed: Option<(&Feed, &mut FeedSpeeds)>,
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
@@ -324,14 +367,14 @@ pub(crate) fn line(
 #[inline(always)]
 fn unbounded_line(
     motion: &Move,
-    feed: Option<&Feed>,
+    feed: Option<(&Feed, &mut FeedSpeeds)>,
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
 ) -> (MotionLimits, Ends) {
     let (length, caps, direction) = straight(motion, axes, feed.is_none());
     let axis_speed = lesser(axes.path_speed, caps.speed);
-    let programmed = feed.map(|f| programmed_speed(f, length, feed_override));
+    let programmed = feed.map(|(f, speeds)| speeds.speed(f, length, feed_override));
     let cruise = match programmed {
         Some(Some(v)) => lesser(v, axis_speed),
         _ => axis_speed,
@@ -386,6 +429,7 @@ pub(crate) struct ArcPath<'a> {
 #[inline(always)]
 pub(crate) fn arc(
     path: &ArcPath<'_>,
+    speeds: &mut FeedSpeeds,
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
@@ -412,7 +456,7 @@ pub(crate) fn arc(
     let axial = motion.to.0[n] - motion.from.0[n];
     let length = norm(planar, axial);
     if length <= 1e-12 || radius <= 1e-12 {
-        return line(motion, Some(feed), axes, config, feed_override);
+        return line(motion, Some((feed, speeds)), axes, config, feed_override);
     }
     // The tangent turns through the plane, so each plane axis carries the whole planar share
     // somewhere on a long enough arc; taking it everywhere is the safe side. The plane's axes
@@ -439,7 +483,7 @@ pub(crate) fn arc(
     } else {
         1.0
     };
-    let programmed = programmed_speed(feed, length, feed_override);
+    let programmed = speeds.speed(feed, length, feed_override);
     let cruise = programmed.map_or(top, |v| v.min(top));
     let sign = match direction {
         ArcDirection::CounterClockwise => 1.0,
@@ -610,7 +654,43 @@ mod tests {
         prop_oneof![Just(f64::INFINITY), 1.0..1e6_f64]
     }
 
+    fn a_feed() -> impl Strategy<Value = Feed> {
+        // A few feeds per minute, so that they repeat, and the other kinds between them.
+        let per_minute = prop_oneof![
+            Just(1500.0),
+            Just(800.0),
+            Just(0.0),
+            Just(-5.0),
+            Just(f64::NAN),
+            Just(f64::INFINITY),
+            1.0..1e5_f64,
+        ];
+        prop_oneof![
+            4 => per_minute.prop_map(Feed::PerMinute),
+            1 => (0.01..1.0_f64, proptest::option::of(100.0..1e4_f64)).prop_map(
+                |(per_revolution, rpm)| Feed::PerRevolution { per_revolution, rpm }
+            ),
+            1 => (0.1..100.0_f64).prop_map(Feed::InverseTime),
+        ]
+    }
+
     proptest! {
+        /// The kept speed of a feed is the speed worked out, whatever came before.
+        #[test]
+        fn a_kept_feed_speed_is_the_programmed_speed(
+            moves in proptest::collection::vec(
+                (a_feed(), 0.0..50.0_f64, prop_oneof![Just(1.0), Just(1.37), 0.1..2.0_f64]),
+                1..40,
+            ),
+        ) {
+            let mut speeds = FeedSpeeds::default();
+            for (feed, length, feed_override) in moves {
+                let kept = speeds.speed(&feed, length, feed_override).map(f64::to_bits);
+                let worked_out = programmed_speed(&feed, length, feed_override).map(f64::to_bits);
+                prop_assert_eq!(kept, worked_out);
+            }
+        }
+
         #[test]
         fn the_xyz_fast_path_gives_the_general_path_to_the_bit(
             from in proptest::array::uniform6(-500.0..500.0_f64),
