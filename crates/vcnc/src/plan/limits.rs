@@ -467,24 +467,24 @@ pub(crate) fn arc(
     share[b] = p;
     share[n] = q;
     let caps = axes.project_xyz(&share, false);
-    let axis_speed = caps.speed.min(axes.path_speed);
-    let plane_acceleration = axes.acceleration[a].min(axes.acceleration[b]);
+    // The minima and maxima below take a first value that is never NaN (the path speed and the
+    // axes' limits, and what comes of them): one instruction each, see `lesser`.
+    let axis_speed = lesser(axes.path_speed, caps.speed);
+    let plane_acceleration = lesser(axes.acceleration[a], axes.acceleration[b]);
     // v_planar^2 / r <= share * a, with v_planar = p v.
     let centripetal_speed =
         (config.normal_acceleration_share * plane_acceleration * radius).sqrt() / p;
-    let top = axis_speed.min(centripetal_speed);
+    let top = lesser(axis_speed, centripetal_speed);
     // The tangent keeps what the normal acceleration at the arc's top speed leaves over. The top
     // speed, not the feed, sets it, so a faster feed never makes an arc accelerate harder.
     let normal = (p * top).powi(2) / radius;
     let tangential_room = if finite(plane_acceleration) {
-        (1.0 - (normal / plane_acceleration).powi(2))
-            .max(0.0)
-            .sqrt()
+        greater(0.0, 1.0 - (normal / plane_acceleration).powi(2)).sqrt()
     } else {
         1.0
     };
     let programmed = speeds.speed(feed, length, feed_override);
-    let cruise = programmed.map_or(top, |v| v.min(top));
+    let cruise = programmed.map_or(top, |v| lesser(top, v));
     let sign = match direction {
         ArcDirection::CounterClockwise => 1.0,
         ArcDirection::Clockwise => -1.0,
@@ -495,7 +495,7 @@ pub(crate) fn arc(
     // The start is `radius` from the centre (the floor only matters to a NaN).
     let start_tangent = arc_tangent(
         (motion.from.0[a] - c[a], motion.from.0[b] - c[b]),
-        radius.max(1e-12),
+        greater(1e-12, radius),
         sign,
         p,
         axes_abn,
@@ -504,7 +504,7 @@ pub(crate) fn arc(
     let (ra, rb) = (end[a] - c[a], end[b] - c[b]);
     let end_tangent = arc_tangent(
         (ra, rb),
-        norm(ra, rb).max(1e-12),
+        greater(1e-12, norm(ra, rb)),
         sign,
         p,
         axes_abn,
@@ -512,7 +512,7 @@ pub(crate) fn arc(
     );
     let acceleration = caps.acceleration;
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
-    let unblended_share = tangential_room.min(config.unblended_arc_tangential_share);
+    let unblended_share = lesser(tangential_room, config.unblended_arc_tangential_share);
     let unblended_factor = if continuous {
         config.unblended_acceleration_factor
     } else {
