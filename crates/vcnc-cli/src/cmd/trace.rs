@@ -401,9 +401,10 @@ impl Writer {
             // the one without the loop over the axes, the compiler can bound the record's
             // length and checks no window.
             if self.rotary.is_empty() {
+                let [_, _, z_memory, _, _, _, feed_memory] = &mut self.memory;
                 jsonl_end(
                     &mut text,
-                    &mut self.memory[6],
+                    [z_memory, feed_memory],
                     &self.arc_words,
                     self.work,
                     &record,
@@ -417,9 +418,10 @@ impl Writer {
                     };
                     text.remembered(key, &mut self.memory[axis.index()], to[axis.index()]);
                 }
+                let [_, _, z_memory, _, _, _, feed_memory] = &mut self.memory;
                 jsonl_end(
                     &mut text,
-                    &mut self.memory[6],
+                    [z_memory, feed_memory],
                     &self.arc_words,
                     self.work,
                     &record,
@@ -511,7 +513,7 @@ impl Writer {
 #[inline(always)]
 fn jsonl_end(
     text: &mut RecordText<'_>,
-    feed_memory: &mut Remembered,
+    [z_memory, feed_memory]: [&mut Remembered; 2],
     arc_words: &[[ArcWords; 3]; 2],
     work: bool,
     record: &Record<'_>,
@@ -522,7 +524,8 @@ fn jsonl_end(
     if let Some((center, direction, plane)) = record.arc {
         text.decimal(key!("cx"), center[0]);
         text.decimal(key!("cy"), center[1]);
-        text.decimal(key!("cz"), center[2]);
+        // In the XY plane, the centre's Z is the end's, just written.
+        text.decimal_as(key!("cz"), z_memory, center[2]);
         let (by_direction, by_plane) = arc_index(direction, plane);
         text.fixed(&arc_words[by_direction][by_plane].json);
     }

@@ -186,13 +186,22 @@ fn half_turn(tan_half: f64) -> f64 {
     if tan_half > SERIES_LIMIT {
         return tan_half.atan();
     }
-    let t2 = tan_half * tan_half;
-    // atan t = t - t^3/3 + t^5/5 - ... + t^13/13, in Horner form; t^15/15 < 2e-11 t.
-    let series = 1.0
-        - t2 * (1.0 / 3.0
-            - t2 * (1.0 / 5.0
-                - t2 * (1.0 / 7.0 - t2 * (1.0 / 9.0 - t2 * (1.0 / 11.0 - t2 * (1.0 / 13.0))))));
-    tan_half * series
+    tan_half * atan_series(tan_half * tan_half)
+}
+
+/// atan t / t = 1 - t^2/3 + t^4/5 - ... + t^12/13 from `t2` = t^2, in Horner form (t^14/15 is
+/// below 2e-11 for the t of [`half_turn`]), every other level negated: c - t2 x, rounded, is
+/// the negative of t2 x - c rounded, so that each level is a product and a sum with a
+/// constant, two instructions, instead of three with the constant loaded first. The same to
+/// the bit as the plain form (see the tests).
+#[inline(always)]
+fn atan_series(t2: f64) -> f64 {
+    let negated_5 = t2 * (1.0 / 13.0) - 1.0 / 11.0;
+    let level_4 = 1.0 / 9.0 + t2 * negated_5;
+    let negated_3 = t2 * level_4 - 1.0 / 7.0;
+    let level_2 = 1.0 / 5.0 + t2 * negated_3;
+    let negated_1 = t2 * level_2 - 1.0 / 3.0;
+    1.0 + t2 * negated_1
 }
 
 #[cfg(test)]
@@ -253,6 +262,36 @@ mod tests {
                 (fast - exact).abs() <= 1e-10 * exact.max(1e-300),
                 "{t}: {fast} {exact}"
             );
+        }
+    }
+
+    /// The series in the plain Horner form.
+    fn plain_series(t2: f64) -> f64 {
+        1.0 - t2
+            * (1.0 / 3.0
+                - t2 * (1.0 / 5.0
+                    - t2 * (1.0 / 7.0 - t2 * (1.0 / 9.0 - t2 * (1.0 / 11.0 - t2 * (1.0 / 13.0))))))
+    }
+
+    #[test]
+    fn the_series_with_negated_levels_is_the_plain_one_to_the_bit() {
+        // Every t below the series' limit, 1e-7 apart, and the smallest ones.
+        for i in 0..=2_000_000 {
+            let t = f64::from(i) * 1e-7;
+            let t2 = t * t;
+            assert_eq!(atan_series(t2).to_bits(), plain_series(t2).to_bits(), "{t}");
+        }
+        for t in [f64::MIN_POSITIVE, 1e-300, 1e-160, 1e-20, 1e-9] {
+            let t2 = t * t;
+            assert_eq!(atan_series(t2).to_bits(), plain_series(t2).to_bits(), "{t}");
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn the_series_with_negated_levels_is_the_plain_one_on_any_turn(t in 0.0..0.2_f64) {
+            let t2 = t * t;
+            proptest::prop_assert_eq!(atan_series(t2).to_bits(), plain_series(t2).to_bits());
         }
     }
 

@@ -11,7 +11,7 @@
 
 use super::config::PlannerConfig;
 use super::profile::{PathLimits, Profile};
-use super::{finite, lesser};
+use super::{finite, greater, lesser};
 use crate::machine::{Machine, AXES};
 use crate::motion::{arc_sweep, ArcDirection, Feed, MachinePos, Move, PathMode, Plane};
 
@@ -30,6 +30,9 @@ pub(crate) struct AxisLimits {
     pub(crate) path_speed: f64,
     /// One past the last axis the machine has: the axes after it never limit anything.
     pub(crate) span: usize,
+    /// X, Y and Z have the same acceleration and the same jerk (as on most machines; or none
+    /// of them is there): see [`AxisLimits::project_xyz`].
+    uniform_xyz: bool,
     /// The reciprocals of the limits above (0 for none), so that projecting them onto a
     /// direction takes one division, not one per axis.
     inverse: Inverses,
@@ -68,6 +71,7 @@ impl AxisLimits {
         let rapid = field(|a| a.rapid, 1.0 / 60.0);
         let acceleration = field(|a| a.acceleration, 1.0);
         let jerk = field(|a| a.jerk, 1.0);
+        let same_on_xyz = |values: &[f64; AXES]| values[1] == values[0] && values[2] == values[0];
         AxisLimits {
             feed,
             rapid,
@@ -78,6 +82,7 @@ impl AxisLimits {
                 .rev()
                 .find(|&i| machine.axes[i].is_some())
                 .map_or(0, |i| i + 1),
+            uniform_xyz: same_on_xyz(&acceleration) && same_on_xyz(&jerk),
             inverse: Inverses {
                 feed: reciprocals(&feed),
                 rapid: reciprocals(&rapid),
@@ -147,7 +152,48 @@ impl AxisLimits {
     /// that the machine lacks caps nothing, as in the general loop.
     #[inline(always)]
     fn project_xyz(&self, share: &[f64; 3], rapid: bool) -> Projection {
+        if self.uniform_xyz {
+            return self.project_uniform_xyz(share, rapid);
+        }
         self.project_first(share, rapid)
+    }
+
+    /// [`AxisLimits::project_xyz`] on a machine whose X, Y and Z have the same acceleration and
+    /// jerk. Then the largest share caps both, and gives the same caps as the general loop to
+    /// the bit: a product rounded is never smaller than one of a smaller share rounded, so the
+    /// largest product is that of the largest share. The turning acceleration is the axes' one,
+    /// since a move with X Y Z travel has a share of at least 1/sqrt(3) on one of them.
+    #[inline(always)]
+    fn project_uniform_xyz(&self, share: &[f64; 3], rapid: bool) -> Projection {
+        let rates = if rapid {
+            &self.inverse.rapid
+        } else {
+            &self.inverse.feed
+        };
+        let mut speed = 0.0_f64;
+        let mut largest = 0.0_f64;
+        for (i, &s) in share.iter().enumerate() {
+            let demand = s * rates[i];
+            if demand > speed {
+                speed = demand;
+            }
+            if s > largest {
+                largest = s;
+            }
+        }
+        // The general loop starts from 0 too: a share of 0 everywhere caps nothing.
+        let acceleration = greater(0.0, largest * self.inverse.acceleration[0]);
+        let jerk = greater(0.0, largest * self.inverse.jerk[0]);
+        Projection {
+            speed: 1.0 / speed,
+            acceleration: 1.0 / acceleration,
+            jerk: 1.0 / jerk,
+            turning: if largest > 1e-12 {
+                self.acceleration[0]
+            } else {
+                f64::INFINITY
+            },
+        }
     }
 
     /// The caps from the shares of the first `share.len()` axes (the others do not move, or the
@@ -238,6 +284,49 @@ fn programmed_speed(feed: &Feed, length: f64, feed_override: f64) -> Option<f64>
         .map(|f| f / 60.0 * feed_override)
 }
 
+/// The path speed of the last feed per minute met, kept for the moves after it: consecutive
+/// moves mostly share their feed and override, and comparing them costs less than working the
+/// speed out again (a test of the feed, a division and a multiplication).
+///
+/// It always holds the speed [`programmed_speed`] gives for a feed per minute of `feed` under
+/// `feed_override` (their bits), at first for a feed that is not a number.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FeedSpeeds {
+    feed: u64,
+    feed_override: u64,
+    speed: Option<f64>,
+}
+
+impl Default for FeedSpeeds {
+    fn default() -> FeedSpeeds {
+        FeedSpeeds {
+            feed: f64::NAN.to_bits(),
+            feed_override: 1.0_f64.to_bits(),
+            speed: programmed_speed(&Feed::PerMinute(f64::NAN), 0.0, 1.0),
+        }
+    }
+}
+
+impl FeedSpeeds {
+    /// [`programmed_speed`], from the kept speed when the feed per minute and the override are
+    /// those of last time.
+    #[inline(always)]
+    pub(crate) fn speed(&mut self, feed: &Feed, length: f64, feed_override: f64) -> Option<f64> {
+        let Feed::PerMinute(per_minute) = *feed else {
+            return programmed_speed(feed, length, feed_override);
+        };
+        let key = (per_minute.to_bits(), feed_override.to_bits());
+        if key != (self.feed, self.feed_override) {
+            *self = FeedSpeeds {
+                feed: key.0,
+                feed_override: key.1,
+                speed: programmed_speed(feed, length, feed_override),
+            };
+        }
+        self.speed
+    }
+}
+
 impl MotionLimits {
     /// Scales the acceleration for a stop at one end (see
     /// `PlannerConfig::stop_acceleration_factor`); a second stop does not scale it again.
@@ -267,7 +356,7 @@ fn bounded((mut limits, mut ends): (MotionLimits, Ends)) -> (MotionLimits, Ends)
 #[inline(always)]
 pub(crate) fn line(
     motion: &Move,
-    feed: Option<&Feed>,
+    feed: Option<(&Feed, &mut FeedSpeeds)>,
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
@@ -278,14 +367,14 @@ pub(crate) fn line(
 #[inline(always)]
 fn unbounded_line(
     motion: &Move,
-    feed: Option<&Feed>,
+    feed: Option<(&Feed, &mut FeedSpeeds)>,
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
 ) -> (MotionLimits, Ends) {
     let (length, caps, direction) = straight(motion, axes, feed.is_none());
     let axis_speed = lesser(axes.path_speed, caps.speed);
-    let programmed = feed.map(|f| programmed_speed(f, length, feed_override));
+    let programmed = feed.map(|(f, speeds)| speeds.speed(f, length, feed_override));
     let cruise = match programmed {
         Some(Some(v)) => lesser(v, axis_speed),
         _ => axis_speed,
@@ -340,6 +429,7 @@ pub(crate) struct ArcPath<'a> {
 #[inline(always)]
 pub(crate) fn arc(
     path: &ArcPath<'_>,
+    speeds: &mut FeedSpeeds,
     axes: &AxisLimits,
     config: &PlannerConfig,
     feed_override: f64,
@@ -366,7 +456,7 @@ pub(crate) fn arc(
     let axial = motion.to.0[n] - motion.from.0[n];
     let length = norm(planar, axial);
     if length <= 1e-12 || radius <= 1e-12 {
-        return line(motion, Some(feed), axes, config, feed_override);
+        return line(motion, Some((feed, speeds)), axes, config, feed_override);
     }
     // The tangent turns through the plane, so each plane axis carries the whole planar share
     // somewhere on a long enough arc; taking it everywhere is the safe side. The plane's axes
@@ -377,24 +467,24 @@ pub(crate) fn arc(
     share[b] = p;
     share[n] = q;
     let caps = axes.project_xyz(&share, false);
-    let axis_speed = caps.speed.min(axes.path_speed);
-    let plane_acceleration = axes.acceleration[a].min(axes.acceleration[b]);
+    // The minima and maxima below take a first value that is never NaN (the path speed and the
+    // axes' limits, and what comes of them): one instruction each, see `lesser`.
+    let axis_speed = lesser(axes.path_speed, caps.speed);
+    let plane_acceleration = lesser(axes.acceleration[a], axes.acceleration[b]);
     // v_planar^2 / r <= share * a, with v_planar = p v.
     let centripetal_speed =
         (config.normal_acceleration_share * plane_acceleration * radius).sqrt() / p;
-    let top = axis_speed.min(centripetal_speed);
+    let top = lesser(axis_speed, centripetal_speed);
     // The tangent keeps what the normal acceleration at the arc's top speed leaves over. The top
     // speed, not the feed, sets it, so a faster feed never makes an arc accelerate harder.
     let normal = (p * top).powi(2) / radius;
     let tangential_room = if finite(plane_acceleration) {
-        (1.0 - (normal / plane_acceleration).powi(2))
-            .max(0.0)
-            .sqrt()
+        greater(0.0, 1.0 - (normal / plane_acceleration).powi(2)).sqrt()
     } else {
         1.0
     };
-    let programmed = programmed_speed(feed, length, feed_override);
-    let cruise = programmed.map_or(top, |v| v.min(top));
+    let programmed = speeds.speed(feed, length, feed_override);
+    let cruise = programmed.map_or(top, |v| lesser(top, v));
     let sign = match direction {
         ArcDirection::CounterClockwise => 1.0,
         ArcDirection::Clockwise => -1.0,
@@ -405,7 +495,7 @@ pub(crate) fn arc(
     // The start is `radius` from the centre (the floor only matters to a NaN).
     let start_tangent = arc_tangent(
         (motion.from.0[a] - c[a], motion.from.0[b] - c[b]),
-        radius.max(1e-12),
+        greater(1e-12, radius),
         sign,
         p,
         axes_abn,
@@ -414,7 +504,7 @@ pub(crate) fn arc(
     let (ra, rb) = (end[a] - c[a], end[b] - c[b]);
     let end_tangent = arc_tangent(
         (ra, rb),
-        norm(ra, rb).max(1e-12),
+        greater(1e-12, norm(ra, rb)),
         sign,
         p,
         axes_abn,
@@ -422,7 +512,7 @@ pub(crate) fn arc(
     );
     let acceleration = caps.acceleration;
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
-    let unblended_share = tangential_room.min(config.unblended_arc_tangential_share);
+    let unblended_share = lesser(tangential_room, config.unblended_arc_tangential_share);
     let unblended_factor = if continuous {
         config.unblended_acceleration_factor
     } else {
@@ -564,7 +654,43 @@ mod tests {
         prop_oneof![Just(f64::INFINITY), 1.0..1e6_f64]
     }
 
+    fn a_feed() -> impl Strategy<Value = Feed> {
+        // A few feeds per minute, so that they repeat, and the other kinds between them.
+        let per_minute = prop_oneof![
+            Just(1500.0),
+            Just(800.0),
+            Just(0.0),
+            Just(-5.0),
+            Just(f64::NAN),
+            Just(f64::INFINITY),
+            1.0..1e5_f64,
+        ];
+        prop_oneof![
+            4 => per_minute.prop_map(Feed::PerMinute),
+            1 => (0.01..1.0_f64, proptest::option::of(100.0..1e4_f64)).prop_map(
+                |(per_revolution, rpm)| Feed::PerRevolution { per_revolution, rpm }
+            ),
+            1 => (0.1..100.0_f64).prop_map(Feed::InverseTime),
+        ]
+    }
+
     proptest! {
+        /// The kept speed of a feed is the speed worked out, whatever came before.
+        #[test]
+        fn a_kept_feed_speed_is_the_programmed_speed(
+            moves in proptest::collection::vec(
+                (a_feed(), 0.0..50.0_f64, prop_oneof![Just(1.0), Just(1.37), 0.1..2.0_f64]),
+                1..40,
+            ),
+        ) {
+            let mut speeds = FeedSpeeds::default();
+            for (feed, length, feed_override) in moves {
+                let kept = speeds.speed(&feed, length, feed_override).map(f64::to_bits);
+                let worked_out = programmed_speed(&feed, length, feed_override).map(f64::to_bits);
+                prop_assert_eq!(kept, worked_out);
+            }
+        }
+
         #[test]
         fn the_xyz_fast_path_gives_the_general_path_to_the_bit(
             from in proptest::array::uniform6(-500.0..500.0_f64),
@@ -578,7 +704,14 @@ mod tests {
             jerks in proptest::array::uniform3(limit()),
             absent in 0_usize..4,
             rapid in any::<bool>(),
+            uniform in any::<bool>(),
         ) {
+            // Half the machines have the same acceleration and jerk on X Y Z.
+            let (accelerations, jerks) = if uniform {
+                ([accelerations[0]; 3], [jerks[0]; 3])
+            } else {
+                (accelerations, jerks)
+            };
             let machine = xyz_machine(rates, accelerations, jerks, absent);
             let axes = AxisLimits::new(&machine, &PlannerConfig::default());
             prop_assert!(axes.span <= 3);
@@ -606,7 +739,13 @@ mod tests {
             accelerations in proptest::array::uniform3(limit()),
             jerks in proptest::array::uniform3(limit()),
             absent in 0_usize..4,
+            uniform in any::<bool>(),
         ) {
+            let (accelerations, jerks) = if uniform {
+                ([accelerations[0]; 3], [jerks[0]; 3])
+            } else {
+                (accelerations, jerks)
+            };
             // A machine with a C axis of tight limits: it never moves in an arc, and must not cap
             // it.
             let mut machine = xyz_machine(rates, accelerations, jerks, absent);

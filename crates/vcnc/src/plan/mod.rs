@@ -50,7 +50,7 @@ use crate::machine::Machine;
 use crate::motion::{PathMode, Segment, SegmentKind};
 use corner::{Handover, MotionClass};
 use events::EventClock;
-use limits::{arc, line, per_axis_rapid_seconds, ArcPath, AxisLimits};
+use limits::{arc, line, per_axis_rapid_seconds, ArcPath, AxisLimits, FeedSpeeds};
 use lookahead::{time_motion, Slot, Window};
 use std::collections::VecDeque;
 
@@ -175,6 +175,7 @@ pub struct Timeline {
     feed_override: f64,
     events: EventClock,
     clock: f64,
+    speeds: FeedSpeeds,
 }
 
 impl Timeline {
@@ -193,6 +194,7 @@ impl Timeline {
             feed_override,
             events: EventClock::default(),
             clock: 0.0,
+            speeds: FeedSpeeds::default(),
         }
     }
 
@@ -210,7 +212,7 @@ impl Timeline {
     // the motion for its junctions, the per-axis time of a dog-leg rapid.
     #[inline(always)]
     pub fn push(&mut self, segment: &Segment) {
-        let (axes, config) = (&self.axes, &self.config);
+        let (axes, config, speeds) = (&self.axes, &self.config, &mut self.speeds);
         let (motion, (limits, ends), class, per_axis_seconds) = match &segment.kind {
             SegmentKind::Line { motion, feed } => {
                 // The control locks the override at 100 % where the feed is tied to the
@@ -220,7 +222,7 @@ impl Timeline {
                 } else {
                     self.feed_override
                 };
-                let limits = line(motion, Some(feed), axes, config, feed_override);
+                let limits = line(motion, Some((feed, speeds)), axes, config, feed_override);
                 (motion, limits, MotionClass::Cutting, None)
             }
             SegmentKind::Arc {
@@ -239,7 +241,7 @@ impl Timeline {
                     extra_turns: *extra_turns,
                     feed,
                 };
-                let limits = arc(&path, axes, config, self.feed_override);
+                let limits = arc(&path, speeds, axes, config, self.feed_override);
                 (motion, limits, MotionClass::Cutting, None)
             }
             SegmentKind::Rapid { motion, per_axis } => {

@@ -253,6 +253,19 @@ impl Profile {
         };
         let length = greater(0.0, length);
         let cruise = greater(greater(lesser(HUGE_SPEED, cruise), entry), exit);
+        if entry == cruise && exit == cruise {
+            // The commonest profile of a contour: entered and left at the cruise speed, which
+            // gentle corners allow. Both ramps are empty, and the general way would find the
+            // same: ramps of no time, the whole length left at the cruise speed.
+            return Profile::at_cruise(length, (entry, cruise, exit), limits);
+        }
+        Profile::ramped(length, (entry, cruise, exit), limits)
+    }
+
+    /// [`Profile::new`] after its bounds, in general: `length` not negative, `cruise` not
+    /// below `entry` and `exit`, finite limits of acceleration.
+    #[inline(always)]
+    fn ramped(length: f64, (entry, cruise, exit): (f64, f64, f64), limits: PathLimits) -> Profile {
         // Most segments reach their cruise speed: the ramps to it settle the profile.
         let (mut up_time, mut down_time) = (
             ramp_time(entry, cruise, limits),
@@ -278,6 +291,32 @@ impl Profile {
             up_time,
             cruise_time,
             down_time,
+        }
+    }
+
+    /// The profile of `length` entered and left at its cruise speed (`entry` and `exit` equal
+    /// to `cruise`, finite): no ramps, the whole length at the cruise speed.
+    #[inline(always)]
+    fn at_cruise(
+        length: f64,
+        (entry, cruise, exit): (f64, f64, f64),
+        limits: PathLimits,
+    ) -> Profile {
+        let cruise_time = if length > 0.0 && cruise > 0.0 {
+            length / cruise
+        } else {
+            0.0
+        };
+        Profile {
+            length,
+            entry,
+            peak: cruise,
+            exit,
+            limits,
+            lead_in_time: 0.0,
+            up_time: 0.0,
+            cruise_time,
+            down_time: 0.0,
         }
     }
 
@@ -399,6 +438,7 @@ fn peak_speed(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimit
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     const TRAPEZOID: PathLimits = PathLimits {
         acceleration: 1000.0,
@@ -469,6 +509,49 @@ mod tests {
                 assert!(close(ramp_time(from, to, limits), ramp.duration()));
                 assert!(close(ramp_distance(from, to, limits), ramp.distance()));
             }
+        }
+    }
+
+    /// The bits of every field of a profile.
+    fn profile_bits(p: &Profile) -> [u64; 10] {
+        [
+            p.length,
+            p.entry,
+            p.peak,
+            p.exit,
+            p.limits.acceleration,
+            p.limits.jerk,
+            p.lead_in_time,
+            p.up_time,
+            p.cruise_time,
+            p.down_time,
+        ]
+        .map(f64::to_bits)
+    }
+
+    fn limits() -> impl Strategy<Value = PathLimits> {
+        let positive = prop_oneof![Just(f64::INFINITY), 1e-3..1e7_f64, Just(0.0)];
+        (positive.clone(), positive)
+            .prop_map(|(acceleration, jerk)| PathLimits { acceleration, jerk })
+    }
+
+    proptest! {
+        /// A profile entered and left at its cruise speed is what the ramps of the general
+        /// way give, to the bit.
+        #[test]
+        fn a_profile_at_its_cruise_speed_is_the_general_one(
+            length in prop_oneof![Just(0.0), Just(-1.0), 1e-9..1e4_f64],
+            speed in prop_oneof![Just(0.0), 1e-9..1e4_f64, Just(1e9), Just(2e9)],
+            limits in limits(),
+        ) {
+            let fast = Profile::new(length, speed, speed, speed, limits);
+            let bounded = PathLimits {
+                acceleration: lesser(HUGE_ACCELERATION, limits.acceleration),
+                jerk: limits.jerk,
+            };
+            // Any speed not below zero is its own cruise speed after the bounds.
+            let general = Profile::ramped(greater(0.0, length), (speed, speed, speed), bounded);
+            prop_assert_eq!(profile_bits(&fast), profile_bits(&general));
         }
     }
 
