@@ -141,12 +141,14 @@ impl Executor {
     fn run_plain(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.set_feed(cmd)?;
         if cmd.has_axis_words() || has_center_words(cmd) {
-            if self.modal.motion == MotionMode::Linear {
+            match self.modal.motion {
                 // The line, most blocks of a CAM program, is built here: through `motion`, out
                 // of line, every block paid a call and its result came back through memory.
-                self.plain_line(cmd, out)?;
-            } else {
-                self.motion(cmd, false, out)?;
+                MotionMode::Linear => self.plain_line(cmd, out)?,
+                MotionMode::Arc(direction) => {
+                    super::circular::plain_arc(self, cmd, direction, out)?;
+                }
+                _ => self.motion(cmd, false, out)?,
             }
         }
         if self.modal.feed_mode == FeedMode::InverseTime {
@@ -752,6 +754,9 @@ mod tests {
                     .and_then(|()| full.run_stages(&cmd, &mut full_out));
                 assert_eq!(by_run, by_stages, "{text:?} in {program:?}");
                 assert_eq!(fast_out.items, full_out.items, "{text:?} in {program:?}");
+                // To the bit: `==` takes -0 for 0.
+                let debug = |items: &Vec<_>| format!("{items:?}");
+                assert_eq!(debug(&fast_out.items), debug(&full_out.items), "{text:?}");
                 assert_eq!(fast.position, full.position, "{text:?}");
                 assert_eq!(fast.modal, full.modal, "{text:?}");
                 assert_eq!(fast.feed, full.feed, "{text:?}");
@@ -850,6 +855,44 @@ mod tests {
                     }
                 }
             }
+        }
+
+        #[test]
+        fn arcs_that_end_on_their_circle_run_the_same_on_both_paths(
+            arcs in proptest::collection::vec(
+                (
+                    (-200_000..200_000i32, -200_000..200_000i32, -20_000..20_000i32),
+                    (-20_000..20_000i32, -20_000..20_000i32),
+                    (0..4u8, proptest::bool::ANY, 0..6u8),
+                ),
+                1..6,
+            ),
+        ) {
+            // Each arc from a line's end, a quarter turn about I J (the end on the circle but
+            // for rounding), as R or as I J, now and then helical, incremental, in G18 or G02 R
+            // short of the half chord.
+            let mm = |micrometres: i32| format!("{:.3}", f64::from(micrometres) / 1000.0);
+            let mut program = String::from("G17 G90 G01 F800.\n");
+            for ((x, y, z), (i, j), (form, clockwise, variant)) in arcs {
+                let g = if clockwise { "G02" } else { "G03" };
+                let (ex, ey) = (x + i + j, y + j - i);
+                program += &format!("G90 G01 X{} Y{}\n", mm(x), mm(y));
+                let words = match form {
+                    0 => format!("I{} J{}", mm(i), mm(j)),
+                    1 => format!("I{}", mm(i)),
+                    2 => format!("R{}", mm(f64::from(i).hypot(f64::from(j)) as i32)),
+                    _ => format!("R-{}", mm(f64::from(i).hypot(f64::from(j)) as i32 + 1)),
+                };
+                let end = match variant {
+                    0 => format!("G91 X{} Y{}", mm(ex - x), mm(ey - y)),
+                    1 => format!("X{} Y{} Z{}", mm(ex), mm(ey), mm(z)),
+                    2 => format!("G18 X{} Z{}", mm(ex), mm(ey)),
+                    3 => format!("X{} Y{}", mm(x + 2 * i), mm(y + 2 * j)),
+                    _ => format!("X{} Y{}", mm(ex), mm(ey)),
+                };
+                program += &format!("{g} {end} {words}\nG17\n");
+            }
+            assert_plain_path_agrees(&program);
         }
 
         #[test]

@@ -158,6 +158,13 @@ impl Frames {
         frames
     }
 
+    /// True when the program system is scaled, mirrored or turned (G51, G51.1, G68, Syntec's
+    /// rotated G92.1).
+    #[inline(always)]
+    pub(crate) fn transformed(&self) -> bool {
+        self.transformed
+    }
+
     /// G68's rotation, while it is on.
     pub(crate) fn rotation(&self) -> Option<&Rotation> {
         self.rotation.as_ref()
