@@ -31,7 +31,12 @@ pub(crate) struct Executor {
     pub(crate) selected_tool: u32,
     pub(crate) tool_in_spindle: u32,
     /// The H number of the active length compensation.
-    pub(crate) length_offset_number: u32,
+    length_offset_number: u32,
+    /// Geometry plus wear of offset `length_offset_number` (0 for an offset never set), kept:
+    /// every block that moves Z needs it, and a look-up in the offset memory cost about 30
+    /// instructions. It changes only with the H number or where a program writes an offset
+    /// ([`Executor::tool_lengths_written`]).
+    tool_length: f64,
     /// The D number of cutter radius compensation.
     pub(crate) radius_offset_number: u32,
     /// The G28/G30 intermediate point, program coordinates, per axis.
@@ -95,6 +100,7 @@ impl Executor {
             selected_tool: 0,
             tool_in_spindle: 0,
             length_offset_number: 0,
+            tool_length: tool_length(machine, 0),
             radius_offset_number: 0,
             intermediate: [None; AXES],
             machine_axes,
@@ -483,13 +489,32 @@ impl Executor {
         target
     }
 
+    /// The H number of the active length compensation.
+    pub(crate) fn length_offset_number(&self) -> u32 {
+        self.length_offset_number
+    }
+
+    /// Selects the offset of length compensation (H).
+    pub(crate) fn set_length_offset_number(&mut self, number: u32) {
+        self.length_offset_number = number;
+        self.tool_lengths_written();
+    }
+
+    /// A program wrote the offset memory (G10 L10-L13, a macro variable): the offset of
+    /// length compensation is read again.
+    pub(crate) fn tool_lengths_written(&mut self) {
+        self.tool_length = tool_length(&self.machine, self.length_offset_number);
+    }
+
     /// The tool length offset of the active compensation, mm (signed for G44).
+    #[inline(always)]
     pub(crate) fn active_length(&self) -> f64 {
-        let value = self
-            .machine
-            .tool_offsets
-            .get(&self.length_offset_number)
-            .map_or(0.0, |t| t.length + t.length_wear);
+        debug_assert_eq!(
+            self.tool_length.to_bits(),
+            tool_length(&self.machine, self.length_offset_number).to_bits(),
+            "the offset memory changed without `tool_lengths_written`"
+        );
+        let value = self.tool_length;
         match self.modal.length_comp {
             LengthComp::Off => 0.0,
             LengthComp::Plus => value,
@@ -502,9 +527,9 @@ impl Executor {
     #[inline(always)]
     pub(crate) fn machine_target(&mut self, target: &[f64; AXES], moves_z: bool) -> [f64; AXES] {
         if moves_z {
-            self.frames.length_vector = self.active_length();
+            self.frames.set_length_vector(self.active_length());
         }
-        self.frames.to_machine(target, self.frames.length_vector)
+        self.frames.to_machine(target, self.frames.length_vector())
     }
 
     fn motion(
@@ -660,6 +685,14 @@ impl Executor {
             "feed rate is zero",
         )
     }
+}
+
+/// Geometry plus wear of tool offset `number` on `machine` (0 for an offset never set).
+fn tool_length(machine: &Machine, number: u32) -> f64 {
+    machine
+        .tool_offsets
+        .get(&number)
+        .map_or(0.0, |t| t.length + t.length_wear)
 }
 
 fn has_center_words(cmd: &Command) -> bool {
