@@ -573,20 +573,9 @@ pub(crate) fn decode(
             continue;
         }
         if word.letter == b'G' {
-            decode_g(word, order, profile, out)?;
-            if let Some(call) = out
-                .group(Group::NonModal)
-                .filter(|g| g.code == GCode::MacroCall)
-            {
-                out.macro_call = Some((call, order + 1));
-                out.calls = true;
-                out.rare = true;
-                break;
-            }
-            if let Some(call) = out
-                .group(Group::ModalMacro)
-                .filter(|g| g.code == GCode::ModalMacroCall && g.order == order)
-            {
+            // G65 or G66 ends the words decoded: the rest are its arguments. Asked of the word's
+            // code, not of the groups afterwards: one test.
+            if let Some(call) = decode_g(word, order, profile, out)? {
                 out.macro_call = Some((call, order + 1));
                 out.calls = true;
                 out.rare = true;
@@ -699,7 +688,13 @@ fn decode_other(
     Ok(())
 }
 
-fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> Result<(), Alarm> {
+/// Decodes a G word; returns it when it is a macro call (G65, G66), which ends the block's words.
+fn decode_g(
+    word: &Word,
+    order: usize,
+    profile: &Profile,
+    out: &mut Command,
+) -> Result<Option<GWord>, Alarm> {
     // A CAM program writes the same few motion codes block after block: the codes read are
     // remembered by their values, and a value is classified again only when its entry holds
     // another. Remembering the last one alone, every switch between G01 and G02 or G03
@@ -720,7 +715,7 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
     if code == GCode::ExactStopOnce {
         out.exact_stop_once = true;
         out.rare = true;
-        return Ok(());
+        return Ok(None);
     }
     let new = GWord {
         code,
@@ -736,7 +731,8 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
         }
     }
     out.set_group(slot, new);
-    Ok(())
+    let call = matches!(code, GCode::MacroCall | GCode::ModalMacroCall);
+    Ok(call.then_some(new))
 }
 
 /// The G code of a G word on `profile`.
