@@ -30,9 +30,7 @@ pub(crate) fn arc_center(
 ) -> Result<(f64, f64), Alarm> {
     match spec {
         ArcSpec::Center { offset, span } => {
-            let center = (start.0 + offset.0, start.1 + offset.1);
-            let r_start = length_of(offset);
-            let r_end = length_of((end.0 - center.0, end.1 - center.1));
+            let (center, r_start, r_end) = centre_form(start, end, offset);
             if offset == (0.0, 0.0) {
                 return Err(Alarm::error(
                     AlarmCode::ArcWithoutCenter,
@@ -54,8 +52,7 @@ pub(crate) fn arc_center(
             Ok(center)
         }
         ArcSpec::Radius { radius, span } => {
-            let (dx, dy) = (end.0 - start.0, end.1 - start.1);
-            let chord = dx.hypot(dy);
+            let (chord, h2) = radius_form(start, end, radius);
             let r = radius.abs();
             if chord == 0.0 {
                 return Err(Alarm::error(
@@ -65,35 +62,120 @@ pub(crate) fn arc_center(
                 )
                 .with_help("program a full circle with I, J or K"));
             }
-            let half = chord / 2.0;
-            let mut h2 = r * r - half * half;
-            if h2 < 0.0 {
-                // A radius short by rounding only (R written to fewer decimals than the end point)
-                // is taken as a half circle, as the controls do within their tolerance.
-                if half - r > tolerance {
-                    return Err(Alarm::error(
-                        AlarmCode::ArcRadiusTooSmall,
-                        span,
-                        format!("R{r:.4} is smaller than half the distance to the end point ({half:.4})"),
-                    ));
-                }
-                h2 = 0.0;
-            }
-            let h = h2.sqrt();
-            let mid = (start.0 + dx / 2.0, start.1 + dy / 2.0);
-            // Unit normal to the chord, to the left of the travel direction.
-            let left = (-dy / chord, dx / chord);
-            // Counter-clockwise arcs of less than 180 degrees have their centre on the left.
-            let mut side = match direction {
-                ArcDirection::CounterClockwise => 1.0,
-                ArcDirection::Clockwise => -1.0,
+            let Some(h2) = short_radius_settled(chord, h2, radius, tolerance) else {
+                let half = chord / 2.0;
+                return Err(Alarm::error(
+                    AlarmCode::ArcRadiusTooSmall,
+                    span,
+                    format!(
+                        "R{r:.4} is smaller than half the distance to the end point ({half:.4})"
+                    ),
+                ));
             };
-            if radius < 0.0 {
-                side = -side;
-            }
-            Ok((mid.0 + side * h * left.0, mid.1 + side * h * left.1))
+            Ok(radius_centre(start, end, chord, h2, radius, direction))
         }
     }
+}
+
+/// [`arc_center`] for an arc the control takes without a word: `None` where it refuses the
+/// arc (the caller then asks [`arc_center`] for the alarm).
+/// The same operations in the same order as there, so the same bits: the common arc's path
+/// (`circular::plain_arc`) builds no alarm and no [`ArcSpec`].
+#[inline(always)]
+pub(crate) fn clean_arc_center(
+    start: (f64, f64),
+    end: (f64, f64),
+    spec: CleanSpec,
+    direction: ArcDirection,
+    tolerance: f64,
+) -> Option<(f64, f64)> {
+    match spec {
+        CleanSpec::Center(offset) => {
+            let (center, r_start, r_end) = centre_form(start, end, offset);
+            // The tests of `arc_center`, so that a NaN radius passes as it does there.
+            if offset == (0.0, 0.0) || (r_end - r_start).abs() > tolerance {
+                return None;
+            }
+            Some(center)
+        }
+        CleanSpec::Radius(radius) => {
+            let (chord, h2) = radius_form(start, end, radius);
+            if chord == 0.0 {
+                return None;
+            }
+            let h2 = short_radius_settled(chord, h2, radius, tolerance)?;
+            Some(radius_centre(start, end, chord, h2, radius, direction))
+        }
+    }
+}
+
+/// How the common arc was programmed: [`ArcSpec`] without the span its alarms would need.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum CleanSpec {
+    /// Centre offsets from the start along the plane's first and second axes.
+    Center((f64, f64)),
+    /// Signed radius: negative for more than 180 degrees.
+    Radius(f64),
+}
+
+/// The centre of the centre form, and its radius at the start and at the end.
+#[inline(always)]
+fn centre_form(start: (f64, f64), end: (f64, f64), offset: (f64, f64)) -> ((f64, f64), f64, f64) {
+    let center = (start.0 + offset.0, start.1 + offset.1);
+    let r_start = length_of(offset);
+    let r_end = length_of((end.0 - center.0, end.1 - center.1));
+    (center, r_start, r_end)
+}
+
+/// The chord of an R arc and the square of the centre's distance from the chord's middle
+/// (negative when R is shorter than half the chord).
+#[inline(always)]
+fn radius_form(start: (f64, f64), end: (f64, f64), radius: f64) -> (f64, f64) {
+    let (dx, dy) = (end.0 - start.0, end.1 - start.1);
+    let chord = dx.hypot(dy);
+    let r = radius.abs();
+    let half = chord / 2.0;
+    (chord, r * r - half * half)
+}
+
+/// `h2` of an R arc (see [`radius_form`]) as the centre is computed from it: a radius short by
+/// rounding only (R written to fewer decimals than the end point) is taken as a half circle, as
+/// the controls do within their tolerance; `None` when R is shorter than that.
+#[inline(always)]
+fn short_radius_settled(chord: f64, h2: f64, radius: f64, tolerance: f64) -> Option<f64> {
+    if h2 >= 0.0 || h2.is_nan() {
+        return Some(h2);
+    }
+    if chord / 2.0 - radius.abs() > tolerance {
+        return None;
+    }
+    Some(0.0)
+}
+
+/// The centre of an R arc from its chord and `h2` (see [`radius_form`], not negative).
+#[inline(always)]
+fn radius_centre(
+    start: (f64, f64),
+    end: (f64, f64),
+    chord: f64,
+    h2: f64,
+    radius: f64,
+    direction: ArcDirection,
+) -> (f64, f64) {
+    let (dx, dy) = (end.0 - start.0, end.1 - start.1);
+    let h = h2.sqrt();
+    let mid = (start.0 + dx / 2.0, start.1 + dy / 2.0);
+    // Unit normal to the chord, to the left of the travel direction.
+    let left = (-dy / chord, dx / chord);
+    // Counter-clockwise arcs of less than 180 degrees have their centre on the left.
+    let mut side = match direction {
+        ArcDirection::CounterClockwise => 1.0,
+        ArcDirection::Clockwise => -1.0,
+    };
+    if radius < 0.0 {
+        side = -side;
+    }
+    (mid.0 + side * h * left.0, mid.1 + side * h * left.1)
 }
 
 /// The length of a vector in the plane, for the radius check of the centre form: the square
@@ -245,6 +327,64 @@ mod tests {
             while sweep <= 0.0 { sweep += std::f64::consts::TAU; }
             let pi = std::f64::consts::PI;
             if long { prop_assert!(sweep >= pi - 1e-6); } else { prop_assert!(sweep <= pi + 1e-6); }
+        }
+    }
+    /// The centre [`clean_arc_center`] gives, bit for bit, and whether it gives one, against
+    /// [`arc_center`].
+    fn assert_clean_centre_agrees(
+        start: (f64, f64),
+        end: (f64, f64),
+        spec: ArcSpec,
+        direction: ArcDirection,
+        tolerance: f64,
+    ) -> Result<(), TestCaseError> {
+        let clean = match spec {
+            ArcSpec::Center { offset, .. } => CleanSpec::Center(offset),
+            ArcSpec::Radius { radius, .. } => CleanSpec::Radius(radius),
+        };
+        let general = arc_center(start, end, spec, direction, tolerance);
+        let fast = clean_arc_center(start, end, clean, direction, tolerance);
+        let bits = |(x, y): (f64, f64)| (x.to_bits(), y.to_bits());
+        prop_assert_eq!(
+            fast.map(bits),
+            general.ok().map(bits),
+            "{:?} {:?} {:?}",
+            start,
+            end,
+            spec
+        );
+        Ok(())
+    }
+
+    proptest! {
+        #[test]
+        fn the_clean_centre_is_the_general_one_to_the_bit(
+            sx in -500.0..500.0f64, sy in -500.0..500.0f64,
+            ox in -50.0..50.0f64, oy in -50.0..50.0f64,
+            turn in 0.0..6.3f64, stretch in -0.02..0.02f64,
+            r_extra in prop_oneof![-0.03..0.0f64, 0.0..30.0f64], long in any::<bool>(), cw in any::<bool>(),
+            zero in 0..8u8,
+        ) {
+            let direction = if cw { ArcDirection::Clockwise } else { ArcDirection::CounterClockwise };
+            // Now and then an offset or a chord of zero, where both refuse the arc.
+            let (ox, oy) = if zero == 0 { (0.0, 0.0) } else { (ox, oy) };
+            let radius = ox.hypot(oy);
+            let center = (sx + ox, sy + oy);
+            let end = (
+                center.0 + (radius + stretch) * turn.cos(),
+                center.1 + (radius + stretch) * turn.sin(),
+            );
+            let spec = ArcSpec::Center { offset: (ox, oy), span: SPAN };
+            assert_clean_centre_agrees((sx, sy), end, spec, direction, 0.01)?;
+            // R from half the chord on: radii short by less and by more than the tolerance,
+            // half circles, and every other arc.
+            let end = if zero == 1 { (sx, sy) } else { end };
+            let half = (end.0 - sx).hypot(end.1 - sy) / 2.0;
+            let r = half + r_extra;
+            let spec = ArcSpec::Radius { radius: if long { -r } else { r }, span: SPAN };
+            assert_clean_centre_agrees((sx, sy), end, spec, direction, 0.01)?;
+            let spec = ArcSpec::Radius { radius: half, span: SPAN };
+            assert_clean_centre_agrees((sx, sy), end, spec, direction, 0.01)?;
         }
     }
 }

@@ -1,12 +1,12 @@
 //! G02/G03: circular and helical interpolation in the selected plane.
 
-use super::arc::{arc_center, in_plane, ArcSpec};
+use super::arc::{arc_center, clean_arc_center, in_plane, ArcSpec, CleanSpec};
 use super::decode::{Command, Value};
 use super::exec::Executor;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::AXES;
-use crate::motion::{ArcDirection, Feed, MachinePos, SegmentKind};
+use crate::motion::{ArcDirection, Feed, MachinePos, Plane, Segment, SegmentKind};
 
 /// Moves along an arc from the current position to `target` (machine coordinates).
 ///
@@ -122,6 +122,72 @@ pub(crate) fn arc(
         extra_turns: 0,
         feed,
     });
+    Ok(())
+}
+
+/// G02/G03 of a plain block (`Executor::run_plain`): [`arc`] for the common arc of a CAM
+/// program, in the XY plane, with a feed, in coordinates neither scaled nor turned, straight to
+/// the output queue, and ending on its circle. Any other arc, and every arc with an alarm or a
+/// warning, is handed to [`arc`] before anything changed. Through [`arc`], with its plane axes
+/// looked up, the scaling asked and its alarms built where they are tested, an arc cost about
+/// 460 instructions.
+///
+/// # Errors
+/// Those of [`arc`].
+#[inline(never)]
+pub(crate) fn plain_arc(
+    exec: &mut Executor,
+    cmd: &Command,
+    direction: ArcDirection,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    // A plain block has no G45-G48 (a non-modal code) and no L (a spiral).
+    debug_assert!(cmd.is_plain());
+    let target = exec.block_target(cmd, false, out)?;
+    let common = exec.modal.plane == Plane::Xy
+        && !exec.frames.transformed()
+        && exec.feed.is_some_and(|f| f != 0.0);
+    let spec = match cmd.word_ref(b'R') {
+        Some(r) => Some(CleanSpec::Radius(exec.length(r))),
+        None => {
+            let (i, j) = (cmd.word_ref(b'I'), cmd.word_ref(b'J'));
+            (i.is_some() || j.is_some()).then(|| {
+                CleanSpec::Center((
+                    i.map_or(0.0, |v| exec.length(v)),
+                    j.map_or(0.0, |v| exec.length(v)),
+                ))
+            })
+        }
+    };
+    let (Some(spec), true) = (spec, common) else {
+        return arc(exec, cmd, direction, target, out);
+    };
+    let start = (exec.position[0], exec.position[1]);
+    let end = (target[0], target[1]);
+    let tolerance = exec.profile.arc_radius_tolerance;
+    let Some((x, y)) = clean_arc_center(start, end, spec, direction, tolerance) else {
+        return arc(exec, cmd, direction, target, out);
+    };
+    let mut center = exec.position;
+    (center[0], center[1]) = (x, y);
+    let feed = exec.cutting_feed(cmd)?;
+    super::exec::check_position(&center, cmd)?;
+    let Some(items) = out.direct() else {
+        return arc(exec, cmd, direction, target, out);
+    };
+    let motion = exec.move_to(target, cmd)?;
+    items.push(Ok(Segment {
+        kind: SegmentKind::Arc {
+            motion,
+            center: MachinePos(center),
+            direction,
+            plane: Plane::Xy,
+            extra_turns: 0,
+            feed,
+        },
+        span: cmd.span,
+        sequence: cmd.sequence,
+    }));
     Ok(())
 }
 

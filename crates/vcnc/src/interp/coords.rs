@@ -93,7 +93,7 @@ pub(crate) fn g53(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
         }
     }
     if cmd.axis(Axis::Z.index()).is_some() {
-        exec.frames.length_vector = 0.0;
+        exec.frames.set_length_vector(0.0);
     }
     exec.rapid_to(target, cmd, out)?;
     Ok(true)

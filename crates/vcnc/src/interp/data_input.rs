@@ -139,6 +139,7 @@ fn set_tool_offset(
         DistanceMode::Absolute => *slot = value,
         DistanceMode::Incremental => *slot += value,
     }
+    exec.tool_lengths_written();
     Ok(())
 }
 

@@ -31,6 +31,17 @@ pub(crate) struct GWord {
     pub(crate) order: usize,
 }
 
+impl Default for GWord {
+    /// A stand-in for the empty slots of [`Command`]'s groups, never read.
+    fn default() -> GWord {
+        GWord {
+            code: GCode::Linear,
+            span: Span::default(),
+            order: 0,
+        }
+    }
+}
+
 /// Number of modal-group slots (see [`group_slot`]).
 const GROUP_SLOTS: usize = 19;
 
@@ -50,14 +61,13 @@ pub(crate) struct Command {
     letters: u32,
     /// The value of each address letter A-Z; only those in `letters` mean anything.
     values: [Value; 26],
-    /// Bit i set when group slot i has a code of the block, `groups[i]` (1 + its index into
-    /// `g_words`; the last code written wins).
+    /// Bit i set when group slot i has a code of the block, in `groups[i]` (the last code of
+    /// its group written: the one in force).
     group_mask: u32,
-    /// A code of the block was overridden by a later one of its group (then not every code in
-    /// `g_words` is in force).
-    overridden: bool,
-    groups: [u8; GROUP_SLOTS],
-    g_words: Vec<GWord>,
+    /// The code of each group slot; only those in `group_mask` mean anything. One code per
+    /// group in its slot, not a list of the codes written with an index per group: a G word
+    /// costs one store, and asking for a group one load.
+    groups: [GWord; GROUP_SLOTS],
     m: Vec<Value>,
     /// Warnings found while decoding (the block still runs).
     pub(crate) warnings: Vec<Alarm>,
@@ -70,8 +80,8 @@ pub(crate) struct Command {
     /// True when `subprogram` or `macro_call` is set: one test after every block instead of
     /// two (see [`Command::has_calls`]).
     calls: bool,
-    /// True when one of the fields that few blocks set (N, G09, `F2=`, an overridden code, M
-    /// codes, warnings, calls) may hold something: only then does [`Command::reset`] clear
+    /// True when one of the fields that few blocks set (N, G09, `F2=`, M codes, warnings,
+    /// calls) may hold something: only then does [`Command::reset`] clear
     /// them (clearing every field for every block cost about 20 instructions).
     rare: bool,
     /// G codes classified before, kept from block to block (not cleared): a command is decoded
@@ -108,9 +118,7 @@ impl Command {
         if self.group_mask & (1 << slot) == 0 {
             return None;
         }
-        self.g_words
-            .get(usize::from(self.groups[slot]).wrapping_sub(1))
-            .copied()
+        Some(self.groups[slot])
     }
 
     /// True when the block's G codes, if it has any, are all of the motion group (G00-G03,
@@ -122,20 +130,21 @@ impl Command {
 
     /// Every G code of the block in force, one per group, in the order written.
     pub(crate) fn g_codes(&self) -> impl Iterator<Item = &GWord> + '_ {
-        // A code overridden by a later one of its group is not in force. Most blocks override
-        // none: their codes are all in force, without a look at each code's group. The codes
-        // are lent, not copied: the executor reads one field of most.
-        self.g_words
-            .iter()
-            .enumerate()
-            .filter(|(i, g)| !self.overridden || self.group_index(g.code.group()) == Some(*i))
-            .map(|(_, g)| g)
-    }
-
-    /// The index into `g_words` of the code of a group in force, if the block has one.
-    fn group_index(&self, group: Group) -> Option<usize> {
-        let slot = group_slot(group);
-        (self.group_mask & (1 << slot) != 0).then(|| usize::from(self.groups[slot]) - 1)
+        // The slots in use, sorted by where their codes were written (each word has its own
+        // index). The codes are lent, not copied: the executor reads one field of most.
+        let mut slots = [0u8; GROUP_SLOTS];
+        let mut count = 0;
+        let mut mask = self.group_mask;
+        while mask != 0 {
+            slots[count] = mask.trailing_zeros() as u8;
+            count += 1;
+            mask &= mask - 1;
+        }
+        slots[..count].sort_unstable_by_key(|slot| self.groups[usize::from(*slot)].order);
+        slots
+            .into_iter()
+            .take(count)
+            .map(|slot| &self.groups[usize::from(slot)])
     }
 
     /// The value of an address letter (`b'R'`), if the block has it.
@@ -298,7 +307,6 @@ impl Command {
         self.span = span;
         self.letters = 0;
         self.group_mask = 0;
-        self.g_words.clear();
         if self.rare {
             self.clear_rare();
         }
@@ -311,7 +319,6 @@ impl Command {
         self.sequence = None;
         self.exact_stop_once = false;
         self.retract_feed = None;
-        self.overridden = false;
         self.m.clear();
         self.warnings.clear();
         self.subprogram = None;
@@ -327,7 +334,6 @@ impl Command {
             || (self.sequence.is_none()
                 && !self.exact_stop_once
                 && self.retract_feed.is_none()
-                && !self.overridden
                 && self.m.is_empty()
                 && self.warnings.is_empty()
                 && self.subprogram.is_none()
@@ -439,12 +445,10 @@ fn not_an_address(word: &Word) -> Alarm {
 }
 
 impl Command {
-    /// Records a G code of group slot `slot`, which wins over any earlier one of its group (the
-    /// caller marks the block `overridden` then).
+    /// Records a G code of group slot `slot`, which wins over any earlier one of its group.
     #[inline(always)]
     fn set_group(&mut self, slot: usize, g: GWord) {
-        self.g_words.push(g);
-        self.groups[slot] = u8::try_from(self.g_words.len()).unwrap_or(u8::MAX);
+        self.groups[slot] = g;
         self.group_mask |= 1 << slot;
     }
 }
@@ -569,20 +573,9 @@ pub(crate) fn decode(
             continue;
         }
         if word.letter == b'G' {
-            decode_g(word, order, profile, out)?;
-            if let Some(call) = out
-                .group(Group::NonModal)
-                .filter(|g| g.code == GCode::MacroCall)
-            {
-                out.macro_call = Some((call, order + 1));
-                out.calls = true;
-                out.rare = true;
-                break;
-            }
-            if let Some(call) = out
-                .group(Group::ModalMacro)
-                .filter(|g| g.code == GCode::ModalMacroCall && g.order == order)
-            {
+            // G65 or G66 ends the words decoded: the rest are its arguments. Asked of the word's
+            // code, not of the groups afterwards: one test.
+            if let Some(call) = decode_g(word, order, profile, out)? {
                 out.macro_call = Some((call, order + 1));
                 out.calls = true;
                 out.rare = true;
@@ -695,7 +688,13 @@ fn decode_other(
     Ok(())
 }
 
-fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> Result<(), Alarm> {
+/// Decodes a G word; returns it when it is a macro call (G65, G66), which ends the block's words.
+fn decode_g(
+    word: &Word,
+    order: usize,
+    profile: &Profile,
+    out: &mut Command,
+) -> Result<Option<GWord>, Alarm> {
     // A CAM program writes the same few motion codes block after block: the codes read are
     // remembered by their values, and a value is classified again only when its entry holds
     // another. Remembering the last one alone, every switch between G01 and G02 or G03
@@ -716,7 +715,7 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
     if code == GCode::ExactStopOnce {
         out.exact_stop_once = true;
         out.rare = true;
-        return Ok(());
+        return Ok(None);
     }
     let new = GWord {
         code,
@@ -725,14 +724,15 @@ fn decode_g(word: &Word, order: usize, profile: &Profile, out: &mut Command) -> 
     };
     let slot = group_slot(group);
     if out.group_mask & (1 << slot) != 0 {
-        out.overridden = true;
+        // The warning of `same_group` goes where `rare` says to look.
         out.rare = true;
         if let Some(previous) = out.group(group).filter(|previous| previous.code != code) {
             same_group(word, previous, group, profile, out)?;
         }
     }
     out.set_group(slot, new);
-    Ok(())
+    let call = matches!(code, GCode::MacroCall | GCode::ModalMacroCall);
+    Ok(call.then_some(new))
 }
 
 /// The G code of a G word on `profile`.
@@ -901,6 +901,22 @@ mod tests {
         assert_eq!(codes, [GCode::Linear, GCode::Absolute]);
     }
 
+    #[test]
+    fn codes_in_force_come_in_the_order_written() {
+        // Their groups' slots are in another order (motion, plane, distance, units).
+        let cmd = decoded("G20 G90 G18 G02 G91 G17 X1.", [true; 6]).unwrap();
+        let codes: Vec<GCode> = cmd.g_codes().map(|g| g.code).collect();
+        assert_eq!(
+            codes,
+            [
+                GCode::Inch,
+                GCode::ArcClockwise,
+                GCode::Incremental,
+                GCode::PlaneXy
+            ]
+        );
+    }
+
     proptest::proptest! {
         #[test]
         fn words_are_recorded_as_written_or_refused(
@@ -951,12 +967,11 @@ mod tests {
             .collect();
         let codes: Vec<GCode> = cmd.g_codes().map(|g| g.code).collect();
         format!(
-            "{:?} {:?} {} {:?} {} {:?} {:?} {:?} {:?} {:?} {} {}",
+            "{:?} {:?} {} {:?} {:?} {:?} {:?} {:?} {:?} {} {}",
             cmd.sequence,
             letters,
             cmd.exact_stop_once,
             cmd.retract_feed,
-            cmd.overridden,
             codes,
             cmd.m_codes(),
             cmd.warnings,

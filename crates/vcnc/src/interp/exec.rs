@@ -31,7 +31,12 @@ pub(crate) struct Executor {
     pub(crate) selected_tool: u32,
     pub(crate) tool_in_spindle: u32,
     /// The H number of the active length compensation.
-    pub(crate) length_offset_number: u32,
+    length_offset_number: u32,
+    /// Geometry plus wear of offset `length_offset_number` (0 for an offset never set), kept:
+    /// every block that moves Z needs it, and a look-up in the offset memory cost about 30
+    /// instructions. It changes only with the H number or where a program writes an offset
+    /// ([`Executor::tool_lengths_written`]).
+    tool_length: f64,
     /// The D number of cutter radius compensation.
     pub(crate) radius_offset_number: u32,
     /// The G28/G30 intermediate point, program coordinates, per axis.
@@ -95,6 +100,7 @@ impl Executor {
             selected_tool: 0,
             tool_in_spindle: 0,
             length_offset_number: 0,
+            tool_length: tool_length(machine, 0),
             radius_offset_number: 0,
             intermediate: [None; AXES],
             machine_axes,
@@ -141,12 +147,14 @@ impl Executor {
     fn run_plain(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.set_feed(cmd)?;
         if cmd.has_axis_words() || has_center_words(cmd) {
-            if self.modal.motion == MotionMode::Linear {
+            match self.modal.motion {
                 // The line, most blocks of a CAM program, is built here: through `motion`, out
                 // of line, every block paid a call and its result came back through memory.
-                self.plain_line(cmd, out)?;
-            } else {
-                self.motion(cmd, false, out)?;
+                MotionMode::Linear => self.plain_line(cmd, out)?,
+                MotionMode::Arc(direction) => {
+                    super::circular::plain_arc(self, cmd, direction, out)?;
+                }
+                _ => self.motion(cmd, false, out)?,
             }
         }
         if self.modal.feed_mode == FeedMode::InverseTime {
@@ -481,13 +489,32 @@ impl Executor {
         target
     }
 
+    /// The H number of the active length compensation.
+    pub(crate) fn length_offset_number(&self) -> u32 {
+        self.length_offset_number
+    }
+
+    /// Selects the offset of length compensation (H).
+    pub(crate) fn set_length_offset_number(&mut self, number: u32) {
+        self.length_offset_number = number;
+        self.tool_lengths_written();
+    }
+
+    /// A program wrote the offset memory (G10 L10-L13, a macro variable): the offset of
+    /// length compensation is read again.
+    pub(crate) fn tool_lengths_written(&mut self) {
+        self.tool_length = tool_length(&self.machine, self.length_offset_number);
+    }
+
     /// The tool length offset of the active compensation, mm (signed for G44).
+    #[inline(always)]
     pub(crate) fn active_length(&self) -> f64 {
-        let value = self
-            .machine
-            .tool_offsets
-            .get(&self.length_offset_number)
-            .map_or(0.0, |t| t.length + t.length_wear);
+        debug_assert_eq!(
+            self.tool_length.to_bits(),
+            tool_length(&self.machine, self.length_offset_number).to_bits(),
+            "the offset memory changed without `tool_lengths_written`"
+        );
+        let value = self.tool_length;
         match self.modal.length_comp {
             LengthComp::Off => 0.0,
             LengthComp::Plus => value,
@@ -500,9 +527,9 @@ impl Executor {
     #[inline(always)]
     pub(crate) fn machine_target(&mut self, target: &[f64; AXES], moves_z: bool) -> [f64; AXES] {
         if moves_z {
-            self.frames.length_vector = self.active_length();
+            self.frames.set_length_vector(self.active_length());
         }
-        self.frames.to_machine(target, self.frames.length_vector)
+        self.frames.to_machine(target, self.frames.length_vector())
     }
 
     fn motion(
@@ -660,6 +687,14 @@ impl Executor {
     }
 }
 
+/// Geometry plus wear of tool offset `number` on `machine` (0 for an offset never set).
+fn tool_length(machine: &Machine, number: u32) -> f64 {
+    machine
+        .tool_offsets
+        .get(&number)
+        .map_or(0.0, |t| t.length + t.length_wear)
+}
+
 fn has_center_words(cmd: &Command) -> bool {
     cmd.has_center_words()
 }
@@ -752,6 +787,9 @@ mod tests {
                     .and_then(|()| full.run_stages(&cmd, &mut full_out));
                 assert_eq!(by_run, by_stages, "{text:?} in {program:?}");
                 assert_eq!(fast_out.items, full_out.items, "{text:?} in {program:?}");
+                // To the bit: `==` takes -0 for 0.
+                let debug = |items: &Vec<_>| format!("{items:?}");
+                assert_eq!(debug(&fast_out.items), debug(&full_out.items), "{text:?}");
                 assert_eq!(fast.position, full.position, "{text:?}");
                 assert_eq!(fast.modal, full.modal, "{text:?}");
                 assert_eq!(fast.feed, full.feed, "{text:?}");
@@ -850,6 +888,44 @@ mod tests {
                     }
                 }
             }
+        }
+
+        #[test]
+        fn arcs_that_end_on_their_circle_run_the_same_on_both_paths(
+            arcs in proptest::collection::vec(
+                (
+                    (-200_000..200_000i32, -200_000..200_000i32, -20_000..20_000i32),
+                    (-20_000..20_000i32, -20_000..20_000i32),
+                    (0..4u8, proptest::bool::ANY, 0..6u8),
+                ),
+                1..6,
+            ),
+        ) {
+            // Each arc from a line's end, a quarter turn about I J (the end on the circle but
+            // for rounding), as R or as I J, now and then helical, incremental, in G18 or G02 R
+            // short of the half chord.
+            let mm = |micrometres: i32| format!("{:.3}", f64::from(micrometres) / 1000.0);
+            let mut program = String::from("G17 G90 G01 F800.\n");
+            for ((x, y, z), (i, j), (form, clockwise, variant)) in arcs {
+                let g = if clockwise { "G02" } else { "G03" };
+                let (ex, ey) = (x + i + j, y + j - i);
+                program += &format!("G90 G01 X{} Y{}\n", mm(x), mm(y));
+                let words = match form {
+                    0 => format!("I{} J{}", mm(i), mm(j)),
+                    1 => format!("I{}", mm(i)),
+                    2 => format!("R{}", mm(f64::from(i).hypot(f64::from(j)) as i32)),
+                    _ => format!("R-{}", mm(f64::from(i).hypot(f64::from(j)) as i32 + 1)),
+                };
+                let end = match variant {
+                    0 => format!("G91 X{} Y{}", mm(ex - x), mm(ey - y)),
+                    1 => format!("X{} Y{} Z{}", mm(ex), mm(ey), mm(z)),
+                    2 => format!("G18 X{} Z{}", mm(ex), mm(ey)),
+                    3 => format!("X{} Y{}", mm(x + 2 * i), mm(y + 2 * j)),
+                    _ => format!("X{} Y{}", mm(ex), mm(ey)),
+                };
+                program += &format!("{g} {end} {words}\nG17\n");
+            }
+            assert_plain_path_agrees(&program);
         }
 
         #[test]

@@ -25,12 +25,15 @@ pub(crate) struct Frames {
     /// The G52 local offset.
     local: [f64; AXES],
     /// The tool length offset applied to the Z position now.
-    pub(crate) length_vector: f64,
+    length_vector: f64,
     /// The work coordinate system in use (kept equal to the modal state's by the executor).
     active: WorkOffsetId,
     /// Work + external + G92 + G52 of `active`: every block needs it and it changes only when an
     /// offset does, so it is recomputed then.
     shift: [f64; AXES],
+    /// [`Frames::offset`], kept: every move records it, and it changes only with the shift and
+    /// the length vector.
+    offset: [f64; AXES],
     /// G68, while it is on.
     rotation: Option<Rotation>,
     /// Syntec's G92.1 with K R: the program system turned about its new origin, outside G68.
@@ -149,6 +152,7 @@ impl Frames {
             length_vector: 0.0,
             active: WorkOffsetId::Standard(1),
             shift: [0.0; AXES],
+            offset: [0.0; AXES],
             rotation: None,
             preset_rotation: None,
             scaling: None,
@@ -156,6 +160,13 @@ impl Frames {
         };
         frames.recompute();
         frames
+    }
+
+    /// True when the program system is scaled, mirrored or turned (G51, G51.1, G68, Syntec's
+    /// rotated G92.1).
+    #[inline(always)]
+    pub(crate) fn transformed(&self) -> bool {
+        self.transformed
     }
 
     /// G68's rotation, while it is on.
@@ -207,6 +218,20 @@ impl Frames {
         let work = self.work_offset(self.active);
         let external = self.work_offset(WorkOffsetId::External);
         self.shift = std::array::from_fn(|i| work[i] + external[i] + self.g92[i] + self.local[i]);
+        self.offset = self.shift;
+        self.offset[2] += self.length_vector;
+    }
+
+    /// The tool length offset applied to the Z position now.
+    pub(crate) fn length_vector(&self) -> f64 {
+        self.length_vector
+    }
+
+    /// Applies a tool length offset to the Z position.
+    #[inline(always)]
+    pub(crate) fn set_length_vector(&mut self, length: f64) {
+        self.length_vector = length;
+        self.offset[2] = self.shift[2] + length;
     }
 
     /// The value of a work offset register.
@@ -243,10 +268,13 @@ impl Frames {
     }
 
     /// Machine minus program coordinates now: the shift and the applied tool length vector.
+    #[inline(always)]
     pub(crate) fn offset(&self) -> [f64; AXES] {
-        let mut offset = self.shift;
-        offset[2] += self.length_vector;
-        offset
+        debug_assert_eq!(
+            self.offset[2].to_bits(),
+            (self.shift[2] + self.length_vector).to_bits()
+        );
+        self.offset
     }
 
     /// Machine minus program coordinates at the machine position `at`: the plain offset, or,

@@ -23,11 +23,12 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
         .h()
         .filter(|_| !super::compensation::h_names_radius_offset(exec, cmd));
     if let Some(h) = h {
-        exec.length_offset_number = exec.offset_number(h, 'H')?;
+        let number = exec.offset_number(h, 'H')?;
+        exec.set_length_offset_number(number);
     }
     let changed = cmd.group(Group::LengthComp).is_some()
         || (h.is_some() && exec.modal.length_comp != LengthComp::Off);
-    Ok(changed && (exec.active_length() - exec.frames.length_vector).abs() > 0.0)
+    Ok(changed && (exec.active_length() - exec.frames.length_vector()).abs() > 0.0)
 }
 
 /// Moves Z so that the program position stays where it is under the new offset.
@@ -50,4 +51,33 @@ pub(crate) fn move_to_new_vector(
         _ => exec.rapid_to(target, cmd, out)?,
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{interpret_str, Machine, Options};
+
+    /// The Z at the end of every move of `program` on the default machine (no alarm allowed).
+    fn z_ends(program: &str) -> Vec<f64> {
+        interpret_str(program, &Machine::default(), Options::default())
+            .map(|item| item.expect("the program runs without an alarm"))
+            .filter_map(|segment| segment.motion().map(|motion| motion.to.0[2]))
+            .collect()
+    }
+
+    #[test]
+    fn offsets_written_by_the_program_apply_to_the_next_z_move() {
+        // The executor keeps the offset of the H number in force: every write to the offset
+        // memory and every new H must reach it.
+        let z = z_ends(
+            "G10 L10 P1 R10.\nG43 H1 G0 Z0\nG10 L10 P1 R20.\nG0 Z0\nX1.\n#2201 = 30.\n\
+             G0 Z1.\n#2001 = 2.\nG1 Z0 F100.\nG10 L11 P1 R1.\nG0 Z0\nH2 Z0\nG10 L10 P2 R5.\n\
+             G0 Z0\nG49 Z0\nM30",
+        );
+        assert_eq!(
+            z,
+            [10.0, 20.0, 20.0, 31.0, 32.0, 31.0, 0.0, 5.0, 0.0],
+            "{z:?}"
+        );
+    }
 }

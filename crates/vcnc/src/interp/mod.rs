@@ -738,7 +738,8 @@ impl Core {
         } else {
             self.after_compensated_block(flow);
         }
-        if !self.done && (self.command.has_calls() || self.macros.modal_call.is_some()) {
+        // Asked in this order: most blocks neither call nor end the program.
+        if (self.command.has_calls() || self.macros.modal_call.is_some()) && !self.done {
             if let Err(alarm) = self.run_calls(block, main_text) {
                 self.fail(alarm);
             }

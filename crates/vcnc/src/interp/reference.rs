@@ -62,7 +62,7 @@ fn reference_return(
             for axis in Axis::ALL.into_iter().filter(|a| exec.machine.has_axis(*a)) {
                 target[axis.index()] = reference[axis.index()];
             }
-            exec.frames.length_vector = 0.0;
+            exec.frames.set_length_vector(0.0);
             exec.rapid_to(target, cmd, out)?;
         } else {
             let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
@@ -89,7 +89,7 @@ fn reference_return(
         }
     }
     if moves_z {
-        exec.frames.length_vector = 0.0;
+        exec.frames.set_length_vector(0.0);
     }
     exec.rapid_to(home, cmd, out)?;
     Ok(true)

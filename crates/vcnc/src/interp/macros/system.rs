@@ -226,7 +226,7 @@ pub(crate) fn read(
         5081..=5086 => {
             let a = axis_of(number, 5081).unwrap_or(0);
             if a == 2 {
-                length(exec.frames.length_vector)
+                length(exec.frames.length_vector())
             } else {
                 Some(0.0)
             }
@@ -256,6 +256,7 @@ pub(crate) fn write(
             ToolField::Radius => offset.radius = mm,
             ToolField::RadiusWear => offset.radius_wear = mm,
         }
+        exec.tool_lengths_written();
         return Ok(WriteEffect::None);
     }
     if let Some((id, axis)) = work_offset_of(number, exec.profile.g54_1_count) {
@@ -427,7 +428,7 @@ fn letter_value(exec: &Executor, letter: u32) -> Option<MacroValue> {
         2 | 8 | 13 | 14 | 15 => Some(0.0),
         7 => Some(f64::from(exec.radius_offset_number)),
         9 => Some(exec.feed.unwrap_or(0.0) / exec.modal.units.to_mm()),
-        11 => Some(f64::from(exec.length_offset_number)),
+        11 => Some(f64::from(exec.length_offset_number())),
         19 => Some(exec.speed),
         20 => Some(f64::from(exec.selected_tool)),
         30 => match exec.modal.work_offset {
