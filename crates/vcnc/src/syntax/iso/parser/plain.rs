@@ -84,7 +84,7 @@ fn read_plain_words<const WINDOWED: bool>(
     if matches!(first_word, [] | [b'\n', ..]) {
         return None;
     }
-    let block = out.push();
+    let block = out.push_plain();
     // The block's start, file and line are known now: stored at once, they are not kept live
     // through the words (only the end is stored at the end).
     block.span = Span::new(file, offset_of(first_word), 0, line.number);
@@ -595,6 +595,64 @@ mod tests {
             "   ",
         ] {
             assert_same_blocks(text, 7);
+        }
+    }
+
+    /// The lines of `texts` read one after the other through one set of blocks, as the reading
+    /// loops reuse it, each compared with the line read into a new set.
+    fn assert_reused_blocks_read_as_new(texts: &[&str]) {
+        let mut reused = LineBlocks::new();
+        let mut reused_at_hand = LineBlocks::new();
+        for text in texts {
+            parse_line(
+                line(text, 7),
+                FileId(1),
+                &SyntaxOptions::default(),
+                &mut reused,
+            );
+            let new = read_with(parse_line, text, 7);
+            assert_eq!(reused.as_slice(), new, "{text:?} after {texts:?}");
+            let unread = format!("{text}\n{NEXT_LINE}");
+            reused_at_hand.reset();
+            if read_plain_line_in(line(&unread, 7), FileId(1), &mut reused_at_hand).is_some() {
+                assert_eq!(reused_at_hand.as_slice(), new, "{text:?} after {texts:?}");
+            } else {
+                // As the reading loop does: the line reader takes what the plain reader left.
+                parse_line(
+                    line(text, 7),
+                    FileId(1),
+                    &SyntaxOptions::default(),
+                    &mut reused_at_hand,
+                );
+                assert_eq!(reused_at_hand.as_slice(), new, "{text:?} after {texts:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_plain_line_after_any_other_line_reads_as_in_new_blocks() {
+        // Lines that leave a skip level, a tape mark, a comment, alarms, statements, code, a
+        // message or several blocks behind, each before and after plain lines.
+        let others = [
+            "/2 G1 X1.",
+            "%",
+            "G1 X1. (comment)",
+            "G1 X1 2.5.5",
+            "#1 = 2 (MESSAGE)",
+            "#3000 = 1 (NO TOOL)",
+            "G1 X#1",
+            "G1 X1.; G1 Y2.; G1 Z3.",
+            "",
+            "G1 X",
+            "X1.000000000000001",
+        ];
+        let plain = ["G01 X54.808 Y30.491", "G02 X1. Y2. R3.", "Y1"];
+        for other in others {
+            for first in plain {
+                for second in plain {
+                    assert_reused_blocks_read_as_new(&[first, other, second, other, other, first]);
+                }
+            }
         }
     }
 
