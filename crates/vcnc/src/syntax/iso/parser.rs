@@ -12,7 +12,7 @@ pub(super) mod structured;
 use super::LineBlocks;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
-use crate::syntax::lines::Line;
+use crate::syntax::lines::{Line, Unread};
 use crate::syntax::{BlockKind, Number, Word};
 use plain::{fast_number, read_plain_line, read_plain_line_in, POWERS_OF_TEN};
 
@@ -69,7 +69,7 @@ pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &m
 // and its end is found on the way instead of by a search of its own.
 #[inline(always)]
 pub(crate) fn parse_plain_line_in(
-    unread: Line<'_>,
+    unread: Unread<'_>,
     file: FileId,
     out: &mut LineBlocks,
 ) -> Option<usize> {

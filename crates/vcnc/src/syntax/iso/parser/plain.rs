@@ -15,7 +15,7 @@
 
 use super::super::LineBlocks;
 use crate::source::{FileId, Span};
-use crate::syntax::lines::Line;
+use crate::syntax::lines::{Line, Unread};
 use crate::syntax::{Number, Word};
 
 /// The most digits the fast path reads in one number. Below 10^15 every mantissa is an integer
@@ -31,7 +31,21 @@ const MAX_DIGITS: usize = 15;
 /// general reader would refuse); the block it may have begun is then to be thrown away.
 #[inline(always)]
 pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> bool {
-    read_plain_words::<false>(line, file, out) == Some(LineEnd::TextEnd)
+    // A span is the line's offset plus a position in the text. When the end of the text fits in
+    // u32, that sum never overflows (the general reader saturates: it takes the other lines).
+    let Some(text_end) = u32::try_from(line.text.len())
+        .ok()
+        .and_then(|length| line.offset.checked_add(length))
+    else {
+        return false;
+    };
+    // Read as text at hand that ends where the line ends.
+    let text = Unread {
+        text: line.text,
+        end_offset: text_end,
+        number: line.number,
+    };
+    read_plain_words::<false>(text, file, out) == Some(LineEnd::TextEnd)
 }
 
 /// Reads the first line of `unread` (text from the start of a line on, its line end included)
@@ -41,7 +55,7 @@ pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks
 /// bytes to the end of `unread` (the block it may have begun is then to be thrown away).
 #[inline(always)]
 pub(super) fn read_plain_line_in(
-    unread: Line<'_>,
+    unread: Unread<'_>,
     file: FileId,
     out: &mut LineBlocks,
 ) -> Option<usize> {
@@ -68,16 +82,13 @@ enum LineEnd {
 /// with [`unsigned_decimal`].
 #[inline(always)]
 fn read_plain_words<const WINDOWED: bool>(
-    line: Line<'_>,
+    line: Unread<'_>,
     file: FileId,
     out: &mut LineBlocks,
 ) -> Option<LineEnd> {
     let text = line.text;
-    // A span is the line's offset plus a position in the text. When the end of the text fits in
-    // u32, that sum never overflows (the general reader saturates: it takes the other lines).
-    let text_end = u32::try_from(text.len())
-        .ok()
-        .and_then(|length| line.offset.checked_add(length))?;
+    // Every offset in the text fits in u32 (see [`Unread::end_offset`]).
+    let text_end = line.end_offset;
     // The offset in the file of the start of `rest`, a tail of the text.
     let offset_of = |rest: &[u8]| text_end - rest.len() as u32;
     let first_word = skip_blanks(text);
@@ -363,6 +374,18 @@ mod tests {
         }
     }
 
+    /// `text` as the text at hand from byte `offset` of a file on; `None` past 4 GiB, as the
+    /// line sources give it.
+    fn unread_text(text: &str, offset: u32) -> Option<Unread<'_>> {
+        Some(Unread {
+            text: text.as_bytes(),
+            end_offset: u32::try_from(text.len())
+                .ok()
+                .and_then(|length| offset.checked_add(length))?,
+            number: 3,
+        })
+    }
+
     /// The blocks of a line as `read` gives them: `parse_line` (which takes the fast path when it
     /// can) or `parse_any_line` (the general reader alone).
     fn read_with(
@@ -403,7 +426,8 @@ mod tests {
             let handed_out = text.strip_suffix('\r').unwrap_or(text);
             let unread = format!("{text}\n{NEXT_LINE}");
             let mut at_hand = LineBlocks::new();
-            let taken = read_plain_line_in(line(&unread, offset), FileId(1), &mut at_hand);
+            let taken = unread_text(&unread, offset)
+                .and_then(|unread| read_plain_line_in(unread, FileId(1), &mut at_hand));
             if let Some(taken) = taken {
                 assert_eq!(taken, text.len() + 1, "{text:?}");
                 let general = read_with(parse_any_line, handed_out, offset);
@@ -614,7 +638,8 @@ mod tests {
             assert_eq!(reused.as_slice(), new, "{text:?} after {texts:?}");
             let unread = format!("{text}\n{NEXT_LINE}");
             reused_at_hand.reset();
-            if read_plain_line_in(line(&unread, 7), FileId(1), &mut reused_at_hand).is_some() {
+            let unread = unread_text(&unread, 7).expect("far below 4 GiB");
+            if read_plain_line_in(unread, FileId(1), &mut reused_at_hand).is_some() {
                 assert_eq!(reused_at_hand.as_slice(), new, "{text:?} after {texts:?}");
             } else {
                 // As the reading loop does: the line reader takes what the plain reader left.
@@ -671,7 +696,7 @@ mod tests {
         ] {
             let unread = &format!("{unread}{NEXT_LINE}");
             let mut fast = LineBlocks::new();
-            let taken = read_plain_line_in(line(unread, 7), FileId(1), &mut fast);
+            let taken = read_plain_line_in(unread_text(unread, 7).unwrap(), FileId(1), &mut fast);
             assert_eq!(taken, Some(unread.find('\n').unwrap() + 1), "{unread:?}");
             let mut by_line = LineBlocks::new();
             assert!(read_plain_line(
@@ -689,7 +714,8 @@ mod tests {
             " \r\nG1\n",
             "G1 X1.2.3\n",
         ] {
-            let taken = read_plain_line_in(line(unread, 7), FileId(1), &mut LineBlocks::new());
+            let unread = unread_text(unread, 7).unwrap();
+            let taken = read_plain_line_in(unread, FileId(1), &mut LineBlocks::new());
             assert_eq!(taken, None, "{unread:?}");
         }
         // A line handed out whole never holds a `\n`; if one did, it would not be plain.
@@ -698,8 +724,13 @@ mod tests {
 
     #[test]
     fn a_number_too_close_to_the_end_of_the_text_at_hand_leaves_the_line_to_the_line_reader() {
-        let read =
-            |unread: &str| read_plain_line_in(line(unread, 7), FileId(1), &mut LineBlocks::new());
+        let read = |unread: &str| {
+            read_plain_line_in(
+                unread_text(unread, 7).unwrap(),
+                FileId(1),
+                &mut LineBlocks::new(),
+            )
+        };
         // A word takes RUN + 2 bytes from its letter on (letter, sign, window), and a number's
         // windows RUN bytes from its first digit and from the first digit after its point: the
         // line's `\n` and what follows it count.
