@@ -66,10 +66,11 @@ pub trait LineSource {
         None
     }
 
-    /// Moves past the next line when it is the first `length` bytes of [`LineSource::unread`]'s
-    /// text, its `\n` included: it will not be handed out.
-    fn skip_line(&mut self, length: usize) {
-        let _ = length;
+    /// Moves past the next line, which [`LineSource::unread`]'s text holds, its `\n` included,
+    /// followed by `after` more bytes: it will not be handed out. (Counted from the end of the
+    /// text, the reader of the line need not keep the length of the text through the line.)
+    fn skip_line(&mut self, after: usize) {
+        let _ = after;
     }
 }
 
@@ -122,8 +123,8 @@ impl LineSource for TextLines<'_> {
         })
     }
 
-    fn skip_line(&mut self, length: usize) {
-        self.position += length;
+    fn skip_line(&mut self, after: usize) {
+        self.position = self.text.len() - after;
         self.number += 1;
     }
 
@@ -234,9 +235,9 @@ impl<R: Read> LineSource for ReaderLines<R> {
     }
 
     #[inline(always)]
-    fn skip_line(&mut self, length: usize) {
-        debug_assert!(length <= self.end - self.start, "a line of the unread text");
-        self.start += length;
+    fn skip_line(&mut self, after: usize) {
+        debug_assert!(after < self.end - self.start, "a line of the unread text");
+        self.start = self.end - after;
         self.number += 1;
     }
 
@@ -405,7 +406,7 @@ pub(crate) mod tests {
             let unread = source.unread().unwrap();
             assert_eq!((unread.offset(), unread.number), (7, 2));
             if unread.text.starts_with(b"G1 Y2\n") {
-                source.skip_line(6);
+                source.skip_line(unread.text.len() - 6);
             } else {
                 // Cut short by the reader: the line is read as usual.
                 source.next_line().unwrap();

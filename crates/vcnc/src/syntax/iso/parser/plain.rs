@@ -50,9 +50,10 @@ pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks
 
 /// Reads the first line of `unread` (text from the start of a line on, its line end included)
 /// into one block of `out` when it is a plain line ended by `\n`, as [`read_plain_line`] reads
-/// the line without its line end: how many bytes the line takes with its `\n`, or `None` for a
-/// line that is not plain, whose `\n` is not in `unread`, or with a word closer than [`RUN`] + 2
-/// bytes to the end of `unread` (the block it may have begun is then to be thrown away).
+/// the line without its line end: how many bytes of `unread` follow the line's `\n`, or `None`
+/// for a line that is not plain, whose `\n` is not in `unread`, with a `\r` elsewhere than
+/// before its `\n`, or with a word closer than [`RUN`] + 2 bytes to the end of `unread` (the
+/// block it may have begun is then to be thrown away).
 #[inline(always)]
 pub(super) fn read_plain_line_in(
     unread: Unread<'_>,
@@ -62,7 +63,7 @@ pub(super) fn read_plain_line_in(
     // The text at hand runs past the line, nearly always far enough for the numbers' windows;
     // a number too close to its end leaves the line to the line reader.
     match read_plain_words::<true>(unread, file, out)? {
-        LineEnd::Newline(at) => Some(at + 1),
+        LineEnd::Newline(after) => Some(after),
         LineEnd::TextEnd => None,
     }
 }
@@ -72,7 +73,7 @@ pub(super) fn read_plain_line_in(
 enum LineEnd {
     /// At the end of the text.
     TextEnd,
-    /// At a `\n`, at this position in the text.
+    /// At a `\n`, followed by this many bytes of the text.
     Newline(usize),
 }
 
@@ -91,7 +92,8 @@ fn read_plain_words<const WINDOWED: bool>(
     let text_end = line.end_offset;
     // The offset in the file of the start of `rest`, a tail of the text.
     let offset_of = |rest: &[u8]| text_end - rest.len() as u32;
-    let first_word = skip_blanks(text);
+    // A `\r` at the start is a blank like any other: a line of blanks is not plain.
+    let first_word = skip_blanks::<true>(text);
     if matches!(first_word, [] | [b'\n', ..]) {
         return None;
     }
@@ -105,10 +107,14 @@ fn read_plain_words<const WINDOWED: bool>(
         // gives the capital.
         let capital = letter & !0x20;
         if !capital.is_ascii_uppercase() {
-            if *letter == b'\n' {
-                break;
+            // Read from the text at hand, the blanks between words leave out `\r`: the `\r` of
+            // a `\r\n` ends the line's span, and is found here, off the common path, instead of
+            // by a look back from the `\n`. A line with a `\r` elsewhere is left to the line
+            // reader (which hands the line out without its line end, where `\r` is a blank).
+            match rest {
+                [b'\n', ..] | [b'\r', b'\n', ..] => break,
+                _ => return None,
             }
-            return None;
         }
         // The windows need RUN bytes after the letter and the sign: tested once here, the
         // tests of the sign and of the first window fold into it.
@@ -126,21 +132,21 @@ fn read_plain_words<const WINDOWED: bool>(
         // What follows a word must be the next word's letter, after blanks or none: a digit or
         // a point there (`X1 2.5`, `X1.2.3`), `=` (`F2=100`) or anything else is refused by the
         // letter test above, and the general reader decides.
-        rest = skip_blanks(after_number);
+        rest = if WINDOWED {
+            skip_blanks::<false>(after_number)
+        } else {
+            skip_blanks::<true>(after_number)
+        };
     }
-    let end = text.len() - rest.len();
-    let (line_end, ended) = if rest.is_empty() {
-        (text_end, LineEnd::TextEnd)
-    } else {
-        // A line handed out whole has lost the `\r` of its `\r\n`: its span ends before it.
-        let carriage_return = end.checked_sub(1).and_then(|last| text.get(last)) == Some(&b'\r');
-        (
-            offset_of(rest) - u32::from(carriage_return),
-            LineEnd::Newline(end),
-        )
-    };
-    block.span.end = line_end;
-    Some(ended)
+    // A line handed out whole has lost the `\r` of its `\r\n`: its span ends before it, where
+    // `rest` starts.
+    block.span.end = offset_of(rest);
+    Some(match rest {
+        [] => LineEnd::TextEnd,
+        [b'\n', after @ ..] | [_, b'\n', after @ ..] => LineEnd::Newline(after.len()),
+        // Any other byte ends the words only when it is refused above.
+        _ => return None,
+    })
 }
 
 /// The common case of the general reader's number: `digits [. digits]` (or `. digits`) with at
@@ -171,14 +177,16 @@ pub(super) const POWERS_OF_TEN: [f64; 23] = [
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
-/// The blanks the reader skips between words (a line end is never inside a line).
-fn is_blank(byte: u8) -> bool {
-    matches!(byte, b' ' | b'\t' | b'\x0c' | b'\x0b' | b'\r' | 0)
+/// The blanks the reader skips between words (a line end is never inside a line), `\r` among
+/// them when `CARRIAGE_RETURN`.
+#[inline(always)]
+fn is_blank<const CARRIAGE_RETURN: bool>(byte: u8) -> bool {
+    matches!(byte, b' ' | b'\t' | b'\x0c' | b'\x0b' | 0) || (CARRIAGE_RETURN && byte == b'\r')
 }
 
-/// `bytes` from its first byte that is not a blank.
+/// `bytes` from its first byte that is not a blank (see [`is_blank`]).
 #[inline(always)]
-fn skip_blanks(bytes: &[u8]) -> &[u8] {
+fn skip_blanks<const CARRIAGE_RETURN: bool>(bytes: &[u8]) -> &[u8] {
     // One space is what usually stands between two words: stepping over it first spares the
     // common case the loop.
     let bytes = match bytes {
@@ -186,15 +194,17 @@ fn skip_blanks(bytes: &[u8]) -> &[u8] {
         _ => bytes,
     };
     match bytes {
-        [first, ..] if is_blank(*first) => skip_blank_run(bytes),
+        [first, ..] if is_blank::<CARRIAGE_RETURN>(*first) => {
+            skip_blank_run::<CARRIAGE_RETURN>(bytes)
+        }
         _ => bytes,
     }
 }
 
 /// `bytes` from its first byte that is not a blank, for any run of blanks.
-fn skip_blank_run(mut bytes: &[u8]) -> &[u8] {
+fn skip_blank_run<const CARRIAGE_RETURN: bool>(mut bytes: &[u8]) -> &[u8] {
     while let [first, rest @ ..] = bytes {
-        if !is_blank(*first) {
+        if !is_blank::<CARRIAGE_RETURN>(*first) {
             break;
         }
         bytes = rest;
@@ -428,19 +438,24 @@ mod tests {
             let mut at_hand = LineBlocks::new();
             let taken = unread_text(&unread, offset)
                 .and_then(|unread| read_plain_line_in(unread, FileId(1), &mut at_hand));
-            if let Some(taken) = taken {
-                assert_eq!(taken, text.len() + 1, "{text:?}");
+            if let Some(after) = taken {
+                assert_eq!(unread.len() - after, text.len() + 1, "{text:?}");
                 let general = read_with(parse_any_line, handed_out, offset);
                 assert_eq!(at_hand.as_slice(), general, "{text:?}");
                 assert_eq!(values(at_hand.as_slice()), values(&general), "{text:?}");
             } else {
-                // Refused only when the line is not plain, or when the text at hand runs past
-                // 4 GiB (where spans saturate).
+                // Refused only when the line is not plain, when the text at hand runs past
+                // 4 GiB (where spans saturate), or when the line has a `\r` elsewhere than
+                // before its `\n`.
                 let past_4_gib = u32::try_from(unread.len())
                     .ok()
                     .and_then(|length| offset.checked_add(length))
                     .is_none();
-                assert!(past_4_gib || !is_plain(handed_out), "{text:?}");
+                let inner_carriage_return = handed_out.contains('\r');
+                assert!(
+                    past_4_gib || inner_carriage_return || !is_plain(handed_out),
+                    "{text:?}"
+                );
             }
         }
     }
@@ -690,14 +705,14 @@ mod tests {
         for (unread, line_length) in [
             ("G01 X54.808 Y30.491\nG1 X1", 19),
             ("G01 X54.808 Y30.491\r\nG1 X1", 19),
-            ("G02 X1 R2  \r\r\n", 12),
+            ("G02 X1 R2  \r\n", 11),
             ("  g1x1y2\n(comment)\n", 8),
-            ("X1\rY2\n", 5),
         ] {
             let unread = &format!("{unread}{NEXT_LINE}");
             let mut fast = LineBlocks::new();
             let taken = read_plain_line_in(unread_text(unread, 7).unwrap(), FileId(1), &mut fast);
-            assert_eq!(taken, Some(unread.find('\n').unwrap() + 1), "{unread:?}");
+            let after_newline = unread.len() - unread.find('\n').unwrap() - 1;
+            assert_eq!(taken, Some(after_newline), "{unread:?}");
             let mut by_line = LineBlocks::new();
             assert!(read_plain_line(
                 line(&unread[..line_length], 7),
@@ -706,18 +721,24 @@ mod tests {
             ));
             assert_eq!(fast.as_slice(), by_line.as_slice(), "{unread:?}");
         }
-        // Not plain, or not ended by `\n` where the text at hand ends: left to the line reader.
+        // Not plain, not ended by `\n` where the text at hand ends, or with a `\r` inside:
+        // left to the line reader (which reads the last as a plain line, `\r` as a blank).
         for unread in [
             "G1 X1",
             "G1 X1 (C)\n",
             "\nG1 X1\n",
             " \r\nG1\n",
             "G1 X1.2.3\n",
+            "X1\rY2\n",
+            "X1\r\rY2\n",
+            "X1\r \r\n",
+            "G02 X1 R2  \r\r\n",
         ] {
             let unread = unread_text(unread, 7).unwrap();
             let taken = read_plain_line_in(unread, FileId(1), &mut LineBlocks::new());
             assert_eq!(taken, None, "{unread:?}");
         }
+        assert!(is_plain("X1\rY2"));
         // A line handed out whole never holds a `\n`; if one did, it would not be plain.
         assert!(!is_plain("G1 X1\nG1 X2"));
     }
@@ -735,11 +756,11 @@ mod tests {
         // windows RUN bytes from its first digit and from the first digit after its point: the
         // line's `\n` and what follows it count.
         let tail = |length: usize| "\n".repeat(length);
-        assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 1))), Some(8));
+        assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 1))), Some(RUN - 2));
         assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 2))), None);
-        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 1))), Some(7));
+        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 1))), Some(RUN - 2));
         assert_eq!(read(&format!("G1 X15{}", tail(RUN - 2))), None);
-        assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 2))), Some(8));
+        assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 2))), Some(RUN - 3));
         assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 3))), None);
     }
 
