@@ -126,7 +126,14 @@ fn read_plain_words<const WINDOWED: bool>(
             letter: capital,
             index: 0,
             number,
-            span: Span::new(file, offset_of(rest), offset_of(after_number), line.number),
+            // The file and the line copied from the block's span: with `line` next to `file`
+            // in a span, one load and one store, and neither takes a register through the words.
+            span: Span {
+                file: block.span.file,
+                line: block.span.line,
+                start: offset_of(rest),
+                end: offset_of(after_number),
+            },
             expr: None,
         });
         // What follows a word must be the next word's letter, after blanks or none: a digit or
