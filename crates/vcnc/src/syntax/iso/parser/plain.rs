@@ -52,7 +52,7 @@ pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks
 /// into one block of `out` when it is a plain line ended by `\n`, as [`read_plain_line`] reads
 /// the line without its line end: how many bytes of `unread` follow the line's `\n`, or `None`
 /// for a line that is not plain, whose `\n` is not in `unread`, with a `\r` elsewhere than
-/// before its `\n`, or with a word closer than [`RUN`] + 2 bytes to the end of `unread` (the
+/// before its `\n`, or with a word closer than [`WINDOW`] + 2 bytes to the end of `unread` (the
 /// block it may have begun is then to be thrown away).
 #[inline(always)]
 pub(super) fn read_plain_line_in(
@@ -116,9 +116,9 @@ fn read_plain_words<const WINDOWED: bool>(
                 _ => return None,
             }
         }
-        // The windows need RUN bytes after the letter and the sign: tested once here, the
-        // tests of the sign and of the first window fold into it.
-        if WINDOWED && rest.len() < RUN + 2 {
+        // The number's window needs WINDOW bytes after the letter and the sign: tested once
+        // here, the tests of the sign and of the window fold into it.
+        if WINDOWED && rest.len() < WINDOW + 2 {
             return None;
         }
         let (number, after_number) = signed_number::<WINDOWED>(after_letter)?;
@@ -268,23 +268,25 @@ impl Decimal {
 }
 
 /// [`unsigned_decimal`] where `bytes` runs on far enough after the number: its digits are read
-/// from windows of [`RUN`] bytes, with no end test per digit (the compiler unrolls the loop of
-/// [`digit_run`]). `None` as well when `bytes` ends too close after the number.
+/// from one window of [`WINDOW`] bytes, the whole digits from its first [`RUN`], the fraction's
+/// from the [`RUN`] after the point, with no end test per digit (the compiler unrolls the loop of
+/// [`digit_run`]) and none for the point or the fraction. `None` as well when `bytes` is shorter
+/// than the window.
 #[inline(always)]
 fn windowed_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
-    let window = bytes.first_chunk::<RUN>()?;
-    let (whole, whole_digits) = digit_run(0, window);
-    let after_whole = bytes.get(whole_digits..).unwrap_or_default();
-    let (decimal, rest) = match after_whole {
-        [b'.', fraction @ ..] => {
-            let window = fraction.first_chunk::<RUN>()?;
-            let (mantissa, fraction_digits) = digit_run(whole, window);
+    let window = bytes.first_chunk::<WINDOW>()?;
+    let (whole, whole_digits) = digit_run(0, first_run(window)?);
+    // `whole_digits` is at most RUN: the point's place and the fraction's run are in the window
+    // (the compiler sees it, and drops the tests).
+    let (decimal, length) = match window.get(whole_digits..) {
+        Some([b'.', fraction @ ..]) => {
+            let (mantissa, fraction_digits) = digit_run(whole, first_run(fraction)?);
             let decimal = Decimal {
                 mantissa,
                 fraction_digits,
                 decimal_point: true,
             };
-            (decimal, fraction.get(fraction_digits..).unwrap_or_default())
+            (decimal, whole_digits + 1 + fraction_digits)
         }
         _ => {
             let decimal = Decimal {
@@ -292,15 +294,24 @@ fn windowed_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
                 fraction_digits: 0,
                 decimal_point: false,
             };
-            (decimal, after_whole)
+            (decimal, whole_digits)
         }
     };
     let digits = whole_digits + decimal.fraction_digits;
     if digits == 0 || digits > MAX_DIGITS {
         return None;
     }
-    Some((decimal, rest))
+    Some((decimal, bytes.get(length..).unwrap_or_default()))
 }
+
+/// The first [`RUN`] bytes of `bytes`, if it has as many.
+#[inline(always)]
+fn first_run(bytes: &[u8]) -> Option<&[u8; RUN]> {
+    bytes.first_chunk::<RUN>()
+}
+
+/// The bytes [`windowed_decimal`] reads: a run of digits, a point, and a run of digits.
+const WINDOW: usize = 2 * RUN + 1;
 
 /// The bytes [`digit_run`] reads: one more than [`MAX_DIGITS`], so that a run that fills them
 /// is refused.
@@ -495,14 +506,14 @@ mod tests {
         }
     }
 
-    /// The windowed reader reads what the byte-by-byte one reads, or leaves it when `bytes` ends
-    /// too close after the number.
+    /// The windowed reader reads what the byte-by-byte one reads, or leaves it when `bytes` is
+    /// shorter than its window.
     fn assert_windowed_agrees(bytes: &[u8]) {
         let by_byte = unsigned_decimal(bytes).map(|(decimal, rest)| (decimal, rest.len()));
         match windowed_decimal(bytes).map(|(decimal, rest)| (decimal, rest.len())) {
             Some(windowed) => assert_eq!(Some(windowed), by_byte, "{bytes:?}"),
             None => assert!(
-                by_byte.is_none_or(|(_, rest)| rest < RUN),
+                by_byte.is_none() || bytes.len() < WINDOW,
                 "{bytes:?}: windowed refused {by_byte:?}"
             ),
         }
@@ -534,15 +545,15 @@ mod tests {
             // Every length of text after the number, from none to more than the windows need,
             // with what may follow a number: a blank, a letter, a line end, a point.
             for after in [" ", "X", "\n", "."] {
-                for length in 0..=2 * RUN {
+                for length in 0..=2 * WINDOW {
                     let bytes = format!("{text}{}", after.repeat(length));
                     assert_windowed_agrees(bytes.as_bytes());
                 }
             }
         }
         // A number with text enough after it is read by the windows.
-        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\n").is_some());
-        assert!(windowed_decimal(b"54.808\n").is_none());
+        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\nG01 X54.808 Y30.491\n").is_some());
+        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\n").is_none());
     }
 
     #[test]
@@ -759,16 +770,24 @@ mod tests {
                 &mut LineBlocks::new(),
             )
         };
-        // A word takes RUN + 2 bytes from its letter on (letter, sign, window), and a number's
-        // windows RUN bytes from its first digit and from the first digit after its point: the
-        // line's `\n` and what follows it count.
+        // A word takes WINDOW + 2 bytes from its letter on (letter, sign, window): the line's
+        // `\n` and what follows it count.
         let tail = |length: usize| "\n".repeat(length);
-        assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 1))), Some(RUN - 2));
-        assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 2))), None);
-        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 1))), Some(RUN - 2));
-        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 2))), None);
-        assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 2))), Some(RUN - 3));
-        assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 3))), None);
+        assert_eq!(
+            read(&format!("G1 X1.5{}", tail(WINDOW - 2))),
+            Some(WINDOW - 3)
+        );
+        assert_eq!(read(&format!("G1 X1.5{}", tail(WINDOW - 3))), None);
+        assert_eq!(
+            read(&format!("G1 X15{}", tail(WINDOW - 1))),
+            Some(WINDOW - 2)
+        );
+        assert_eq!(read(&format!("G1 X15{}", tail(WINDOW - 2))), None);
+        assert_eq!(
+            read(&format!("G1 X-15{}", tail(WINDOW - 2))),
+            Some(WINDOW - 3)
+        );
+        assert_eq!(read(&format!("G1 X-15{}", tail(WINDOW - 3))), None);
     }
 
     #[test]
@@ -788,7 +807,13 @@ mod tests {
             negative in proptest::bool::ANY,
         ) {
             let text = if point { format!("{whole}.{fraction}") } else { whole.clone() };
-            for after in ["", " ", "X1.5 Y-2.", "\nG01 X54.808 Y30.491 Z-1.288\n"] {
+            for after in [
+                "",
+                " ",
+                "X1.5 Y-2.",
+                "\nG01 X54.808 Y30.491 Z-1.288\n",
+                "\nG01 X54.808 Y30.491 Z-1.288\nG01 X54.808 Y30.491\n",
+            ] {
                 assert_windowed_agrees(format!("{text}{after}").as_bytes());
             }
             let general = general_number(&text, negative);
