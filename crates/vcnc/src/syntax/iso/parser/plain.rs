@@ -301,10 +301,10 @@ fn windowed_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
     if digits == 0 || digits > MAX_DIGITS {
         return None;
     }
-    // The number takes at most MAX_DIGITS digits and a point, less than the window: the
-    // minimum changes nothing, and tells the compiler that the text after the number is not
-    // empty (no test for its end before the blanks and the next letter).
-    Some((decimal, bytes.get(length.min(WINDOW - 1)..).unwrap_or_default()))
+    // The number takes at most MAX_DIGITS digits and a point, RUN bytes: the minimum changes
+    // nothing, and tells the compiler that the RUN + 1 bytes after them in the window follow
+    // the number (no tests for the end of the text at the blank and the next letter).
+    Some((decimal, bytes.get(length.min(RUN)..).unwrap_or_default()))
 }
 
 /// The first [`RUN`] bytes of `bytes`, if it has as many.
