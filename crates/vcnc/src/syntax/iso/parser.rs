@@ -63,8 +63,9 @@ pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &m
 /// Reads the first line of `unread` (text from the start of a line on, line ends included) into
 /// `out` (which is reset first) when it is a plain line whose `\n` is in `unread`, as
 /// [`parse_line`] would read it: how many bytes of `unread` follow the line's `\n`. `None` leaves
-/// the line to [`parse_line`] (`out` then holds nothing to keep); so does a number less than a
-/// few bytes before the end of `unread`, and a `\r` in the line elsewhere than before its `\n`.
+/// the line to [`parse_line`] (`out` then holds nothing to keep); so does a line that ends less
+/// than a few dozen bytes before the end of `unread`, and one with a `\r` elsewhere than before
+/// its `\n`.
 // Inlined into the reading loops: the common line is read straight from the reader's buffer,
 // and its end is found on the way instead of by a search of its own.
 #[inline(always)]

@@ -52,8 +52,8 @@ pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks
 /// into one block of `out` when it is a plain line ended by `\n`, as [`read_plain_line`] reads
 /// the line without its line end: how many bytes of `unread` follow the line's `\n`, or `None`
 /// for a line that is not plain, whose `\n` is not in `unread`, with a `\r` elsewhere than
-/// before its `\n`, or with a word closer than [`WINDOW`] + 2 bytes to the end of `unread` (the
-/// block it may have begun is then to be thrown away).
+/// before its `\n`, or with a word or its end closer than [`WINDOW`] + 2 bytes to the end of
+/// `unread` (the block it may have begun is then to be thrown away).
 #[inline(always)]
 pub(super) fn read_plain_line_in(
     unread: Unread<'_>,
@@ -102,7 +102,17 @@ fn read_plain_words<const WINDOWED: bool>(
     // through the words (only the end is stored at the end).
     block.span = Span::new(file, offset_of(first_word), 0, line.number);
     let mut rest = first_word;
-    while let [letter, after_letter @ ..] = rest {
+    loop {
+        // A word's number needs its window: WINDOW bytes after the letter and the sign. Tested
+        // once here, before the letter, the tests of the letter, the sign and the window fold
+        // into it (a line's end closer than that to the end of the text is left to the line
+        // reader too).
+        if WINDOWED && rest.len() < WINDOW + 2 {
+            return None;
+        }
+        let [letter, after_letter @ ..] = rest else {
+            break;
+        };
         // An ASCII letter and its capital differ in bit 5 alone: one mask tests for a letter and
         // gives the capital.
         let capital = letter & !0x20;
@@ -115,11 +125,6 @@ fn read_plain_words<const WINDOWED: bool>(
                 [b'\n', ..] | [b'\r', b'\n', ..] => break,
                 _ => return None,
             }
-        }
-        // The number's window needs WINDOW bytes after the letter and the sign: tested once
-        // here, the tests of the sign and of the window fold into it.
-        if WINDOWED && rest.len() < WINDOW + 2 {
-            return None;
         }
         let (number, after_number) = signed_number::<WINDOWED>(after_letter)?;
         block.words.push(Word {
@@ -765,7 +770,7 @@ mod tests {
     }
 
     #[test]
-    fn a_number_too_close_to_the_end_of_the_text_at_hand_leaves_the_line_to_the_line_reader() {
+    fn a_line_too_close_to_the_end_of_the_text_at_hand_is_left_to_the_line_reader() {
         let read = |unread: &str| {
             read_plain_line_in(
                 unread_text(unread, 7).unwrap(),
@@ -773,24 +778,16 @@ mod tests {
                 &mut LineBlocks::new(),
             )
         };
-        // A word takes WINDOW + 2 bytes from its letter on (letter, sign, window): the line's
-        // `\n` and what follows it count.
+        // Every word takes WINDOW + 2 bytes from its letter on (letter, sign, window), and the
+        // line's end as many from its `\n` or `\r\n` on: what follows the line counts.
         let tail = |length: usize| "\n".repeat(length);
-        assert_eq!(
-            read(&format!("G1 X1.5{}", tail(WINDOW - 2))),
-            Some(WINDOW - 3)
-        );
-        assert_eq!(read(&format!("G1 X1.5{}", tail(WINDOW - 3))), None);
-        assert_eq!(
-            read(&format!("G1 X15{}", tail(WINDOW - 1))),
-            Some(WINDOW - 2)
-        );
-        assert_eq!(read(&format!("G1 X15{}", tail(WINDOW - 2))), None);
-        assert_eq!(
-            read(&format!("G1 X-15{}", tail(WINDOW - 2))),
-            Some(WINDOW - 3)
-        );
-        assert_eq!(read(&format!("G1 X-15{}", tail(WINDOW - 3))), None);
+        let room = WINDOW + 2;
+        for line in ["G1 X1.5", "G1 X15", "G1 X-15", "X1"] {
+            assert_eq!(read(&format!("{line}{}", tail(room))), Some(room - 1));
+            assert_eq!(read(&format!("{line}{}", tail(room - 1))), None);
+            assert_eq!(read(&format!("{line}\r{}", tail(room - 1))), Some(room - 2));
+            assert_eq!(read(&format!("{line}\r{}", tail(room - 2))), None);
+        }
     }
 
     #[test]
