@@ -16,12 +16,13 @@ pub struct FileId(pub u32);
 pub struct Span {
     /// The file the range belongs to.
     pub file: FileId,
+    /// 1-based line number of `start`.
+    // Next to `file`: the words of a line share both, and a reader copies the two at once.
+    pub line: u32,
     /// Byte offset of the first byte.
     pub start: u32,
     /// Byte offset one past the last byte.
     pub end: u32,
-    /// 1-based line number of `start`.
-    pub line: u32,
 }
 
 impl Span {

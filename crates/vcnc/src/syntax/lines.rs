@@ -21,6 +21,28 @@ pub struct Line<'a> {
     pub number: u32,
 }
 
+/// The text at hand not yet handed out, for a reader that finds the end of a line itself (see
+/// [`LineSource::unread`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Unread<'a> {
+    /// From the start of the next line to wherever the text at hand ends, which may be inside
+    /// that line or several lines further, line ends included.
+    pub text: &'a [u8],
+    /// The byte offset in the file one past the last byte of `text`: every offset in `text` fits
+    /// in u32, and is `end_offset` less the length of the text from it on.
+    pub end_offset: u32,
+    /// The 1-based number of the line `text` starts with.
+    pub number: u32,
+}
+
+impl Unread<'_> {
+    /// The byte offset in the file of the first byte of `text`.
+    pub fn offset(&self) -> u32 {
+        // `text` ends at `end_offset`: its length is at most that.
+        self.end_offset - self.text.len() as u32
+    }
+}
+
 /// Something that hands out program lines in order.
 pub trait LineSource {
     /// The next line, or `None` at the end of the text.
@@ -35,19 +57,20 @@ pub trait LineSource {
         None
     }
 
-    /// The text not yet handed out, as far as it is at hand, as one [`Line`]: from the start of
-    /// the next line (its offset and number) to wherever the text at hand ends, which may be
-    /// inside that line or several lines further, line ends included. A reader that finds the
-    /// end of the line itself reads it from here, then calls [`LineSource::skip_line`]. `None`
-    /// when nothing is at hand.
-    fn unread(&self) -> Option<Line<'_>> {
+    /// The text not yet handed out, as far as it is at hand: from the start of the next line to
+    /// wherever the text at hand ends, which may be inside that line or several lines further,
+    /// line ends included. A reader that finds the end of the line itself reads it from here,
+    /// then calls [`LineSource::skip_line`]. `None` when nothing is at hand, or when the text at
+    /// hand ends past 4 GiB (where offsets no longer fit in a span).
+    fn unread(&self) -> Option<Unread<'_>> {
         None
     }
 
-    /// Moves past the next line when it is the first `length` bytes of [`LineSource::unread`]'s
-    /// text, its `\n` included: it will not be handed out.
-    fn skip_line(&mut self, length: usize) {
-        let _ = length;
+    /// Moves past the next line, which [`LineSource::unread`]'s text holds, its `\n` included,
+    /// followed by `after` more bytes: it will not be handed out. (Counted from the end of the
+    /// text, the reader of the line need not keep the length of the text through the line.)
+    fn skip_line(&mut self, after: usize) {
+        let _ = after;
     }
 }
 
@@ -92,16 +115,16 @@ impl LineSource for TextLines<'_> {
         Some(self.text)
     }
 
-    fn unread(&self) -> Option<Line<'_>> {
-        Some(Line {
+    fn unread(&self) -> Option<Unread<'_>> {
+        Some(Unread {
             text: self.text.get(self.position..)?,
-            offset: clamp_offset(self.position),
+            end_offset: u32::try_from(self.text.len()).ok()?,
             number: self.number.wrapping_add(1),
         })
     }
 
-    fn skip_line(&mut self, length: usize) {
-        self.position += length;
+    fn skip_line(&mut self, after: usize) {
+        self.position = self.text.len() - after;
         self.number += 1;
     }
 
@@ -137,6 +160,9 @@ pub struct ReaderLines<R> {
     end: usize,
     /// File offset of `buffer[0]`: it changes only when the buffer is refilled, not per line.
     buffer_offset: u64,
+    /// File offset of `buffer[end]`, when it fits in u32: the end of the unread text, known
+    /// from one refill to the next (see [`LineSource::unread`]).
+    end_offset: Option<u32>,
     number: u32,
     eof: bool,
 }
@@ -150,6 +176,7 @@ impl<R: Read> ReaderLines<R> {
             start: 0,
             end: 0,
             buffer_offset: 0,
+            end_offset: Some(0),
             number: 0,
             eof: false,
         }
@@ -164,6 +191,15 @@ impl<R: Read> ReaderLines<R> {
         self.buffer_offset += self.start as u64;
         self.end -= self.start;
         self.start = 0;
+        // The end of the unread text has moved (its bytes went to the front, more may come):
+        // its offset is worked out again, whatever the read gives.
+        let read = self.read_more();
+        self.end_offset = u32::try_from(self.buffer_offset + self.end as u64).ok();
+        read
+    }
+
+    /// Reads more after `buffer[..end]`; false when nothing more came.
+    fn read_more(&mut self) -> io::Result<bool> {
         if self.end == self.buffer.len() {
             let grown = self.buffer.len() * 2;
             self.buffer.resize(grown, 0);
@@ -189,19 +225,19 @@ impl<R: Read> LineSource for ReaderLines<R> {
     // Inlined into the parsing loop, with `skip_line`: the common line is read straight from the
     // buffer, and its end found by the reader of its words.
     #[inline(always)]
-    fn unread(&self) -> Option<Line<'_>> {
-        let file_offset = self.buffer_offset + self.start as u64;
-        Some(Line {
+    fn unread(&self) -> Option<Unread<'_>> {
+        // The end's offset is kept from the last refill: nothing to add or clamp per line.
+        Some(Unread {
             text: self.buffer.get(self.start..self.end)?,
-            offset: clamp_offset(usize::try_from(file_offset).unwrap_or(usize::MAX)),
+            end_offset: self.end_offset?,
             number: self.number.wrapping_add(1),
         })
     }
 
     #[inline(always)]
-    fn skip_line(&mut self, length: usize) {
-        debug_assert!(length <= self.end - self.start, "a line of the unread text");
-        self.start += length;
+    fn skip_line(&mut self, after: usize) {
+        debug_assert!(after < self.end - self.start, "a line of the unread text");
+        self.start = self.end - after;
         self.number += 1;
     }
 
@@ -368,15 +404,41 @@ pub(crate) mod tests {
         a.next_line().unwrap();
         for source in [&mut a as &mut dyn LineSource, &mut b] {
             let unread = source.unread().unwrap();
-            assert_eq!((unread.offset, unread.number), (7, 2));
+            assert_eq!((unread.offset(), unread.number), (7, 2));
             if unread.text.starts_with(b"G1 Y2\n") {
-                source.skip_line(6);
+                source.skip_line(unread.text.len() - 6);
             } else {
                 // Cut short by the reader: the line is read as usual.
                 source.next_line().unwrap();
             }
             let line = source.next_line().unwrap().unwrap();
             assert_eq!((line.text, line.offset, line.number), (&b"M30"[..], 13, 3));
+        }
+    }
+
+    #[test]
+    fn the_text_at_hand_starts_where_the_next_line_starts_across_refills() {
+        let mut text = Vec::new();
+        for i in 0..300 {
+            text.extend_from_slice(format!("G1 X{i}.\r\n\n").as_bytes());
+        }
+        for chunk in [1, 3, 7, 64] {
+            let mut reader = ReaderLines::new(Trickle { data: &text, chunk });
+            let mut lines = TextLines::new(&text);
+            loop {
+                // The reader's text at hand is a part of the text's, from the same place on.
+                let whole = lines.unread().expect("the whole text is at hand");
+                if let Some(unread) = reader.unread().filter(|u| !u.text.is_empty()) {
+                    assert_eq!(unread.offset(), whole.offset(), "chunk {chunk}");
+                    assert_eq!(unread.number, whole.number, "chunk {chunk}");
+                    assert!(whole.text.starts_with(unread.text), "chunk {chunk}");
+                }
+                let Some(line) = reader.next_line().unwrap().map(|l| (l.offset, l.number)) else {
+                    break;
+                };
+                let expected = lines.next_line().unwrap().map(|l| (l.offset, l.number));
+                assert_eq!(Some(line), expected);
+            }
         }
     }
 

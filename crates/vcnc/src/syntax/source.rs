@@ -76,8 +76,8 @@ fn read_next_line<L: LineSource>(
     out: &mut LineBlocks,
 ) -> io::Result<bool> {
     if let Some(unread) = lines.unread() {
-        if let Some(length) = parse_plain_line_in(unread, file, out) {
-            lines.skip_line(length);
+        if let Some(after) = parse_plain_line_in(unread, file, out) {
+            lines.skip_line(after);
             return Ok(true);
         }
     }

@@ -27,6 +27,10 @@ pub use program::{parse_program, ProgramBlocks};
 pub struct LineBlocks {
     blocks: Vec<super::Block>,
     len: usize,
+    /// The first block holds nothing but what the reader of plain lines writes (its span and
+    /// words; everything else as [`Block::clear`](super::Block::clear) leaves it), so that the
+    /// next plain line needs only its words emptied ([`LineBlocks::push_plain`]).
+    first_is_plain: bool,
 }
 
 impl LineBlocks {
@@ -43,6 +47,7 @@ impl LineBlocks {
         LineBlocks {
             blocks: vec![block],
             len: 0,
+            first_is_plain: false,
         }
     }
 
@@ -60,6 +65,8 @@ impl LineBlocks {
     /// A cleared block at the end of the set.
     #[inline(always)]
     pub(crate) fn push(&mut self) -> &mut super::Block {
+        // The block may be filled with anything: it is no longer known to be plain.
+        self.first_is_plain = false;
         if self.len == self.blocks.len() {
             self.add_block();
         } else {
@@ -67,6 +74,30 @@ impl LineBlocks {
         }
         self.len += 1;
         &mut self.blocks[self.len - 1]
+    }
+
+    /// The first block of an empty set, for the reader of plain lines: cleared, except that its
+    /// span is left as it was (the reader writes all of it). After the line before, a plain one
+    /// too as nearly always, only its words need emptying.
+    #[inline(always)]
+    pub(crate) fn push_plain(&mut self) -> &mut super::Block {
+        debug_assert_eq!(self.len, 0, "a plain line is the only block of its set");
+        if self.first_is_plain && !self.blocks.is_empty() {
+            self.len = 1;
+            let block = &mut self.blocks[0];
+            block.words.clear();
+            return block;
+        }
+        self.push_first_plain()
+    }
+
+    /// [`LineBlocks::push_plain`] after a line that was not plain: the block cleared in full.
+    #[cold]
+    fn push_first_plain(&mut self) -> &mut super::Block {
+        self.len = 0;
+        self.push();
+        self.first_is_plain = true;
+        &mut self.blocks[0]
     }
 
     /// A new block for a line with more blocks than any before it: rare once the set has been

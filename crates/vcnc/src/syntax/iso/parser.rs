@@ -12,7 +12,7 @@ pub(super) mod structured;
 use super::LineBlocks;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
-use crate::syntax::lines::Line;
+use crate::syntax::lines::{Line, Unread};
 use crate::syntax::{BlockKind, Number, Word};
 use plain::{fast_number, read_plain_line, read_plain_line_in, POWERS_OF_TEN};
 
@@ -62,14 +62,15 @@ pub fn parse_line(line: Line<'_>, file: FileId, options: &SyntaxOptions, out: &m
 
 /// Reads the first line of `unread` (text from the start of a line on, line ends included) into
 /// `out` (which is reset first) when it is a plain line whose `\n` is in `unread`, as
-/// [`parse_line`] would read it: how many bytes the line takes with its `\n`. `None` leaves the
-/// line to [`parse_line`] (`out` then holds nothing to keep); so does a number less than a few
-/// bytes before the end of `unread`.
+/// [`parse_line`] would read it: how many bytes of `unread` follow the line's `\n`. `None` leaves
+/// the line to [`parse_line`] (`out` then holds nothing to keep); so does a line that ends less
+/// than a few dozen bytes before the end of `unread`, and one with a `\r` elsewhere than before
+/// its `\n`.
 // Inlined into the reading loops: the common line is read straight from the reader's buffer,
 // and its end is found on the way instead of by a search of its own.
 #[inline(always)]
 pub(crate) fn parse_plain_line_in(
-    unread: Line<'_>,
+    unread: Unread<'_>,
     file: FileId,
     out: &mut LineBlocks,
 ) -> Option<usize> {

@@ -15,7 +15,7 @@
 
 use super::super::LineBlocks;
 use crate::source::{FileId, Span};
-use crate::syntax::lines::Line;
+use crate::syntax::lines::{Line, Unread};
 use crate::syntax::{Number, Word};
 
 /// The most digits the fast path reads in one number. Below 10^15 every mantissa is an integer
@@ -31,24 +31,39 @@ const MAX_DIGITS: usize = 15;
 /// general reader would refuse); the block it may have begun is then to be thrown away.
 #[inline(always)]
 pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks) -> bool {
-    read_plain_words::<false>(line, file, out) == Some(LineEnd::TextEnd)
+    // A span is the line's offset plus a position in the text. When the end of the text fits in
+    // u32, that sum never overflows (the general reader saturates: it takes the other lines).
+    let Some(text_end) = u32::try_from(line.text.len())
+        .ok()
+        .and_then(|length| line.offset.checked_add(length))
+    else {
+        return false;
+    };
+    // Read as text at hand that ends where the line ends.
+    let text = Unread {
+        text: line.text,
+        end_offset: text_end,
+        number: line.number,
+    };
+    read_plain_words::<false>(text, file, out) == Some(LineEnd::TextEnd)
 }
 
 /// Reads the first line of `unread` (text from the start of a line on, its line end included)
 /// into one block of `out` when it is a plain line ended by `\n`, as [`read_plain_line`] reads
-/// the line without its line end: how many bytes the line takes with its `\n`, or `None` for a
-/// line that is not plain, whose `\n` is not in `unread`, or with a word closer than [`RUN`] + 2
-/// bytes to the end of `unread` (the block it may have begun is then to be thrown away).
+/// the line without its line end: how many bytes of `unread` follow the line's `\n`, or `None`
+/// for a line that is not plain, whose `\n` is not in `unread`, with a `\r` elsewhere than
+/// before its `\n`, or with a word or its end closer than [`WINDOW`] + 2 bytes to the end of
+/// `unread` (the block it may have begun is then to be thrown away).
 #[inline(always)]
 pub(super) fn read_plain_line_in(
-    unread: Line<'_>,
+    unread: Unread<'_>,
     file: FileId,
     out: &mut LineBlocks,
 ) -> Option<usize> {
     // The text at hand runs past the line, nearly always far enough for the numbers' windows;
     // a number too close to its end leaves the line to the line reader.
     match read_plain_words::<true>(unread, file, out)? {
-        LineEnd::Newline(at) => Some(at + 1),
+        LineEnd::Newline(after) => Some(after),
         LineEnd::TextEnd => None,
     }
 }
@@ -58,7 +73,7 @@ pub(super) fn read_plain_line_in(
 enum LineEnd {
     /// At the end of the text.
     TextEnd,
-    /// At a `\n`, at this position in the text.
+    /// At a `\n`, followed by this many bytes of the text.
     Newline(usize),
 }
 
@@ -68,68 +83,82 @@ enum LineEnd {
 /// with [`unsigned_decimal`].
 #[inline(always)]
 fn read_plain_words<const WINDOWED: bool>(
-    line: Line<'_>,
+    line: Unread<'_>,
     file: FileId,
     out: &mut LineBlocks,
 ) -> Option<LineEnd> {
     let text = line.text;
-    // A span is the line's offset plus a position in the text. When the end of the text fits in
-    // u32, that sum never overflows (the general reader saturates: it takes the other lines).
-    let text_end = u32::try_from(text.len())
-        .ok()
-        .and_then(|length| line.offset.checked_add(length))?;
+    // Every offset in the text fits in u32 (see [`Unread::end_offset`]).
+    let text_end = line.end_offset;
     // The offset in the file of the start of `rest`, a tail of the text.
     let offset_of = |rest: &[u8]| text_end - rest.len() as u32;
-    let first_word = skip_blanks(text);
+    // A `\r` at the start is a blank like any other: a line of blanks is not plain.
+    let first_word = skip_blanks::<true>(text);
     if matches!(first_word, [] | [b'\n', ..]) {
         return None;
     }
-    let block = out.push();
+    let block = out.push_plain();
     // The block's start, file and line are known now: stored at once, they are not kept live
     // through the words (only the end is stored at the end).
     block.span = Span::new(file, offset_of(first_word), 0, line.number);
     let mut rest = first_word;
-    while let [letter, after_letter @ ..] = rest {
+    loop {
+        // A word's number needs its window: WINDOW bytes after the letter and the sign. Tested
+        // once here, before the letter, the tests of the letter, the sign and the window fold
+        // into it (a line's end closer than that to the end of the text is left to the line
+        // reader too).
+        if WINDOWED && rest.len() < WINDOW + 2 {
+            return None;
+        }
+        let [letter, after_letter @ ..] = rest else {
+            break;
+        };
         // An ASCII letter and its capital differ in bit 5 alone: one mask tests for a letter and
         // gives the capital.
         let capital = letter & !0x20;
         if !capital.is_ascii_uppercase() {
-            if *letter == b'\n' {
-                break;
+            // Read from the text at hand, the blanks between words leave out `\r`: the `\r` of
+            // a `\r\n` ends the line's span, and is found here, off the common path, instead of
+            // by a look back from the `\n`. A line with a `\r` elsewhere is left to the line
+            // reader (which hands the line out without its line end, where `\r` is a blank).
+            match rest {
+                [b'\n', ..] | [b'\r', b'\n', ..] => break,
+                _ => return None,
             }
-            return None;
-        }
-        // The windows need RUN bytes after the letter and the sign: tested once here, the
-        // tests of the sign and of the first window fold into it.
-        if WINDOWED && rest.len() < RUN + 2 {
-            return None;
         }
         let (number, after_number) = signed_number::<WINDOWED>(after_letter)?;
         block.words.push(Word {
             letter: capital,
             index: 0,
             number,
-            span: Span::new(file, offset_of(rest), offset_of(after_number), line.number),
+            // The file and the line copied from the block's span: with `line` next to `file`
+            // in a span, one load and one store, and neither takes a register through the words.
+            span: Span {
+                file: block.span.file,
+                line: block.span.line,
+                start: offset_of(rest),
+                end: offset_of(after_number),
+            },
             expr: None,
         });
         // What follows a word must be the next word's letter, after blanks or none: a digit or
         // a point there (`X1 2.5`, `X1.2.3`), `=` (`F2=100`) or anything else is refused by the
         // letter test above, and the general reader decides.
-        rest = skip_blanks(after_number);
+        rest = if WINDOWED {
+            skip_blanks::<false>(after_number)
+        } else {
+            skip_blanks::<true>(after_number)
+        };
     }
-    let end = text.len() - rest.len();
-    let (line_end, ended) = if rest.is_empty() {
-        (text_end, LineEnd::TextEnd)
-    } else {
-        // A line handed out whole has lost the `\r` of its `\r\n`: its span ends before it.
-        let carriage_return = end.checked_sub(1).and_then(|last| text.get(last)) == Some(&b'\r');
-        (
-            offset_of(rest) - u32::from(carriage_return),
-            LineEnd::Newline(end),
-        )
-    };
-    block.span.end = line_end;
-    Some(ended)
+    // A line handed out whole has lost the `\r` of its `\r\n`: its span ends before it, where
+    // `rest` starts.
+    block.span.end = offset_of(rest);
+    Some(match rest {
+        [] => LineEnd::TextEnd,
+        [b'\n', after @ ..] | [_, b'\n', after @ ..] => LineEnd::Newline(after.len()),
+        // Any other byte ends the words only when it is refused above.
+        _ => return None,
+    })
 }
 
 /// The common case of the general reader's number: `digits [. digits]` (or `. digits`) with at
@@ -160,14 +189,16 @@ pub(super) const POWERS_OF_TEN: [f64; 23] = [
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
-/// The blanks the reader skips between words (a line end is never inside a line).
-fn is_blank(byte: u8) -> bool {
-    matches!(byte, b' ' | b'\t' | b'\x0c' | b'\x0b' | b'\r' | 0)
+/// The blanks the reader skips between words (a line end is never inside a line), `\r` among
+/// them when `CARRIAGE_RETURN`.
+#[inline(always)]
+fn is_blank<const CARRIAGE_RETURN: bool>(byte: u8) -> bool {
+    matches!(byte, b' ' | b'\t' | b'\x0c' | b'\x0b' | 0) || (CARRIAGE_RETURN && byte == b'\r')
 }
 
-/// `bytes` from its first byte that is not a blank.
+/// `bytes` from its first byte that is not a blank (see [`is_blank`]).
 #[inline(always)]
-fn skip_blanks(bytes: &[u8]) -> &[u8] {
+fn skip_blanks<const CARRIAGE_RETURN: bool>(bytes: &[u8]) -> &[u8] {
     // One space is what usually stands between two words: stepping over it first spares the
     // common case the loop.
     let bytes = match bytes {
@@ -175,15 +206,17 @@ fn skip_blanks(bytes: &[u8]) -> &[u8] {
         _ => bytes,
     };
     match bytes {
-        [first, ..] if is_blank(*first) => skip_blank_run(bytes),
+        [first, ..] if is_blank::<CARRIAGE_RETURN>(*first) => {
+            skip_blank_run::<CARRIAGE_RETURN>(bytes)
+        }
         _ => bytes,
     }
 }
 
 /// `bytes` from its first byte that is not a blank, for any run of blanks.
-fn skip_blank_run(mut bytes: &[u8]) -> &[u8] {
+fn skip_blank_run<const CARRIAGE_RETURN: bool>(mut bytes: &[u8]) -> &[u8] {
     while let [first, rest @ ..] = bytes {
-        if !is_blank(*first) {
+        if !is_blank::<CARRIAGE_RETURN>(*first) {
             break;
         }
         bytes = rest;
@@ -240,23 +273,25 @@ impl Decimal {
 }
 
 /// [`unsigned_decimal`] where `bytes` runs on far enough after the number: its digits are read
-/// from windows of [`RUN`] bytes, with no end test per digit (the compiler unrolls the loop of
-/// [`digit_run`]). `None` as well when `bytes` ends too close after the number.
+/// from one window of [`WINDOW`] bytes, the whole digits from its first [`RUN`], the fraction's
+/// from the [`RUN`] after the point, with no end test per digit (the compiler unrolls the loop of
+/// [`digit_run`]) and none for the point or the fraction. `None` as well when `bytes` is shorter
+/// than the window.
 #[inline(always)]
 fn windowed_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
-    let window = bytes.first_chunk::<RUN>()?;
-    let (whole, whole_digits) = digit_run(0, window);
-    let after_whole = bytes.get(whole_digits..).unwrap_or_default();
-    let (decimal, rest) = match after_whole {
-        [b'.', fraction @ ..] => {
-            let window = fraction.first_chunk::<RUN>()?;
-            let (mantissa, fraction_digits) = digit_run(whole, window);
+    let window = bytes.first_chunk::<WINDOW>()?;
+    let (whole, whole_digits) = digit_run(0, first_run(window)?);
+    // `whole_digits` is at most RUN: the point's place and the fraction's run are in the window
+    // (the compiler sees it, and drops the tests).
+    let (decimal, length) = match window.get(whole_digits..) {
+        Some([b'.', fraction @ ..]) => {
+            let (mantissa, fraction_digits) = digit_run(whole, first_run(fraction)?);
             let decimal = Decimal {
                 mantissa,
                 fraction_digits,
                 decimal_point: true,
             };
-            (decimal, fraction.get(fraction_digits..).unwrap_or_default())
+            (decimal, whole_digits + 1 + fraction_digits)
         }
         _ => {
             let decimal = Decimal {
@@ -264,15 +299,27 @@ fn windowed_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
                 fraction_digits: 0,
                 decimal_point: false,
             };
-            (decimal, after_whole)
+            (decimal, whole_digits)
         }
     };
     let digits = whole_digits + decimal.fraction_digits;
     if digits == 0 || digits > MAX_DIGITS {
         return None;
     }
-    Some((decimal, rest))
+    // The number takes at most MAX_DIGITS digits and a point, RUN bytes: the minimum changes
+    // nothing, and tells the compiler that the RUN + 1 bytes after them in the window follow
+    // the number (no tests for the end of the text at the blank and the next letter).
+    Some((decimal, bytes.get(length.min(RUN)..).unwrap_or_default()))
 }
+
+/// The first [`RUN`] bytes of `bytes`, if it has as many.
+#[inline(always)]
+fn first_run(bytes: &[u8]) -> Option<&[u8; RUN]> {
+    bytes.first_chunk::<RUN>()
+}
+
+/// The bytes [`windowed_decimal`] reads: a run of digits, a point, and a run of digits.
+const WINDOW: usize = 2 * RUN + 1;
 
 /// The bytes [`digit_run`] reads: one more than [`MAX_DIGITS`], so that a run that fills them
 /// is refused.
@@ -363,6 +410,18 @@ mod tests {
         }
     }
 
+    /// `text` as the text at hand from byte `offset` of a file on; `None` past 4 GiB, as the
+    /// line sources give it.
+    fn unread_text(text: &str, offset: u32) -> Option<Unread<'_>> {
+        Some(Unread {
+            text: text.as_bytes(),
+            end_offset: u32::try_from(text.len())
+                .ok()
+                .and_then(|length| offset.checked_add(length))?,
+            number: 3,
+        })
+    }
+
     /// The blocks of a line as `read` gives them: `parse_line` (which takes the fast path when it
     /// can) or `parse_any_line` (the general reader alone).
     fn read_with(
@@ -403,20 +462,26 @@ mod tests {
             let handed_out = text.strip_suffix('\r').unwrap_or(text);
             let unread = format!("{text}\n{NEXT_LINE}");
             let mut at_hand = LineBlocks::new();
-            let taken = read_plain_line_in(line(&unread, offset), FileId(1), &mut at_hand);
-            if let Some(taken) = taken {
-                assert_eq!(taken, text.len() + 1, "{text:?}");
+            let taken = unread_text(&unread, offset)
+                .and_then(|unread| read_plain_line_in(unread, FileId(1), &mut at_hand));
+            if let Some(after) = taken {
+                assert_eq!(unread.len() - after, text.len() + 1, "{text:?}");
                 let general = read_with(parse_any_line, handed_out, offset);
                 assert_eq!(at_hand.as_slice(), general, "{text:?}");
                 assert_eq!(values(at_hand.as_slice()), values(&general), "{text:?}");
             } else {
-                // Refused only when the line is not plain, or when the text at hand runs past
-                // 4 GiB (where spans saturate).
+                // Refused only when the line is not plain, when the text at hand runs past
+                // 4 GiB (where spans saturate), or when the line has a `\r` elsewhere than
+                // before its `\n`.
                 let past_4_gib = u32::try_from(unread.len())
                     .ok()
                     .and_then(|length| offset.checked_add(length))
                     .is_none();
-                assert!(past_4_gib || !is_plain(handed_out), "{text:?}");
+                let inner_carriage_return = handed_out.contains('\r');
+                assert!(
+                    past_4_gib || inner_carriage_return || !is_plain(handed_out),
+                    "{text:?}"
+                );
             }
         }
     }
@@ -449,14 +514,14 @@ mod tests {
         }
     }
 
-    /// The windowed reader reads what the byte-by-byte one reads, or leaves it when `bytes` ends
-    /// too close after the number.
+    /// The windowed reader reads what the byte-by-byte one reads, or leaves it when `bytes` is
+    /// shorter than its window.
     fn assert_windowed_agrees(bytes: &[u8]) {
         let by_byte = unsigned_decimal(bytes).map(|(decimal, rest)| (decimal, rest.len()));
         match windowed_decimal(bytes).map(|(decimal, rest)| (decimal, rest.len())) {
             Some(windowed) => assert_eq!(Some(windowed), by_byte, "{bytes:?}"),
             None => assert!(
-                by_byte.is_none_or(|(_, rest)| rest < RUN),
+                by_byte.is_none() || bytes.len() < WINDOW,
                 "{bytes:?}: windowed refused {by_byte:?}"
             ),
         }
@@ -488,15 +553,15 @@ mod tests {
             // Every length of text after the number, from none to more than the windows need,
             // with what may follow a number: a blank, a letter, a line end, a point.
             for after in [" ", "X", "\n", "."] {
-                for length in 0..=2 * RUN {
+                for length in 0..=2 * WINDOW {
                     let bytes = format!("{text}{}", after.repeat(length));
                     assert_windowed_agrees(bytes.as_bytes());
                 }
             }
         }
         // A number with text enough after it is read by the windows.
-        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\n").is_some());
-        assert!(windowed_decimal(b"54.808\n").is_none());
+        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\nG01 X54.808 Y30.491\n").is_some());
+        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\n").is_none());
     }
 
     #[test]
@@ -598,6 +663,65 @@ mod tests {
         }
     }
 
+    /// The lines of `texts` read one after the other through one set of blocks, as the reading
+    /// loops reuse it, each compared with the line read into a new set.
+    fn assert_reused_blocks_read_as_new(texts: &[&str]) {
+        let mut reused = LineBlocks::new();
+        let mut reused_at_hand = LineBlocks::new();
+        for text in texts {
+            parse_line(
+                line(text, 7),
+                FileId(1),
+                &SyntaxOptions::default(),
+                &mut reused,
+            );
+            let new = read_with(parse_line, text, 7);
+            assert_eq!(reused.as_slice(), new, "{text:?} after {texts:?}");
+            let unread = format!("{text}\n{NEXT_LINE}");
+            reused_at_hand.reset();
+            let unread = unread_text(&unread, 7).expect("far below 4 GiB");
+            if read_plain_line_in(unread, FileId(1), &mut reused_at_hand).is_some() {
+                assert_eq!(reused_at_hand.as_slice(), new, "{text:?} after {texts:?}");
+            } else {
+                // As the reading loop does: the line reader takes what the plain reader left.
+                parse_line(
+                    line(text, 7),
+                    FileId(1),
+                    &SyntaxOptions::default(),
+                    &mut reused_at_hand,
+                );
+                assert_eq!(reused_at_hand.as_slice(), new, "{text:?} after {texts:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_plain_line_after_any_other_line_reads_as_in_new_blocks() {
+        // Lines that leave a skip level, a tape mark, a comment, alarms, statements, code, a
+        // message or several blocks behind, each before and after plain lines.
+        let others = [
+            "/2 G1 X1.",
+            "%",
+            "G1 X1. (comment)",
+            "G1 X1 2.5.5",
+            "#1 = 2 (MESSAGE)",
+            "#3000 = 1 (NO TOOL)",
+            "G1 X#1",
+            "G1 X1.; G1 Y2.; G1 Z3.",
+            "",
+            "G1 X",
+            "X1.000000000000001",
+        ];
+        let plain = ["G01 X54.808 Y30.491", "G02 X1. Y2. R3.", "Y1"];
+        for other in others {
+            for first in plain {
+                for second in plain {
+                    assert_reused_blocks_read_as_new(&[first, other, second, other, other, first]);
+                }
+            }
+        }
+    }
+
     /// What follows a line in the tests of text at hand: enough for the number windows of the
     /// line before it.
     const NEXT_LINE: &str = "G01 X1.5 (the next line: text for the windows of the line before)\n";
@@ -607,14 +731,14 @@ mod tests {
         for (unread, line_length) in [
             ("G01 X54.808 Y30.491\nG1 X1", 19),
             ("G01 X54.808 Y30.491\r\nG1 X1", 19),
-            ("G02 X1 R2  \r\r\n", 12),
+            ("G02 X1 R2  \r\n", 11),
             ("  g1x1y2\n(comment)\n", 8),
-            ("X1\rY2\n", 5),
         ] {
             let unread = &format!("{unread}{NEXT_LINE}");
             let mut fast = LineBlocks::new();
-            let taken = read_plain_line_in(line(unread, 7), FileId(1), &mut fast);
-            assert_eq!(taken, Some(unread.find('\n').unwrap() + 1), "{unread:?}");
+            let taken = read_plain_line_in(unread_text(unread, 7).unwrap(), FileId(1), &mut fast);
+            let after_newline = unread.len() - unread.find('\n').unwrap() - 1;
+            assert_eq!(taken, Some(after_newline), "{unread:?}");
             let mut by_line = LineBlocks::new();
             assert!(read_plain_line(
                 line(&unread[..line_length], 7),
@@ -623,35 +747,47 @@ mod tests {
             ));
             assert_eq!(fast.as_slice(), by_line.as_slice(), "{unread:?}");
         }
-        // Not plain, or not ended by `\n` where the text at hand ends: left to the line reader.
+        // Not plain, not ended by `\n` where the text at hand ends, or with a `\r` inside:
+        // left to the line reader (which reads the last as a plain line, `\r` as a blank).
         for unread in [
             "G1 X1",
             "G1 X1 (C)\n",
             "\nG1 X1\n",
             " \r\nG1\n",
             "G1 X1.2.3\n",
+            "X1\rY2\n",
+            "X1\r\rY2\n",
+            "X1\r \r\n",
+            "G02 X1 R2  \r\r\n",
         ] {
-            let taken = read_plain_line_in(line(unread, 7), FileId(1), &mut LineBlocks::new());
+            let unread = unread_text(unread, 7).unwrap();
+            let taken = read_plain_line_in(unread, FileId(1), &mut LineBlocks::new());
             assert_eq!(taken, None, "{unread:?}");
         }
+        assert!(is_plain("X1\rY2"));
         // A line handed out whole never holds a `\n`; if one did, it would not be plain.
         assert!(!is_plain("G1 X1\nG1 X2"));
     }
 
     #[test]
-    fn a_number_too_close_to_the_end_of_the_text_at_hand_leaves_the_line_to_the_line_reader() {
-        let read =
-            |unread: &str| read_plain_line_in(line(unread, 7), FileId(1), &mut LineBlocks::new());
-        // A word takes RUN + 2 bytes from its letter on (letter, sign, window), and a number's
-        // windows RUN bytes from its first digit and from the first digit after its point: the
-        // line's `\n` and what follows it count.
+    fn a_line_too_close_to_the_end_of_the_text_at_hand_is_left_to_the_line_reader() {
+        let read = |unread: &str| {
+            read_plain_line_in(
+                unread_text(unread, 7).unwrap(),
+                FileId(1),
+                &mut LineBlocks::new(),
+            )
+        };
+        // Every word takes WINDOW + 2 bytes from its letter on (letter, sign, window), and the
+        // line's end as many from its `\n` or `\r\n` on: what follows the line counts.
         let tail = |length: usize| "\n".repeat(length);
-        assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 1))), Some(8));
-        assert_eq!(read(&format!("G1 X1.5{}", tail(RUN - 2))), None);
-        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 1))), Some(7));
-        assert_eq!(read(&format!("G1 X15{}", tail(RUN - 2))), None);
-        assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 2))), Some(8));
-        assert_eq!(read(&format!("G1 X-15{}", tail(RUN - 3))), None);
+        let room = WINDOW + 2;
+        for line in ["G1 X1.5", "G1 X15", "G1 X-15", "X1"] {
+            assert_eq!(read(&format!("{line}{}", tail(room))), Some(room - 1));
+            assert_eq!(read(&format!("{line}{}", tail(room - 1))), None);
+            assert_eq!(read(&format!("{line}\r{}", tail(room - 1))), Some(room - 2));
+            assert_eq!(read(&format!("{line}\r{}", tail(room - 2))), None);
+        }
     }
 
     #[test]
@@ -671,7 +807,13 @@ mod tests {
             negative in proptest::bool::ANY,
         ) {
             let text = if point { format!("{whole}.{fraction}") } else { whole.clone() };
-            for after in ["", " ", "X1.5 Y-2.", "\nG01 X54.808 Y30.491 Z-1.288\n"] {
+            for after in [
+                "",
+                " ",
+                "X1.5 Y-2.",
+                "\nG01 X54.808 Y30.491 Z-1.288\n",
+                "\nG01 X54.808 Y30.491 Z-1.288\nG01 X54.808 Y30.491\n",
+            ] {
                 assert_windowed_agrees(format!("{text}{after}").as_bytes());
             }
             let general = general_number(&text, negative);
