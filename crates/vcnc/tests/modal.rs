@@ -313,6 +313,47 @@ fn batches_give_the_same_stream_as_the_iterator() {
 }
 
 #[test]
+fn taking_items_one_by_one_and_in_batches_by_turns_gives_the_same_stream() {
+    // A peck cycle of a thousand pecks (one block, thousands of items), then a compensated
+    // contour (items held back until the next move is known), taken by `next` and
+    // `next_batch` by turns: every item once, in order.
+    let program = "G90 G17 G21 G94\nG00 X10. Y10. Z5.\nG83 X10. Y10. Z-100. R1. Q0.1 F200.\nG80\n\
+                   G01 G41 X0 Y0 D1 F100.\nY20.\nX20.\nY0\nG40 X-5. Y-5.\nM30\n";
+    let mut machine = vcnc::Machine::default();
+    machine.tool_offsets.insert(
+        1,
+        vcnc::machine::ToolOffset {
+            number: 1,
+            radius: 2.0,
+            ..vcnc::machine::ToolOffset::default()
+        },
+    );
+    let one_by_one: Vec<_> =
+        vcnc::interpret_str(program, &machine, vcnc::Options::default()).collect();
+    assert!(one_by_one.len() > 3000, "{}", one_by_one.len());
+    assert!(
+        one_by_one.iter().all(Result::is_ok),
+        "{:?}",
+        one_by_one.last()
+    );
+    for (taken, size) in [(1, 1), (3, 7), (2500, 100), (3001, 2)] {
+        let mut interpreter = vcnc::interpret_str(program, &machine, vcnc::Options::default());
+        let mut mixed = Vec::new();
+        let mut batch = Vec::new();
+        loop {
+            let before = mixed.len();
+            mixed.extend(interpreter.by_ref().take(taken));
+            let more = interpreter.next_batch(&mut batch, size);
+            mixed.append(&mut batch);
+            if !more && mixed.len() == before {
+                break;
+            }
+        }
+        assert_eq!(mixed, one_by_one, "{taken} items, then a batch of {size}");
+    }
+}
+
+#[test]
 fn fanuc_0m_runs_only_the_last_of_two_m_codes_in_a_block() {
     // spec/iso-fanuc0m-mitsubishi.md A.15, example fanuc0m/06: M03 is ignored, M08 runs.
     check_with(

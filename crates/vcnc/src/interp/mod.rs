@@ -303,6 +303,10 @@ const STEPS_PER_BATCH: u32 = 1 << 16;
 pub struct Interpreter<B> {
     source: B,
     core: Core,
+    /// Items released to [`Iterator::next`] and not yet taken, in order. Taken from the front of
+    /// the queue one at a time, a block with many moves (a canned cycle of thousands of pecks)
+    /// cost a shift of the whole queue per item: quadratic.
+    ready: std::collections::VecDeque<Result<Segment, Alarm>>,
 }
 
 /// Where the next block comes from.
@@ -403,7 +407,11 @@ impl<B: BlockSource> Interpreter<B> {
             );
             core.done = true;
         }
-        Interpreter { source, core }
+        Interpreter {
+            source,
+            core,
+            ready: std::collections::VecDeque::new(),
+        }
     }
 
     /// Where called programs come from: a program directory, programs in memory. Without one,
@@ -486,9 +494,13 @@ impl<B: BlockSource> Interpreter<B> {
     ) -> bool {
         // The executor writes straight into the caller's vector: no item is moved twice.
         let base = out.len();
+        // What the iterator released and nobody took comes first (empty unless a caller mixes
+        // `next` with batches).
+        out.extend(self.ready.drain(..));
+        let leftover_at = out.len();
         let leftover = std::mem::take(&mut self.core.out.items);
         out.extend(leftover);
-        self.core.out.held = self.core.out.held.map(|h| h + base);
+        self.core.out.held = self.core.out.held.map(|h| h + leftover_at);
         std::mem::swap(&mut self.core.out.items, out);
         // Items before `checked` have passed the check (those of `out` passed it before).
         let mut checked = base;
@@ -788,13 +800,19 @@ impl<B: BlockSource> Iterator for Interpreter<B> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
+            if let Some(item) = self.ready.pop_front() {
+                return Some(item);
+            }
             let out = &mut self.core.out;
-            if out.releasable() > 0 {
-                // The queue holds a few blocks' items at most, so taking the first is cheap.
+            let released = out.releasable();
+            if released > 0 {
+                // All that is released moves at once: a block's thousands of moves are moved
+                // once each, not once per item taken before them.
+                self.ready.extend(out.items.drain(..released));
                 if let Some(held) = out.held.as_mut() {
-                    *held -= 1;
+                    *held -= released;
                 }
-                return Some(out.items.remove(0));
+                continue;
             }
             if self.core.done {
                 if out.items.is_empty() && out.polar_interp.is_none() {
