@@ -364,11 +364,10 @@ M30
 
 #[test]
 fn the_interpreter_stops_soon_after_an_overtravel_the_consumer_finds() {
-    // Without a state file `trace` checks the travel on the writer's side, while the
-    // interpreter's thread runs ahead. Here it runs into an endless loop that moves nothing, so
-    // it never hands a batch over to learn that the consumer has gone: it must be told, or the
-    // command waits until the loop limit (ten million passes) ends the loop, as it does when
-    // nothing stops the program before the loop.
+    // Without a state file `trace` checks the travel a batch at a time. After the overtravel
+    // the program runs into an endless loop that moves nothing: the interpreter must stop at
+    // the end of the batch that holds the alarm, not run on until the loop limit (ten million
+    // passes) ends the loop, as it does when nothing stops the program before the loop.
     let program = |first_move: &str| {
         format!(
             "G90 G00 X500.
@@ -397,8 +396,8 @@ M30
     assert_eq!(stopped.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&stopped.stderr);
     assert!(stderr.contains("V073"), "{stderr}");
-    // The loop limit takes 10 million passes; the interpreter is told to stop within one
-    // batch's worth of blocks (65,536).
+    // The loop limit takes 10 million passes; the interpreter stops within one batch's worth
+    // of blocks (65,536).
     assert!(
         took * 4 < to_the_limit,
         "{took:?} after the overtravel, {to_the_limit:?} to the loop limit"

@@ -702,7 +702,7 @@ mod tests {
                 crate::program::Layout {
                     parsing: crate::program::Parsing::Ahead,
                     waiting: crate::program::Waiting::Sleep,
-                    stopping: crate::program::Stopping::ByTheConsumer,
+                    stopping: crate::program::Stopping::AfterTheBatch,
                 },
             )
             .unwrap();
