@@ -363,7 +363,7 @@ M30
 }
 
 #[test]
-fn the_interpreter_stops_soon_after_an_overtravel_the_consumer_finds() {
+fn the_interpreter_stops_soon_after_an_overtravel_in_a_batch() {
     // Without a state file `trace` checks the travel a batch at a time. After the overtravel
     // the program runs into an endless loop that moves nothing: the interpreter must stop at
     // the end of the batch that holds the alarm, not run on until the loop limit (ten million
