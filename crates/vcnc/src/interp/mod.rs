@@ -805,7 +805,16 @@ impl<B: BlockSource> Iterator for Interpreter<B> {
             }
             let out = &mut self.core.out;
             let released = out.releasable();
-            if released > 0 {
+            if released == 1 {
+                // The common case, a block's one move: taken straight from the queue, behind
+                // which wait at most the few items compensation holds (through the queue of
+                // ready items it cost 16% of the iterator's time).
+                if let Some(held) = out.held.as_mut() {
+                    *held -= 1;
+                }
+                return Some(out.items.remove(0));
+            }
+            if released > 1 {
                 // All that is released moves at once: a block's thousands of moves are moved
                 // once each, not once per item taken before them.
                 self.ready.extend(out.items.drain(..released));
