@@ -28,59 +28,68 @@ pub(crate) fn arc_center(
     direction: ArcDirection,
     tolerance: f64,
 ) -> Result<(f64, f64), Alarm> {
+    let (clean, span) = match spec {
+        ArcSpec::Center { offset, span } => (CleanSpec::Center(offset), span),
+        ArcSpec::Radius { radius, span } => (CleanSpec::Radius(radius), span),
+    };
+    clean_arc_center(start, end, clean, direction, tolerance)
+        .ok_or_else(|| refused_arc(start, end, clean, span, tolerance))
+}
+
+/// The alarm of an arc [`clean_arc_center`] refuses, its tests asked again in the same order.
+#[cold]
+fn refused_arc(
+    start: (f64, f64),
+    end: (f64, f64),
+    spec: CleanSpec,
+    span: Span,
+    tolerance: f64,
+) -> Alarm {
     match spec {
-        ArcSpec::Center { offset, span } => {
-            let (center, r_start, r_end) = centre_form(start, end, offset);
+        CleanSpec::Center(offset) => {
             if offset == (0.0, 0.0) {
-                return Err(Alarm::error(
+                return Alarm::error(
                     AlarmCode::ArcWithoutCenter,
                     span,
                     "arc centre is on its start point",
-                ));
+                );
             }
-            if (r_end - r_start).abs() > tolerance {
-                return Err(Alarm::error(
-                    AlarmCode::ArcEndNotOnCircle,
-                    span,
-                    format!(
-                        "arc end point is not on the circle: radius {:.4} at the start, {:.4} at the end",
-                        r_start, r_end
-                    ),
-                )
-                .with_help(format!("the control accepts a difference of {tolerance} mm (FANUC alarm 020)")));
-            }
-            Ok(center)
+            let (_, r_start, r_end) = centre_form(start, end, offset);
+            Alarm::error(
+                AlarmCode::ArcEndNotOnCircle,
+                span,
+                format!(
+                    "arc end point is not on the circle: radius {:.4} at the start, {:.4} at the end",
+                    r_start, r_end
+                ),
+            )
+            .with_help(format!(
+                "the control accepts a difference of {tolerance} mm (FANUC alarm 020)"
+            ))
         }
-        ArcSpec::Radius { radius, span } => {
-            let (chord, h2) = radius_form(start, end, radius);
-            let r = radius.abs();
+        CleanSpec::Radius(radius) => {
+            let (chord, _) = radius_form(start, end, radius);
             if chord == 0.0 {
-                return Err(Alarm::error(
+                return Alarm::error(
                     AlarmCode::ArcRadiusTooSmall,
                     span,
                     "an R arc needs an end point different from its start",
                 )
-                .with_help("program a full circle with I, J or K"));
+                .with_help("program a full circle with I, J or K");
             }
-            let Some(h2) = short_radius_settled(chord, h2, radius, tolerance) else {
-                let half = chord / 2.0;
-                return Err(Alarm::error(
-                    AlarmCode::ArcRadiusTooSmall,
-                    span,
-                    format!(
-                        "R{r:.4} is smaller than half the distance to the end point ({half:.4})"
-                    ),
-                ));
-            };
-            Ok(radius_centre(start, end, chord, h2, radius, direction))
+            let (r, half) = (radius.abs(), chord / 2.0);
+            Alarm::error(
+                AlarmCode::ArcRadiusTooSmall,
+                span,
+                format!("R{r:.4} is smaller than half the distance to the end point ({half:.4})"),
+            )
         }
     }
 }
 
-/// [`arc_center`] for an arc the control takes without a word: `None` where it refuses the
-/// arc (the caller then asks [`arc_center`] for the alarm).
-/// The same operations in the same order as there, so the same bits: the common arc's path
-/// (`circular::plain_arc`) builds no alarm and no [`ArcSpec`].
+/// The centre of an arc the control takes, `None` where it refuses the arc: [`arc_center`]
+/// without the alarm, which the common arc's path (`circular::plain_arc`) then asks of it. One
+/// computation for both paths, so the same bits.
 #[inline(always)]
 pub(crate) fn clean_arc_center(
     start: (f64, f64),

@@ -352,6 +352,13 @@ impl Command {
         self.calls
     }
 
+    /// Records the block's G65 or G66 `call`, whose arguments are the words from `arguments` on.
+    fn set_macro_call(&mut self, call: GWord, arguments: usize) {
+        self.macro_call = Some((call, arguments));
+        self.calls = true;
+        self.rare = true;
+    }
+
     /// Records a subprogram call, return or interrupt code of the block.
     pub(crate) fn set_subprogram(&mut self, code: MCode, value: Value) {
         self.subprogram = Some((code, value));
@@ -576,9 +583,7 @@ pub(crate) fn decode(
             // G65 or G66 ends the words decoded: the rest are its arguments. Asked of the word's
             // code, not of the groups afterwards: one test.
             if let Some(call) = decode_g(word, order, profile, out)? {
-                out.macro_call = Some((call, order + 1));
-                out.calls = true;
-                out.rare = true;
+                out.set_macro_call(call, order + 1);
                 break;
             }
             continue;

@@ -364,6 +364,7 @@ pub(crate) fn line(
     bounded(unbounded_line(motion, feed, axes, config, feed_override))
 }
 
+/// [`line`] before [`bounded`]: the limits as the axes and the feed give them.
 #[inline(always)]
 fn unbounded_line(
     motion: &Move,
