@@ -184,7 +184,8 @@ fn ramp_time(from: f64, to: f64, limits: PathLimits) -> f64 {
         0.0
     } else if limits.is_trapezoid() {
         change / a
-    } else if change >= limits.full_acceleration_change() {
+    } else if change * limits.jerk >= a * a {
+        // At least a^2 / j ([`PathLimits::full_acceleration_change`]), tested without dividing.
         change / a + a / limits.jerk
     } else {
         2.0 * (change / limits.jerk).sqrt()
@@ -464,7 +465,7 @@ fn ramp_distance_and_slope(speed: f64, peak: f64, limits: PathLimits) -> (f64, f
     let a = limits.acceleration;
     let (time, rate) = if change <= 0.0 || a <= 0.0 {
         (0.0, 0.0)
-    } else if limits.is_trapezoid() || change >= limits.full_acceleration_change() {
+    } else if limits.is_trapezoid() || change * limits.jerk >= a * a {
         (ramp_time(speed, peak, limits), 1.0 / a)
     } else {
         // T = 2 sqrt(change / j), whose derivative 1 / sqrt(change j) is 2 / (j T).
