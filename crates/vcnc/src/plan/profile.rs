@@ -423,7 +423,7 @@ fn peak_speed(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimit
     // for the peak. Newton's method on the distance the two ramps need, which grows with the
     // peak (each ramp's time and its rate of change stay closed-form), inside the bracket of
     // peaks too low and too high: a step that would leave it, or a slope that is not a number,
-    // bisects instead. Six or seven steps where bisection took over forty, each with two roots:
+    // bisects instead. About six steps where bisection took over forty, each with two roots:
     // CAM paths of short segments with S-curves meet this case at every few corners.
     let (mut lo, mut hi) = (low, cruise);
     let mut peak = 0.5 * (lo + hi);

@@ -99,8 +99,8 @@ fn read_plain_words<const WINDOWED: bool>(
     }
     let line_number = line.number;
     let block = out.push_plain();
-    // The block's start, file and line are known now: stored at once, they are not kept live
-    // through the words (only the end is stored at the end).
+    // The block's start, file and line are known now and stored at once (the end is stored at
+    // the end); the words take the file and the line from the locals, not from the span.
     block.span = Span::new(file, offset_of(first_word), 0, line_number);
     let mut rest = first_word;
     loop {
