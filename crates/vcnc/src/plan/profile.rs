@@ -178,17 +178,26 @@ pub(crate) fn reachable_speed_up_to(
 /// building the ramp).
 #[inline(always)]
 fn ramp_time(from: f64, to: f64, limits: PathLimits) -> f64 {
-    let change = (to - from).abs();
+    ramp_time_and_rate((to - from).abs(), limits).0
+}
+
+/// Seconds of the fastest ramp over a speed change of `change`, and how fast they grow with the
+/// change (0 for no change; callers that want only the time leave the rate to the compiler,
+/// which drops it).
+#[inline(always)]
+fn ramp_time_and_rate(change: f64, limits: PathLimits) -> (f64, f64) {
     let a = limits.acceleration;
     if change <= 0.0 || a <= 0.0 {
-        0.0
+        (0.0, 0.0)
     } else if limits.is_trapezoid() {
-        change / a
+        (change / a, 1.0 / a)
     } else if change * limits.jerk >= a * a {
         // At least a^2 / j ([`PathLimits::full_acceleration_change`]), tested without dividing.
-        change / a + a / limits.jerk
+        (change / a + a / limits.jerk, 1.0 / a)
     } else {
-        2.0 * (change / limits.jerk).sqrt()
+        // T = 2 sqrt(change / j), whose derivative 1 / sqrt(change j) is 2 / (j T).
+        let time = 2.0 * (change / limits.jerk).sqrt();
+        (time, 2.0 / (limits.jerk * time))
     }
 }
 
@@ -457,21 +466,10 @@ fn peak_speed(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimit
 
 /// The distance of the fastest ramp between `speed` and `peak` (not below it), and how fast
 /// that distance grows with the peak: the derivative of 0.5 (speed + peak) T, T the ramp's
-/// time ([`ramp_time`]). At a peak equal to the speed the jerk-limited ramp's derivative is
-/// infinite: the caller bisects then.
+/// time ([`ramp_time_and_rate`]).
 #[inline(always)]
 fn ramp_distance_and_slope(speed: f64, peak: f64, limits: PathLimits) -> (f64, f64) {
-    let change = peak - speed;
-    let a = limits.acceleration;
-    let (time, rate) = if change <= 0.0 || a <= 0.0 {
-        (0.0, 0.0)
-    } else if limits.is_trapezoid() || change * limits.jerk >= a * a {
-        (ramp_time(speed, peak, limits), 1.0 / a)
-    } else {
-        // T = 2 sqrt(change / j), whose derivative 1 / sqrt(change j) is 2 / (j T).
-        let time = 2.0 * (change / limits.jerk).sqrt();
-        (time, 2.0 / (limits.jerk * time))
-    };
+    let (time, rate) = ramp_time_and_rate(peak - speed, limits);
     let mean = 0.5 * (speed + peak);
     (mean * time, 0.5 * time + mean * rate)
 }
