@@ -34,6 +34,7 @@ mod skip;
 mod smoothing;
 mod spiral;
 mod thread;
+mod tools;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Machine;
