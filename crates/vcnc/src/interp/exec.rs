@@ -41,7 +41,7 @@ pub(crate) struct Executor {
     /// The letters decoding records as written on this machine (`decode::plain_letters`).
     pub(crate) plain_letters: u32,
     /// G16: the last polar point, while polar coordinate command is on.
-    pub(crate) polar: Option<super::polar::PolarPoint>,
+    pub(crate) polar: Option<super::polar_coordinates::PolarPoint>,
     /// The canned cycle in force.
     pub(crate) cycle: Option<super::cycles::Cycle>,
     /// Where the last G31 ended, program coordinates (FANUC #5061-#5066).
@@ -279,13 +279,13 @@ impl Executor {
             _ => {}
         }
         match cmd.group(Group::Polar).map(|g| g.code) {
-            Some(GCode::Polar) => super::polar::g16(self),
-            Some(GCode::PolarCancel) => super::polar::g15(self),
+            Some(GCode::Polar) => super::polar_coordinates::g16(self),
+            Some(GCode::PolarCancel) => super::polar_coordinates::g15(self),
             _ => {}
         }
         let polar_interpolation = cmd.group(Group::PolarInterpolation);
         if let Some(g) = polar_interpolation {
-            super::polar_interp::switch(self, cmd, g, out)?;
+            super::polar_interpolation::switch(self, cmd, g, out)?;
         }
         match rotation {
             Some(GCode::Rotate) => super::rotation::g68(self, cmd)?,
@@ -533,9 +533,9 @@ impl Executor {
     #[inline(always)]
     pub(crate) fn target_program(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.cartesian_target(cmd);
-        if let Some(point) = super::polar::point(self, cmd) {
+        if let Some(point) = super::polar_coordinates::point(self, cmd) {
             let (a, b, _) = self.modal.plane.axes();
-            (target[a], target[b]) = super::polar::cartesian(point);
+            (target[a], target[b]) = super::polar_coordinates::cartesian(point);
         }
         target
     }
@@ -619,7 +619,7 @@ impl Executor {
             let compensating = out.comp.is_some();
             super::position_offset::apply(self, cmd, factor, compensating, &start, &mut target)?;
         }
-        if let Some(point) = super::polar::point(self, cmd) {
+        if let Some(point) = super::polar_coordinates::point(self, cmd) {
             self.polar = Some(point);
         }
         let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;

@@ -384,7 +384,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
         // FANUC's group 21 is G12.1/G13.1 (polar coordinate interpolation), G13.1 at power-on;
         // a control without the function has nothing in it.
         21 if exec.profile.polar_interpolation => {
-            if out.polar_interp.is_some() {
+            if out.polar_interpolation.is_some() {
                 121.0
             } else {
                 131.0
