@@ -6,9 +6,7 @@
 //! acceleration is sqrt(3)/2, corners blend within `corner_tolerance`, a stop between a rapid and
 //! a cutting move.
 
-mod common;
-#[path = "common/plan.rs"]
-mod plan;
+use crate::common::plan;
 
 use plan::{machine, timed, total_seconds, Limits};
 use proptest::prelude::*;

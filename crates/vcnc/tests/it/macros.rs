@@ -2,7 +2,7 @@
 //! program and the values its variables must have at the end, or the alarm it must stop with.
 //! Expected values are worked out by hand from the FANUC Custom Macro B rules.
 
-mod common;
+use crate::common;
 
 use vcnc::interp::MemoryLibrary;
 use vcnc::motion::SegmentKind;

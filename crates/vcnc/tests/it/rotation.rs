@@ -1,10 +1,10 @@
 //! G68/G69 coordinate rotation: hand-checked moves, and a program rotated by the code against
 //! the same program rotated by hand (spec iso-syntec-milling.md 1.37).
 
-mod common;
+use crate::common;
 
-use common::check;
-use common::contour::{assert_coded_is_by_hand, step};
+use crate::common::check;
+use crate::common::contour::{assert_coded_is_by_hand, step};
 use proptest::prelude::*;
 use vcnc::{interpret_str, Machine, Options, SegmentKind};
 

@@ -3,6 +3,8 @@
 
 pub mod contour;
 pub mod corpus;
+pub mod lcnc_canon;
+pub mod plan;
 pub mod plane;
 pub mod variables;
 

@@ -2,9 +2,7 @@
 //! lead per spindle revolution, modal, with the override locked and a stop at the end of the
 //! pass. The manuals' examples (Syntec 31, FANUC 0M O1212) are asserted in seed_examples.toml.
 
-mod common;
-
-use common::run;
+use crate::common::run;
 use vcnc::motion::{Feed, PathMode};
 use vcnc::plan::{PlanOptions, Planner};
 use vcnc::{AlarmCode, Machine, Options, ProfileName, Segment, SegmentKind};

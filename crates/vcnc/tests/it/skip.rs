@@ -2,9 +2,7 @@
 //! is a cutting move to its end point with an exact stop, and that end point is the recorded
 //! skip position (#5061-#5066). The manual's three examples are asserted in seed_examples.toml.
 
-mod common;
-
-use common::run;
+use crate::common::run;
 use vcnc::{AlarmCode, Machine, Options, ProfileName, SegmentKind};
 
 fn machine(profile: ProfileName) -> Machine {

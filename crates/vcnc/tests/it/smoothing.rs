@@ -2,7 +2,7 @@
 //! 1.8, 1.9), FANUC G05, G05.1 Q1 and G08 P1. The interpreter puts the mode's tolerance on every
 //! motion; the planner cuts corners between two such motions within it.
 
-mod common;
+use crate::common;
 
 use vcnc::plan::{PlanOptions, Planner};
 use vcnc::{interpret_str, AlarmCode, Machine, Options, ProfileName};

@@ -1,9 +1,7 @@
 //! G45/G46/G47/G48 tool position offset (spec iso-syntec-milling.md 1.27): the Syntec manual's
 //! example, the signed-zero table, and the alarms.
 
-mod common;
-
-use common::{check_on, shared_dir};
+use crate::common::{check_on, shared_dir};
 use vcnc::machine::ToolOffset;
 use vcnc::{Machine, ProfileName};
 

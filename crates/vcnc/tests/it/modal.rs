@@ -1,8 +1,6 @@
 //! Modal state and motion: numbers, units, distance modes, planes, arcs, feeds, events.
 
-mod common;
-
-use common::{check, check_with};
+use crate::common::{check, check_with};
 use vcnc::ProfileName::*;
 
 #[test]

@@ -5,9 +5,9 @@
 //! runs the interrupted block again, `M99 P_` / `M99 Q_` go on at a sequence number / line of the
 //! main program, and the signal is ignored (with a warning) where the control ignores it.
 
-mod common;
+use crate::common;
 
-use common::Run;
+use crate::common::Run;
 use vcnc::interp::{InterruptAt, MemoryLibrary};
 use vcnc::syntax::lines::ReaderLines;
 use vcnc::{

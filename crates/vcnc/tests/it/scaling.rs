@@ -3,10 +3,8 @@
 //! (spec iso-syntec-milling.md 1.28, 1.29). The manual's two scaling examples are asserted in
 //! `seed_examples.rs`.
 
-mod common;
-
-use common::check_with;
-use common::contour::{assert_coded_is_by_hand, step};
+use crate::common::check_with;
+use crate::common::contour::{assert_coded_is_by_hand, step};
 use proptest::prelude::*;
 use vcnc::{Machine, ProfileName};
 

@@ -5,9 +5,9 @@
 //! with. Expected values are worked out by hand from the structured-text rules the statements
 //! follow (spec/iso-syntec-milling.md §0.1.1, §2 item 11).
 
-mod common;
+use crate::common;
 
-use common::Run;
+use crate::common::Run;
 use vcnc::interp::MemoryLibrary;
 use vcnc::motion::SegmentKind;
 use vcnc::source::line_column;

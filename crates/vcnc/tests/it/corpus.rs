@@ -1,11 +1,12 @@
 //! Every real program of ../shared/corpus runs to its end, stops with the alarm the real control
-//! raises (the table in tests/common/corpus.rs, with the reason for each), or stops with an alarm
-//! that names what vcnc does not support yet; SINUMERIK programs get one clear "not supported
-//! yet" alarm. Never a panic, never a hang. The counts are printed (`cargo test --test corpus -- --nocapture`).
+//! raises (the table in tests/it/common/corpus.rs, with the reason for each), or stops with an
+//! alarm that names what vcnc does not support yet; SINUMERIK programs get one clear "not
+//! supported yet" alarm. Never a panic, never a hang. The counts are printed
+//! (`cargo test -p vcnc --test it corpus::every_corpus_program -- --nocapture`).
 
-mod common;
+use crate::common;
 
-use common::corpus::machine_for;
+use crate::common::corpus::machine_for;
 use std::collections::BTreeMap;
 use vcnc::motion::SegmentKind;
 use vcnc::syntax::{detect_dialect, Dialect};
@@ -82,7 +83,7 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
     println!("corpus: {total} programs");
     println!("  ran to their end: {}", counts.ran_to_end);
     println!(
-        "  stopped where the control stops (tests/common/corpus.rs): {}",
+        "  stopped where the control stops (tests/it/common/corpus.rs): {}",
         counts.expected_alarms
     );
     println!("  SINUMERIK, not supported yet: {}", counts.dialect);

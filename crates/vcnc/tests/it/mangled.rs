@@ -17,7 +17,7 @@
 //! - every segment's span lies inside the text and all its numbers (positions, offsets, arc
 //!   centres, feeds, speeds, dwell times) are finite.
 
-mod common;
+use crate::common;
 
 use proptest::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};

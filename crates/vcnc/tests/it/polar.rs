@@ -1,9 +1,7 @@
 //! G16/G15 polar coordinate command (spec iso-syntec-milling.md 1.14): the manual's three holes
 //! (there drilled with G81, here reached with G01), incremental angles and radii, words left out.
 
-mod common;
-
-use common::check;
+use crate::common::check;
 
 #[test]
 fn three_holes_on_a_circle_of_100() {

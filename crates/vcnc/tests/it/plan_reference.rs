@@ -5,9 +5,7 @@
 //! the same program on a machine with the same limits and the `linuxcnc` planner habits; the
 //! two must agree within 2 %. LinuxCNC is not needed to run this test.
 
-mod common;
-#[path = "common/plan.rs"]
-mod plan;
+use crate::common::plan;
 
 use std::path::{Path, PathBuf};
 use vcnc::summary::Summary;
@@ -56,14 +54,14 @@ fn limits_line(program: &str) -> (f64, f64) {
     (value("--vel"), value("--acc"))
 }
 
-pub struct Comparison {
-    pub stem: String,
+struct Comparison {
+    stem: String,
     /// The program's second comment: what it exercises.
-    pub what: String,
-    pub linuxcnc: f64,
-    pub vcnc: f64,
+    what: String,
+    linuxcnc: f64,
+    vcnc: f64,
     /// vcnc's length / feed estimate (`Summary::estimated_seconds`).
-    pub estimate: f64,
+    estimate: f64,
 }
 
 fn compare_all() -> Vec<Comparison> {

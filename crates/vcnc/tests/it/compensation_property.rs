@@ -12,10 +12,8 @@
 //! are not neighbours come within a tool diameter of each other: the controls check interference
 //! between neighbouring blocks only, and so does vcnc.
 
-mod common;
-
-use common::plane::{cross, dot, length, samples, sub, Element, P};
-use common::run;
+use crate::common::plane::{cross, dot, length, samples, sub, Element, P};
+use crate::common::run;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 use std::fmt::Write;

@@ -6,9 +6,8 @@
 //! cycle programs (G81, G82, G85, G86, G89 in three planes, G98/G99, G90/G91 with repeats) are
 //! read by vcnc with the repeat count as K, FANUC's address for LinuxCNC's L.
 
-mod common;
-#[path = "common/lcnc_canon.rs"]
-mod lcnc_canon;
+use crate::common;
+use crate::common::lcnc_canon;
 
 use lcnc_canon::{parse_canon, CanonKind, CanonMove, CanonPlane};
 use std::path::{Path, PathBuf};

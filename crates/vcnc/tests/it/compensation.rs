@@ -2,9 +2,7 @@
 //! worked example and start-ups (spec iso-fanuc0m-mitsubishi.md A.22), blocks without motion in
 //! the plane, alarms, and a property: a compensated pocket keeps the tool radius from its walls.
 
-mod common;
-
-use common::{check_on, shared_dir};
+use crate::common::{check_on, shared_dir};
 use vcnc::machine::ToolOffset;
 use vcnc::{Machine, ProfileName};
 

@@ -1,7 +1,5 @@
 //! Alarms: every one has a code, a message and the span of the word that caused it.
 
-mod common;
-
 use vcnc::{interpret_str, AlarmCode, Machine, Options, Severity};
 
 /// The first alarm of `program` on the FANUC profile: code, line, and the text under its span.

@@ -2,7 +2,7 @@
 //! hold. The expectations are data: tests/data/seed_examples*.toml, one entry per example, written
 //! from each example's header (source lines in the manual, preconditions, expected result).
 
-mod common;
+use crate::common;
 
 use serde::Deserialize;
 use std::collections::BTreeMap;

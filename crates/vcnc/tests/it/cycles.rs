@@ -5,9 +5,9 @@
 //! G99, then (5,15) and (10,10) returning to the initial level under G98) and each cycle's
 //! moves at a hole.
 
-mod common;
+use crate::common;
 
-use common::{check_on, shared_dir};
+use crate::common::{check_on, shared_dir};
 use vcnc::{Machine, ProfileName};
 
 /// A hole of the common frame: position, bottom, and the level it returns to.

@@ -1,7 +1,7 @@
 //! Golden traces: `vcnc trace` on a set of programs, compared line by line with the text kept in
 //! `tests/golden/`. Any change of the motion stream, its times or the diagnostics shows up here
 //! as a diff to review; a change that is meant is accepted by rewriting the files:
-//! `VCNC_BLESS=1 cargo test -p vcnc-cli --test golden`.
+//! `VCNC_BLESS=1 cargo test -p vcnc-cli --test it golden::`.
 //!
 //! The programs are the bundled example and examples printed in the controllers' manuals, read
 //! from `../shared/spec/examples` (or `$VCNC_SHARED/spec/examples`; each file's header names its manual and lines), chosen to

@@ -8,13 +8,13 @@
 //! circle or at the end of a contour, are air. A program that comes nearer on the control too
 //! is listed, with how near, in [`KNOWN_OVERCUTS`]. Programs that stop early (a
 //! code not supported yet) are checked up to where they stop; the counts are printed
-//! (`cargo test --test compensation_corpus -- --nocapture`).
+//! (`cargo test -p vcnc --test it compensation_corpus:: -- --nocapture`).
 
-mod common;
+use crate::common;
 
-use common::corpus::machine_for;
-use common::plane::{length, samples, sub, Element, P};
-use common::run;
+use crate::common::corpus::machine_for;
+use crate::common::plane::{length, samples, sub, Element, P};
+use crate::common::run;
 use vcnc::machine::ToolOffset;
 use vcnc::{Machine, Options, Segment};
 

@@ -2,9 +2,7 @@
 //! Archimedean spiral about the I J K centre, the turns are counted as the manual counts them,
 //! and bad words alarm. The manual's two examples are asserted in seed_examples.toml.
 
-mod common;
-
-use common::run;
+use crate::common::run;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 use vcnc::motion::Feed;

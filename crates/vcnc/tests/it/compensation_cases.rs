@@ -8,9 +8,7 @@
 //! geometry unit tests (the FANUC 0M worked example, four start-ups, corner classes) there are
 //! more than 40.
 
-mod common;
-
-use common::check_on;
+use crate::common::check_on;
 use vcnc::machine::ToolOffset;
 use vcnc::Machine;
 

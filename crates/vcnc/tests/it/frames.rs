@@ -1,8 +1,6 @@
 //! The coordinate chain: work offsets, G10, G92, G92.1, G52, G53, tool length, reference returns.
 
-mod common;
-
-use common::{check, check_on, check_with};
+use crate::common::{check, check_on, check_with};
 use vcnc::machine::{ToolOffset, WorkOffsetId};
 use vcnc::{Machine, ProfileName};
 

@@ -4,9 +4,9 @@
 //! every X-C piece, mapped back onto the part through x = X cos C, y = X sin C, must lie on that
 //! X-Y tool-centre path, its ends exactly and its inside within the profile's tolerance.
 
-mod common;
+use crate::common;
 
-use common::plane::Element;
+use crate::common::plane::Element;
 use proptest::prelude::*;
 use vcnc::motion::Feed;
 use vcnc::{AlarmCode, Machine, Options, ProfileName, Segment, SegmentKind};

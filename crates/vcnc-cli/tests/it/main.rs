@@ -1,0 +1,6 @@
+//! The command line's integration tests, built as one test binary: one link instead of one per
+//! file. Run one module with `cargo test -p vcnc-cli --test it <module>::` (e.g. `golden::`).
+//! This file only declares the modules; it must never hold tests or helpers of its own.
+
+mod cli;
+mod golden;
