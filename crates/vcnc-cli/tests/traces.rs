@@ -260,7 +260,7 @@ fn every_program_gives_the_output_recorded_in_the_manifest() {
     let shared = shared();
     if shared.is_none() {
         assert!(
-            std::env::var_os("CI").map_or(true, |v| v.is_empty()),
+            std::env::var_os("CI").is_none_or(|v| v.is_empty()),
             "../shared is required when CI is set (or set VCNC_SHARED)"
         );
         eprintln!("note: the programs of ../shared are skipped: it is absent (set VCNC_SHARED)");

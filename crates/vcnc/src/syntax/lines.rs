@@ -355,7 +355,7 @@ pub(crate) mod tests {
         for i in 0..2000 {
             text.extend_from_slice(format!("G1 X{i}.\r\n").as_bytes());
         }
-        text.extend(std::iter::repeat(b'X').take(600 * 1024));
+        text.extend(std::iter::repeat_n(b'X', 600 * 1024));
         text.extend_from_slice(b"\nM30");
         let a = collect(&mut TextLines::new(&text));
         let b = collect(&mut ReaderLines::new(Trickle {

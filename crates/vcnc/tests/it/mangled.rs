@@ -135,7 +135,7 @@ fn feed_is_finite(feed: &Feed) -> bool {
         Feed::PerRevolution {
             per_revolution,
             rpm,
-        } => per_revolution.is_finite() && rpm.map_or(true, f64::is_finite),
+        } => per_revolution.is_finite() && rpm.is_none_or(f64::is_finite),
     }
 }
 

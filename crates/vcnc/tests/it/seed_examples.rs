@@ -34,7 +34,7 @@ impl Point {
     fn matches(&self, position: &[f64; 6], tolerance: f64) -> bool {
         self.axes()
             .iter()
-            .all(|&(i, v)| v.map_or(true, |v| close(position[i], v, tolerance)))
+            .all(|&(i, v)| v.is_none_or(|v| close(position[i], v, tolerance)))
     }
 }
 
