@@ -22,7 +22,10 @@ struct Counts {
 
 #[test]
 fn every_corpus_program_runs_or_names_what_is_missing() {
-    let corpus = common::shared_dir().join("corpus");
+    let Some(shared) = common::shared_dir() else {
+        return;
+    };
+    let corpus = shared.join("corpus");
     let mut counts = Counts::default();
     let mut failures = Vec::new();
     let mut total = 0;

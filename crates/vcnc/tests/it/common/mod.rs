@@ -6,24 +6,12 @@ pub mod corpus;
 pub mod lcnc_canon;
 pub mod plan;
 pub mod plane;
+pub mod shared;
 pub mod variables;
 
-use std::path::PathBuf;
-use vcnc::{interpret_bytes, Alarm, Machine, Options, Segment};
+pub(crate) use shared::shared_dir;
 
-/// The reference material beside the repository (`../shared`), or `$VCNC_SHARED`.
-pub fn shared_dir() -> PathBuf {
-    if let Some(dir) = std::env::var_os("VCNC_SHARED") {
-        return PathBuf::from(dir);
-    }
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
-    assert!(
-        dir.is_dir(),
-        "the shared reference material is expected at {} (or set VCNC_SHARED)",
-        dir.display()
-    );
-    dir
-}
+use vcnc::{interpret_bytes, Alarm, Machine, Options, Segment};
 
 /// The default machine on `profile`, with a C axis turning the part (for G12.1).
 pub fn with_c_axis(profile: vcnc::ProfileName) -> Machine {
