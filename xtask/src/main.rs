@@ -1,9 +1,11 @@
 //! Developer tasks for vcnc: `cargo xtask <task>`.
 //!
-//! Tasks regenerate data that lives in the repository (reference traces recorded from LinuxCNC,
-//! generated tables); none of them is needed to build or test vcnc.
+//! `ci` runs what CI runs (fmt, clippy, docs, tests). The other tasks regenerate data that lives
+//! in the repository (reference traces recorded from LinuxCNC, generated tables); none of them is
+//! needed to build or test vcnc.
 
 mod bench_program;
+mod ci;
 mod readme;
 mod record_lcnc;
 
@@ -16,6 +18,7 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     };
     let result = match task.as_str() {
+        "ci" => ci::run(&args[1..]),
         "record-lcnc" => record_lcnc::run(&args[1..]),
         "bench-program" => bench_program::run(&args[1..]),
         "readme" => readme::run(&args[1..]),
@@ -36,6 +39,7 @@ fn main() -> ExitCode {
 const USAGE: &str = "usage: cargo xtask <task>
 
 tasks:
+  ci              what CI runs: check rustc against rust-version, then fmt, clippy, docs and the tests
   record-lcnc     run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output
   readme          regenerate the supported-codes table in README.md
   bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout";
