@@ -48,6 +48,8 @@ pub(crate) struct Frames {
     /// Work + external + G92 + G52 of `active`: every block needs it and it changes only when an
     /// offset does, so it is recomputed then.
     shift: [f64; AXES],
+    /// `shift` plus the length vector on Z: every move records it.
+    offset: [f64; AXES],
 }
 
 impl Frames {
@@ -64,6 +66,7 @@ impl Frames {
             length_vector: 0.0,
             active: WorkOffsetId::Standard(1),
             shift: [0.0; AXES],
+            offset: [0.0; AXES],
             chain: Vec::new(),
         };
         frames.recompute();
@@ -147,6 +150,8 @@ impl Frames {
         let work = self.work_offset(self.active);
         let external = self.work_offset(WorkOffsetId::External);
         self.shift = std::array::from_fn(|i| work[i] + external[i] + self.g92[i] + self.local[i]);
+        self.offset = self.shift;
+        self.offset[2] += self.length_vector;
     }
 
     /// The tool length offset applied to the Z position now.
@@ -158,6 +163,7 @@ impl Frames {
     #[inline(always)]
     pub(crate) fn set_length_vector(&mut self, length: f64) {
         self.length_vector = length;
+        self.offset[2] = self.shift[2] + length;
     }
 
     /// The value of a work offset register.
@@ -196,9 +202,7 @@ impl Frames {
     /// Machine minus program coordinates now: the shift and the applied tool length vector.
     #[inline(always)]
     pub(crate) fn offset(&self) -> [f64; AXES] {
-        let mut offset = self.shift;
-        offset[2] += self.length_vector;
-        offset
+        self.offset
     }
 
     /// Machine minus program coordinates at the machine position `at`: the plain offset, or,
