@@ -20,6 +20,8 @@ mod data_input;
 mod decode;
 mod exec;
 mod frames;
+mod front_end;
+mod kernel;
 mod length;
 mod macros;
 pub mod modal;
@@ -42,6 +44,8 @@ use crate::syntax::source::{BlockSource, ParsedLines};
 use crate::syntax::{Block, BlockKind, Dialect};
 use decode::Command;
 use exec::{Executor, Flow};
+pub use front_end::{FrontEnd, Run, Step};
+pub use kernel::{Kernel, Origin};
 pub use macros::interrupt::InterruptAt;
 pub use macros::programs::{
     DirectoryLibrary, LoadedFiles, MemoryLibrary, ProgramLibrary, ProgramText,
