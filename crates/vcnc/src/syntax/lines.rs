@@ -306,7 +306,7 @@ impl<R: Read> ReaderLines<R> {
 /// The first `\n` in `bytes`, eight bytes at a time: a byte equal to `\n` becomes zero after
 /// the XOR, and the classic has-zero-byte test finds it without a branch per byte.
 #[inline(always)]
-fn memchr_newline(bytes: &[u8]) -> Option<usize> {
+pub(crate) fn memchr_newline(bytes: &[u8]) -> Option<usize> {
     const ONES: u64 = 0x0101_0101_0101_0101;
     const HIGHS: u64 = 0x8080_8080_8080_8080;
     const NEWLINES: u64 = ONES * b'\n' as u64;

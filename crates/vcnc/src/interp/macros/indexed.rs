@@ -27,11 +27,11 @@
 use super::programs::{header_number, sequence_number, starts_code, LoopEnd, Position};
 use crate::source::FileId;
 use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
-use crate::syntax::lines::{Line, LineSource, TextLines};
+use crate::syntax::lines::{memchr_newline, Line, LineSource, TextLines};
 use crate::syntax::{Block, Statement};
 use std::collections::HashMap;
 use std::fs::File;
-use std::io::{self, BufRead, Read, Seek, SeekFrom};
+use std::io::{self, Read, Seek, SeekFrom};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 /// Lines per chunk: the unit of the index, of reading again and of the cache.
@@ -115,6 +115,40 @@ impl Chunk {
     }
 }
 
+/// Calls `each` with every line `reader` reads, its `\n` included (the last line may have none),
+/// read through one buffer in large blocks.
+fn for_each_line(mut reader: impl Read, mut each: impl FnMut(&[u8])) -> io::Result<()> {
+    let mut buffer = vec![0u8; 1 << 20];
+    // `buffer[start..searched]` is known to hold no `\n`.
+    let (mut start, mut searched, mut end) = (0usize, 0usize, 0usize);
+    loop {
+        if let Some(i) = memchr_newline(&buffer[searched..end]) {
+            each(&buffer[start..=searched + i]);
+            start = searched + i + 1;
+            searched = start;
+            continue;
+        }
+        buffer.copy_within(start..end, 0);
+        end -= start;
+        start = 0;
+        searched = end;
+        if end == buffer.len() {
+            buffer.resize(end * 2, 0);
+        }
+        let read = match reader.read(&mut buffer[end..]) {
+            Err(error) if error.kind() == io::ErrorKind::Interrupted => continue,
+            read => read?,
+        };
+        if read == 0 {
+            if end > 0 {
+                each(&buffer[..end]);
+            }
+            return Ok(());
+        }
+        end += read;
+    }
+}
+
 fn loop_bit(label: u32) -> u64 {
     1 << (label % 64)
 }
@@ -169,35 +203,33 @@ impl IndexedFile {
     /// # Errors
     /// Whatever reading reports.
     pub(crate) fn scan(
-        mut reader: impl BufRead,
+        reader: impl Read,
         bytes: Bytes,
         file: FileId,
         syntax: SyntaxOptions,
     ) -> io::Result<IndexedFile> {
-        let mut text = Vec::new();
         let mut blocks = LineBlocks::new();
         let mut chunks = Vec::new();
         let mut headers = Vec::new();
         let mut runs_before_header = false;
         let (mut offset, mut number) = (0u64, 0u32);
-        loop {
-            text.clear();
-            let read = reader.read_until(b'\n', &mut text)?;
-            if read == 0 {
-                break;
-            }
+        for_each_line(reader, |raw| {
             let index = number as usize;
             number = number.saturating_add(1);
             if index % CHUNK_LINES == 0 {
                 chunks.push(Chunk::at(offset));
             }
-            let line = text.strip_suffix(b"\n").unwrap_or(&text);
+            let line = raw.strip_suffix(b"\n").unwrap_or(raw);
             if let Some(n) = header_number(line, &syntax) {
                 headers.push((n, offset, number));
             } else if headers.is_empty() && starts_code(line) {
                 runs_before_header = true;
             }
-            if line.iter().any(|&b| matches!(b | 0x20, b'n' | b'w' | b'd')) {
+            // Without an early exit the test runs on whole vectors of bytes.
+            let may_matter = line.iter().fold(false, |found, &b| {
+                found | matches!(b | 0x20, b'n' | b'w' | b'd')
+            });
+            if may_matter {
                 let line = Line {
                     text: line.strip_suffix(b"\r").unwrap_or(line),
                     offset: u32::try_from(offset).unwrap_or(u32::MAX),
@@ -207,8 +239,8 @@ impl IndexedFile {
                 let chunk = chunks.last_mut().expect("pushed at the chunk's first line");
                 chunk.note(blocks.as_slice());
             }
-            offset += read as u64;
-        }
+            offset += raw.len() as u64;
+        })?;
         // As `main_program_end`: the main program ends at the second header, or at the first
         // when something runs before it (the first is then a subprogram's).
         let end_header = if runs_before_header {
@@ -503,6 +535,21 @@ mod tests {
         assert!(tiny.lock().chunks.len() <= 1);
         assert_eq!(tiny.find_label(10, Some((200, 0))).unwrap(), Some((3, 0)));
         assert_eq!(tiny.find_loop_end((103, 0), 3).unwrap(), Some((110, 0)));
+    }
+
+    #[test]
+    fn lines_cut_by_reads_and_longer_than_the_buffer_come_whole() {
+        use crate::syntax::lines::tests::Trickle;
+        let mut text = b"G1 X1.\r\n\nN10 G1 Y2.\n".to_vec();
+        text.extend(std::iter::repeat_n(b'X', 3 << 20));
+        text.extend_from_slice(b"\nM30");
+        let expected: Vec<&[u8]> = text.split_inclusive(|&b| b == b'\n').collect();
+        for chunk in [1, 3, 1 << 16] {
+            let mut lines = Vec::new();
+            let reader = Trickle { data: &text, chunk };
+            for_each_line(reader, |line| lines.push(line.to_vec())).unwrap();
+            assert_eq!(lines, expected, "reads of {chunk} bytes");
+        }
     }
 
     #[test]

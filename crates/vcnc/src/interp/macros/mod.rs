@@ -518,9 +518,8 @@ impl Core {
     fn library_file(&mut self, span: Span) -> Result<MainFile, Alarm> {
         let library = self.macros.library.as_mut();
         if let Some(file) = library.and_then(|l| l.open_main()) {
-            let reader = std::io::BufReader::with_capacity(1 << 16, &file);
             let scanned = IndexedFile::scan(
-                reader,
+                &file,
                 indexed::Bytes::File(file.try_clone().map_err(|e| read_alarm(span, &e))?),
                 self.file,
                 self.exec.profile.syntax(),
