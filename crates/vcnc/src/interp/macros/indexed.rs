@@ -43,6 +43,22 @@ pub(crate) const CACHED_CHUNKS: usize = 16;
 /// Sequence numbers whose places are remembered once searched: a GOTO in a loop searches once.
 const REMEMBERED_LABELS: usize = 1024;
 
+#[cfg(test)]
+thread_local! {
+    /// Chunks kept parsed by the files this thread indexes, instead of [`CACHED_CHUNKS`]: the
+    /// tests run whole programs with a tiny cache.
+    static TEST_CACHE_BOUND: std::cell::Cell<Option<usize>> = const { std::cell::Cell::new(None) };
+}
+
+/// How many chunks stay parsed.
+fn cache_bound() -> usize {
+    #[cfg(test)]
+    if let Some(bound) = TEST_CACHE_BOUND.with(std::cell::Cell::get) {
+        return bound;
+    }
+    CACHED_CHUNKS
+}
+
 /// Where the file's bytes are read again from.
 #[derive(Debug)]
 pub(crate) enum Bytes {
@@ -263,7 +279,7 @@ impl IndexedFile {
             cache: Mutex::new(Cache {
                 bytes,
                 chunks: Vec::new(),
-                bound: CACHED_CHUNKS,
+                bound: cache_bound(),
                 clock: 0,
                 labels: HashMap::new(),
             }),
@@ -535,6 +551,48 @@ mod tests {
         assert!(tiny.lock().chunks.len() <= 1);
         assert_eq!(tiny.find_label(10, Some((200, 0))).unwrap(), Some((3, 0)));
         assert_eq!(tiny.find_loop_end((103, 0), 3).unwrap(), Some((110, 0)));
+    }
+
+    #[test]
+    fn a_run_that_jumps_over_evicted_chunks_gives_the_stream_of_the_whole_text() {
+        use crate::interp::{DirectoryLibrary, Interpreter, Options};
+        use crate::syntax::lines::ReaderLines;
+        use crate::Machine;
+        // Backward from far down, forward over thousands of lines, a loop longer than the cache.
+        let mut text = String::from("G90 G01 F1000.\n#1=0\nN10 #1=#1+1\n");
+        let moves = |from: usize, lines: usize| -> String {
+            (from..from + lines)
+                .map(|i| format!("G01 X{}. Y{}.\n", i % 97, i % 13))
+                .collect()
+        };
+        text.push_str(&moves(0, 300));
+        text.push_str("IF[#1LT3]GOTO10\nWHILE[#1LT5]DO1\n");
+        text.push_str(&moves(1000, 200));
+        text.push_str("#1=#1+1\nEND1\nIF[#1GT4]GOTO40\n");
+        text.push_str(&moves(2000, 400));
+        text.push_str("N40 M97 P10\nM30\n");
+        let path = std::env::temp_dir().join(format!("vcnc-indexed-{}.nc", std::process::id()));
+        std::fs::write(&path, &text).unwrap();
+        let machine = Machine::default();
+        let describe = |items: &mut dyn Iterator<Item = Result<crate::Segment, crate::Alarm>>| {
+            items.map(|item| format!("{item:?}")).collect::<Vec<_>>()
+        };
+        let whole = describe(&mut crate::interpret_str(
+            &text,
+            &machine,
+            Options::default(),
+        ));
+        for bound in [1, 2] {
+            TEST_CACHE_BOUND.with(|b| b.set(Some(bound)));
+            let lines = ReaderLines::new(std::fs::File::open(&path).unwrap());
+            let library = DirectoryLibrary::new(Some(path.clone()), Vec::new(), 1);
+            let mut run = Interpreter::new(lines, FileId(0), &machine, Options::default())
+                .with_library(Box::new(library));
+            assert_eq!(describe(&mut run), whole, "{bound} chunks kept");
+        }
+        TEST_CACHE_BOUND.with(|b| b.set(None));
+        let _ = std::fs::remove_file(&path);
+        assert!(whole.len() > 3 * 300 + 2 * 200, "the loops ran");
     }
 
     #[test]
