@@ -3,6 +3,7 @@
 //! Tasks regenerate data that lives in the repository (reference traces recorded from LinuxCNC,
 //! generated tables); none of them is needed to build or test vcnc.
 
+mod bench_jumps;
 mod bench_program;
 mod readme;
 mod record_lcnc;
@@ -18,6 +19,7 @@ fn main() -> ExitCode {
     let result = match task.as_str() {
         "record-lcnc" => record_lcnc::run(&args[1..]),
         "bench-program" => bench_program::run(&args[1..]),
+        "bench-jumps" => bench_jumps::run(&args[1..]),
         "readme" => readme::run(&args[1..]),
         _ => {
             eprintln!("unknown task `{task}`\n{USAGE}");
@@ -38,4 +40,5 @@ const USAGE: &str = "usage: cargo xtask <task>
 tasks:
   record-lcnc     run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output
   readme          regenerate the supported-codes table in README.md
-  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout";
+  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout
+  bench-jumps     write three variants of a bench-program file that jump or call (WHILE, M98, G65)";
