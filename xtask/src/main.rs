@@ -4,6 +4,7 @@
 //! in the repository (reference traces recorded from LinuxCNC, generated tables); none of them is
 //! needed to build or test vcnc.
 
+mod bench_jumps;
 mod bench_program;
 mod ci;
 mod readme;
@@ -21,6 +22,7 @@ fn main() -> ExitCode {
         "ci" => ci::run(&args[1..]),
         "record-lcnc" => record_lcnc::run(&args[1..]),
         "bench-program" => bench_program::run(&args[1..]),
+        "bench-jumps" => bench_jumps::run(&args[1..]),
         "readme" => readme::run(&args[1..]),
         _ => {
             eprintln!("unknown task `{task}`\n{USAGE}");
@@ -42,4 +44,5 @@ tasks:
   ci              what CI runs: check rustc against rust-version, then fmt, clippy, docs and the tests
   record-lcnc     run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output
   readme          regenerate the supported-codes table in README.md
-  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout";
+  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout
+  bench-jumps     write three variants of a bench-program file that jump or call (WHILE, M98, G65)";

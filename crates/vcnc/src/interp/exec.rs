@@ -269,13 +269,13 @@ impl Executor {
         let mirror = cmd.group(Group::Mirror).map(|g| g.code);
         let rotation = cmd.group(Group::Rotation).map(|g| g.code);
         match scaling {
-            Some(GCode::Scale) => super::scaling::g51(self, cmd)?,
-            Some(GCode::ScalingCancel) => super::scaling::cancel(self, false),
+            Some(GCode::Scale) => super::frames::scaling::g51(self, cmd)?,
+            Some(GCode::ScalingCancel) => super::frames::scaling::cancel(self, false),
             _ => {}
         }
         match mirror {
-            Some(GCode::Mirror) => super::scaling::g51_1(self, cmd)?,
-            Some(GCode::MirrorCancel) => super::scaling::cancel(self, true),
+            Some(GCode::Mirror) => super::frames::scaling::g51_1(self, cmd)?,
+            Some(GCode::MirrorCancel) => super::frames::scaling::cancel(self, true),
             _ => {}
         }
         match cmd.group(Group::Polar).map(|g| g.code) {
@@ -288,8 +288,8 @@ impl Executor {
             super::polar_interpolation::switch(self, cmd, g, out)?;
         }
         match rotation {
-            Some(GCode::Rotate) => super::rotation::g68(self, cmd)?,
-            Some(GCode::RotationCancel) => super::rotation::g69(self),
+            Some(GCode::Rotate) => super::frames::rotation::g68(self, cmd)?,
+            Some(GCode::RotationCancel) => super::frames::rotation::g69(self),
             _ => {}
         }
         let taken = polar_interpolation.is_some()
@@ -309,13 +309,13 @@ impl Executor {
     fn one_shot_codes(&mut self, cmd: &Command, out: &mut Output) -> Result<AxisWords, Alarm> {
         let taken = match cmd.group(Group::NonModal).map(|g| g.code) {
             Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
-            Some(GCode::SetCoordinates) => super::coords::g92(self, cmd)?,
-            Some(GCode::PresetCoordinates) => super::coords::g92_1(self, cmd)?,
-            Some(GCode::LocalCoordinates) => super::coords::g52(self, cmd)?,
+            Some(GCode::SetCoordinates) => super::frames::coords::g92(self, cmd)?,
+            Some(GCode::PresetCoordinates) => super::frames::coords::g92_1(self, cmd)?,
+            Some(GCode::LocalCoordinates) => super::frames::coords::g52(self, cmd)?,
             Some(GCode::ReferenceReturn) => super::reference::g28(self, cmd, out)?,
             Some(GCode::NthReferenceReturn) => super::reference::g30(self, cmd, out)?,
             Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
-            Some(GCode::MachineCoordinates) => super::coords::g53(self, cmd, out)?,
+            Some(GCode::MachineCoordinates) => super::frames::coords::g53(self, cmd, out)?,
             Some(GCode::Dwell) => true,
             Some(GCode::Skip) => {
                 super::skip::g31(self, cmd, out)?;
