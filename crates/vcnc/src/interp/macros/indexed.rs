@@ -232,7 +232,7 @@ impl IndexedFile {
         for_each_line(reader, |raw| {
             let index = number as usize;
             number = number.saturating_add(1);
-            if index % CHUNK_LINES == 0 {
+            if index.is_multiple_of(CHUNK_LINES) {
                 chunks.push(Chunk::at(offset));
             }
             let line = raw.strip_suffix(b"\n").unwrap_or(raw);
