@@ -8,3 +8,4 @@ mod shared;
 
 mod cli;
 mod golden;
+mod traces;

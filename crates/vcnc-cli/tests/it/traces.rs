@@ -7,7 +7,7 @@
 //! A change that reshapes code without meaning to change behaviour must leave every line of the
 //! manifest as it is. A change that is meant to change what vcnc does rewrites the lines it
 //! changes, and the diff of the manifest shows which programs it touched:
-//! `VCNC_BLESS=1 cargo test -p vcnc-cli --test traces` (with `../shared` present).
+//! `VCNC_BLESS=1 cargo test -p vcnc-cli --test it traces::` (with `../shared` present).
 //!
 //! The programs under `../shared` are checked only when that folder is there (or `VCNC_SHARED`
 //! names it); without it they are skipped with a notice, unless `CI` is set, where they are
@@ -54,15 +54,6 @@ const COMMANDS: &[(&str, &[&str])] = &[
 
 fn repository() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// `../shared` beside the repository, or `$VCNC_SHARED`; None when it is not there.
-fn shared() -> Option<PathBuf> {
-    let dir = match std::env::var_os("VCNC_SHARED") {
-        Some(dir) => PathBuf::from(dir),
-        None => repository().join("../shared"),
-    };
-    dir.join("spec").is_dir().then_some(dir)
 }
 
 /// The control a corpus program was written for (corpus/MANIFEST.md; the same rule as the
@@ -211,7 +202,7 @@ fn write_manifest(lines: &BTreeMap<String, String>) {
     let mut text = String::from(
         "# Fingerprints of vcnc's output on every program it answers for: program, profile, command,\n\
          # exit code, stdout bytes, stdout FNV-1a, stderr FNV-1a. Written by\n\
-         # `VCNC_BLESS=1 cargo test -p vcnc-cli --test traces`; see tests/traces.rs.\n",
+         # `VCNC_BLESS=1 cargo test -p vcnc-cli --test it traces::`; see tests/it/traces.rs.\n",
     );
     for (key, value) in lines {
         text.push_str(&format!("{key}\t{value}\n"));
@@ -257,14 +248,7 @@ fn fingerprints(cases: &[Case], shared: Option<&Path>) -> BTreeMap<String, Strin
 
 #[test]
 fn every_program_gives_the_output_recorded_in_the_manifest() {
-    let shared = shared();
-    if shared.is_none() {
-        assert!(
-            std::env::var_os("CI").is_none_or(|v| v.is_empty()),
-            "../shared is required when CI is set (or set VCNC_SHARED)"
-        );
-        eprintln!("note: the programs of ../shared are skipped: it is absent (set VCNC_SHARED)");
-    }
+    let shared = crate::shared::shared_dir();
     let cases = cases(shared.as_deref());
     let now = fingerprints(&cases, shared.as_deref());
     let recorded = read_manifest();
@@ -293,7 +277,7 @@ fn every_program_gives_the_output_recorded_in_the_manifest() {
     assert!(
         differences.is_empty(),
         "{} of {} outputs differ from tests/traces.manifest (if the change is meant, rewrite it \
-         with `VCNC_BLESS=1 cargo test -p vcnc-cli --test traces` and review its diff):\n{}",
+         with `VCNC_BLESS=1 cargo test -p vcnc-cli --test it traces::` and review its diff):\n{}",
         differences.len(),
         now.len(),
         differences
