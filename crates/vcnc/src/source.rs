@@ -26,13 +26,13 @@ pub struct Span {
 }
 
 impl Span {
-    /// A span from `start` to `end` on `line` of `file`.
-    pub fn new(file: FileId, start: u32, end: u32, line: u32) -> Span {
+    /// The bytes `range` (start to one past the end) on `line` of `file`.
+    pub fn new(file: FileId, line: u32, range: std::ops::Range<u32>) -> Span {
         Span {
             file,
-            start,
-            end,
             line,
+            start: range.start,
+            end: range.end,
         }
     }
 

@@ -36,7 +36,7 @@ fn a_code_vcnc_does_not_run_is_named() {
 #[test]
 fn a_code_planned_in_an_issue_says_which() {
     let alarm = vcnc::Alarm::not_supported(
-        vcnc::Span::new(vcnc::FileId(0), 0, 3, 1),
+        vcnc::Span::new(vcnc::FileId(0), 1, 0..3),
         "G08 (look-ahead control)",
         Some(6),
     );

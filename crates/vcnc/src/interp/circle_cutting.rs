@@ -29,11 +29,7 @@ pub(crate) fn run(
             .with_help("Mitsubishi program error P170")
     })?;
     let number = exec.offset_number(d, 'D')?;
-    let offset = exec
-        .machine
-        .tool_offsets
-        .get(&number)
-        .map_or(0.0, |t| t.radius + t.radius_wear);
+    let offset = exec.tools.radius(number);
     let r = exec.length(&i).abs() - offset;
     if r <= 0.0 {
         return Err(Alarm::error(

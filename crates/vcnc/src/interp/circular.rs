@@ -210,7 +210,7 @@ fn spiral(
             "a spiral (G02/G03 with L) takes its centre from I J K, not R",
         ));
     };
-    if out.comp.is_some() || out.polar_interp.is_some() {
+    if out.comp.is_some() || out.polar_interpolation.is_some() {
         return Err(Alarm::not_supported(
             turns.span,
             "a spiral (G02/G03 with L) under cutter compensation or G12.1",

@@ -139,11 +139,7 @@ fn reversed(exec: &Executor) -> bool {
 /// The side and radius of G41 (`left`) or G42 with the D number in force: a negative offset
 /// and a mirrored plane axis (spec 1.29) each swap the side.
 fn setting(exec: &Executor, left: bool) -> (Side, f64) {
-    let offset = exec
-        .machine
-        .tool_offsets
-        .get(&exec.radius_offset_number)
-        .map_or(0.0, |t| t.radius + t.radius_wear);
+    let offset = exec.tools.radius(exec.radius_offset_number);
     let offset = if exec.profile.radius_offsets_are_diameters {
         offset / 2.0
     } else {

@@ -163,7 +163,7 @@ fn holes(
         // Over the hole: the plane axes as a move would go there (G91 steps on with each
         // repeat; G16 reads radius and angle), and other axes (a rotary table, say) with them.
         let target = exec.target_program(cmd);
-        if let Some(point) = super::polar::point(exec, cmd) {
+        if let Some(point) = super::polar_coordinates::point(exec, cmd) {
             exec.polar = Some(point);
         }
         drill_at(

@@ -127,19 +127,19 @@ fn set_tool_offset(
         ));
     }
     let value = exec.length(&r);
-    let entry = exec.machine.tool_offsets.entry(n as u32).or_default();
-    entry.number = n as u32;
-    let slot = match field {
-        ToolOffsetField::LengthGeometry => &mut entry.length,
-        ToolOffsetField::LengthWear => &mut entry.length_wear,
-        ToolOffsetField::RadiusGeometry => &mut entry.radius,
-        ToolOffsetField::RadiusWear => &mut entry.radius_wear,
-    };
-    match exec.modal.distance {
-        DistanceMode::Absolute => *slot = value,
-        DistanceMode::Incremental => *slot += value,
-    }
-    exec.tool_lengths_written();
+    let distance = exec.modal.distance;
+    exec.tools.write(n as u32, |entry| {
+        let slot = match field {
+            ToolOffsetField::LengthGeometry => &mut entry.length,
+            ToolOffsetField::LengthWear => &mut entry.length_wear,
+            ToolOffsetField::RadiusGeometry => &mut entry.radius,
+            ToolOffsetField::RadiusWear => &mut entry.radius_wear,
+        };
+        match distance {
+            DistanceMode::Absolute => *slot = value,
+            DistanceMode::Incremental => *slot += value,
+        }
+    });
     Ok(())
 }
 

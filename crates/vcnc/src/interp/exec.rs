@@ -30,13 +30,8 @@ pub(crate) struct Executor {
     pub(crate) spindle: SpindleState,
     pub(crate) selected_tool: u32,
     pub(crate) tool_in_spindle: u32,
-    /// The H number of the active length compensation.
-    length_offset_number: u32,
-    /// Geometry plus wear of offset `length_offset_number` (0 for an offset never set), kept:
-    /// every block that moves Z needs it, and a look-up in the offset memory cost about 30
-    /// instructions. It changes only with the H number or where a program writes an offset
-    /// ([`Executor::tool_lengths_written`]).
-    tool_length: f64,
+    /// The tool offset registers and the H number in force.
+    pub(crate) tools: super::tools::ToolMemory,
     /// The D number of cutter radius compensation.
     pub(crate) radius_offset_number: u32,
     /// The G28/G30 intermediate point, program coordinates, per axis.
@@ -46,14 +41,11 @@ pub(crate) struct Executor {
     /// The letters decoding records as written on this machine (`decode::plain_letters`).
     pub(crate) plain_letters: u32,
     /// G16: the last polar point, while polar coordinate command is on.
-    pub(crate) polar: Option<super::polar::PolarPoint>,
+    pub(crate) polar: Option<super::polar_coordinates::PolarPoint>,
     /// The canned cycle in force.
     pub(crate) cycle: Option<super::cycles::Cycle>,
     /// Where the last G31 ended, program coordinates (FANUC #5061-#5066).
     pub(crate) skip_position: [f64; AXES],
-    /// [`ModalState::smoothing_for_motion`] of `modal`, kept: every move needs it, and it
-    /// changes only with the path mode (G61-G64) and the smoothing modes (G05, G05.1, G08).
-    motion_smoothing: Option<crate::motion::Smoothing>,
 }
 
 /// What one block did to the flow of the program.
@@ -63,6 +55,15 @@ pub(crate) enum Flow {
     Next,
     /// The program has ended.
     End,
+}
+
+/// Whom a block's axis words belong to, once its frame and one-shot codes have run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum AxisWords {
+    /// The motion (or the canned cycle) of the block.
+    ForMotion,
+    /// A code that reads them as its own data (a centre, a G92 position, a G28 point).
+    Taken,
 }
 
 impl Executor {
@@ -87,8 +88,11 @@ impl Executor {
 impl Executor {
     pub(crate) fn new(machine: &Machine) -> Executor {
         let profile = machine.profile.clone();
+        // The registers live in `tools` from here on: the machine's copy is the power-on state.
+        let mut machine = machine.clone();
+        let tool_offsets = std::mem::take(&mut machine.tool_offsets);
         let modal = ModalState::power_on(&profile.power_on);
-        let mut frames = Frames::new(machine);
+        let mut frames = Frames::new(&machine);
         frames.select(modal.work_offset);
         let machine_axes = std::array::from_fn(|i| machine.axes[i].is_some());
         Executor {
@@ -99,8 +103,7 @@ impl Executor {
             spindle: SpindleState::Stopped,
             selected_tool: 0,
             tool_in_spindle: 0,
-            length_offset_number: 0,
-            tool_length: tool_length(machine, 0),
+            tools: super::tools::ToolMemory::new(tool_offsets),
             radius_offset_number: 0,
             intermediate: [None; AXES],
             machine_axes,
@@ -108,17 +111,16 @@ impl Executor {
             polar: None,
             cycle: None,
             skip_position: [0.0; AXES],
-            motion_smoothing: modal.smoothing_for_motion(),
             modal,
             profile,
-            machine: machine.clone(),
+            machine,
         }
     }
 
-    /// The smoothing of the moves to come: [`ModalState::smoothing_for_motion`], kept.
+    /// The smoothing of the moves to come.
     #[inline(always)]
     pub(crate) fn motion_smoothing(&self) -> Option<crate::motion::Smoothing> {
-        self.motion_smoothing
+        self.modal.smoothing_for_motion()
     }
 
     /// The current position in program coordinates.
@@ -157,10 +159,7 @@ impl Executor {
                 _ => self.motion(cmd, false, out)?,
             }
         }
-        if self.modal.feed_mode == FeedMode::InverseTime {
-            // G93: F is not modal (spec 1.56): every cutting block needs its own.
-            self.feed = None;
-        }
+        self.end_inverse_time_feed();
         Ok(Flow::Next)
     }
 
@@ -185,7 +184,9 @@ impl Executor {
         Ok(())
     }
 
-    /// Runs the stages of a block after its modal codes, in the control's order.
+    /// Runs the stages of a block after its modal codes, in the control's order (the module
+    /// doc gives it with its source); each stage is a function that finds nothing to do in a
+    /// block without its words.
     ///
     /// # Errors
     /// The alarm that stops the program at this block.
@@ -193,34 +194,63 @@ impl Executor {
     fn run_stages(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         super::cycles::apply_codes(self, cmd)?;
         self.set_feed(cmd)?;
+        self.auxiliary_before_motion(cmd, out)?;
+        self.dwell(cmd, out)?;
+        let smoothing = self.smoothing_modes(cmd)?;
+        let length_changed = super::length::apply(self, cmd, out)?;
+        super::compensation::before_motion(self, cmd, out)?;
+        self.refuse_presets_while_rotated(cmd)?;
+        let axis_words = match self.frame_codes(cmd, out)? {
+            AxisWords::ForMotion => self.one_shot_codes(cmd, out)?,
+            taken => taken,
+        };
+        self.refuse_stray_e(cmd, smoothing)?;
+        self.motion_stage(cmd, axis_words, length_changed, out)?;
+        super::compensation::after_motion(self, cmd, out)?;
+        self.end_inverse_time_feed();
+        self.auxiliary_after_motion(cmd, out)
+    }
+
+    /// S, T, M06, the spindle and coolant M codes: what acts before the motion.
+    fn auxiliary_before_motion(&mut self, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
         if cmd.has_auxiliary_words() {
             super::auxiliary::speed_and_tool(self, cmd, out)?;
             super::auxiliary::before_motion(self, cmd, out)?;
         }
-        let non_modal = cmd.group(Group::NonModal);
-        if let Some(g) = non_modal.filter(|g| g.code == GCode::Dwell) {
-            super::auxiliary::dwell(self, cmd, g.order, out)?;
+        Ok(())
+    }
+
+    /// G04.
+    fn dwell(&mut self, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
+        match cmd.group(Group::NonModal) {
+            Some(g) if g.code == GCode::Dwell => super::auxiliary::dwell(self, cmd, g.order, out),
+            _ => Ok(()),
         }
-        let smoothing = non_modal.filter(|g| {
+    }
+
+    /// G05, G05.1, G08: the high-speed and smoothing modes; the code, if the block has one.
+    fn smoothing_modes(&mut self, cmd: &Command) -> Result<Option<GWord>, Alarm> {
+        let smoothing = cmd.group(Group::NonModal).filter(|g| {
             matches!(
                 g.code,
                 GCode::HighSpeedMode | GCode::PathSmoothing | GCode::LookAhead
             )
         });
         if let Some(g) = smoothing {
-            let switched = super::smoothing::switch(self, cmd, g);
-            self.motion_smoothing = self.modal.smoothing_for_motion();
-            switched?;
+            super::smoothing::switch(self, cmd, g)?;
         }
-        let length_changed = super::length::apply(self, cmd, out)?;
-        super::compensation::before_motion(self, cmd, out)?;
-        let rotation = cmd.group(Group::Rotation).map(|g| g.code);
-        if self.frames.rotated()
-            && matches!(
-                non_modal.map(|g| g.code),
-                Some(GCode::SetCoordinates | GCode::PresetCoordinates)
-            )
-        {
+        Ok(smoothing)
+    }
+
+    /// G92 and G92.1 under a rotation are refused (vcnc does not model how the rotated system
+    /// would be preset).
+    fn refuse_presets_while_rotated(&self, cmd: &Command) -> Result<(), Alarm> {
+        let non_modal = cmd.group(Group::NonModal);
+        let preset = matches!(
+            non_modal.map(|g| g.code),
+            Some(GCode::SetCoordinates | GCode::PresetCoordinates)
+        );
+        if preset && self.frames.rotated() {
             let span = non_modal.map_or(cmd.span, |g| g.span);
             return Err(Alarm::not_supported(
                 span,
@@ -228,82 +258,131 @@ impl Executor {
                 Some(5),
             ));
         }
+        Ok(())
+    }
+
+    /// The codes that change the program's frame: scaling, mirror, polar coordinates, polar
+    /// coordinate interpolation and rotation, in that order. The axis words of a G68, G51 or
+    /// G51.1 block are its centre, those of G12.1 its eccentricity.
+    fn frame_codes(&mut self, cmd: &Command, out: &mut Output) -> Result<AxisWords, Alarm> {
         let scaling = cmd.group(Group::Scaling).map(|g| g.code);
         let mirror = cmd.group(Group::Mirror).map(|g| g.code);
+        let rotation = cmd.group(Group::Rotation).map(|g| g.code);
         match scaling {
-            Some(GCode::Scale) => super::scaling::g51(self, cmd)?,
-            Some(GCode::ScalingCancel) => super::scaling::cancel(self, false),
+            Some(GCode::Scale) => super::frames::scaling::g51(self, cmd)?,
+            Some(GCode::ScalingCancel) => super::frames::scaling::cancel(self, false),
             _ => {}
         }
         match mirror {
-            Some(GCode::Mirror) => super::scaling::g51_1(self, cmd)?,
-            Some(GCode::MirrorCancel) => super::scaling::cancel(self, true),
+            Some(GCode::Mirror) => super::frames::scaling::g51_1(self, cmd)?,
+            Some(GCode::MirrorCancel) => super::frames::scaling::cancel(self, true),
             _ => {}
         }
         match cmd.group(Group::Polar).map(|g| g.code) {
-            Some(GCode::Polar) => super::polar::g16(self),
-            Some(GCode::PolarCancel) => super::polar::g15(self),
+            Some(GCode::Polar) => super::polar_coordinates::g16(self),
+            Some(GCode::PolarCancel) => super::polar_coordinates::g15(self),
             _ => {}
         }
         let polar_interpolation = cmd.group(Group::PolarInterpolation);
         if let Some(g) = polar_interpolation {
-            super::polar_interp::switch(self, cmd, g, out)?;
+            super::polar_interpolation::switch(self, cmd, g, out)?;
         }
         match rotation {
-            Some(GCode::Rotate) => super::rotation::g68(self, cmd)?,
-            Some(GCode::RotationCancel) => super::rotation::g69(self),
+            Some(GCode::Rotate) => super::frames::rotation::g68(self, cmd)?,
+            Some(GCode::RotationCancel) => super::frames::rotation::g69(self),
             _ => {}
         }
-        // The axis words of a G68, G51 or G51.1 block are its centre, those of G12.1 its
-        // eccentricity.
-        let consumed = polar_interpolation.is_some()
+        let taken = polar_interpolation.is_some()
             || rotation == Some(GCode::Rotate)
             || scaling == Some(GCode::Scale)
-            || mirror == Some(GCode::Mirror)
-            || match non_modal.map(|g| g.code) {
-                Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
-                Some(GCode::SetCoordinates) => super::coords::g92(self, cmd)?,
-                Some(GCode::PresetCoordinates) => super::coords::g92_1(self, cmd)?,
-                Some(GCode::LocalCoordinates) => super::coords::g52(self, cmd)?,
-                Some(GCode::ReferenceReturn) => super::reference::g28(self, cmd, out)?,
-                Some(GCode::NthReferenceReturn) => super::reference::g30(self, cmd, out)?,
-                Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
-                Some(GCode::MachineCoordinates) => super::coords::g53(self, cmd, out)?,
-                Some(GCode::Dwell) => true,
-                Some(GCode::Skip) => {
-                    super::skip::g31(self, cmd, out)?;
-                    true
-                }
-                Some(GCode::CircleCutting(direction)) => {
-                    super::circle_cutting::run(self, cmd, direction, out)?;
-                    true
-                }
-                Some(GCode::Pattern(kind)) => {
-                    super::cycles::pattern(self, cmd, kind, out)?;
-                    true
-                }
-                _ => false,
-            };
+            || mirror == Some(GCode::Mirror);
+        Ok(if taken {
+            AxisWords::Taken
+        } else {
+            AxisWords::ForMotion
+        })
+    }
+
+    /// The one-shot codes of group 00 (G10, G92, G92.1, G52, G28, G29, G30, G53, G31, G04,
+    /// circle cutting, hole patterns): whether the axis words are theirs. They run only in a
+    /// block whose axis words no frame code took.
+    fn one_shot_codes(&mut self, cmd: &Command, out: &mut Output) -> Result<AxisWords, Alarm> {
+        let taken = match cmd.group(Group::NonModal).map(|g| g.code) {
+            Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
+            Some(GCode::SetCoordinates) => super::frames::coords::g92(self, cmd)?,
+            Some(GCode::PresetCoordinates) => super::frames::coords::g92_1(self, cmd)?,
+            Some(GCode::LocalCoordinates) => super::frames::coords::g52(self, cmd)?,
+            Some(GCode::ReferenceReturn) => super::reference::g28(self, cmd, out)?,
+            Some(GCode::NthReferenceReturn) => super::reference::g30(self, cmd, out)?,
+            Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
+            Some(GCode::MachineCoordinates) => super::frames::coords::g53(self, cmd, out)?,
+            Some(GCode::Dwell) => true,
+            Some(GCode::Skip) => {
+                super::skip::g31(self, cmd, out)?;
+                true
+            }
+            Some(GCode::CircleCutting(direction)) => {
+                super::circle_cutting::run(self, cmd, direction, out)?;
+                true
+            }
+            Some(GCode::Pattern(kind)) => {
+                super::cycles::pattern(self, cmd, kind, out)?;
+                true
+            }
+            _ => false,
+        };
+        Ok(if taken {
+            AxisWords::Taken
+        } else {
+            AxisWords::ForMotion
+        })
+    }
+
+    /// E is read by tapping cycles, the smoothing modes and (on some profiles) threading only.
+    fn refuse_stray_e(&self, cmd: &Command, smoothing: Option<GWord>) -> Result<(), Alarm> {
         let thread_e = self.profile.thread_e_per_inch && self.modal.motion == MotionMode::Thread;
-        if let (Some(e), None, None, false) = (cmd.word(b'E'), &self.cycle, smoothing, thread_e) {
-            return Err(Alarm::not_supported(
+        match (cmd.word(b'E'), &self.cycle, smoothing, thread_e) {
+            (Some(e), None, None, false) => Err(Alarm::not_supported(
                 e.span,
                 "address E outside a tapping cycle",
                 None,
-            ));
+            )),
+            _ => Ok(()),
         }
-        if !consumed && self.cycle.is_some() {
-            super::cycles::run(self, cmd, out)?;
-        } else if !consumed && (cmd.has_axis_words() || has_center_words(cmd)) {
-            self.motion(cmd, length_changed, out)?;
-        } else if length_changed && !consumed {
-            super::length::move_to_new_vector(self, cmd, out)?;
+    }
+
+    /// The block's motion: the canned cycle in force, the motion mode's move to the axis
+    /// words, or the move that applies a new tool length.
+    fn motion_stage(
+        &mut self,
+        cmd: &Command,
+        axis_words: AxisWords,
+        length_changed: bool,
+        out: &mut Output,
+    ) -> Result<(), Alarm> {
+        if axis_words == AxisWords::Taken {
+            return Ok(());
         }
-        super::compensation::after_motion(self, cmd, out)?;
+        if self.cycle.is_some() {
+            super::cycles::run(self, cmd, out)
+        } else if cmd.has_axis_words() || has_center_words(cmd) {
+            self.motion(cmd, length_changed, out)
+        } else if length_changed {
+            super::length::move_to_new_vector(self, cmd, out)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// G93: F is not modal (spec 1.56): every cutting block needs its own.
+    fn end_inverse_time_feed(&mut self) {
         if self.modal.feed_mode == FeedMode::InverseTime {
-            // G93: F is not modal (spec 1.56): every cutting block needs its own.
             self.feed = None;
         }
+    }
+
+    /// M00, M01, M02, M30 and the other M codes that act after the motion.
+    fn auxiliary_after_motion(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         if cmd.has_auxiliary_words() {
             super::auxiliary::after_motion(self, cmd, out)
         } else {
@@ -358,10 +437,6 @@ impl Executor {
         // Only a work-offset code (G54-G59, G54.1) changes the system in use.
         if cmd.group(Group::WorkOffset).is_some() {
             self.frames.select(self.modal.work_offset);
-        }
-        // Only a path-mode code (G61-G64) changes the smoothing of the moves here.
-        if cmd.group(Group::PathMode).is_some() {
-            self.motion_smoothing = self.modal.smoothing_for_motion();
         }
         Ok(())
     }
@@ -458,9 +533,9 @@ impl Executor {
     #[inline(always)]
     pub(crate) fn target_program(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.cartesian_target(cmd);
-        if let Some(point) = super::polar::point(self, cmd) {
+        if let Some(point) = super::polar_coordinates::point(self, cmd) {
             let (a, b, _) = self.modal.plane.axes();
-            (target[a], target[b]) = super::polar::cartesian(point);
+            (target[a], target[b]) = super::polar_coordinates::cartesian(point);
         }
         target
     }
@@ -489,32 +564,10 @@ impl Executor {
         target
     }
 
-    /// The H number of the active length compensation.
-    pub(crate) fn length_offset_number(&self) -> u32 {
-        self.length_offset_number
-    }
-
-    /// Selects the offset of length compensation (H).
-    pub(crate) fn set_length_offset_number(&mut self, number: u32) {
-        self.length_offset_number = number;
-        self.tool_lengths_written();
-    }
-
-    /// A program wrote the offset memory (G10 L10-L13, a macro variable): the offset of
-    /// length compensation is read again.
-    pub(crate) fn tool_lengths_written(&mut self) {
-        self.tool_length = tool_length(&self.machine, self.length_offset_number);
-    }
-
     /// The tool length offset of the active compensation, mm (signed for G44).
     #[inline(always)]
     pub(crate) fn active_length(&self) -> f64 {
-        debug_assert_eq!(
-            self.tool_length.to_bits(),
-            tool_length(&self.machine, self.length_offset_number).to_bits(),
-            "the offset memory changed without `tool_lengths_written`"
-        );
-        let value = self.tool_length;
+        let value = self.tools.length();
         match self.modal.length_comp {
             LengthComp::Off => 0.0,
             LengthComp::Plus => value,
@@ -566,7 +619,7 @@ impl Executor {
             let compensating = out.comp.is_some();
             super::position_offset::apply(self, cmd, factor, compensating, &start, &mut target)?;
         }
-        if let Some(point) = super::polar::point(self, cmd) {
+        if let Some(point) = super::polar_coordinates::point(self, cmd) {
             self.polar = Some(point);
         }
         let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;
@@ -626,7 +679,6 @@ impl Executor {
     #[inline(always)]
     pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Result<Move, Alarm> {
         check_position(&to, cmd)?;
-        debug_assert_eq!(self.motion_smoothing, self.modal.smoothing_for_motion());
         let from = MachinePos(self.position);
         self.position = to;
         Ok(Move {
@@ -634,7 +686,7 @@ impl Executor {
             to: MachinePos(to),
             path_mode: self.modal.path_mode,
             exact_stop: self.exact_stop_once(cmd),
-            smoothing: self.motion_smoothing,
+            smoothing: self.modal.smoothing_for_motion(),
             offset: self.frames.offset_at(&to),
         })
     }
@@ -685,14 +737,6 @@ impl Executor {
             "feed rate is zero",
         )
     }
-}
-
-/// Geometry plus wear of tool offset `number` on `machine` (0 for an offset never set).
-fn tool_length(machine: &Machine, number: u32) -> f64 {
-    machine
-        .tool_offsets
-        .get(&number)
-        .map_or(0.0, |t| t.length + t.length_wear)
 }
 
 fn has_center_words(cmd: &Command) -> bool {
@@ -847,7 +891,6 @@ mod tests {
                     proptest::prop_assert_eq!(&by_run, &by_loop, "{:?}", text);
                     proptest::prop_assert_eq!(&fast.modal, &full.modal, "{:?}", text);
                     proptest::prop_assert_eq!(fast.feed, full.feed, "{:?}", text);
-                    proptest::prop_assert_eq!(fast.motion_smoothing, full.motion_smoothing);
                     proptest::prop_assert_eq!(fast.program_position(), full.program_position());
                     if by_run.is_err() {
                         return Ok(());

@@ -24,7 +24,7 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
         .filter(|_| !super::compensation::h_names_radius_offset(exec, cmd));
     if let Some(h) = h {
         let number = exec.offset_number(h, 'H')?;
-        exec.set_length_offset_number(number);
+        exec.tools.select_length(number);
     }
     let changed = cmd.group(Group::LengthComp).is_some()
         || (h.is_some() && exec.modal.length_comp != LengthComp::Off);

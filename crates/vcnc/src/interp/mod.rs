@@ -15,7 +15,6 @@ mod circle_cutting;
 mod circular;
 mod comp;
 mod compensation;
-mod coords;
 mod cycles;
 mod data_input;
 mod decode;
@@ -24,16 +23,15 @@ mod frames;
 mod length;
 mod macros;
 pub mod modal;
-mod polar;
-mod polar_interp;
+mod polar_coordinates;
+mod polar_interpolation;
 mod position_offset;
 mod reference;
-mod rotation;
-mod scaling;
 mod skip;
 mod smoothing;
 mod spiral;
 mod thread;
+mod tools;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::checks::ReleasedCheck;
@@ -93,7 +91,7 @@ pub(crate) struct Output {
     failed: Option<Alarm>,
     /// G12.1 in force: what compensation releases waits here to be turned into X-C motion, and
     /// `items` and `held` receive only what it has converted.
-    pub(crate) polar_interp: Option<Box<polar_interp::PolarStage>>,
+    pub(crate) polar_interpolation: Option<Box<polar_interpolation::PolarStage>>,
 }
 
 /// Where compensation and the executor put their items: the queue, or the polar coordinate
@@ -101,9 +99,9 @@ pub(crate) struct Output {
 fn queue<'a>(
     items: &'a mut Vec<Result<Segment, Alarm>>,
     held: &'a mut Option<usize>,
-    polar_interp: &'a mut Option<Box<polar_interp::PolarStage>>,
+    polar_interpolation: &'a mut Option<Box<polar_interpolation::PolarStage>>,
 ) -> (&'a mut Vec<Result<Segment, Alarm>>, &'a mut Option<usize>) {
-    match polar_interp.as_deref_mut() {
+    match polar_interpolation.as_deref_mut() {
         Some(stage) => (&mut stage.staged, &mut stage.held),
         None => (items, held),
     }
@@ -115,7 +113,7 @@ impl Output {
     pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
         match self.comp.as_mut() {
             // Built where it goes: a segment is a few hundred bytes, and this runs per move.
-            None if self.polar_interp.is_none() => self.items.push(Ok(Segment {
+            None if self.polar_interpolation.is_none() => self.items.push(Ok(Segment {
                 kind,
                 span: cmd.span,
                 sequence: cmd.sequence,
@@ -129,7 +127,7 @@ impl Output {
     /// it was built on the stack and copied over, about 30 instructions).
     #[inline(always)]
     pub(crate) fn direct(&mut self) -> Option<&mut Vec<Result<Segment, Alarm>>> {
-        (self.comp.is_none() && self.polar_interp.is_none()).then_some(&mut self.items)
+        (self.comp.is_none() && self.polar_interpolation.is_none()).then_some(&mut self.items)
     }
 
     /// Records a segment of the block `cmd`, made by `kind` on the queue's own path and on the
@@ -156,7 +154,11 @@ impl Output {
             span: cmd.span,
             sequence: cmd.sequence,
         };
-        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let (items, held) = queue(
+            &mut self.items,
+            &mut self.held,
+            &mut self.polar_interpolation,
+        );
         match self.comp.as_mut() {
             Some(comp) => {
                 if let Err(alarm) = comp.push(segment, items, held) {
@@ -165,12 +167,12 @@ impl Output {
             }
             None => items.push(Ok(segment)),
         }
-        self.settle_polar_interp();
+        self.settle_polar_interpolation();
     }
 
     /// Converts what compensation has released into X-C motion, while G12.1 is on.
-    fn settle_polar_interp(&mut self) {
-        if let Some(stage) = self.polar_interp.as_deref_mut() {
+    fn settle_polar_interpolation(&mut self) {
+        if let Some(stage) = self.polar_interpolation.as_deref_mut() {
             stage.settle(&mut self.items);
         }
     }
@@ -183,12 +185,16 @@ impl Output {
     /// Nothing waits any more: the program is over.
     fn finish(&mut self) {
         if let Some(mut comp) = self.comp.take() {
-            let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+            let (items, held) = queue(
+                &mut self.items,
+                &mut self.held,
+                &mut self.polar_interpolation,
+            );
             if let Err(alarm) = comp.finish(items, held) {
                 self.stop(alarm);
             }
         }
-        if let Some(stage) = self.polar_interp.take() {
+        if let Some(stage) = self.polar_interpolation.take() {
             // The program ends in G12.1: reset cancels the mode (spec 1.13.2 rule 2).
             stage.flush(&mut self.items);
         }
@@ -208,9 +214,13 @@ impl Output {
         &mut self,
         comp: &mut comp::Compensator,
     ) -> Result<(), Alarm> {
-        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let (items, held) = queue(
+            &mut self.items,
+            &mut self.held,
+            &mut self.polar_interpolation,
+        );
         let finished = comp.finish(items, held);
-        self.settle_polar_interp();
+        self.settle_polar_interpolation();
         finished
     }
 
@@ -219,12 +229,16 @@ impl Output {
     /// # Errors
     /// Interference at the pending element's end.
     pub(crate) fn suspend_compensation(&mut self) -> Result<(), Alarm> {
-        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let (items, held) = queue(
+            &mut self.items,
+            &mut self.held,
+            &mut self.polar_interpolation,
+        );
         let suspended = match self.comp.as_mut() {
             Some(comp) => comp.suspend(items, held),
             None => Ok(()),
         };
-        self.settle_polar_interp();
+        self.settle_polar_interpolation();
         suspended
     }
 
@@ -233,12 +247,16 @@ impl Output {
     /// # Errors
     /// Interference where a pending element had to end.
     fn end_block(&mut self) -> Result<(), Alarm> {
-        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let (items, held) = queue(
+            &mut self.items,
+            &mut self.held,
+            &mut self.polar_interpolation,
+        );
         let ended = match self.comp.as_mut() {
             Some(comp) => comp.end_block(items, held),
             None => Ok(()),
         };
-        self.settle_polar_interp();
+        self.settle_polar_interpolation();
         ended
     }
 
@@ -249,16 +267,24 @@ impl Output {
 
     /// Queues an item behind everything queued before it.
     fn push_item(&mut self, item: Result<Segment, Alarm>) {
-        let (items, _) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let (items, _) = queue(
+            &mut self.items,
+            &mut self.held,
+            &mut self.polar_interpolation,
+        );
         items.push(item);
-        self.settle_polar_interp();
+        self.settle_polar_interpolation();
     }
 
     /// An error ends the run. With compensation looking ahead, the control stops before the
     /// block that was waiting for this one: the pending move and the moves held after it never
     /// happen (their warnings stay).
     fn stop(&mut self, alarm: Alarm) {
-        let (items, held) = queue(&mut self.items, &mut self.held, &mut self.polar_interp);
+        let (items, held) = queue(
+            &mut self.items,
+            &mut self.held,
+            &mut self.polar_interpolation,
+        );
         if let Some(held) = held.take() {
             let tail = items.split_off(held);
             items.extend(tail.into_iter().filter(Result::is_err));
@@ -266,7 +292,7 @@ impl Output {
         if let Some(comp) = self.comp.as_mut() {
             comp.abandon();
         }
-        self.settle_polar_interp();
+        self.settle_polar_interpolation();
         self.items.push(Err(alarm));
     }
 }
@@ -376,7 +402,7 @@ impl<B: BlockSource> Interpreter<B> {
             out: Output::default(),
             done: false,
             started: false,
-            last_span: Span::new(file, 0, 0, 1),
+            last_span: Span::new(file, 1, 0..0),
             blocks_executed: 0,
             place: Place::Stream { block: 0 },
             macros: macros::Macros::default(),
@@ -538,7 +564,7 @@ impl<B: BlockSource> Interpreter<B> {
     fn stop_checked(&mut self) {
         self.core.out.held = None;
         self.core.out.comp = None;
-        self.core.out.polar_interp = None;
+        self.core.out.polar_interpolation = None;
         self.core.done = true;
     }
 
@@ -723,8 +749,8 @@ impl Core {
                     .set_subprogram(crate::profile::MCode::SubprogramReturn, end);
             }
         }
-        if self.out.polar_interp.is_some() {
-            if let Err(alarm) = polar_interp::prepare(&mut self.command) {
+        if self.out.polar_interpolation.is_some() {
+            if let Err(alarm) = polar_interpolation::prepare(&mut self.command) {
                 return self.fail(alarm);
             }
         }
@@ -813,7 +839,7 @@ impl<B: BlockSource> Iterator for Interpreter<B> {
                 continue;
             }
             if self.core.done {
-                if out.items.is_empty() && out.polar_interp.is_none() {
+                if out.items.is_empty() && out.polar_interpolation.is_none() {
                     return None;
                 }
                 out.finish();

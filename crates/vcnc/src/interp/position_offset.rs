@@ -23,10 +23,7 @@ pub(crate) fn factor(cmd: &Command) -> Option<(f64, Span)> {
 
 /// The offset value, mm: offset D's radius register as it stands.
 fn value(exec: &Executor) -> f64 {
-    exec.machine
-        .tool_offsets
-        .get(&exec.radius_offset_number)
-        .map_or(0.0, |t| t.radius + t.radius_wear)
+    exec.tools.radius(exec.radius_offset_number)
 }
 
 /// Moves the block's target (program coordinates, from `start`) by `k` times the offset along

@@ -10,7 +10,7 @@
 //! does not have, or a limit that is not a positive number, limits nothing.
 
 use super::config::PlannerConfig;
-use super::profile::{PathLimits, Profile};
+use super::speed_profile::{PathLimits, SpeedProfile};
 use super::{finite, greater, lesser};
 use crate::machine::{Machine, AXES};
 use crate::motion::{arc_sweep, ArcDirection, Feed, MachinePos, Move, PathMode, Plane};
@@ -567,7 +567,7 @@ pub(crate) fn per_axis_rapid_seconds(motion: &Move, axes: &AxisLimits) -> f64 {
                 acceleration: axes.acceleration[i],
                 jerk: axes.jerk[i],
             };
-            Profile::new(distance, 0.0, 0.0, axes.rapid[i], limits).duration()
+            SpeedProfile::new(distance, 0.0, 0.0, axes.rapid[i], limits).duration()
         })
         .fold(0.0, f64::max)
 }

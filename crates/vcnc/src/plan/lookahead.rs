@@ -18,7 +18,7 @@
 use super::config::PlannerConfig;
 use super::corner::{junction, Handover};
 use super::limits::MotionLimits;
-use super::profile::{reachable_speed_up_to, Profile};
+use super::speed_profile::{reachable_speed_up_to, SpeedProfile};
 use super::{greater, lesser};
 
 /// A motion's place in the plan.
@@ -314,12 +314,12 @@ impl Slot {
 
 /// The timed result of a planned motion: its profile (None for a per-axis rapid) and duration.
 #[inline(always)]
-pub(crate) fn time_motion(planned: &Planned) -> (Option<Profile>, f64) {
+pub(crate) fn time_motion(planned: &Planned) -> (Option<SpeedProfile>, f64) {
     if let Some(seconds) = planned.per_axis_seconds {
         return (None, seconds);
     }
     let limits = &planned.limits;
-    let profile = Profile::new(
+    let profile = SpeedProfile::new(
         limits.length,
         planned.entry,
         planned.exit,

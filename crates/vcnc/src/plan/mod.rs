@@ -7,7 +7,7 @@
 //! every non-motion event; events take the times the machine file gives them.
 //!
 //! The parts: `limits.rs` (machine limits along one segment's path), `corner.rs` (junction
-//! speeds), `profile.rs` (velocity profiles in closed form), `lookahead.rs` (the window and its
+//! speeds), `speed_profile.rs` (velocity profiles in closed form), `lookahead.rs` (the window and its
 //! passes), `events.rs` (time of dwells, tool changes, spindle), `config.rs` (the machine file's
 //! `[planner]` table, with LinuxCNC's habits as a preset), `report.rs` (where the time goes:
 //! by kind, by tool, the slowest blocks).
@@ -37,13 +37,13 @@ mod corner;
 mod events;
 mod limits;
 mod lookahead;
-mod profile;
 mod report;
+mod speed_profile;
 
 pub(crate) use config::PlannerFile;
 pub use config::{PlannerConfig, PlannerHabits};
-pub use profile::{PathLimits, Profile};
 pub use report::{BlockTime, TimeKind, TimeReport, SLOWEST};
+pub use speed_profile::{PathLimits, SpeedProfile};
 
 use crate::alarm::Alarm;
 use crate::machine::Machine;
@@ -121,14 +121,14 @@ pub struct TimedSegment {
     pub dt: f64,
     /// The path speed profile of an interpolated motion (None for events, per-axis rapids and
     /// motions of zero length).
-    pub profile: Option<Profile>,
+    pub profile: Option<SpeedProfile>,
     /// The feed could not be known (G95 without a spindle speed): timed at the axes' limit.
     pub feed_unknown: bool,
 }
 
 impl TimedSegment {
     /// `segment` at `timing`, with its speed profile.
-    pub fn new(segment: Segment, timing: Timing, profile: Option<Profile>) -> TimedSegment {
+    pub fn new(segment: Segment, timing: Timing, profile: Option<SpeedProfile>) -> TimedSegment {
         TimedSegment {
             segment,
             t: timing.t,
@@ -292,7 +292,7 @@ impl Timeline {
     /// [`Timeline::next_timing`] with the speed profile of the motion (None for events,
     /// alarms, per-axis rapids and motions of zero length).
     #[inline(always)]
-    pub fn next_timing_and_profile(&mut self) -> Option<(Timing, Option<Profile>)> {
+    pub fn next_timing_and_profile(&mut self) -> Option<(Timing, Option<SpeedProfile>)> {
         let (dt, profile, feed_unknown) = match self.window.pop_ready()? {
             Slot::Fixed(seconds) => (*seconds, None, false),
             Slot::Motion(planned) => {

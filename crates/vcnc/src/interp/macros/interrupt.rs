@@ -178,7 +178,7 @@ impl Core {
         if self.out.comp.is_some() {
             return Some("cutter compensation (G41/G42) is on");
         }
-        if self.out.polar_interp.is_some() {
+        if self.out.polar_interpolation.is_some() {
             return Some("polar coordinate interpolation (G12.1) is on");
         }
         if self.exec.polar.is_some() {

@@ -135,12 +135,7 @@ pub(crate) fn read(
     let to_units = 1.0 / exec.modal.units.to_mm();
     let length = |mm: f64| Some(mm * to_units);
     if let Some((n, field)) = tool_field_of(number, profile.tool_offset_variables) {
-        let offset = exec
-            .machine
-            .tool_offsets
-            .get(&n)
-            .cloned()
-            .unwrap_or_default();
+        let offset = exec.tools.get(n).cloned().unwrap_or_default();
         let mm = match field {
             ToolField::Length => offset.length,
             ToolField::LengthWear => offset.length_wear,
@@ -248,15 +243,12 @@ pub(crate) fn write(
 ) -> Result<WriteEffect, Alarm> {
     let mm = value.unwrap_or(0.0) * exec.modal.units.to_mm();
     if let Some((n, field)) = tool_field_of(number, exec.profile.tool_offset_variables) {
-        let offset = exec.machine.tool_offsets.entry(n).or_default();
-        offset.number = n;
-        match field {
+        exec.tools.write(n, |offset| match field {
             ToolField::Length => offset.length = mm,
             ToolField::LengthWear => offset.length_wear = mm,
             ToolField::Radius => offset.radius = mm,
             ToolField::RadiusWear => offset.radius_wear = mm,
-        }
-        exec.tool_lengths_written();
+        });
         return Ok(WriteEffect::None);
     }
     if let Some((id, axis)) = work_offset_of(number, exec.profile.g54_1_count) {
@@ -392,7 +384,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
         // FANUC's group 21 is G12.1/G13.1 (polar coordinate interpolation), G13.1 at power-on;
         // a control without the function has nothing in it.
         21 if exec.profile.polar_interpolation => {
-            if out.polar_interp.is_some() {
+            if out.polar_interpolation.is_some() {
                 121.0
             } else {
                 131.0
@@ -428,7 +420,7 @@ fn letter_value(exec: &Executor, letter: u32) -> Option<MacroValue> {
         2 | 8 | 13 | 14 | 15 => Some(0.0),
         7 => Some(f64::from(exec.radius_offset_number)),
         9 => Some(exec.feed.unwrap_or(0.0) / exec.modal.units.to_mm()),
-        11 => Some(f64::from(exec.length_offset_number())),
+        11 => Some(f64::from(exec.tools.length_number())),
         19 => Some(exec.speed),
         20 => Some(f64::from(exec.selected_tool)),
         30 => match exec.modal.work_offset {

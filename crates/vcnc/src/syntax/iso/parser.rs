@@ -189,7 +189,7 @@ impl Reader<'_, '_> {
                 .saturating_add(u32::try_from(p).unwrap_or(u32::MAX))
         };
         let line = self.line + self.line_breaks.partition_point(|&b| b < start) as u32;
-        Span::new(self.file, at(start), at(end), line)
+        Span::new(self.file, line, at(start)..at(end))
     }
 
     fn skip_blanks(&mut self) {

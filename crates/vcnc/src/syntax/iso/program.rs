@@ -231,7 +231,7 @@ impl<'t, 'o> Cutter<'t, 'o> {
                 let (line_index, line_number) = (self.line_index, self.line_number);
                 self.blank(self.text.len() - open);
                 let at = |p: usize| u32::try_from(p).unwrap_or(u32::MAX);
-                let span = Span::new(self.file, at(open), at(open + 2), line_number);
+                let span = Span::new(self.file, line_number, at(open)..at(open + 2));
                 let alarm = Alarm::warning(
                     AlarmCode::UnclosedComment,
                     span,

@@ -101,7 +101,7 @@ fn read_plain_words<const WINDOWED: bool>(
     let block = out.push_plain();
     // The block's start, file and line are known now and stored at once (the end is stored at
     // the end); the words take the file and the line from the locals, not from the span.
-    block.span = Span::new(file, offset_of(first_word), 0, line_number);
+    block.span = Span::new(file, line_number, offset_of(first_word)..0);
     let mut rest = first_word;
     loop {
         // A word's number needs its window: WINDOW bytes after the letter and the sign. Tested

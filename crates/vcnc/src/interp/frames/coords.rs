@@ -1,11 +1,11 @@
 //! One-shot coordinate codes: G92, G92.1, G52, G53.
 
-use super::decode::Command;
-use super::exec::Executor;
-use super::frames::Rotation;
-use super::modal::DistanceMode;
-use super::Output;
+use super::Rotation;
 use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::decode::Command;
+use crate::interp::exec::Executor;
+use crate::interp::modal::DistanceMode;
+use crate::interp::Output;
 use crate::machine::{Axis, AXES};
 use crate::profile::Group;
 

@@ -5,14 +5,14 @@
 //! coordinate system; an omitted centre word takes the current position. In G90 a new G68
 //! replaces the angle; in G91 its R adds to the angle in force. Incremental moves turn with the
 //! rotation (their vectors are rotated), so the centre only matters to absolute positions. The
-//! rotation lives in the coordinate chain (`frames.rs`), so moves, arcs and the positions the
+//! rotation lives in the coordinate chain (`mod.rs`), so moves, arcs and the positions the
 //! control reports all follow it.
 
-use super::decode::Command;
-use super::exec::Executor;
-use super::frames::Rotation;
-use super::modal::DistanceMode;
+use super::Rotation;
 use crate::alarm::Alarm;
+use crate::interp::decode::Command;
+use crate::interp::exec::Executor;
+use crate::interp::modal::DistanceMode;
 use crate::machine::Axis;
 
 /// G68: sets the rotation from the block's centre words and R.

@@ -226,7 +226,7 @@ const HUGE_ACCELERATION: f64 = 1e12;
 
 /// The speed profile of one segment.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Profile {
+pub struct SpeedProfile {
     /// Path length, mm.
     pub length: f64,
     /// Speed at the start, mm/s.
@@ -247,14 +247,20 @@ pub struct Profile {
     down_time: f64,
 }
 
-impl Profile {
+impl SpeedProfile {
     /// The fastest profile over `length` from `entry` to `exit` that stays under `cruise` and
     /// `limits`. The look-ahead passes only ask for feasible end speeds; a pair that is slightly
     /// out of reach (rounding) gets the closest feasible profile rather than an error.
     // Inlined: the planner's callers that only want the duration then skip building the rest;
     // the rare profile that does not reach its cruise speed is worked out in `peaked`.
     #[inline(always)]
-    pub fn new(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimits) -> Profile {
+    pub fn new(
+        length: f64,
+        entry: f64,
+        exit: f64,
+        cruise: f64,
+        limits: PathLimits,
+    ) -> SpeedProfile {
         // An axis without limits gives infinite caps; huge finite ones keep the arithmetic free
         // of inf - inf and take no measurable time.
         let limits = PathLimits {
@@ -267,15 +273,19 @@ impl Profile {
             // The commonest profile of a contour: entered and left at the cruise speed, which
             // gentle corners allow. Both ramps are empty, and the general way would find the
             // same: ramps of no time, the whole length left at the cruise speed.
-            return Profile::at_cruise(length, (entry, cruise, exit), limits);
+            return SpeedProfile::at_cruise(length, (entry, cruise, exit), limits);
         }
-        Profile::ramped(length, (entry, cruise, exit), limits)
+        SpeedProfile::ramped(length, (entry, cruise, exit), limits)
     }
 
-    /// [`Profile::new`] after its bounds, in general: `length` not negative, `cruise` not
+    /// [`SpeedProfile::new`] after its bounds, in general: `length` not negative, `cruise` not
     /// below `entry` and `exit`, finite limits of acceleration.
     #[inline(always)]
-    fn ramped(length: f64, (entry, cruise, exit): (f64, f64, f64), limits: PathLimits) -> Profile {
+    fn ramped(
+        length: f64,
+        (entry, cruise, exit): (f64, f64, f64),
+        limits: PathLimits,
+    ) -> SpeedProfile {
         // Most segments reach their cruise speed: the ramps to it settle the profile.
         let (mut up_time, mut down_time) = (
             ramp_time(entry, cruise, limits),
@@ -291,7 +301,7 @@ impl Profile {
         } else {
             0.0
         };
-        Profile {
+        SpeedProfile {
             length,
             entry,
             peak,
@@ -311,13 +321,13 @@ impl Profile {
         length: f64,
         (entry, cruise, exit): (f64, f64, f64),
         limits: PathLimits,
-    ) -> Profile {
+    ) -> SpeedProfile {
         let cruise_time = if length > 0.0 && cruise > 0.0 {
             length / cruise
         } else {
             0.0
         };
-        Profile {
+        SpeedProfile {
             length,
             entry,
             peak: cruise,
@@ -334,7 +344,7 @@ impl Profile {
     /// standstill there is no arc to pass: the distance is the ramps' business then, and the
     /// look-ahead never plans a blend at zero speed.
     #[inline(always)]
-    pub fn with_lead_in(mut self, distance: f64) -> Profile {
+    pub fn with_lead_in(mut self, distance: f64) -> SpeedProfile {
         if distance > 0.0 && self.entry > 1e-9 {
             self.lead_in_time = distance / self.entry;
             self.length += distance;
@@ -522,7 +532,7 @@ mod tests {
     #[test]
     fn an_unequal_s_curve_profile_fits_its_length() {
         for (entry, exit, length) in [(0.0, 30.0, 2.0), (50.0, 5.0, 3.0), (10.0, 12.0, 0.5)] {
-            let profile = Profile::new(length, entry, exit, 1000.0, S_CURVE);
+            let profile = SpeedProfile::new(length, entry, exit, 1000.0, S_CURVE);
             let up = Ramp::new(entry, profile.peak, S_CURVE);
             let covered = up.distance() + Ramp::new(profile.peak, exit, S_CURVE).distance();
             assert!((covered - length).abs() < 1e-9, "{entry} {exit} {length}");
@@ -552,7 +562,7 @@ mod tests {
     }
 
     /// The bits of every field of a profile.
-    fn profile_bits(p: &Profile) -> [u64; 10] {
+    fn profile_bits(p: &SpeedProfile) -> [u64; 10] {
         [
             p.length,
             p.entry,
@@ -583,13 +593,13 @@ mod tests {
             speed in prop_oneof![Just(0.0), 1e-9..1e4_f64, Just(1e9), Just(2e9)],
             limits in limits(),
         ) {
-            let fast = Profile::new(length, speed, speed, speed, limits);
+            let fast = SpeedProfile::new(length, speed, speed, speed, limits);
             let bounded = PathLimits {
                 acceleration: lesser(HUGE_ACCELERATION, limits.acceleration),
                 jerk: limits.jerk,
             };
             // Any speed not below zero is its own cruise speed after the bounds.
-            let general = Profile::ramped(greater(0.0, length), (speed, speed, speed), bounded);
+            let general = SpeedProfile::ramped(greater(0.0, length), (speed, speed, speed), bounded);
             prop_assert_eq!(profile_bits(&fast), profile_bits(&general));
         }
     }
@@ -659,7 +669,7 @@ mod tests {
 
     #[test]
     fn a_zero_length_segment_takes_no_time() {
-        let profile = Profile::new(0.0, 0.0, 0.0, 100.0, S_CURVE);
+        let profile = SpeedProfile::new(0.0, 0.0, 0.0, 100.0, S_CURVE);
         assert_eq!(profile.duration(), 0.0);
     }
 }

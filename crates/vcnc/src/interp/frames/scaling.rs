@@ -3,15 +3,15 @@
 //! `G51 X_ Y_ Z_ P_` (or `I_ J_ K_`): the axes named are scaled about the centre their words give,
 //! by P, or by I J K for X Y Z each. `G51.1 X_ Y_`: the axes named are mirrored about the
 //! coordinate their words give (incremental from the current position in G91). Both live in the
-//! coordinate chain (`frames.rs`) as one stretching of the programmed coordinates, applied before
+//! coordinate chain (`mod.rs`) as one stretching of the programmed coordinates, applied before
 //! a rotation; arcs take the larger factor of their plane for their radius and turn the other way
 //! when one plane axis is reversed (`circular.rs`). Syntec refuses the two together (spec 1.28).
 
-use super::decode::Command;
-use super::exec::Executor;
-use super::frames::Scaling;
-use super::modal::DistanceMode;
+use super::Scaling;
 use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::decode::Command;
+use crate::interp::exec::Executor;
+use crate::interp::modal::DistanceMode;
 use crate::machine::AXES;
 use crate::profile::DecimalLess;
 

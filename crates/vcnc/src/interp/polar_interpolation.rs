@@ -138,7 +138,7 @@ pub(crate) fn switch(
 
 /// G12.1: the executor's position becomes the Cartesian point of the tool, the plane G17.
 fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Result<(), Alarm> {
-    if out.polar_interp.is_some() {
+    if out.polar_interpolation.is_some() {
         return Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             g.span,
@@ -190,7 +190,7 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
     exec.position[LINEAR] = radius * cos - eccentricity.0 + offset[LINEAR];
     exec.position[HYPOTHETICAL] = radius * sin - eccentricity.1 + offset[HYPOTHETICAL];
     let plane = std::mem::replace(&mut exec.modal.plane, Plane::Xy);
-    out.polar_interp = Some(Box::new(PolarStage {
+    out.polar_interpolation = Some(Box::new(PolarStage {
         staged: Vec::new(),
         held: None,
         plane,
@@ -249,7 +249,7 @@ fn cancel(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Al
                 .with_help("move in a block of its own"),
         );
     }
-    if let Some(stage) = out.polar_interp.take() {
+    if let Some(stage) = out.polar_interpolation.take() {
         let (plane, machine) = stage.flush(&mut out.items);
         exec.position = machine;
         exec.modal.plane = plane;

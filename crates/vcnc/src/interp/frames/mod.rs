@@ -1,0 +1,356 @@
+//! The coordinate chain: from program coordinates to machine coordinates.
+//!
+//! machine = chain(program) + G52 local + G92 shift + work offset (G54 ...) + external offset
+//!           + tool length vector (Z only)
+//!
+//! The chain is a list of general frames ([`transform::Frame`]) applied in slot order: for the
+//! ISO codes, scaling or mirror (G51, G51.1: stretching the programmed coordinates of some axes
+//! about a centre), then the G68 rotation (about a centre in the plane selected when it was
+//! programmed), then Syntec's rotated preset (G92.1 with K R). The FANUC family applies them in
+//! that order (spec/iso-syntec-milling.md 0.1.3, seed L4493-4497). What follows the chain is a
+//! translation only, so its parts are added into one shift when one of them changes.
+//!
+//! G16's polar coordinates are not a frame: they say how a block's words name a point, which then
+//! goes through the chain (`polar_coordinates.rs`). G12.1 maps X-C motion after the chain
+//! (`polar_interpolation.rs`).
+//!
+//! The tool length vector is the offset actually applied to the machine position; it follows the
+//! modal G43/G44 value only when a block moves Z or changes the compensation, and a reference
+//! return on Z clears it (FANUC, spec A.26).
+//!
+//! The codes that set the frames live beside this file: `scaling.rs` (G51, G51.1, G50, G50.1),
+//! `rotation.rs` (G68, G69) and `coords.rs` (G92, G92.1, G52, G53).
+
+pub(crate) mod coords;
+pub(crate) mod rotation;
+pub(crate) mod scaling;
+mod transform;
+
+pub(crate) use transform::{sin_cos_degrees, Frame, FrameSlot, Rotation, Scaling, Transform};
+
+use crate::machine::{Machine, WorkOffsetId, AXES};
+use std::collections::BTreeMap;
+
+/// The coordinate chain and the offsets that move the program's zero.
+#[derive(Clone, Debug)]
+pub(crate) struct Frames {
+    /// The frames in force, in slot order (none: program and machine axes are parallel).
+    chain: Vec<Frame>,
+    work_offsets: BTreeMap<WorkOffsetId, [f64; AXES]>,
+    /// The G92 shift.
+    g92: [f64; AXES],
+    /// The G52 local offset.
+    local: [f64; AXES],
+    /// The tool length offset applied to the Z position now.
+    length_vector: f64,
+    /// The work coordinate system in use (kept equal to the modal state's by the executor).
+    active: WorkOffsetId,
+    /// Work + external + G92 + G52 of `active`: every block needs it and it changes only when an
+    /// offset does, so it is recomputed then.
+    shift: [f64; AXES],
+    /// `shift` plus the length vector on Z: every move records it.
+    offset: [f64; AXES],
+}
+
+impl Frames {
+    /// True when a rotation turns the program's plane (G68 or Syntec's rotated G92.1).
+    pub(crate) fn rotated(&self) -> bool {
+        self.rotation().is_some() || self.preset_rotation().is_some()
+    }
+
+    pub(crate) fn new(machine: &Machine) -> Frames {
+        let mut frames = Frames {
+            work_offsets: machine.work_offsets.clone(),
+            g92: [0.0; AXES],
+            local: [0.0; AXES],
+            length_vector: 0.0,
+            active: WorkOffsetId::Standard(1),
+            shift: [0.0; AXES],
+            offset: [0.0; AXES],
+            chain: Vec::new(),
+        };
+        frames.recompute();
+        frames
+    }
+
+    /// True when the program system is scaled, mirrored or turned (G51, G51.1, G68, Syntec's
+    /// rotated G92.1).
+    #[inline(always)]
+    pub(crate) fn transformed(&self) -> bool {
+        !self.chain.is_empty()
+    }
+
+    /// The frame in `slot`, if one is set.
+    pub(crate) fn frame(&self, slot: FrameSlot) -> Option<&Transform> {
+        self.chain
+            .iter()
+            .find(|frame| frame.slot == slot)
+            .map(|frame| &frame.transform)
+    }
+
+    /// Sets the frame in `slot`, or clears it (`None`); the chain stays in slot order.
+    pub(crate) fn set_frame(&mut self, slot: FrameSlot, transform: Option<Transform>) {
+        self.chain.retain(|frame| frame.slot != slot);
+        if let Some(transform) = transform {
+            let at = self.chain.partition_point(|frame| frame.slot < slot);
+            self.chain.insert(at, Frame { slot, transform });
+        }
+    }
+
+    /// The rotation in `slot`, if that slot holds one.
+    fn rotation_in(&self, slot: FrameSlot) -> Option<&Rotation> {
+        match self.frame(slot) {
+            Some(Transform::Rotate(rotation)) => Some(rotation),
+            _ => None,
+        }
+    }
+
+    /// G68's rotation, while it is on.
+    pub(crate) fn rotation(&self) -> Option<&Rotation> {
+        self.rotation_in(FrameSlot::Rotation)
+    }
+
+    /// Syntec's rotated G92.1, while it is on.
+    pub(crate) fn preset_rotation(&self) -> Option<&Rotation> {
+        self.rotation_in(FrameSlot::PresetRotation)
+    }
+
+    /// G51 or G51.1, while it is on.
+    pub(crate) fn scaling(&self) -> Option<&Scaling> {
+        match self.frame(FrameSlot::Scaling) {
+            Some(Transform::Scale(scaling)) => Some(scaling),
+            _ => None,
+        }
+    }
+
+    /// Sets or ends G68's rotation.
+    pub(crate) fn set_rotation(&mut self, rotation: Option<Rotation>) {
+        self.set_frame(FrameSlot::Rotation, rotation.map(Transform::Rotate));
+    }
+
+    /// Sets or ends Syntec's rotated G92.1.
+    pub(crate) fn set_preset_rotation(&mut self, rotation: Option<Rotation>) {
+        self.set_frame(FrameSlot::PresetRotation, rotation.map(Transform::Rotate));
+    }
+
+    /// Sets or ends G51 or G51.1.
+    pub(crate) fn set_scaling(&mut self, scaling: Option<Scaling>) {
+        self.set_frame(FrameSlot::Scaling, scaling.map(Transform::Scale));
+    }
+
+    /// Selects the work coordinate system in use.
+    pub(crate) fn select(&mut self, active: WorkOffsetId) {
+        if active != self.active {
+            self.active = active;
+            self.recompute();
+        }
+    }
+
+    fn recompute(&mut self) {
+        let work = self.work_offset(self.active);
+        let external = self.work_offset(WorkOffsetId::External);
+        self.shift = std::array::from_fn(|i| work[i] + external[i] + self.g92[i] + self.local[i]);
+        self.offset = self.shift;
+        self.offset[2] += self.length_vector;
+    }
+
+    /// The tool length offset applied to the Z position now.
+    pub(crate) fn length_vector(&self) -> f64 {
+        self.length_vector
+    }
+
+    /// Applies a tool length offset to the Z position.
+    #[inline(always)]
+    pub(crate) fn set_length_vector(&mut self, length: f64) {
+        self.length_vector = length;
+        self.offset[2] = self.shift[2] + length;
+    }
+
+    /// The value of a work offset register.
+    pub(crate) fn work_offset(&self, id: WorkOffsetId) -> [f64; AXES] {
+        self.work_offsets.get(&id).copied().unwrap_or([0.0; AXES])
+    }
+
+    /// Sets one axis of a work offset register.
+    pub(crate) fn set_work_offset(&mut self, id: WorkOffsetId, axis: usize, value: f64) {
+        self.work_offsets.entry(id).or_insert([0.0; AXES])[axis] = value;
+        self.recompute();
+    }
+
+    /// The G92 shift of an axis.
+    pub(crate) fn g92(&self, axis: usize) -> f64 {
+        self.g92[axis]
+    }
+
+    /// Sets the G92 shift of an axis.
+    pub(crate) fn set_g92(&mut self, axis: usize, value: f64) {
+        self.g92[axis] = value;
+        self.recompute();
+    }
+
+    /// The G52 local offset of an axis.
+    pub(crate) fn local(&self, axis: usize) -> f64 {
+        self.local[axis]
+    }
+
+    /// Sets the G52 local offset of an axis.
+    pub(crate) fn set_local(&mut self, axis: usize, value: f64) {
+        self.local[axis] = value;
+        self.recompute();
+    }
+
+    /// Machine minus program coordinates now: the shift and the applied tool length vector.
+    #[inline(always)]
+    pub(crate) fn offset(&self) -> [f64; AXES] {
+        self.offset
+    }
+
+    /// Machine minus program coordinates at the machine position `at`: the plain offset, or,
+    /// when the program system is scaled or turned, the difference at that point.
+    // Inlined, with the scaled or turned case out of line: every move asks.
+    #[inline(always)]
+    pub(crate) fn offset_at(&self, at: &[f64; AXES]) -> [f64; AXES] {
+        if self.chain.is_empty() {
+            return self.offset();
+        }
+        self.transformed_offset_at(at)
+    }
+
+    /// [`Frames::offset_at`] when the program system is scaled or turned.
+    #[inline(never)]
+    fn transformed_offset_at(&self, at: &[f64; AXES]) -> [f64; AXES] {
+        let program = self.to_program(at);
+        std::array::from_fn(|i| at[i] - program[i])
+    }
+
+    /// Program coordinates of a machine position, with the applied tool length vector.
+    // Inlined for the common case, a translation only: every block asks.
+    #[inline(always)]
+    pub(crate) fn to_program(&self, machine: &[f64; AXES]) -> [f64; AXES] {
+        let shift = &self.shift;
+        let mut program: [f64; AXES] = std::array::from_fn(|i| machine[i] - shift[i]);
+        program[2] -= self.length_vector;
+        if self.chain.is_empty() {
+            return program;
+        }
+        self.unturn(program)
+    }
+
+    /// The program coordinates of a point already shifted back: the chain undone, last frame
+    /// first.
+    #[inline(never)]
+    fn unturn(&self, mut program: [f64; AXES]) -> [f64; AXES] {
+        for frame in self.chain.iter().rev() {
+            frame.transform.undo(&mut program);
+        }
+        program
+    }
+
+    /// Machine coordinates of a program position, with tool length vector `length`.
+    #[inline(always)]
+    pub(crate) fn to_machine(&self, program: &[f64; AXES], length: f64) -> [f64; AXES] {
+        // The point is shifted where it is: a copy of it for a common exit cost every block six
+        // moves.
+        if self.chain.is_empty() {
+            return self.shifted(program, length);
+        }
+        self.shifted(&self.turn(program), length)
+    }
+
+    /// Machine coordinates of a point already scaled and turned, with tool length vector
+    /// `length`.
+    #[inline(always)]
+    fn shifted(&self, turned: &[f64; AXES], length: f64) -> [f64; AXES] {
+        let shift = &self.shift;
+        let mut machine: [f64; AXES] = std::array::from_fn(|i| turned[i] + shift[i]);
+        machine[2] += length;
+        machine
+    }
+
+    /// A program position through the chain, before the shift.
+    #[inline(never)]
+    fn turn(&self, program: &[f64; AXES]) -> [f64; AXES] {
+        let mut turned = *program;
+        for frame in &self.chain {
+            frame.transform.apply(&mut turned);
+        }
+        turned
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn frames() -> Frames {
+        Frames::new(&Machine::default())
+    }
+
+    fn scaling(factor: [f64; AXES]) -> Scaling {
+        Scaling {
+            center: [1.0, 2.0, 0.0, 0.0, 0.0, 0.0],
+            factor,
+            mirror: false,
+        }
+    }
+
+    #[test]
+    fn frames_apply_in_slot_order_whatever_order_they_were_set_in() {
+        let mut early = frames();
+        early.set_scaling(Some(scaling([2.0; AXES])));
+        early.set_rotation(Some(Rotation::new((0, 1), (0.0, 0.0), 90.0)));
+        let mut late = frames();
+        late.set_rotation(Some(Rotation::new((0, 1), (0.0, 0.0), 90.0)));
+        late.set_scaling(Some(scaling([2.0; AXES])));
+        let point = [3.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+        // Scaled about (1, 2) first: (5, 0); then turned a quarter: (0, 5).
+        let expected = [0.0, 5.0, 0.0, 0.0, 0.0, 0.0];
+        assert_eq!(early.to_machine(&point, 0.0), expected);
+        assert_eq!(late.to_machine(&point, 0.0), expected);
+    }
+
+    #[test]
+    fn clearing_every_frame_leaves_a_plain_translation() {
+        let mut chain = frames();
+        chain.set_rotation(Some(Rotation::new((1, 2), (0.0, 0.0), 30.0)));
+        chain.set_scaling(Some(scaling([-1.0; AXES])));
+        assert!(chain.transformed() && chain.rotated());
+        chain.set_rotation(None);
+        chain.set_scaling(None);
+        assert!(!chain.transformed());
+        assert_eq!(chain.frame(FrameSlot::Scaling), None);
+    }
+
+    proptest! {
+        #[test]
+        fn a_point_through_the_chain_and_back_is_where_it_started(
+            point in prop::array::uniform6(-500.0f64..500.0),
+            factor in prop::array::uniform6(prop_oneof![0.1f64..4.0, -4.0f64..-0.1]),
+            degrees in -720.0f64..720.0,
+            preset in -90.0f64..90.0,
+            plane in 0usize..3,
+            shift in prop::array::uniform6(-100.0f64..100.0),
+            length in -50.0f64..50.0,
+        ) {
+            let axes = [(0, 1), (2, 0), (1, 2)][plane];
+            let mut chain = frames();
+            chain.set_preset_rotation(Some(Rotation::new((0, 1), (4.0, -3.0), preset)));
+            chain.set_scaling(Some(scaling(factor)));
+            chain.set_rotation(Some(Rotation::new(axes, (10.0, -20.0), degrees)));
+            for (axis, value) in shift.iter().enumerate() {
+                chain.set_g92(axis, *value);
+            }
+            let machine = chain.to_machine(&point, length);
+            chain.set_length_vector(length);
+            let back = chain.to_program(&machine);
+            for (p, b) in point.iter().zip(back) {
+                prop_assert!((p - b).abs() < 1e-9, "{point:?} came back as {back:?}");
+            }
+            let offset = chain.offset_at(&machine);
+            for i in 0..AXES {
+                prop_assert!((machine[i] - offset[i] - point[i]).abs() < 1e-9);
+            }
+        }
+    }
+}

@@ -1,0 +1,117 @@
+//! The tool offset memory (the H and D registers) and the length offset in force.
+//!
+//! A part of the executor with private fields: every write to an offset goes through
+//! [`ToolMemory::write`], which refreshes the length of the active H number itself, so the
+//! value a move reads is right by construction. Machine-file offsets are the power-on contents;
+//! G10 L10-L13 and the tool offset macro variables change them while a program runs.
+
+use crate::machine::ToolOffset;
+use std::collections::BTreeMap;
+
+/// The offset registers and the H number of the active length compensation.
+#[derive(Clone, Debug)]
+pub(crate) struct ToolMemory {
+    offsets: BTreeMap<u32, ToolOffset>,
+    /// The H number of the active length compensation.
+    length_number: u32,
+    /// Geometry plus wear of `length_number`'s register: every move of Z reads it, and a
+    /// look-up in the map would cost that move more than the rest of its arithmetic.
+    length: f64,
+}
+
+impl ToolMemory {
+    /// The memory at power-on: the machine file's offsets, H0 selected.
+    pub(crate) fn new(offsets: BTreeMap<u32, ToolOffset>) -> ToolMemory {
+        let mut memory = ToolMemory {
+            offsets,
+            length_number: 0,
+            length: 0.0,
+        };
+        memory.length = memory.length_of(0);
+        memory
+    }
+
+    /// Register `number`, if it was ever set.
+    pub(crate) fn get(&self, number: u32) -> Option<&ToolOffset> {
+        self.offsets.get(&number)
+    }
+
+    /// Geometry plus wear of register `number`'s length (0 for a register never set).
+    fn length_of(&self, number: u32) -> f64 {
+        self.get(number).map_or(0.0, |t| t.length + t.length_wear)
+    }
+
+    /// Geometry plus wear of register `number`'s radius (0 for a register never set).
+    pub(crate) fn radius(&self, number: u32) -> f64 {
+        self.get(number).map_or(0.0, |t| t.radius + t.radius_wear)
+    }
+
+    /// Changes register `number` (created empty if it was never set).
+    pub(crate) fn write(&mut self, number: u32, change: impl FnOnce(&mut ToolOffset)) {
+        let offset = self.offsets.entry(number).or_default();
+        offset.number = number;
+        change(offset);
+        if number == self.length_number {
+            self.length = self.length_of(number);
+        }
+    }
+
+    /// The H number of the active length compensation.
+    pub(crate) fn length_number(&self) -> u32 {
+        self.length_number
+    }
+
+    /// Selects the register of length compensation (H).
+    pub(crate) fn select_length(&mut self, number: u32) {
+        self.length_number = number;
+        self.length = self.length_of(number);
+    }
+
+    /// Geometry plus wear of the selected length register, mm.
+    #[inline(always)]
+    pub(crate) fn length(&self) -> f64 {
+        self.length
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn memory() -> ToolMemory {
+        let mut offsets = BTreeMap::new();
+        offsets.insert(
+            1,
+            ToolOffset {
+                number: 1,
+                length: 100.0,
+                length_wear: -0.5,
+                radius: 5.0,
+                radius_wear: 0.1,
+            },
+        );
+        ToolMemory::new(offsets)
+    }
+
+    #[test]
+    fn the_selected_length_follows_every_write_to_its_register() {
+        let mut tools = memory();
+        assert_eq!(tools.length(), 0.0);
+        tools.select_length(1);
+        assert_eq!(tools.length(), 99.5);
+        tools.write(1, |t| t.length_wear = 0.25);
+        assert_eq!(tools.length(), 100.25);
+        tools.write(2, |t| t.length = 50.0);
+        assert_eq!(tools.length(), 100.25);
+        tools.select_length(2);
+        assert_eq!(tools.length(), 50.0);
+        assert_eq!(tools.get(2).map(|t| t.number), Some(2));
+    }
+
+    #[test]
+    fn a_register_never_set_has_no_length_or_radius() {
+        let tools = memory();
+        assert_eq!(tools.radius(7), 0.0);
+        assert_eq!(tools.radius(1), 5.1);
+    }
+}
