@@ -205,8 +205,13 @@ impl Pipeline {
         let (head, file) = program::open_file(path)?;
         let dialect = program::dialect(path, &head);
         let length = file.metadata().map_or(0, |m| m.len());
-        let main = MainText::File(path.to_path_buf());
-        Ok(self.start(Opened::new(main, path, Box::new(file), length, dialect)))
+        Ok(self.start(Opened {
+            main: MainText::File(path.to_path_buf()),
+            name: path.to_path_buf(),
+            reader: Box::new(file),
+            length,
+            dialect,
+        }))
     }
 
     /// Starts interpreting the program read from `reader`, named `name` in diagnostics and
@@ -224,7 +229,13 @@ impl Pipeline {
         let name = name.as_ref();
         let (head, reader) = program::read_head(reader, name)?;
         let dialect = program::dialect(name, &head);
-        Ok(self.start(Opened::new(MainText::None, name, reader, 0, dialect)))
+        Ok(self.start(Opened {
+            main: MainText::None,
+            name: name.to_path_buf(),
+            reader,
+            length: 0,
+            dialect,
+        }))
     }
 
     /// Starts interpreting the program `text`, named `name` in diagnostics and dialect
@@ -235,13 +246,13 @@ impl Pipeline {
         let length = text.len() as u64;
         let text: std::sync::Arc<[u8]> = text.into();
         let reader = Box::new(std::io::Cursor::new(std::sync::Arc::clone(&text)));
-        self.start(Opened::new(
-            MainText::Memory(text),
-            name,
+        self.start(Opened {
+            main: MainText::Memory(text),
+            name: name.to_path_buf(),
             reader,
             length,
             dialect,
-        ))
+        })
     }
 
     /// Builds the interpreter over the opened text and starts its thread.
@@ -262,7 +273,13 @@ impl Pipeline {
             }
             None => (interpreter, None),
         };
-        Stream::spawn(interpreter, store, layout, files, self.machine)
+        let run = threads::Run {
+            interpreter,
+            store,
+            files,
+            machine: self.machine,
+        };
+        Stream::spawn(run, layout)
     }
 }
 

@@ -137,31 +137,17 @@ pub(crate) enum MainText {
 
 /// A program opened and its dialect known, ready for its interpreter.
 pub(crate) struct Opened {
-    main: MainText,
-    name: PathBuf,
-    reader: Box<dyn Read + Send>,
-    length: u64,
+    /// Where its whole text can be had again.
+    pub(crate) main: MainText,
+    /// Its name in diagnostics.
+    pub(crate) name: PathBuf,
+    pub(crate) reader: Box<dyn Read + Send>,
+    /// About how many bytes it has (0 when unknown).
+    pub(crate) length: u64,
     pub(crate) dialect: Dialect,
 }
 
 impl Opened {
-    /// The program `name` read from `reader` (about `length` bytes, 0 when unknown).
-    pub(crate) fn new(
-        main: MainText,
-        name: &Path,
-        reader: Box<dyn Read + Send>,
-        length: u64,
-        dialect: Dialect,
-    ) -> Opened {
-        Opened {
-            main,
-            name: name.to_path_buf(),
-            reader,
-            length,
-            dialect,
-        }
-    }
-
     /// Its interpreter on `machine`, parsed as `parsing` says, calling programs from
     /// `directories` (and its own); with the files it will read.
     pub(crate) fn interpreter(

@@ -58,15 +58,24 @@ pub struct Finished {
     pub store_error: Option<io::Error>,
 }
 
+/// What the interpreter's thread is started with.
+pub(crate) struct Run {
+    pub(crate) interpreter: ProgramInterpreter,
+    /// Where the persistent variables are saved, if anywhere.
+    pub(crate) store: Option<Box<dyn PersistentStore>>,
+    pub(crate) files: ProgramFiles,
+    pub(crate) machine: Machine,
+}
+
 impl Stream {
-    /// Starts `interpreter` on a thread of its own, its variables saved in `store`.
-    pub(crate) fn spawn(
-        mut interpreter: ProgramInterpreter,
-        store: Option<Box<dyn PersistentStore>>,
-        layout: Layout,
-        files: ProgramFiles,
-        machine: Machine,
-    ) -> Stream {
+    /// Starts `run`'s interpreter on a thread of its own, as `layout` says.
+    pub(crate) fn spawn(run: Run, layout: Layout) -> Stream {
+        let Run {
+            mut interpreter,
+            store,
+            files,
+            machine,
+        } = run;
         let (sender, batches) = sync_channel::<Vec<Item>>(POOL);
         let (recycle, recycled) = sync_channel::<Vec<Item>>(POOL);
         for _ in 0..POOL {
@@ -291,7 +300,13 @@ mod tests {
             waiting: Waiting::Adaptive,
             stopping: Stopping::AtTheBlock,
         };
-        let mut stream = Stream::spawn(interpreter, None, layout, files, machine);
+        let run = Run {
+            interpreter,
+            store: None,
+            files,
+            machine,
+        };
+        let mut stream = Stream::spawn(run, layout);
         assert!(matches!(stream.next(), Some(Ok(_))));
         // Time for the thread to fill the pool and block.
         std::thread::sleep(Duration::from_millis(300));
