@@ -5,7 +5,10 @@
 //! slower side and waits only now and then, briefly. When the interpreter is the slower side
 //! the consumer would spin through most of every wait and burn a core doing nothing. So the
 //! spinning is paid from a budget the consumer earns by working: a sixteenth of its time
-//! between waits, kept up to a few full spins. A wait beyond the budget sleeps.
+//! between waits, kept up to a few full spins. A wait beyond the budget naps (sleeps for a
+//! set time and looks again), so that the interpreter's thread need not wake it, and after two
+//! naps sleeps until the batch comes; after a wait longer than the naps, the next one sleeps at
+//! once.
 //!
 //! Never spins beyond its budget, and never reads the clock when a batch is ready.
 
@@ -35,11 +38,25 @@ const SHARE: u32 = 16;
 /// spin through a long stretch of waits.
 const MOST_BUDGET: Duration = Duration::from_millis(1);
 
+/// The first nap of a wait beyond the spinning budget: about two batches of a CAM program.
+const FIRST_NAP: Duration = Duration::from_micros(100);
+
+/// Naps, each twice as long as the one before, before the consumer sleeps until the batch
+/// comes: after 0.3 ms the interpreter is held up by more than a few batches' work, and one
+/// wake-up a batch no longer counts, while a nap a batch would.
+const NAPS: u32 = 2;
+
+/// A wait longer than the naps (100 and 200 µs): the next one sleeps until the batch comes
+/// without napping first.
+const NAPPING: Duration = Duration::from_micros(300);
+
 /// A consumer's way of waiting, with its spinning budget.
 #[derive(Debug)]
 pub(crate) struct Waiter {
     waiting: Waiting,
     budget: Duration,
+    /// How long the last wait took.
+    last_wait: Duration,
     /// When the last wait ended: the consumer has worked since (a batch that was ready at once
     /// is no wait).
     last_wait_ended: Instant,
@@ -50,6 +67,7 @@ impl Waiter {
         Waiter {
             waiting,
             budget: Duration::ZERO,
+            last_wait: Duration::ZERO,
             last_wait_ended: Instant::now(),
         }
     }
@@ -67,7 +85,8 @@ impl Waiter {
         }
     }
 
-    /// Waits for a value that is not there yet: spins while the budget lasts, then sleeps.
+    /// Waits for a value that is not there yet: spins while the budget lasts, then naps, then
+    /// sleeps until it comes.
     #[inline(never)]
     fn wait<T>(&mut self, channel: &Receiver<T>) -> Result<T, RecvError> {
         let start = Instant::now();
@@ -76,8 +95,15 @@ impl Waiter {
             let spun = start.elapsed();
             if spun >= spin {
                 self.budget = self.budget.saturating_sub(spun);
-                let value = channel.recv();
+                // Napping pays while waits are short; a long wait costs the interpreter one
+                // wake-up, which is little beside it, and naps would cost the consumer more.
+                let value = if self.last_wait < NAPPING {
+                    nap_then_sleep(channel)
+                } else {
+                    channel.recv()
+                };
                 self.last_wait_ended = Instant::now();
+                self.last_wait = self.last_wait_ended - start;
                 return value;
             }
             // Yielding, not a busy loop: on a machine whose cores all have work, the processor
@@ -88,6 +114,7 @@ impl Waiter {
                     let spun = start.elapsed();
                     self.budget = self.budget.saturating_sub(spun);
                     self.last_wait_ended = start + spun;
+                    self.last_wait = spun;
                     return Ok(value);
                 }
                 Err(TryRecvError::Disconnected) => return Err(RecvError),
@@ -103,6 +130,23 @@ impl Waiter {
         self.budget = (self.budget + worked / SHARE).min(MOST_BUDGET);
         self.budget.min(SPIN)
     }
+}
+
+/// The next value of `channel`, after naps of growing length and then asleep in `recv`. A
+/// consumer asleep in `recv` costs the interpreter's thread, the slower one, a system call to
+/// wake it for every batch; one that naps is never woken, and finds a batch or two ready when
+/// it looks again (the pool has room for them).
+fn nap_then_sleep<T>(channel: &Receiver<T>) -> Result<T, RecvError> {
+    let mut nap = FIRST_NAP;
+    for _ in 0..NAPS {
+        std::thread::sleep(nap);
+        match channel.try_recv() {
+            Ok(value) => return Ok(value),
+            Err(TryRecvError::Disconnected) => return Err(RecvError),
+            Err(TryRecvError::Empty) => nap *= 2,
+        }
+    }
+    channel.recv()
 }
 
 #[cfg(test)]
@@ -143,7 +187,7 @@ mod tests {
     }
 
     #[test]
-    fn a_long_wait_spends_the_budget_and_sleeps() {
+    fn a_long_wait_spends_the_budget_then_naps_and_sleeps() {
         let (sender, receiver) = sync_channel(1);
         let mut waiter = Waiter::new(Waiting::Adaptive);
         waiter.budget = Duration::from_micros(100);
