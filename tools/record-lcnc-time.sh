@@ -4,7 +4,7 @@
 # Each program in crates/vcnc/tests/data/plan/lcnc/*.ngc names the machine limits it is timed
 # with in its first line, `(limits: --vel V --acc A)`; LinuxCNC's real trajectory planner runs it
 # through lcnc-time (../shared/tools/lcnc-time, see its README) and the JSON report is stored
-# beside the program as <stem>.json. tests/plan_reference.rs reads those files: the test suite
+# beside the program as <stem>.json. tests/it/plan_reference.rs reads those files: the test suite
 # never needs LinuxCNC.
 #
 # Usage: tools/record-lcnc-time.sh [STEM ...]      (no stem: every program)

@@ -1,9 +1,12 @@
 //! Developer tasks for vcnc: `cargo xtask <task>`.
 //!
-//! Tasks regenerate data that lives in the repository (reference traces recorded from LinuxCNC,
-//! generated tables); none of them is needed to build or test vcnc.
+//! `ci` runs what CI runs (fmt, clippy, docs, tests). The other tasks regenerate data that lives
+//! in the repository (reference traces recorded from LinuxCNC, generated tables); none of them is
+//! needed to build or test vcnc.
 
+mod bench_jumps;
 mod bench_program;
+mod ci;
 mod readme;
 mod record_lcnc;
 
@@ -16,8 +19,10 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     };
     let result = match task.as_str() {
+        "ci" => ci::run(&args[1..]),
         "record-lcnc" => record_lcnc::run(&args[1..]),
         "bench-program" => bench_program::run(&args[1..]),
+        "bench-jumps" => bench_jumps::run(&args[1..]),
         "readme" => readme::run(&args[1..]),
         _ => {
             eprintln!("unknown task `{task}`\n{USAGE}");
@@ -36,6 +41,8 @@ fn main() -> ExitCode {
 const USAGE: &str = "usage: cargo xtask <task>
 
 tasks:
+  ci              what CI runs: check rustc against rust-version, then fmt, clippy, docs and the tests
   record-lcnc     run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output
   readme          regenerate the supported-codes table in README.md
-  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout";
+  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout
+  bench-jumps     write three variants of a bench-program file that jump or call (WHILE, M98, G65)";

@@ -27,7 +27,7 @@ pub(crate) fn display_text(bytes: &[u8]) -> String {
                 let (valid, after) = rest.split_at(error.valid_up_to());
                 out.push_str(std::str::from_utf8(valid).unwrap_or_default());
                 let bad = error.error_len().unwrap_or(after.len());
-                out.extend(std::iter::repeat('?').take(bad));
+                out.extend(std::iter::repeat_n('?', bad));
                 rest = &after[bad..];
             }
         }

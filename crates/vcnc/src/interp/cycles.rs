@@ -199,7 +199,7 @@ fn levels(
     };
     let r_level = cycle.r.unwrap_or(cycle.initial);
     if matches!(cycle.kind, CycleKind::HighSpeedPeck | CycleKind::Peck)
-        && cycle.q.map_or(true, |q| q <= 0.0)
+        && cycle.q.is_none_or(|q| q <= 0.0)
     {
         return Err(Alarm::error(
             AlarmCode::CycleData,

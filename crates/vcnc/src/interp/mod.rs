@@ -20,6 +20,8 @@ mod data_input;
 mod decode;
 mod exec;
 mod frames;
+mod front_end;
+mod kernel;
 mod length;
 mod macros;
 pub mod modal;
@@ -43,6 +45,8 @@ use crate::syntax::source::{BlockSource, ParsedLines};
 use crate::syntax::{Block, BlockKind, Dialect};
 use decode::Command;
 use exec::{Executor, Flow};
+pub use front_end::{FrontEnd, Run, Step};
+pub use kernel::{Kernel, Origin};
 pub use macros::interrupt::InterruptAt;
 pub use macros::programs::{
     DirectoryLibrary, LoadedFiles, MemoryLibrary, ProgramLibrary, ProgramText,
@@ -331,6 +335,9 @@ pub(crate) enum Place {
     Stream {
         /// Index of the next block in the line.
         block: usize,
+        /// The main program's last line (1-based): back on the stream after running from an
+        /// index, the stream ends there as the indexed program does (`u32::MAX` before).
+        last_line: u32,
     },
     /// A program held in memory (a subprogram, or the main program once it jumped).
     Stored {
@@ -341,18 +348,37 @@ pub(crate) enum Place {
         /// Index of the next block in the line.
         block: usize,
     },
+    /// The main program once it jumped, run from an index into its file.
+    Indexed {
+        /// The file's index.
+        program: std::sync::Arc<macros::indexed::IndexedFile>,
+        /// The parsed lines around `line`, once fetched.
+        chunk: Option<std::sync::Arc<macros::indexed::ParsedChunk>>,
+        /// Line index of the next block.
+        line: usize,
+        /// Index of the next block in the line.
+        block: usize,
+    },
 }
 
 impl Place {
-    /// Block `block` of line `line` of a program held in memory.
+    /// Block `block` of line `line` of a program the run can jump in.
     pub(crate) fn stored(
-        program: std::sync::Arc<macros::programs::StoredProgram>,
+        program: macros::programs::Program,
         (line, block): macros::programs::Position,
     ) -> Place {
-        Place::Stored {
-            program,
-            line,
-            block,
+        match program {
+            macros::programs::Program::Stored(program) => Place::Stored {
+                program,
+                line,
+                block,
+            },
+            macros::programs::Program::Indexed(program) => Place::Indexed {
+                program,
+                chunk: None,
+                line,
+                block,
+            },
         }
     }
 }
@@ -404,7 +430,10 @@ impl<B: BlockSource> Interpreter<B> {
             started: false,
             last_span: Span::new(file, 1, 0..0),
             blocks_executed: 0,
-            place: Place::Stream { block: 0 },
+            place: Place::Stream {
+                block: 0,
+                last_line: u32::MAX,
+            },
             macros: macros::Macros::default(),
             file,
             options,
@@ -571,7 +600,7 @@ impl<B: BlockSource> Interpreter<B> {
     /// Reads and runs until something is queued or the program is over.
     fn step(&mut self) {
         match &mut self.core.place {
-            Place::Stream { block } => {
+            Place::Stream { block, last_line } => {
                 // The next line is read and its first block run in the same step: most lines
                 // have one block.
                 let mut blocks = self.source.blocks();
@@ -584,6 +613,9 @@ impl<B: BlockSource> Interpreter<B> {
                     blocks = self.source.blocks();
                 }
                 if let Some(next) = blocks.get(*block) {
+                    if next.span.line > *last_line {
+                        return self.core.end_of_stored_program();
+                    }
                     *block += 1;
                     self.core.macros.stream_line = next.span.line;
                     self.core.run_block(next, self.source.text());
@@ -606,6 +638,41 @@ impl<B: BlockSource> Interpreter<B> {
                         *block = 0;
                     }
                     None => self.core.end_of_stored_program(),
+                }
+            }
+            Place::Indexed {
+                program,
+                chunk,
+                line,
+                block,
+            } => {
+                if self.core.macros.resumes_stream((*line, *block)) {
+                    let last_line = u32::try_from(program.lines()).unwrap_or(u32::MAX);
+                    let block = *block;
+                    self.core.place = Place::Stream { block, last_line };
+                    return;
+                }
+                let lines = match chunk {
+                    Some(lines) if lines.line(*line).is_some() => std::sync::Arc::clone(lines),
+                    _ => match program.chunk_of(*line) {
+                        Ok(Some(lines)) => {
+                            *chunk = Some(std::sync::Arc::clone(&lines));
+                            lines
+                        }
+                        Ok(None) => return self.core.end_of_stored_program(),
+                        Err(error) => return self.core.read_failed(&error),
+                    },
+                };
+                match lines.line(*line) {
+                    Some(blocks) if *block < blocks.len() => {
+                        let index = *block;
+                        *block += 1;
+                        self.core.run_block(&blocks[index], self.source.text());
+                    }
+                    _ => {
+                        *line += 1;
+                        *block = 0;
+                    }
                 }
             }
         }

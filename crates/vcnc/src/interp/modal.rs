@@ -262,7 +262,7 @@ fn power_on_code(tenths: u32) -> Option<GCode> {
         930 => InverseTimeFeed,
         940 => FeedPerMinute,
         950 => FeedPerRevolution,
-        540..=590 if tenths % 10 == 0 => WorkOffset(((tenths - 530) / 10) as u8),
+        540..=590 if tenths.is_multiple_of(10) => WorkOffset(((tenths - 530) / 10) as u8),
         610 => ExactStopMode,
         640 => ContinuousMode,
         980 => ReturnToInitialLevel,

@@ -78,6 +78,8 @@ pub trait LineSource {
 #[derive(Clone, Debug)]
 pub struct TextLines<'a> {
     text: &'a [u8],
+    /// The file offset of `text[0]`: zero unless the text is a piece of a file read apart.
+    base: usize,
     position: usize,
     number: u32,
 }
@@ -87,6 +89,7 @@ impl<'a> TextLines<'a> {
     pub fn new(text: &'a [u8]) -> TextLines<'a> {
         TextLines {
             text,
+            base: 0,
             position: 0,
             number: 0,
         }
@@ -99,7 +102,20 @@ impl<'a> TextLines<'a> {
     pub fn starting_at(text: &'a [u8], offset: usize, number: u32) -> TextLines<'a> {
         TextLines {
             text,
+            base: 0,
             position: offset.min(text.len()),
+            number: number.saturating_sub(1),
+        }
+    }
+
+    /// Lines of `text`, a piece of a file that starts at byte `base` of the file and at line
+    /// `number` (1-based): offsets are the file's, for reading a program out of a file that is
+    /// not held whole.
+    pub fn piece(text: &'a [u8], base: usize, number: u32) -> TextLines<'a> {
+        TextLines {
+            text,
+            base,
+            position: 0,
             number: number.saturating_sub(1),
         }
     }
@@ -112,13 +128,14 @@ impl<'a> TextLines<'a> {
 
 impl LineSource for TextLines<'_> {
     fn text(&self) -> Option<&[u8]> {
-        Some(self.text)
+        // A piece of a file is not the program's whole text.
+        (self.base == 0).then_some(self.text)
     }
 
     fn unread(&self) -> Option<Unread<'_>> {
         Some(Unread {
             text: self.text.get(self.position..)?,
-            end_offset: u32::try_from(self.text.len()).ok()?,
+            end_offset: u32::try_from(self.base + self.text.len()).ok()?,
             number: self.number.wrapping_add(1),
         })
     }
@@ -143,7 +160,7 @@ impl LineSource for TextLines<'_> {
         let line = line.strip_suffix(b"\r").unwrap_or(line);
         Ok(Some(Line {
             text: line,
-            offset: clamp_offset(start),
+            offset: clamp_offset(self.base + start),
             number: self.number,
         }))
     }
@@ -289,7 +306,7 @@ impl<R: Read> ReaderLines<R> {
 /// The first `\n` in `bytes`, eight bytes at a time: a byte equal to `\n` becomes zero after
 /// the XOR, and the classic has-zero-byte test finds it without a branch per byte.
 #[inline(always)]
-fn memchr_newline(bytes: &[u8]) -> Option<usize> {
+pub(crate) fn memchr_newline(bytes: &[u8]) -> Option<usize> {
     const ONES: u64 = 0x0101_0101_0101_0101;
     const HIGHS: u64 = 0x8080_8080_8080_8080;
     const NEWLINES: u64 = ONES * b'\n' as u64;
@@ -355,7 +372,7 @@ pub(crate) mod tests {
         for i in 0..2000 {
             text.extend_from_slice(format!("G1 X{i}.\r\n").as_bytes());
         }
-        text.extend(std::iter::repeat(b'X').take(600 * 1024));
+        text.extend(std::iter::repeat_n(b'X', 600 * 1024));
         text.extend_from_slice(b"\nM30");
         let a = collect(&mut TextLines::new(&text));
         let b = collect(&mut ReaderLines::new(Trickle {

@@ -20,7 +20,7 @@
 //! warning ([`AlarmCode::InterruptIgnored`]), since the user asked for a signal that then does
 //! nothing.
 
-use super::programs::{sequence_number, Position};
+use super::programs::{sequence_number, Position, Program};
 use super::Core;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::decode::Command;
@@ -209,7 +209,7 @@ impl Core {
         let program = self
             .find_program(armed.program, main_text, armed.span)
             .map_err(|alarm| alarm.with_label(span, "the interrupt signal came here"))?;
-        self.call(program, (0, 0), 1, None, false, span)?;
+        self.call(Program::Stored(program), (0, 0), 1, None, false, span)?;
         let frame = self
             .macros
             .calls
@@ -236,7 +236,7 @@ impl Core {
         match line {
             Some(q) => {
                 let index = (q as usize).wrapping_sub(1);
-                if program.line(index).is_none() {
+                if !program.has_line(index) {
                     return Err(Alarm::error(
                         AlarmCode::SequenceNotFound,
                         span,

@@ -6,13 +6,16 @@
 //! written, then its words are evaluated (a vacant variable drops its word) and the block runs
 //! as any other. Calls and returns run after the block's own words, as the controls do
 //! (`G52 X100. M98 P2011` shifts, then calls). Programs are found in memory or loaded once
-//! (`programs.rs`); a jump in a main program that was streamed loads it whole.
+//! (`programs.rs`); a jump in a main program that was streamed indexes its file and runs from
+//! the index (`indexed.rs`), or loads it whole when its text is in memory or cannot be read
+//! again from any place.
 //!
 //! Limits keep a program from running forever or nesting without end: backward jumps per run
 //! ([`Limits::jumps`]), call depth (the profile's `call_depth`, `macro_call_depth`), and the
 //! size of a program held in memory.
 
 pub(crate) mod eval;
+pub(crate) mod indexed;
 pub(crate) mod interrupt;
 pub(crate) mod programs;
 mod structured;
@@ -26,7 +29,8 @@ use crate::profile::{DecimalLess, GCode, Group, MCode};
 use crate::source::Span;
 use crate::syntax::expr::{Expr, Instruction, Statement, Target, VariableBank};
 use crate::syntax::{Block, Number, Word};
-use programs::{Position, ProgramLibrary, StoredProgram};
+use indexed::IndexedFile;
+use programs::{Position, Program, ProgramLibrary, StoredProgram};
 use std::collections::HashMap;
 use std::sync::Arc;
 use system::{Counters, WriteEffect};
@@ -70,7 +74,7 @@ struct CallFrame {
     /// Where the caller goes on after M99.
     return_to: Place,
     /// The called program and where the call started in it (for repeats).
-    program: Arc<StoredProgram>,
+    program: Program,
     start: Position,
     repeats_left: u32,
     /// G65/G66: the arguments the call started with (a level of locals was pushed).
@@ -94,6 +98,14 @@ pub(crate) struct ModalCall {
 }
 
 /// The main program's file, loaded when needed.
+enum MainFile {
+    /// Its text, whole: the block source's, or a file that cannot be read again from any place.
+    Whole(FileText),
+    /// An index into the file (`indexed.rs`).
+    Indexed(Arc<IndexedFile>),
+}
+
+/// The main program's file, held whole.
 struct FileText {
     text: Arc<[u8]>,
     headers: Vec<(u32, usize, u32)>,
@@ -111,13 +123,15 @@ pub(crate) struct Macros {
     jumps: u64,
     main_passes: u32,
     pub(crate) library: Option<Box<dyn ProgramLibrary>>,
-    main: Option<Arc<StoredProgram>>,
-    file: Option<FileText>,
+    main: Option<Program>,
+    file: Option<MainFile>,
     programs: HashMap<u32, Arc<StoredProgram>>,
     /// The words of the block being run, with their expressions evaluated (reused).
     resolved: Block,
     /// The line of the main program's stream that is being run (1-based).
     pub(crate) stream_line: u32,
+    /// Where the stream stopped when the main program went to its index: (line, next block).
+    stream_at: Option<Position>,
     /// M96's interrupt program and the signals still to come.
     pub(crate) interrupts: interrupt::Interrupts,
 }
@@ -139,6 +153,18 @@ impl Macros {
     #[inline]
     pub(crate) fn in_call(&self) -> bool {
         !self.calls.is_empty()
+    }
+
+    /// True when the main program, run from its index, has come to where its stream stopped:
+    /// the run goes on from the stream (parsed ahead, and nothing read twice), which then
+    /// forgets that place.
+    #[inline]
+    pub(crate) fn resumes_stream(&mut self, at: Position) -> bool {
+        let resumes = self.stream_at == Some(at) && !self.in_call();
+        if resumes {
+            self.stream_at = None;
+        }
+        resumes
     }
 }
 
@@ -445,8 +471,10 @@ impl Core {
     /// Where the block being run stands in its program.
     fn current_position(&self) -> Position {
         match &self.place {
-            Place::Stored { line, block, .. } => (*line, block.saturating_sub(1)),
-            Place::Stream { block } => (
+            Place::Stored { line, block, .. } | Place::Indexed { line, block, .. } => {
+                (*line, block.saturating_sub(1))
+            }
+            Place::Stream { block, .. } => (
                 self.macros.stream_line.saturating_sub(1) as usize,
                 block.saturating_sub(1),
             ),
@@ -455,84 +483,128 @@ impl Core {
 
     /// The program being run, in memory: a streamed main program is loaded now, and the run
     /// goes on from memory at the same place.
-    fn current_program(
-        &mut self,
-        main_text: Option<&[u8]>,
-        span: Span,
-    ) -> Result<Arc<StoredProgram>, Alarm> {
+    fn current_program(&mut self, main_text: Option<&[u8]>, span: Span) -> Result<Program, Alarm> {
         match &self.place {
-            Place::Stored { program, .. } => Ok(Arc::clone(program)),
-            Place::Stream { block } => {
+            Place::Stored { program, .. } => Ok(Program::Stored(Arc::clone(program))),
+            Place::Indexed { program, .. } => Ok(Program::Indexed(Arc::clone(program))),
+            Place::Stream { block, .. } => {
                 let block = *block;
                 let main = self.main_program(main_text, span)?;
-                self.place = Place::Stored {
-                    program: Arc::clone(&main),
-                    line: self.macros.stream_line.saturating_sub(1) as usize,
-                    block,
-                };
+                let line = self.macros.stream_line.saturating_sub(1) as usize;
+                if matches!(&main, Program::Indexed(index) if line < index.lines()) {
+                    // The stream stays here: the run goes back to it when it gets here again.
+                    self.macros.stream_at = Some((line, block));
+                }
+                self.place = Place::stored(main.clone(), (line, block));
                 Ok(main)
             }
         }
     }
 
-    /// Loads the text of the main program's file (once).
-    fn load_file(&mut self, main_text: Option<&[u8]>, span: Span) -> Result<&FileText, Alarm> {
+    /// Loads the main program's file (once): its text when the block source has it, else an
+    /// index into the file, else (a file that cannot be read again from any place) its text.
+    fn load_file(&mut self, main_text: Option<&[u8]>, span: Span) -> Result<&MainFile, Alarm> {
         if self.macros.file.is_none() {
-            let text: Arc<[u8]> = match main_text {
-                Some(text) => Arc::from(text),
-                None => match self.macros.library.as_mut().and_then(|l| l.main_text()) {
-                    Some(text) => text,
-                    None => {
-                        return Err(alarm(
-                            AlarmCode::NotSupportedYet,
-                            span,
-                            "this jump or call needs the program text in memory, and the program is read as a stream",
-                        )
-                        .with_help("give the interpreter a program library that can read the main file"))
-                    }
-                },
+            let file = match main_text {
+                Some(text) => MainFile::Whole(self.whole_file(Arc::from(text), span)?),
+                None => self.library_file(span)?,
             };
-            if text.len() > self.options.limits.program_bytes {
-                return Err(alarm(
-                    AlarmCode::MacroLimit,
-                    span,
-                    format!(
-                        "the program is larger than {} bytes: too large to hold for jumps",
-                        self.options.limits.program_bytes
-                    ),
-                ));
-            }
-            let headers = programs::program_headers(&text, &self.exec.profile.syntax());
-            let main_end = programs::main_program_end(&text, &headers);
-            self.macros.file = Some(FileText {
-                text,
-                headers,
-                main_end,
-            });
+            self.macros.file = Some(file);
         }
         Ok(self.macros.file.as_ref().expect("loaded above"))
     }
 
-    fn main_program(
-        &mut self,
-        main_text: Option<&[u8]>,
-        span: Span,
-    ) -> Result<Arc<StoredProgram>, Alarm> {
+    /// The main program's file through the library: indexed when it can be read again.
+    fn library_file(&mut self, span: Span) -> Result<MainFile, Alarm> {
+        let library = self.macros.library.as_mut();
+        if let Some(file) = library.and_then(|l| l.open_main()) {
+            let scanned = IndexedFile::scan(
+                &file,
+                indexed::Bytes::File(file.try_clone().map_err(|e| read_alarm(span, &e))?),
+                self.file,
+                self.exec.profile.syntax(),
+            );
+            return match scanned {
+                Ok(index) => Ok(MainFile::Indexed(Arc::new(index))),
+                Err(error) => Err(read_alarm(span, &error)),
+            };
+        }
+        match self.macros.library.as_mut().and_then(|l| l.main_text()) {
+            Some(text) => Ok(MainFile::Whole(self.whole_file(text, span)?)),
+            None => Err(alarm(
+                AlarmCode::NotSupportedYet,
+                span,
+                "this jump or call needs the program text in memory, and the program is read as a stream",
+            )
+            .with_help("give the interpreter a program library that can read the main file")),
+        }
+    }
+
+    /// A main program's text of `length` bytes may be held whole.
+    fn check_held_size(&self, length: usize, span: Span) -> Result<(), Alarm> {
+        let most = self.options.limits.program_bytes;
+        if length > most {
+            return Err(alarm(
+                AlarmCode::MacroLimit,
+                span,
+                format!("the program is larger than {most} bytes: too large to hold for jumps"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A main program's file held whole, its headers found.
+    fn whole_file(&self, text: Arc<[u8]>, span: Span) -> Result<FileText, Alarm> {
+        self.check_held_size(text.len(), span)?;
+        let headers = programs::program_headers(&text, &self.exec.profile.syntax());
+        let main_end = programs::main_program_end(&text, &headers);
+        Ok(FileText {
+            text,
+            headers,
+            main_end,
+        })
+    }
+
+    fn main_program(&mut self, main_text: Option<&[u8]>, span: Span) -> Result<Program, Alarm> {
         if let Some(main) = &self.macros.main {
-            return Ok(Arc::clone(main));
+            return Ok(main.clone());
         }
         let syntax = self.exec.profile.syntax();
         let file_id = self.file;
-        let file = self.load_file(main_text, span)?;
-        let main = Arc::new(StoredProgram::parse(
-            &file.text,
-            (0, 1, file.main_end),
-            file_id,
-            &syntax,
-            None,
-        ));
-        self.macros.main = Some(Arc::clone(&main));
+        let main = match self.load_file(main_text, span)? {
+            MainFile::Whole(file) => Program::Stored(Arc::new(StoredProgram::parse(
+                &file.text,
+                (0, 1, file.main_end),
+                file_id,
+                &syntax,
+                None,
+            ))),
+            MainFile::Indexed(index) => Program::Indexed(Arc::clone(index)),
+        };
+        self.macros.main = Some(main.clone());
         Ok(main)
+    }
+
+    /// Loads the main program whole, whatever file it is in: a Syntec `%@MACRO` program runs
+    /// from its whole text (its statements' partners are found over all of it).
+    fn load_main_whole(&mut self, main_text: Option<&[u8]>, span: Span) -> Result<(), Alarm> {
+        if self.macros.main.is_some() {
+            return Ok(());
+        }
+        let text = match self.load_file(main_text, span)? {
+            MainFile::Whole(_) => return Ok(()),
+            MainFile::Indexed(index) => index.main_text().map_err(|e| read_alarm(span, &e))?,
+        };
+        self.check_held_size(text.len(), span)?;
+        let program = StoredProgram::parse(
+            &text,
+            (0, 1, text.len()),
+            self.file,
+            &self.exec.profile.syntax(),
+            None,
+        );
+        self.macros.main = Some(Program::Stored(Arc::new(program)));
+        Ok(())
     }
 
     /// Program `number`: from the main program's file, else from the library.
@@ -545,51 +617,13 @@ impl Core {
         if let Some(program) = self.macros.programs.get(&number) {
             return Ok(Arc::clone(program));
         }
-        let syntax = self.exec.profile.syntax();
-        let file_id = self.file;
         let mut found = None;
         let have_text = main_text.is_some() || self.macros.library.is_some();
-        if have_text {
-            if let Ok(file) = self.load_file(main_text, span) {
-                if let Some(i) = file.headers.iter().position(|h| h.0 == number) {
-                    let (_, offset, line) = file.headers[i];
-                    let end = file.headers.get(i + 1).map_or(file.text.len(), |h| h.1);
-                    found = Some(StoredProgram::parse(
-                        &file.text,
-                        (offset, line, end),
-                        file_id,
-                        &syntax,
-                        Some(number),
-                    ));
-                }
-            }
+        if have_text && self.load_file(main_text, span).is_ok() {
+            found = self.program_in_main_file(number, span)?;
         }
         if found.is_none() {
-            if let Some(text) = self.macros.library.as_mut().and_then(|l| l.find(number)) {
-                if text.text.len() > self.options.limits.program_bytes {
-                    return Err(alarm(
-                        AlarmCode::MacroLimit,
-                        span,
-                        format!("O{number:04} is too large to load"),
-                    ));
-                }
-                let headers = programs::program_headers(&text.text, &syntax);
-                let (offset, line, end) = match headers.iter().position(|h| h.0 == number) {
-                    Some(i) => (
-                        headers[i].1,
-                        headers[i].2,
-                        headers.get(i + 1).map_or(text.text.len(), |h| h.1),
-                    ),
-                    None => (0, 1, text.text.len()),
-                };
-                found = Some(StoredProgram::parse(
-                    &text.text,
-                    (offset, line, end),
-                    text.file,
-                    &syntax,
-                    Some(number),
-                ));
-            }
+            found = self.program_in_library(number, span)?;
         }
         let Some(program) = found else {
             return Err(alarm(
@@ -604,6 +638,82 @@ impl Core {
         let program = Arc::new(program);
         self.macros.programs.insert(number, Arc::clone(&program));
         Ok(program)
+    }
+
+    /// Program `number` from the main program's file, once that is loaded.
+    fn program_in_main_file(
+        &self,
+        number: u32,
+        span: Span,
+    ) -> Result<Option<StoredProgram>, Alarm> {
+        let syntax = self.exec.profile.syntax();
+        match &self.macros.file {
+            None => Ok(None),
+            Some(MainFile::Whole(file)) => {
+                let Some(i) = file.headers.iter().position(|h| h.0 == number) else {
+                    return Ok(None);
+                };
+                let (_, offset, line) = file.headers[i];
+                let end = file.headers.get(i + 1).map_or(file.text.len(), |h| h.1);
+                Ok(Some(StoredProgram::parse(
+                    &file.text,
+                    (offset, line, end),
+                    self.file,
+                    &syntax,
+                    Some(number),
+                )))
+            }
+            Some(MainFile::Indexed(index)) => {
+                let text = index
+                    .program_text(number)
+                    .map_err(|e| read_alarm(span, &e))?;
+                let Some((text, base, line)) = text else {
+                    return Ok(None);
+                };
+                if text.len() > self.options.limits.program_bytes {
+                    return Err(too_large(number, span));
+                }
+                let base = usize::try_from(base).unwrap_or(usize::MAX);
+                Ok(Some(StoredProgram::parse_piece(
+                    &text,
+                    (base, line),
+                    self.file,
+                    &syntax,
+                    Some(number),
+                )))
+            }
+        }
+    }
+
+    /// Program `number` from the library, if there is one and it has it.
+    fn program_in_library(
+        &mut self,
+        number: u32,
+        span: Span,
+    ) -> Result<Option<StoredProgram>, Alarm> {
+        let syntax = self.exec.profile.syntax();
+        let Some(text) = self.macros.library.as_mut().and_then(|l| l.find(number)) else {
+            return Ok(None);
+        };
+        if text.text.len() > self.options.limits.program_bytes {
+            return Err(too_large(number, span));
+        }
+        let headers = programs::program_headers(&text.text, &syntax);
+        let (offset, line, end) = match headers.iter().position(|h| h.0 == number) {
+            Some(i) => (
+                headers[i].1,
+                headers[i].2,
+                headers.get(i + 1).map_or(text.text.len(), |h| h.1),
+            ),
+            None => (0, 1, text.text.len()),
+        };
+        Ok(Some(StoredProgram::parse(
+            &text.text,
+            (offset, line, end),
+            text.file,
+            &syntax,
+            Some(number),
+        )))
     }
 
     /// Counts a backward jump against the limit.
@@ -626,7 +736,8 @@ impl Core {
     fn goto(&mut self, label: u32, span: Span, main_text: Option<&[u8]>) -> Result<(), Alarm> {
         let program = self.current_program(main_text, span)?;
         let from = self.current_position();
-        let Some(target) = program.find_label(label, Some(from)) else {
+        let found = program.find_label(label, Some(from));
+        let Some(target) = found.map_err(|e| read_alarm(span, &e))? else {
             return Err(alarm(
                 AlarmCode::SequenceNotFound,
                 span,
@@ -638,7 +749,9 @@ impl Core {
         }
         // Loops the jump leaves are over.
         while let Some(active) = self.macros.loops.last() {
-            let end = program.find_loop_end(active.at, active.label);
+            let end = program
+                .find_loop_end(active.at, active.label)
+                .map_err(|e| read_alarm(span, &e))?;
             if target > active.at && end.is_some_and(|end| target <= end) {
                 break;
             }
@@ -692,7 +805,8 @@ impl Core {
             self.macros.loops.pop();
         }
         let program = self.current_program(main_text, span)?;
-        let Some(end) = program.find_loop_end(at, label) else {
+        let found = program.find_loop_end(at, label);
+        let Some(end) = found.map_err(|e| read_alarm(span, &e))? else {
             return Err(alarm(
                 AlarmCode::LoopStructure,
                 span,
@@ -765,7 +879,7 @@ impl Core {
             let (number, repeats, arguments) =
                 self.macro_arguments(block, first_argument, g.span)?;
             if g.code == GCode::MacroCall {
-                let program = self.find_program(number, main_text, g.span)?;
+                let program = Program::Stored(self.find_program(number, main_text, g.span)?);
                 return self.call(program, (0, 0), repeats, Some(arguments), false, g.span);
             }
             self.macros.modal_call = Some(ModalCall {
@@ -781,7 +895,7 @@ impl Core {
                 let modal = modal.clone();
                 let program = self.find_program(modal.program, main_text, block.span)?;
                 return self.call(
-                    program,
+                    Program::Stored(program),
                     (0, 0),
                     modal.repeats,
                     Some(modal.arguments),
@@ -857,7 +971,7 @@ impl Core {
             })?,
             None => (0, 0),
         };
-        self.call(program, start, repeats, None, false, span)
+        self.call(Program::Stored(program), start, repeats, None, false, span)
     }
 
     /// Haas M97 P_ L_: sequence number P of the running program.
@@ -885,7 +999,8 @@ impl Core {
         }
         let program = self.current_program(main_text, span)?;
         let label = label.unwrap_or(0);
-        let Some(start) = program.find_label(label, None) else {
+        let found = program.find_label(label, None);
+        let Some(start) = found.map_err(|e| read_alarm(span, &e))? else {
             return Err(alarm(
                 AlarmCode::SequenceNotFound,
                 span,
@@ -898,7 +1013,7 @@ impl Core {
     /// Enters a called program.
     fn call(
         &mut self,
-        program: Arc<StoredProgram>,
+        program: Program,
         start: Position,
         repeats: u32,
         arguments: Option<Box<Locals>>,
@@ -943,7 +1058,7 @@ impl Core {
         let loops = std::mem::take(&mut self.macros.loops);
         self.macros.calls.push(CallFrame {
             return_to: self.place.clone(),
-            program: Arc::clone(&program),
+            program: program.clone(),
             start,
             repeats_left: repeats,
             arguments,
@@ -990,7 +1105,7 @@ impl Core {
         };
         if frame.repeats_left > 1 {
             frame.repeats_left -= 1;
-            let (program, start) = (Arc::clone(&frame.program), frame.start);
+            let (program, start) = (frame.program.clone(), frame.start);
             if let Some(arguments) = &frame.arguments {
                 self.macros.vars.reset_level(**arguments);
             }
@@ -1014,7 +1129,8 @@ impl Core {
         }
         if let Some(label) = label {
             let program = self.current_program(main_text, span)?;
-            let Some(target) = program.find_label(label, None) else {
+            let found = program.find_label(label, None);
+            let Some(target) = found.map_err(|e| read_alarm(span, &e))? else {
                 return Err(alarm(
                     AlarmCode::SequenceNotFound,
                     span,
@@ -1055,13 +1171,16 @@ impl Core {
         self.count_jump(span)?;
         let program = self.main_program(main_text, span)?;
         let target = match label {
-            Some(label) => program.find_label(label, None).ok_or_else(|| {
-                alarm(
-                    AlarmCode::SequenceNotFound,
-                    span,
-                    format!("M99 P{label}: the program has no block N{label}"),
-                )
-            })?,
+            Some(label) => {
+                let found = program.find_label(label, None);
+                found.map_err(|e| read_alarm(span, &e))?.ok_or_else(|| {
+                    alarm(
+                        AlarmCode::SequenceNotFound,
+                        span,
+                        format!("M99 P{label}: the program has no block N{label}"),
+                    )
+                })?
+            }
             None => (0, 0),
         };
         self.macros.loops.clear();
@@ -1076,7 +1195,7 @@ impl Core {
         if let Some(frame) = self.macros.calls.last() {
             let name = frame
                 .program
-                .number
+                .number()
                 .map_or("the called program".to_string(), |n| format!("O{n:04}"));
             self.out.push_warning(
                 Alarm::warning(
@@ -1191,6 +1310,23 @@ impl Core {
             _ => value,
         }
     }
+}
+
+/// The main program's file could not be read again.
+fn read_alarm(span: Span, error: &std::io::Error) -> Alarm {
+    alarm(
+        AlarmCode::ReadError,
+        span,
+        format!("cannot read the program again: {error}"),
+    )
+}
+
+fn too_large(number: u32, span: Span) -> Alarm {
+    alarm(
+        AlarmCode::MacroLimit,
+        span,
+        format!("O{number:04} is too large to load"),
+    )
 }
 
 fn word_whole(word: &Word, what: &str) -> Result<u32, Alarm> {

@@ -7,11 +7,16 @@
 //! once. Called programs come from the same file (programs that follow M30, each headed by
 //! `O1234` or `:1234`) or from the library (a program directory). A Syntec `%@MACRO` program
 //! is read statement by statement and keeps the structure of its IF and loop statements; it
-//! always runs from memory (`structured.rs`).
+//! always runs from memory (`structured.rs`). A main program read from a file that can be read
+//! again from any place does not load whole: it runs from an index into the file
+//! (`indexed.rs`), and the programs after its M30 are found by the index's headers.
 
+use super::indexed::IndexedFile;
 use crate::source::FileId;
 use crate::syntax::iso::structure::Structure;
-use crate::syntax::iso::{parse_program, LineBlocks, SyntaxOptions};
+use crate::syntax::iso::{
+    parse_program, parse_program_piece, LineBlocks, ProgramBlocks, SyntaxOptions,
+};
 use crate::syntax::Block;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -33,6 +38,13 @@ pub trait ProgramLibrary: Send {
 
     /// The main program's text, when the block source streams it and cannot give it whole.
     fn main_text(&mut self) -> Option<Arc<[u8]>> {
+        None
+    }
+
+    /// The main program's file opened again, when it can be read from any place (a regular
+    /// file, not a pipe): a main program that jumps runs from an index into it instead of
+    /// from its whole text ([`ProgramLibrary::main_text`]).
+    fn open_main(&mut self) -> Option<std::fs::File> {
         None
     }
 }
@@ -73,7 +85,8 @@ pub type LoadedFiles = Arc<Mutex<Vec<(FileId, PathBuf)>>>;
 
 /// Programs in directories: files named `O1234`, `O1234.nc`, `1234.nc` (any extension, any
 /// case, leading zeros or none), and files named otherwise that hold `O1234` headers; and the
-/// main program's file, read whole when it jumps.
+/// main program's file, indexed when it jumps or calls (read whole when it is not a regular
+/// file).
 #[derive(Debug)]
 pub struct DirectoryLibrary {
     main: Option<PathBuf>,
@@ -184,10 +197,71 @@ impl ProgramLibrary for DirectoryLibrary {
         let text = std::fs::read(self.main.as_ref()?).ok()?;
         Some(Arc::from(text))
     }
+
+    fn open_main(&mut self) -> Option<std::fs::File> {
+        let file = std::fs::File::open(self.main.as_ref()?).ok()?;
+        file.metadata().ok()?.is_file().then_some(file)
+    }
 }
 
 /// A sequence number's place in a program: line index and block index in the line.
 pub(crate) type Position = (usize, usize);
+
+/// A program the run can jump in: parsed whole, or a main program run from an index into its
+/// file (`indexed.rs`).
+#[derive(Clone, Debug)]
+pub(crate) enum Program {
+    Stored(Arc<StoredProgram>),
+    Indexed(Arc<IndexedFile>),
+}
+
+impl Program {
+    /// The program number of its header, if it has one (a main program has none here).
+    pub(crate) fn number(&self) -> Option<u32> {
+        match self {
+            Program::Stored(program) => program.number,
+            Program::Indexed(_) => None,
+        }
+    }
+
+    /// True when the program has line `line` (an index).
+    pub(crate) fn has_line(&self, line: usize) -> bool {
+        match self {
+            Program::Stored(program) => program.line(line).is_some(),
+            Program::Indexed(file) => line < file.lines(),
+        }
+    }
+
+    /// [`StoredProgram::find_label`].
+    ///
+    /// # Errors
+    /// Reading an indexed program's file again failed.
+    pub(crate) fn find_label(
+        &self,
+        n: u32,
+        from: Option<Position>,
+    ) -> std::io::Result<Option<Position>> {
+        match self {
+            Program::Stored(program) => Ok(program.find_label(n, from)),
+            Program::Indexed(file) => file.find_label(n, from),
+        }
+    }
+
+    /// [`StoredProgram::find_loop_end`].
+    ///
+    /// # Errors
+    /// Reading an indexed program's file again failed.
+    pub(crate) fn find_loop_end(
+        &self,
+        from: Position,
+        label: u32,
+    ) -> std::io::Result<Option<Position>> {
+        match self {
+            Program::Stored(program) => Ok(program.find_loop_end(from, label)),
+            Program::Indexed(file) => file.find_loop_end(from, label),
+        }
+    }
+}
 
 /// One program, parsed, with its sequence numbers indexed.
 #[derive(Debug)]
@@ -213,6 +287,23 @@ impl StoredProgram {
     ) -> StoredProgram {
         let end = end.min(text.len());
         let program = parse_program(&text[..end], offset, line, file, syntax);
+        StoredProgram::from_blocks(program, number)
+    }
+
+    /// Parses `text`, a program alone, cut out of a file where it starts at byte `base` and line
+    /// `line`: spans are the file's.
+    pub(crate) fn parse_piece(
+        text: &[u8],
+        (base, line): (usize, u32),
+        file: FileId,
+        syntax: &SyntaxOptions,
+        number: Option<u32>,
+    ) -> StoredProgram {
+        let program = parse_program_piece(text, base, line, file, syntax);
+        StoredProgram::from_blocks(program, number)
+    }
+
+    fn from_blocks(program: ProgramBlocks, number: Option<u32>) -> StoredProgram {
         let mut labels = Vec::new();
         for (l, blocks) in program.lines.iter().enumerate() {
             for (b, block) in blocks.as_slice().iter().enumerate() {
@@ -267,29 +358,50 @@ impl StoredProgram {
     /// Where loop `label`'s END is, for the WHILE at `from`: the first END with that number
     /// after it, counting nested loops of the same number.
     pub(crate) fn find_loop_end(&self, from: Position, label: u32) -> Option<Position> {
-        use crate::syntax::Statement;
-        let mut depth = 0usize;
+        let mut search = LoopEnd::new(label);
         let (start_line, start_block) = from;
         for (l, line) in self.lines.iter().enumerate().skip(start_line) {
             for (b, block) in line.as_slice().iter().enumerate() {
                 if l == start_line && b <= start_block {
                     continue;
                 }
-                for statement in &block.statements {
-                    match *statement {
-                        Statement::While { label: m, .. } if m == label => depth += 1,
-                        Statement::End { label: m, .. } if m == label => {
-                            if depth == 0 {
-                                return Some((l, b));
-                            }
-                            depth -= 1;
-                        }
-                        _ => {}
-                    }
+                if search.is_end(block) {
+                    return Some((l, b));
                 }
             }
         }
         None
+    }
+}
+
+/// The search for the END of loop `label` over the blocks after its WHILE, in order: nested
+/// loops of the same number are counted.
+pub(crate) struct LoopEnd {
+    label: u32,
+    depth: usize,
+}
+
+impl LoopEnd {
+    pub(crate) fn new(label: u32) -> LoopEnd {
+        LoopEnd { label, depth: 0 }
+    }
+
+    /// True when `block`, the next block, holds the END searched for.
+    pub(crate) fn is_end(&mut self, block: &Block) -> bool {
+        use crate::syntax::Statement;
+        for statement in &block.statements {
+            match *statement {
+                Statement::While { label, .. } if label == self.label => self.depth += 1,
+                Statement::End { label, .. } if label == self.label => {
+                    if self.depth == 0 {
+                        return true;
+                    }
+                    self.depth -= 1;
+                }
+                _ => {}
+            }
+        }
+        false
     }
 }
 
@@ -308,32 +420,43 @@ pub(crate) fn program_headers(text: &[u8], syntax: &SyntaxOptions) -> Vec<(u32, 
     while offset < text.len() {
         let rest = &text[offset..];
         let length = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-        let content = &rest[..length];
-        let start = content
-            .iter()
-            .position(|b| !matches!(b, b' ' | b'\t' | b'\r'))
-            .unwrap_or(content.len());
-        let content = &content[start..];
-        let letter = content.first().copied().unwrap_or(0);
-        if letter == b'O' || letter == b'o' || (letter == b':' && syntax.colon_program_number) {
-            let digits: Vec<u8> = content[1..]
-                .iter()
-                .copied()
-                .take_while(u8::is_ascii_digit)
-                .collect();
-            if !digits.is_empty() && digits.len() <= 8 {
-                if let Some(n) = std::str::from_utf8(&digits)
-                    .ok()
-                    .and_then(|d| d.parse().ok())
-                {
-                    headers.push((n, offset, line));
-                }
-            }
+        if let Some(n) = header_number(&rest[..length], syntax) {
+            headers.push((n, offset, line));
         }
         offset += length + 1;
         line = line.saturating_add(1);
     }
     headers
+}
+
+/// The program number of a header line (`O1234`, `:1234`), given without its `\n`.
+pub(crate) fn header_number(line: &[u8], syntax: &SyntaxOptions) -> Option<u32> {
+    let start = line
+        .iter()
+        .position(|b| !matches!(b, b' ' | b'\t' | b'\r'))
+        .unwrap_or(line.len());
+    let content = &line[start..];
+    let letter = content.first().copied().unwrap_or(0);
+    if !(letter == b'O' || letter == b'o' || (letter == b':' && syntax.colon_program_number)) {
+        return None;
+    }
+    let digits = content[1..]
+        .iter()
+        .take_while(|b| b.is_ascii_digit())
+        .count();
+    if digits == 0 || digits > 8 {
+        return None;
+    }
+    std::str::from_utf8(&content[1..1 + digits])
+        .ok()
+        .and_then(|d| d.parse().ok())
+}
+
+/// True when a line is more than blanks, `%` and a comment: before the first header, it makes
+/// that header a subprogram's.
+pub(crate) fn starts_code(line: &[u8]) -> bool {
+    let first = line.iter().find(|b| !matches!(b, b' ' | b'\t' | b'\r'));
+    !matches!(first, None | Some(b'%' | b'(' | b';'))
 }
 
 /// The lines of a text that are the main program: from the start to the header of the second
@@ -343,15 +466,7 @@ pub(crate) fn main_program_end(text: &[u8], headers: &[(u32, usize, u32)]) -> us
         return text.len();
     };
     // Anything but blanks, `%` and comments before the first header makes it a subprogram's.
-    let before = &text[..first];
-    let runs_before = before.split(|&b| b == b'\n').any(|line| {
-        let line: Vec<u8> = line
-            .iter()
-            .copied()
-            .filter(|b| !matches!(b, b' ' | b'\t' | b'\r'))
-            .collect();
-        !(line.is_empty() || line[0] == b'%' || line[0] == b'(' || line[0] == b';')
-    });
+    let runs_before = text[..first].split(|&b| b == b'\n').any(starts_code);
     if runs_before {
         first
     } else {

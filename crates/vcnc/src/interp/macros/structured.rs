@@ -22,7 +22,7 @@ use crate::syntax::iso::structure::Link;
 use crate::syntax::Block;
 use std::sync::Arc;
 
-use super::programs::{Position, StoredProgram};
+use super::programs::{Position, Program, StoredProgram};
 
 /// The link of the statement at `at` of `program` (a branch a CASE or IF looks at).
 fn link_at(program: &StoredProgram, at: Position, span: Span) -> Result<Link, Alarm> {
@@ -43,7 +43,10 @@ impl Core {
         if !matches!(self.place, Place::Stream { .. }) {
             return;
         }
-        if let Err(alarm) = self.current_program(main_text, span) {
+        let loaded = self
+            .load_main_whole(main_text, span)
+            .and_then(|()| self.current_program(main_text, span));
+        if let Err(alarm) = loaded {
             let alarm = if alarm.code == AlarmCode::NotSupportedYet {
                 Alarm::not_supported(
                     span,
@@ -185,7 +188,10 @@ impl Core {
         span: Span,
         main_text: Option<&[u8]>,
     ) -> Result<(Arc<StoredProgram>, Link), Alarm> {
-        let program = self.current_program(main_text, span)?;
+        // A main program run from an index is an ISO program: it has no structured statements.
+        let Program::Stored(program) = self.current_program(main_text, span)? else {
+            return Err(wrong_link(span));
+        };
         let at = self.current_position();
         let link = match program.structure().and_then(|s| s.link(at)) {
             Some(Ok(link)) => link,
@@ -197,7 +203,9 @@ impl Core {
 
     /// The alarm of a statement that has no partner, if it has one.
     fn check_structure(&mut self, span: Span, main_text: Option<&[u8]>) -> Result<(), Alarm> {
-        let program = self.current_program(main_text, span)?;
+        let Program::Stored(program) = self.current_program(main_text, span)? else {
+            return Ok(());
+        };
         let at = self.current_position();
         match program.structure().and_then(|s| s.link(at)) {
             Some(Err(alarm)) => Err(alarm.clone()),
@@ -218,7 +226,7 @@ impl Core {
     }
 
     fn jump_to(&mut self, program: Arc<StoredProgram>, (line, block): Position) -> Next {
-        self.place = Place::stored(program, (line, block));
+        self.place = Place::stored(Program::Stored(program), (line, block));
         Next::Jumped
     }
 

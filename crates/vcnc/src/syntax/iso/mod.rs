@@ -19,7 +19,7 @@ pub mod structure;
 
 pub(crate) use parser::parse_plain_line_in;
 pub use parser::{parse_line, SyntaxOptions};
-pub use program::{parse_program, ProgramBlocks};
+pub use program::{parse_program, parse_program_piece, ProgramBlocks};
 
 /// A reusable set of blocks: the blocks of one line, overwritten line after line so that reading
 /// does not allocate once the buffers have grown.

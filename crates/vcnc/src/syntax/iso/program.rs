@@ -45,6 +45,37 @@ pub fn parse_program(
     options: &SyntaxOptions,
 ) -> ProgramBlocks {
     let offset = offset.min(text.len());
+    read_program(text, Piece { offset, base: 0 }, line, file, options)
+}
+
+/// Reads the program in `text`, a piece of a file that starts at byte `base` of the file and at
+/// line `line` (1-based): spans are the file's. For a program read out of a file that is not
+/// held whole.
+pub fn parse_program_piece(
+    text: &[u8],
+    base: usize,
+    line: u32,
+    file: FileId,
+    options: &SyntaxOptions,
+) -> ProgramBlocks {
+    read_program(text, Piece { offset: 0, base }, line, file, options)
+}
+
+/// Where a program starts in the text it is read from (`offset`), and where that text starts in
+/// its file (`base`).
+#[derive(Clone, Copy)]
+struct Piece {
+    offset: usize,
+    base: usize,
+}
+
+fn read_program(
+    text: &[u8],
+    Piece { offset, base }: Piece,
+    line: u32,
+    file: FileId,
+    options: &SyntaxOptions,
+) -> ProgramBlocks {
     let header = macro_header(&text[offset..]);
     let iso_end = header.map_or(text.len(), |h| offset + h.body);
     // `//` comments before the header are what made it the first line that counts.
@@ -52,7 +83,7 @@ pub fn parse_program(
         slash_slash_comments: options.slash_slash_comments || header.is_some(),
         ..*options
     };
-    let mut source = TextLines::starting_at(&text[..iso_end], offset, line);
+    let mut source = TextLines::piece(&text[offset..iso_end], base + offset, line);
     let mut lines = Vec::new();
     while let Ok(Some(line)) = source.next_line() {
         let mut blocks = LineBlocks::new();
@@ -67,6 +98,7 @@ pub fn parse_program(
     };
     let first_line = line.saturating_add(header.line as u32 + 1);
     let mut cutter = Cutter::new(text, iso_end, first_line, file, options);
+    cutter.base = base;
     cutter.run();
     lines.extend(cutter.lines);
     let structure = Some(Structure::scan(&lines));
@@ -128,6 +160,8 @@ const CLOSERS: &[&[u8]] = &[
 /// Cuts a macro program's body into statements and reads each.
 struct Cutter<'t, 'o> {
     text: &'t [u8],
+    /// The file offset of `text[0]` (spans are the file's).
+    base: usize,
     /// The next byte to look at.
     pos: usize,
     /// Line index (in `lines`) and number of the byte at `pos`.
@@ -153,6 +187,7 @@ impl<'t, 'o> Cutter<'t, 'o> {
         let line_count = text[body..].split(|&b| b == b'\n').count();
         Cutter {
             text,
+            base: 0,
             pos: body,
             line_index: 0,
             line_number,
@@ -230,7 +265,7 @@ impl<'t, 'o> Cutter<'t, 'o> {
             None => {
                 let (line_index, line_number) = (self.line_index, self.line_number);
                 self.blank(self.text.len() - open);
-                let at = |p: usize| u32::try_from(p).unwrap_or(u32::MAX);
+                let at = |p: usize| u32::try_from(self.base + p).unwrap_or(u32::MAX);
                 let span = Span::new(self.file, line_number, at(open)..at(open + 2));
                 let alarm = Alarm::warning(
                     AlarmCode::UnclosedComment,
@@ -292,7 +327,7 @@ impl<'t, 'o> Cutter<'t, 'o> {
         let Some((start, line_index, line_number)) = self.start.take() else {
             return;
         };
-        let offset = u32::try_from(start).unwrap_or(u32::MAX);
+        let offset = u32::try_from(self.base + start).unwrap_or(u32::MAX);
         if let Some(line) = self.lines.get_mut(line_index) {
             parse_macro_statement(
                 &self.statement,

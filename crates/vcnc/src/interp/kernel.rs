@@ -1,0 +1,244 @@
+//! The kernel a dialect drives: position and the coordinate chain, the tool offsets, feed, and
+//! the moves, events and alarms that become the motion stream.
+//!
+//! A front end other than ISO (a SINUMERIK block sequencer, a test's toy dialect) reads its own
+//! blocks, keeps its own modal state and calls the kernel for what every control shares:
+//! [`Kernel::rapid_to`], [`Kernel::feed_to`], [`Kernel::arc_to`], [`Kernel::dwell`],
+//! [`Kernel::end`]. Targets are program coordinates (the work system in force, through the frames
+//! of the chain and the tool length); what comes out is the same [`Segment`] stream the ISO
+//! interpreter yields, so the planner, the checks and every consumer take it unchanged. The
+//! kernel never reads program text and knows no dialect: each operation names the block it
+//! belongs to by an [`Origin`].
+
+use super::arc::{arc_center, in_plane, ArcSpec};
+use super::decode::Command;
+use super::exec::{check_position, Executor};
+use super::modal::FeedMode;
+use super::Output;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::{Machine, AXES};
+use crate::motion::{ArcDirection, EndKind, MachinePos, Segment, SegmentKind};
+use crate::source::Span;
+
+/// The block an operation of the kernel belongs to: its span, for alarms and for every segment
+/// it makes, and its sequence number, if it has one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Origin {
+    /// The block's span in the program text.
+    pub span: Span,
+    /// Its sequence number (`N`), if any.
+    pub sequence: Option<u32>,
+}
+
+impl Origin {
+    /// The block at `span`, without a sequence number.
+    pub fn at(span: Span) -> Origin {
+        Origin {
+            span,
+            sequence: None,
+        }
+    }
+}
+
+/// The machine state every dialect shares, and the queue of the stream it produces.
+pub struct Kernel {
+    exec: Executor,
+    pub(super) out: Output,
+    /// The block of the operation at hand, in the form the executor's functions take it.
+    block: Command,
+}
+
+impl Kernel {
+    /// The kernel of `machine` at power-on (the profile's modal state, G54, no tool length).
+    pub fn new(machine: &Machine) -> Kernel {
+        Kernel {
+            exec: Executor::new(machine),
+            out: Output::default(),
+            block: Command::default(),
+        }
+    }
+
+    /// The machine position now.
+    pub fn position(&self) -> MachinePos {
+        MachinePos(self.exec.position)
+    }
+
+    /// The position now in program coordinates.
+    pub fn program_position(&self) -> [f64; AXES] {
+        self.exec.program_position()
+    }
+
+    /// Sets the cutting feed, mm/min.
+    pub fn set_feed(&mut self, mm_per_min: f64) {
+        self.exec.modal.feed_mode = FeedMode::PerMinute;
+        self.exec.feed = Some(mm_per_min);
+    }
+
+    /// The block `origin` becomes the one the next segments and alarms belong to.
+    fn enter(&mut self, origin: Origin) {
+        self.block.span = origin.span;
+        self.block.sequence = origin.sequence;
+    }
+
+    /// Machine coordinates of a program-coordinate target; axes without a value stay where they
+    /// are. The tool length follows when Z is named, as a block that moves Z applies it.
+    fn machine_target(&mut self, target: [Option<f64>; AXES]) -> [f64; AXES] {
+        let here = self.exec.program_position();
+        let program = std::array::from_fn(|i| target[i].unwrap_or(here[i]));
+        self.exec.machine_target(&program, target[2].is_some())
+    }
+
+    /// A rapid to `target` (program coordinates).
+    ///
+    /// # Errors
+    /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range.
+    pub fn rapid_to(&mut self, target: [Option<f64>; AXES], origin: Origin) -> Result<(), Alarm> {
+        self.enter(origin);
+        let to = self.machine_target(target);
+        self.exec.rapid_to(to, &self.block, &mut self.out)
+    }
+
+    /// A cutting line to `target` (program coordinates) at the feed in force.
+    ///
+    /// # Errors
+    /// [`AlarmCode::NoFeedRate`] without a feed; [`AlarmCode::ValueOutOfRange`] for a position
+    /// beyond the control's range.
+    pub fn feed_to(&mut self, target: [Option<f64>; AXES], origin: Origin) -> Result<(), Alarm> {
+        self.enter(origin);
+        let to = self.machine_target(target);
+        self.exec.feed_to(to, &self.block, false, &mut self.out)
+    }
+
+    /// An arc in the plane in force (G17 at power-on) to `target` about `center`, both in
+    /// program coordinates (the centre's two plane coordinates), at the feed in force; axes off
+    /// the plane move with it (a helix). An end on the start is a full circle.
+    ///
+    /// # Errors
+    /// [`AlarmCode::NoFeedRate`] without a feed; [`AlarmCode::ArcEndNotOnCircle`] when the end is
+    /// not on the circle about `center`.
+    pub fn arc_to(
+        &mut self,
+        target: [Option<f64>; AXES],
+        center: (f64, f64),
+        direction: ArcDirection,
+        origin: Origin,
+    ) -> Result<(), Alarm> {
+        self.enter(origin);
+        let feed = self.exec.cutting_feed(&self.block)?;
+        let plane = self.exec.modal.plane;
+        let (a, b, _) = plane.axes();
+        let mut center_point = self.exec.program_position();
+        (center_point[a], center_point[b]) = center;
+        let length = self.exec.frames.length_vector();
+        let center_machine = self.exec.frames.to_machine(&center_point, length);
+        let to = self.machine_target(target);
+        let start = in_plane(plane, &self.exec.position);
+        let spec = ArcSpec::Center {
+            offset: (center_machine[a] - start.0, center_machine[b] - start.1),
+            span: origin.span,
+        };
+        let tolerance = self.exec.profile.arc_radius_tolerance;
+        let (ca, cb) = arc_center(start, in_plane(plane, &to), spec, direction, tolerance)?;
+        let mut center = self.exec.position;
+        (center[a], center[b]) = (ca, cb);
+        check_position(&center, &self.block)?;
+        let motion = self.exec.move_to(to, &self.block)?;
+        self.out.push(
+            &self.block,
+            SegmentKind::Arc {
+                motion,
+                center: MachinePos(center),
+                direction,
+                plane,
+                extra_turns: 0,
+                feed,
+            },
+        );
+        Ok(())
+    }
+
+    /// A dwell of `seconds`.
+    ///
+    /// # Errors
+    /// [`AlarmCode::BadDwell`] for a negative time.
+    pub fn dwell(&mut self, seconds: f64, origin: Origin) -> Result<(), Alarm> {
+        self.enter(origin);
+        if seconds.is_nan() || seconds < 0.0 {
+            return Err(Alarm::error(
+                AlarmCode::BadDwell,
+                origin.span,
+                "dwell time cannot be negative",
+            ));
+        }
+        self.out.push(&self.block, SegmentKind::Dwell { seconds });
+        Ok(())
+    }
+
+    /// The program ends here, as `kind` says: the end item, nothing after it.
+    pub fn end(&mut self, kind: EndKind, origin: Origin) {
+        self.enter(origin);
+        self.out.push(&self.block, SegmentKind::End { kind });
+    }
+
+    /// A warning (or any alarm that does not stop the program) in the stream.
+    pub fn warn(&mut self, alarm: Alarm) {
+        self.out.push_warning(alarm);
+    }
+
+    /// An error stops the program: the alarm is the stream's last item.
+    pub(super) fn stop(&mut self, alarm: Alarm) {
+        self.out.stop(alarm);
+    }
+
+    /// Moves the items that can be handed out to the end of `into`.
+    pub(super) fn release(&mut self, into: &mut impl Extend<Result<Segment, Alarm>>) {
+        let released = self.out.releasable();
+        into.extend(self.out.items.drain(..released));
+        if let Some(held) = self.out.held.as_mut() {
+            *held -= released;
+        }
+    }
+
+    /// Nothing waits any more: the program is over.
+    pub(super) fn finish(&mut self) {
+        self.out.finish();
+    }
+
+    /// The feed of the moves to come, as the segments carry it.
+    #[cfg(test)]
+    fn feed(&self) -> Option<crate::motion::Feed> {
+        self.exec.cutting_feed(&self.block).ok()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::source::FileId;
+
+    fn origin() -> Origin {
+        Origin::at(Span::new(FileId(0), 1, 0..1))
+    }
+
+    #[test]
+    fn axes_without_a_value_stay_where_they_are() {
+        let mut kernel = Kernel::new(&Machine::default());
+        let start = kernel.program_position();
+        kernel
+            .rapid_to([Some(10.0), None, None, None, None, None], origin())
+            .unwrap();
+        let now = kernel.program_position();
+        assert_eq!(now[0], 10.0);
+        assert_eq!(now[1..], start[1..]);
+    }
+
+    #[test]
+    fn a_cutting_move_needs_a_feed() {
+        let mut kernel = Kernel::new(&Machine::default());
+        assert_eq!(kernel.feed(), None);
+        let refused = kernel.feed_to([Some(1.0), None, None, None, None, None], origin());
+        assert_eq!(refused.unwrap_err().code, AlarmCode::NoFeedRate);
+        kernel.set_feed(300.0);
+        assert_eq!(kernel.feed(), Some(crate::motion::Feed::PerMinute(300.0)));
+    }
+}

@@ -1,0 +1,37 @@
+//! The library's integration tests, one module per topic, built as one test binary: one link
+//! instead of one per file, and the helpers in `common` compiled once. Run one topic with
+//! `cargo test -p vcnc --test it <module>::` (e.g. `cycles::`). This file only declares the
+//! modules; it must never hold tests or helpers of its own. proptest keeps the failing cases it
+//! found in `tests/proptest-regressions/<module>.txt`: it looks beside the folder of `main.rs`.
+
+mod common;
+
+mod alarms;
+mod compensation;
+mod compensation_cases;
+mod compensation_corpus;
+mod compensation_property;
+mod corpus;
+mod cycles;
+mod frames;
+mod front_end;
+mod interrupt;
+mod lcnc_traces;
+mod macros;
+mod mangled;
+mod modal;
+mod plan_reference;
+mod planner;
+mod polar;
+mod polar_interpolation;
+mod position_offset;
+mod readme;
+mod rotation;
+mod scaling;
+mod seed_examples;
+mod skip;
+mod smoothing;
+mod spiral;
+mod streaming;
+mod syntec_macro;
+mod thread;

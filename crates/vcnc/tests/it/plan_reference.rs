@@ -1,0 +1,195 @@
+//! Cycle times against LinuxCNC's real trajectory planner.
+//!
+//! Each program in tests/data/plan/lcnc/ was run through LinuxCNC 2.9 with lcnc-time
+//! (`tools/record-lcnc-time.sh`), which stored the measured time as <stem>.json. Here vcnc times
+//! the same program on a machine with the same limits and the `linuxcnc` planner habits; the
+//! two must agree within 2 %. LinuxCNC is not needed to run this test.
+
+use crate::common::plan;
+
+use std::path::{Path, PathBuf};
+use vcnc::summary::Summary;
+use vcnc::{interpret_str, Options};
+
+/// The agreement the issue asks for (#6, acceptance 3).
+const TOLERANCE: f64 = 0.02;
+
+/// Programs that miss the 2 %, with the error they have today and why. Each is asserted at its
+/// current error so that a change either way shows up. None today.
+///
+/// `23_tiny_segments_g64` (200 segments of 0.05 mm at F6000) runs at the planner's floor of
+/// about one servo cycle per segment, LinuxCNC's 49.02 mm/s cap. Its first recording (0.270 s)
+/// came from a run in which LinuxCNC's speed dropped to 46 mm/s on some cycles; recorded again
+/// (2026-11-25, four runs alike) it holds the cap on every cycle and takes 0.263 s, which vcnc
+/// meets within 1.3 %.
+const KNOWN_OFF: &[(&str, f64)] = &[];
+
+fn data_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/plan/lcnc")
+}
+
+/// A number after `"key":` in the recorded JSON (flat, one key per line).
+fn json_number(text: &str, key: &str) -> Option<f64> {
+    let needle = format!("\"{key}\":");
+    let rest = &text[text.find(&needle)? + needle.len()..];
+    let end = rest.find([',', '\n', '}']).unwrap_or(rest.len());
+    rest[..end].trim().parse().ok()
+}
+
+/// The `--vel V --acc A` of the program's first line.
+fn limits_line(program: &str) -> (f64, f64) {
+    let first = program.lines().next().unwrap_or("");
+    let words: Vec<&str> = first
+        .trim_start_matches("(limits:")
+        .trim_end_matches(')')
+        .split_whitespace()
+        .collect();
+    let value = |flag: &str| {
+        words
+            .windows(2)
+            .find(|w| w[0] == flag)
+            .and_then(|w| w[1].parse().ok())
+            .unwrap_or_else(|| panic!("{flag} missing in `{first}`"))
+    };
+    (value("--vel"), value("--acc"))
+}
+
+struct Comparison {
+    stem: String,
+    /// The program's second comment: what it exercises.
+    what: String,
+    linuxcnc: f64,
+    vcnc: f64,
+    /// vcnc's length / feed estimate (`Summary::estimated_seconds`).
+    estimate: f64,
+}
+
+fn compare_all() -> Vec<Comparison> {
+    let mut programs: Vec<PathBuf> = std::fs::read_dir(data_dir())
+        .expect("tests/data/plan/lcnc exists")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "ngc"))
+        .collect();
+    programs.sort();
+    programs
+        .iter()
+        .map(|path| {
+            let stem = path
+                .file_stem()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .into_owned();
+            let program = std::fs::read_to_string(path).expect("program readable");
+            let json = std::fs::read_to_string(path.with_extension("json"))
+                .unwrap_or_else(|_| panic!("{stem}.json missing: run tools/record-lcnc-time.sh"));
+            let linuxcnc = json_number(&json, "seconds").expect("seconds in the JSON");
+            let (speed, acceleration) = limits_line(&program);
+            let machine = plan::machine(&plan::Limits {
+                speed,
+                acceleration,
+                // lcnc-time's --vel is also [TRAJ]MAX_LINEAR_VELOCITY, the path speed cap.
+                planner: &format!("habits = \"linuxcnc\"\nmax_path_rate = {:?}", speed * 60.0),
+                // LinuxCNC's G4 P is seconds; its programs write every coordinate with a point.
+                profile_overrides: "dwell_p = \"seconds_with_point\"",
+                ..plan::Limits::default()
+            });
+            // lcnc-time counts from the first motion to the end of the last one.
+            let vcnc = plan::total_seconds(&program, &machine);
+            let mut summary = Summary::new(&machine);
+            for segment in interpret_str(&program, &machine, Options::default()).flatten() {
+                summary.add(&segment);
+            }
+            let what = program
+                .lines()
+                .nth(1)
+                .unwrap_or("")
+                .trim_matches(|c| c == '(' || c == ')')
+                .to_string();
+            Comparison {
+                stem,
+                what,
+                linuxcnc,
+                vcnc,
+                estimate: summary.estimated_seconds(),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn every_reference_program_is_timed_within_two_percent_of_linuxcnc() {
+    let comparisons = compare_all();
+    assert!(
+        comparisons.len() >= 20,
+        "only {} reference programs",
+        comparisons.len()
+    );
+    let mut report = String::new();
+    let mut failed = 0;
+    for c in &comparisons {
+        let error = (c.vcnc - c.linuxcnc) / c.linuxcnc;
+        let known = KNOWN_OFF.iter().find(|(stem, _)| *stem == c.stem);
+        let ok = match known {
+            Some((_, today)) => (error - today).abs() <= 0.002,
+            None => error.abs() <= TOLERANCE,
+        };
+        let mark = match (ok, known) {
+            (true, None) => "",
+            (true, Some(_)) => "  (known, see KNOWN_OFF)",
+            (false, _) => "  <-- off",
+        };
+        failed += usize::from(!ok);
+        report.push_str(&format!(
+            "{:<28} linuxcnc {:>8.3} s  vcnc {:>8.3} s  {:>+6.2} %{mark}\n",
+            c.stem,
+            c.linuxcnc,
+            c.vcnc,
+            100.0 * error
+        ));
+    }
+    println!("{report}");
+    assert_eq!(
+        failed, 0,
+        "{failed} program(s) off by more than 2 %:\n{report}"
+    );
+}
+
+/// The README's table of the reference programs.
+fn readme_table(comparisons: &[Comparison]) -> String {
+    let mut table = String::from(
+        "| program | what it exercises | LinuxCNC s | vcnc s | vcnc - LinuxCNC | length / feed s |\n\
+         |---|---|---:|---:|---:|---:|\n",
+    );
+    for c in comparisons {
+        table += &format!(
+            "| `{}` | {} | {:.3} | {:.3} | {:+.2} % | {:.3} |\n",
+            c.stem,
+            c.what,
+            c.linuxcnc,
+            c.vcnc,
+            100.0 * (c.vcnc - c.linuxcnc) / c.linuxcnc,
+            c.estimate
+        );
+    }
+    table
+}
+
+#[test]
+fn the_readme_table_of_reference_times_is_up_to_date() {
+    let readme_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md");
+    let readme = std::fs::read_to_string(&readme_path).expect("README.md");
+    let (begin, end) = (
+        "<!-- plan-reference:begin -->\n",
+        "<!-- plan-reference:end -->",
+    );
+    let start = readme
+        .find(begin)
+        .expect("README has the plan-reference markers")
+        + begin.len();
+    let stop = readme[start..].find(end).expect("end marker") + start;
+    let expected = readme_table(&compare_all());
+    assert!(
+        readme[start..stop] == expected,
+        "README.md's reference table is stale; replace it with:\n{expected}"
+    );
+}
