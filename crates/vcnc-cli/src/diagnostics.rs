@@ -1,7 +1,6 @@
 //! Alarms for people (rustc-style, with the source line and the word underlined) and for
 //! machines (JSON).
 
-use crate::program::ProgramFiles;
 use codespan_reporting::diagnostic::{Diagnostic, Label, Severity as CsSeverity};
 use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
@@ -9,6 +8,7 @@ use codespan_reporting::term::{self, Config};
 use serde_json::{json, Value};
 use std::collections::HashMap;
 use std::io::IsTerminal;
+use vcnc::pipeline::ProgramFiles;
 use vcnc::source::line_column;
 use vcnc::{Alarm, FileId, Severity};
 

@@ -6,7 +6,6 @@
 mod cmd;
 mod diagnostics;
 mod numbers;
-mod planned;
 mod program;
 mod setup;
 

@@ -9,7 +9,8 @@
 //! an [`AlarmCode::Overtravel`] alarm at its block and the stream ends there: the control stops
 //! the axes at the limit (FANUC OT0500/OT0501). Checking before the move, vcnc leaves the
 //! move out: the position stays at the block's start. [`TravelCheck`] is the same check for a
-//! consumer that takes the stream in batches.
+//! consumer that takes the stream in batches, or for the interpreter to run after every block
+//! ([`ReleasedCheck`]). This module never depends on the interpreter.
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, AXES};
@@ -160,9 +161,23 @@ impl TravelCheck {
     }
 }
 
-/// The travel checked block by block as the interpreter runs
-/// ([`crate::Interpreter::next_batch_checked`], which calls it after every block: inlined there).
-impl crate::interp::ReleasedCheck for TravelCheck {
+/// A check of the stream's items as the blocks release them, made by the interpreter's caller
+/// and run by the interpreter after every block
+/// ([`Interpreter::next_batch_checked`](crate::Interpreter::next_batch_checked)): the check
+/// belongs to the consumer's side, and the interpreter knows it only by this trait.
+pub trait ReleasedCheck {
+    /// Looks at the items in the range `released` of `items` (the ones before it have passed;
+    /// the ones after it are held by compensation and may still change) and, to stop the
+    /// program at one of them, cuts `items` there, adds its alarm and returns false.
+    fn check_released(
+        &mut self,
+        items: &mut Vec<Result<Segment, Alarm>>,
+        released: std::ops::Range<usize>,
+    ) -> bool;
+}
+
+/// The travel checked block by block as the interpreter runs (inlined into its loop).
+impl ReleasedCheck for TravelCheck {
     #[inline(always)]
     fn check_released(
         &mut self,

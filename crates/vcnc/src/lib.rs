@@ -23,6 +23,9 @@
 //!
 //! The pipeline streams: the interpreter pulls one line at a time from a
 //! [`LineSource`](syntax::lines::LineSource), so a program of any length runs in constant memory.
+//! [`Pipeline`] runs it the way the `vcnc` command does: the interpreter on a thread of its own,
+//! the machine's travel checked, the stream handed over in batches, timed by the planner on the
+//! consumer's thread ([`pipeline`] has an example of a consumer).
 
 #![warn(missing_docs)]
 
@@ -31,6 +34,7 @@ pub mod checks;
 pub mod interp;
 pub mod machine;
 pub mod motion;
+pub mod pipeline;
 pub mod plan;
 pub mod profile;
 pub mod source;
@@ -41,6 +45,7 @@ pub use alarm::{Alarm, AlarmCode, Severity};
 pub use interp::{Interpreter, Options};
 pub use machine::{Axis, Machine};
 pub use motion::{Segment, SegmentKind};
+pub use pipeline::Pipeline;
 pub use profile::{Profile, ProfileName};
 pub use source::{FileId, Span};
 

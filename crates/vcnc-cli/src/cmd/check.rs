@@ -1,10 +1,10 @@
 //! `vcnc check`: run programs and report only their alarms and warnings.
 
 use super::{Outcome, SetupError};
-use crate::program::Layout;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::path::PathBuf;
+use vcnc::pipeline::Layout;
 use vcnc::Alarm;
 
 /// Output format of the diagnostics.
@@ -35,14 +35,16 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let mut outcome = Outcome::Clean;
     let mut reports = Vec::new();
     for path in &args.programs {
-        let (stream, files) = crate::program::open(
+        let mut stream = crate::program::open(
             path,
             &machine,
             options.clone(),
             &args.machine,
-            Layout::for_consumer(false),
+            Layout::for_idle_consumer(),
         )?;
-        let alarms: Vec<Alarm> = stream.filter_map(Result::err).collect();
+        let files = stream.files().clone();
+        let alarms: Vec<Alarm> = stream.by_ref().filter_map(Result::err).collect();
+        crate::program::finish(stream, &args.machine);
         let failed = alarms.iter().any(Alarm::is_error);
         if failed {
             outcome = Outcome::Alarm;

@@ -1,7 +1,6 @@
 //! `vcnc run`: run a program and print the summary a CNC programmer wants.
 
 use super::{Outcome, SetupError};
-use crate::planned::for_each_timed;
 use crate::program::{open_planned, Planned};
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
@@ -40,16 +39,16 @@ exact stops, dwell, tool change and spindle times from the machine file";
 
 pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let Planned {
-        machine,
         plan_options,
-        stream,
-        files,
+        mut stream,
     } = open_planned(&args.program, &args.machine, true)?;
+    let machine = stream.machine().clone();
+    let files = stream.files().clone();
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut end = None;
-    let stream = for_each_timed(stream, &machine, plan_options, |items, timings| {
+    stream.for_each_timed(plan_options, |items, timings| {
         for (item, timing) in items.iter().zip(timings) {
             match item {
                 Ok(segment) => {
@@ -64,7 +63,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         }
         true
     });
-    let blocks = stream.blocks_executed();
+    let blocks = crate::program::finish(stream, &args.machine);
     let error = alarms.iter().find(|a| a.is_error());
     let result = match (error, end) {
         (Some(alarm), _) => format!(

@@ -10,13 +10,13 @@ use super::{Outcome, SetupError};
 use crate::numbers::{
     FixedText, Key, OutBuffer, PaddedText, RecordText, Remembered, RememberedRun,
 };
-use crate::planned::{for_each_timed, Item};
-use crate::program::{open_planned, Planned, ProgramFiles};
+use crate::program::{open_planned, Planned};
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
 use vcnc::motion::{ArcDirection, EndKind, Feed, Move, Plane, SpindleState, StopKind};
+use vcnc::pipeline::{Item, ProgramFiles};
 use vcnc::plan::Timing;
 use vcnc::{Alarm, Axis, FileId, Segment, SegmentKind};
 
@@ -63,18 +63,17 @@ fn write_trace(
     output: &mut impl Write,
 ) -> Result<(Vec<Alarm>, ProgramFiles), SetupError> {
     let Planned {
-        machine,
         plan_options,
-        stream,
-        files,
+        mut stream,
     } = open_planned(&args.program, &args.machine, false)?;
-    let mut writer = Writer::new(files.clone(), &machine, args.work);
+    let files = stream.files().clone();
+    let mut writer = Writer::new(files.clone(), stream.machine(), args.work);
     if args.format == Format::Csv {
         writer.csv_header();
     }
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut broken_pipe = false;
-    for_each_timed(stream, &machine, plan_options, |items, timings| {
+    stream.for_each_timed(plan_options, |items, timings| {
         writer.batch(items, timings, args.format, &mut alarms);
         if writer.out.is_full() {
             if output.write_all(writer.out.as_bytes()).is_err() {
@@ -89,6 +88,7 @@ fn write_trace(
         let _ = output.write_all(writer.out.as_bytes());
         let _ = output.flush();
     }
+    crate::program::finish(stream, &args.machine);
     Ok((alarms, files))
 }
 
@@ -694,18 +694,11 @@ mod tests {
             assert!(alarms.is_empty(), "{alarms:?}");
 
             let machine = Machine::default();
-            let (_, files) = crate::program::open(
-                &args.program,
-                &machine,
-                Options::default(),
-                &args.machine,
-                crate::program::Layout {
-                    parsing: crate::program::Parsing::Ahead,
-                    waiting: crate::program::Waiting::Sleep,
-                    stopping: crate::program::Stopping::AfterTheBatch,
-                },
-            )
-            .unwrap();
+            let files = vcnc::Pipeline::new(&machine)
+                .open_path(&args.program)
+                .unwrap()
+                .files()
+                .clone();
             let mut writer = Writer::new(files, &machine, true);
             if args.format == Format::Csv {
                 writer.csv_header();

@@ -36,6 +36,7 @@ mod thread;
 mod tools;
 
 use crate::alarm::{Alarm, AlarmCode};
+use crate::checks::ReleasedCheck;
 use crate::machine::Machine;
 use crate::motion::{EndKind, MachinePos, Segment, SegmentKind};
 use crate::source::{FileId, Span};
@@ -298,18 +299,6 @@ impl Output {
         self.settle_polar_interpolation();
         self.items.push(Err(alarm));
     }
-}
-
-/// A check of the stream's items as the blocks release them ([`Interpreter::next_batch_checked`]).
-pub trait ReleasedCheck {
-    /// Looks at the items in the range `released` of `items` (the ones before it have passed;
-    /// the ones after it are held by compensation and may still change) and, to stop the
-    /// program at one of them, cuts `items` there, adds its alarm and returns false.
-    fn check_released(
-        &mut self,
-        items: &mut Vec<Result<Segment, Alarm>>,
-        released: std::ops::Range<usize>,
-    ) -> bool;
 }
 
 /// No check: [`Interpreter::next_batch`].

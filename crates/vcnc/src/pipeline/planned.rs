@@ -3,34 +3,21 @@
 //! The planner's [`Timeline`] takes the items by reference and gives their timings back in
 //! order once the look-ahead has passed them; meanwhile the batches wait here, in the buffers
 //! the interpreter filled. A segment is never copied on its way from the interpreter to the
-//! consumer (a trace's writer, a run's summary): planning adds the arithmetic and nothing else.
-//! On two cores a thread of its own for the planner gained nothing (the interpreter's and the
-//! parser's threads keep the other core busy) and cost the copies of every segment into and out
-//! of it.
+//! consumer: planning adds the arithmetic and nothing else. (On two cores a thread of its own
+//! for the planner gained nothing and cost the copies of every segment into and out of it.)
+//!
+//! Never keeps every buffer of the pool: the interpreter must always have one to fill.
 
-use crate::program::{Interpreted, POOL};
-use vcnc::plan::{PlanOptions, Timeline, Timing};
-use vcnc::{Alarm, Machine, Segment};
-
-/// An item of the interpreter's stream.
-pub(crate) type Item = Result<Segment, Alarm>;
+use super::threads::POOL;
+use super::Item;
+use crate::plan::{Timeline, Timing};
 
 /// A stream handed over a batch at a time, in buffers that go back to it.
-pub(crate) trait Batches {
+pub(crate) trait BatchSource {
     /// The next batch (None at the end of the stream).
     fn next_batch(&mut self) -> Option<Vec<Item>>;
     /// Gives a batch's buffer back.
     fn recycle(&self, batch: Vec<Item>);
-}
-
-impl Batches for Interpreted {
-    fn next_batch(&mut self) -> Option<Vec<Item>> {
-        Interpreted::next_batch(self)
-    }
-
-    fn recycle(&self, batch: Vec<Item>) {
-        Interpreted::recycle(self, batch);
-    }
 }
 
 /// A batch from the interpreter and the timings of its first items.
@@ -45,16 +32,13 @@ impl Held {
     }
 }
 
-/// Gives `consume` every batch of `stream` with the timings of its items, in order, until the
-/// stream ends or `consume` returns false; returns the stream (to ask it how many blocks it
-/// ran).
-pub(crate) fn for_each_timed<S: Batches>(
-    mut stream: S,
-    machine: &Machine,
-    options: PlanOptions,
+/// Gives `consume` every batch of `stream` with the timings `timeline` gives its items, in
+/// order, until the stream ends or `consume` returns false.
+pub(crate) fn for_each_timed<S: BatchSource>(
+    stream: &mut S,
+    mut timeline: Timeline,
     mut consume: impl FnMut(&[Item], &[Timing]) -> bool,
-) -> S {
-    let mut timeline = Timeline::new(machine, options);
+) {
     // A few batches at most (fewer than the interpreter's pool): a vector, whose front is
     // removed by moving the two or three others.
     let mut held: Vec<Held> = Vec::with_capacity(POOL);
@@ -108,11 +92,10 @@ pub(crate) fn for_each_timed<S: Batches>(
             }
         }
     }
-    stream
 }
 
 /// Gives the timings the timeline has made final to the held batches, in order.
-// Called for every item pushed: out of line, it cost a call and the registers it saves.
+// Inlined: it runs for every item pushed.
 #[inline(always)]
 fn deal(timeline: &mut Timeline, held: &mut [Held], filling: &mut usize) {
     while let Some(timing) = timeline.next_timing() {
@@ -129,9 +112,9 @@ fn deal(timeline: &mut Timeline, held: &mut [Held], filling: &mut usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plan::{PlanOptions, Planner};
+    use crate::{interpret_str, Machine, Options};
     use std::cell::Cell;
-    use vcnc::plan::Planner;
-    use vcnc::{interpret_str, Options};
 
     /// A stream in batches of a given size that counts the buffers not given back.
     struct Fake {
@@ -140,7 +123,7 @@ mod tests {
         out: Cell<usize>,
     }
 
-    impl Batches for Fake {
+    impl BatchSource for Fake {
         fn next_batch(&mut self) -> Option<Vec<Item>> {
             // The consumer asks for a batch only while the interpreter has a buffer to fill it
             // in: with every buffer out, the interpreter would wait for one, and both for ever.
@@ -169,6 +152,16 @@ mod tests {
         text + "M30\n"
     }
 
+    fn fake(text: &str, machine: &Machine, size: usize) -> Fake {
+        Fake {
+            items: interpret_str(text, machine, Options::default())
+                .collect::<Vec<_>>()
+                .into_iter(),
+            size,
+            out: Cell::new(0),
+        }
+    }
+
     #[test]
     fn batches_of_any_size_get_the_planners_timings_and_keep_a_buffer_free() {
         let machine = Machine::default();
@@ -186,19 +179,17 @@ mod tests {
         // One item a batch (a macro loop that rarely moves) up to batches longer than the
         // look-ahead window.
         for size in [1, 2, 7, 100, 256, 5000] {
-            let fake = Fake {
-                items: interpret_str(&text, &machine, Options::default())
-                    .collect::<Vec<_>>()
-                    .into_iter(),
-                size,
-                out: Cell::new(0),
-            };
             let mut got = Vec::new();
-            for_each_timed(fake, &machine, PlanOptions::default(), |items, timings| {
-                assert_eq!(items.len(), timings.len());
-                got.extend(items.iter().cloned().zip(timings.iter().copied()));
-                true
-            });
+            let timeline = Timeline::new(&machine, PlanOptions::default());
+            for_each_timed(
+                &mut fake(&text, &machine, size),
+                timeline,
+                |items, timings| {
+                    assert_eq!(items.len(), timings.len());
+                    got.extend(items.iter().cloned().zip(timings.iter().copied()));
+                    true
+                },
+            );
             assert_eq!(got, expected, "batches of {size}");
         }
     }
@@ -206,15 +197,9 @@ mod tests {
     #[test]
     fn a_consumer_that_stops_gets_no_more_batches() {
         let machine = Machine::default();
-        let fake = Fake {
-            items: interpret_str(&program(), &machine, Options::default())
-                .collect::<Vec<_>>()
-                .into_iter(),
-            size: 10,
-            out: Cell::new(0),
-        };
         let mut calls = 0;
-        for_each_timed(fake, &machine, PlanOptions::default(), |_, _| {
+        let timeline = Timeline::new(&machine, PlanOptions::default());
+        for_each_timed(&mut fake(&program(), &machine, 10), timeline, |_, _| {
             calls += 1;
             calls < 3
         });

@@ -1,0 +1,303 @@
+//! Opening a program: where its text comes from (a file, a reader, text in memory), its
+//! dialect, where its blocks are parsed, and the programs it can call.
+//!
+//! The program library of a run is made in one place, [`library`]: the directories the caller
+//! names, then the program file's own directory, and the main program's whole text for its
+//! jumps. This module starts no interpreter: `threads.rs` does.
+
+use super::Parsing;
+use crate::interp::{
+    DirectoryLibrary, Interpreter, LoadedFiles, Options, ProgramLibrary, ProgramText,
+};
+use crate::machine::Machine;
+use crate::source::FileId;
+use crate::syntax::iso::SyntaxOptions;
+use crate::syntax::lines::ReaderLines;
+use crate::syntax::source::{BackgroundParser, BlockSource, ParsedLines};
+use crate::syntax::{detect_dialect, Block, Dialect};
+use std::fs::File;
+use std::io::{self, Read};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Why a program could not be opened.
+#[derive(Debug, thiserror::Error)]
+pub enum OpenError {
+    /// The program file cannot be opened.
+    #[error("cannot open {}: {source}", path.display())]
+    Open {
+        /// The program file.
+        path: PathBuf,
+        /// What the system said.
+        source: io::Error,
+    },
+    /// The program's first lines cannot be read (to know its dialect).
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The program file, or the name given to the reader.
+        path: PathBuf,
+        /// What the system said.
+        source: io::Error,
+    },
+}
+
+/// A program's blocks, parsed as [`Parsing`] says.
+pub(crate) enum ProgramBlocks {
+    Ahead(BackgroundParser),
+    InLine(ParsedLines<ReaderLines<Box<dyn Read + Send>>>),
+}
+
+impl ProgramBlocks {
+    /// The blocks of `reader`'s text (about `length` bytes, 0 when unknown), parsed as
+    /// `parsing` says.
+    pub(crate) fn new(
+        reader: Box<dyn Read + Send>,
+        length: u64,
+        syntax: SyntaxOptions,
+        parsing: Parsing,
+    ) -> ProgramBlocks {
+        match parsing {
+            Parsing::Ahead => ProgramBlocks::Ahead(BackgroundParser::spawn_expecting(
+                reader,
+                FileId(0),
+                syntax,
+                length,
+            )),
+            Parsing::InLine => ProgramBlocks::InLine(ParsedLines::new(
+                ReaderLines::new(reader),
+                FileId(0),
+                syntax,
+            )),
+        }
+    }
+}
+
+impl BlockSource for ProgramBlocks {
+    fn advance(&mut self) -> io::Result<bool> {
+        match self {
+            ProgramBlocks::Ahead(blocks) => blocks.advance(),
+            ProgramBlocks::InLine(blocks) => blocks.advance(),
+        }
+    }
+
+    fn blocks(&self) -> &[Block] {
+        match self {
+            ProgramBlocks::Ahead(blocks) => blocks.blocks(),
+            ProgramBlocks::InLine(blocks) => blocks.blocks(),
+        }
+    }
+
+    fn text(&self) -> Option<&[u8]> {
+        match self {
+            ProgramBlocks::Ahead(blocks) => blocks.text(),
+            ProgramBlocks::InLine(blocks) => blocks.text(),
+        }
+    }
+}
+
+/// The interpreter of a pipeline's program.
+pub(crate) type ProgramInterpreter = Interpreter<ProgramBlocks>;
+
+/// The files a run reads: the main program (file 0) and the programs it calls, for the
+/// consumer's diagnostics.
+#[derive(Debug, Clone)]
+pub struct ProgramFiles {
+    main: PathBuf,
+    loaded: LoadedFiles,
+}
+
+impl ProgramFiles {
+    /// The main program `main` and the files a library reads into `loaded`.
+    pub(crate) fn new(main: PathBuf, loaded: LoadedFiles) -> ProgramFiles {
+        ProgramFiles { main, loaded }
+    }
+
+    /// The path of file `file` (the main program's name for a file the run has not read).
+    pub fn path(&self, file: FileId) -> PathBuf {
+        if file == FileId(0) {
+            return self.main.clone();
+        }
+        self.loaded
+            .lock()
+            .ok()
+            .and_then(|l| l.iter().find(|(id, _)| *id == file).map(|(_, p)| p.clone()))
+            .unwrap_or_else(|| self.main.clone())
+    }
+}
+
+/// Where the main program's whole text can be had again, for its jumps.
+pub(crate) enum MainText {
+    /// Read again from its file.
+    File(PathBuf),
+    /// Held in memory.
+    Memory(Arc<[u8]>),
+    /// Nowhere: the text came from a reader.
+    None,
+}
+
+/// A program opened and its dialect known, ready for its interpreter.
+pub(crate) struct Opened {
+    /// Where its whole text can be had again.
+    pub(crate) main: MainText,
+    /// Its name in diagnostics.
+    pub(crate) name: PathBuf,
+    pub(crate) reader: Box<dyn Read + Send>,
+    /// About how many bytes it has (0 when unknown).
+    pub(crate) length: u64,
+    pub(crate) dialect: Dialect,
+}
+
+impl Opened {
+    /// Its interpreter on `machine`, parsed as `parsing` says, calling programs from
+    /// `directories` (and its own); with the files it will read.
+    pub(crate) fn interpreter(
+        self,
+        machine: &Machine,
+        options: Options,
+        parsing: Parsing,
+        directories: &[PathBuf],
+    ) -> (ProgramInterpreter, ProgramFiles) {
+        let syntax = machine.profile.syntax();
+        let blocks = ProgramBlocks::new(self.reader, self.length, syntax, parsing);
+        let (library, loaded) = library(self.main, directories);
+        let files = ProgramFiles::new(self.name, loaded);
+        let interpreter =
+            Interpreter::from_blocks(blocks, FileId(0), machine, options).with_library(library);
+        (interpreter, files)
+    }
+}
+
+/// The programs a run can call: from `directories`, then from the main program file's own
+/// directory; and the main program's whole text for its jumps. Called files get ids from 1 on.
+pub(crate) fn library(
+    main: MainText,
+    directories: &[PathBuf],
+) -> (Box<dyn ProgramLibrary>, LoadedFiles) {
+    let mut directories = directories.to_vec();
+    let (file, text) = match main {
+        MainText::File(path) => {
+            if let Some(own) = path.parent() {
+                let own = if own.as_os_str().is_empty() {
+                    PathBuf::from(".")
+                } else {
+                    own.to_path_buf()
+                };
+                directories.push(own);
+            }
+            (Some(path), None)
+        }
+        MainText::Memory(text) => (None, Some(text)),
+        MainText::None => (None, None),
+    };
+    let library = DirectoryLibrary::new(file, directories, 1);
+    let loaded = library.loaded_files();
+    let library: Box<dyn ProgramLibrary> = match text {
+        Some(text) => Box::new(WithMainText { text, library }),
+        None => Box::new(library),
+    };
+    (library, loaded)
+}
+
+/// A directory library for a main program held in memory.
+struct WithMainText {
+    text: Arc<[u8]>,
+    library: DirectoryLibrary,
+}
+
+impl ProgramLibrary for WithMainText {
+    fn find(&mut self, number: u32) -> Option<ProgramText> {
+        self.library.find(number)
+    }
+
+    fn main_text(&mut self) -> Option<Arc<[u8]>> {
+        Some(Arc::clone(&self.text))
+    }
+}
+
+/// How much of a program's start is read to tell its dialect.
+const HEAD: u64 = 4096;
+
+/// Opens the file at `path` and reads its first bytes; the file returned is at its start.
+pub(crate) fn open_file(path: &Path) -> Result<(Vec<u8>, File), OpenError> {
+    let open = || {
+        File::open(path).map_err(|source| OpenError::Open {
+            path: path.to_path_buf(),
+            source,
+        })
+    };
+    let mut head = Vec::with_capacity(HEAD as usize);
+    open()?
+        .take(HEAD)
+        .read_to_end(&mut head)
+        .map_err(|source| OpenError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    // Opened again rather than rewound: the program's reader then starts as a fresh file.
+    Ok((head, open()?))
+}
+
+/// Reads the first bytes of `reader` (named `name`), and gives them back in front of the rest.
+pub(crate) fn read_head(
+    reader: impl Read + Send + 'static,
+    name: &Path,
+) -> Result<(Vec<u8>, Box<dyn Read + Send>), OpenError> {
+    let mut head = Vec::with_capacity(HEAD as usize);
+    let mut reader = reader;
+    reader
+        .by_ref()
+        .take(HEAD)
+        .read_to_end(&mut head)
+        .map_err(|source| OpenError::Read {
+            path: name.to_path_buf(),
+            source,
+        })?;
+    let again = io::Cursor::new(head.clone());
+    Ok((head, Box::new(again.chain(reader))))
+}
+
+/// The dialect of the program `name` whose text starts with `head`.
+pub(crate) fn dialect(name: &Path, head: &[u8]) -> Dialect {
+    let name = name
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    detect_dialect(&name, head)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_reader_gives_its_head_back_in_front_of_the_rest() {
+        let text: Vec<u8> = (0..10_000u32).map(|i| (i % 251) as u8).collect();
+        let (head, mut reader) = read_head(io::Cursor::new(text.clone()), Path::new("p")).unwrap();
+        assert_eq!(head, &text[..4096]);
+        let mut again = Vec::new();
+        reader.read_to_end(&mut again).unwrap();
+        assert_eq!(again, text);
+    }
+
+    #[test]
+    fn a_missing_file_names_itself_in_the_error() {
+        let path = Path::new("/nonexistent/vcnc/part.nc");
+        let error = open_file(path).unwrap_err();
+        assert!(matches!(error, OpenError::Open { .. }));
+        assert!(
+            error
+                .to_string()
+                .starts_with("cannot open /nonexistent/vcnc/part.nc: "),
+            "{error}"
+        );
+    }
+
+    #[test]
+    fn the_dialect_comes_from_the_name_and_the_head() {
+        assert_eq!(
+            dialect(Path::new("dir/PART.MPF"), b"G1 X1"),
+            Dialect::Sinumerik
+        );
+        assert_eq!(dialect(Path::new("part.nc"), b"G1 X1"), Dialect::Iso);
+    }
+}

@@ -1,0 +1,313 @@
+//! The threaded pipeline, used as a consumer outside the crate would use it: a program opened
+//! through `vcnc::pipeline`, interpreted on its own thread, its batches timed by the planner
+//! on the test's thread, gives the same items with the same timings as the plain
+//! single-threaded interpreter, travel check and planner, in every layout of the threads.
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+use vcnc::checks::TravelLimits;
+use vcnc::interp::{DirectoryLibrary, PersistentVariables};
+use vcnc::pipeline::{Item, Layout, Parsing, Pipeline, Stopping, Stream, Waiting};
+use vcnc::plan::{PlanOptions, Planner, Timing};
+use vcnc::syntax::source::BlockSource;
+use vcnc::{interpret_str, AlarmCode, FileId, Interpreter, Machine, Options};
+
+/// An item with its timing (none for an alarm: the planner passes alarms untouched).
+type Timed = (Item, Option<Timing>);
+
+/// What the consumer adds up: the items, the moves among them, and the planned time.
+#[derive(Debug, Default, PartialEq)]
+struct Tally {
+    items: Vec<Timed>,
+    moves: usize,
+    seconds: f64,
+}
+
+impl Tally {
+    fn add(&mut self, item: &Item, timing: Timing) {
+        match item {
+            Ok(segment) => {
+                self.moves += usize::from(segment.motion().is_some());
+                self.seconds += timing.dt;
+                self.items.push((item.clone(), Some(timing)));
+            }
+            Err(_) => self.items.push((item.clone(), None)),
+        }
+    }
+}
+
+/// Every layout of the threads.
+fn layouts() -> Vec<Layout> {
+    let mut layouts = Vec::new();
+    for parsing in [Parsing::Ahead, Parsing::InLine] {
+        for waiting in [Waiting::Adaptive, Waiting::Sleep] {
+            for stopping in [Stopping::AtTheBlock, Stopping::AfterTheBatch] {
+                layouts.push(Layout {
+                    parsing,
+                    waiting,
+                    stopping,
+                });
+            }
+        }
+    }
+    layouts
+}
+
+/// The consumer: every batch of `stream` with its timings.
+fn consume(mut stream: Stream) -> (Tally, u64) {
+    let mut tally = Tally::default();
+    stream.for_each_timed(PlanOptions::default(), |items, timings| {
+        assert_eq!(items.len(), timings.len());
+        for (item, timing) in items.iter().zip(timings) {
+            tally.add(item, *timing);
+        }
+        true
+    });
+    let finished = stream.finish();
+    assert!(finished.store_error.is_none());
+    (tally, finished.blocks_executed)
+}
+
+/// The same on one thread: the interpreter's iterator, the travel check and the planner;
+/// with the blocks the interpreter ran.
+fn single_threaded<B: BlockSource>(interpreter: Interpreter<B>, machine: &Machine) -> (Tally, u64) {
+    let mut tally = Tally::default();
+    let checked = TravelLimits::new(interpreter, machine);
+    let mut planner = Planner::new(checked, machine, PlanOptions::default());
+    for item in planner.by_ref() {
+        match item {
+            Ok(timed) => tally.add(&Ok(timed.segment), timed.timing()),
+            Err(alarm) => tally.add(&Err(alarm), Timing::default()),
+        }
+    }
+    let blocks = planner.source().source().blocks_executed();
+    (tally, blocks)
+}
+
+/// A directory of its own for one test's files.
+fn directory(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("vcnc-pipeline-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A program of lines, arcs, rapids, dwells and tool changes.
+fn cam_program(blocks: usize) -> String {
+    let mut text = String::from("G21 G17 G90 G94 G54\nT1 M06\nS6000 M03\nG43 H1 Z5. F1200\n");
+    for i in 0..blocks {
+        let (x, y) = ((i * 7 % 200) as f64, (i * 13 % 150) as f64);
+        text.push_str(&match i % 40 {
+            10 => "G02 I5. J0.\n".to_string(),
+            11 => "G00 X0. Y0.\n".to_string(),
+            20 => "G04 P250\n".to_string(),
+            30 if i % 400 == 30 => "T2 M06\nS3000 M03\nG43 H2 Z5.\n".to_string(),
+            _ => format!("G01 X{x:.3} Y{y:.3}\n"),
+        });
+    }
+    text + "G00 Z50.\nM05\nM30\n"
+}
+
+/// Runs `text` as the file `name` in every layout and compares with the single-threaded
+/// run; returns that run.
+fn check_every_layout(name: &str, text: &str) -> Tally {
+    let machine = Machine::default();
+    let path = directory(name).join(format!("{name}.nc"));
+    std::fs::write(&path, text).unwrap();
+    let (expected, expected_blocks) =
+        single_threaded(interpret_str(text, &machine, Options::default()), &machine);
+    for layout in layouts() {
+        let stream = Pipeline::new(&machine)
+            .layout(layout)
+            .open_path(&path)
+            .unwrap();
+        let (tally, blocks) = consume(stream);
+        assert_eq!(tally.moves, expected.moves, "{name}: {layout:?}");
+        assert_eq!(tally.seconds, expected.seconds, "{name}: {layout:?}");
+        assert!(tally == expected, "{name}: {layout:?}: another stream");
+        // Checked a batch at a time, the interpreter runs on to the end of the overtravel's
+        // batch: only the count differs.
+        if layout.stopping == Stopping::AtTheBlock {
+            assert_eq!(blocks, expected_blocks, "{name}: {layout:?}");
+        }
+    }
+    expected
+}
+
+#[test]
+fn a_long_program_gives_the_single_threaded_items_and_timings() {
+    let expected = check_every_layout("long", &cam_program(20_000));
+    assert!(expected.moves > 19_000, "{}", expected.moves);
+    assert!(expected.seconds > 100.0, "{}", expected.seconds);
+}
+
+#[test]
+fn an_overtravel_cuts_the_stream_at_the_same_item() {
+    // The default machine's X travels from -1000 to 1000: the stream stops at line 1004, deep
+    // in the program, after a few batches.
+    let mut text = String::from("G21 G90 G94 F3000\n");
+    for i in 0..3000 {
+        let x = if i == 1002 {
+            1000.5
+        } else {
+            f64::from(i % 50 + 1)
+        };
+        text.push_str(&format!("G01 X{x:.1} Y{}.\n", i % 31));
+    }
+    text.push_str("M30\n");
+    let expected = check_every_layout("overtravel", &text);
+    let (last, timing) = expected.items.last().unwrap();
+    let alarm = last.as_ref().unwrap_err();
+    assert_eq!((alarm.code, timing), (AlarmCode::Overtravel, &None));
+    assert_eq!(alarm.span.unwrap().line, 1004);
+    assert_eq!(expected.moves, 1002);
+}
+
+#[test]
+fn warnings_pass_as_items_and_take_no_time() {
+    // An R arc that ends on its start point moves nothing (a warning); the text ends without
+    // M30 (a warning).
+    let mut text = String::from("G21 G90 G94 F1000\n");
+    for i in 0..2000 {
+        text.push_str(&format!("G01 X{}. Y{}.\n", i % 40, i % 17));
+        if i % 500 == 250 {
+            text.push_str("G02 R5.\n");
+        }
+    }
+    let expected = check_every_layout("warnings", &text);
+    let warnings: Vec<_> = expected
+        .items
+        .iter()
+        .filter_map(|(item, _)| item.as_ref().err())
+        .collect();
+    assert_eq!(warnings.len(), 5, "{warnings:?}");
+    assert!(warnings.iter().all(|w| !w.is_error()));
+    assert_eq!(warnings[4].code, AlarmCode::MissingProgramEnd);
+}
+
+#[test]
+fn called_programs_come_from_the_directories_and_the_programs_own() {
+    let dir = directory("calls");
+    let library = dir.join("lib");
+    std::fs::create_dir_all(&library).unwrap();
+    std::fs::write(
+        library.join("O7001.nc"),
+        "O7001\nG91 G01 X1. F500\nG90\nM99\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("O7002.nc"), "O7002\nG01 Y2. F500\nM99\n").unwrap();
+    let text = "G21 G90 G94\nM98 P7001 L3\nM98 P7002\nG00 X0 Y0\nM30\n";
+    let path = dir.join("main.nc");
+    std::fs::write(&path, text).unwrap();
+    let machine = Machine::default();
+    let own = DirectoryLibrary::new(Some(path.clone()), vec![library.clone(), dir.clone()], 1);
+    let plain = Interpreter::new(
+        vcnc::syntax::lines::TextLines::new(text.as_bytes()),
+        FileId(0),
+        &machine,
+        Options::default(),
+    )
+    .with_library(Box::new(own));
+    let (expected, expected_blocks) = single_threaded(plain, &machine);
+    assert_eq!(expected.moves, 5);
+    let stream = Pipeline::new(&machine)
+        .library_directories(vec![library])
+        .open_path(&path)
+        .unwrap();
+    let files = stream.files().clone();
+    let (tally, blocks) = consume(stream);
+    assert!(tally == expected);
+    assert_eq!(blocks, expected_blocks);
+    assert_eq!(files.path(FileId(0)), path);
+    let called: Vec<_> = (1..3).map(|id| files.path(FileId(id))).collect();
+    assert!(
+        called.iter().any(|p| p.ends_with("lib/O7001.nc")),
+        "{called:?}"
+    );
+    assert!(called.iter().any(|p| p.ends_with("O7002.nc")), "{called:?}");
+}
+
+#[test]
+fn a_reader_and_text_in_memory_stream_as_a_file_does() {
+    let machine = Machine::default();
+    let text = cam_program(3000);
+    let (expected, _) =
+        single_threaded(interpret_str(&text, &machine, Options::default()), &machine);
+    let reader = std::io::Cursor::new(text.clone().into_bytes());
+    let from_reader = Pipeline::new(&machine)
+        .open_reader(reader, "part.nc")
+        .unwrap();
+    assert_eq!(from_reader.files().path(FileId(0)), Path::new("part.nc"));
+    assert!(consume(from_reader).0 == expected);
+    // A program that jumps needs its whole text: in memory, the pipeline has it.
+    let looping = "#1=0\nWHILE[#1LT3]DO1\nG01 X[#1+1] F600\n#1=#1+1\nEND1\nM30\n";
+    let (expected, _) = single_threaded(
+        interpret_str(looping, &machine, Options::default()),
+        &machine,
+    );
+    assert_eq!(expected.moves, 3);
+    let stream = Pipeline::new(&machine).open_text(looping, "loop.nc");
+    assert!(consume(stream).0 == expected);
+    // A reader cannot give it again: the jump is an alarm.
+    let reader = std::io::Cursor::new(looping.as_bytes().to_vec());
+    let stream = Pipeline::new(&machine)
+        .open_reader(reader, "loop.nc")
+        .unwrap();
+    let alarm = consume(stream).0.items.pop().unwrap().0.unwrap_err();
+    assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
+}
+
+#[test]
+fn the_items_one_at_a_time_are_the_batches_items() {
+    let machine = Machine::default();
+    let text = cam_program(5000);
+    let expected: Vec<Item> = interpret_str(&text, &machine, Options::default()).collect();
+    let layout = Layout {
+        parsing: Parsing::Ahead,
+        waiting: Waiting::Sleep,
+        stopping: Stopping::AfterTheBatch,
+    };
+    let stream = Pipeline::new(&machine)
+        .layout(layout)
+        .open_text(&text, "p.nc");
+    assert_eq!(stream.collect::<Vec<_>>(), expected);
+    let mut stream = Pipeline::new(&machine).open_text(&text, "p.nc");
+    let mut batched = Vec::new();
+    while let Some(batch) = stream.next_batch() {
+        batched.extend(batch.iter().cloned());
+        stream.recycle(batch);
+    }
+    assert_eq!(batched, expected);
+}
+
+#[test]
+fn persistent_variables_are_loaded_and_saved_through_the_store() {
+    let machine = Machine::default();
+    let saved: Arc<Mutex<Vec<PersistentVariables>>> = Arc::default();
+    let store = {
+        let saved = Arc::clone(&saved);
+        move |values: &PersistentVariables| {
+            saved.lock().unwrap().push(values.clone());
+            Ok(())
+        }
+    };
+    let mut before = PersistentVariables::default();
+    before.values.insert(500, 41.0);
+    let stream = Pipeline::new(&machine)
+        .persistent(before, store)
+        .open_text("#500=#500+1\nG01 X#500 F100\nM30\n", "p.nc");
+    let (tally, blocks) = consume(stream);
+    assert_eq!((tally.moves, blocks), (1, 3));
+    let saved = saved.lock().unwrap();
+    assert_eq!(saved.last().unwrap().values.get(&500), Some(&42.0));
+}
+
+#[test]
+fn a_store_that_fails_is_reported_by_finish() {
+    let machine = Machine::default();
+    let store = |_: &PersistentVariables| Err(std::io::Error::other("disk full"));
+    let stream = Pipeline::new(&machine)
+        .persistent(PersistentVariables::default(), store)
+        .open_text("#500=1\nM30\n", "p.nc");
+    let finished = stream.finish();
+    assert_eq!(finished.store_error.unwrap().to_string(), "disk full");
+}
