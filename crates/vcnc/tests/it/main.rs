@@ -20,6 +20,7 @@ mod lcnc_traces;
 mod macros;
 mod mangled;
 mod modal;
+mod pipeline;
 mod plan_reference;
 mod planner;
 mod polar;
