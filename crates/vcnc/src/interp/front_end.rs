@@ -7,7 +7,9 @@
 //! blocks, its modal state and its language; it never builds a segment itself.
 
 use super::kernel::Kernel;
+use super::NoCheck;
 use crate::alarm::Alarm;
+use crate::checks::ReleasedCheck;
 use crate::motion::Segment;
 use std::collections::VecDeque;
 
@@ -35,6 +37,8 @@ pub struct Run<F> {
     kernel: Kernel,
     ready: VecDeque<Result<Segment, Alarm>>,
     done: bool,
+    /// Steps that ran a block (the last one, the end or an error, included).
+    blocks: u64,
 }
 
 /// Blocks run at most by one call of [`Run::next_batch`], so that a front end's long loop
@@ -49,11 +53,13 @@ impl<F: FrontEnd> Run<F> {
             kernel,
             ready: VecDeque::new(),
             done: false,
+            blocks: 0,
         }
     }
 
     /// Runs one block; the end or an error closes the stream.
     fn step(&mut self) {
+        self.blocks += 1;
         match self.front_end.step(&mut self.kernel) {
             Ok(Step::Next) => {}
             Ok(Step::End) => self.done = true,
@@ -71,16 +77,38 @@ impl<F: FrontEnd> Run<F> {
     /// or the program is over; false when nothing more will come (what came is in `out`). The
     /// same items as [`Iterator::next`] gives.
     pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
+        self.next_batch_checked(out, at_least, &mut NoCheck)
+    }
+
+    /// [`Run::next_batch`] with `check` asked of the items as the blocks release them: when it
+    /// cuts the stream at an item, no block after it runs.
+    pub fn next_batch_checked(
+        &mut self,
+        out: &mut Vec<Result<Segment, Alarm>>,
+        at_least: usize,
+        check: &mut impl ReleasedCheck,
+    ) -> bool {
         out.extend(self.ready.drain(..));
+        let mut checked = out.len();
         let mut steps = 0;
         while !self.done && out.len() < at_least && steps < STEPS_PER_BATCH {
             self.step();
             self.kernel.release(out);
             steps += 1;
+            if out.len() > checked {
+                if !check.check_released(out, checked..out.len()) {
+                    self.done = true;
+                }
+                checked = out.len();
+            }
         }
-        self.kernel.release(out);
         // Once the program is over, everything it made is in `out`.
         !self.done
+    }
+
+    /// Blocks run so far.
+    pub fn blocks_executed(&self) -> u64 {
+        self.blocks
     }
 
     /// The kernel, for what a caller wants to know of the machine's state.

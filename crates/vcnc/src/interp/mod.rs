@@ -301,8 +301,8 @@ impl Output {
     }
 }
 
-/// No check: [`Interpreter::next_batch`].
-struct NoCheck;
+/// No check: [`Interpreter::next_batch`], [`Run::next_batch`].
+pub(crate) struct NoCheck;
 
 impl ReleasedCheck for NoCheck {
     #[inline(always)]

@@ -54,11 +54,11 @@ mod waiting;
 
 pub use program::{OpenError, ProgramFiles};
 pub use store::PersistentStore;
-pub use threads::{Finished, Stream};
+pub use threads::{BatchSource, Finished, Stream};
 pub use waiting::Waiting;
 
 use crate::alarm::Alarm;
-use crate::interp::{Options, PersistentVariables};
+use crate::interp::{FrontEnd, Kernel, Options, PersistentVariables};
 use crate::machine::Machine;
 use crate::motion::Segment;
 use program::{MainText, Opened};
@@ -273,13 +273,32 @@ impl Pipeline {
             }
             None => (interpreter, None),
         };
-        let run = threads::Run {
-            interpreter,
+        let started = threads::Started {
+            source: interpreter,
             store,
             files,
             machine: self.machine,
         };
-        Stream::spawn(run, layout)
+        Stream::spawn(started, layout)
+    }
+
+    /// Starts the program of `front_end`, a dialect's block sequencer, on the kernel of this
+    /// pipeline's machine, named `name` in diagnostics: the same threads, travel check and
+    /// timings as an ISO program gets. (The panel's options and the persistent variables are
+    /// the ISO interpreter's; a front end keeps its own.)
+    pub fn open_front_end<F: FrontEnd + Send + 'static>(
+        self,
+        front_end: F,
+        name: impl AsRef<Path>,
+    ) -> Stream {
+        let run = crate::interp::Run::new(front_end, Kernel::new(&self.machine));
+        let started = threads::Started {
+            source: run,
+            store: None,
+            files: ProgramFiles::new(name.as_ref().to_path_buf(), Default::default()),
+            machine: self.machine,
+        };
+        Stream::spawn(started, self.layout)
     }
 }
 

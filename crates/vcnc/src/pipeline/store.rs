@@ -5,7 +5,7 @@
 //! program runs and writes them, so that a killed run keeps what it wrote, and once more when
 //! the interpreter ends. It never prints: the first failed save is kept for the caller.
 
-use super::program::ProgramInterpreter;
+use super::threads::BatchSource;
 use crate::interp::PersistentVariables;
 use std::io;
 use std::time::{Duration, Instant};
@@ -41,7 +41,7 @@ pub(crate) struct Saver {
 impl Saver {
     /// Saves `interpreter`'s variables in `store`, if there is one.
     pub(crate) fn new(
-        interpreter: &ProgramInterpreter,
+        interpreter: &impl BatchSource,
         store: Option<Box<dyn PersistentStore>>,
     ) -> Saver {
         Saver {
@@ -58,7 +58,7 @@ impl Saver {
     }
 
     /// Saves the variables if they were written since the last save.
-    pub(crate) fn save(&mut self, interpreter: &ProgramInterpreter) {
+    pub(crate) fn save(&mut self, interpreter: &impl BatchSource) {
         let writes = interpreter.persistent_writes();
         if writes == self.saved_writes {
             return;

@@ -11,13 +11,15 @@
 //! that stops reading, `vcnc trace | head`, must end it), or print.
 
 use super::planned;
-use super::program::{ProgramFiles, ProgramInterpreter};
+use super::program::ProgramFiles;
 use super::store::{PersistentStore, Saver};
 use super::waiting::Waiter;
 use super::{Item, Layout, Stopping};
-use crate::checks::TravelCheck;
+use crate::checks::{ReleasedCheck, TravelCheck};
+use crate::interp::{FrontEnd, Interpreter, PersistentVariables};
 use crate::machine::Machine;
 use crate::plan::{PlanOptions, Timeline, Timing};
+use crate::syntax::source::BlockSource;
 use std::collections::VecDeque;
 use std::io;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -58,9 +60,87 @@ pub struct Finished {
     pub store_error: Option<io::Error>,
 }
 
-/// What the interpreter's thread is started with.
-pub(crate) struct Run {
-    pub(crate) interpreter: ProgramInterpreter,
+/// What the pipeline's thread runs: a program's stream, handed over a batch at a time. The ISO
+/// [`Interpreter`](crate::Interpreter) is one; a [`Run`](crate::interp::Run) of any other
+/// dialect's [`FrontEnd`](crate::interp::FrontEnd) is another.
+pub trait BatchSource: Send + 'static {
+    /// Appends the next items to `out` until it holds at least `at_least` (or a long stretch
+    /// of blocks made nothing); false when nothing more will come.
+    fn next_batch(&mut self, out: &mut Vec<Item>, at_least: usize) -> bool;
+
+    /// [`BatchSource::next_batch`] with `check` asked of the items as the blocks release them:
+    /// when it stops the program at an item, no block after it runs.
+    fn next_batch_checked<C: ReleasedCheck>(
+        &mut self,
+        out: &mut Vec<Item>,
+        at_least: usize,
+        check: &mut C,
+    ) -> bool;
+
+    /// Blocks run so far.
+    fn blocks_executed(&self) -> u64;
+
+    /// How many times the persistent variables were written so far (none in a dialect without
+    /// them).
+    fn persistent_writes(&self) -> u64 {
+        0
+    }
+
+    /// The persistent variables now.
+    fn persistent_variables(&self) -> PersistentVariables {
+        PersistentVariables::default()
+    }
+}
+
+impl<B: BlockSource + Send + 'static> BatchSource for Interpreter<B> {
+    fn next_batch(&mut self, out: &mut Vec<Item>, at_least: usize) -> bool {
+        Interpreter::next_batch(self, out, at_least)
+    }
+
+    fn next_batch_checked<C: ReleasedCheck>(
+        &mut self,
+        out: &mut Vec<Item>,
+        at_least: usize,
+        check: &mut C,
+    ) -> bool {
+        Interpreter::next_batch_checked(self, out, at_least, check)
+    }
+
+    fn blocks_executed(&self) -> u64 {
+        Interpreter::blocks_executed(self)
+    }
+
+    fn persistent_writes(&self) -> u64 {
+        Interpreter::persistent_writes(self)
+    }
+
+    fn persistent_variables(&self) -> PersistentVariables {
+        Interpreter::persistent_variables(self)
+    }
+}
+
+impl<F: FrontEnd + Send + 'static> BatchSource for crate::interp::Run<F> {
+    fn next_batch(&mut self, out: &mut Vec<Item>, at_least: usize) -> bool {
+        crate::interp::Run::next_batch(self, out, at_least)
+    }
+
+    fn next_batch_checked<C: ReleasedCheck>(
+        &mut self,
+        out: &mut Vec<Item>,
+        at_least: usize,
+        check: &mut C,
+    ) -> bool {
+        crate::interp::Run::next_batch_checked(self, out, at_least, check)
+    }
+
+    fn blocks_executed(&self) -> u64 {
+        crate::interp::Run::blocks_executed(self)
+    }
+}
+
+/// What the pipeline's thread is started with.
+pub(crate) struct Started<S> {
+    pub(crate) source: S,
     /// Where the persistent variables are saved, if anywhere.
     pub(crate) store: Option<Box<dyn PersistentStore>>,
     pub(crate) files: ProgramFiles,
@@ -69,13 +149,13 @@ pub(crate) struct Run {
 
 impl Stream {
     /// Starts `run`'s interpreter on a thread of its own, as `layout` says.
-    pub(crate) fn spawn(run: Run, layout: Layout) -> Stream {
-        let Run {
-            mut interpreter,
+    pub(crate) fn spawn<S: BatchSource>(started: Started<S>, layout: Layout) -> Stream {
+        let Started {
+            source: mut interpreter,
             store,
             files,
             machine,
-        } = run;
+        } = started;
         let (sender, batches) = sync_channel::<Vec<Item>>(POOL);
         let (recycle, recycled) = sync_channel::<Vec<Item>>(POOL);
         for _ in 0..POOL {
@@ -239,11 +319,11 @@ impl Pool {
     /// Fills the buffers that come back with `fill` (the interpreter's next batch, travel
     /// checked; false when nothing more will come) and sends them, until the stream ends or the
     /// consumer is gone.
-    fn serve(
+    fn serve<S: BatchSource>(
         self,
-        interpreter: &mut ProgramInterpreter,
+        interpreter: &mut S,
         saver: &mut Saver,
-        mut fill: impl FnMut(&mut ProgramInterpreter, &mut Vec<Item>) -> bool,
+        mut fill: impl FnMut(&mut S, &mut Vec<Item>) -> bool,
     ) {
         // A batch can come back empty (a macro loop that does not move): its buffer is kept
         // for the next one, so the pool never runs dry.
@@ -300,13 +380,13 @@ mod tests {
             waiting: Waiting::Adaptive,
             stopping: Stopping::AtTheBlock,
         };
-        let run = Run {
-            interpreter,
+        let started = Started {
+            source: interpreter,
             store: None,
             files,
             machine,
         };
-        let mut stream = Stream::spawn(run, layout);
+        let mut stream = Stream::spawn(started, layout);
         assert!(matches!(stream.next(), Some(Ok(_))));
         // Time for the thread to fill the pool and block.
         std::thread::sleep(Duration::from_millis(300));

@@ -195,3 +195,48 @@ fn a_dialect_alarm_ends_the_stream_too() {
         AlarmCode::UnexpectedCharacter
     );
 }
+
+/// Every item a stream of the pipeline gives, with the planned start and duration of each.
+fn timed_through_the_pipeline(stream: &mut vcnc::pipeline::Stream) -> Vec<(String, f64, f64)> {
+    let mut timed = Vec::new();
+    stream.for_each_timed(PlanOptions::default(), |items, timings| {
+        for (item, timing) in items.iter().zip(timings) {
+            let what = match item {
+                Ok(segment) => format!("{:?}", segment.kind),
+                Err(alarm) => format!("{:?}", alarm.code),
+            };
+            timed.push((what, timing.t, timing.dt));
+        }
+        true
+    });
+    timed
+}
+
+#[test]
+fn the_library_pipeline_runs_a_toy_program_like_the_iso_one() {
+    let machine = Machine::default();
+    let pipeline = || vcnc::pipeline::Pipeline::new(&machine);
+    let mut toy = pipeline().open_front_end(Toy::new(TOY), "toy.txt");
+    let mut iso = pipeline().open_text(ISO, "iso.nc");
+    let toy_timed = timed_through_the_pipeline(&mut toy);
+    assert_eq!(toy_timed, timed_through_the_pipeline(&mut iso));
+    assert_eq!(toy_timed.len(), 8);
+    assert_eq!(toy.finish().blocks_executed, 10, "one step a line");
+}
+
+#[test]
+fn the_pipeline_stops_a_toy_program_at_an_overtravel() {
+    let machine = Machine::default();
+    let program = "rapid x10\nrapid x-99999\nrapid x20\nend\n";
+    for layout in [
+        vcnc::pipeline::Layout::for_busy_consumer(),
+        vcnc::pipeline::Layout::for_idle_consumer(),
+    ] {
+        let stream = vcnc::pipeline::Pipeline::new(&machine)
+            .layout(layout)
+            .open_front_end(Toy::new(program), "toy.txt");
+        let items: Vec<_> = stream.collect();
+        assert_eq!(items.len(), 2, "{items:?}");
+        assert_eq!(items[1].as_ref().unwrap_err().code, AlarmCode::Overtravel);
+    }
+}
