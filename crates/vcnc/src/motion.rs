@@ -205,6 +205,16 @@ pub enum SpindleState {
     Oriented,
 }
 
+/// A tool's offsets, geometry plus wear, mm: what a consumer that draws or simulates the tool
+/// needs of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ToolGeometry {
+    /// Length offset.
+    pub length: f64,
+    /// Radius (half the register's value on controls that keep diameters).
+    pub radius: f64,
+}
+
 /// What happened: a motion or an event.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -252,6 +262,9 @@ pub enum SegmentKind {
     ToolChange {
         /// The tool put in the spindle (the last T selected).
         tool: u32,
+        /// Its offsets as the change found them in the register numbered like the tool (the
+        /// usual setup, H and D equal to T); None when that register was never set.
+        geometry: Option<ToolGeometry>,
     },
     /// M03/M04/M05/M19 and S changes.
     Spindle {

@@ -150,7 +150,7 @@ impl Summary {
                 );
             }
             SegmentKind::Dwell { seconds } => self.dwell_seconds += seconds,
-            SegmentKind::ToolChange { tool } => {
+            SegmentKind::ToolChange { tool, .. } => {
                 self.tool_changes += 1;
                 self.tools.insert(*tool);
             }

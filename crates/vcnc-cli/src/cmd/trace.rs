@@ -550,7 +550,7 @@ fn quoted(text: &mut RecordText<'_>, key: Key, value: &str) {
 fn event_fields(text: &mut RecordText<'_>, kind: &SegmentKind) {
     match *kind {
         SegmentKind::Dwell { seconds } => text.decimal(key!("seconds"), seconds),
-        SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => {
+        SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool, .. } => {
             text.unsigned(key!("tool"), u64::from(tool));
         }
         SegmentKind::Spindle { state, speed } => {
@@ -572,7 +572,7 @@ fn event_fields(text: &mut RecordText<'_>, kind: &SegmentKind) {
 fn csv_value(kind: &SegmentKind) -> String {
     match *kind {
         SegmentKind::Dwell { seconds } => seconds.to_string(),
-        SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool } => tool.to_string(),
+        SegmentKind::ToolSelect { tool } | SegmentKind::ToolChange { tool, .. } => tool.to_string(),
         SegmentKind::Spindle { state, speed } => format!("{} {speed}", spindle_name(state)),
         SegmentKind::Coolant { on } => if on { "on" } else { "off" }.to_string(),
         SegmentKind::Stop { kind } => stop_name(kind).to_string(),

@@ -101,6 +101,7 @@ pub(crate) fn before_motion(
                     exec.tool_in_spindle = exec.selected_tool;
                     SegmentKind::ToolChange {
                         tool: exec.selected_tool,
+                        geometry: exec.tool_geometry(exec.selected_tool),
                     }
                 }
                 MCode::CoolantOn => SegmentKind::Coolant { on: true },

@@ -117,6 +117,20 @@ impl Executor {
         }
     }
 
+    /// The offsets of register `number` as a tool's geometry (None for a register never set).
+    pub(crate) fn tool_geometry(&self, number: u32) -> Option<crate::motion::ToolGeometry> {
+        let offset = self.tools.get(number)?;
+        let radius = offset.radius + offset.radius_wear;
+        Some(crate::motion::ToolGeometry {
+            length: offset.length + offset.length_wear,
+            radius: if self.profile.radius_offsets_are_diameters {
+                radius / 2.0
+            } else {
+                radius
+            },
+        })
+    }
+
     /// The smoothing of the moves to come.
     #[inline(always)]
     pub(crate) fn motion_smoothing(&self) -> Option<crate::motion::Smoothing> {

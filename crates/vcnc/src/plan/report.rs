@@ -93,7 +93,7 @@ impl TimeReport {
     /// Adds one segment with its timing.
     pub fn add(&mut self, segment: &Segment, timing: &Timing) {
         let kind = TimeKind::of(&segment.kind);
-        if let SegmentKind::ToolChange { tool } = segment.kind {
+        if let SegmentKind::ToolChange { tool, .. } = segment.kind {
             self.tool = Some(tool);
         }
         let dt = timing.dt;

@@ -370,3 +370,39 @@ fn fanuc_0m_runs_only_the_last_of_two_m_codes_in_a_block() {
         end M30",
     );
 }
+
+#[test]
+fn a_tool_change_carries_the_offsets_of_the_register_numbered_like_the_tool() {
+    use vcnc::motion::ToolGeometry;
+    use vcnc::{Machine, Options, SegmentKind};
+    let mut machine = Machine::default();
+    machine.tool_offsets.insert(
+        3,
+        vcnc::machine::ToolOffset {
+            number: 3,
+            length: 120.0,
+            length_wear: -0.2,
+            radius: 6.0,
+            radius_wear: -0.05,
+        },
+    );
+    let changes = |machine: &Machine, program: &str| -> Vec<(u32, Option<ToolGeometry>)> {
+        vcnc::interpret_str(program, machine, Options::default())
+            .filter_map(|item| match item.ok()?.kind {
+                SegmentKind::ToolChange { tool, geometry } => Some((tool, geometry)),
+                _ => None,
+            })
+            .collect()
+    };
+    let geometry = |length: f64, radius: f64| Some(ToolGeometry { length, radius });
+    assert_eq!(
+        changes(&machine, "T3 M06\nT9 M06\nM30\n"),
+        [(3, geometry(119.8, 5.95)), (9, None)]
+    );
+    // A register the program rewrote (#2203: the length geometry of H3, FANUC memory C) is read
+    // as it stands at the change.
+    assert_eq!(
+        changes(&machine, "#2203 = 50.\nT3 M06\nM30\n"),
+        [(3, geometry(50.0 - 0.2, 5.95))]
+    );
+}

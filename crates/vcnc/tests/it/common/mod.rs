@@ -111,7 +111,7 @@ pub fn trace_text(segments: &[Segment]) -> String {
             ),
             Dwell { seconds } => format!("dwell {}", num(*seconds)),
             ToolSelect { tool } => format!("select T{tool}"),
-            ToolChange { tool } => format!("change T{tool}"),
+            ToolChange { tool, .. } => format!("change T{tool}"),
             Spindle { state, speed } => format!("spindle {state:?} {}", num(*speed)),
             Coolant { on } => format!("coolant {}", if *on { "on" } else { "off" }),
             Stop { kind } => format!("stop {kind:?}"),
