@@ -5,6 +5,7 @@
 
 mod cmd;
 mod diagnostics;
+mod error;
 mod numbers;
 mod program;
 mod setup;

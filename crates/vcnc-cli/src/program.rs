@@ -3,6 +3,7 @@
 //! threads. This module keeps the machine state file (TOML) and reports what the pipeline
 //! hands back; it never starts a thread or handles a batch itself.
 
+use crate::error::CliError;
 use crate::setup::MachineArgs;
 use std::fs::File;
 use std::io::Write;
@@ -20,7 +21,7 @@ pub(crate) fn open(
     options: Options,
     setup: &MachineArgs,
     layout: Layout,
-) -> Result<Stream, String> {
+) -> Result<Stream, CliError> {
     let mut pipeline = Pipeline::new(machine)
         .options(options)
         .layout(layout)
@@ -28,7 +29,7 @@ pub(crate) fn open(
     if let Some(state) = setup.state_file().map(StateFile::new) {
         pipeline = pipeline.persistent(state.load()?, state);
     }
-    pipeline.open_path(path).map_err(|e| e.to_string())
+    Ok(pipeline.open_path(path)?)
 }
 
 /// A program opened for a command that plans it (`run`, `trace`).
@@ -43,7 +44,7 @@ pub(crate) fn open_planned(
     path: &Path,
     setup: &MachineArgs,
     counts_blocks: bool,
-) -> Result<Planned, String> {
+) -> Result<Planned, CliError> {
     let machine = setup.machine()?;
     let options = setup.options()?;
     let plan_options = setup.plan_options()?;
@@ -79,20 +80,21 @@ impl StateFile {
     }
 
     /// The saved values (none when the file does not exist yet).
-    fn load(&self) -> Result<PersistentVariables, String> {
+    fn load(&self) -> Result<PersistentVariables, CliError> {
         let text = match std::fs::read_to_string(&self.path) {
             Ok(text) => text,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Default::default()),
-            Err(e) => {
-                return Err(format!(
-                    "cannot read state file {}: {e}",
-                    self.path.display()
-                ))
+            Err(source) => {
+                return Err(CliError::ReadState {
+                    path: self.path.clone(),
+                    source,
+                })
             }
         };
-        let table: toml::Table = text
-            .parse()
-            .map_err(|e| format!("state file {}: {e}", self.path.display()))?;
+        let table: toml::Table = text.parse().map_err(|source| CliError::StateSyntax {
+            path: self.path.clone(),
+            source,
+        })?;
         let mut values = PersistentVariables::default();
         if let Some(toml::Value::Table(variables)) = table.get("variables") {
             for (key, value) in variables {

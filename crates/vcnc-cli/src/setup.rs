@@ -1,5 +1,6 @@
 //! Options shared by every command: the machine, the profile, the panel switches.
 
+use crate::error::CliError;
 use clap::Args;
 use std::path::PathBuf;
 use vcnc::plan::PlanOptions;
@@ -50,28 +51,38 @@ pub(crate) struct MachineArgs {
 
 impl MachineArgs {
     /// The machine to run on.
-    pub(crate) fn machine(&self) -> Result<Machine, String> {
+    pub(crate) fn machine(&self) -> Result<Machine, CliError> {
         let machine = match &self.machine {
             Some(path) => {
-                let text = std::fs::read_to_string(path)
-                    .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
-                Machine::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?
+                let text =
+                    std::fs::read_to_string(path).map_err(|source| CliError::ReadMachine {
+                        path: path.clone(),
+                        source,
+                    })?;
+                Machine::from_toml(&text).map_err(|source| CliError::Machine {
+                    path: Some(path.clone()),
+                    source,
+                })?
             }
             None => Machine::default(),
         };
         match self.profile {
-            Some(name) => machine.with_profile(name).map_err(|e| e.to_string()),
+            Some(name) => machine
+                .with_profile(name)
+                .map_err(|source| CliError::Machine { path: None, source }),
             None => Ok(machine),
         }
     }
 
     /// The planner's options (the feed override dial).
-    pub(crate) fn plan_options(&self) -> Result<PlanOptions, String> {
+    pub(crate) fn plan_options(&self) -> Result<PlanOptions, CliError> {
         let percent = self.feed_override;
         if !(percent > 0.0 && percent <= 1000.0) {
-            return Err(format!(
-                "--feed-override {percent}: expected a percentage above 0, at most 1000"
-            ));
+            return Err(CliError::Option {
+                option: "--feed-override",
+                value: percent.to_string(),
+                expected: "expected a percentage above 0, at most 1000",
+            });
         }
         Ok(PlanOptions {
             feed_override: percent / 100.0,
@@ -79,16 +90,24 @@ impl MachineArgs {
     }
 
     /// The panel switches.
-    pub(crate) fn options(&self) -> Result<Options, String> {
+    pub(crate) fn options(&self) -> Result<Options, CliError> {
         let mut options = Options::default();
         for &n in &self.block_skip {
             if !(1..=9).contains(&n) {
-                return Err(format!("--block-skip {n}: switches are 1 to 9"));
+                return Err(CliError::Option {
+                    option: "--block-skip",
+                    value: n.to_string(),
+                    expected: "switches are 1 to 9",
+                });
             }
             options.block_skip[usize::from(n) - 1] = true;
         }
         if self.main_passes == 0 {
-            return Err("--main-passes 0: a program runs at least once".into());
+            return Err(CliError::Option {
+                option: "--main-passes",
+                value: "0".into(),
+                expected: "a program runs at least once",
+            });
         }
         options.limits.main_program_passes = self.main_passes;
         options.limits.jumps = self.max_jumps;

@@ -14,4 +14,4 @@ pub(crate) enum Outcome {
 }
 
 /// A problem that is not an alarm of a program: a missing file, a bad machine file.
-pub(crate) type SetupError = String;
+pub(crate) type SetupError = crate::error::CliError;

@@ -72,24 +72,28 @@ fn write_trace(
         writer.csv_header();
     }
     let mut alarms: Vec<Alarm> = Vec::new();
-    let mut broken_pipe = false;
+    let mut written = Ok(());
     stream.for_each_timed(plan_options, |items, timings| {
         writer.batch(items, timings, args.format, &mut alarms);
         if writer.out.is_full() {
-            if output.write_all(writer.out.as_bytes()).is_err() {
-                broken_pipe = true;
-                return false;
-            }
+            written = output.write_all(writer.out.as_bytes());
             writer.out.clear();
         }
-        true
+        written.is_ok()
     });
-    if !broken_pipe {
-        let _ = output.write_all(writer.out.as_bytes());
-        let _ = output.flush();
+    if written.is_ok() {
+        written = output
+            .write_all(writer.out.as_bytes())
+            .and_then(|()| output.flush());
     }
     crate::program::finish(stream, &args.machine);
-    Ok((alarms, files))
+    match written {
+        // The reader went away (`| head`): it has what it wanted.
+        Err(error) if error.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(SetupError::Output(error))
+        }
+        _ => Ok((alarms, files)),
+    }
 }
 
 /// The key of a JSON field after a previous field: `key!("x")` is `,"x":`.

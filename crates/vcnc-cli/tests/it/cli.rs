@@ -424,3 +424,38 @@ fn a_move_beyond_the_machine_travel_is_an_overtravel_alarm() {
         "only the move inside the travel: {records}"
     );
 }
+
+#[test]
+fn a_trace_that_cannot_be_written_is_an_error_not_a_quiet_end() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return; // Not on this system: nothing to write to that is always full.
+    };
+    let out = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["trace", "--format", "jsonl", &example()])
+        .env("NO_COLOR", "1")
+        .stdout(full)
+        .output()
+        .expect("vcnc runs");
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("cannot write the output"), "{stderr}");
+}
+
+#[test]
+fn a_reader_that_goes_away_ends_the_trace_quietly() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["trace", "--format", "jsonl", &example()])
+        .env("NO_COLOR", "1")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("vcnc runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("vcnc ends");
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
