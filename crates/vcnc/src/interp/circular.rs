@@ -186,7 +186,7 @@ pub(crate) fn plain_arc(
             feed,
         },
         span: cmd.span,
-        sequence: cmd.sequence,
+        sequence: cmd.sequence(),
     }));
     Ok(())
 }

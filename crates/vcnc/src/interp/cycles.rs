@@ -502,7 +502,7 @@ fn store(exec: &Executor, cycle: &mut Cycle, cmd: &Command) -> Result<(), Alarm>
         let rule = exec.profile.cycle_dwell_p.unwrap_or(exec.profile.dwell_p);
         cycle.p = super::auxiliary::p_seconds(rule, p)?;
     }
-    if let Some(f2) = cmd.retract_feed {
+    if let Some(f2) = cmd.retract_feed() {
         // Syntec's retract feed works only in its fast drilling mode (Pr4008 = 1); in the
         // normal mode vcnc runs, the retract stays a rapid. It must still be whole (COR-045).
         if f2.number.value.fract() != 0.0 {

@@ -51,11 +51,11 @@ const GROUP_SLOTS: usize = 19;
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Command {
     pub(crate) span: Span,
-    pub(crate) sequence: Option<u32>,
+    sequence: Option<u32>,
     /// G09 in the block.
-    pub(crate) exact_stop_once: bool,
+    exact_stop_once: bool,
     /// Syntec's `F2=`: a canned cycle's retract feed.
-    pub(crate) retract_feed: Option<Value>,
+    retract_feed: Option<Value>,
     /// Bit i set when address letter `A + i` has its value in `values[i]` (G, M and N are kept
     /// apart).
     letters: u32,
@@ -70,19 +70,20 @@ pub(crate) struct Command {
     groups: [GWord; GROUP_SLOTS],
     m: Vec<Value>,
     /// Warnings found while decoding (the block still runs).
-    pub(crate) warnings: Vec<Alarm>,
+    warnings: Vec<Alarm>,
     /// A subprogram call, return or interrupt code (M98, M99, M97, M198, M96): the macro
     /// layer runs it after the block's other words.
-    pub(crate) subprogram: Option<(MCode, Value)>,
+    subprogram: Option<(MCode, Value)>,
     /// G65 or G66: the block is a macro call; the words from this index on are its arguments
     /// and were not decoded.
-    pub(crate) macro_call: Option<(GWord, usize)>,
+    macro_call: Option<(GWord, usize)>,
     /// True when `subprogram` or `macro_call` is set: one test after every block instead of
     /// two (see [`Command::has_calls`]).
     calls: bool,
     /// True when one of the fields that few blocks set (N, G09, `F2=`, M codes, warnings,
-    /// calls) may hold something: only then does [`Command::reset`] clear
-    /// them (clearing every field for every block cost about 20 instructions).
+    /// calls) may hold something: only then does [`Command::reset`] clear them. Those fields
+    /// are private and every method that writes one sets this, so no field leaks into the
+    /// next block.
     rare: bool,
     /// G codes classified before, kept from block to block (not cleared): a command is decoded
     /// with one profile all its life, the executor's. A small cache indexed by the value
@@ -310,7 +311,6 @@ impl Command {
         if self.rare {
             self.clear_rare();
         }
-        debug_assert!(self.rare_fields_are_clear());
     }
 
     /// Clears the fields few blocks set (see `rare`).
@@ -327,29 +327,61 @@ impl Command {
         self.rare = false;
     }
 
-    /// True when every field of `rare` holds what [`Command::clear_rare`] leaves: a field set
-    /// without `rare` would otherwise leak into the next block.
-    fn rare_fields_are_clear(&self) -> bool {
-        self.rare
-            || (self.sequence.is_none()
-                && !self.exact_stop_once
-                && self.retract_feed.is_none()
-                && self.m.is_empty()
-                && self.warnings.is_empty()
-                && self.subprogram.is_none()
-                && self.macro_call.is_none()
-                && !self.calls)
-    }
-
     /// True when the block calls or returns: a subprogram code (M98, M99 ...) or a macro call
     /// (G65, G66).
     #[inline(always)]
     pub(crate) fn has_calls(&self) -> bool {
-        debug_assert_eq!(
-            self.calls,
-            self.subprogram.is_some() || self.macro_call.is_some()
-        );
         self.calls
+    }
+
+    /// The block's sequence number (N), if any.
+    #[inline(always)]
+    pub(crate) fn sequence(&self) -> Option<u32> {
+        self.sequence
+    }
+
+    /// Sets the sequence number the block's segments carry.
+    pub(crate) fn set_sequence(&mut self, sequence: Option<u32>) {
+        self.sequence = sequence;
+        self.rare = true;
+    }
+
+    /// G09 in the block.
+    #[inline(always)]
+    pub(crate) fn exact_stop_once(&self) -> bool {
+        self.exact_stop_once
+    }
+
+    /// Syntec's `F2=`: a canned cycle's retract feed.
+    pub(crate) fn retract_feed(&self) -> Option<Value> {
+        self.retract_feed
+    }
+
+    /// The block's subprogram call, return or interrupt code, if any.
+    pub(crate) fn subprogram(&self) -> Option<(MCode, Value)> {
+        self.subprogram
+    }
+
+    /// The block's G65 or G66 call and the index of its first argument word, if any.
+    pub(crate) fn macro_call(&self) -> Option<(GWord, usize)> {
+        self.macro_call
+    }
+
+    /// True when decoding found warnings (the block still runs).
+    #[inline(always)]
+    pub(crate) fn has_warnings(&self) -> bool {
+        !self.warnings.is_empty()
+    }
+
+    /// The warnings decoding found, handed out once.
+    pub(crate) fn take_warnings(&mut self) -> std::vec::Drain<'_, Alarm> {
+        self.warnings.drain(..)
+    }
+
+    /// Records a warning about the block.
+    fn warn(&mut self, warning: Alarm) {
+        self.warnings.push(warning);
+        self.rare = true;
     }
 
     /// Records the block's G65 or G66 `call`, whose arguments are the words from `arguments` on.
@@ -635,7 +667,7 @@ fn decode_other(
             }
             if out.m.len() >= profile.m_codes_per_block as usize && !out.m.is_empty() {
                 let dropped = out.m.remove(0);
-                out.warnings.push(
+                out.warn(
                     Alarm::warning(
                         AlarmCode::WordNotAllowed,
                         dropped.span,
@@ -651,8 +683,7 @@ fn decode_other(
         }
         b'N' => {
             whole(word)?;
-            out.rare = true;
-            out.sequence = u32::try_from(word.number.value as i64).ok();
+            out.set_sequence(u32::try_from(word.number.value as i64).ok());
         }
         // Numbers that must be whole: program number, tool, offset numbers, repeat count.
         b'O' | b'T' | b'H' | b'D' | b'L' => {
@@ -665,8 +696,8 @@ fn decode_other(
         b'I' | b'J' | b'K' | b'R' | b'P' | b'Q' | b'E' => out.set(word, value)?,
         b'F' | b'S' if word.index == 0 => out.set(word, value)?,
         b'F' if word.index == 2 => {
-            out.rare = true;
             out.retract_feed = Some(value);
+            out.rare = true;
         }
         b'F' | b'S' => {
             return Err(Alarm::not_supported(
@@ -796,7 +827,7 @@ fn same_group(
                 .tenths()
                 .map_or_else(|| format!("G{}", word.number.value), g_name);
             let message = format!("two G codes of one modal group in a block: {name} wins");
-            out.warnings.push(
+            out.warn(
                 Alarm::warning(AlarmCode::SameGroupGCodes, word.span, message)
                     .with_label(previous.span, "overridden by the later code"),
             );

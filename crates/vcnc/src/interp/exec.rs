@@ -193,7 +193,7 @@ impl Executor {
         items.push(Ok(crate::motion::Segment {
             kind: SegmentKind::Line { motion, feed },
             span: cmd.span,
-            sequence: cmd.sequence,
+            sequence: cmd.sequence(),
         }));
         Ok(())
     }
@@ -708,7 +708,7 @@ impl Executor {
     /// G09 in the block, unless Syntec's high-speed mode (G05) is on, where it has no effect
     /// (spec 1.8, restriction 6).
     pub(crate) fn exact_stop_once(&self, cmd: &Command) -> bool {
-        cmd.exact_stop_once && self.modal.smoothing.high_speed.is_none()
+        cmd.exact_stop_once() && self.modal.smoothing.high_speed.is_none()
     }
 
     /// The feed of a cutting move in the mode in force.

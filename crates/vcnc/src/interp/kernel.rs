@@ -77,7 +77,7 @@ impl Kernel {
     /// The block `origin` becomes the one the next segments and alarms belong to.
     fn enter(&mut self, origin: Origin) {
         self.block.span = origin.span;
-        self.block.sequence = origin.sequence;
+        self.block.set_sequence(origin.sequence);
     }
 
     /// Machine coordinates of a program-coordinate target; axes without a value stay where they

@@ -120,7 +120,7 @@ impl Output {
             None if self.polar_interpolation.is_none() => self.items.push(Ok(Segment {
                 kind,
                 span: cmd.span,
-                sequence: cmd.sequence,
+                sequence: cmd.sequence(),
             })),
             _ => self.push_compensated(cmd, kind),
         }
@@ -143,7 +143,7 @@ impl Output {
             Some(items) => items.push(Ok(Segment {
                 kind: kind(),
                 span: cmd.span,
-                sequence: cmd.sequence,
+                sequence: cmd.sequence(),
             })),
             None => self.push_compensated(cmd, kind()),
         }
@@ -156,7 +156,7 @@ impl Output {
         let segment = Segment {
             kind,
             span: cmd.span,
-            sequence: cmd.sequence,
+            sequence: cmd.sequence(),
         };
         let (items, held) = queue(
             &mut self.items,
@@ -800,7 +800,7 @@ impl Core {
             self.exec.plain_letters,
             &mut self.command,
         );
-        if !self.command.warnings.is_empty() {
+        if self.command.has_warnings() {
             self.queue_decode_warnings();
         }
         if let Err(alarm) = decoded {
@@ -844,7 +844,7 @@ impl Core {
     /// an empty drain still cost about ten instructions a block).
     #[cold]
     fn queue_decode_warnings(&mut self) {
-        for warning in self.command.warnings.drain(..) {
+        for warning in self.command.take_warnings() {
             self.out.push_warning(warning);
         }
     }

@@ -859,7 +859,7 @@ impl Core {
         {
             self.macros.modal_call = None;
         }
-        if let Some((code, word)) = self.command.subprogram {
+        if let Some((code, word)) = self.command.subprogram() {
             return match code {
                 MCode::SubprogramCall | MCode::ExternalSubprogramCall => {
                     self.subprogram_call(word.span, main_text)
@@ -875,7 +875,7 @@ impl Core {
                 _ => Ok(()),
             };
         }
-        if let Some((g, first_argument)) = self.command.macro_call {
+        if let Some((g, first_argument)) = self.command.macro_call() {
             let (number, repeats, arguments) =
                 self.macro_arguments(block, first_argument, g.span)?;
             if g.code == GCode::MacroCall {
