@@ -3,7 +3,7 @@
 //! arc with R or I J) at 40,000 and 400,000 motion blocks.
 //!
 //! - `parse/N`: the text split into lines and each line read into blocks of words, on one
-//!   thread, as `vcnc::syntax::source::ParsedLines` does for the interpreter (and the parser
+//!   thread, as `vcnc::syntax::blocks::ParsedLines` does for the interpreter (and the parser
 //!   thread of `vcnc trace` does for each batch). No interpreting: this is the front end's cost
 //!   alone, the part of the pipeline that runs on the parser thread.
 //!
@@ -13,9 +13,9 @@
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::time::Duration;
+use vcnc::syntax::blocks::{BlockSource, ParsedLines};
 use vcnc::syntax::iso::SyntaxOptions;
 use vcnc::syntax::lines::TextLines;
-use vcnc::syntax::source::{BlockSource, ParsedLines};
 use vcnc::FileId;
 
 #[path = "support/cam_program.rs"]

@@ -49,8 +49,8 @@ pub use pipeline::Pipeline;
 pub use profile::{Profile, ProfileName};
 pub use source::{FileId, Span};
 
+use syntax::blocks::ParsedLines;
 use syntax::lines::TextLines;
-use syntax::source::ParsedLines;
 
 /// The README's Rust examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -11,9 +11,9 @@ use crate::interp::{
 };
 use crate::machine::Machine;
 use crate::source::FileId;
+use crate::syntax::blocks::{BackgroundParser, BlockSource, ParsedLines};
 use crate::syntax::iso::SyntaxOptions;
 use crate::syntax::lines::ReaderLines;
-use crate::syntax::source::{BackgroundParser, BlockSource, ParsedLines};
 use crate::syntax::{detect_dialect, Block, Dialect};
 use std::fs::File;
 use std::io::{self, Read};

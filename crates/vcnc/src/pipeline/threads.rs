@@ -19,7 +19,7 @@ use crate::checks::{ReleasedCheck, TravelCheck};
 use crate::interp::{FrontEnd, Interpreter, PersistentVariables};
 use crate::machine::Machine;
 use crate::plan::{PlanOptions, Timeline, Timing};
-use crate::syntax::source::BlockSource;
+use crate::syntax::blocks::BlockSource;
 use std::collections::VecDeque;
 use std::io;
 use std::sync::atomic::{AtomicU64, Ordering};

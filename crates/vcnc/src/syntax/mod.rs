@@ -6,10 +6,10 @@
 //! Front ends never fail: a block that cannot be read carries the alarm, and reading goes on with
 //! the next block.
 
+pub mod blocks;
 pub mod expr;
 pub mod iso;
 pub mod lines;
-pub mod source;
 
 use crate::alarm::Alarm;
 use crate::source::Span;

@@ -9,7 +9,7 @@ use vcnc::checks::TravelLimits;
 use vcnc::interp::{DirectoryLibrary, PersistentVariables};
 use vcnc::pipeline::{Item, Layout, Parsing, Pipeline, Stopping, Stream, Waiting};
 use vcnc::plan::{PlanOptions, Planner, Timing};
-use vcnc::syntax::source::BlockSource;
+use vcnc::syntax::blocks::BlockSource;
 use vcnc::{interpret_str, AlarmCode, FileId, Interpreter, Machine, Options};
 
 /// An item with its timing (none for an alarm: the planner passes alarms untouched).

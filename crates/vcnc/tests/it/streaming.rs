@@ -6,8 +6,8 @@
 
 use std::path::PathBuf;
 use vcnc::interp::DirectoryLibrary;
+use vcnc::syntax::blocks::BackgroundParser;
 use vcnc::syntax::lines::ReaderLines;
-use vcnc::syntax::source::BackgroundParser;
 use vcnc::{interpret_str, Alarm, FileId, Interpreter, Machine, Options, Segment};
 
 /// A file of the test's own under the temporary directory, removed when dropped.
