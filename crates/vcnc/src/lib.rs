@@ -10,15 +10,19 @@
 //! use vcnc::{interpret_str, Machine, Options, SegmentKind};
 //!
 //! let machine = Machine::default();
-//! let program = "G90 G21 G17\nG0 X10. Y5.\nG1 Z-1. F200.\nG2 X20. Y5. R5.\nM30\n";
-//! let mut arcs = 0;
+//! // Two motion codes in one block: the last wins with a warning, and the run goes on.
+//! let program = "G90 G21 G17\nG0 X10. Y5.\nG0 G1 Z-1. F200.\nG2 X20. Y5. R5.\nM30\n";
+//! let (mut arcs, mut warnings) = (0, 0);
 //! for item in interpret_str(program, &machine, Options::default()) {
-//!     let segment = item.expect("this program has no alarm");
-//!     if let SegmentKind::Arc { .. } = segment.kind {
-//!         arcs += 1;
+//!     match item {
+//!         Ok(segment) if matches!(segment.kind, SegmentKind::Arc { .. }) => arcs += 1,
+//!         Ok(_) => {}
+//!         // A warning is an item like any other; an error is the stream's last item.
+//!         Err(alarm) if alarm.is_error() => panic!("the program stopped: {alarm:?}"),
+//!         Err(_warning) => warnings += 1,
 //!     }
 //! }
-//! assert_eq!(arcs, 1);
+//! assert_eq!((arcs, warnings), (1, 1));
 //! ```
 //!
 //! The pipeline streams: the interpreter pulls one line at a time from a
