@@ -33,8 +33,7 @@ pub struct TravelCheck {
     limits: Limits,
     stopped: bool,
     /// The machine has X, Y and Z and no other axis: a move's other three coordinates have no
-    /// travel to leave, and only three are compared (about 20 instructions a move less on the
-    /// consumer's thread).
+    /// travel to leave, and only three are compared.
     xyz_only: bool,
 }
 

@@ -631,7 +631,7 @@ pub(crate) fn decode(
 /// # Errors
 /// The word's alarm (see [`decode`]).
 // Out of line: inlined, the loop over the words kept the addresses these rare arms use in
-// registers or on the stack, set up for every block (about 25 instructions).
+// registers or on the stack, set up for every block.
 #[inline(never)]
 fn decode_other(
     word: &Word,
@@ -734,7 +734,7 @@ fn decode_g(
     // A CAM program writes the same few motion codes block after block: the codes read are
     // remembered by their values, and a value is classified again only when its entry holds
     // another. Remembering the last one alone, every switch between G01 and G02 or G03
-    // classified again (16 instructions a block on the CAM benchmark).
+    // classified again.
     let bits = word.number.value.to_bits();
     let entry = out.last_g.get_mut(LastG::slot(bits));
     let (code, group) = match entry {

@@ -407,8 +407,8 @@ impl Executor {
     fn apply_modal(&mut self, cmd: &Command) -> Result<(), Alarm> {
         if cmd.only_motion_codes() {
             // The block of a CAM program: its motion code in force (the last one written), if
-            // any, is all there is to apply. Through the loop below, with its tests for the
-            // codes that need more than the modal state, it cost about 20 instructions more.
+            // any, is all there is to apply, without the loop below and its tests for the codes
+            // that need more than the modal state.
             if let Some(g) = cmd.group(Group::Motion) {
                 self.modal.apply(g.code);
             }
@@ -618,8 +618,7 @@ impl Executor {
 
     /// The machine position the block's axis words name (with G45-G48 and G16 applied); the
     /// length vector follows the compensation when the block moves Z or changed it.
-    // Inlined, like `move_to`: out of line, the target and the move were copied between frames
-    // (80 more instructions a block on the CAM benchmark).
+    // Inlined, like `move_to`: out of line, the target and the move were copied between frames.
     #[inline(always)]
     pub(crate) fn block_target(
         &mut self,
@@ -715,7 +714,7 @@ impl Executor {
     ///
     /// # Errors
     /// [`AlarmCode::NoFeedRate`] when no F is in force (FANUC alarm 011).
-    // Inlined: out of line, the feed came back through memory (30 instructions a block).
+    // Inlined: out of line, the feed came back through memory.
     #[inline(always)]
     pub(crate) fn cutting_feed(&self, cmd: &Command) -> Result<Feed, Alarm> {
         let f = match self.feed {
@@ -765,7 +764,7 @@ pub(crate) const POSITION_LIMIT: f64 = 1.0e9;
 ///
 /// # Errors
 /// [`AlarmCode::ValueOutOfRange`] when a coordinate is not finite or beyond [`POSITION_LIMIT`].
-// Inlined, with the alarm out of line: out of line, every move paid a call (30 instructions).
+// Inlined, with the alarm out of line: out of line, every move paid a call.
 #[inline(always)]
 pub(crate) fn check_position(position: &[f64], cmd: &Command) -> Result<(), Alarm> {
     // One test for all axes, without a branch per axis: this runs for every move.

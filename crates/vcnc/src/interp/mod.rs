@@ -128,7 +128,7 @@ impl Output {
 
     /// The queue itself when neither cutter compensation nor polar coordinate interpolation is
     /// on: a segment pushed there is built in place (built before the test, as for [`Output::push`],
-    /// it was built on the stack and copied over, about 30 instructions).
+    /// it was built on the stack and copied over).
     #[inline(always)]
     pub(crate) fn direct(&mut self) -> Option<&mut Vec<Result<Segment, Alarm>>> {
         (self.comp.is_none() && self.polar_interpolation.is_none()).then_some(&mut self.items)
@@ -841,7 +841,7 @@ impl Core {
     }
 
     /// Queues the warnings decoding the block found (rare: kept out of the common path, where
-    /// an empty drain still cost about ten instructions a block).
+    /// even an empty drain had a cost).
     #[cold]
     fn queue_decode_warnings(&mut self) {
         for warning in self.command.take_warnings() {

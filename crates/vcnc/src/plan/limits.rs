@@ -352,7 +352,7 @@ fn bounded((mut limits, mut ends): (MotionLimits, Ends)) -> (MotionLimits, Ends)
 
 /// The limits of a straight move, a rapid when `feed` is None.
 // Inlined into the timeline's push: the limits and ends are built where they are kept instead
-// of being returned through calls (about 60 instructions a segment, callgrind).
+// of being returned through calls.
 #[inline(always)]
 pub(crate) fn line(
     motion: &Move,

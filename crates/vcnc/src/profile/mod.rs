@@ -454,7 +454,7 @@ impl Profile {
         overrides: &toml::Table,
     ) -> Result<Profile, toml::de::Error> {
         // Every run opens a machine, most without overrides: the profile is then read once,
-        // not read, merged, written out and read again (about half the start-up's instructions).
+        // not read, merged, written out and read again (half the start-up's work).
         if overrides.is_empty() {
             return Ok(Profile::builtin(name));
         }
