@@ -34,6 +34,7 @@
 #![warn(missing_docs)]
 
 pub mod alarm;
+pub mod axis;
 pub mod checks;
 pub mod interp;
 pub mod machine;

@@ -4,7 +4,7 @@
 //! it comes from. Consumers (trace output, planner, checks, simulation) need nothing else: no
 //! segment refers back to syntax, modal state or the profile.
 
-use crate::machine::AXES;
+use crate::axis::AXES;
 use crate::source::Span;
 
 /// A position in machine coordinates: X Y Z in mm, A B C in degrees.
