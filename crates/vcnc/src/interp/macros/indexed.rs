@@ -427,11 +427,10 @@ impl IndexedFile {
     /// # Errors
     /// Reading the file again failed.
     pub(crate) fn program_text(&self, number: u32) -> io::Result<Option<(Vec<u8>, u64, u32)>> {
-        let Some(i) = self.headers.iter().position(|h| h.0 == number) else {
+        let extent = super::programs::program_extent(&self.headers, number, self.length);
+        let Some((start, line, end)) = extent else {
             return Ok(None);
         };
-        let (_, start, line) = self.headers[i];
-        let end = self.headers.get(i + 1).map_or(self.length, |h| h.1);
         let text = self.lock().bytes.read(start, end)?;
         Ok(Some((text, start, line)))
     }

@@ -650,11 +650,10 @@ impl Core {
         match &self.macros.file {
             None => Ok(None),
             Some(MainFile::Whole(file)) => {
-                let Some(i) = file.headers.iter().position(|h| h.0 == number) else {
+                let extent = programs::program_extent(&file.headers, number, file.text.len());
+                let Some((offset, line, end)) = extent else {
                     return Ok(None);
                 };
-                let (_, offset, line) = file.headers[i];
-                let end = file.headers.get(i + 1).map_or(file.text.len(), |h| h.1);
                 Ok(Some(StoredProgram::parse(
                     &file.text,
                     (offset, line, end),
@@ -699,14 +698,8 @@ impl Core {
             return Err(too_large(number, span));
         }
         let headers = programs::program_headers(&text.text, &syntax);
-        let (offset, line, end) = match headers.iter().position(|h| h.0 == number) {
-            Some(i) => (
-                headers[i].1,
-                headers[i].2,
-                headers.get(i + 1).map_or(text.text.len(), |h| h.1),
-            ),
-            None => (0, 1, text.text.len()),
-        };
+        let (offset, line, end) = programs::program_extent(&headers, number, text.text.len())
+            .unwrap_or((0, 1, text.text.len()));
         Ok(Some(StoredProgram::parse(
             &text.text,
             (offset, line, end),

@@ -411,6 +411,18 @@ pub(crate) fn sequence_number(block: &Block) -> Option<u32> {
     word.number.whole().and_then(|n| u32::try_from(n).ok())
 }
 
+/// Where program `number` lies among the `headers` (number, start, line) of a text of `length`:
+/// its start, its first line, and its end (the next program's header, or the end of the text).
+pub(crate) fn program_extent<T: Copy>(
+    headers: &[(u32, T, u32)],
+    number: u32,
+    length: T,
+) -> Option<(T, u32, T)> {
+    let i = headers.iter().position(|h| h.0 == number)?;
+    let (_, start, line) = headers[i];
+    Some((start, line, headers.get(i + 1).map_or(length, |h| h.1)))
+}
+
 /// Where each program of a file starts: (number, byte offset, line number) of each `O1234` or
 /// `:1234` header line. Scans bytes only (a large file is not parsed for this).
 pub(crate) fn program_headers(text: &[u8], syntax: &SyntaxOptions) -> Vec<(u32, usize, u32)> {
