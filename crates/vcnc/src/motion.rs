@@ -73,6 +73,14 @@ impl ArcDirection {
             ArcDirection::CounterClockwise => "ccw",
         }
     }
+
+    /// The other way round.
+    pub fn reversed(self) -> ArcDirection {
+        match self {
+            ArcDirection::Clockwise => ArcDirection::CounterClockwise,
+            ArcDirection::CounterClockwise => ArcDirection::Clockwise,
+        }
+    }
 }
 
 /// How the feed of a cutting move was programmed.

@@ -27,14 +27,7 @@ pub(crate) fn arc(
     let (a, b, _) = plane.axes();
     // Borrowed: a copy of the scaling (two arrays of six) would cost every arc.
     let scaling = exec.frames.scaling();
-    // A mirror of one plane axis (or a negative factor) reverses the arc.
-    let direction = match scaling {
-        Some(s) if s.reverses((a, b)) => match direction {
-            ArcDirection::Clockwise => ArcDirection::CounterClockwise,
-            ArcDirection::CounterClockwise => ArcDirection::Clockwise,
-        },
-        _ => direction,
-    };
+    let direction = exec.frames.arc_direction((a, b), direction);
     let position_offset = super::position_offset::factor(cmd);
     let spec = if let Some(r) = cmd.r() {
         if let Some(factor) = position_offset {
@@ -109,18 +102,49 @@ pub(crate) fn arc(
     if let Some(factor) = position_offset {
         super::position_offset::check_quarter(factor, start, end, center_plane)?;
     }
+    let arc = ArcTo {
+        target,
+        center: center_plane,
+        direction,
+        feed,
+    };
+    queue_arc(exec, cmd, arc, out)
+}
+
+/// An arc in the plane in force whose centre is known, machine coordinates.
+pub(crate) struct ArcTo {
+    /// The end point.
+    pub(crate) target: [f64; AXES],
+    /// The centre's two plane coordinates.
+    pub(crate) center: (f64, f64),
+    pub(crate) direction: ArcDirection,
+    pub(crate) feed: Feed,
+}
+
+/// Moves along `arc` from the current position and queues it; the centre's coordinate off the
+/// plane is the start's.
+///
+/// # Errors
+/// A centre or end beyond the control's range.
+pub(crate) fn queue_arc(
+    exec: &mut Executor,
+    cmd: &Command,
+    arc: ArcTo,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let plane = exec.modal.plane;
+    let (a, b, _) = plane.axes();
     let mut center = exec.position;
-    center[a] = center_plane.0;
-    center[b] = center_plane.1;
+    (center[a], center[b]) = arc.center;
     super::exec::check_position(&center, cmd)?;
-    let motion = exec.move_to(target, cmd)?;
+    let motion = exec.move_to(arc.target, cmd)?;
     out.push_with(cmd, || SegmentKind::Arc {
         motion,
         center: MachinePos(center),
-        direction,
+        direction: arc.direction,
         plane,
         extra_turns: 0,
-        feed,
+        feed: arc.feed,
     });
     Ok(())
 }

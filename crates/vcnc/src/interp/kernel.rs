@@ -11,8 +11,9 @@
 //! belongs to by an [`Origin`].
 
 use super::arc::{arc_center, in_plane, ArcSpec};
+use super::circular::{queue_arc, ArcTo};
 use super::decode::Command;
-use super::exec::{check_position, Executor};
+use super::exec::Executor;
 use super::modal::FeedMode;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
@@ -127,6 +128,7 @@ impl Kernel {
         let feed = self.exec.cutting_feed(&self.block)?;
         let plane = self.exec.modal.plane;
         let (a, b, _) = plane.axes();
+        let direction = self.exec.frames.arc_direction((a, b), direction);
         let mut center_point = self.exec.program_position();
         (center_point[a], center_point[b]) = center;
         let length = self.exec.frames.length_vector();
@@ -138,23 +140,14 @@ impl Kernel {
             span: origin.span,
         };
         let tolerance = self.exec.profile.arc_radius_tolerance;
-        let (ca, cb) = arc_center(start, in_plane(plane, &to), spec, direction, tolerance)?;
-        let mut center = self.exec.position;
-        (center[a], center[b]) = (ca, cb);
-        check_position(&center, &self.block)?;
-        let motion = self.exec.move_to(to, &self.block)?;
-        self.out.push(
-            &self.block,
-            SegmentKind::Arc {
-                motion,
-                center: MachinePos(center),
-                direction,
-                plane,
-                extra_turns: 0,
-                feed,
-            },
-        );
-        Ok(())
+        let center = arc_center(start, in_plane(plane, &to), spec, direction, tolerance)?;
+        let arc = ArcTo {
+            target: to,
+            center,
+            direction,
+            feed,
+        };
+        queue_arc(&mut self.exec, &self.block, arc, &mut self.out)
     }
 
     /// A dwell of `seconds`.

@@ -29,6 +29,7 @@ mod transform;
 pub(crate) use transform::{sin_cos_degrees, Frame, FrameSlot, Rotation, Scaling, Transform};
 
 use crate::machine::{Machine, WorkOffsetId, AXES};
+use crate::motion::ArcDirection;
 use std::collections::BTreeMap;
 
 /// The coordinate chain and the offsets that move the program's zero.
@@ -120,6 +121,19 @@ impl Frames {
         match self.frame(FrameSlot::Scaling) {
             Some(Transform::Scale(scaling)) => Some(scaling),
             _ => None,
+        }
+    }
+
+    /// The direction on the machine of an arc programmed `direction` in the plane of axes
+    /// `(a, b)`: a mirror of one plane axis (or a negative factor) turns it the other way.
+    pub(crate) fn arc_direction(
+        &self,
+        (a, b): (usize, usize),
+        direction: ArcDirection,
+    ) -> ArcDirection {
+        match self.scaling() {
+            Some(scaling) if scaling.reverses((a, b)) => direction.reversed(),
+            _ => direction,
         }
     }
 
