@@ -44,7 +44,7 @@ impl Origin {
 /// The machine state every dialect shares, and the queue of the stream it produces.
 pub struct Kernel {
     exec: Executor,
-    pub(super) out: Output,
+    out: Output,
     /// The block of the operation at hand, in the form the executor's functions take it.
     block: Command,
 }
