@@ -11,7 +11,7 @@ use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Axis;
 use crate::motion::{EndKind, SegmentKind, SpindleState, StopKind};
-use crate::profile::{classify_m, DwellP, MCode, MLookup};
+use crate::profile::{classify_m, DwellP, MCode, MLookup, Profile};
 
 /// S and T.
 ///
@@ -30,31 +30,22 @@ pub(crate) fn speed_and_tool(
                 "spindle speed cannot be negative",
             ));
         }
-        exec.speed = s.number.value;
-        let running = matches!(
-            exec.spindle,
-            SpindleState::Clockwise | SpindleState::CounterClockwise
-        );
+        exec.spindle.set_speed(s.number.value);
+        let running = exec.spindle.running();
         let starts_here = cmd
             .m_codes()
             .iter()
             .any(|m| matches!(m.number.value as u32, 3 | 4));
         if running && !starts_here && exec.modal.spindle_mode == SpindleMode::Rpm {
-            out.push(
-                cmd,
-                SegmentKind::Spindle {
-                    state: exec.spindle,
-                    speed: exec.speed,
-                },
-            );
+            out.push(cmd, exec.spindle.event());
         }
     }
     if let Some(t) = cmd.t() {
-        exec.selected_tool = t.number.value as u32;
+        exec.tools.select(t.number.value as u32);
         out.push(
             cmd,
             SegmentKind::ToolSelect {
-                tool: exec.selected_tool,
+                tool: exec.tools.selected(),
             },
         );
     }
@@ -72,7 +63,7 @@ pub(crate) fn before_motion(
 ) -> Result<(), Alarm> {
     for m in cmd.m_codes() {
         let code = m.number.value as u32;
-        let kind = match classify_m(code, &exec.profile) {
+        let kind = match classify_m(code, exec.setup.profile()) {
             MLookup::NotSupported(issue) => {
                 return Err(Alarm::not_supported(
                     m.span,
@@ -93,15 +84,16 @@ pub(crate) fn before_motion(
                 | MCode::LocalSubprogramCall
                 | MCode::InterruptOn
                 | MCode::InterruptOff => continue,
-                MCode::SpindleClockwise => spindle(exec, SpindleState::Clockwise),
-                MCode::SpindleCounterClockwise => spindle(exec, SpindleState::CounterClockwise),
-                MCode::SpindleStop => spindle(exec, SpindleState::Stopped),
-                MCode::SpindleOrientation => spindle(exec, SpindleState::Oriented),
+                MCode::SpindleClockwise => exec.spindle.turn(SpindleState::Clockwise),
+                MCode::SpindleCounterClockwise => exec.spindle.turn(SpindleState::CounterClockwise),
+                MCode::SpindleStop => exec.spindle.turn(SpindleState::Stopped),
+                MCode::SpindleOrientation => exec.spindle.turn(SpindleState::Oriented),
                 MCode::ToolChange => {
-                    exec.tool_in_spindle = exec.selected_tool;
+                    let tool = exec.tools.change();
+                    let diameters = exec.setup.profile().radius_offsets_are_diameters;
                     SegmentKind::ToolChange {
-                        tool: exec.selected_tool,
-                        geometry: exec.tool_geometry(exec.selected_tool),
+                        tool,
+                        geometry: exec.tools.geometry(tool, diameters),
                     }
                 }
                 MCode::CoolantOn => SegmentKind::Coolant { on: true },
@@ -113,25 +105,17 @@ pub(crate) fn before_motion(
     Ok(())
 }
 
-fn spindle(exec: &mut Executor, state: SpindleState) -> SegmentKind {
-    exec.spindle = state;
-    SegmentKind::Spindle {
-        state,
-        speed: exec.speed,
-    }
-}
-
 /// M00, M01, M02, M30 after the motion.
 ///
 /// # Errors
 /// None yet.
 pub(crate) fn after_motion(
-    exec: &mut Executor,
+    profile: &Profile,
     cmd: &Command,
     out: &mut Output,
 ) -> Result<Flow, Alarm> {
     for m in cmd.m_codes() {
-        match classify_m(m.number.value as u32, &exec.profile) {
+        match classify_m(m.number.value as u32, profile) {
             MLookup::Known(MCode::ProgramStop) => stop(cmd, StopKind::Program, out),
             MLookup::Known(MCode::OptionalStop) => stop(cmd, StopKind::Optional, out),
             MLookup::Known(MCode::ProgramEnd) => return Ok(end_program(cmd, EndKind::M02, out)),
@@ -156,15 +140,18 @@ pub(crate) fn dwell(
     out: &mut Output,
 ) -> Result<(), Alarm> {
     let seconds = if let Some(p) = cmd.p() {
-        p_seconds(exec.profile.dwell_p, p)?
+        p_seconds(exec.setup.profile().dwell_p, p)?
     } else if let Some(x) = cmd.axis(Axis::X.index()) {
         let n = x.number;
-        if exec.profile.dwell_x_before_g04_is_increments && x.order < g04_order && n.decimal_point {
+        if exec.setup.profile().dwell_x_before_g04_is_increments
+            && x.order < g04_order
+            && n.decimal_point
+        {
             // FANUC 0M (spec A.8): the X word was converted as a distance before G04 was read, so
             // its count of least increments becomes milliseconds.
             let increment = match exec.modal.units {
-                Units::Millimetres => exec.profile.increment_mm,
-                Units::Inches => exec.profile.increment_inch,
+                Units::Millimetres => exec.setup.profile().increment_mm,
+                Units::Inches => exec.setup.profile().increment_inch,
             };
             (n.value / increment).round() / 1000.0
         } else if n.decimal_point {

@@ -28,7 +28,7 @@ pub(crate) fn run(
         refuse("circle cutting needs D, the offset number")
             .with_help("Mitsubishi program error P170")
     })?;
-    let number = exec.offset_number(d, 'D')?;
+    let number = exec.setup.offset_number(d, 'D')?;
     let offset = exec.tools.radius(number);
     let r = exec.length(&i).abs() - offset;
     if r <= 0.0 {

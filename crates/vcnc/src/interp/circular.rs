@@ -56,7 +56,7 @@ pub(crate) fn arc(
             cb.map_or(0.0, |v| exec.length(&v)),
         );
         if let Some(factor) = position_offset {
-            offset = super::position_offset::centre(exec, factor, offset);
+            offset = super::position_offset::centre(&exec.tools, factor, offset);
         }
         if let Some(scaling) = scaling {
             offset = scaling.arc_vector((a, b), offset);
@@ -71,7 +71,7 @@ pub(crate) fn arc(
         ArcSpec::Center { offset, span }
     };
     let feed = exec.cutting_feed(cmd)?;
-    if let (Some(turns), true) = (cmd.l(), exec.profile.arc_l_is_spiral) {
+    if let (Some(turns), true) = (cmd.l(), exec.setup.profile().arc_l_is_spiral) {
         return spiral(exec, cmd, spec, turns, direction, target, feed, out);
     }
     let start = in_plane(plane, &exec.position);
@@ -97,7 +97,7 @@ pub(crate) fn arc(
         end,
         spec,
         direction,
-        exec.profile.arc_radius_tolerance,
+        exec.setup.profile().arc_radius_tolerance,
     )?;
     if let Some(factor) = position_offset {
         super::position_offset::check_quarter(factor, start, end, center_plane)?;
@@ -188,7 +188,7 @@ pub(crate) fn plain_arc(
     };
     let start = (exec.position[0], exec.position[1]);
     let end = (target[0], target[1]);
-    let tolerance = exec.profile.arc_radius_tolerance;
+    let tolerance = exec.setup.profile().arc_radius_tolerance;
     let Some((x, y)) = clean_arc_center(start, end, spec, direction, tolerance) else {
         return arc(exec, cmd, direction, target, out);
     };

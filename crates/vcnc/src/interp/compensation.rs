@@ -5,11 +5,12 @@ use super::comp::geometry::{Side, V2};
 use super::comp::Compensator;
 use super::decode::Command;
 use super::exec::Executor;
+use super::frames::Frames;
 use super::modal::{FeedMode, MotionMode};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::motion::{MachinePos, Move, SegmentKind};
-use crate::profile::{GCode, Group};
+use crate::motion::{MachinePos, Move, Plane, SegmentKind};
+use crate::profile::{GCode, Group, Profile};
 
 /// Before the block's motion: D, G41/G42/G40 of the block, and the codes that cancel
 /// compensation for one block.
@@ -33,18 +34,19 @@ pub(crate) fn before_motion(
     let d = cmd.word(b'D').filter(|_| !circle);
     let number = match d {
         Some(d) => Some((d, 'D')),
-        None if h_names_radius_offset(exec, cmd) => cmd.h().map(|h| (h, 'H')),
+        None if h_names_radius_offset(exec.setup.profile(), cmd) => cmd.h().map(|h| (h, 'H')),
         None => None,
     };
     if let Some((word, letter)) = number {
-        exec.radius_offset_number = exec.offset_number(word, letter)?;
+        exec.tools
+            .select_radius(exec.setup.offset_number(word, letter)?);
         if let Some(comp) = out.comp.as_mut() {
             let left = comp.left();
             change(exec, comp, left);
         }
     }
     if let Some(comp) = out.comp.as_mut() {
-        if comp.reversed() != reversed(exec) {
+        if comp.reversed() != reversed(&exec.frames, exec.modal.plane) {
             // G51.1 or G50.1 (or a negative G51 factor) in offset mode: while one plane axis is
             // mirrored G41 and G42 act the other way (spec 1.29), so the side changes from the
             // next element on, as if the mirror had come before G41/G42.
@@ -94,9 +96,9 @@ pub(crate) fn before_motion(
                         (a, b),
                         &exec.position,
                         left,
-                        exec.profile.cutter_comp_look_ahead,
+                        exec.setup.profile().cutter_comp_look_ahead,
                     );
-                    comp.set_reversed(reversed(exec));
+                    comp.set_reversed(reversed(&exec.frames, exec.modal.plane));
                     out.comp = Some(comp);
                 }
                 Some(comp) => change(exec, comp, left),
@@ -114,8 +116,8 @@ pub(crate) fn before_motion(
 
 /// True when the block's H word is the radius offset number (`G42 H19`, the old FANUC 0M
 /// form) rather than a length offset number.
-pub(crate) fn h_names_radius_offset(exec: &Executor, cmd: &Command) -> bool {
-    exec.profile.radius_offset_by_h
+pub(crate) fn h_names_radius_offset(profile: &Profile, cmd: &Command) -> bool {
+    profile.radius_offset_by_h
         && cmd.word(b'D').is_none()
         && cmd
             .group(Group::CutterComp)
@@ -127,26 +129,26 @@ pub(crate) fn h_names_radius_offset(exec: &Executor, cmd: &Command) -> bool {
 /// side and radius for the next element.
 fn change(exec: &Executor, comp: &mut Compensator, left: bool) {
     comp.change(setting(exec, left), left);
-    comp.set_reversed(reversed(exec));
+    comp.set_reversed(reversed(&exec.frames, exec.modal.plane));
 }
 
 /// True when exactly one axis of the plane is mirrored (G51.1, or G51 with a negative factor).
-fn reversed(exec: &Executor) -> bool {
-    let (a, b, _) = exec.modal.plane.axes();
-    exec.frames.scaling().is_some_and(|s| s.reverses((a, b)))
+fn reversed(frames: &Frames, plane: Plane) -> bool {
+    let (a, b, _) = plane.axes();
+    frames.scaling().is_some_and(|s| s.reverses((a, b)))
 }
 
 /// The side and radius of G41 (`left`) or G42 with the D number in force: a negative offset
 /// and a mirrored plane axis (spec 1.29) each swap the side.
 fn setting(exec: &Executor, left: bool) -> (Side, f64) {
-    let offset = exec.tools.radius(exec.radius_offset_number);
-    let offset = if exec.profile.radius_offsets_are_diameters {
+    let offset = exec.tools.radius_offset();
+    let offset = if exec.setup.profile().radius_offsets_are_diameters {
         offset / 2.0
     } else {
         offset
     };
     let side = Side::of(left, offset);
-    let side = if reversed(exec) {
+    let side = if reversed(&exec.frames, exec.modal.plane) {
         match side {
             Side::Left => Side::Right,
             Side::Right => Side::Left,
@@ -187,14 +189,14 @@ pub(crate) fn after_motion(
         from: MachinePos(from),
         to: MachinePos(exec.position),
         path_mode: exec.modal.path_mode,
-        exact_stop: exec.exact_stop_once(cmd),
-        smoothing: exec.motion_smoothing(),
+        exact_stop: exec.modal.exact_stop_once(cmd),
+        smoothing: exec.modal.smoothing_for_motion(),
         offset: exec.frames.offset_at(&exec.position),
     };
     let kind = match exec.modal.motion {
         MotionMode::Rapid => SegmentKind::Rapid {
             motion,
-            per_axis: exec.profile.rapid_path == crate::profile::RapidPath::PerAxis,
+            per_axis: exec.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis,
         },
         _ => {
             let feed = exec.cutting_feed(cmd)?;

@@ -11,11 +11,12 @@
 use super::decode::Command;
 use super::exec::Executor;
 use super::modal::{CycleReturn, DistanceMode, FeedMode};
+use super::spindle::Spindle;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
 use crate::motion::{Plane, SegmentKind, SpindleState, StopKind};
-use crate::profile::{CycleKind, GCode, Group, PatternKind, ShiftDirection};
+use crate::profile::{CycleKind, GCode, Group, PatternKind, Profile, ShiftDirection};
 
 /// The most repeats (K) or pattern holes one block may make, and the most pecks in one hole:
 /// the controls' own limit for K (spec 1.40: 0-9999), and a bound that turns a peck depth of
@@ -72,7 +73,7 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
     }
     let Some(g) = cmd.group(Group::Cycle) else {
         if let Some(cycle) = &exec.cycle {
-            if exec.modal.plane != cycle.plane && exec.profile.cycle_plane_follows_g17 {
+            if exec.modal.plane != cycle.plane && exec.setup.profile().cycle_plane_follows_g17 {
                 return Err(Alarm::error(
                     AlarmCode::CycleData,
                     cmd.group(Group::Plane).map_or(cmd.span, |g| g.span),
@@ -88,7 +89,7 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
         GCode::Cycle(kind) => match exec.cycle.as_mut() {
             Some(cycle) => cycle.kind = kind,
             None => {
-                let (a, b, d) = if exec.profile.cycle_plane_follows_g17 {
+                let (a, b, d) = if exec.setup.profile().cycle_plane_follows_g17 {
                     exec.modal.plane.axes()
                 } else {
                     Plane::Xy.axes()
@@ -156,7 +157,7 @@ fn holes(
     if repeats == 0 {
         return Ok(());
     }
-    let levels = levels(exec, cycle, cmd, out)?;
+    let levels = levels(&exec.spindle, cycle, cmd, out)?;
     check_size(cycle, levels, repeats, cmd)?;
     let (a, b, _) = cycle.axes;
     for _ in 0..repeats {
@@ -185,7 +186,7 @@ fn holes(
 /// # Errors
 /// No Z; a peck cycle without Q.
 fn levels(
-    exec: &Executor,
+    spindle: &Spindle,
     cycle: &Cycle,
     cmd: &Command,
     out: &mut Output,
@@ -230,7 +231,7 @@ fn levels(
         ));
     }
     let tapping = matches!(cycle.kind, CycleKind::Tap | CycleKind::LeftHandTap);
-    if tapping && exec.speed <= 0.0 {
+    if tapping && spindle.speed() <= 0.0 {
         // The tap's pitch is F / S (F itself in G95): without a speed the feed matches no thread.
         out.push_warning(Alarm::warning(
             AlarmCode::CycleData,
@@ -243,7 +244,7 @@ fn levels(
         CycleKind::LeftHandTap => Some(SpindleState::CounterClockwise),
         _ => None,
     };
-    if let Some(wanted) = wanted.filter(|&w| exec.spindle != w) {
+    if let Some(wanted) = wanted.filter(|&w| spindle.state() != w) {
         // The tap turns the way the spindle was started (spec 1.42, 1.47: M03 before G84, M04
         // before G74); anything else breaks the tap on a real machine.
         out.push_warning(Alarm::warning(
@@ -251,7 +252,7 @@ fn levels(
             cmd.span,
             format!(
                 "tapping with the spindle {}: this cycle taps with it {}",
-                spindle_words(exec.spindle),
+                spindle_words(spindle.state()),
                 spindle_words(wanted)
             ),
         ));
@@ -446,7 +447,7 @@ fn pattern_holes(
                 .collect()
         }
     };
-    let levels = levels(exec, cycle, cmd, out)?;
+    let levels = levels(&exec.spindle, cycle, cmd, out)?;
     check_size(cycle, levels, points.len() as i64, cmd)?;
     for at in points {
         drill_at(exec, cycle, cmd, out, levels, at, None)?;
@@ -477,7 +478,7 @@ fn tapping_feed(exec: &mut Executor, cycle: &Cycle, cmd: &Command) -> Result<(),
     let pitch = 25.4 / e.number.value;
     exec.feed = Some(match exec.modal.feed_mode {
         FeedMode::PerRevolution => pitch,
-        _ => pitch * exec.speed,
+        _ => pitch * exec.spindle.speed(),
     });
     Ok(())
 }
@@ -499,7 +500,11 @@ fn store(exec: &Executor, cycle: &mut Cycle, cmd: &Command) -> Result<(), Alarm>
         cycle.q = Some(exec.length(&q).abs());
     }
     if let Some(p) = cmd.p() {
-        let rule = exec.profile.cycle_dwell_p.unwrap_or(exec.profile.dwell_p);
+        let rule = exec
+            .setup
+            .profile()
+            .cycle_dwell_p
+            .unwrap_or(exec.setup.profile().dwell_p);
         cycle.p = super::auxiliary::p_seconds(rule, p)?;
     }
     if let Some(f2) = cmd.retract_feed() {
@@ -562,7 +567,7 @@ impl Hole<'_> {
                 self.rapid_to(back)
             }
             CycleKind::BoreSpindleStop => {
-                let running = self.exec.spindle;
+                let running = self.exec.spindle.state();
                 self.feed_to(bottom)?;
                 self.spindle(SpindleState::Stopped);
                 self.rapid_to(back)?;
@@ -598,7 +603,7 @@ impl Hole<'_> {
             CycleKind::BoreManualRetract => {
                 // Spec 1.51: the operator retracts by hand and presses cycle start; vcnc stops
                 // there and goes on from the bottom.
-                let running = self.exec.spindle;
+                let running = self.exec.spindle.state();
                 self.feed_to(bottom)?;
                 self.dwell(cycle.p);
                 self.spindle(SpindleState::Stopped);
@@ -614,7 +619,7 @@ impl Hole<'_> {
                 Ok(())
             }
             CycleKind::FineBoring => {
-                let running = self.exec.spindle;
+                let running = self.exec.spindle.state();
                 self.feed_to(bottom)?;
                 self.dwell(cycle.p);
                 self.spindle(SpindleState::Oriented);
@@ -634,7 +639,7 @@ impl Hole<'_> {
     /// the part, back on the axis, spindle on, bore up to Z, dwell, orient and shift off, out
     /// to the initial level (never R), spindle on, back on the axis.
     fn back_bore(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
-        let running = self.exec.spindle;
+        let running = self.exec.spindle.state();
         let centre = self.exec.program_position();
         self.spindle(SpindleState::Oriented);
         self.shift_off(cycle, -1.0)?;
@@ -653,7 +658,7 @@ impl Hole<'_> {
     /// A rapid by Q along the shift direction (`sign` -1: against it), in the plane.
     fn shift_off(&mut self, cycle: &Cycle, sign: f64) -> Result<(), Alarm> {
         let (a, b, _) = cycle.axes;
-        let (da, db) = shift(self.exec, cycle);
+        let (da, db) = shift(self.exec.setup.profile(), cycle);
         let mut off = self.exec.program_position();
         off[a] += sign * da;
         off[b] += sign * db;
@@ -682,7 +687,11 @@ impl Hole<'_> {
             let next = self.next_depth(depth, q);
             if depth != self.r_level && cycle.kind == CycleKind::Peck {
                 // G83: back into the hole, stopping the clearance short of the last depth.
-                self.rapid_to(self.short_of(depth, self.exec.profile.peck_clearance, down))?;
+                self.rapid_to(self.short_of(
+                    depth,
+                    self.exec.setup.profile().peck_clearance,
+                    down,
+                ))?;
             }
             self.feed_to(next)?;
             depth = next;
@@ -691,7 +700,11 @@ impl Hole<'_> {
             }
             match cycle.kind {
                 CycleKind::Peck => self.rapid_to(self.r_level)?,
-                _ => self.rapid_to(self.short_of(depth, self.exec.profile.peck_retract, down))?,
+                _ => self.rapid_to(self.short_of(
+                    depth,
+                    self.exec.setup.profile().peck_retract,
+                    down,
+                ))?,
             }
         }
     }
@@ -762,10 +775,8 @@ impl Hole<'_> {
     }
 
     fn spindle(&mut self, state: SpindleState) {
-        self.exec.spindle = state;
-        let speed = self.exec.speed;
-        self.out
-            .push(self.cmd, SegmentKind::Spindle { state, speed });
+        let event = self.exec.spindle.turn(state);
+        self.out.push(self.cmd, event);
     }
 }
 
@@ -781,9 +792,9 @@ fn rapid(
 }
 
 /// G76's shift at the bottom: Q along the profile's direction, in the positioning plane.
-fn shift(exec: &Executor, cycle: &Cycle) -> (f64, f64) {
+fn shift(profile: &Profile, cycle: &Cycle) -> (f64, f64) {
     let q = cycle.q.unwrap_or(0.0);
-    match exec.profile.boring_shift {
+    match profile.boring_shift {
         ShiftDirection::PlusFirst => (q, 0.0),
         ShiftDirection::MinusFirst => (-q, 0.0),
         ShiftDirection::PlusSecond => (0.0, q),

@@ -20,7 +20,7 @@ use crate::profile::{Group, ToolOffsetField};
 pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     let g10_span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
     let l = cmd.l().and_then(|l| l.number.whole());
-    let profile = &exec.profile;
+    let profile = exec.setup.profile();
     if let Some(l) = l {
         if l == i64::from(profile.g10_work_l) {
             let id = standard_offset(exec, cmd)?;
@@ -61,7 +61,11 @@ fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm
         return Ok(exec.modal.work_offset);
     };
     let n = p.number.whole().unwrap_or(-1);
-    let highest = if exec.profile.g59_x_offsets { 15 } else { 6 };
+    let highest = if exec.setup.profile().g59_x_offsets {
+        15
+    } else {
+        6
+    };
     match n {
         0 => Ok(WorkOffsetId::External),
         1.. if n <= highest => Ok(WorkOffsetId::Standard(n as u8)),
@@ -70,7 +74,7 @@ fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm
             p.span,
             format!(
                 "G10 L{} P{n}: work offsets are P0 (external) to P{highest}",
-                exec.profile.g10_work_l
+                exec.setup.profile().g10_work_l
             ),
         )),
     }
@@ -84,7 +88,8 @@ fn extended_offset(
     let Some(p) = cmd.p() else {
         return Ok(exec.modal.work_offset);
     };
-    exec.extended_offset(&p)
+    exec.setup
+        .extended_offset(&p)
         .map_err(|alarm| alarm.with_label(span, "in this G10"))
 }
 
@@ -116,13 +121,13 @@ fn set_tool_offset(
     )?;
     let r = required(cmd.r(), span, "G10 for a tool offset needs R (the value)")?;
     let n = p.number.whole().unwrap_or(-1);
-    if n < 1 || n > i64::from(exec.profile.max_offset_number) {
+    if n < 1 || n > i64::from(exec.setup.profile().max_offset_number) {
         return Err(Alarm::error(
             AlarmCode::OffsetNumberOutOfRange,
             p.span,
             format!(
                 "offset number {n} is out of range 1 to {}",
-                exec.profile.max_offset_number
+                exec.setup.profile().max_offset_number
             ),
         ));
     }

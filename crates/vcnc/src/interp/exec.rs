@@ -7,39 +7,30 @@
 
 use super::decode::{Command, GWord, Value};
 use super::frames::Frames;
-use super::modal::{FeedMode, LengthComp, ModalState, MotionMode, Units};
+use super::modal::{FeedMode, LengthComp, ModalState, MotionMode};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::machine::{Axis, Machine, WorkOffsetId, AXES};
-use crate::motion::{EndKind, Feed, MachinePos, Move, SegmentKind, SpindleState, StopKind};
-use crate::profile::{DecimalLess, GCode, Group, Profile};
+use crate::machine::{Axis, Machine, AXES};
+use crate::motion::{EndKind, Feed, MachinePos, Move, SegmentKind, StopKind};
+use crate::profile::{GCode, Group};
 
 /// Everything the control remembers between blocks.
 #[derive(Clone, Debug)]
 pub(crate) struct Executor {
-    pub(crate) profile: Profile,
-    pub(crate) machine: Machine,
+    /// The machine and profile, fixed for the run.
+    pub(crate) setup: super::setup::Setup,
     pub(crate) modal: ModalState,
     pub(crate) frames: Frames,
     /// Machine position of every axis.
     pub(crate) position: [f64; AXES],
     /// Last programmed F, converted to mm/min (G94), mm/rev (G95) or 1/min (G93).
     pub(crate) feed: Option<f64>,
-    /// Last programmed S.
-    pub(crate) speed: f64,
-    pub(crate) spindle: SpindleState,
-    pub(crate) selected_tool: u32,
-    pub(crate) tool_in_spindle: u32,
-    /// The tool offset registers and the H number in force.
+    /// S and how the spindle turns.
+    pub(crate) spindle: super::spindle::Spindle,
+    /// The tool offset registers, the H and D numbers in force, the tools selected and in use.
     pub(crate) tools: super::tools::ToolMemory,
-    /// The D number of cutter radius compensation.
-    pub(crate) radius_offset_number: u32,
     /// The G28/G30 intermediate point, program coordinates, per axis.
     pub(crate) intermediate: [Option<f64>; AXES],
-    /// Which axes the machine has, by axis index.
-    pub(crate) machine_axes: [bool; AXES],
-    /// The letters decoding records as written on this machine (`decode::plain_letters`).
-    pub(crate) plain_letters: u32,
     /// G16: the last polar point, while polar coordinate command is on.
     pub(crate) polar: Option<super::polar_coordinates::PolarPoint>,
     /// The canned cycle in force.
@@ -67,74 +58,27 @@ enum AxisWords {
 }
 
 impl Executor {
-    /// The tool offset number an H or D word gives (`letter`).
-    ///
-    /// # Errors
-    /// [`AlarmCode::OffsetNumberOutOfRange`] for a number the control does not have.
-    pub(crate) fn offset_number(&self, word: Value, letter: char) -> Result<u32, Alarm> {
-        let n = word.number.whole().unwrap_or(-1);
-        let max = self.profile.max_offset_number;
-        if n < 0 || n > i64::from(max) {
-            return Err(Alarm::error(
-                AlarmCode::OffsetNumberOutOfRange,
-                word.span,
-                format!("{letter}{n} is out of range: this control has {letter}0 to {letter}{max}"),
-            ));
-        }
-        Ok(n as u32)
-    }
-}
-
-impl Executor {
     pub(crate) fn new(machine: &Machine) -> Executor {
-        let profile = machine.profile.clone();
         // The registers live in `tools` from here on: the machine's copy is the power-on state.
         let mut machine = machine.clone();
         let tool_offsets = std::mem::take(&mut machine.tool_offsets);
-        let modal = ModalState::power_on(&profile.power_on);
-        let mut frames = Frames::new(&machine);
+        let setup = super::setup::Setup::new(machine);
+        let modal = ModalState::power_on(&setup.profile().power_on);
+        let mut frames = Frames::new(setup.machine());
         frames.select(modal.work_offset);
-        let machine_axes = std::array::from_fn(|i| machine.axes[i].is_some());
         Executor {
             frames,
-            position: machine.start,
-            feed: profile.default_feed,
-            speed: 0.0,
-            spindle: SpindleState::Stopped,
-            selected_tool: 0,
-            tool_in_spindle: 0,
+            position: setup.machine().start,
+            feed: setup.profile().default_feed,
+            spindle: super::spindle::Spindle::new(),
             tools: super::tools::ToolMemory::new(tool_offsets),
-            radius_offset_number: 0,
             intermediate: [None; AXES],
-            machine_axes,
-            plain_letters: super::decode::plain_letters(&machine_axes),
             polar: None,
             cycle: None,
             skip_position: [0.0; AXES],
             modal,
-            profile,
-            machine,
+            setup,
         }
-    }
-
-    /// The offsets of register `number` as a tool's geometry (None for a register never set).
-    pub(crate) fn tool_geometry(&self, number: u32) -> Option<crate::motion::ToolGeometry> {
-        let offset = self.tools.get(number)?;
-        let radius = offset.radius + offset.radius_wear;
-        Some(crate::motion::ToolGeometry {
-            length: offset.length + offset.length_wear,
-            radius: if self.profile.radius_offsets_are_diameters {
-                radius / 2.0
-            } else {
-                radius
-            },
-        })
-    }
-
-    /// The smoothing of the moves to come.
-    #[inline(always)]
-    pub(crate) fn motion_smoothing(&self) -> Option<crate::motion::Smoothing> {
-        self.modal.smoothing_for_motion()
     }
 
     /// The current position in program coordinates.
@@ -213,7 +157,7 @@ impl Executor {
         let smoothing = self.smoothing_modes(cmd)?;
         let length_changed = super::length::apply(self, cmd, out)?;
         super::compensation::before_motion(self, cmd, out)?;
-        self.refuse_presets_while_rotated(cmd)?;
+        refuse_presets_while_rotated(&self.frames, cmd)?;
         let axis_words = match self.frame_codes(cmd, out)? {
             AxisWords::ForMotion => self.one_shot_codes(cmd, out)?,
             taken => taken,
@@ -256,25 +200,6 @@ impl Executor {
         Ok(smoothing)
     }
 
-    /// G92 and G92.1 under a rotation are refused (vcnc does not model how the rotated system
-    /// would be preset).
-    fn refuse_presets_while_rotated(&self, cmd: &Command) -> Result<(), Alarm> {
-        let non_modal = cmd.group(Group::NonModal);
-        let preset = matches!(
-            non_modal.map(|g| g.code),
-            Some(GCode::SetCoordinates | GCode::PresetCoordinates)
-        );
-        if preset && self.frames.rotated() {
-            let span = non_modal.map_or(cmd.span, |g| g.span);
-            return Err(Alarm::not_supported(
-                span,
-                "G92 or G92.1 while the coordinate system is rotated (G68, G92.1 R)",
-                Some(5),
-            ));
-        }
-        Ok(())
-    }
-
     /// The codes that change the program's frame: scaling, mirror, polar coordinates, polar
     /// coordinate interpolation and rotation, in that order. The axis words of a G68, G51 or
     /// G51.1 block are its centre, those of G12.1 its eccentricity.
@@ -284,17 +209,17 @@ impl Executor {
         let rotation = cmd.group(Group::Rotation).map(|g| g.code);
         match scaling {
             Some(GCode::Scale) => super::frames::scaling::g51(self, cmd)?,
-            Some(GCode::ScalingCancel) => super::frames::scaling::cancel(self, false),
+            Some(GCode::ScalingCancel) => super::frames::scaling::cancel(&mut self.frames, false),
             _ => {}
         }
         match mirror {
             Some(GCode::Mirror) => super::frames::scaling::g51_1(self, cmd)?,
-            Some(GCode::MirrorCancel) => super::frames::scaling::cancel(self, true),
+            Some(GCode::MirrorCancel) => super::frames::scaling::cancel(&mut self.frames, true),
             _ => {}
         }
         match cmd.group(Group::Polar).map(|g| g.code) {
             Some(GCode::Polar) => super::polar_coordinates::g16(self),
-            Some(GCode::PolarCancel) => super::polar_coordinates::g15(self),
+            Some(GCode::PolarCancel) => super::polar_coordinates::g15(&mut self.polar),
             _ => {}
         }
         let polar_interpolation = cmd.group(Group::PolarInterpolation);
@@ -303,7 +228,7 @@ impl Executor {
         }
         match rotation {
             Some(GCode::Rotate) => super::frames::rotation::g68(self, cmd)?,
-            Some(GCode::RotationCancel) => super::frames::rotation::g69(self),
+            Some(GCode::RotationCancel) => super::frames::rotation::g69(&mut self.frames),
             _ => {}
         }
         let taken = polar_interpolation.is_some()
@@ -354,7 +279,8 @@ impl Executor {
 
     /// E is read by tapping cycles, the smoothing modes and (on some profiles) threading only.
     fn refuse_stray_e(&self, cmd: &Command, smoothing: Option<GWord>) -> Result<(), Alarm> {
-        let thread_e = self.profile.thread_e_per_inch && self.modal.motion == MotionMode::Thread;
+        let thread_e =
+            self.setup.profile().thread_e_per_inch && self.modal.motion == MotionMode::Thread;
         match (cmd.word(b'E'), &self.cycle, smoothing, thread_e) {
             (Some(e), None, None, false) => Err(Alarm::not_supported(
                 e.span,
@@ -398,7 +324,7 @@ impl Executor {
     /// M00, M01, M02, M30 and the other M codes that act after the motion.
     fn auxiliary_after_motion(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         if cmd.has_auxiliary_words() {
-            super::auxiliary::after_motion(self, cmd, out)
+            super::auxiliary::after_motion(self.setup.profile(), cmd, out)
         } else {
             Ok(Flow::Next)
         }
@@ -428,7 +354,7 @@ impl Executor {
                     if self.modal.feed_mode != before {
                         // F means something else in the new mode; FANUC clears it.
                         self.feed = match self.modal.feed_mode {
-                            FeedMode::PerMinute => self.profile.default_feed,
+                            FeedMode::PerMinute => self.setup.profile().default_feed,
                             _ => None,
                         };
                     }
@@ -466,27 +392,8 @@ impl Executor {
                 "G54.1 needs P (1 to the number of extended offsets)",
             )
         })?;
-        self.modal.work_offset = self.extended_offset(&p)?;
+        self.modal.work_offset = self.setup.extended_offset(&p)?;
         Ok(())
-    }
-
-    /// The extended work offset (G54.1) numbered by `p`, as G54.1 and G10 name it.
-    ///
-    /// # Errors
-    /// [`AlarmCode::WorkOffsetOutOfRange`] for a number the control does not have.
-    pub(crate) fn extended_offset(&self, p: &Value) -> Result<WorkOffsetId, Alarm> {
-        let n = p.number.whole().unwrap_or(-1);
-        if n < 1 || n > i64::from(self.profile.g54_1_count) {
-            return Err(Alarm::error(
-                AlarmCode::WorkOffsetOutOfRange,
-                p.span,
-                format!(
-                    "G54.1 P{n}: this control has P1 to P{}",
-                    self.profile.g54_1_count
-                ),
-            ));
-        }
-        Ok(WorkOffsetId::Extended(n as u32))
     }
 
     fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
@@ -510,17 +417,7 @@ impl Executor {
 
     /// A length word (axis, I J K, R, Q) converted to mm with the units and input rules in force.
     pub(crate) fn length(&self, value: &Value) -> f64 {
-        let n = value.number;
-        let units = self.modal.units;
-        let raw = if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
-            match units {
-                Units::Millimetres => n.value * self.profile.increment_mm,
-                Units::Inches => n.value * self.profile.increment_inch,
-            }
-        } else {
-            n.value
-        };
-        raw * units.to_mm()
+        self.setup.length(self.modal.units, value)
     }
 
     /// An axis word converted: mm for linear axes, degrees for rotary ones.
@@ -532,15 +429,9 @@ impl Executor {
         }
     }
 
-    /// An angle in degrees (a rotary axis, G68's R, G16's angle, a hole pattern's J): in least
-    /// increments when written without a decimal point on profiles that read numbers so.
+    /// An angle in degrees (see [`super::setup::Setup::angle`]).
     pub(crate) fn angle(&self, value: &Value) -> f64 {
-        let n = value.number;
-        if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
-            n.value * self.profile.increment_deg
-        } else {
-            n.value
-        }
+        self.setup.angle(value)
     }
 
     /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
@@ -630,7 +521,16 @@ impl Executor {
         if let Some(factor) = super::position_offset::factor(cmd) {
             let start = self.program_position();
             let compensating = out.comp.is_some();
-            super::position_offset::apply(self, cmd, factor, compensating, &start, &mut target)?;
+            let (tools, distance) = (&self.tools, self.modal.distance);
+            super::position_offset::apply(
+                tools,
+                distance,
+                cmd,
+                factor,
+                compensating,
+                &start,
+                &mut target,
+            )?;
         }
         if let Some(point) = super::polar_coordinates::point(self, cmd) {
             self.polar = Some(point);
@@ -676,7 +576,7 @@ impl Executor {
         if same_place(&to, &self.position) {
             return Ok(());
         }
-        let per_axis = self.profile.rapid_path == crate::profile::RapidPath::PerAxis;
+        let per_axis = self.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis;
         let motion = self.move_to(to, cmd)?;
         out.push(cmd, SegmentKind::Rapid { motion, per_axis });
         Ok(())
@@ -698,16 +598,10 @@ impl Executor {
             from,
             to: MachinePos(to),
             path_mode: self.modal.path_mode,
-            exact_stop: self.exact_stop_once(cmd),
+            exact_stop: self.modal.exact_stop_once(cmd),
             smoothing: self.modal.smoothing_for_motion(),
             offset: self.frames.offset_at(&to),
         })
-    }
-
-    /// G09 in the block, unless Syntec's high-speed mode (G05) is on, where it has no effect
-    /// (spec 1.8, restriction 6).
-    pub(crate) fn exact_stop_once(&self, cmd: &Command) -> bool {
-        cmd.exact_stop_once() && self.modal.smoothing.high_speed.is_none()
     }
 
     /// The feed of a cutting move in the mode in force.
@@ -725,7 +619,7 @@ impl Executor {
             FeedMode::PerMinute => Feed::PerMinute(f),
             FeedMode::PerRevolution => Feed::PerRevolution {
                 per_revolution: f,
-                rpm: (self.speed > 0.0).then_some(self.speed),
+                rpm: (self.spindle.speed() > 0.0).then_some(self.spindle.speed()),
             },
             FeedMode::InverseTime => Feed::InverseTime(f),
         })
@@ -750,6 +644,25 @@ impl Executor {
             "feed rate is zero",
         )
     }
+}
+
+/// G92 and G92.1 under a rotation are refused (vcnc does not model how the rotated system
+/// would be preset).
+fn refuse_presets_while_rotated(frames: &Frames, cmd: &Command) -> Result<(), Alarm> {
+    let non_modal = cmd.group(Group::NonModal);
+    let preset = matches!(
+        non_modal.map(|g| g.code),
+        Some(GCode::SetCoordinates | GCode::PresetCoordinates)
+    );
+    if preset && frames.rotated() {
+        let span = non_modal.map_or(cmd.span, |g| g.span);
+        return Err(Alarm::not_supported(
+            span,
+            "G92 or G92.1 while the coordinate system is rotated (G68, G92.1 R)",
+            Some(5),
+        ));
+    }
+    Ok(())
 }
 
 fn has_center_words(cmd: &Command) -> bool {
@@ -835,7 +748,14 @@ mod tests {
             };
             parse_line(line, FileId(0), &SyntaxOptions::default(), &mut blocks);
             for block in blocks.as_slice() {
-                if decode(block, &fast.profile, fast.plain_letters, &mut cmd).is_err() {
+                if decode(
+                    block,
+                    fast.setup.profile(),
+                    fast.setup.plain_letters(),
+                    &mut cmd,
+                )
+                .is_err()
+                {
                     return false;
                 }
                 let by_run = fast.run(&cmd, &mut fast_out);
@@ -897,7 +817,7 @@ mod tests {
                 let line = Line { text: text.as_bytes(), offset: 0, number };
                 parse_line(line, FileId(0), &SyntaxOptions::default(), &mut lines);
                 for block in lines.as_slice() {
-                    if decode(block, &fast.profile, fast.plain_letters, &mut cmd).is_err() {
+                    if decode(block, fast.setup.profile(), fast.setup.plain_letters(), &mut cmd).is_err() {
                         return Ok(());
                     }
                     let (by_run, by_loop) = (fast.apply_modal(&cmd), full.apply_modal_codes(&cmd));
@@ -931,7 +851,7 @@ mod tests {
                 let line = Line { text: text.as_bytes(), offset: 0, number };
                 parse_line(line, FileId(0), &SyntaxOptions::default(), &mut lines);
                 for block in lines.as_slice() {
-                    if decode(block, &exec.profile, exec.plain_letters, &mut cmd).is_err() {
+                    if decode(block, exec.setup.profile(), exec.setup.plain_letters(), &mut cmd).is_err() {
                         return Ok(());
                     }
                     if exec.apply_modal(&cmd).is_err() {

@@ -21,9 +21,9 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
     // In the old FANUC 0M form `G42 H19` the H belongs to cutter compensation.
     let h = cmd
         .h()
-        .filter(|_| !super::compensation::h_names_radius_offset(exec, cmd));
+        .filter(|_| !super::compensation::h_names_radius_offset(exec.setup.profile(), cmd));
     if let Some(h) = h {
-        let number = exec.offset_number(h, 'H')?;
+        let number = exec.setup.offset_number(h, 'H')?;
         exec.tools.select_length(number);
     }
     let changed = cmd.group(Group::LengthComp).is_some()

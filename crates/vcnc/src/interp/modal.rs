@@ -136,6 +136,12 @@ impl ModalState {
             (a, b) => a.or(b),
         }
     }
+
+    /// G09 in the block, unless Syntec's high-speed mode (G05) is on, where it has no effect
+    /// (spec 1.8, restriction 6).
+    pub(crate) fn exact_stop_once(&self, cmd: &super::decode::Command) -> bool {
+        cmd.exact_stop_once() && self.smoothing.high_speed.is_none()
+    }
 }
 
 impl ModalState {

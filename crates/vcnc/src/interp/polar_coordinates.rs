@@ -28,8 +28,8 @@ pub(crate) fn g16(exec: &mut Executor) {
 }
 
 /// G15: polar mode off.
-pub(crate) fn g15(exec: &mut Executor) {
-    exec.polar = None;
+pub(crate) fn g15(polar: &mut Option<PolarPoint>) {
+    *polar = None;
 }
 
 /// The polar point a block in G16 programs, when it has a word of the plane: the radius from the

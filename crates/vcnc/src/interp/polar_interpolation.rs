@@ -146,7 +146,7 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
         ));
     }
     for axis in [Axis::X, Axis::C] {
-        if !exec.machine_axes[axis.index()] {
+        if !exec.setup.has_axis(axis) {
             return Err(Alarm::error(
                 AlarmCode::AxisNotOnMachine,
                 g.span,
@@ -198,7 +198,7 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
             eccentricity,
             machine_y: machine[HYPOTHETICAL],
             last: machine,
-            tolerance: exec.profile.polar_interpolation_tolerance,
+            tolerance: exec.setup.profile().polar_interpolation_tolerance,
         },
     }));
     Ok(())

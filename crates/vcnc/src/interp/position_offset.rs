@@ -4,7 +4,8 @@
 //! with a tool of any radius before G41/G42.
 
 use super::decode::Command;
-use super::exec::Executor;
+use super::modal::DistanceMode;
+use super::tools::ToolMemory;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::AXES;
 use crate::profile::{GCode, Group};
@@ -21,11 +22,6 @@ pub(crate) fn factor(cmd: &Command) -> Option<(f64, Span)> {
     }
 }
 
-/// The offset value, mm: offset D's radius register as it stands.
-fn value(exec: &Executor) -> f64 {
-    exec.tools.radius(exec.radius_offset_number)
-}
-
 /// Moves the block's target (program coordinates, from `start`) by `k` times the offset along
 /// each named axis's travel. An axis word that does not move the axis takes its direction from
 /// its sign in G91 (`Y0` forward, `Y-0` back) and gets no offset in G90 (spec 1.27 table).
@@ -33,7 +29,8 @@ fn value(exec: &Executor) -> f64 {
 /// # Errors
 /// G45-G48 while cutter compensation is on (Syntec COR-082).
 pub(crate) fn apply(
-    exec: &Executor,
+    tools: &ToolMemory,
+    distance: DistanceMode,
     cmd: &Command,
     (k, span): (f64, Span),
     compensating: bool,
@@ -48,8 +45,9 @@ pub(crate) fn apply(
         )
         .with_help("cancel it with G40 first (Syntec alarm COR-082)"));
     }
-    let d = value(exec);
-    let incremental = exec.modal.distance == super::modal::DistanceMode::Incremental;
+    // The offset value: offset D's radius register as it stands.
+    let d = tools.radius_offset();
+    let incremental = distance == DistanceMode::Incremental;
     for axis in cmd.axes_present() {
         let i = axis.index();
         let Some(word) = cmd.axis(i) else { continue };
@@ -73,8 +71,8 @@ pub(crate) fn apply(
 /// The arc's centre offsets (first and second plane axis) under G45-G48: a component that is
 /// not zero grows by `k` times the offset in its own direction, so the radius changes by that
 /// much (spec 1.27, example 38: `G45 G03 X30. Y30. J30.` is an arc of radius 30 + d).
-pub(crate) fn centre(exec: &Executor, (k, _): (f64, Span), offset: (f64, f64)) -> (f64, f64) {
-    let d = k * value(exec);
+pub(crate) fn centre(tools: &ToolMemory, (k, _): (f64, Span), offset: (f64, f64)) -> (f64, f64) {
+    let d = k * tools.radius_offset();
     let grow = |c: f64| if c == 0.0 { 0.0 } else { c + d * c.signum() };
     (grow(offset.0), grow(offset.1))
 }

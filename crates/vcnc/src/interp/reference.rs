@@ -26,7 +26,7 @@ pub(crate) fn g28(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
 /// # Errors
 /// [`AlarmCode::ReferencePointOutOfRange`] for a P the machine does not have.
 pub(crate) fn g30(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<bool, Alarm> {
-    let count = exec.machine.reference_points.len();
+    let count = exec.setup.machine().reference_points.len();
     let n = match cmd.p() {
         None => 2,
         Some(p) => {
@@ -51,15 +51,19 @@ fn reference_return(
     out: &mut Output,
 ) -> Result<bool, Alarm> {
     let reference = exec
-        .machine
+        .setup
+        .machine()
         .reference_points
         .get(n - 1)
         .copied()
         .unwrap_or([0.0; AXES]);
     if !cmd.has_axis_words() {
-        if exec.profile.g28_without_axes_homes_all {
+        if exec.setup.profile().g28_without_axes_homes_all {
             let mut target = exec.position;
-            for axis in Axis::ALL.into_iter().filter(|a| exec.machine.has_axis(*a)) {
+            for axis in Axis::ALL
+                .into_iter()
+                .filter(|a| exec.setup.machine().has_axis(*a))
+            {
                 target[axis.index()] = reference[axis.index()];
             }
             exec.frames.set_length_vector(0.0);

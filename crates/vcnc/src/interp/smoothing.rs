@@ -33,8 +33,8 @@ const HIGH_SPEED_ON: f64 = 10000.0;
 /// [`AlarmCode::SmoothingCommand`] for a missing or bad word, for switching a mode on in G61 or
 /// G63, and for high-speed mode with inverse time feed.
 pub(crate) fn switch(exec: &mut Executor, cmd: &Command, g: GWord) -> Result<(), Alarm> {
-    let default = Smoothing::from_mm(exec.machine.planner.smoothing_tolerance);
-    match (g.code, exec.profile.smoothing_codes) {
+    let default = Smoothing::from_mm(exec.setup.machine().planner.smoothing_tolerance);
+    match (g.code, exec.setup.profile().smoothing_codes) {
         (GCode::HighSpeedMode, _) => {
             let e = cmd.word(b'E');
             // P defaults to 10000 when E is given, to 0 when neither is (spec 1.8).
@@ -45,7 +45,7 @@ pub(crate) fn switch(exec: &mut Executor, cmd: &Command, g: GWord) -> Result<(),
                 None => e.is_some(),
             };
             exec.modal.smoothing.high_speed = if on {
-                refuse_in_exact_stop(exec, g)?;
+                refuse_in_exact_stop(exec.modal.path_mode, g)?;
                 if exec.modal.feed_mode == FeedMode::InverseTime {
                     return Err(bad(
                         g.span,
@@ -53,7 +53,7 @@ pub(crate) fn switch(exec: &mut Executor, cmd: &Command, g: GWord) -> Result<(),
                     ));
                 }
                 Some(match e {
-                    Some(e) => Smoothing::from_mm(positive(exec, e, "G05's E")?),
+                    Some(e) => Smoothing::from_mm(positive(exec.length(&e), e, "G05's E")?),
                     None => default,
                 })
             } else {
@@ -68,13 +68,14 @@ pub(crate) fn switch(exec: &mut Executor, cmd: &Command, g: GWord) -> Result<(),
             exec.modal.smoothing.path = if q_value == 0.0 {
                 None
             } else if q_value == 1.0 || q_value == 2.0 {
-                refuse_in_exact_stop(exec, g)?;
+                refuse_in_exact_stop(exec.modal.path_mode, g)?;
                 let e = cmd
                     .word(b'E')
                     .ok_or_else(|| bad(g.span, "G05.1 Q1 and Q2 need E, the tolerance"))?;
                 let units = exec.modal.units.to_mm();
                 let (low, high) = PATH_SMOOTHING_E;
-                let tolerance = positive(exec, e, "G05.1's E")?.clamp(low * units, high * units);
+                let tolerance =
+                    positive(exec.length(&e), e, "G05.1's E")?.clamp(low * units, high * units);
                 Some(Smoothing::from_mm(tolerance))
             } else {
                 return Err(bad(q.span, "G05.1 takes Q0, Q1 or Q2"));
@@ -84,25 +85,31 @@ pub(crate) fn switch(exec: &mut Executor, cmd: &Command, g: GWord) -> Result<(),
             let q = cmd
                 .word(b'Q')
                 .ok_or_else(|| bad(g.span, "G05.1 needs Q: Q1 (on) or Q0 (off)"))?;
-            exec.modal.smoothing.path =
-                on_off(exec, g, q, "G05.1 takes Q1 (on) or Q0 (off)")?.then_some(default);
+            exec.modal.smoothing.path = on_off(
+                exec.modal.path_mode,
+                g,
+                q,
+                "G05.1 takes Q1 (on) or Q0 (off)",
+            )?
+            .then_some(default);
         }
         (_, _) => {
             let p = cmd
                 .p()
                 .ok_or_else(|| bad(g.span, "G08 needs P: P1 (on) or P0 (off)"))?;
             exec.modal.smoothing.path =
-                on_off(exec, g, p, "G08 takes P1 (on) or P0 (off)")?.then_some(default);
+                on_off(exec.modal.path_mode, g, p, "G08 takes P1 (on) or P0 (off)")?
+                    .then_some(default);
         }
     }
     Ok(())
 }
 
 /// A FANUC switch word: 1 is on, 0 off.
-fn on_off(exec: &Executor, g: GWord, word: Value, message: &str) -> Result<bool, Alarm> {
+fn on_off(path_mode: PathMode, g: GWord, word: Value, message: &str) -> Result<bool, Alarm> {
     let value = word.number.value;
     if value == 1.0 {
-        refuse_in_exact_stop(exec, g)?;
+        refuse_in_exact_stop(path_mode, g)?;
         Ok(true)
     } else if value == 0.0 {
         Ok(false)
@@ -112,8 +119,7 @@ fn on_off(exec: &Executor, g: GWord, word: Value, message: &str) -> Result<bool,
 }
 
 /// A tolerance word in mm: positive (spec 1.8 restriction 2, 1.9 restriction 3).
-fn positive(exec: &Executor, e: Value, what: &str) -> Result<f64, Alarm> {
-    let mm = exec.length(&e);
+fn positive(mm: f64, e: Value, what: &str) -> Result<f64, Alarm> {
     if mm > 0.0 && mm.is_finite() {
         Ok(mm)
     } else {
@@ -125,11 +131,8 @@ fn positive(exec: &Executor, e: Value, what: &str) -> Result<f64, Alarm> {
 }
 
 /// The modes do not start in G61 or G63 (Syntec COR-106, spec 1.8 restriction 8).
-fn refuse_in_exact_stop(exec: &Executor, g: GWord) -> Result<(), Alarm> {
-    if matches!(
-        exec.modal.path_mode,
-        PathMode::ExactStop | PathMode::Tapping
-    ) {
+fn refuse_in_exact_stop(path_mode: PathMode, g: GWord) -> Result<(), Alarm> {
+    if matches!(path_mode, PathMode::ExactStop | PathMode::Tapping) {
         return Err(Alarm::error(
             AlarmCode::SmoothingCommand,
             g.span,

@@ -31,7 +31,10 @@ pub(crate) fn g33(
             None,
         ));
     }
-    let lead = match cmd.word(b'E').filter(|_| exec.profile.thread_e_per_inch) {
+    let lead = match cmd
+        .word(b'E')
+        .filter(|_| exec.setup.profile().thread_e_per_inch)
+    {
         Some(e) if e.number.value > 0.0 => 25.4 / e.number.value,
         Some(e) => {
             return Err(Alarm::error(
@@ -56,7 +59,7 @@ pub(crate) fn g33(
     }
     let feed = Feed::PerRevolution {
         per_revolution: lead,
-        rpm: (exec.speed > 0.0).then_some(exec.speed),
+        rpm: (exec.spindle.speed() > 0.0).then_some(exec.spindle.speed()),
     };
     let mut motion = exec.move_to(target, cmd)?;
     motion.path_mode = PathMode::Tapping;

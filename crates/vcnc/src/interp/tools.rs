@@ -1,4 +1,5 @@
-//! The tool offset memory (the H and D registers) and the length offset in force.
+//! The tools: the offset memory (the H and D registers), the H and D numbers in force, the tool
+//! selected (T) and the one in the spindle (M06).
 //!
 //! A part of the executor with private fields: every write to an offset goes through
 //! [`ToolMemory::write`], which refreshes the length of the active H number itself, so the
@@ -6,12 +7,19 @@
 //! G10 L10-L13 and the tool offset macro variables change them while a program runs.
 
 use crate::machine::ToolOffset;
+use crate::motion::ToolGeometry;
 use std::collections::BTreeMap;
 
-/// The offset registers and the H number of the active length compensation.
+/// The offset registers, the numbers in force and the tools selected and in the spindle.
 #[derive(Clone, Debug)]
 pub(crate) struct ToolMemory {
     offsets: BTreeMap<u32, ToolOffset>,
+    /// The D number of cutter radius compensation.
+    radius_number: u32,
+    /// The tool the last T word selected.
+    selected: u32,
+    /// The tool the last M06 put in the spindle.
+    in_spindle: u32,
     /// The H number of the active length compensation.
     length_number: u32,
     /// Geometry plus wear of `length_number`'s register: every move of Z reads it, and a
@@ -24,6 +32,9 @@ impl ToolMemory {
     pub(crate) fn new(offsets: BTreeMap<u32, ToolOffset>) -> ToolMemory {
         let mut memory = ToolMemory {
             offsets,
+            radius_number: 0,
+            selected: 0,
+            in_spindle: 0,
             length_number: 0,
             length: 0.0,
         };
@@ -65,6 +76,53 @@ impl ToolMemory {
     pub(crate) fn select_length(&mut self, number: u32) {
         self.length_number = number;
         self.length = self.length_of(number);
+    }
+
+    /// The D number of cutter radius compensation.
+    pub(crate) fn radius_number(&self) -> u32 {
+        self.radius_number
+    }
+
+    /// Selects the register of cutter radius compensation (D).
+    pub(crate) fn select_radius(&mut self, number: u32) {
+        self.radius_number = number;
+    }
+
+    /// Geometry plus wear of the radius register in force (D), as written there.
+    pub(crate) fn radius_offset(&self) -> f64 {
+        self.radius(self.radius_number)
+    }
+
+    /// The tool the last T word selected.
+    pub(crate) fn selected(&self) -> u32 {
+        self.selected
+    }
+
+    /// A T word: the tool to put in the spindle at the next M06.
+    pub(crate) fn select(&mut self, tool: u32) {
+        self.selected = tool;
+    }
+
+    /// The tool in the spindle.
+    pub(crate) fn in_spindle(&self) -> u32 {
+        self.in_spindle
+    }
+
+    /// M06: the selected tool goes into the spindle; its number.
+    pub(crate) fn change(&mut self) -> u32 {
+        self.in_spindle = self.selected;
+        self.in_spindle
+    }
+
+    /// The offsets of register `number` as a tool's geometry (None for a register never set);
+    /// `diameters` when the radius registers hold diameters.
+    pub(crate) fn geometry(&self, number: u32, diameters: bool) -> Option<ToolGeometry> {
+        let offset = self.get(number)?;
+        let radius = offset.radius + offset.radius_wear;
+        Some(ToolGeometry {
+            length: offset.length + offset.length_wear,
+            radius: if diameters { radius / 2.0 } else { radius },
+        })
     }
 
     /// Geometry plus wear of the selected length register, mm.

@@ -8,7 +8,7 @@
 //! rotation lives in the coordinate chain (`mod.rs`), so moves, arcs and the positions the
 //! control reports all follow it.
 
-use super::Rotation;
+use super::{Frames, Rotation};
 use crate::alarm::Alarm;
 use crate::interp::decode::Command;
 use crate::interp::exec::Executor;
@@ -41,6 +41,6 @@ pub(crate) fn g68(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
 }
 
 /// G69: no rotation from here on.
-pub(crate) fn g69(exec: &mut Executor) {
-    exec.frames.set_rotation(None);
+pub(crate) fn g69(frames: &mut Frames) {
+    frames.set_rotation(None);
 }

@@ -7,23 +7,25 @@
 //! a rotation; arcs take the larger factor of their plane for their radius and turn the other way
 //! when one plane axis is reversed (`circular.rs`). Syntec refuses the two together (spec 1.28).
 
-use super::Scaling;
+use super::{Frames, Scaling};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::decode::Command;
 use crate::interp::exec::Executor;
 use crate::interp::modal::DistanceMode;
 use crate::machine::AXES;
-use crate::profile::DecimalLess;
+use crate::profile::{DecimalLess, Profile};
 
 /// G51: scaling of the axes named.
 ///
 /// # Errors
 /// With the mirror on; without any factor; a factor of zero.
 pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
-    refuse_both(exec, cmd, false)?;
-    let p = cmd.p().map(|v| factor(exec, v.number));
-    let per_axis: [Option<f64>; 3] =
-        std::array::from_fn(|i| cmd.center(i).map(|v| factor(exec, v.number)));
+    refuse_both(&exec.frames, cmd, false)?;
+    let p = cmd.p().map(|v| factor(exec.setup.profile(), v.number));
+    let per_axis: [Option<f64>; 3] = std::array::from_fn(|i| {
+        cmd.center(i)
+            .map(|v| factor(exec.setup.profile(), v.number))
+    });
     if p.is_none() && per_axis.iter().all(Option::is_none) {
         return Err(Alarm::error(
             AlarmCode::MissingValue,
@@ -61,7 +63,7 @@ pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
 /// # Errors
 /// With scaling on.
 pub(crate) fn g51_1(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
-    refuse_both(exec, cmd, true)?;
+    refuse_both(&exec.frames, cmd, true)?;
     let previous = exec.frames.scaling().copied();
     exec.frames.set_scaling(None);
     let here = exec.program_position();
@@ -85,15 +87,15 @@ pub(crate) fn g51_1(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
 }
 
 /// G50 (scaling off) or G50.1 (mirror off): only the one it names.
-pub(crate) fn cancel(exec: &mut Executor, mirror: bool) {
-    if exec.frames.scaling().is_some_and(|s| s.mirror == mirror) {
-        exec.frames.set_scaling(None);
+pub(crate) fn cancel(frames: &mut Frames, mirror: bool) {
+    if frames.scaling().is_some_and(|s| s.mirror == mirror) {
+        frames.set_scaling(None);
     }
 }
 
 /// Scaling and mirror cannot be on together (Syntec spec 1.28, 1.29).
-fn refuse_both(exec: &Executor, cmd: &Command, mirror: bool) -> Result<(), Alarm> {
-    match exec.frames.scaling().copied() {
+fn refuse_both(frames: &Frames, cmd: &Command, mirror: bool) -> Result<(), Alarm> {
+    match frames.scaling().copied() {
         Some(active) if active.mirror != mirror => Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             cmd.span,
@@ -110,8 +112,8 @@ fn refuse_both(exec: &Executor, cmd: &Command, mirror: bool) -> Result<(), Alarm
 
 /// A scale factor as written: with a decimal point as is; without one in thousandths where the
 /// profile reads numbers in least increments (FANUC's 0.001 unit), else as is.
-fn factor(exec: &Executor, n: crate::syntax::Number) -> f64 {
-    if !n.decimal_point && exec.profile.decimal_less == DecimalLess::Increments {
+fn factor(profile: &Profile, n: crate::syntax::Number) -> f64 {
+    if !n.decimal_point && profile.decimal_less == DecimalLess::Increments {
         n.value * 0.001
     } else {
         n.value

@@ -131,7 +131,7 @@ pub(crate) fn read(
     number: u32,
     span: Span,
 ) -> Result<MacroValue, Alarm> {
-    let profile = &exec.profile;
+    let profile = exec.setup.profile();
     let to_units = 1.0 / exec.modal.units.to_mm();
     let length = |mm: f64| Some(mm * to_units);
     if let Some((n, field)) = tool_field_of(number, profile.tool_offset_variables) {
@@ -166,8 +166,8 @@ pub(crate) fn read(
         match number {
             // Power-on, cycle-start, feed, part timers (seconds): the simulation has no clock.
             3020..=3025 => return Ok(Some(0.0)),
-            3026 => return Ok(Some(f64::from(exec.tool_in_spindle))),
-            3027 => return Ok(Some(exec.speed)),
+            3026 => return Ok(Some(f64::from(exec.tools.in_spindle()))),
+            3027 => return Ok(Some(exec.spindle.speed())),
             // Tool-life counters and timers, per tool.
             5401..=5800 => return Ok(Some(0.0)),
             _ => {}
@@ -242,7 +242,7 @@ pub(crate) fn write(
     span: Span,
 ) -> Result<WriteEffect, Alarm> {
     let mm = value.unwrap_or(0.0) * exec.modal.units.to_mm();
-    if let Some((n, field)) = tool_field_of(number, exec.profile.tool_offset_variables) {
+    if let Some((n, field)) = tool_field_of(number, exec.setup.profile().tool_offset_variables) {
         exec.tools.write(n, |offset| match field {
             ToolField::Length => offset.length = mm,
             ToolField::LengthWear => offset.length_wear = mm,
@@ -251,7 +251,7 @@ pub(crate) fn write(
         });
         return Ok(WriteEffect::None);
     }
-    if let Some((id, axis)) = work_offset_of(number, exec.profile.g54_1_count) {
+    if let Some((id, axis)) = work_offset_of(number, exec.setup.profile().g54_1_count) {
         exec.frames.set_work_offset(id, axis, mm);
         return Ok(WriteEffect::None);
     }
@@ -383,7 +383,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
         }
         // FANUC's group 21 is G12.1/G13.1 (polar coordinate interpolation), G13.1 at power-on;
         // a control without the function has nothing in it.
-        21 if exec.profile.polar_interpolation => {
+        21 if exec.setup.profile().polar_interpolation => {
             if out.polar_interpolation.is_some() {
                 121.0
             } else {
@@ -418,11 +418,11 @@ fn letter_value(exec: &Executor, letter: u32) -> Option<MacroValue> {
     Some(match letter {
         // B, E, M, N, O: not kept by vcnc's executor; FANUC gives the last one read.
         2 | 8 | 13 | 14 | 15 => Some(0.0),
-        7 => Some(f64::from(exec.radius_offset_number)),
+        7 => Some(f64::from(exec.tools.radius_number())),
         9 => Some(exec.feed.unwrap_or(0.0) / exec.modal.units.to_mm()),
         11 => Some(f64::from(exec.tools.length_number())),
-        19 => Some(exec.speed),
-        20 => Some(f64::from(exec.selected_tool)),
+        19 => Some(exec.spindle.speed()),
+        20 => Some(f64::from(exec.tools.selected())),
         30 => match exec.modal.work_offset {
             WorkOffsetId::Extended(p) => Some(f64::from(p)),
             _ => Some(0.0),

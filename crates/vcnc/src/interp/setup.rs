@@ -1,0 +1,117 @@
+//! The control's fixed setup: the machine file, the profile it names, and what is derived from
+//! them once (the axes present, the letters decoding records as written, how a number without a
+//! decimal point reads).
+//!
+//! A part of the executor with private fields: nothing changes the setup while a program runs,
+//! so what is derived from it stays right by construction. It never holds run-time state.
+
+use super::decode::Value;
+use super::modal::Units;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::{Axis, Machine, WorkOffsetId, AXES};
+use crate::profile::{DecimalLess, Profile};
+
+/// The machine and profile of a run.
+#[derive(Clone, Debug)]
+pub(crate) struct Setup {
+    profile: Profile,
+    machine: Machine,
+    /// Which axes the machine has, by axis index.
+    axes: [bool; AXES],
+    /// The letters decoding records as written on this machine (`decode::plain_letters`).
+    plain_letters: u32,
+}
+
+impl Setup {
+    /// The setup of `machine` (whose tool offsets the caller has taken: the registers are
+    /// run-time state, not setup).
+    pub(crate) fn new(machine: Machine) -> Setup {
+        let axes = std::array::from_fn(|i| machine.axes[i].is_some());
+        Setup {
+            profile: machine.profile.clone(),
+            plain_letters: super::decode::plain_letters(&axes),
+            axes,
+            machine,
+        }
+    }
+
+    /// The profile of the control.
+    pub(crate) fn profile(&self) -> &Profile {
+        &self.profile
+    }
+
+    /// The machine file.
+    pub(crate) fn machine(&self) -> &Machine {
+        &self.machine
+    }
+
+    /// Whether the machine has `axis`.
+    pub(crate) fn has_axis(&self, axis: Axis) -> bool {
+        self.axes[axis.index()]
+    }
+
+    /// The letters decoding records with no check but the duplicate one.
+    pub(crate) fn plain_letters(&self) -> u32 {
+        self.plain_letters
+    }
+
+    /// The tool offset number an H or D word gives (`letter`).
+    ///
+    /// # Errors
+    /// [`AlarmCode::OffsetNumberOutOfRange`] for a number the control does not have.
+    pub(crate) fn offset_number(&self, word: Value, letter: char) -> Result<u32, Alarm> {
+        let n = word.number.whole().unwrap_or(-1);
+        let max = self.profile.max_offset_number;
+        if n < 0 || n > i64::from(max) {
+            return Err(Alarm::error(
+                AlarmCode::OffsetNumberOutOfRange,
+                word.span,
+                format!("{letter}{n} is out of range: this control has {letter}0 to {letter}{max}"),
+            ));
+        }
+        Ok(n as u32)
+    }
+
+    /// The extended work offset (G54.1) numbered by `p`, as G54.1 and G10 name it.
+    ///
+    /// # Errors
+    /// [`AlarmCode::WorkOffsetOutOfRange`] for a number the control does not have.
+    pub(crate) fn extended_offset(&self, p: &Value) -> Result<WorkOffsetId, Alarm> {
+        let n = p.number.whole().unwrap_or(-1);
+        let count = self.profile.g54_1_count;
+        if n < 1 || n > i64::from(count) {
+            return Err(Alarm::error(
+                AlarmCode::WorkOffsetOutOfRange,
+                p.span,
+                format!("G54.1 P{n}: this control has P1 to P{count}"),
+            ));
+        }
+        Ok(WorkOffsetId::Extended(n as u32))
+    }
+
+    /// A length word (axis, I J K, R, Q) in `units`, converted to mm with the profile's rule
+    /// for numbers without a decimal point.
+    pub(crate) fn length(&self, units: Units, value: &Value) -> f64 {
+        let n = value.number;
+        let raw = if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
+            match units {
+                Units::Millimetres => n.value * self.profile.increment_mm,
+                Units::Inches => n.value * self.profile.increment_inch,
+            }
+        } else {
+            n.value
+        };
+        raw * units.to_mm()
+    }
+
+    /// An angle in degrees (a rotary axis, G68's R, G16's angle, a hole pattern's J): in least
+    /// increments when written without a decimal point on profiles that read numbers so.
+    pub(crate) fn angle(&self, value: &Value) -> f64 {
+        let n = value.number;
+        if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
+            n.value * self.profile.increment_deg
+        } else {
+            n.value
+        }
+    }
+}
