@@ -30,22 +30,22 @@ pub(crate) fn speed_and_tool(
                 "spindle speed cannot be negative",
             ));
         }
-        exec.spindle.set_speed(s.number.value);
-        let running = exec.spindle.running();
+        exec.kernel.spindle.set_speed(s.number.value);
+        let running = exec.kernel.spindle.running();
         let starts_here = cmd
             .m_codes()
             .iter()
             .any(|m| matches!(m.number.value as u32, 3 | 4));
         if running && !starts_here && exec.modal.spindle_mode == SpindleMode::Rpm {
-            out.push(cmd, exec.spindle.event());
+            out.push(cmd, exec.kernel.spindle.event());
         }
     }
     if let Some(t) = cmd.t() {
-        exec.tools.select(t.number.value as u32);
+        exec.kernel.tools.select(t.number.value as u32);
         out.push(
             cmd,
             SegmentKind::ToolSelect {
-                tool: exec.tools.selected(),
+                tool: exec.kernel.tools.selected(),
             },
         );
     }
@@ -63,7 +63,7 @@ pub(crate) fn before_motion(
 ) -> Result<(), Alarm> {
     for m in cmd.m_codes() {
         let code = m.number.value as u32;
-        let kind = match classify_m(code, exec.setup.profile()) {
+        let kind = match classify_m(code, exec.kernel.setup.profile()) {
             MLookup::NotSupported(issue) => {
                 return Err(Alarm::not_supported(
                     m.span,
@@ -84,16 +84,18 @@ pub(crate) fn before_motion(
                 | MCode::LocalSubprogramCall
                 | MCode::InterruptOn
                 | MCode::InterruptOff => continue,
-                MCode::SpindleClockwise => exec.spindle.turn(SpindleState::Clockwise),
-                MCode::SpindleCounterClockwise => exec.spindle.turn(SpindleState::CounterClockwise),
-                MCode::SpindleStop => exec.spindle.turn(SpindleState::Stopped),
-                MCode::SpindleOrientation => exec.spindle.turn(SpindleState::Oriented),
+                MCode::SpindleClockwise => exec.kernel.spindle.turn(SpindleState::Clockwise),
+                MCode::SpindleCounterClockwise => {
+                    exec.kernel.spindle.turn(SpindleState::CounterClockwise)
+                }
+                MCode::SpindleStop => exec.kernel.spindle.turn(SpindleState::Stopped),
+                MCode::SpindleOrientation => exec.kernel.spindle.turn(SpindleState::Oriented),
                 MCode::ToolChange => {
-                    let tool = exec.tools.change();
-                    let diameters = exec.setup.profile().radius_offsets_are_diameters;
+                    let tool = exec.kernel.tools.change();
+                    let diameters = exec.kernel.setup.profile().radius_offsets_are_diameters;
                     SegmentKind::ToolChange {
                         tool,
-                        geometry: exec.tools.geometry(tool, diameters),
+                        geometry: exec.kernel.tools.geometry(tool, diameters),
                     }
                 }
                 MCode::CoolantOn => SegmentKind::Coolant { on: true },
@@ -140,18 +142,18 @@ pub(crate) fn dwell(
     out: &mut Output,
 ) -> Result<(), Alarm> {
     let seconds = if let Some(p) = cmd.p() {
-        p_seconds(exec.setup.profile().dwell_p, p)?
+        p_seconds(exec.kernel.setup.profile().dwell_p, p)?
     } else if let Some(x) = cmd.axis(Axis::X.index()) {
         let n = x.number;
-        if exec.setup.profile().dwell_x_before_g04_is_increments
+        if exec.kernel.setup.profile().dwell_x_before_g04_is_increments
             && x.order < g04_order
             && n.decimal_point
         {
             // FANUC 0M (spec A.8): the X word was converted as a distance before G04 was read, so
             // its count of least increments becomes milliseconds.
             let increment = match exec.modal.units {
-                Units::Millimetres => exec.setup.profile().increment_mm,
-                Units::Inches => exec.setup.profile().increment_inch,
+                Units::Millimetres => exec.kernel.setup.profile().increment_mm,
+                Units::Inches => exec.kernel.setup.profile().increment_inch,
             };
             (n.value / increment).round() / 1000.0
         } else if n.decimal_point {

@@ -28,8 +28,8 @@ pub(crate) fn run(
         refuse("circle cutting needs D, the offset number")
             .with_help("Mitsubishi program error P170")
     })?;
-    let number = exec.setup.offset_number(d, 'D')?;
-    let offset = exec.tools.radius(number);
+    let number = exec.kernel.setup.offset_number(d, 'D')?;
+    let offset = exec.kernel.tools.radius(number);
     let r = exec.length(&i).abs() - offset;
     if r <= 0.0 {
         return Err(Alarm::error(

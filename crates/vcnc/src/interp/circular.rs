@@ -26,8 +26,8 @@ pub(crate) fn arc(
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
     // Borrowed: a copy of the scaling (two arrays of six) would cost every arc.
-    let scaling = exec.frames.scaling();
-    let direction = exec.frames.arc_direction((a, b), direction);
+    let scaling = exec.kernel.frames.scaling();
+    let direction = exec.kernel.frames.arc_direction((a, b), direction);
     let position_offset = super::position_offset::factor(cmd);
     let spec = if let Some(r) = cmd.r() {
         if let Some(factor) = position_offset {
@@ -56,25 +56,28 @@ pub(crate) fn arc(
             cb.map_or(0.0, |v| exec.length(&v)),
         );
         if let Some(factor) = position_offset {
-            offset = super::position_offset::centre(&exec.tools, factor, offset);
+            offset = super::position_offset::centre(&exec.kernel.tools, factor, offset);
         }
         if let Some(scaling) = scaling {
             offset = scaling.arc_vector((a, b), offset);
         }
         // I J K are a vector in the programmed (unrotated) coordinates.
-        for rotation in [exec.frames.rotation(), exec.frames.preset_rotation()]
-            .into_iter()
-            .flatten()
+        for rotation in [
+            exec.kernel.frames.rotation(),
+            exec.kernel.frames.preset_rotation(),
+        ]
+        .into_iter()
+        .flatten()
         {
             offset = rotation.vector(offset);
         }
         ArcSpec::Center { offset, span }
     };
     let feed = exec.cutting_feed(cmd)?;
-    if let (Some(turns), true) = (cmd.l(), exec.setup.profile().arc_l_is_spiral) {
+    if let (Some(turns), true) = (cmd.l(), exec.kernel.setup.profile().arc_l_is_spiral) {
         return spiral(exec, cmd, spec, turns, direction, target, feed, out);
     }
-    let start = in_plane(plane, &exec.position);
+    let start = in_plane(plane, &exec.kernel.position);
     let end = in_plane(plane, &target);
     if let ArcSpec::Radius { span, .. } = spec {
         if start == end {
@@ -85,7 +88,7 @@ pub(crate) fn arc(
                 span,
                 "an R arc that ends on its start point does not move (use I J K for a full circle)",
             ));
-            if target != exec.position {
+            if target != exec.kernel.position {
                 let motion = exec.move_to(target, cmd)?;
                 out.push(cmd, SegmentKind::Line { motion, feed });
             }
@@ -97,7 +100,7 @@ pub(crate) fn arc(
         end,
         spec,
         direction,
-        exec.setup.profile().arc_radius_tolerance,
+        exec.kernel.setup.profile().arc_radius_tolerance,
     )?;
     if let Some(factor) = position_offset {
         super::position_offset::check_quarter(factor, start, end, center_plane)?;
@@ -108,7 +111,9 @@ pub(crate) fn arc(
         direction,
         feed,
     };
-    queue_arc(exec, cmd, arc, out)
+    let modes = exec.modal.move_modes(cmd);
+    let plane = exec.modal.plane;
+    exec.kernel.queue_arc(cmd, arc, plane, modes, out)
 }
 
 /// An arc in the plane in force whose centre is known, machine coordinates.
@@ -119,34 +124,6 @@ pub(crate) struct ArcTo {
     pub(crate) center: (f64, f64),
     pub(crate) direction: ArcDirection,
     pub(crate) feed: Feed,
-}
-
-/// Moves along `arc` from the current position and queues it; the centre's coordinate off the
-/// plane is the start's.
-///
-/// # Errors
-/// A centre or end beyond the control's range.
-pub(crate) fn queue_arc(
-    exec: &mut Executor,
-    cmd: &Command,
-    arc: ArcTo,
-    out: &mut Output,
-) -> Result<(), Alarm> {
-    let plane = exec.modal.plane;
-    let (a, b, _) = plane.axes();
-    let mut center = exec.position;
-    (center[a], center[b]) = arc.center;
-    super::exec::check_position(&center, cmd)?;
-    let motion = exec.move_to(arc.target, cmd)?;
-    out.push_with(cmd, || SegmentKind::Arc {
-        motion,
-        center: MachinePos(center),
-        direction: arc.direction,
-        plane,
-        extra_turns: 0,
-        feed: arc.feed,
-    });
-    Ok(())
 }
 
 /// G02/G03 of a plain block (`Executor::run_plain`): [`arc`] for the common arc of a CAM
@@ -169,8 +146,8 @@ pub(crate) fn plain_arc(
     debug_assert!(cmd.is_plain());
     let target = exec.block_target(cmd, false, out)?;
     let common = exec.modal.plane == Plane::Xy
-        && !exec.frames.transformed()
-        && exec.feed.is_some_and(|f| f != 0.0);
+        && !exec.kernel.frames.transformed()
+        && exec.kernel.feed.is_some_and(|f| f != 0.0);
     let spec = match cmd.word_ref(b'R') {
         Some(r) => Some(CleanSpec::Radius(exec.length(r))),
         None => {
@@ -186,16 +163,16 @@ pub(crate) fn plain_arc(
     let (Some(spec), true) = (spec, common) else {
         return arc(exec, cmd, direction, target, out);
     };
-    let start = (exec.position[0], exec.position[1]);
+    let start = (exec.kernel.position[0], exec.kernel.position[1]);
     let end = (target[0], target[1]);
-    let tolerance = exec.setup.profile().arc_radius_tolerance;
+    let tolerance = exec.kernel.setup.profile().arc_radius_tolerance;
     let Some((x, y)) = clean_arc_center(start, end, spec, direction, tolerance) else {
         return arc(exec, cmd, direction, target, out);
     };
-    let mut center = exec.position;
+    let mut center = exec.kernel.position;
     (center[0], center[1]) = (x, y);
     let feed = exec.cutting_feed(cmd)?;
-    super::exec::check_position(&center, cmd)?;
+    super::kernel::check_position(&center, cmd)?;
     let Some(items) = out.direct() else {
         return arc(exec, cmd, direction, target, out);
     };

@@ -34,19 +34,22 @@ pub(crate) fn before_motion(
     let d = cmd.word(b'D').filter(|_| !circle);
     let number = match d {
         Some(d) => Some((d, 'D')),
-        None if h_names_radius_offset(exec.setup.profile(), cmd) => cmd.h().map(|h| (h, 'H')),
+        None if h_names_radius_offset(exec.kernel.setup.profile(), cmd) => {
+            cmd.h().map(|h| (h, 'H'))
+        }
         None => None,
     };
     if let Some((word, letter)) = number {
-        exec.tools
-            .select_radius(exec.setup.offset_number(word, letter)?);
+        exec.kernel
+            .tools
+            .select_radius(exec.kernel.setup.offset_number(word, letter)?);
         if let Some(comp) = out.comp.as_mut() {
             let left = comp.left();
             change(exec, comp, left);
         }
     }
     if let Some(comp) = out.comp.as_mut() {
-        if comp.reversed() != reversed(&exec.frames, exec.modal.plane) {
+        if comp.reversed() != reversed(&exec.kernel.frames, exec.modal.plane) {
             // G51.1 or G50.1 (or a negative G51 factor) in offset mode: while one plane axis is
             // mirrored G41 and G42 act the other way (spec 1.29), so the side changes from the
             // next element on, as if the mirror had come before G41/G42.
@@ -94,11 +97,11 @@ pub(crate) fn before_motion(
                     let mut comp = Compensator::new(
                         setting,
                         (a, b),
-                        &exec.position,
+                        &exec.kernel.position,
                         left,
-                        exec.setup.profile().cutter_comp_look_ahead,
+                        exec.kernel.setup.profile().cutter_comp_look_ahead,
                     );
-                    comp.set_reversed(reversed(&exec.frames, exec.modal.plane));
+                    comp.set_reversed(reversed(&exec.kernel.frames, exec.modal.plane));
                     out.comp = Some(comp);
                 }
                 Some(comp) => change(exec, comp, left),
@@ -129,7 +132,7 @@ pub(crate) fn h_names_radius_offset(profile: &Profile, cmd: &Command) -> bool {
 /// side and radius for the next element.
 fn change(exec: &Executor, comp: &mut Compensator, left: bool) {
     comp.change(setting(exec, left), left);
-    comp.set_reversed(reversed(&exec.frames, exec.modal.plane));
+    comp.set_reversed(reversed(&exec.kernel.frames, exec.modal.plane));
 }
 
 /// True when exactly one axis of the plane is mirrored (G51.1, or G51 with a negative factor).
@@ -141,14 +144,14 @@ fn reversed(frames: &Frames, plane: Plane) -> bool {
 /// The side and radius of G41 (`left`) or G42 with the D number in force: a negative offset
 /// and a mirrored plane axis (spec 1.29) each swap the side.
 fn setting(exec: &Executor, left: bool) -> (Side, f64) {
-    let offset = exec.tools.radius_offset();
-    let offset = if exec.setup.profile().radius_offsets_are_diameters {
+    let offset = exec.kernel.tools.radius_offset();
+    let offset = if exec.kernel.setup.profile().radius_offsets_are_diameters {
         offset / 2.0
     } else {
         offset
     };
     let side = Side::of(left, offset);
-    let side = if reversed(&exec.frames, exec.modal.plane) {
+    let side = if reversed(&exec.kernel.frames, exec.modal.plane) {
         match side {
             Side::Left => Side::Right,
             Side::Right => Side::Left,
@@ -178,30 +181,30 @@ pub(crate) fn after_motion(
     out.finish_compensation(&mut comp)?;
     let (a, b) = comp.axes();
     let tool = comp.tool();
-    let here = V2::new(exec.position[a], exec.position[b]);
+    let here = V2::new(exec.kernel.position[a], exec.kernel.position[b]);
     if tool.distance(here) < 1e-9 {
         return Ok(());
     }
-    let mut from = exec.position;
+    let mut from = exec.kernel.position;
     from[a] = tool.x;
     from[b] = tool.y;
     let motion = Move {
         from: MachinePos(from),
-        to: MachinePos(exec.position),
+        to: MachinePos(exec.kernel.position),
         path_mode: exec.modal.path_mode,
         exact_stop: exec.modal.exact_stop_once(cmd),
         smoothing: exec.modal.smoothing_for_motion(),
-        offset: exec.frames.offset_at(&exec.position),
+        offset: exec.kernel.frames.offset_at(&exec.kernel.position),
     };
     let kind = match exec.modal.motion {
         MotionMode::Rapid => SegmentKind::Rapid {
             motion,
-            per_axis: exec.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis,
+            per_axis: exec.kernel.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis,
         },
         _ => {
             let feed = exec.cutting_feed(cmd)?;
             if exec.modal.feed_mode == FeedMode::InverseTime {
-                exec.feed = None;
+                exec.kernel.feed = None;
             }
             SegmentKind::Line { motion, feed }
         }

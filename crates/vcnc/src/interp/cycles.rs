@@ -73,7 +73,9 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
     }
     let Some(g) = cmd.group(Group::Cycle) else {
         if let Some(cycle) = &exec.cycle {
-            if exec.modal.plane != cycle.plane && exec.setup.profile().cycle_plane_follows_g17 {
+            if exec.modal.plane != cycle.plane
+                && exec.kernel.setup.profile().cycle_plane_follows_g17
+            {
                 return Err(Alarm::error(
                     AlarmCode::CycleData,
                     cmd.group(Group::Plane).map_or(cmd.span, |g| g.span),
@@ -89,7 +91,7 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
         GCode::Cycle(kind) => match exec.cycle.as_mut() {
             Some(cycle) => cycle.kind = kind,
             None => {
-                let (a, b, d) = if exec.setup.profile().cycle_plane_follows_g17 {
+                let (a, b, d) = if exec.kernel.setup.profile().cycle_plane_follows_g17 {
                     exec.modal.plane.axes()
                 } else {
                     Plane::Xy.axes()
@@ -157,7 +159,7 @@ fn holes(
     if repeats == 0 {
         return Ok(());
     }
-    let levels = levels(&exec.spindle, cycle, cmd, out)?;
+    let levels = levels(&exec.kernel.spindle, cycle, cmd, out)?;
     check_size(cycle, levels, repeats, cmd)?;
     let (a, b, _) = cycle.axes;
     for _ in 0..repeats {
@@ -447,7 +449,7 @@ fn pattern_holes(
                 .collect()
         }
     };
-    let levels = levels(&exec.spindle, cycle, cmd, out)?;
+    let levels = levels(&exec.kernel.spindle, cycle, cmd, out)?;
     check_size(cycle, levels, points.len() as i64, cmd)?;
     for at in points {
         drill_at(exec, cycle, cmd, out, levels, at, None)?;
@@ -476,9 +478,9 @@ fn tapping_feed(exec: &mut Executor, cycle: &Cycle, cmd: &Command) -> Result<(),
         return Ok(());
     }
     let pitch = 25.4 / e.number.value;
-    exec.feed = Some(match exec.modal.feed_mode {
+    exec.kernel.feed = Some(match exec.modal.feed_mode {
         FeedMode::PerRevolution => pitch,
-        _ => pitch * exec.spindle.speed(),
+        _ => pitch * exec.kernel.spindle.speed(),
     });
     Ok(())
 }
@@ -501,10 +503,11 @@ fn store(exec: &Executor, cycle: &mut Cycle, cmd: &Command) -> Result<(), Alarm>
     }
     if let Some(p) = cmd.p() {
         let rule = exec
+            .kernel
             .setup
             .profile()
             .cycle_dwell_p
-            .unwrap_or(exec.setup.profile().dwell_p);
+            .unwrap_or(exec.kernel.setup.profile().dwell_p);
         cycle.p = super::auxiliary::p_seconds(rule, p)?;
     }
     if let Some(f2) = cmd.retract_feed() {
@@ -567,7 +570,7 @@ impl Hole<'_> {
                 self.rapid_to(back)
             }
             CycleKind::BoreSpindleStop => {
-                let running = self.exec.spindle.state();
+                let running = self.exec.kernel.spindle.state();
                 self.feed_to(bottom)?;
                 self.spindle(SpindleState::Stopped);
                 self.rapid_to(back)?;
@@ -603,7 +606,7 @@ impl Hole<'_> {
             CycleKind::BoreManualRetract => {
                 // Spec 1.51: the operator retracts by hand and presses cycle start; vcnc stops
                 // there and goes on from the bottom.
-                let running = self.exec.spindle.state();
+                let running = self.exec.kernel.spindle.state();
                 self.feed_to(bottom)?;
                 self.dwell(cycle.p);
                 self.spindle(SpindleState::Stopped);
@@ -619,7 +622,7 @@ impl Hole<'_> {
                 Ok(())
             }
             CycleKind::FineBoring => {
-                let running = self.exec.spindle.state();
+                let running = self.exec.kernel.spindle.state();
                 self.feed_to(bottom)?;
                 self.dwell(cycle.p);
                 self.spindle(SpindleState::Oriented);
@@ -639,7 +642,7 @@ impl Hole<'_> {
     /// the part, back on the axis, spindle on, bore up to Z, dwell, orient and shift off, out
     /// to the initial level (never R), spindle on, back on the axis.
     fn back_bore(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
-        let running = self.exec.spindle.state();
+        let running = self.exec.kernel.spindle.state();
         let centre = self.exec.program_position();
         self.spindle(SpindleState::Oriented);
         self.shift_off(cycle, -1.0)?;
@@ -658,7 +661,7 @@ impl Hole<'_> {
     /// A rapid by Q along the shift direction (`sign` -1: against it), in the plane.
     fn shift_off(&mut self, cycle: &Cycle, sign: f64) -> Result<(), Alarm> {
         let (a, b, _) = cycle.axes;
-        let (da, db) = shift(self.exec.setup.profile(), cycle);
+        let (da, db) = shift(self.exec.kernel.setup.profile(), cycle);
         let mut off = self.exec.program_position();
         off[a] += sign * da;
         off[b] += sign * db;
@@ -689,7 +692,7 @@ impl Hole<'_> {
                 // G83: back into the hole, stopping the clearance short of the last depth.
                 self.rapid_to(self.short_of(
                     depth,
-                    self.exec.setup.profile().peck_clearance,
+                    self.exec.kernel.setup.profile().peck_clearance,
                     down,
                 ))?;
             }
@@ -702,7 +705,7 @@ impl Hole<'_> {
                 CycleKind::Peck => self.rapid_to(self.r_level)?,
                 _ => self.rapid_to(self.short_of(
                     depth,
-                    self.exec.setup.profile().peck_retract,
+                    self.exec.kernel.setup.profile().peck_retract,
                     down,
                 ))?,
             }
@@ -752,7 +755,7 @@ impl Hole<'_> {
     fn feed_to(&mut self, level: f64) -> Result<(), Alarm> {
         let target = self.at(level);
         let to = self.exec.machine_target(&target, true);
-        if to == self.exec.position {
+        if to == self.exec.kernel.position {
             return Ok(());
         }
         let feed = self.exec.cutting_feed(self.cmd)?;
@@ -775,7 +778,7 @@ impl Hole<'_> {
     }
 
     fn spindle(&mut self, state: SpindleState) {
-        let event = self.exec.spindle.turn(state);
+        let event = self.exec.kernel.spindle.turn(state);
         self.out.push(self.cmd, event);
     }
 }

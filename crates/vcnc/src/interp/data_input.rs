@@ -20,7 +20,7 @@ use crate::profile::{Group, ToolOffsetField};
 pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     let g10_span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
     let l = cmd.l().and_then(|l| l.number.whole());
-    let profile = exec.setup.profile();
+    let profile = exec.kernel.setup.profile();
     if let Some(l) = l {
         if l == i64::from(profile.g10_work_l) {
             let id = standard_offset(exec, cmd)?;
@@ -61,7 +61,7 @@ fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm
         return Ok(exec.modal.work_offset);
     };
     let n = p.number.whole().unwrap_or(-1);
-    let highest = if exec.setup.profile().g59_x_offsets {
+    let highest = if exec.kernel.setup.profile().g59_x_offsets {
         15
     } else {
         6
@@ -74,7 +74,7 @@ fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm
             p.span,
             format!(
                 "G10 L{} P{n}: work offsets are P0 (external) to P{highest}",
-                exec.setup.profile().g10_work_l
+                exec.kernel.setup.profile().g10_work_l
             ),
         )),
     }
@@ -88,13 +88,14 @@ fn extended_offset(
     let Some(p) = cmd.p() else {
         return Ok(exec.modal.work_offset);
     };
-    exec.setup
+    exec.kernel
+        .setup
         .extended_offset(&p)
         .map_err(|alarm| alarm.with_label(span, "in this G10"))
 }
 
 fn set_work_offset(exec: &mut Executor, cmd: &Command, id: WorkOffsetId) {
-    let current = exec.frames.work_offset(id);
+    let current = exec.kernel.frames.work_offset(id);
     for axis in Axis::ALL {
         let Some(value) = &cmd.axis(axis.index()) else {
             continue;
@@ -104,7 +105,7 @@ fn set_work_offset(exec: &mut Executor, cmd: &Command, id: WorkOffsetId) {
             DistanceMode::Absolute => v,
             DistanceMode::Incremental => current[axis.index()] + v,
         };
-        exec.frames.set_work_offset(id, axis.index(), new);
+        exec.kernel.frames.set_work_offset(id, axis.index(), new);
     }
 }
 
@@ -121,19 +122,19 @@ fn set_tool_offset(
     )?;
     let r = required(cmd.r(), span, "G10 for a tool offset needs R (the value)")?;
     let n = p.number.whole().unwrap_or(-1);
-    if n < 1 || n > i64::from(exec.setup.profile().max_offset_number) {
+    if n < 1 || n > i64::from(exec.kernel.setup.profile().max_offset_number) {
         return Err(Alarm::error(
             AlarmCode::OffsetNumberOutOfRange,
             p.span,
             format!(
                 "offset number {n} is out of range 1 to {}",
-                exec.setup.profile().max_offset_number
+                exec.kernel.setup.profile().max_offset_number
             ),
         ));
     }
     let value = exec.length(&r);
     let distance = exec.modal.distance;
-    exec.tools.write(n as u32, |entry| {
+    exec.kernel.tools.write(n as u32, |entry| {
         let slot = match field {
             ToolOffsetField::LengthGeometry => &mut entry.length,
             ToolOffsetField::LengthWear => &mut entry.length_wear,

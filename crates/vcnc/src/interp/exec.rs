@@ -7,28 +7,22 @@
 
 use super::decode::{Command, GWord, Value};
 use super::frames::Frames;
+use super::kernel::{same_place, KernelState};
 use super::modal::{FeedMode, LengthComp, ModalState, MotionMode};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, AXES};
-use crate::motion::{EndKind, Feed, MachinePos, Move, SegmentKind, StopKind};
+use crate::motion::{EndKind, Feed, Move, SegmentKind, StopKind};
 use crate::profile::{GCode, Group};
 
-/// Everything the control remembers between blocks.
+/// Everything the control remembers between blocks: the state every dialect shares, and the
+/// ISO control's own.
 #[derive(Clone, Debug)]
 pub(crate) struct Executor {
-    /// The machine and profile, fixed for the run.
-    pub(crate) setup: super::setup::Setup,
+    /// Setup, position and frames, tools, feed and spindle.
+    pub(crate) kernel: KernelState,
+    /// The G codes in force, and the numbers G43 and G41 read.
     pub(crate) modal: ModalState,
-    pub(crate) frames: Frames,
-    /// Machine position of every axis.
-    pub(crate) position: [f64; AXES],
-    /// Last programmed F, converted to mm/min (G94), mm/rev (G95) or 1/min (G93).
-    pub(crate) feed: Option<f64>,
-    /// S and how the spindle turns.
-    pub(crate) spindle: super::spindle::Spindle,
-    /// The tool offset registers, the H and D numbers in force, the tools selected and in use.
-    pub(crate) tools: super::tools::ToolMemory,
     /// The G28/G30 intermediate point, program coordinates, per axis.
     pub(crate) intermediate: [Option<f64>; AXES],
     /// G16: the last polar point, while polar coordinate command is on.
@@ -59,32 +53,23 @@ enum AxisWords {
 
 impl Executor {
     pub(crate) fn new(machine: &Machine) -> Executor {
-        // The registers live in `tools` from here on: the machine's copy is the power-on state.
-        let mut machine = machine.clone();
-        let tool_offsets = std::mem::take(&mut machine.tool_offsets);
-        let setup = super::setup::Setup::new(machine);
-        let modal = ModalState::power_on(&setup.profile().power_on);
-        let mut frames = Frames::new(setup.machine());
-        frames.select(modal.work_offset);
+        let mut kernel = KernelState::new(machine);
+        let modal = ModalState::power_on(&kernel.setup.profile().power_on);
+        kernel.frames.select(modal.work_offset);
         Executor {
-            frames,
-            position: setup.machine().start,
-            feed: setup.profile().default_feed,
-            spindle: super::spindle::Spindle::new(),
-            tools: super::tools::ToolMemory::new(tool_offsets),
+            kernel,
             intermediate: [None; AXES],
             polar: None,
             cycle: None,
             skip_position: [0.0; AXES],
             modal,
-            setup,
         }
     }
 
     /// The current position in program coordinates.
     #[inline(always)]
     pub(crate) fn program_position(&self) -> [f64; AXES] {
-        self.frames.to_program(&self.position)
+        self.kernel.program_position()
     }
 
     /// Runs one block.
@@ -129,7 +114,7 @@ impl Executor {
         let Some(items) = out.direct() else {
             return self.feed_to(to, cmd, false, out);
         };
-        if same_place(&to, &self.position) {
+        if same_place(&to, &self.kernel.position) {
             return Ok(());
         }
         let feed = self.cutting_feed(cmd)?;
@@ -157,7 +142,7 @@ impl Executor {
         let smoothing = self.smoothing_modes(cmd)?;
         let length_changed = super::length::apply(self, cmd, out)?;
         super::compensation::before_motion(self, cmd, out)?;
-        refuse_presets_while_rotated(&self.frames, cmd)?;
+        refuse_presets_while_rotated(&self.kernel.frames, cmd)?;
         let axis_words = match self.frame_codes(cmd, out)? {
             AxisWords::ForMotion => self.one_shot_codes(cmd, out)?,
             taken => taken,
@@ -209,12 +194,16 @@ impl Executor {
         let rotation = cmd.group(Group::Rotation).map(|g| g.code);
         match scaling {
             Some(GCode::Scale) => super::frames::scaling::g51(self, cmd)?,
-            Some(GCode::ScalingCancel) => super::frames::scaling::cancel(&mut self.frames, false),
+            Some(GCode::ScalingCancel) => {
+                super::frames::scaling::cancel(&mut self.kernel.frames, false)
+            }
             _ => {}
         }
         match mirror {
             Some(GCode::Mirror) => super::frames::scaling::g51_1(self, cmd)?,
-            Some(GCode::MirrorCancel) => super::frames::scaling::cancel(&mut self.frames, true),
+            Some(GCode::MirrorCancel) => {
+                super::frames::scaling::cancel(&mut self.kernel.frames, true)
+            }
             _ => {}
         }
         match cmd.group(Group::Polar).map(|g| g.code) {
@@ -228,7 +217,7 @@ impl Executor {
         }
         match rotation {
             Some(GCode::Rotate) => super::frames::rotation::g68(self, cmd)?,
-            Some(GCode::RotationCancel) => super::frames::rotation::g69(&mut self.frames),
+            Some(GCode::RotationCancel) => super::frames::rotation::g69(&mut self.kernel.frames),
             _ => {}
         }
         let taken = polar_interpolation.is_some()
@@ -279,8 +268,8 @@ impl Executor {
 
     /// E is read by tapping cycles, the smoothing modes and (on some profiles) threading only.
     fn refuse_stray_e(&self, cmd: &Command, smoothing: Option<GWord>) -> Result<(), Alarm> {
-        let thread_e =
-            self.setup.profile().thread_e_per_inch && self.modal.motion == MotionMode::Thread;
+        let thread_e = self.kernel.setup.profile().thread_e_per_inch
+            && self.modal.motion == MotionMode::Thread;
         match (cmd.word(b'E'), &self.cycle, smoothing, thread_e) {
             (Some(e), None, None, false) => Err(Alarm::not_supported(
                 e.span,
@@ -317,14 +306,14 @@ impl Executor {
     /// G93: F is not modal (spec 1.56): every cutting block needs its own.
     fn end_inverse_time_feed(&mut self) {
         if self.modal.feed_mode == FeedMode::InverseTime {
-            self.feed = None;
+            self.kernel.feed = None;
         }
     }
 
     /// M00, M01, M02, M30 and the other M codes that act after the motion.
     fn auxiliary_after_motion(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         if cmd.has_auxiliary_words() {
-            super::auxiliary::after_motion(self.setup.profile(), cmd, out)
+            super::auxiliary::after_motion(self.kernel.setup.profile(), cmd, out)
         } else {
             Ok(Flow::Next)
         }
@@ -353,13 +342,15 @@ impl Executor {
                     self.modal.apply(g.code);
                     if self.modal.feed_mode != before {
                         // F means something else in the new mode; FANUC clears it.
-                        self.feed = match self.modal.feed_mode {
-                            FeedMode::PerMinute => self.setup.profile().default_feed,
+                        self.kernel.feed = match self.modal.feed_mode {
+                            FeedMode::PerMinute => self.kernel.setup.profile().default_feed,
                             _ => None,
                         };
                     }
                 }
-                GCode::PlaneXy | GCode::PlaneZx | GCode::PlaneYz if self.frames.rotated() => {
+                GCode::PlaneXy | GCode::PlaneZx | GCode::PlaneYz
+                    if self.kernel.frames.rotated() =>
+                {
                     let before = self.modal.plane;
                     self.modal.apply(g.code);
                     if self.modal.plane != before {
@@ -376,7 +367,7 @@ impl Executor {
         }
         // Only a work-offset code (G54-G59, G54.1) changes the system in use.
         if cmd.group(Group::WorkOffset).is_some() {
-            self.frames.select(self.modal.work_offset);
+            self.kernel.frames.select(self.modal.work_offset);
         }
         Ok(())
     }
@@ -392,7 +383,7 @@ impl Executor {
                 "G54.1 needs P (1 to the number of extended offsets)",
             )
         })?;
-        self.modal.work_offset = self.setup.extended_offset(&p)?;
+        self.modal.work_offset = self.kernel.setup.extended_offset(&p)?;
         Ok(())
     }
 
@@ -411,13 +402,13 @@ impl Executor {
             }
             FeedMode::InverseTime => f.number.value,
         };
-        self.feed = Some(value);
+        self.kernel.feed = Some(value);
         Ok(())
     }
 
     /// A length word (axis, I J K, R, Q) converted to mm with the units and input rules in force.
     pub(crate) fn length(&self, value: &Value) -> f64 {
-        self.setup.length(self.modal.units, value)
+        self.kernel.setup.length(self.modal.units, value)
     }
 
     /// An axis word converted: mm for linear axes, degrees for rotary ones.
@@ -431,7 +422,7 @@ impl Executor {
 
     /// An angle in degrees (see [`super::setup::Setup::angle`]).
     pub(crate) fn angle(&self, value: &Value) -> f64 {
-        self.setup.angle(value)
+        self.kernel.setup.angle(value)
     }
 
     /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
@@ -472,7 +463,7 @@ impl Executor {
     /// The tool length offset of the active compensation, mm (signed for G44).
     #[inline(always)]
     pub(crate) fn active_length(&self) -> f64 {
-        let value = self.tools.length();
+        let value = self.kernel.tools.length();
         match self.modal.length_comp {
             LengthComp::Off => 0.0,
             LengthComp::Plus => value,
@@ -485,9 +476,11 @@ impl Executor {
     #[inline(always)]
     pub(crate) fn machine_target(&mut self, target: &[f64; AXES], moves_z: bool) -> [f64; AXES] {
         if moves_z {
-            self.frames.set_length_vector(self.active_length());
+            self.kernel.frames.set_length_vector(self.active_length());
         }
-        self.frames.to_machine(target, self.frames.length_vector())
+        self.kernel
+            .frames
+            .to_machine(target, self.kernel.frames.length_vector())
     }
 
     fn motion(
@@ -521,7 +514,7 @@ impl Executor {
         if let Some(factor) = super::position_offset::factor(cmd) {
             let start = self.program_position();
             let compensating = out.comp.is_some();
-            let (tools, distance) = (&self.tools, self.modal.distance);
+            let (tools, distance) = (&self.kernel.tools, self.modal.distance);
             super::position_offset::apply(
                 tools,
                 distance,
@@ -552,15 +545,10 @@ impl Executor {
         exact_stop: bool,
         out: &mut Output,
     ) -> Result<(), Alarm> {
-        // A line that ends where it starts moves nothing (and needs no feed).
-        if same_place(&to, &self.position) {
-            return Ok(());
-        }
-        let feed = self.cutting_feed(cmd)?;
-        let mut motion = self.move_to(to, cmd)?;
-        motion.exact_stop |= exact_stop;
-        out.push(cmd, SegmentKind::Line { motion, feed });
-        Ok(())
+        let modes = self.modal.move_modes(cmd);
+        let feed_mode = self.modal.feed_mode;
+        self.kernel
+            .feed_to(to, cmd, feed_mode, modes.stopping(exact_stop), out)
     }
 
     /// A rapid to a machine position, recorded in the stream.
@@ -573,76 +561,28 @@ impl Executor {
         cmd: &Command,
         out: &mut Output,
     ) -> Result<(), Alarm> {
-        if same_place(&to, &self.position) {
-            return Ok(());
-        }
-        let per_axis = self.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis;
-        let motion = self.move_to(to, cmd)?;
-        out.push(cmd, SegmentKind::Rapid { motion, per_axis });
-        Ok(())
+        let modes = self.modal.move_modes(cmd);
+        self.kernel.rapid_to(to, cmd, modes, out)
     }
 
-    /// A [`Move`] from the current position to `to`; the position becomes `to`.
+    /// A [`Move`] from the current position to `to` with the modes in force; the position
+    /// becomes `to`.
     ///
     /// # Errors
-    /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range (incremental
-    /// moves and offsets add up; the control refuses what it cannot represent).
-    // Inlined: the move is built where the caller puts it (in the output queue) instead of
-    // being copied out of a Result several times per block.
+    /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range.
     #[inline(always)]
     pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Result<Move, Alarm> {
-        check_position(&to, cmd)?;
-        let from = MachinePos(self.position);
-        self.position = to;
-        Ok(Move {
-            from,
-            to: MachinePos(to),
-            path_mode: self.modal.path_mode,
-            exact_stop: self.modal.exact_stop_once(cmd),
-            smoothing: self.modal.smoothing_for_motion(),
-            offset: self.frames.offset_at(&to),
-        })
+        let modes = self.modal.move_modes(cmd);
+        self.kernel.move_to(to, cmd, modes)
     }
 
     /// The feed of a cutting move in the mode in force.
     ///
     /// # Errors
     /// [`AlarmCode::NoFeedRate`] when no F is in force (FANUC alarm 011).
-    // Inlined: out of line, the feed came back through memory.
     #[inline(always)]
     pub(crate) fn cutting_feed(&self, cmd: &Command) -> Result<Feed, Alarm> {
-        let f = match self.feed {
-            Some(f) if f != 0.0 => f,
-            _ => return Err(self.no_feed(cmd)),
-        };
-        Ok(match self.modal.feed_mode {
-            FeedMode::PerMinute => Feed::PerMinute(f),
-            FeedMode::PerRevolution => Feed::PerRevolution {
-                per_revolution: f,
-                rpm: (self.spindle.speed() > 0.0).then_some(self.spindle.speed()),
-            },
-            FeedMode::InverseTime => Feed::InverseTime(f),
-        })
-    }
-
-    /// The alarm of a cutting move without a feed in force, or with a zero feed.
-    #[cold]
-    fn no_feed(&self, cmd: &Command) -> Alarm {
-        if self.feed.is_none() {
-            let what = match self.modal.feed_mode {
-                FeedMode::InverseTime => {
-                    "in G93 inverse-time mode every cutting block needs its own F"
-                }
-                _ => "cutting move before any feed rate (F) was programmed",
-            };
-            return Alarm::error(AlarmCode::NoFeedRate, cmd.span, what)
-                .with_help("add an F word to this block or an earlier one (FANUC alarm 011)");
-        }
-        Alarm::error(
-            AlarmCode::NoFeedRate,
-            cmd.f().map_or(cmd.span, |v| v.span),
-            "feed rate is zero",
-        )
+        self.kernel.cutting_feed(self.modal.feed_mode, cmd)
     }
 }
 
@@ -669,38 +609,6 @@ fn has_center_words(cmd: &Command) -> bool {
     cmd.has_center_words()
 }
 
-/// The largest machine coordinate vcnc accepts, mm or degrees: far beyond any machine, far
-/// inside what f64 holds exactly to a micrometre.
-pub(crate) const POSITION_LIMIT: f64 = 1.0e9;
-
-/// Refuses a position no control can reach.
-///
-/// # Errors
-/// [`AlarmCode::ValueOutOfRange`] when a coordinate is not finite or beyond [`POSITION_LIMIT`].
-// Inlined, with the alarm out of line: out of line, every move paid a call.
-#[inline(always)]
-pub(crate) fn check_position(position: &[f64], cmd: &Command) -> Result<(), Alarm> {
-    // One test for all axes, without a branch per axis: this runs for every move.
-    let within = position
-        .iter()
-        .fold(true, |within, v| within & (v.abs() <= POSITION_LIMIT));
-    if within {
-        return Ok(());
-    }
-    Err(out_of_range(cmd))
-}
-
-/// The alarm of a position beyond [`POSITION_LIMIT`].
-#[cold]
-fn out_of_range(cmd: &Command) -> Alarm {
-    Alarm::error(
-        AlarmCode::ValueOutOfRange,
-        cmd.span,
-        "the position is beyond the control's range",
-    )
-    .with_help(format!("coordinates are limited to ±{POSITION_LIMIT:e} mm"))
-}
-
 /// Ends the program with the given end code.
 pub(crate) fn end_program(cmd: &Command, kind: EndKind, out: &mut Output) -> Flow {
     out.push(cmd, SegmentKind::End { kind });
@@ -710,15 +618,6 @@ pub(crate) fn end_program(cmd: &Command, kind: EndKind, out: &mut Output) -> Flo
 /// An M00/M01 stop.
 pub(crate) fn stop(cmd: &Command, kind: StopKind, out: &mut Output) {
     out.push(cmd, SegmentKind::Stop { kind });
-}
-
-/// Two machine positions the control cannot tell apart: every axis within a millionth of the
-/// finest input increment. Rotations and scaling leave rounding of about 1e-14 mm on a point the
-/// program meant to repeat; a real control, counting in increments, does not move there.
-// Inlined: every move asks, and out of line both positions went through memory.
-#[inline(always)]
-pub(crate) fn same_place(a: &[f64; AXES], b: &[f64; AXES]) -> bool {
-    a.iter().zip(b).all(|(p, q)| (p - q).abs() <= 1e-10)
 }
 
 #[cfg(test)]
@@ -750,8 +649,8 @@ mod tests {
             for block in blocks.as_slice() {
                 if decode(
                     block,
-                    fast.setup.profile(),
-                    fast.setup.plain_letters(),
+                    fast.kernel.setup.profile(),
+                    fast.kernel.setup.plain_letters(),
                     &mut cmd,
                 )
                 .is_err()
@@ -767,9 +666,9 @@ mod tests {
                 // To the bit: `==` takes -0 for 0.
                 let debug = |items: &Vec<_>| format!("{items:?}");
                 assert_eq!(debug(&fast_out.items), debug(&full_out.items), "{text:?}");
-                assert_eq!(fast.position, full.position, "{text:?}");
+                assert_eq!(fast.kernel.position, full.kernel.position, "{text:?}");
                 assert_eq!(fast.modal, full.modal, "{text:?}");
-                assert_eq!(fast.feed, full.feed, "{text:?}");
+                assert_eq!(fast.kernel.feed, full.kernel.feed, "{text:?}");
                 if by_run.is_err() {
                     return false;
                 }
@@ -817,13 +716,13 @@ mod tests {
                 let line = Line { text: text.as_bytes(), offset: 0, number };
                 parse_line(line, FileId(0), &SyntaxOptions::default(), &mut lines);
                 for block in lines.as_slice() {
-                    if decode(block, fast.setup.profile(), fast.setup.plain_letters(), &mut cmd).is_err() {
+                    if decode(block, fast.kernel.setup.profile(), fast.kernel.setup.plain_letters(), &mut cmd).is_err() {
                         return Ok(());
                     }
                     let (by_run, by_loop) = (fast.apply_modal(&cmd), full.apply_modal_codes(&cmd));
                     proptest::prop_assert_eq!(&by_run, &by_loop, "{:?}", text);
                     proptest::prop_assert_eq!(&fast.modal, &full.modal, "{:?}", text);
-                    proptest::prop_assert_eq!(fast.feed, full.feed, "{:?}", text);
+                    proptest::prop_assert_eq!(fast.kernel.feed, full.kernel.feed, "{:?}", text);
                     proptest::prop_assert_eq!(fast.program_position(), full.program_position());
                     if by_run.is_err() {
                         return Ok(());
@@ -851,7 +750,7 @@ mod tests {
                 let line = Line { text: text.as_bytes(), offset: 0, number };
                 parse_line(line, FileId(0), &SyntaxOptions::default(), &mut lines);
                 for block in lines.as_slice() {
-                    if decode(block, exec.setup.profile(), exec.setup.plain_letters(), &mut cmd).is_err() {
+                    if decode(block, exec.kernel.setup.profile(), exec.kernel.setup.plain_letters(), &mut cmd).is_err() {
                         return Ok(());
                     }
                     if exec.apply_modal(&cmd).is_err() {

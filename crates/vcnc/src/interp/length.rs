@@ -21,14 +21,14 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
     // In the old FANUC 0M form `G42 H19` the H belongs to cutter compensation.
     let h = cmd
         .h()
-        .filter(|_| !super::compensation::h_names_radius_offset(exec.setup.profile(), cmd));
+        .filter(|_| !super::compensation::h_names_radius_offset(exec.kernel.setup.profile(), cmd));
     if let Some(h) = h {
-        let number = exec.setup.offset_number(h, 'H')?;
-        exec.tools.select_length(number);
+        let number = exec.kernel.setup.offset_number(h, 'H')?;
+        exec.kernel.tools.select_length(number);
     }
     let changed = cmd.group(Group::LengthComp).is_some()
         || (h.is_some() && exec.modal.length_comp != LengthComp::Off);
-    Ok(changed && (exec.active_length() - exec.frames.length_vector()).abs() > 0.0)
+    Ok(changed && (exec.active_length() - exec.kernel.frames.length_vector()).abs() > 0.0)
 }
 
 /// Moves Z so that the program position stays where it is under the new offset.
@@ -42,7 +42,7 @@ pub(crate) fn move_to_new_vector(
 ) -> Result<(), Alarm> {
     let program = exec.program_position();
     let target = exec.machine_target(&program, true);
-    match (exec.modal.motion, exec.feed) {
+    match (exec.modal.motion, exec.kernel.feed) {
         (MotionMode::Linear | MotionMode::Arc(_), Some(_)) => {
             let feed = exec.cutting_feed(cmd)?;
             let motion = exec.move_to(target, cmd)?;

@@ -502,7 +502,7 @@ impl<B: BlockSource> Interpreter<B> {
 
     /// The machine position now.
     pub fn position(&self) -> MachinePos {
-        MachinePos(self.core.exec.position)
+        MachinePos(self.core.exec.kernel.position)
     }
 
     /// The position now in the program's coordinates (what the control shows as "absolute").
@@ -512,7 +512,7 @@ impl<B: BlockSource> Interpreter<B> {
 
     /// The tool in the spindle (the last T put there by M06; 0 before any change).
     pub fn tool_in_spindle(&self) -> u32 {
-        self.core.exec.tools.in_spindle()
+        self.core.exec.kernel.tools.in_spindle()
     }
 
     /// The modal state now.
@@ -798,8 +798,8 @@ impl Core {
     fn run_words(&mut self, block: &Block, main_text: Option<&[u8]>) {
         let decoded = decode::decode(
             block,
-            self.exec.setup.profile(),
-            self.exec.setup.plain_letters(),
+            self.exec.kernel.setup.profile(),
+            self.exec.kernel.setup.plain_letters(),
             &mut self.command,
         );
         if self.command.has_warnings() {
@@ -811,7 +811,7 @@ impl Core {
             return;
         }
         self.blocks_executed += 1;
-        if self.macros.in_call() && self.exec.setup.profile().end_in_subprogram_returns {
+        if self.macros.in_call() && self.exec.kernel.setup.profile().end_in_subprogram_returns {
             // Syntec: M02/M30 in a subprogram return to the caller.
             if let Some(end) = self.command.take_program_end() {
                 self.command

@@ -142,6 +142,16 @@ impl ModalState {
     pub(crate) fn exact_stop_once(&self, cmd: &super::decode::Command) -> bool {
         cmd.exact_stop_once() && self.smoothing.high_speed.is_none()
     }
+
+    /// How the block `cmd` makes its moves in the modes in force.
+    #[inline(always)]
+    pub(crate) fn move_modes(&self, cmd: &super::decode::Command) -> super::kernel::MoveModes {
+        super::kernel::MoveModes {
+            path_mode: self.path_mode,
+            exact_stop: self.exact_stop_once(cmd),
+            smoothing: self.smoothing_for_motion(),
+        }
+    }
 }
 
 impl ModalState {

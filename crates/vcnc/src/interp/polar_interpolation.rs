@@ -146,7 +146,7 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
         ));
     }
     for axis in [Axis::X, Axis::C] {
-        if !exec.setup.has_axis(axis) {
+        if !exec.kernel.setup.has_axis(axis) {
             return Err(Alarm::error(
                 AlarmCode::AxisNotOnMachine,
                 g.span,
@@ -173,8 +173,8 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
         cmd.axis(LINEAR).map_or(0.0, |v| exec.length(&v)),
         cmd.axis(ROTARY).map_or(0.0, |v| exec.length(&v)),
     );
-    let machine = exec.position;
-    let offset = exec.frames.offset();
+    let machine = exec.kernel.position;
+    let offset = exec.kernel.frames.offset();
     let radius = machine[LINEAR] - offset[LINEAR];
     if radius < 0.0 {
         // The conversion keeps X at or above the centre; starting below it, the first piece
@@ -187,8 +187,8 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
         .with_help("position X at or above the program zero of X before G12.1"));
     }
     let (sin, cos) = sin_cos_degrees(machine[ROTARY] - offset[ROTARY]);
-    exec.position[LINEAR] = radius * cos - eccentricity.0 + offset[LINEAR];
-    exec.position[HYPOTHETICAL] = radius * sin - eccentricity.1 + offset[HYPOTHETICAL];
+    exec.kernel.position[LINEAR] = radius * cos - eccentricity.0 + offset[LINEAR];
+    exec.kernel.position[HYPOTHETICAL] = radius * sin - eccentricity.1 + offset[HYPOTHETICAL];
     let plane = std::mem::replace(&mut exec.modal.plane, Plane::Xy);
     out.polar_interpolation = Some(Box::new(PolarStage {
         staged: Vec::new(),
@@ -198,7 +198,7 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
             eccentricity,
             machine_y: machine[HYPOTHETICAL],
             last: machine,
-            tolerance: exec.setup.profile().polar_interpolation_tolerance,
+            tolerance: exec.kernel.setup.profile().polar_interpolation_tolerance,
         },
     }));
     Ok(())
@@ -211,12 +211,12 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
 fn refuse_transforms(exec: &Executor, g: GWord) -> Result<(), Alarm> {
     let active = [
         (
-            exec.frames.rotated(),
+            exec.kernel.frames.rotated(),
             "coordinate rotation (G68, G92.1 R)",
             "G69",
         ),
         (
-            exec.frames.scaling().is_some(),
+            exec.kernel.frames.scaling().is_some(),
             "scaling or mirror image (G51, G51.1)",
             "G50 or G50.1",
         ),
@@ -251,7 +251,7 @@ fn cancel(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Al
     }
     if let Some(stage) = out.polar_interpolation.take() {
         let (plane, machine) = stage.flush(&mut out.items);
-        exec.position = machine;
+        exec.kernel.position = machine;
         exec.modal.plane = plane;
     }
     Ok(())

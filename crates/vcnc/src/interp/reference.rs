@@ -26,7 +26,7 @@ pub(crate) fn g28(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
 /// # Errors
 /// [`AlarmCode::ReferencePointOutOfRange`] for a P the machine does not have.
 pub(crate) fn g30(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<bool, Alarm> {
-    let count = exec.setup.machine().reference_points.len();
+    let count = exec.kernel.setup.machine().reference_points.len();
     let n = match cmd.p() {
         None => 2,
         Some(p) => {
@@ -51,6 +51,7 @@ fn reference_return(
     out: &mut Output,
 ) -> Result<bool, Alarm> {
     let reference = exec
+        .kernel
         .setup
         .machine()
         .reference_points
@@ -58,15 +59,15 @@ fn reference_return(
         .copied()
         .unwrap_or([0.0; AXES]);
     if !cmd.has_axis_words() {
-        if exec.setup.profile().g28_without_axes_homes_all {
-            let mut target = exec.position;
+        if exec.kernel.setup.profile().g28_without_axes_homes_all {
+            let mut target = exec.kernel.position;
             for axis in Axis::ALL
                 .into_iter()
-                .filter(|a| exec.setup.machine().has_axis(*a))
+                .filter(|a| exec.kernel.setup.machine().has_axis(*a))
             {
                 target[axis.index()] = reference[axis.index()];
             }
-            exec.frames.set_length_vector(0.0);
+            exec.kernel.frames.set_length_vector(0.0);
             exec.rapid_to(target, cmd, out)?;
         } else {
             let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
@@ -85,7 +86,7 @@ fn reference_return(
     let moves_z = cmd.axis(Axis::Z.index()).is_some();
     let via = exec.machine_target(&intermediate, moves_z);
     exec.rapid_to(via, cmd, out)?;
-    let mut home = exec.position;
+    let mut home = exec.kernel.position;
     for axis in Axis::ALL {
         if cmd.axis(axis.index()).is_some() {
             exec.intermediate[axis.index()] = Some(intermediate[axis.index()]);
@@ -93,7 +94,7 @@ fn reference_return(
         }
     }
     if moves_z {
-        exec.frames.set_length_vector(0.0);
+        exec.kernel.frames.set_length_vector(0.0);
     }
     exec.rapid_to(home, cmd, out)?;
     Ok(true)

@@ -33,8 +33,8 @@ const HIGH_SPEED_ON: f64 = 10000.0;
 /// [`AlarmCode::SmoothingCommand`] for a missing or bad word, for switching a mode on in G61 or
 /// G63, and for high-speed mode with inverse time feed.
 pub(crate) fn switch(exec: &mut Executor, cmd: &Command, g: GWord) -> Result<(), Alarm> {
-    let default = Smoothing::from_mm(exec.setup.machine().planner.smoothing_tolerance);
-    match (g.code, exec.setup.profile().smoothing_codes) {
+    let default = Smoothing::from_mm(exec.kernel.setup.machine().planner.smoothing_tolerance);
+    match (g.code, exec.kernel.setup.profile().smoothing_codes) {
         (GCode::HighSpeedMode, _) => {
             let e = cmd.word(b'E');
             // P defaults to 10000 when E is given, to 0 when neither is (spec 1.8).

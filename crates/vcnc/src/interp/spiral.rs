@@ -66,7 +66,7 @@ pub(crate) fn run(
         .with_help("an incomplete last turn counts as one: L3 for two and a half turns"));
     }
     let (a, b, _) = exec.modal.plane.axes();
-    let start = exec.position;
+    let start = exec.kernel.position;
     let centre = (start[a] + spiral.offset.0, start[b] + spiral.offset.1);
     let start_radius = spiral.offset.0.hypot(spiral.offset.1);
     if start_radius <= 1e-9 {
@@ -145,7 +145,7 @@ pub(crate) fn run(
         let to = point(k);
         let feed = match spiral.feed {
             Feed::InverseTime(f) => {
-                let length = distance(&exec.position, &to);
+                let length = distance(&exec.kernel.position, &to);
                 if length <= 0.0 {
                     continue;
                 }
@@ -153,7 +153,7 @@ pub(crate) fn run(
             }
             feed => feed,
         };
-        if super::exec::same_place(&to, &exec.position) {
+        if super::kernel::same_place(&to, &exec.kernel.position) {
             continue;
         }
         let motion = exec.move_to(to, cmd)?;

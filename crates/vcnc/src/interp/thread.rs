@@ -33,7 +33,7 @@ pub(crate) fn g33(
     }
     let lead = match cmd
         .word(b'E')
-        .filter(|_| exec.setup.profile().thread_e_per_inch)
+        .filter(|_| exec.kernel.setup.profile().thread_e_per_inch)
     {
         Some(e) if e.number.value > 0.0 => 25.4 / e.number.value,
         Some(e) => {
@@ -43,7 +43,7 @@ pub(crate) fn g33(
                 "E of a thread is its number of threads per inch: more than 0",
             ))
         }
-        None => match exec.feed {
+        None => match exec.kernel.feed {
             Some(f) if f > 0.0 => f,
             _ => {
                 return Err(Alarm::error(
@@ -54,12 +54,12 @@ pub(crate) fn g33(
             }
         },
     };
-    if super::exec::same_place(&target, &exec.position) {
+    if super::kernel::same_place(&target, &exec.kernel.position) {
         return Ok(());
     }
     let feed = Feed::PerRevolution {
         per_revolution: lead,
-        rpm: (exec.spindle.speed() > 0.0).then_some(exec.spindle.speed()),
+        rpm: (exec.kernel.spindle.speed() > 0.0).then_some(exec.kernel.spindle.speed()),
     };
     let mut motion = exec.move_to(target, cmd)?;
     motion.path_mode = PathMode::Tapping;

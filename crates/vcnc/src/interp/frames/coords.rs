@@ -23,9 +23,9 @@ pub(crate) fn g92(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
         };
         let i = axis.index();
         let wanted = exec.axis_value(axis, value);
-        let g92 = exec.frames.g92(i) + exec.frames.local(i) + (program[i] - wanted);
-        exec.frames.set_g92(i, g92);
-        exec.frames.set_local(i, 0.0);
+        let g92 = exec.kernel.frames.g92(i) + exec.kernel.frames.local(i) + (program[i] - wanted);
+        exec.kernel.frames.set_g92(i, g92);
+        exec.kernel.frames.set_local(i, 0.0);
     }
     Ok(true)
 }
@@ -55,8 +55,8 @@ pub(crate) fn g92_1(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
             None if named => continue,
             None => {}
         }
-        exec.frames.set_g92(i, 0.0);
-        exec.frames.set_local(i, 0.0);
+        exec.kernel.frames.set_g92(i, 0.0);
+        exec.kernel.frames.set_local(i, 0.0);
     }
     Ok(true)
 }
@@ -70,7 +70,7 @@ pub(crate) fn g52(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     for axis in Axis::ALL {
         if let Some(value) = &cmd.axis(axis.index()) {
             let local = exec.axis_value(axis, value);
-            exec.frames.set_local(axis.index(), local);
+            exec.kernel.frames.set_local(axis.index(), local);
         }
     }
     Ok(true)
@@ -86,14 +86,14 @@ pub(crate) fn g53(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
     if exec.modal.distance == DistanceMode::Incremental {
         return Ok(false);
     }
-    let mut target: [f64; AXES] = exec.position;
+    let mut target: [f64; AXES] = exec.kernel.position;
     for axis in Axis::ALL {
         if let Some(value) = &cmd.axis(axis.index()) {
             target[axis.index()] = exec.axis_value(axis, value);
         }
     }
     if cmd.axis(Axis::Z.index()).is_some() {
-        exec.frames.set_length_vector(0.0);
+        exec.kernel.frames.set_length_vector(0.0);
     }
     exec.rapid_to(target, cmd, out)?;
     Ok(true)
@@ -108,7 +108,7 @@ pub(crate) fn g53(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
 /// system is already shifted by G92, G52 or turned.
 fn preset_with_rotation(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
-    if !exec.setup.profile().g92_1_rotation {
+    if !exec.kernel.setup.profile().g92_1_rotation {
         return Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             span,
@@ -123,8 +123,9 @@ fn preset_with_rotation(exec: &mut Executor, cmd: &Command) -> Result<bool, Alar
             Some(5),
         ));
     }
-    let shifted = (0..2).any(|i| exec.frames.g92(i) != 0.0 || exec.frames.local(i) != 0.0);
-    if shifted || exec.frames.rotated() {
+    let shifted =
+        (0..2).any(|i| exec.kernel.frames.g92(i) != 0.0 || exec.kernel.frames.local(i) != 0.0);
+    if shifted || exec.kernel.frames.rotated() {
         return Err(Alarm::not_supported(
             span,
             "G92.1 with R on a system already shifted by G92/G52 or turned",
@@ -135,11 +136,12 @@ fn preset_with_rotation(exec: &mut Executor, cmd: &Command) -> Result<bool, Alar
         let i = axis.index();
         if let Some(value) = cmd.axis(i) {
             let v = exec.axis_value(axis, &value);
-            exec.frames.set_g92(i, v);
+            exec.kernel.frames.set_g92(i, v);
         }
     }
     let degrees = cmd.r().map_or(0.0, |r| exec.angle(&r));
-    exec.frames
+    exec.kernel
+        .frames
         .set_preset_rotation((degrees != 0.0).then(|| Rotation::new((0, 1), (0.0, 0.0), degrees)));
     Ok(true)
 }

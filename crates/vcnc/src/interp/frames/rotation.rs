@@ -21,8 +21,8 @@ use crate::machine::Axis;
 /// None today; kept fallible like the other coordinate codes.
 pub(crate) fn g68(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
     let (a, b, _) = exec.modal.plane.axes();
-    let previous = exec.frames.rotation().copied();
-    exec.frames.set_rotation(None);
+    let previous = exec.kernel.frames.rotation().copied();
+    exec.kernel.frames.set_rotation(None);
     // With the old rotation removed, this is the position in work coordinates.
     let here = exec.program_position();
     let word = |axis: usize| {
@@ -35,7 +35,8 @@ pub(crate) fn g68(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
         (DistanceMode::Incremental, Some(previous)) => previous.degrees + angle,
         _ => angle,
     };
-    exec.frames
+    exec.kernel
+        .frames
         .set_rotation(Some(Rotation::new((a, b), center, degrees)));
     Ok(())
 }

@@ -20,11 +20,13 @@ use crate::profile::{DecimalLess, Profile};
 /// # Errors
 /// With the mirror on; without any factor; a factor of zero.
 pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
-    refuse_both(&exec.frames, cmd, false)?;
-    let p = cmd.p().map(|v| factor(exec.setup.profile(), v.number));
+    refuse_both(&exec.kernel.frames, cmd, false)?;
+    let p = cmd
+        .p()
+        .map(|v| factor(exec.kernel.setup.profile(), v.number));
     let per_axis: [Option<f64>; 3] = std::array::from_fn(|i| {
         cmd.center(i)
-            .map(|v| factor(exec.setup.profile(), v.number))
+            .map(|v| factor(exec.kernel.setup.profile(), v.number))
     });
     if p.is_none() && per_axis.iter().all(Option::is_none) {
         return Err(Alarm::error(
@@ -33,7 +35,7 @@ pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
             "G51 needs a scale factor: P for every axis named, or I J K for X Y Z",
         ));
     }
-    exec.frames.set_scaling(None);
+    exec.kernel.frames.set_scaling(None);
     let here = exec.program_position();
     let mut scaling = Scaling {
         center: here,
@@ -54,7 +56,7 @@ pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
         }
         scaling.factor[i] = f;
     }
-    exec.frames.set_scaling(Some(scaling));
+    exec.kernel.frames.set_scaling(Some(scaling));
     Ok(())
 }
 
@@ -63,9 +65,9 @@ pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
 /// # Errors
 /// With scaling on.
 pub(crate) fn g51_1(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
-    refuse_both(&exec.frames, cmd, true)?;
-    let previous = exec.frames.scaling().copied();
-    exec.frames.set_scaling(None);
+    refuse_both(&exec.kernel.frames, cmd, true)?;
+    let previous = exec.kernel.frames.scaling().copied();
+    exec.kernel.frames.set_scaling(None);
     let here = exec.program_position();
     let mut mirror = previous.unwrap_or(Scaling {
         center: here,
@@ -82,7 +84,7 @@ pub(crate) fn g51_1(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
         };
         mirror.factor[i] = -1.0;
     }
-    exec.frames.set_scaling(Some(mirror));
+    exec.kernel.frames.set_scaling(Some(mirror));
     Ok(())
 }
 

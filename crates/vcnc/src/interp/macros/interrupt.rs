@@ -190,7 +190,7 @@ impl Core {
         if self.exec.modal.smoothing.path.is_some() {
             return Some("path smoothing (G05.1) is on");
         }
-        match self.exec.frames.scaling() {
+        match self.exec.kernel.frames.scaling() {
             Some(scaling) if scaling.mirror => Some("the programmable mirror (G51.1) is on"),
             Some(_) => Some("scaling (G51) is on"),
             None => None,
@@ -217,7 +217,7 @@ impl Core {
             .expect("call has pushed the frame");
         frame.return_to = Place::stored(main, block);
         frame.interrupted = Some(Interrupted {
-            at: self.exec.position,
+            at: self.exec.kernel.position,
             block,
         });
         Ok(())

@@ -198,7 +198,10 @@ fn alarm(code: AlarmCode, span: Span, message: impl Into<String>) -> Alarm {
 impl Core {
     /// The value of `#number`.
     pub(crate) fn read_variable(&self, number: u32, span: Span) -> Result<MacroValue, Alarm> {
-        let kind = Variables::kind(number, self.exec.setup.profile().extended_common_variables);
+        let kind = Variables::kind(
+            number,
+            self.exec.kernel.setup.profile().extended_common_variables,
+        );
         match kind {
             Kind::System => {
                 system::read(&self.exec, &self.out, &self.macros.counters, number, span)
@@ -219,7 +222,10 @@ impl Core {
         span: Span,
         message: Option<&str>,
     ) -> Result<(), Alarm> {
-        let kind = Variables::kind(number, self.exec.setup.profile().extended_common_variables);
+        let kind = Variables::kind(
+            number,
+            self.exec.kernel.setup.profile().extended_common_variables,
+        );
         match kind {
             Kind::Vacant => Err(alarm(AlarmCode::BadVariable, span, "#0 cannot be written")),
             Kind::System => {
@@ -318,7 +324,7 @@ impl Core {
     /// A macro value given to an address: rounded to the least input increment for lengths
     /// and angles, as the controls do, and read as if written with a decimal point.
     fn address_number(&self, letter: u8, value: f64) -> Number {
-        let profile = self.exec.setup.profile();
+        let profile = self.exec.kernel.setup.profile();
         let increment = match letter {
             b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'I' | b'J' | b'K' | b'R' | b'Q' => {
                 match self.exec.modal.units {
@@ -522,7 +528,7 @@ impl Core {
                 &file,
                 indexed::Bytes::File(file.try_clone().map_err(|e| read_alarm(span, &e))?),
                 self.file,
-                self.exec.setup.profile().syntax(),
+                self.exec.kernel.setup.profile().syntax(),
             );
             return match scanned {
                 Ok(index) => Ok(MainFile::Indexed(Arc::new(index))),
@@ -556,7 +562,7 @@ impl Core {
     /// A main program's file held whole, its headers found.
     fn whole_file(&self, text: Arc<[u8]>, span: Span) -> Result<FileText, Alarm> {
         self.check_held_size(text.len(), span)?;
-        let headers = programs::program_headers(&text, &self.exec.setup.profile().syntax());
+        let headers = programs::program_headers(&text, &self.exec.kernel.setup.profile().syntax());
         let main_end = programs::main_program_end(&text, &headers);
         Ok(FileText {
             text,
@@ -569,7 +575,7 @@ impl Core {
         if let Some(main) = &self.macros.main {
             return Ok(main.clone());
         }
-        let syntax = self.exec.setup.profile().syntax();
+        let syntax = self.exec.kernel.setup.profile().syntax();
         let file_id = self.file;
         let main = match self.load_file(main_text, span)? {
             MainFile::Whole(file) => Program::Stored(Arc::new(StoredProgram::parse(
@@ -600,7 +606,7 @@ impl Core {
             &text,
             (0, 1, text.len()),
             self.file,
-            &self.exec.setup.profile().syntax(),
+            &self.exec.kernel.setup.profile().syntax(),
             None,
         );
         self.macros.main = Some(Program::Stored(Arc::new(program)));
@@ -646,7 +652,7 @@ impl Core {
         number: u32,
         span: Span,
     ) -> Result<Option<StoredProgram>, Alarm> {
-        let syntax = self.exec.setup.profile().syntax();
+        let syntax = self.exec.kernel.setup.profile().syntax();
         match &self.macros.file {
             None => Ok(None),
             Some(MainFile::Whole(file)) => {
@@ -690,7 +696,7 @@ impl Core {
         number: u32,
         span: Span,
     ) -> Result<Option<StoredProgram>, Alarm> {
-        let syntax = self.exec.setup.profile().syntax();
+        let syntax = self.exec.kernel.setup.profile().syntax();
         let Some(text) = self.macros.library.as_mut().and_then(|l| l.find(number)) else {
             return Ok(None);
         };
@@ -755,7 +761,7 @@ impl Core {
     }
 
     fn check_loop_number(&self, label: u32, span: Span) -> Result<(), Alarm> {
-        let most = self.exec.setup.profile().loop_numbers;
+        let most = self.exec.kernel.setup.profile().loop_numbers;
         if label == 0 || label > most {
             return Err(alarm(
                 AlarmCode::LoopStructure,
@@ -946,7 +952,7 @@ impl Core {
             ));
         };
         let mut number = Core::whole_number(p, "P (program number)")?;
-        if self.exec.setup.profile().m98_p_holds_repeats
+        if self.exec.kernel.setup.profile().m98_p_holds_repeats
             && self.command.l().is_none()
             && number > 9999
         {
@@ -1020,13 +1026,13 @@ impl Core {
             return Ok(());
         }
         let depth = self.macros.calls.len() as u32;
-        if depth >= self.exec.setup.profile().call_depth {
+        if depth >= self.exec.kernel.setup.profile().call_depth {
             return Err(alarm(
                 AlarmCode::MacroLimit,
                 span,
                 format!(
                     "calls nested deeper than {} levels (FANUC alarm PS0077)",
-                    self.exec.setup.profile().call_depth
+                    self.exec.kernel.setup.profile().call_depth
                 ),
             ));
         }
@@ -1037,13 +1043,13 @@ impl Core {
                 .iter()
                 .filter(|c| c.arguments.is_some())
                 .count() as u32;
-            if macros >= self.exec.setup.profile().macro_call_depth {
+            if macros >= self.exec.kernel.setup.profile().macro_call_depth {
                 return Err(alarm(
                     AlarmCode::MacroLimit,
                     span,
                     format!(
                         "macro calls (G65, G66) nested deeper than {} levels (FANUC alarm PS0077)",
-                        self.exec.setup.profile().macro_call_depth
+                        self.exec.kernel.setup.profile().macro_call_depth
                     ),
                 ));
             }
@@ -1219,7 +1225,8 @@ impl Core {
         // The profile's letter-to-variable mapping. Every control vcnc models maps as FANUC
         // does (the Syntec manual's G65 example passes X and Y the same way): one arm today, and
         // a profile with another mapping must add its own here.
-        let crate::profile::MacroArguments::Fanuc = self.exec.setup.profile().macro_arguments;
+        let crate::profile::MacroArguments::Fanuc =
+            self.exec.kernel.setup.profile().macro_arguments;
         let mut locals: Locals = [None; 33];
         let mut program = None;
         let mut repeats = 1;
@@ -1291,7 +1298,7 @@ impl Core {
     /// An argument written without a decimal point is read in least input increments where
     /// the control reads addresses so (FANUC: "the units of the address").
     fn argument_value(&self, letter: u8, number: Number, value: f64) -> f64 {
-        let profile = self.exec.setup.profile();
+        let profile = self.exec.kernel.setup.profile();
         if number.decimal_point || profile.decimal_less != DecimalLess::Increments {
             return value;
         }

@@ -131,11 +131,11 @@ pub(crate) fn read(
     number: u32,
     span: Span,
 ) -> Result<MacroValue, Alarm> {
-    let profile = exec.setup.profile();
+    let profile = exec.kernel.setup.profile();
     let to_units = 1.0 / exec.modal.units.to_mm();
     let length = |mm: f64| Some(mm * to_units);
     if let Some((n, field)) = tool_field_of(number, profile.tool_offset_variables) {
-        let offset = exec.tools.get(n).cloned().unwrap_or_default();
+        let offset = exec.kernel.tools.get(n).cloned().unwrap_or_default();
         let mm = match field {
             ToolField::Length => offset.length,
             ToolField::LengthWear => offset.length_wear,
@@ -145,18 +145,23 @@ pub(crate) fn read(
         return Ok(length(mm));
     }
     if let Some((id, axis)) = work_offset_of(number, profile.g54_1_count) {
-        return Ok(length(exec.frames.work_offset(id)[axis]));
+        return Ok(length(exec.kernel.frames.work_offset(id)[axis]));
     }
     if profile.syntec_system_variables {
         match number {
             1000 => return Ok(Some(motion_code(exec.modal.motion) / 10.0)),
             1004 => return Ok(Some(distance_code(exec.modal.distance) / 10.0)),
             1901..=1916 => {
-                return Ok(axis_of(number, 1901).map_or(Some(0.0), |a| length(exec.frames.g92(a))))
+                return Ok(
+                    axis_of(number, 1901).map_or(Some(0.0), |a| length(exec.kernel.frames.g92(a)))
+                )
             }
             1930 => {
                 return Ok(Some(
-                    exec.frames.preset_rotation().map_or(0.0, |r| r.degrees),
+                    exec.kernel
+                        .frames
+                        .preset_rotation()
+                        .map_or(0.0, |r| r.degrees),
                 ))
             }
             _ => {}
@@ -166,8 +171,8 @@ pub(crate) fn read(
         match number {
             // Power-on, cycle-start, feed, part timers (seconds): the simulation has no clock.
             3020..=3025 => return Ok(Some(0.0)),
-            3026 => return Ok(Some(f64::from(exec.tools.in_spindle()))),
-            3027 => return Ok(Some(exec.spindle.speed())),
+            3026 => return Ok(Some(f64::from(exec.kernel.tools.in_spindle()))),
+            3027 => return Ok(Some(exec.kernel.spindle.speed())),
             // Tool-life counters and timers, per tool.
             5401..=5800 => return Ok(Some(0.0)),
             _ => {}
@@ -210,7 +215,7 @@ pub(crate) fn read(
             let program = exec.program_position();
             axis_of(number, 5001).and_then(|a| length(program[a]))
         }
-        5021..=5026 => axis_of(number, 5021).and_then(|a| length(exec.position[a])),
+        5021..=5026 => axis_of(number, 5021).and_then(|a| length(exec.kernel.position[a])),
         5041..=5046 => {
             let program = exec.program_position();
             axis_of(number, 5041).and_then(|a| length(program[a]))
@@ -221,7 +226,7 @@ pub(crate) fn read(
         5081..=5086 => {
             let a = axis_of(number, 5081).unwrap_or(0);
             if a == 2 {
-                length(exec.frames.length_vector())
+                length(exec.kernel.frames.length_vector())
             } else {
                 Some(0.0)
             }
@@ -242,8 +247,10 @@ pub(crate) fn write(
     span: Span,
 ) -> Result<WriteEffect, Alarm> {
     let mm = value.unwrap_or(0.0) * exec.modal.units.to_mm();
-    if let Some((n, field)) = tool_field_of(number, exec.setup.profile().tool_offset_variables) {
-        exec.tools.write(n, |offset| match field {
+    if let Some((n, field)) =
+        tool_field_of(number, exec.kernel.setup.profile().tool_offset_variables)
+    {
+        exec.kernel.tools.write(n, |offset| match field {
             ToolField::Length => offset.length = mm,
             ToolField::LengthWear => offset.length_wear = mm,
             ToolField::Radius => offset.radius = mm,
@@ -251,8 +258,8 @@ pub(crate) fn write(
         });
         return Ok(WriteEffect::None);
     }
-    if let Some((id, axis)) = work_offset_of(number, exec.setup.profile().g54_1_count) {
-        exec.frames.set_work_offset(id, axis, mm);
+    if let Some((id, axis)) = work_offset_of(number, exec.kernel.setup.profile().g54_1_count) {
+        exec.kernel.frames.set_work_offset(id, axis, mm);
         return Ok(WriteEffect::None);
     }
     let v = value.unwrap_or(0.0);
@@ -345,7 +352,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
             CycleReturn::RLevel => 990.0,
         },
         11 => {
-            if exec.frames.scaling().is_some() {
+            if exec.kernel.frames.scaling().is_some() {
                 510.0
             } else {
                 500.0
@@ -368,7 +375,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
             PathMode::Continuous => 640.0,
         },
         16 => {
-            if exec.frames.rotation().is_some() {
+            if exec.kernel.frames.rotation().is_some() {
                 680.0
             } else {
                 690.0
@@ -383,7 +390,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
         }
         // FANUC's group 21 is G12.1/G13.1 (polar coordinate interpolation), G13.1 at power-on;
         // a control without the function has nothing in it.
-        21 if exec.setup.profile().polar_interpolation => {
+        21 if exec.kernel.setup.profile().polar_interpolation => {
             if out.polar_interpolation.is_some() {
                 121.0
             } else {
@@ -418,11 +425,11 @@ fn letter_value(exec: &Executor, letter: u32) -> Option<MacroValue> {
     Some(match letter {
         // B, E, M, N, O: not kept by vcnc's executor; FANUC gives the last one read.
         2 | 8 | 13 | 14 | 15 => Some(0.0),
-        7 => Some(f64::from(exec.tools.radius_number())),
-        9 => Some(exec.feed.unwrap_or(0.0) / exec.modal.units.to_mm()),
-        11 => Some(f64::from(exec.tools.length_number())),
-        19 => Some(exec.spindle.speed()),
-        20 => Some(f64::from(exec.tools.selected())),
+        7 => Some(f64::from(exec.kernel.tools.radius_number())),
+        9 => Some(exec.kernel.feed.unwrap_or(0.0) / exec.modal.units.to_mm()),
+        11 => Some(f64::from(exec.kernel.tools.length_number())),
+        19 => Some(exec.kernel.spindle.speed()),
+        20 => Some(f64::from(exec.kernel.tools.selected())),
         30 => match exec.modal.work_offset {
             WorkOffsetId::Extended(p) => Some(f64::from(p)),
             _ => Some(0.0),

@@ -10,15 +10,18 @@
 //! kernel never reads program text and knows no dialect: each operation names the block it
 //! belongs to by an [`Origin`].
 
+mod state;
+
+pub(crate) use state::{check_position, same_place, KernelState, MoveModes};
+
 use super::arc::{arc_center, in_plane, ArcSpec};
-use super::circular::{queue_arc, ArcTo};
+use super::circular::ArcTo;
 use super::decode::Command;
-use super::exec::Executor;
-use super::modal::FeedMode;
+use super::modal::{FeedMode, ModalState};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Machine, AXES};
-use crate::motion::{ArcDirection, EndKind, MachinePos, Segment, SegmentKind};
+use crate::motion::{ArcDirection, EndKind, MachinePos, Plane, Segment, SegmentKind};
 use crate::source::Span;
 
 /// The block an operation of the kernel belongs to: its span, for alarms and for every segment
@@ -43,36 +46,53 @@ impl Origin {
 
 /// The machine state every dialect shares, and the queue of the stream it produces.
 pub struct Kernel {
-    exec: Executor,
+    state: KernelState,
     out: Output,
-    /// The block of the operation at hand, in the form the executor's functions take it.
+    /// The block of the operation at hand, in the form the stream's queue takes it.
     block: Command,
+    /// The plane of arcs.
+    plane: Plane,
+    /// How [`KernelState::feed`] reads.
+    feed_mode: FeedMode,
+    /// How moves are made (path mode, smoothing).
+    modes: MoveModes,
 }
 
 impl Kernel {
-    /// The kernel of `machine` at power-on (the profile's modal state, G54, no tool length).
+    /// The kernel of `machine` at power-on: the profile's plane, feed mode, path mode and work
+    /// system, no tool length.
     pub fn new(machine: &Machine) -> Kernel {
+        let mut state = KernelState::new(machine);
+        let power_on = ModalState::power_on(&state.setup.profile().power_on);
+        state.frames.select(power_on.work_offset);
         Kernel {
-            exec: Executor::new(machine),
+            state,
             out: Output::default(),
             block: Command::default(),
+            plane: power_on.plane,
+            feed_mode: power_on.feed_mode,
+            modes: MoveModes {
+                path_mode: power_on.path_mode,
+                exact_stop: false,
+                smoothing: power_on.smoothing_for_motion(),
+            },
         }
     }
 
     /// The machine position now.
     pub fn position(&self) -> MachinePos {
-        MachinePos(self.exec.position)
+        MachinePos(self.state.position)
     }
 
     /// The position now in program coordinates.
     pub fn program_position(&self) -> [f64; AXES] {
-        self.exec.program_position()
+        self.state.program_position()
     }
 
     /// Sets the cutting feed, mm/min.
     pub fn set_feed(&mut self, mm_per_min: f64) {
-        self.exec.modal.feed_mode = FeedMode::PerMinute;
-        self.exec.feed = Some(mm_per_min);
+        self.feed_mode = FeedMode::PerMinute;
+        self.state.feed = Some(mm_per_min);
     }
 
     /// The block `origin` becomes the one the next segments and alarms belong to.
@@ -82,11 +102,12 @@ impl Kernel {
     }
 
     /// Machine coordinates of a program-coordinate target; axes without a value stay where they
-    /// are. The tool length follows when Z is named, as a block that moves Z applies it.
-    fn machine_target(&mut self, target: [Option<f64>; AXES]) -> [f64; AXES] {
-        let here = self.exec.program_position();
+    /// are.
+    fn machine_target(&self, target: [Option<f64>; AXES]) -> [f64; AXES] {
+        let here = self.state.program_position();
         let program = std::array::from_fn(|i| target[i].unwrap_or(here[i]));
-        self.exec.machine_target(&program, target[2].is_some())
+        let frames = &self.state.frames;
+        frames.to_machine(&program, frames.length_vector())
     }
 
     /// A rapid to `target` (program coordinates).
@@ -96,7 +117,8 @@ impl Kernel {
     pub fn rapid_to(&mut self, target: [Option<f64>; AXES], origin: Origin) -> Result<(), Alarm> {
         self.enter(origin);
         let to = self.machine_target(target);
-        self.exec.rapid_to(to, &self.block, &mut self.out)
+        self.state
+            .rapid_to(to, &self.block, self.modes, &mut self.out)
     }
 
     /// A cutting line to `target` (program coordinates) at the feed in force.
@@ -107,7 +129,9 @@ impl Kernel {
     pub fn feed_to(&mut self, target: [Option<f64>; AXES], origin: Origin) -> Result<(), Alarm> {
         self.enter(origin);
         let to = self.machine_target(target);
-        self.exec.feed_to(to, &self.block, false, &mut self.out)
+        let feed_mode = self.feed_mode;
+        self.state
+            .feed_to(to, &self.block, feed_mode, self.modes, &mut self.out)
     }
 
     /// An arc in the plane in force (G17 at power-on) to `target` about `center`, both in
@@ -125,21 +149,21 @@ impl Kernel {
         origin: Origin,
     ) -> Result<(), Alarm> {
         self.enter(origin);
-        let feed = self.exec.cutting_feed(&self.block)?;
-        let plane = self.exec.modal.plane;
+        let feed = self.state.cutting_feed(self.feed_mode, &self.block)?;
+        let plane = self.plane;
         let (a, b, _) = plane.axes();
-        let direction = self.exec.frames.arc_direction((a, b), direction);
-        let mut center_point = self.exec.program_position();
+        let frames = &self.state.frames;
+        let direction = frames.arc_direction((a, b), direction);
+        let mut center_point = self.state.program_position();
         (center_point[a], center_point[b]) = center;
-        let length = self.exec.frames.length_vector();
-        let center_machine = self.exec.frames.to_machine(&center_point, length);
+        let center_machine = frames.to_machine(&center_point, frames.length_vector());
         let to = self.machine_target(target);
-        let start = in_plane(plane, &self.exec.position);
+        let start = in_plane(plane, &self.state.position);
         let spec = ArcSpec::Center {
             offset: (center_machine[a] - start.0, center_machine[b] - start.1),
             span: origin.span,
         };
-        let tolerance = self.exec.setup.profile().arc_radius_tolerance;
+        let tolerance = self.state.setup.profile().arc_radius_tolerance;
         let center = arc_center(start, in_plane(plane, &to), spec, direction, tolerance)?;
         let arc = ArcTo {
             target: to,
@@ -147,7 +171,9 @@ impl Kernel {
             direction,
             feed,
         };
-        queue_arc(&mut self.exec, &self.block, arc, &mut self.out)
+        let modes = self.modes;
+        self.state
+            .queue_arc(&self.block, arc, plane, modes, &mut self.out)
     }
 
     /// A dwell of `seconds`.
@@ -200,7 +226,7 @@ impl Kernel {
     /// The feed of the moves to come, as the segments carry it.
     #[cfg(test)]
     fn feed(&self) -> Option<crate::motion::Feed> {
-        self.exec.cutting_feed(&self.block).ok()
+        self.state.cutting_feed(self.feed_mode, &self.block).ok()
     }
 }
 
