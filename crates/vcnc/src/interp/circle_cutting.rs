@@ -45,7 +45,7 @@ pub(crate) fn run(
     let feed = exec.cutting_feed(cmd)?;
     let plane = exec.modal.plane;
     let (a, _, _) = plane.axes();
-    let centre = exec.program_position();
+    let centre = exec.kernel.program_position();
     let at = |da: f64| {
         let mut p = centre;
         p[a] += da;

@@ -100,7 +100,7 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
                     kind,
                     axes: (a, b, d),
                     plane: exec.modal.plane,
-                    initial: exec.program_position()[d],
+                    initial: exec.kernel.program_position()[d],
                     r: None,
                     z: None,
                     q: None,
@@ -300,9 +300,9 @@ fn drill_at(
     target: Option<[f64; AXES]>,
 ) -> Result<(), Alarm> {
     let (a, b, d) = cycle.axes;
-    let mut over = target.unwrap_or_else(|| exec.program_position());
+    let mut over = target.unwrap_or_else(|| exec.kernel.program_position());
     (over[a], over[b]) = at;
-    over[d] = exec.program_position()[d];
+    over[d] = exec.kernel.program_position()[d];
     rapid(exec, cmd, out, over)?;
     let back = match exec.modal.cycle_return {
         CycleReturn::InitialLevel => cycle.initial,
@@ -353,7 +353,7 @@ fn pattern_holes(
     out: &mut Output,
 ) -> Result<(), Alarm> {
     let (a, b, _) = cycle.axes;
-    let here = exec.program_position();
+    let here = exec.kernel.program_position();
     let incremental = exec.modal.distance == DistanceMode::Incremental;
     let place = |axis: usize| {
         cmd.axis(axis).map_or(here[axis], |v| {
@@ -396,7 +396,10 @@ fn pattern_holes(
     let points: Vec<(f64, f64)> = match kind {
         PatternKind::BoltCircle => {
             let radius = exec.length(&need(b'I', "the radius")?);
-            let first = exec.angle(&need(b'J', "the first hole's angle")?);
+            let first = exec
+                .kernel
+                .setup
+                .angle(&need(b'J', "the first hole's angle")?);
             let n = count(b'K', "the number of holes; negative: clockwise")?;
             let step = 360.0 / n as f64;
             (0..n.abs())
@@ -405,7 +408,12 @@ fn pattern_holes(
         }
         PatternKind::Line => {
             let spacing = exec.length(&need(b'I', "the spacing")?);
-            let (sin, cos) = exec.angle(&need(b'J', "the angle")?).to_radians().sin_cos();
+            let (sin, cos) = exec
+                .kernel
+                .setup
+                .angle(&need(b'J', "the angle")?)
+                .to_radians()
+                .sin_cos();
             let n = count(b'K', "the number of holes")?.abs();
             (0..n)
                 .map(|i| {
@@ -416,8 +424,14 @@ fn pattern_holes(
         }
         PatternKind::Arc => {
             let radius = exec.length(&need(b'I', "the radius")?);
-            let first = exec.angle(&need(b'J', "the first hole's angle")?);
-            let pitch = exec.angle(&need(b'P', "the angle between holes")?);
+            let first = exec
+                .kernel
+                .setup
+                .angle(&need(b'J', "the first hole's angle")?);
+            let pitch = exec
+                .kernel
+                .setup
+                .angle(&need(b'P', "the angle between holes")?);
             let n = count(b'K', "the number of holes")?.abs();
             (0..n)
                 .map(|i| polar(radius, first + pitch * i as f64))
@@ -627,7 +641,7 @@ impl Hole<'_> {
                 self.dwell(cycle.p);
                 self.spindle(SpindleState::Oriented);
                 // Off the wall, out, and back over the hole's centre.
-                let centre = self.exec.program_position();
+                let centre = self.exec.kernel.program_position();
                 self.shift_off(cycle, 1.0)?;
                 self.rapid_to(back)?;
                 self.shift_back(centre, cycle)?;
@@ -643,7 +657,7 @@ impl Hole<'_> {
     /// to the initial level (never R), spindle on, back on the axis.
     fn back_bore(&mut self, cycle: &Cycle) -> Result<(), Alarm> {
         let running = self.exec.kernel.spindle.state();
-        let centre = self.exec.program_position();
+        let centre = self.exec.kernel.program_position();
         self.spindle(SpindleState::Oriented);
         self.shift_off(cycle, -1.0)?;
         self.rapid_to(self.r_level)?;
@@ -662,7 +676,7 @@ impl Hole<'_> {
     fn shift_off(&mut self, cycle: &Cycle, sign: f64) -> Result<(), Alarm> {
         let (a, b, _) = cycle.axes;
         let (da, db) = shift(self.exec.kernel.setup.profile(), cycle);
-        let mut off = self.exec.program_position();
+        let mut off = self.exec.kernel.program_position();
         off[a] += sign * da;
         off[b] += sign * db;
         rapid(self.exec, self.cmd, self.out, off)
@@ -671,7 +685,7 @@ impl Hole<'_> {
     /// A rapid back over `centre` in the plane, at the present level.
     fn shift_back(&mut self, centre: [f64; AXES], cycle: &Cycle) -> Result<(), Alarm> {
         let (a, b, _) = cycle.axes;
-        let mut target = self.exec.program_position();
+        let mut target = self.exec.kernel.program_position();
         (target[a], target[b]) = (centre[a], centre[b]);
         rapid(self.exec, self.cmd, self.out, target)
     }
@@ -766,7 +780,7 @@ impl Hole<'_> {
 
     /// Where the tool is, with the drilling axis at `level` (program coordinates).
     fn at(&self, level: f64) -> [f64; AXES] {
-        let mut target = self.exec.program_position();
+        let mut target = self.exec.kernel.program_position();
         target[self.d] = level;
         target
     }

@@ -66,12 +66,6 @@ impl Executor {
         }
     }
 
-    /// The current position in program coordinates.
-    #[inline(always)]
-    pub(crate) fn program_position(&self) -> [f64; AXES] {
-        self.kernel.program_position()
-    }
-
     /// Runs one block.
     ///
     /// # Errors
@@ -414,15 +408,10 @@ impl Executor {
     /// An axis word converted: mm for linear axes, degrees for rotary ones.
     pub(crate) fn axis_value(&self, axis: Axis, value: &Value) -> f64 {
         if axis.is_rotary() {
-            self.angle(value)
+            self.kernel.setup.angle(value)
         } else {
             self.length(value)
         }
-    }
-
-    /// An angle in degrees (see [`super::setup::Setup::angle`]).
-    pub(crate) fn angle(&self, value: &Value) -> f64 {
-        self.kernel.setup.angle(value)
     }
 
     /// The program-coordinate target of the axis words (G90 or G91), other axes where they are.
@@ -439,7 +428,7 @@ impl Executor {
     /// The target of the axis words read as Cartesian coordinates.
     #[inline(always)]
     fn cartesian_target(&self, cmd: &Command) -> [f64; AXES] {
-        let mut target = self.program_position();
+        let mut target = self.kernel.program_position();
         let incremental = self.modal.distance == super::modal::DistanceMode::Incremental;
         let mut place = |i: usize, v: f64| {
             target[i] = if incremental { target[i] + v } else { v };
@@ -454,7 +443,7 @@ impl Executor {
         }
         if cmd.has_rotary_words() {
             for (axis, value) in cmd.axis_words().filter(|(axis, _)| axis.is_rotary()) {
-                place(axis.index(), self.angle(value));
+                place(axis.index(), self.kernel.setup.angle(value));
             }
         }
         target
@@ -512,7 +501,7 @@ impl Executor {
     ) -> Result<[f64; AXES], Alarm> {
         let mut target = self.target_program(cmd);
         if let Some(factor) = super::position_offset::factor(cmd) {
-            let start = self.program_position();
+            let start = self.kernel.program_position();
             let compensating = out.comp.is_some();
             let (tools, distance) = (&self.kernel.tools, self.modal.distance);
             super::position_offset::apply(
@@ -689,7 +678,7 @@ mod tests {
     /// The target of the axis words as the executor read them before X, Y and Z had a path of
     /// their own: every word through its axis's conversion, in axis order.
     fn target_word_by_word(exec: &Executor, cmd: &Command) -> [f64; AXES] {
-        let mut target = exec.program_position();
+        let mut target = exec.kernel.program_position();
         let incremental = exec.modal.distance == super::super::modal::DistanceMode::Incremental;
         for (axis, value) in cmd.axis_words() {
             let v = exec.axis_value(axis, value);
@@ -723,7 +712,7 @@ mod tests {
                     proptest::prop_assert_eq!(&by_run, &by_loop, "{:?}", text);
                     proptest::prop_assert_eq!(&fast.modal, &full.modal, "{:?}", text);
                     proptest::prop_assert_eq!(fast.kernel.feed, full.kernel.feed, "{:?}", text);
-                    proptest::prop_assert_eq!(fast.program_position(), full.program_position());
+                    proptest::prop_assert_eq!(fast.kernel.program_position(), full.kernel.program_position());
                     if by_run.is_err() {
                         return Ok(());
                     }

@@ -40,7 +40,7 @@ pub(crate) fn move_to_new_vector(
     cmd: &Command,
     out: &mut Output,
 ) -> Result<(), Alarm> {
-    let program = exec.program_position();
+    let program = exec.kernel.program_position();
     let target = exec.machine_target(&program, true);
     match (exec.modal.motion, exec.kernel.feed) {
         (MotionMode::Linear | MotionMode::Arc(_), Some(_)) => {

@@ -507,7 +507,7 @@ impl<B: BlockSource> Interpreter<B> {
 
     /// The position now in the program's coordinates (what the control shows as "absolute").
     pub fn program_position(&self) -> [f64; crate::machine::AXES] {
-        self.core.exec.program_position()
+        self.core.exec.kernel.program_position()
     }
 
     /// The tool in the spindle (the last T put there by M06; 0 before any change).

@@ -20,7 +20,7 @@ pub(crate) struct PolarPoint {
 /// G16: polar mode on, starting from the polar values of the current position.
 pub(crate) fn g16(exec: &mut Executor) {
     let (a, b, _) = exec.modal.plane.axes();
-    let here = exec.program_position();
+    let here = exec.kernel.program_position();
     exec.polar = Some(PolarPoint {
         radius: here[a].hypot(here[b]),
         degrees: here[b].atan2(here[a]).to_degrees(),
@@ -52,7 +52,7 @@ fn point_from(exec: &Executor, cmd: &Command, previous: PolarPoint) -> Option<Po
     }
     let radius = radius_word.map(|v| exec.axis_value(Axis::ALL[a], &v));
     // An angle, whatever the plane's axis is.
-    let degrees = angle_word.map(|v| exec.angle(&v));
+    let degrees = angle_word.map(|v| exec.kernel.setup.angle(&v));
     Some(match exec.modal.distance {
         DistanceMode::Absolute => PolarPoint {
             radius: radius.unwrap_or(previous.radius),

@@ -106,7 +106,7 @@ fn reference_return(
 /// # Errors
 /// [`AlarmCode::NoIntermediatePoint`] when an axis has no intermediate point from a G28/G30.
 pub(crate) fn g29(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<bool, Alarm> {
-    let mut via = exec.program_position();
+    let mut via = exec.kernel.program_position();
     let mut target = via;
     for axis in Axis::ALL {
         let i = axis.index();

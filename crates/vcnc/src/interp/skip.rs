@@ -33,6 +33,6 @@ pub(crate) fn g31(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
     }
     let target = exec.block_target(cmd, false, out)?;
     exec.feed_to(target, cmd, true, out)?;
-    exec.skip_position = exec.program_position();
+    exec.skip_position = exec.kernel.program_position();
     Ok(())
 }

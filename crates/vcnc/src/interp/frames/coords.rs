@@ -16,7 +16,7 @@ use crate::profile::Group;
 /// # Errors
 /// None yet; fallible like every one-shot code.
 pub(crate) fn g92(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
-    let program = exec.program_position();
+    let program = exec.kernel.program_position();
     for axis in Axis::ALL {
         let Some(value) = &cmd.axis(axis.index()) else {
             continue;
@@ -139,7 +139,7 @@ fn preset_with_rotation(exec: &mut Executor, cmd: &Command) -> Result<bool, Alar
             exec.kernel.frames.set_g92(i, v);
         }
     }
-    let degrees = cmd.r().map_or(0.0, |r| exec.angle(&r));
+    let degrees = cmd.r().map_or(0.0, |r| exec.kernel.setup.angle(&r));
     exec.kernel
         .frames
         .set_preset_rotation((degrees != 0.0).then(|| Rotation::new((0, 1), (0.0, 0.0), degrees)));

@@ -24,13 +24,13 @@ pub(crate) fn g68(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
     let previous = exec.kernel.frames.rotation().copied();
     exec.kernel.frames.set_rotation(None);
     // With the old rotation removed, this is the position in work coordinates.
-    let here = exec.program_position();
+    let here = exec.kernel.program_position();
     let word = |axis: usize| {
         cmd.axis(axis)
             .map_or(here[axis], |v| exec.axis_value(Axis::ALL[axis], &v))
     };
     let center = (word(a), word(b));
-    let angle = cmd.r().map_or(0.0, |r| exec.angle(&r));
+    let angle = cmd.r().map_or(0.0, |r| exec.kernel.setup.angle(&r));
     let degrees = match (exec.modal.distance, previous) {
         (DistanceMode::Incremental, Some(previous)) => previous.degrees + angle,
         _ => angle,

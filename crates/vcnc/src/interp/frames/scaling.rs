@@ -36,7 +36,7 @@ pub(crate) fn g51(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
         ));
     }
     exec.kernel.frames.set_scaling(None);
-    let here = exec.program_position();
+    let here = exec.kernel.program_position();
     let mut scaling = Scaling {
         center: here,
         factor: [1.0; AXES],
@@ -68,7 +68,7 @@ pub(crate) fn g51_1(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
     refuse_both(&exec.kernel.frames, cmd, true)?;
     let previous = exec.kernel.frames.scaling().copied();
     exec.kernel.frames.set_scaling(None);
-    let here = exec.program_position();
+    let here = exec.kernel.program_position();
     let mut mirror = previous.unwrap_or(Scaling {
         center: here,
         factor: [1.0; AXES],

@@ -212,12 +212,12 @@ pub(crate) fn read(
             None => return Err(unknown(number, span)),
         },
         5001..=5006 => {
-            let program = exec.program_position();
+            let program = exec.kernel.program_position();
             axis_of(number, 5001).and_then(|a| length(program[a]))
         }
         5021..=5026 => axis_of(number, 5021).and_then(|a| length(exec.kernel.position[a])),
         5041..=5046 => {
-            let program = exec.program_position();
+            let program = exec.kernel.program_position();
             axis_of(number, 5041).and_then(|a| length(program[a]))
         }
         5061..=5066 => axis_of(number, 5061).and_then(|a| length(exec.skip_position[a])),
