@@ -211,7 +211,7 @@ fn spiral(
             "a spiral (G02/G03 with L) takes its centre from I J K, not R",
         ));
     };
-    if out.comp.is_some() || out.polar_interpolation.is_some() {
+    if out.direct().is_none() {
         return Err(Alarm::not_supported(
             turns.span,
             "a spiral (G02/G03 with L) under cutter compensation or G12.1",

@@ -23,7 +23,7 @@ pub(crate) fn before_motion(
     cmd: &Command,
     out: &mut Output,
 ) -> Result<(), Alarm> {
-    if out.comp.is_none() && cmd.word(b'D').is_none() && cmd.group(Group::CutterComp).is_none() {
+    if !out.compensating() && cmd.word(b'D').is_none() && cmd.group(Group::CutterComp).is_none() {
         // Most blocks: nothing about compensation.
         return Ok(());
     }
@@ -43,12 +43,12 @@ pub(crate) fn before_motion(
         exec.kernel
             .tools
             .select_radius(exec.kernel.setup.offset_number(word, letter)?);
-        if let Some(comp) = out.comp.as_mut() {
+        if let Some(comp) = out.compensation_mut() {
             let left = comp.left();
             change(exec, comp, left);
         }
     }
-    if let Some(comp) = out.comp.as_mut() {
+    if let Some(comp) = out.compensation_mut() {
         if comp.reversed() != reversed(&exec.kernel.frames, exec.modal.plane) {
             // G51.1 or G50.1 (or a negative G51 factor) in offset mode: while one plane axis is
             // mirrored G41 and G42 act the other way (spec 1.29), so the side changes from the
@@ -57,7 +57,7 @@ pub(crate) fn before_motion(
             change(exec, comp, left);
         }
     }
-    if out.comp.is_some() {
+    if out.compensating() {
         if let Some(g) = cmd.group(Group::NonModal) {
             if matches!(
                 g.code,
@@ -91,7 +91,7 @@ pub(crate) fn before_motion(
             }
             let left = g.code == GCode::CutterCompLeft;
             let setting = setting(exec, left);
-            match out.comp.as_mut() {
+            match out.compensation_mut() {
                 None => {
                     let (a, b, _) = exec.modal.plane.axes();
                     let mut comp = Compensator::new(
@@ -102,13 +102,13 @@ pub(crate) fn before_motion(
                         exec.kernel.setup.profile().cutter_comp_look_ahead,
                     );
                     comp.set_reversed(reversed(&exec.kernel.frames, exec.modal.plane));
-                    out.comp = Some(comp);
+                    out.start_compensation(comp);
                 }
                 Some(comp) => change(exec, comp, left),
             }
         }
         GCode::CutterCompCancel => {
-            if let Some(comp) = out.comp.as_mut() {
+            if let Some(comp) = out.compensation_mut() {
                 comp.cancel();
             }
         }
@@ -172,10 +172,10 @@ pub(crate) fn after_motion(
     cmd: &Command,
     out: &mut Output,
 ) -> Result<(), Alarm> {
-    if !out.comp.as_ref().is_some_and(Compensator::is_cancelling) {
+    if !out.compensation().is_some_and(Compensator::is_cancelling) {
         return Ok(());
     }
-    let Some(mut comp) = out.comp.take() else {
+    let Some(mut comp) = out.take_compensation() else {
         return Ok(());
     };
     out.finish_compensation(&mut comp)?;

@@ -122,7 +122,7 @@ pub(crate) fn run(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
     let Some(mut cycle) = exec.cycle.take() else {
         return Ok(());
     };
-    if out.comp.is_some() && (cmd.has_axis_words() || cmd.r().is_some()) {
+    if out.compensating() && (cmd.has_axis_words() || cmd.r().is_some()) {
         // Cutter compensation does not apply to a cycle's moves (spec 1.40 restriction 5): it is
         // cancelled for the block and starts up again after it.
         out.suspend_compensation()?;

@@ -72,7 +72,7 @@ impl Executor {
     /// The alarm that stops the program at this block.
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.apply_modal(cmd)?;
-        if cmd.is_plain() && self.cycle.is_none() && out.comp.is_none() {
+        if cmd.is_plain() && self.cycle.is_none() && !out.compensating() {
             return self.run_plain(cmd, out);
         }
         self.run_stages(cmd, out)
@@ -502,7 +502,7 @@ impl Executor {
         let mut target = self.target_program(cmd);
         if let Some(factor) = super::position_offset::factor(cmd) {
             let start = self.kernel.program_position();
-            let compensating = out.comp.is_some();
+            let compensating = out.compensating();
             let (tools, distance) = (&self.kernel.tools, self.modal.distance);
             super::position_offset::apply(
                 tools,

@@ -25,6 +25,7 @@ mod kernel;
 mod length;
 mod macros;
 pub mod modal;
+mod output;
 mod polar_coordinates;
 mod polar_interpolation;
 mod position_offset;
@@ -55,6 +56,7 @@ pub use macros::programs::{
 };
 pub use macros::vars::PersistentVariables;
 pub use macros::Limits;
+use output::Output;
 
 pub use modal::ModalState;
 
@@ -81,225 +83,6 @@ impl Default for Options {
             limits: Limits::default(),
             interrupts: Vec::new(),
         }
-    }
-}
-
-/// The queue of what the blocks produced and nobody has taken yet: a few items for
-/// [`Iterator::next`], or the caller's whole batch for [`Interpreter::next_batch`].
-#[derive(Debug, Default)]
-pub(crate) struct Output {
-    items: Vec<Result<Segment, Alarm>>,
-    /// Items from this index on wait for cutter compensation to know where a move ends.
-    held: Option<usize>,
-    /// Cutter compensation in force: motion goes through it.
-    pub(crate) comp: Option<comp::Compensator>,
-    /// An alarm raised while queueing (a corner compensation cannot make): it ends the run.
-    failed: Option<Alarm>,
-    /// G12.1 in force: what compensation releases waits here to be turned into X-C motion, and
-    /// `items` and `held` receive only what it has converted.
-    pub(crate) polar_interpolation: Option<Box<polar_interpolation::PolarStage>>,
-}
-
-/// Where compensation and the executor put their items: the queue, or the polar coordinate
-/// interpolation stage in front of it while G12.1 is on.
-fn queue<'a>(
-    items: &'a mut Vec<Result<Segment, Alarm>>,
-    held: &'a mut Option<usize>,
-    polar_interpolation: &'a mut Option<Box<polar_interpolation::PolarStage>>,
-) -> (&'a mut Vec<Result<Segment, Alarm>>, &'a mut Option<usize>) {
-    match polar_interpolation.as_deref_mut() {
-        Some(stage) => (&mut stage.staged, &mut stage.held),
-        None => (items, held),
-    }
-}
-
-impl Output {
-    /// Records a segment of the block `cmd`.
-    #[inline(always)]
-    pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
-        match self.comp.as_mut() {
-            // Built where it goes: a segment is a few hundred bytes, and this runs per move.
-            None if self.polar_interpolation.is_none() => self.items.push(Ok(Segment {
-                kind,
-                span: cmd.span,
-                sequence: cmd.sequence(),
-            })),
-            _ => self.push_compensated(cmd, kind),
-        }
-    }
-
-    /// The queue itself when neither cutter compensation nor polar coordinate interpolation is
-    /// on: a segment pushed there is built in place (built before the test, as for [`Output::push`],
-    /// it was built on the stack and copied over).
-    #[inline(always)]
-    pub(crate) fn direct(&mut self) -> Option<&mut Vec<Result<Segment, Alarm>>> {
-        (self.comp.is_none() && self.polar_interpolation.is_none()).then_some(&mut self.items)
-    }
-
-    /// Records a segment of the block `cmd`, made by `kind` on the queue's own path and on the
-    /// compensated one apart: made before the test, a large segment was built on the stack and
-    /// copied into the queue.
-    #[inline(always)]
-    pub(crate) fn push_with(&mut self, cmd: &Command, kind: impl FnOnce() -> SegmentKind) {
-        match self.direct() {
-            Some(items) => items.push(Ok(Segment {
-                kind: kind(),
-                span: cmd.span,
-                sequence: cmd.sequence(),
-            })),
-            None => self.push_compensated(cmd, kind()),
-        }
-    }
-
-    /// A segment through cutter compensation and polar coordinate interpolation, whichever is on
-    /// (kept out of line: the plain path is the hot one).
-    #[inline(never)]
-    fn push_compensated(&mut self, cmd: &Command, kind: SegmentKind) {
-        let segment = Segment {
-            kind,
-            span: cmd.span,
-            sequence: cmd.sequence(),
-        };
-        let (items, held) = queue(
-            &mut self.items,
-            &mut self.held,
-            &mut self.polar_interpolation,
-        );
-        match self.comp.as_mut() {
-            Some(comp) => {
-                if let Err(alarm) = comp.push(segment, items, held) {
-                    self.failed.get_or_insert(alarm);
-                }
-            }
-            None => items.push(Ok(segment)),
-        }
-        self.settle_polar_interpolation();
-    }
-
-    /// Converts what compensation has released into X-C motion, while G12.1 is on.
-    fn settle_polar_interpolation(&mut self) {
-        if let Some(stage) = self.polar_interpolation.as_deref_mut() {
-            stage.settle(&mut self.items);
-        }
-    }
-
-    /// How many items can be handed out now.
-    fn releasable(&self) -> usize {
-        self.held.unwrap_or(self.items.len())
-    }
-
-    /// Nothing waits any more: the program is over.
-    fn finish(&mut self) {
-        if let Some(mut comp) = self.comp.take() {
-            let (items, held) = queue(
-                &mut self.items,
-                &mut self.held,
-                &mut self.polar_interpolation,
-            );
-            if let Err(alarm) = comp.finish(items, held) {
-                self.stop(alarm);
-            }
-        }
-        if let Some(stage) = self.polar_interpolation.take() {
-            // The program ends in G12.1: reset cancels the mode (spec 1.13.2 rule 2).
-            stage.flush(&mut self.items);
-        }
-        self.held = None;
-    }
-
-    /// The alarm raised while queueing, once.
-    pub(crate) fn take_failure(&mut self) -> Option<Alarm> {
-        self.failed.take()
-    }
-
-    /// Ends compensation: whatever is pending is written out.
-    ///
-    /// # Errors
-    /// Interference at the pending element's end.
-    pub(crate) fn finish_compensation(
-        &mut self,
-        comp: &mut comp::Compensator,
-    ) -> Result<(), Alarm> {
-        let (items, held) = queue(
-            &mut self.items,
-            &mut self.held,
-            &mut self.polar_interpolation,
-        );
-        let finished = comp.finish(items, held);
-        self.settle_polar_interpolation();
-        finished
-    }
-
-    /// G28, G29, G30, G53 or G92 while compensating: cancelled for this block.
-    ///
-    /// # Errors
-    /// Interference at the pending element's end.
-    pub(crate) fn suspend_compensation(&mut self) -> Result<(), Alarm> {
-        let (items, held) = queue(
-            &mut self.items,
-            &mut self.held,
-            &mut self.polar_interpolation,
-        );
-        let suspended = match self.comp.as_mut() {
-            Some(comp) => comp.suspend(items, held),
-            None => Ok(()),
-        };
-        self.settle_polar_interpolation();
-        suspended
-    }
-
-    /// A block ends: compensation counts blocks without motion in the plane.
-    ///
-    /// # Errors
-    /// Interference where a pending element had to end.
-    fn end_block(&mut self) -> Result<(), Alarm> {
-        let (items, held) = queue(
-            &mut self.items,
-            &mut self.held,
-            &mut self.polar_interpolation,
-        );
-        let ended = match self.comp.as_mut() {
-            Some(comp) => comp.end_block(items, held),
-            None => Ok(()),
-        };
-        self.settle_polar_interpolation();
-        ended
-    }
-
-    /// Records an alarm (a warning, or the error that ends the run).
-    pub(crate) fn push_warning(&mut self, alarm: Alarm) {
-        self.push_item(Err(alarm));
-    }
-
-    /// Queues an item behind everything queued before it.
-    fn push_item(&mut self, item: Result<Segment, Alarm>) {
-        let (items, _) = queue(
-            &mut self.items,
-            &mut self.held,
-            &mut self.polar_interpolation,
-        );
-        items.push(item);
-        self.settle_polar_interpolation();
-    }
-
-    /// An error ends the run. With compensation looking ahead, the control stops before the
-    /// block that was waiting for this one: the pending move and the moves held after it never
-    /// happen (their warnings stay).
-    fn stop(&mut self, alarm: Alarm) {
-        let (items, held) = queue(
-            &mut self.items,
-            &mut self.held,
-            &mut self.polar_interpolation,
-        );
-        if let Some(held) = held.take() {
-            let tail = items.split_off(held);
-            items.extend(tail.into_iter().filter(Result::is_err));
-        }
-        if let Some(comp) = self.comp.as_mut() {
-            comp.abandon();
-        }
-        self.settle_polar_interpolation();
-        self.items.push(Err(alarm));
     }
 }
 
@@ -594,8 +377,7 @@ impl<B: BlockSource> Interpreter<B> {
     /// compensation or G12.1 held is dropped with the cut (those blocks never moved).
     fn stop_checked(&mut self) {
         self.core.out.held = None;
-        self.core.out.comp = None;
-        self.core.out.polar_interpolation = None;
+        self.core.out.reset_stages();
         self.core.done = true;
     }
 
@@ -818,13 +600,13 @@ impl Core {
                     .set_subprogram(crate::profile::MCode::SubprogramReturn, end);
             }
         }
-        if self.out.polar_interpolation.is_some() {
+        if self.out.polar_interpolating() {
             if let Err(alarm) = polar_interpolation::prepare(&mut self.command) {
                 return self.fail(alarm);
             }
         }
         let flow = self.exec.run(&self.command, &mut self.out);
-        if self.out.comp.is_none() && self.out.failed.is_none() {
+        if !self.out.compensating() && !self.out.failing() {
             // The common case, kept short: no compensation stage to tell about the block.
             match flow {
                 Ok(Flow::Next) => {}
@@ -908,7 +690,7 @@ impl<B: BlockSource> Iterator for Interpreter<B> {
                 continue;
             }
             if self.core.done {
-                if out.items.is_empty() && out.polar_interpolation.is_none() {
+                if out.items.is_empty() && !out.polar_interpolating() {
                     return None;
                 }
                 out.finish();

@@ -122,7 +122,7 @@ pub(crate) fn switch(
         GCode::PolarInterpolation => "G12.1",
         _ => "G13.1",
     };
-    if out.comp.is_some() {
+    if out.compensating() {
         return Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             g.span,
@@ -138,7 +138,7 @@ pub(crate) fn switch(
 
 /// G12.1: the executor's position becomes the Cartesian point of the tool, the plane G17.
 fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Result<(), Alarm> {
-    if out.polar_interpolation.is_some() {
+    if out.polar_interpolating() {
         return Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             g.span,
@@ -190,7 +190,7 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
     exec.kernel.position[LINEAR] = radius * cos - eccentricity.0 + offset[LINEAR];
     exec.kernel.position[HYPOTHETICAL] = radius * sin - eccentricity.1 + offset[HYPOTHETICAL];
     let plane = std::mem::replace(&mut exec.modal.plane, Plane::Xy);
-    out.polar_interpolation = Some(Box::new(PolarStage {
+    out.start_polar_interpolation(PolarStage {
         staged: Vec::new(),
         held: None,
         plane,
@@ -200,7 +200,7 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
             last: machine,
             tolerance: exec.kernel.setup.profile().polar_interpolation_tolerance,
         },
-    }));
+    });
     Ok(())
 }
 
@@ -249,8 +249,7 @@ fn cancel(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Al
                 .with_help("move in a block of its own"),
         );
     }
-    if let Some(stage) = out.polar_interpolation.take() {
-        let (plane, machine) = stage.flush(&mut out.items);
+    if let Some((plane, machine)) = out.end_polar_interpolation() {
         exec.kernel.position = machine;
         exec.modal.plane = plane;
     }

@@ -23,7 +23,7 @@ pub(crate) fn g31(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
     let span = cmd
         .group(crate::profile::Group::NonModal)
         .map_or(cmd.span, |g| g.span);
-    if out.comp.is_some() {
+    if out.compensating() {
         return Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             span,

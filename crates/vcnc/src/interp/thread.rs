@@ -24,7 +24,7 @@ pub(crate) fn g33(
     target: [f64; AXES],
     out: &mut Output,
 ) -> Result<(), Alarm> {
-    if out.comp.is_some() {
+    if out.compensating() {
         return Err(Alarm::not_supported(
             cmd.span,
             "thread cutting (G33) under cutter compensation",

@@ -175,10 +175,10 @@ impl Core {
         if in_call {
             return Some("the control takes no interrupt inside a subprogram");
         }
-        if self.out.comp.is_some() {
+        if self.out.compensating() {
             return Some("cutter compensation (G41/G42) is on");
         }
-        if self.out.polar_interpolation.is_some() {
+        if self.out.polar_interpolating() {
             return Some("polar coordinate interpolation (G12.1) is on");
         }
         if self.exec.polar.is_some() {

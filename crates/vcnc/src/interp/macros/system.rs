@@ -336,7 +336,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
             Units::Inches => 200.0,
             Units::Millimetres => 210.0,
         },
-        7 => match &out.comp {
+        7 => match out.compensation() {
             None => 400.0,
             Some(comp) if comp.left() => 410.0,
             Some(_) => 420.0,
@@ -391,7 +391,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
         // FANUC's group 21 is G12.1/G13.1 (polar coordinate interpolation), G13.1 at power-on;
         // a control without the function has nothing in it.
         21 if exec.kernel.setup.profile().polar_interpolation => {
-            if out.polar_interpolation.is_some() {
+            if out.polar_interpolating() {
                 121.0
             } else {
                 131.0

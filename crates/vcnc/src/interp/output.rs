@@ -1,0 +1,315 @@
+//! The output of the blocks: the queue the stream is taken from, and the ordered chain of
+//! stages a segment passes on its way there.
+//!
+//! Most programs have no stage: the executor's segments go straight into the queue, built in
+//! place. Cutter compensation (G41/G42) is the first stage when it is on: it holds a move until
+//! the next one shows where the corner is, so the items queued behind the held move wait too
+//! (`held`). The transformations of finished motion come after it, in order (G12.1 polar
+//! coordinate interpolation, and whatever a dialect adds): each reads the released part of its own
+//! input queue and writes into the next stage's input, the last into the output queue. A stage
+//! never reads program text or modal state; the executor starts and ends stages.
+
+use super::comp::Compensator;
+use super::decode::Command;
+use super::polar_interpolation::PolarStage;
+use crate::alarm::Alarm;
+use crate::machine::AXES;
+use crate::motion::{Plane, Segment, SegmentKind};
+
+/// An item of the stream.
+type Item = Result<Segment, Alarm>;
+
+/// A stage between the executor and the output queue.
+#[derive(Debug)]
+pub(crate) enum Stage {
+    /// Cutter radius compensation; always the first stage.
+    Compensation(Box<Compensator>),
+    /// G12.1 polar coordinate interpolation: Cartesian motion to machine X and C.
+    PolarInterpolation(Box<PolarStage>),
+}
+
+/// The queue of what the blocks produced and nobody has taken yet: a few items for
+/// [`Iterator::next`], or the caller's whole batch for `Interpreter::next_batch`.
+#[derive(Debug, Default)]
+pub(crate) struct Output {
+    pub(super) items: Vec<Item>,
+    /// Items from this index on wait for cutter compensation to know where a move ends.
+    pub(super) held: Option<usize>,
+    /// The stages in front of the queue, in the order a segment passes them.
+    stages: Vec<Stage>,
+    /// An alarm raised while queueing (a corner compensation cannot make): it ends the run.
+    failed: Option<Alarm>,
+}
+
+impl Output {
+    /// Records a segment of the block `cmd`.
+    #[inline(always)]
+    pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
+        if self.stages.is_empty() {
+            // Built where it goes: a segment is a few hundred bytes, and this runs per move.
+            self.items.push(Ok(Segment {
+                kind,
+                span: cmd.span,
+                sequence: cmd.sequence(),
+            }));
+        } else {
+            self.push_staged(cmd, kind);
+        }
+    }
+
+    /// The queue itself when no stage is on: a segment pushed there is built in place (built
+    /// before the test, as for [`Output::push`], it was built on the stack and copied over).
+    #[inline(always)]
+    pub(crate) fn direct(&mut self) -> Option<&mut Vec<Item>> {
+        self.stages.is_empty().then_some(&mut self.items)
+    }
+
+    /// Records a segment of the block `cmd`, made by `kind` on the queue's own path and on the
+    /// staged one apart: made before the test, a large segment was built on the stack and
+    /// copied into the queue.
+    #[inline(always)]
+    pub(crate) fn push_with(&mut self, cmd: &Command, kind: impl FnOnce() -> SegmentKind) {
+        match self.direct() {
+            Some(items) => items.push(Ok(Segment {
+                kind: kind(),
+                span: cmd.span,
+                sequence: cmd.sequence(),
+            })),
+            None => self.push_staged(cmd, kind()),
+        }
+    }
+
+    /// Whether cutter compensation is on.
+    #[inline(always)]
+    pub(crate) fn compensating(&self) -> bool {
+        self.compensation().is_some()
+    }
+
+    /// The cutter compensation in force.
+    pub(crate) fn compensation(&self) -> Option<&Compensator> {
+        match self.stages.first() {
+            Some(Stage::Compensation(comp)) => Some(comp),
+            _ => None,
+        }
+    }
+
+    /// The cutter compensation in force, to change it.
+    pub(crate) fn compensation_mut(&mut self) -> Option<&mut Compensator> {
+        match self.stages.first_mut() {
+            Some(Stage::Compensation(comp)) => Some(comp),
+            _ => None,
+        }
+    }
+
+    /// Cutter compensation starts: the first stage (in place of one that was on).
+    pub(crate) fn start_compensation(&mut self, comp: Compensator) {
+        match self.stages.first_mut() {
+            Some(Stage::Compensation(on)) => **on = comp,
+            _ => self.stages.insert(0, Stage::Compensation(Box::new(comp))),
+        }
+    }
+
+    /// Cutter compensation leaves the chain (what it holds stays in it, for
+    /// [`Output::finish_compensation`]).
+    pub(crate) fn take_compensation(&mut self) -> Option<Compensator> {
+        match self.stages.first() {
+            Some(Stage::Compensation(_)) => match self.stages.remove(0) {
+                Stage::Compensation(comp) => Some(*comp),
+                Stage::PolarInterpolation(_) => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// Whether polar coordinate interpolation (G12.1) is on.
+    pub(crate) fn polar_interpolating(&self) -> bool {
+        self.stages
+            .iter()
+            .any(|stage| matches!(stage, Stage::PolarInterpolation(_)))
+    }
+
+    /// Polar coordinate interpolation starts: a stage behind the others.
+    pub(crate) fn start_polar_interpolation(&mut self, stage: PolarStage) {
+        self.stages.push(Stage::PolarInterpolation(Box::new(stage)));
+    }
+
+    /// Polar coordinate interpolation ends: what it holds is converted. The plane before G12.1
+    /// and the machine position where its last piece ended, if it was on.
+    pub(crate) fn end_polar_interpolation(&mut self) -> Option<(Plane, [f64; AXES])> {
+        let at = self
+            .stages
+            .iter()
+            .position(|stage| matches!(stage, Stage::PolarInterpolation(_)))?;
+        self.end_transform(at)
+    }
+
+    /// Removes the transformation stage `at`, its input settled into the queue behind it.
+    fn end_transform(&mut self, at: usize) -> Option<(Plane, [f64; AXES])> {
+        let Stage::PolarInterpolation(stage) = self.stages.remove(at) else {
+            return None;
+        };
+        let (items, _) = input_of(&mut self.stages[at..], &mut self.items, &mut self.held);
+        let ended = stage.flush(items);
+        self.settle();
+        Some(ended)
+    }
+
+    /// A segment through the stages that are on (kept out of line: the plain path is the hot
+    /// one).
+    #[inline(never)]
+    fn push_staged(&mut self, cmd: &Command, kind: SegmentKind) {
+        let segment = Segment {
+            kind,
+            span: cmd.span,
+            sequence: cmd.sequence(),
+        };
+        let (comp, items, held) = self.entry();
+        match comp {
+            Some(comp) => {
+                if let Err(alarm) = comp.push(segment, items, held) {
+                    self.failed.get_or_insert(alarm);
+                }
+            }
+            None => items.push(Ok(segment)),
+        }
+        self.settle();
+    }
+
+    /// The compensation stage, if on, and the queue a segment enters after it: the first
+    /// transformation's input, or the output queue.
+    fn entry(&mut self) -> (Option<&mut Compensator>, &mut Vec<Item>, &mut Option<usize>) {
+        let first = usize::from(self.compensating());
+        let (head, rest) = self.stages.split_at_mut(first);
+        let comp = match head.first_mut() {
+            Some(Stage::Compensation(comp)) => Some(&mut **comp),
+            _ => None,
+        };
+        let (items, held) = input_of(rest, &mut self.items, &mut self.held);
+        (comp, items, held)
+    }
+
+    /// Moves what each transformation's input has released through it, in the chain's order.
+    fn settle(&mut self) {
+        let first = usize::from(self.compensating());
+        for at in first..self.stages.len() {
+            if let Some((Stage::PolarInterpolation(stage), behind)) =
+                self.stages[at..].split_first_mut()
+            {
+                let (items, _) = input_of(behind, &mut self.items, &mut self.held);
+                stage.settle(items);
+            }
+        }
+    }
+
+    /// How many items can be handed out now.
+    pub(super) fn releasable(&self) -> usize {
+        self.held.unwrap_or(self.items.len())
+    }
+
+    /// Nothing waits any more: the program is over.
+    pub(super) fn finish(&mut self) {
+        if let Some(mut comp) = self.take_compensation() {
+            if let Err(alarm) = self.finish_compensation(&mut comp) {
+                self.stop(alarm);
+            }
+        }
+        // The program ends in G12.1: reset cancels the mode (spec 1.13.2 rule 2).
+        while !self.stages.is_empty() {
+            self.end_transform(0);
+        }
+        self.held = None;
+    }
+
+    /// Whether an alarm raised while queueing waits to end the run.
+    pub(super) fn failing(&self) -> bool {
+        self.failed.is_some()
+    }
+
+    /// The alarm raised while queueing, once.
+    pub(crate) fn take_failure(&mut self) -> Option<Alarm> {
+        self.failed.take()
+    }
+
+    /// Ends compensation, taken out of the chain: whatever is pending is written out.
+    ///
+    /// # Errors
+    /// Interference at the pending element's end.
+    pub(crate) fn finish_compensation(&mut self, comp: &mut Compensator) -> Result<(), Alarm> {
+        let (_, items, held) = self.entry();
+        let finished = comp.finish(items, held);
+        self.settle();
+        finished
+    }
+
+    /// G28, G29, G30, G53 or G92 while compensating: cancelled for this block.
+    ///
+    /// # Errors
+    /// Interference at the pending element's end.
+    pub(crate) fn suspend_compensation(&mut self) -> Result<(), Alarm> {
+        let suspended = match self.entry() {
+            (Some(comp), items, held) => comp.suspend(items, held),
+            (None, _, _) => Ok(()),
+        };
+        self.settle();
+        suspended
+    }
+
+    /// A block ends: compensation counts blocks without motion in the plane.
+    ///
+    /// # Errors
+    /// Interference where a pending element had to end.
+    pub(super) fn end_block(&mut self) -> Result<(), Alarm> {
+        let ended = match self.entry() {
+            (Some(comp), items, held) => comp.end_block(items, held),
+            (None, _, _) => Ok(()),
+        };
+        self.settle();
+        ended
+    }
+
+    /// Records an alarm (a warning, or the error that ends the run).
+    pub(crate) fn push_warning(&mut self, alarm: Alarm) {
+        self.push_item(Err(alarm));
+    }
+
+    /// Queues an item behind everything queued before it.
+    pub(super) fn push_item(&mut self, item: Item) {
+        let (_, items, _) = self.entry();
+        items.push(item);
+        self.settle();
+    }
+
+    /// An error ends the run. With compensation looking ahead, the control stops before the
+    /// block that was waiting for this one: the pending move and the moves held after it never
+    /// happen (their warnings stay).
+    pub(super) fn stop(&mut self, alarm: Alarm) {
+        let (comp, items, held) = self.entry();
+        if let Some(held) = held.take() {
+            let tail = items.split_off(held);
+            items.extend(tail.into_iter().filter(Result::is_err));
+        }
+        if let Some(comp) = comp {
+            comp.abandon();
+        }
+        self.settle();
+        self.items.push(Err(alarm));
+    }
+
+    /// Every stage ends without a word: the program starts over (a reset).
+    pub(super) fn reset_stages(&mut self) {
+        self.stages.clear();
+    }
+}
+
+/// The input queue of the first of `stages` (all transformations), or the output queue when
+/// there is none.
+fn input_of<'a>(
+    stages: &'a mut [Stage],
+    items: &'a mut Vec<Item>,
+    held: &'a mut Option<usize>,
+) -> (&'a mut Vec<Item>, &'a mut Option<usize>) {
+    match stages.first_mut() {
+        Some(Stage::PolarInterpolation(stage)) => (&mut stage.staged, &mut stage.held),
+        Some(Stage::Compensation(_)) | None => (items, held),
+    }
+}
