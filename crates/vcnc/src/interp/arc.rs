@@ -90,7 +90,7 @@ fn refused_arc(
 /// The centre of an arc the control takes, `None` where it refuses the arc: [`arc_center`]
 /// without the alarm, which the common arc's path (`circular::plain_arc`) then asks of it. One
 /// computation for both paths, so the same bits.
-#[inline(always)]
+#[inline]
 pub(crate) fn clean_arc_center(
     start: (f64, f64),
     end: (f64, f64),
@@ -128,7 +128,7 @@ pub(crate) enum CleanSpec {
 }
 
 /// The centre of the centre form, and its radius at the start and at the end.
-#[inline(always)]
+#[inline]
 fn centre_form(start: (f64, f64), end: (f64, f64), offset: (f64, f64)) -> ((f64, f64), f64, f64) {
     let center = (start.0 + offset.0, start.1 + offset.1);
     let r_start = length_of(offset);
@@ -138,7 +138,7 @@ fn centre_form(start: (f64, f64), end: (f64, f64), offset: (f64, f64)) -> ((f64,
 
 /// The chord of an R arc and the square of the centre's distance from the chord's middle
 /// (negative when R is shorter than half the chord).
-#[inline(always)]
+#[inline]
 fn radius_form(start: (f64, f64), end: (f64, f64), radius: f64) -> (f64, f64) {
     let (dx, dy) = (end.0 - start.0, end.1 - start.1);
     let chord = dx.hypot(dy);
@@ -150,7 +150,7 @@ fn radius_form(start: (f64, f64), end: (f64, f64), radius: f64) -> (f64, f64) {
 /// `h2` of an R arc (see [`radius_form`]) as the centre is computed from it: a radius short by
 /// rounding only (R written to fewer decimals than the end point) is taken as a half circle, as
 /// the controls do within their tolerance; `None` when R is shorter than that.
-#[inline(always)]
+#[inline]
 fn short_radius_settled(chord: f64, h2: f64, radius: f64, tolerance: f64) -> Option<f64> {
     if h2 >= 0.0 || h2.is_nan() {
         return Some(h2);
@@ -162,7 +162,7 @@ fn short_radius_settled(chord: f64, h2: f64, radius: f64, tolerance: f64) -> Opt
 }
 
 /// The centre of an R arc from its chord and `h2` (see [`radius_form`], not negative).
-#[inline(always)]
+#[inline]
 fn radius_centre(
     start: (f64, f64),
     end: (f64, f64),
@@ -192,7 +192,7 @@ fn radius_centre(
 /// two radii with a tolerance of micrometres: a difference of a few units in the last place
 /// does not matter there (and positions stay far below where the squares would overflow).
 #[allow(clippy::imprecise_flops)]
-#[inline(always)]
+#[inline]
 fn length_of((x, y): (f64, f64)) -> f64 {
     (x * x + y * y).sqrt()
 }

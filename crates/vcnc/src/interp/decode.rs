@@ -105,7 +105,7 @@ impl LastG {
 
     /// The cache entry of a G word's value: a multiplicative hash of its bits, whose top bits
     /// put G00, G01, G02 and G03 in four different entries.
-    #[inline(always)]
+    #[inline]
     fn slot(bits: u64) -> usize {
         (bits.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 61) as usize
     }
@@ -113,7 +113,7 @@ impl LastG {
 
 impl Command {
     /// The G code of a group, if the block has one.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn group(&self, group: Group) -> Option<GWord> {
         let slot = group_slot(group);
         if self.group_mask & (1 << slot) == 0 {
@@ -124,7 +124,7 @@ impl Command {
 
     /// True when the block's G codes, if it has any, are all of the motion group (G00-G03,
     /// G33; G09 aside): almost every block of a CAM program.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn only_motion_codes(&self) -> bool {
         self.group_mask & !(1 << group_slot(Group::Motion)) == 0
     }
@@ -149,7 +149,7 @@ impl Command {
     }
 
     /// The value of an address letter (`b'R'`), if the block has it.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn word(&self, letter: u8) -> Option<Value> {
         let slot = usize::from(letter.wrapping_sub(b'A'));
         if slot >= self.values.len() || self.letters & (1 << slot) == 0 {
@@ -159,7 +159,7 @@ impl Command {
     }
 
     /// The value of an address letter (`b'X'`), lent, if the block has it.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn word_ref(&self, letter: u8) -> Option<&Value> {
         let slot = usize::from(letter.wrapping_sub(b'A'));
         if slot >= self.values.len() || self.letters & (1 << slot) == 0 {
@@ -169,7 +169,7 @@ impl Command {
     }
 
     /// True when an axis word of a rotary axis (A, B, C) is present.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn has_rotary_words(&self) -> bool {
         self.letters & letter_bits(b"ABC") != 0
     }
@@ -229,7 +229,7 @@ impl Command {
     }
 
     /// True when any axis word is present.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn has_axis_words(&self) -> bool {
         self.letters & AXIS_LETTERS != 0
     }
@@ -237,7 +237,7 @@ impl Command {
     /// Bit i set when the axis word of axis index i is present: X Y Z are letter bits 23 to
     /// 25, A B C letter bits 0 to 2 (computed from the letters, not kept beside them: one `or`
     /// less for every word).
-    #[inline(always)]
+    #[inline]
     fn axis_mask(&self) -> u8 {
         (((self.letters >> (b'X' - b'A')) & 0b111) | ((self.letters & 0b111) << 3)) as u8
     }
@@ -254,7 +254,7 @@ impl Command {
     }
 
     /// The axis words present with their axes, in axis order.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn axis_words(&self) -> impl Iterator<Item = (Axis, &Value)> + '_ {
         // The set bits of the mask, lowest first; each axis's slot from a table.
         let mut mask = self.axis_mask();
@@ -286,7 +286,7 @@ impl Command {
     /// words, I J K R and F (and N, G09): the words of almost every block of a CAM program, which
     /// the executor runs on a short path (`Executor::run_plain`). Any other code or word, M
     /// codes included, takes the full sequence of stages.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn is_plain(&self) -> bool {
         self.group_mask & !PLAIN_GROUPS == 0
             && self.letters & !PLAIN_LETTERS == 0
@@ -295,7 +295,7 @@ impl Command {
     }
 
     /// True when I, J, K or R is present.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn has_center_words(&self) -> bool {
         const CENTER: u32 = 1 << (b'I' - b'A') | 1 << (b'J' - b'A') | 1 << (b'K' - b'A');
         self.letters & (CENTER | 1 << (b'R' - b'A')) != 0
@@ -303,7 +303,7 @@ impl Command {
 
     /// Clears the command for reuse as the command of the block at `span`, keeping its
     /// allocations.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn reset(&mut self, span: Span) {
         self.span = span;
         self.letters = 0;
@@ -329,13 +329,13 @@ impl Command {
 
     /// True when the block calls or returns: a subprogram code (M98, M99 ...) or a macro call
     /// (G65, G66).
-    #[inline(always)]
+    #[inline]
     pub(crate) fn has_calls(&self) -> bool {
         self.calls
     }
 
     /// The block's sequence number (N), if any.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn sequence(&self) -> Option<u32> {
         self.sequence
     }
@@ -347,7 +347,7 @@ impl Command {
     }
 
     /// G09 in the block.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn exact_stop_once(&self) -> bool {
         self.exact_stop_once
     }
@@ -368,7 +368,7 @@ impl Command {
     }
 
     /// True when decoding found warnings (the block still runs).
-    #[inline(always)]
+    #[inline]
     pub(crate) fn has_warnings(&self) -> bool {
         !self.warnings.is_empty()
     }
@@ -403,7 +403,7 @@ impl Command {
     /// # Errors
     /// [`AlarmCode::DuplicateAddress`] when the letter was already written in the block.
     // Inlined: out of line, the value and the result went through memory for every word.
-    #[inline(always)]
+    #[inline]
     fn set(&mut self, word: &Word, value: Value) -> Result<(), Alarm> {
         let slot = usize::from(word.letter.wrapping_sub(b'A'));
         let Some(stored) = self.values.get_mut(slot) else {
@@ -422,7 +422,7 @@ impl Command {
     ///
     /// # Errors
     /// [`AlarmCode::DuplicateAddress`] when the letter was already written in the block.
-    #[inline(always)]
+    #[inline]
     fn set_plain(&mut self, word: &Word, bit: u32, order: usize) -> Result<(), Alarm> {
         let slot = usize::from(word.letter.wrapping_sub(b'A'));
         let Some(stored) = self.values.get_mut(slot) else {
@@ -485,7 +485,7 @@ fn not_an_address(word: &Word) -> Alarm {
 
 impl Command {
     /// Records a G code of group slot `slot`, which wins over any earlier one of its group.
-    #[inline(always)]
+    #[inline]
     fn set_group(&mut self, slot: usize, g: GWord) {
         self.groups[slot] = g;
         self.group_mask |= 1 << slot;
@@ -512,7 +512,7 @@ const fn letter_bits(letters: &[u8]) -> u32 {
 
 /// The bit of a word's address letter in a letter mask, 0 for a byte that is no letter A-Z
 /// (the front ends give only letters; a stray byte takes the general path and its alarm).
-#[inline(always)]
+#[inline]
 fn letter_bit(letter: u8) -> u32 {
     LETTER_BIT[usize::from(letter)]
 }

@@ -52,7 +52,7 @@ pub(crate) struct Handover {
 }
 
 impl Handover {
-    #[inline(always)]
+    #[inline]
     pub(crate) fn new(
         class: MotionClass,
         motion: &Move,
@@ -112,7 +112,7 @@ impl Junction {
 }
 
 /// The junction of `prev` and `next`, which starts along `next_start`.
-#[inline(always)]
+#[inline]
 pub(crate) fn junction(
     prev: &Handover,
     next: &Handover,
@@ -180,7 +180,7 @@ pub(crate) fn junction(
 /// angle here). Most corners of CAM paths turn by a few degrees: there the series of atan,
 /// whose first left-out term is below 2e-11 of the angle, costs a few multiplications instead
 /// of a call into libm.
-#[inline(always)]
+#[inline]
 fn half_turn(tan_half: f64) -> f64 {
     const SERIES_LIMIT: f64 = 0.2;
     if tan_half > SERIES_LIMIT {
@@ -194,7 +194,7 @@ fn half_turn(tan_half: f64) -> f64 {
 /// the negative of t2 x - c rounded, so that each level is a product and a sum with a
 /// constant, two instructions, instead of three with the constant loaded first. The same to
 /// the bit as the plain form (see the tests).
-#[inline(always)]
+#[inline]
 fn atan_series(t2: f64) -> f64 {
     let negated_5 = t2 * (1.0 / 13.0) - 1.0 / 11.0;
     let level_4 = 1.0 / 9.0 + t2 * negated_5;

@@ -176,7 +176,7 @@ pub(crate) fn reachable_speed_up_to(
 
 /// Seconds of the fastest ramp between `from` and `to` (the same as [`Ramp::duration`], without
 /// building the ramp).
-#[inline(always)]
+#[inline]
 fn ramp_time(from: f64, to: f64, limits: PathLimits) -> f64 {
     ramp_time_and_rate((to - from).abs(), limits).0
 }
@@ -184,7 +184,7 @@ fn ramp_time(from: f64, to: f64, limits: PathLimits) -> f64 {
 /// Seconds of the fastest ramp over a speed change of `change`, and how fast they grow with the
 /// change (0 for no change; callers that want only the time leave the rate to the compiler,
 /// which drops it).
-#[inline(always)]
+#[inline]
 fn ramp_time_and_rate(change: f64, limits: PathLimits) -> (f64, f64) {
     let a = limits.acceleration;
     if change <= 0.0 || a <= 0.0 {
@@ -253,7 +253,7 @@ impl SpeedProfile {
     /// out of reach (rounding) gets the closest feasible profile rather than an error.
     // Inlined: the planner's callers that only want the duration then skip building the rest;
     // the rare profile that does not reach its cruise speed is worked out in `peaked`.
-    #[inline(always)]
+    #[inline]
     pub fn new(
         length: f64,
         entry: f64,
@@ -280,7 +280,7 @@ impl SpeedProfile {
 
     /// [`SpeedProfile::new`] after its bounds, in general: `length` not negative, `cruise` not
     /// below `entry` and `exit`, finite limits of acceleration.
-    #[inline(always)]
+    #[inline]
     fn ramped(
         length: f64,
         (entry, cruise, exit): (f64, f64, f64),
@@ -316,7 +316,7 @@ impl SpeedProfile {
 
     /// The profile of `length` entered and left at its cruise speed (`entry` and `exit` equal
     /// to `cruise`, finite): no ramps, the whole length at the cruise speed.
-    #[inline(always)]
+    #[inline]
     fn at_cruise(
         length: f64,
         (entry, cruise, exit): (f64, f64, f64),
@@ -343,7 +343,7 @@ impl SpeedProfile {
     /// The same profile after `distance` passed at the entry speed (a corner blend's arc). At a
     /// standstill there is no arc to pass: the distance is the ramps' business then, and the
     /// look-ahead never plans a blend at zero speed.
-    #[inline(always)]
+    #[inline]
     pub fn with_lead_in(mut self, distance: f64) -> SpeedProfile {
         if distance > 0.0 && self.entry > 1e-9 {
             self.lead_in_time = distance / self.entry;
@@ -353,7 +353,7 @@ impl SpeedProfile {
     }
 
     /// Seconds the segment takes.
-    #[inline(always)]
+    #[inline]
     pub fn duration(&self) -> f64 {
         self.lead_in_time + self.up_time + self.cruise_time + self.down_time
     }
@@ -477,7 +477,7 @@ fn peak_speed(length: f64, entry: f64, exit: f64, cruise: f64, limits: PathLimit
 /// The distance of the fastest ramp between `speed` and `peak` (not below it), and how fast
 /// that distance grows with the peak: the derivative of 0.5 (speed + peak) T, T the ramp's
 /// time ([`ramp_time_and_rate`]).
-#[inline(always)]
+#[inline]
 fn ramp_distance_and_slope(speed: f64, peak: f64, limits: PathLimits) -> (f64, f64) {
     let (time, rate) = ramp_time_and_rate(peak - speed, limits);
     let mean = 0.5 * (speed + peak);
