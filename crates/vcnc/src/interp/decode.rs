@@ -528,6 +528,23 @@ static LETTER_BIT: [u32; 256] = {
     bits
 };
 
+/// The kernel knows an ISO block by its span, N number and F word.
+impl super::kernel::BlockOrigin for Command {
+    #[inline(always)]
+    fn span(&self) -> Span {
+        self.span
+    }
+
+    #[inline(always)]
+    fn sequence(&self) -> Option<u32> {
+        Command::sequence(self)
+    }
+
+    fn feed_span(&self) -> Span {
+        self.f().map_or(self.span, |f| f.span)
+    }
+}
+
 /// The letters [`decode`] records with no check but the duplicate one: the axes `machine_axes`
 /// names (by axis index) and [`UNCHECKED_LETTERS`]. Computed once per machine: most words of a
 /// program are of these letters, and one mask test sorts them out.

@@ -10,7 +10,7 @@
 //! never reads program text or modal state; the executor starts and ends stages.
 
 use super::comp::Compensator;
-use super::decode::Command;
+use super::kernel::BlockOrigin;
 use super::polar_interpolation::PolarStage;
 use crate::alarm::Alarm;
 use crate::machine::AXES;
@@ -42,18 +42,18 @@ pub(crate) struct Output {
 }
 
 impl Output {
-    /// Records a segment of the block `cmd`.
+    /// Records a segment of the block `block`.
     #[inline(always)]
-    pub(crate) fn push(&mut self, cmd: &Command, kind: SegmentKind) {
+    pub(crate) fn push(&mut self, block: &impl BlockOrigin, kind: SegmentKind) {
         if self.stages.is_empty() {
             // Built where it goes: a segment is a few hundred bytes, and this runs per move.
             self.items.push(Ok(Segment {
                 kind,
-                span: cmd.span,
-                sequence: cmd.sequence(),
+                span: block.span(),
+                sequence: block.sequence(),
             }));
         } else {
-            self.push_staged(cmd, kind);
+            self.push_staged(block, kind);
         }
     }
 
@@ -64,18 +64,22 @@ impl Output {
         self.stages.is_empty().then_some(&mut self.items)
     }
 
-    /// Records a segment of the block `cmd`, made by `kind` on the queue's own path and on the
+    /// Records a segment of the block `block`, made by `kind` on the queue's own path and on the
     /// staged one apart: made before the test, a large segment was built on the stack and
     /// copied into the queue.
     #[inline(always)]
-    pub(crate) fn push_with(&mut self, cmd: &Command, kind: impl FnOnce() -> SegmentKind) {
+    pub(crate) fn push_with(
+        &mut self,
+        block: &impl BlockOrigin,
+        kind: impl FnOnce() -> SegmentKind,
+    ) {
         match self.direct() {
             Some(items) => items.push(Ok(Segment {
                 kind: kind(),
-                span: cmd.span,
-                sequence: cmd.sequence(),
+                span: block.span(),
+                sequence: block.sequence(),
             })),
-            None => self.push_staged(cmd, kind()),
+            None => self.push_staged(block, kind()),
         }
     }
 
@@ -157,11 +161,11 @@ impl Output {
     /// A segment through the stages that are on (kept out of line: the plain path is the hot
     /// one).
     #[inline(never)]
-    fn push_staged(&mut self, cmd: &Command, kind: SegmentKind) {
+    fn push_staged(&mut self, block: &impl BlockOrigin, kind: SegmentKind) {
         let segment = Segment {
             kind,
-            span: cmd.span,
-            sequence: cmd.sequence(),
+            span: block.span(),
+            sequence: block.sequence(),
         };
         let (comp, items, held) = self.entry();
         match comp {

@@ -16,7 +16,6 @@ pub(crate) use state::{check_position, same_place, KernelState, MoveModes};
 
 use super::arc::{arc_center, in_plane, ArcSpec};
 use super::circular::ArcTo;
-use super::decode::Command;
 use super::modal::{FeedMode, ModalState};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
@@ -34,6 +33,32 @@ pub struct Origin {
     pub sequence: Option<u32>,
 }
 
+/// What the kernel knows of the block an operation belongs to: where it is, for alarms and for
+/// every segment it makes, and its sequence number. A dialect's decoded block implements it,
+/// and so does [`Origin`], for front ends that keep their blocks to themselves.
+pub(crate) trait BlockOrigin {
+    /// The block's span in the program text.
+    fn span(&self) -> Span;
+    /// Its sequence number, if any.
+    fn sequence(&self) -> Option<u32>;
+    /// Where an alarm about the feed points: the feed word, when the block has one.
+    fn feed_span(&self) -> Span {
+        self.span()
+    }
+}
+
+impl BlockOrigin for Origin {
+    #[inline(always)]
+    fn span(&self) -> Span {
+        self.span
+    }
+
+    #[inline(always)]
+    fn sequence(&self) -> Option<u32> {
+        self.sequence
+    }
+}
+
 impl Origin {
     /// The block at `span`, without a sequence number.
     pub fn at(span: Span) -> Origin {
@@ -48,8 +73,6 @@ impl Origin {
 pub struct Kernel {
     state: KernelState,
     out: Output,
-    /// The block of the operation at hand, in the form the stream's queue takes it.
-    block: Command,
     /// The plane of arcs.
     plane: Plane,
     /// How [`KernelState::feed`] reads.
@@ -68,7 +91,6 @@ impl Kernel {
         Kernel {
             state,
             out: Output::default(),
-            block: Command::default(),
             plane: power_on.plane,
             feed_mode: power_on.feed_mode,
             modes: MoveModes {
@@ -95,12 +117,6 @@ impl Kernel {
         self.state.feed = Some(mm_per_min);
     }
 
-    /// The block `origin` becomes the one the next segments and alarms belong to.
-    fn enter(&mut self, origin: Origin) {
-        self.block.span = origin.span;
-        self.block.set_sequence(origin.sequence);
-    }
-
     /// Machine coordinates of a program-coordinate target; axes without a value stay where they
     /// are.
     fn machine_target(&self, target: [Option<f64>; AXES]) -> [f64; AXES] {
@@ -115,10 +131,8 @@ impl Kernel {
     /// # Errors
     /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range.
     pub fn rapid_to(&mut self, target: [Option<f64>; AXES], origin: Origin) -> Result<(), Alarm> {
-        self.enter(origin);
         let to = self.machine_target(target);
-        self.state
-            .rapid_to(to, &self.block, self.modes, &mut self.out)
+        self.state.rapid_to(to, &origin, self.modes, &mut self.out)
     }
 
     /// A cutting line to `target` (program coordinates) at the feed in force.
@@ -127,11 +141,10 @@ impl Kernel {
     /// [`AlarmCode::NoFeedRate`] without a feed; [`AlarmCode::ValueOutOfRange`] for a position
     /// beyond the control's range.
     pub fn feed_to(&mut self, target: [Option<f64>; AXES], origin: Origin) -> Result<(), Alarm> {
-        self.enter(origin);
         let to = self.machine_target(target);
         let feed_mode = self.feed_mode;
         self.state
-            .feed_to(to, &self.block, feed_mode, self.modes, &mut self.out)
+            .feed_to(to, &origin, feed_mode, self.modes, &mut self.out)
     }
 
     /// An arc in the plane in force (G17 at power-on) to `target` about `center`, both in
@@ -148,8 +161,7 @@ impl Kernel {
         direction: ArcDirection,
         origin: Origin,
     ) -> Result<(), Alarm> {
-        self.enter(origin);
-        let feed = self.state.cutting_feed(self.feed_mode, &self.block)?;
+        let feed = self.state.cutting_feed(self.feed_mode, &origin)?;
         let plane = self.plane;
         let (a, b, _) = plane.axes();
         let frames = &self.state.frames;
@@ -173,7 +185,7 @@ impl Kernel {
         };
         let modes = self.modes;
         self.state
-            .queue_arc(&self.block, arc, plane, modes, &mut self.out)
+            .queue_arc(&origin, arc, plane, modes, &mut self.out)
     }
 
     /// A dwell of `seconds`.
@@ -181,7 +193,6 @@ impl Kernel {
     /// # Errors
     /// [`AlarmCode::BadDwell`] for a negative time.
     pub fn dwell(&mut self, seconds: f64, origin: Origin) -> Result<(), Alarm> {
-        self.enter(origin);
         if seconds.is_nan() || seconds < 0.0 {
             return Err(Alarm::error(
                 AlarmCode::BadDwell,
@@ -189,14 +200,13 @@ impl Kernel {
                 "dwell time cannot be negative",
             ));
         }
-        self.out.push(&self.block, SegmentKind::Dwell { seconds });
+        self.out.push(&origin, SegmentKind::Dwell { seconds });
         Ok(())
     }
 
     /// The program ends here, as `kind` says: the end item, nothing after it.
     pub fn end(&mut self, kind: EndKind, origin: Origin) {
-        self.enter(origin);
-        self.out.push(&self.block, SegmentKind::End { kind });
+        self.out.push(&origin, SegmentKind::End { kind });
     }
 
     /// A warning (or any alarm that does not stop the program) in the stream.
@@ -226,7 +236,8 @@ impl Kernel {
     /// The feed of the moves to come, as the segments carry it.
     #[cfg(test)]
     fn feed(&self) -> Option<crate::motion::Feed> {
-        self.state.cutting_feed(self.feed_mode, &self.block).ok()
+        let origin = Origin::at(Span::new(crate::source::FileId(0), 1, 0..1));
+        self.state.cutting_feed(self.feed_mode, &origin).ok()
     }
 }
 

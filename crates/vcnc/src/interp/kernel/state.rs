@@ -4,19 +4,20 @@
 //! are read against; [`KernelState::rapid_to`], [`KernelState::feed_to`],
 //! [`KernelState::queue_arc`] turn a machine target into a segment of the stream. A dialect
 //! says how it wants a move made ([`MoveModes`], the feed mode); this module never reads a
-//! dialect's modal state or words, only the block record that names a segment's origin.
+//! dialect's modal state or words: a block is known by its origin ([`BlockOrigin`]).
 
 use super::super::circular::ArcTo;
-use super::super::decode::Command;
 use super::super::frames::Frames;
 use super::super::modal::FeedMode;
 use super::super::setup::Setup;
 use super::super::spindle::Spindle;
 use super::super::tools::ToolMemory;
 use super::super::Output;
+use super::BlockOrigin;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Machine, AXES};
 use crate::motion::{Feed, MachinePos, Move, PathMode, Plane, SegmentKind, Smoothing};
+use crate::source::Span;
 
 /// The machine state every dialect shares.
 #[derive(Clone, Debug)]
@@ -89,7 +90,7 @@ impl KernelState {
     pub(crate) fn feed_to(
         &mut self,
         to: [f64; AXES],
-        cmd: &Command,
+        block: &impl BlockOrigin,
         feed_mode: FeedMode,
         modes: MoveModes,
         out: &mut Output,
@@ -98,9 +99,9 @@ impl KernelState {
         if same_place(&to, &self.position) {
             return Ok(());
         }
-        let feed = self.cutting_feed(feed_mode, cmd)?;
-        let motion = self.move_to(to, cmd, modes)?;
-        out.push(cmd, SegmentKind::Line { motion, feed });
+        let feed = self.cutting_feed(feed_mode, block)?;
+        let motion = self.move_to(to, block, modes)?;
+        out.push(block, SegmentKind::Line { motion, feed });
         Ok(())
     }
 
@@ -111,7 +112,7 @@ impl KernelState {
     pub(crate) fn rapid_to(
         &mut self,
         to: [f64; AXES],
-        cmd: &Command,
+        block: &impl BlockOrigin,
         modes: MoveModes,
         out: &mut Output,
     ) -> Result<(), Alarm> {
@@ -119,8 +120,8 @@ impl KernelState {
             return Ok(());
         }
         let per_axis = self.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis;
-        let motion = self.move_to(to, cmd, modes)?;
-        out.push(cmd, SegmentKind::Rapid { motion, per_axis });
+        let motion = self.move_to(to, block, modes)?;
+        out.push(block, SegmentKind::Rapid { motion, per_axis });
         Ok(())
     }
 
@@ -131,7 +132,7 @@ impl KernelState {
     /// A centre or end beyond the control's range.
     pub(crate) fn queue_arc(
         &mut self,
-        cmd: &Command,
+        block: &impl BlockOrigin,
         arc: ArcTo,
         plane: Plane,
         modes: MoveModes,
@@ -140,9 +141,9 @@ impl KernelState {
         let (a, b, _) = plane.axes();
         let mut center = self.position;
         (center[a], center[b]) = arc.center;
-        check_position(&center, cmd)?;
-        let motion = self.move_to(arc.target, cmd, modes)?;
-        out.push_with(cmd, || SegmentKind::Arc {
+        check_position(&center, block)?;
+        let motion = self.move_to(arc.target, block, modes)?;
+        out.push_with(block, || SegmentKind::Arc {
             motion,
             center: MachinePos(center),
             direction: arc.direction,
@@ -164,10 +165,10 @@ impl KernelState {
     pub(crate) fn move_to(
         &mut self,
         to: [f64; AXES],
-        cmd: &Command,
+        block: &impl BlockOrigin,
         modes: MoveModes,
     ) -> Result<Move, Alarm> {
-        check_position(&to, cmd)?;
+        check_position(&to, block)?;
         let from = MachinePos(self.position);
         self.position = to;
         Ok(Move {
@@ -186,10 +187,14 @@ impl KernelState {
     /// [`AlarmCode::NoFeedRate`] when no F is in force (FANUC alarm 011).
     // Inlined: out of line, the feed came back through memory.
     #[inline(always)]
-    pub(crate) fn cutting_feed(&self, mode: FeedMode, cmd: &Command) -> Result<Feed, Alarm> {
+    pub(crate) fn cutting_feed(
+        &self,
+        mode: FeedMode,
+        block: &impl BlockOrigin,
+    ) -> Result<Feed, Alarm> {
         let f = match self.feed {
             Some(f) if f != 0.0 => f,
-            _ => return Err(self.no_feed(mode, cmd)),
+            _ => return Err(self.no_feed(mode, block)),
         };
         Ok(match mode {
             FeedMode::PerMinute => Feed::PerMinute(f),
@@ -203,7 +208,7 @@ impl KernelState {
 
     /// The alarm of a cutting move without a feed in force, or with a zero feed.
     #[cold]
-    fn no_feed(&self, mode: FeedMode, cmd: &Command) -> Alarm {
+    fn no_feed(&self, mode: FeedMode, block: &impl BlockOrigin) -> Alarm {
         if self.feed.is_none() {
             let what = match mode {
                 FeedMode::InverseTime => {
@@ -211,12 +216,12 @@ impl KernelState {
                 }
                 _ => "cutting move before any feed rate (F) was programmed",
             };
-            return Alarm::error(AlarmCode::NoFeedRate, cmd.span, what)
+            return Alarm::error(AlarmCode::NoFeedRate, block.span(), what)
                 .with_help("add an F word to this block or an earlier one (FANUC alarm 011)");
         }
         Alarm::error(
             AlarmCode::NoFeedRate,
-            cmd.f().map_or(cmd.span, |v| v.span),
+            block.feed_span(),
             "feed rate is zero",
         )
     }
@@ -232,7 +237,7 @@ pub(crate) const POSITION_LIMIT: f64 = 1.0e9;
 /// [`AlarmCode::ValueOutOfRange`] when a coordinate is not finite or beyond [`POSITION_LIMIT`].
 // Inlined, with the alarm out of line: out of line, every move paid a call.
 #[inline(always)]
-pub(crate) fn check_position(position: &[f64], cmd: &Command) -> Result<(), Alarm> {
+pub(crate) fn check_position(position: &[f64], block: &impl BlockOrigin) -> Result<(), Alarm> {
     // One test for all axes, without a branch per axis: this runs for every move.
     let within = position
         .iter()
@@ -240,15 +245,15 @@ pub(crate) fn check_position(position: &[f64], cmd: &Command) -> Result<(), Alar
     if within {
         return Ok(());
     }
-    Err(out_of_range(cmd))
+    Err(out_of_range(block.span()))
 }
 
 /// The alarm of a position beyond [`POSITION_LIMIT`].
 #[cold]
-fn out_of_range(cmd: &Command) -> Alarm {
+fn out_of_range(span: Span) -> Alarm {
     Alarm::error(
         AlarmCode::ValueOutOfRange,
-        cmd.span,
+        span,
         "the position is beyond the control's range",
     )
     .with_help(format!("coordinates are limited to ±{POSITION_LIMIT:e} mm"))
