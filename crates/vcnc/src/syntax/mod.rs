@@ -10,6 +10,7 @@ pub mod blocks;
 pub mod expr;
 pub mod iso;
 pub mod lines;
+pub mod sinumerik;
 
 use crate::alarm::Alarm;
 use crate::source::Span;

@@ -1,0 +1,343 @@
+//! One SINUMERIK block: skip level, block number, label, and its words (manual 2.2).
+//!
+//! A word is a DIN 66025 address with a constant (`X10`, `G1`, `F 100`, `N140G0` is two), an
+//! address or name with `=` and an expression (`X=10*R1`, `CR=5`, `X1=10`, `T="PF60"`), a name
+//! with indices and `=` (`$P_UIFR[1]=...`), a call (`CYCLE82(2,,1)`, `MSG("...")`), or a name alone
+//! (`TRANS`, `MCALL`, `RET`). After a single address letter, digits followed by `=`, `(` or `[`
+//! are a numeric extension (`X1=10` is axis X1, `X110` is X at 110: manual L604-606). The words
+//! of control structures (IF, WHILE, GOTOF ...) are kept as the rest of the block's text for the
+//! interpreter (`Block::statement`). Parsing never fails as a whole: a block that cannot be read
+//! carries its alarm.
+
+use super::expr::{self, Expr};
+use super::scan::{unexpected, Scanner};
+use crate::alarm::{Alarm, AlarmCode};
+use crate::source::{FileId, Span};
+use crate::syntax::Number;
+
+/// A parsed block.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Block {
+    /// The skip level of a `/` or `/n` in front (`/` is level 0).
+    pub skip: Option<u8>,
+    /// The block number of `N..` or `:..` (a main block).
+    pub number: Option<u32>,
+    /// A jump label ending in `:` at the start of the block.
+    pub label: Option<Box<str>>,
+    /// The block's words, in order.
+    pub words: Vec<Word>,
+    /// A control structure or declaration (IF, WHILE, DEF, GOTOF ...): its keyword, upper case,
+    /// and the span of the rest of the block, read by the interpreter.
+    pub statement: Option<(Box<str>, Span)>,
+    /// Why the block could not be read, if it could not.
+    pub alarm: Option<Alarm>,
+}
+
+/// An address or name and its value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Word {
+    /// The address or name, upper case, with its numeric extension (`X`, `X1`, `CR`, `R10`).
+    pub address: Box<str>,
+    /// What it is given.
+    pub value: Value,
+    /// Where the word was written.
+    pub span: Span,
+}
+
+/// The value of a word.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// A constant after an address letter, as written (`X-12.5`, `G1`).
+    Constant(Number),
+    /// An expression after `=`; `AC(..)` and `IC(..)` stay calls at its top.
+    Expression(Expr),
+    /// `NAME[i, j]=value`, or `NAME[i]` alone (`SCC[X]`).
+    Indexed(Vec<Expr>, Option<Expr>),
+    /// `NAME(arguments)`: a subprogram, cycle or procedure call.
+    Call(Vec<Option<Expr>>),
+    /// A name alone: a keyword (`TRANS`, `MCALL`) or a subprogram called by its name.
+    Bare,
+}
+
+/// The keywords that, first in a block, make it a statement of the language, not words.
+const STATEMENTS: [&str; 24] = [
+    "IF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "FOR", "ENDFOR", "REPEAT", "REPEATB", "UNTIL",
+    "LOOP", "ENDLOOP", "CASE", "DEF", "GOTO", "GOTOF", "GOTOB", "GOTOC", "GOTOS", "PROC", "EXTERN",
+    "DEFINE", "SAVE", "ENDLABEL",
+];
+
+/// The keywords of synchronized actions: the rest of the block, from any word on, is the action
+/// (`IDS=2 WHENEVER ... DO ...`).
+const ACTIONS: [&str; 4] = ["WHEN", "WHENEVER", "EVERY", "FROM"];
+
+/// Reads the block on `text`, line `line` of `file` at byte `base`.
+pub fn parse_block(text: &[u8], file: FileId, line: u32, base: u32) -> Block {
+    let mut scanner = Scanner::new(text, file, line, base);
+    let mut block = Block::default();
+    if let Err(alarm) = read(&mut scanner, &mut block) {
+        block.alarm = Some(alarm);
+    }
+    block
+}
+
+fn read(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
+    scanner.skip_blanks();
+    if scanner.peek_byte() == Some(b'/') {
+        scanner.bump();
+        let level = scanner.peek_byte().filter(u8::is_ascii_digit);
+        if let Some(digit) = level {
+            scanner.bump();
+            block.skip = Some(digit - b'0');
+        } else {
+            block.skip = Some(0);
+        }
+    }
+    block_number(scanner, block)?;
+    label(scanner, block);
+    while !scanner.at_end() {
+        let start = scanner.mark();
+        match scanner.peek_byte() {
+            Some(b) if b.is_ascii_alphabetic() || b == b'_' || b == b'$' => {}
+            Some(b) => return Err(unexpected(scanner.here(), b)),
+            None => break,
+        }
+        if block.statement.is_none() {
+            if let Some(keyword) = statement_keyword(scanner, block.words.is_empty()) {
+                scanner.skip_blanks();
+                let rest = scanner.mark()..scanner.text().len();
+                block.statement = Some((keyword, scanner.span(rest)));
+                return Ok(());
+            }
+            scanner.reset(start);
+        }
+        let word = word(scanner)?;
+        if scanner.mark() == start {
+            // Nothing read: a guard, so that no line can loop here.
+            return Err(unexpected(
+                scanner.here(),
+                scanner.peek_byte().unwrap_or(b' '),
+            ));
+        }
+        block.words.push(word);
+    }
+    Ok(())
+}
+
+/// `N123` or `:123` at the start of the block.
+fn block_number(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
+    scanner.skip_blanks();
+    let start = scanner.mark();
+    let main = scanner.peek_byte() == Some(b':');
+    let is_n = scanner
+        .peek_byte()
+        .is_some_and(|b| b.eq_ignore_ascii_case(&b'N'));
+    if !(main || is_n) {
+        return Ok(());
+    }
+    scanner.bump();
+    let from = scanner.mark();
+    while scanner.peek_byte().is_some_and(|b| b.is_ascii_digit()) {
+        scanner.bump();
+    }
+    let digits = &scanner.text()[from..scanner.mark()];
+    // `N` followed by a letter is a name (`NOT`, a label `NEXT:`), not a block number.
+    if digits.is_empty() || scanner.peek_byte() == Some(b'=') {
+        scanner.reset(start);
+        return Ok(());
+    }
+    let number = std::str::from_utf8(digits)
+        .ok()
+        .and_then(|d| d.parse::<u32>().ok())
+        .ok_or_else(|| {
+            Alarm::error(
+                AlarmCode::BadNumber,
+                scanner.span(start..scanner.mark()),
+                "the block number is too large",
+            )
+        })?;
+    block.number = Some(number);
+    Ok(())
+}
+
+/// `NAME:` at the start of the block (not `NAME:=`, and not a block number).
+fn label(scanner: &mut Scanner<'_>, block: &mut Block) {
+    scanner.skip_blanks();
+    let start = scanner.mark();
+    if !scanner
+        .peek_byte()
+        .is_some_and(|b| b.is_ascii_alphabetic() || b == b'_')
+    {
+        return;
+    }
+    scanner.name_rest();
+    let end = scanner.mark();
+    if scanner.peek_byte() == Some(b':') {
+        scanner.bump();
+        block.label = Some(expr::upper(&scanner.text()[start..end]));
+    } else {
+        scanner.reset(start);
+    }
+}
+
+/// The keyword of a statement at the position, consumed, if the rest of the block is one
+/// (`first`: no word before it).
+fn statement_keyword(scanner: &mut Scanner<'_>, first: bool) -> Option<Box<str>> {
+    let start = scanner.mark();
+    scanner.name_rest();
+    let name = expr::upper(&scanner.text()[start..scanner.mark()]);
+    // `DEF` and `IF` are keywords only as written; `DEFX=1` is not a declaration.
+    let separated = !matches!(scanner.peek_byte(), Some(b'=' | b'['));
+    let keyword = (first && STATEMENTS.contains(&&*name)) || ACTIONS.contains(&&*name);
+    (separated && keyword).then_some(name)
+}
+
+/// One word at the position (a letter, `_` or `$` there).
+fn word(scanner: &mut Scanner<'_>) -> Result<Word, Alarm> {
+    let start = scanner.mark();
+    if scanner.peek_byte() == Some(b'$') {
+        scanner.bump();
+    }
+    scanner.letters();
+    let letters_end = scanner.mark();
+    let single_letter = letters_end - start == 1 && scanner.text()[start].is_ascii_alphabetic();
+    if single_letter {
+        if let Some(word) = din_word(scanner, start)? {
+            return Ok(word);
+        }
+        scanner.reset(letters_end);
+    }
+    scanner.name_rest();
+    let name_end = scanner.mark();
+    let address = expr::upper(&scanner.text()[start..name_end]);
+    named_word(scanner, address, start)
+}
+
+/// A single address letter with a constant (`X10`, `G1`, `X-5`, `F 100`), or `None` when the
+/// digits after the letter are a numeric extension (`X1=`, `R10=`) or no number follows.
+fn din_word(scanner: &mut Scanner<'_>, start: usize) -> Result<Option<Word>, Alarm> {
+    let letter = scanner.text()[start].to_ascii_uppercase();
+    let after_letter = scanner.mark();
+    scanner.skip_blanks();
+    let negative = match scanner.peek_byte() {
+        Some(b'-') => {
+            scanner.bump();
+            true
+        }
+        Some(b'+') => {
+            scanner.bump();
+            false
+        }
+        _ => false,
+    };
+    let number_start = scanner.mark();
+    let starts_number = match scanner.peek_byte() {
+        Some(b) if b.is_ascii_digit() => true,
+        Some(b'.') => scanner
+            .text()
+            .get(number_start + 1)
+            .is_some_and(u8::is_ascii_digit),
+        _ => false,
+    };
+    if !starts_number {
+        scanner.reset(after_letter);
+        return Ok(None);
+    }
+    let value = scanner.decimal()?;
+    let written = &scanner.text()[number_start..scanner.mark()];
+    let decimal_point = written.contains(&b'.');
+    let number_end = scanner.mark();
+    // `R107 = 1`, `S1 = 60`: real programs and the manual put blanks before the `=`.
+    let assigns = scanner.take_equals();
+    scanner.reset(number_end);
+    let extension = !negative
+        && !decimal_point
+        && number_start == after_letter
+        && (assigns || matches!(scanner.peek_byte(), Some(b'(' | b'[')));
+    if extension {
+        return Ok(None);
+    }
+    let span = scanner.span(start..scanner.mark());
+    Ok(Some(Word {
+        address: (letter as char).to_string().into(),
+        value: Value::Constant(Number {
+            value: if negative { -value } else { value },
+            decimal_point,
+            negative,
+        }),
+        span,
+    }))
+}
+
+/// A name with what follows it: `=` and an expression, indices and `=`, arguments, or nothing.
+fn named_word(scanner: &mut Scanner<'_>, address: Box<str>, start: usize) -> Result<Word, Alarm> {
+    // `MSG ("text")`, `SETMS (2)`: a blank may stand before the arguments.
+    let name_end = scanner.mark();
+    scanner.skip_blanks();
+    if scanner.peek_byte() != Some(b'(') {
+        scanner.reset(name_end);
+    }
+    let value = match scanner.peek_byte() {
+        Some(b'(') => {
+            scanner.bump();
+            let (arguments, _) = expr::arguments(scanner, 0)?;
+            Value::Call(arguments)
+        }
+        Some(b'[') => {
+            scanner.bump();
+            let (indices, _) = expr::indices(scanner, 0)?;
+            // `SCC[X]`, `DIAMONA[Y]`: a keyword with an axis, no value.
+            let value = match scanner.take_equals() {
+                true => Some(expr::parse(scanner)?),
+                false => None,
+            };
+            Value::Indexed(indices, value)
+        }
+        _ => {
+            let mark = scanner.mark();
+            if scanner.take_equals() {
+                Value::Expression(expr::parse(scanner)?)
+            } else if address.len() > 1 && lenient_constant(scanner, mark) {
+                // `FZ0.03`: a multi-letter address with a constant and no `=`, as the manual's
+                // own examples write it (spec part A 2.2.3 note).
+                return lenient_word(scanner, &address, start);
+            } else {
+                scanner.reset(mark);
+                Value::Bare
+            }
+        }
+    };
+    Ok(Word {
+        address,
+        value,
+        span: scanner.span(start..scanner.mark()),
+    })
+}
+
+/// True when a multi-letter name ends in digits that a decimal point continues (`FZ0.03`).
+fn lenient_constant(scanner: &mut Scanner<'_>, mark: usize) -> bool {
+    scanner.reset(mark);
+    let text = scanner.text();
+    let digits = text[..mark]
+        .iter()
+        .rev()
+        .take_while(|b| b.is_ascii_digit())
+        .count();
+    digits > 0 && text.get(mark) == Some(&b'.')
+}
+
+/// The word of [`lenient_constant`]: the letters as the address, the digits and decimals as
+/// its constant.
+fn lenient_word(scanner: &mut Scanner<'_>, address: &str, start: usize) -> Result<Word, Alarm> {
+    let letters = address.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+    scanner.reset(start + letters);
+    let value = scanner.decimal()?;
+    Ok(Word {
+        address: address[..letters].into(),
+        value: Value::Constant(Number {
+            value,
+            decimal_point: true,
+            negative: false,
+        }),
+        span: scanner.span(start..scanner.mark()),
+    })
+}

@@ -1,0 +1,13 @@
+//! The SINUMERIK 840D sl / 828D front end's syntax: blocks, words and expressions as the
+//! control reads them (manual "Fundamentals" 2.2 and 3.2; docs/SINUMERIK.md).
+//!
+//! A dialect of its own: SINUMERIK owns its word, block and expression types ([`Block`],
+//! [`Word`], [`Expr`]); nothing here is shared with the ISO front end but [`crate::syntax::Number`]
+//! and spans. What the words mean is the SINUMERIK interpreter's business.
+
+mod block;
+mod expr;
+mod scan;
+
+pub use block::{parse_block, Block, Value, Word};
+pub use expr::{BinaryOp, Expr, ExprKind, UnaryOp};
