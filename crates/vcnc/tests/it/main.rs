@@ -15,6 +15,7 @@ mod corpus;
 mod cycles;
 mod frames;
 mod front_end;
+mod input;
 mod interrupt;
 mod lcnc_traces;
 mod macros;

@@ -28,6 +28,7 @@ use crate::motion::{EndKind, SegmentKind, StopKind};
 use crate::profile::{DecimalLess, GCode, Group, MCode};
 use crate::source::Span;
 use crate::syntax::expr::{Expr, Instruction, Statement, Target, VariableBank};
+use crate::syntax::lines::{needs_normalizing, normalize};
 use crate::syntax::{Block, Number, Word};
 use indexed::IndexedFile;
 use programs::{Position, Program, ProgramLibrary, StoredProgram};
@@ -556,6 +557,14 @@ impl Core {
     /// A main program's file held whole, its headers found.
     fn whole_file(&self, text: Arc<[u8]>, span: Span) -> Result<FileText, Alarm> {
         self.check_held_size(text.len(), span)?;
+        // Read as the line readers read it: a byte-order mark and lone `\r`s rewritten.
+        let text = if needs_normalizing(&text, true) {
+            let mut copy = text.to_vec();
+            normalize(&mut copy, true);
+            Arc::from(copy)
+        } else {
+            text
+        };
         let headers = programs::program_headers(&text, &self.exec.profile.syntax());
         let main_end = programs::main_program_end(&text, &headers);
         Ok(FileText {

@@ -17,6 +17,7 @@ use crate::syntax::iso::structure::Structure;
 use crate::syntax::iso::{
     parse_program, parse_program_piece, LineBlocks, ProgramBlocks, SyntaxOptions,
 };
+use crate::syntax::lines::normalize;
 use crate::syntax::Block;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -63,11 +64,13 @@ impl MemoryLibrary {
 
     /// Adds program `number` with `text`, whose spans will carry `file`.
     pub fn insert(&mut self, number: u32, file: FileId, text: &str) {
+        let mut text = text.as_bytes().to_vec();
+        normalize(&mut text, true);
         self.programs.insert(
             number,
             ProgramText {
                 file,
-                text: Arc::from(text.as_bytes()),
+                text: Arc::from(text),
             },
         );
     }
@@ -149,6 +152,7 @@ impl DirectoryLibrary {
                     {
                         continue;
                     }
+                    normalize(&mut head, true);
                     for (number, _, _) in program_headers(&head, &SyntaxOptions::default()) {
                         index.entry(number).or_insert_with(|| path.clone());
                     }
@@ -181,7 +185,8 @@ fn program_number_of_file(path: &Path) -> Option<u32> {
 impl ProgramLibrary for DirectoryLibrary {
     fn find(&mut self, number: u32) -> Option<ProgramText> {
         let path = self.index().get(&number)?.clone();
-        let text = std::fs::read(&path).ok()?;
+        let mut text = std::fs::read(&path).ok()?;
+        normalize(&mut text, true);
         let file = FileId(self.next_file);
         self.next_file += 1;
         if let Ok(mut loaded) = self.loaded.lock() {
@@ -194,7 +199,8 @@ impl ProgramLibrary for DirectoryLibrary {
     }
 
     fn main_text(&mut self) -> Option<Arc<[u8]>> {
-        let text = std::fs::read(self.main.as_ref()?).ok()?;
+        let mut text = std::fs::read(self.main.as_ref()?).ok()?;
+        normalize(&mut text, true);
         Some(Arc::from(text))
     }
 

@@ -1,0 +1,165 @@
+//! How the library reads programs and finds the programs they call (issue 19): the bytes editors
+//! put in files (a UTF-8 byte-order mark, old Mac `\r` line ends), subprogram lookup in a
+//! directory, main programs that repeat with M99, dialect detection. Each test runs the program
+//! through every path that reads text: held whole, streamed from a reader, and from a file that
+//! runs from an index once it jumps.
+
+use std::path::PathBuf;
+use vcnc::pipeline::{Item, Pipeline};
+use vcnc::{interpret_bytes, Machine, Options};
+
+/// A directory of the test's own under the temporary directory, removed when dropped.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> TempDir {
+        let path = std::env::temp_dir().join(format!("vcnc-input-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).expect("the temporary directory is writable");
+        TempDir(path)
+    }
+
+    fn write(&self, name: &str, text: &[u8]) -> PathBuf {
+        let path = self.0.join(name);
+        std::fs::write(&path, text).expect("the temporary directory is writable");
+        path
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// What a run did, as lines of text: each move's source line and end point, each alarm's code,
+/// line and message.
+fn outline(items: impl IntoIterator<Item = Item>) -> Vec<String> {
+    items
+        .into_iter()
+        .filter_map(|item| match item {
+            Ok(segment) => segment.motion().map(|motion| {
+                let [x, y, z] = motion.to.xyz();
+                format!("line {}: {x:.3} {y:.3} {z:.3}", segment.span.line)
+            }),
+            Err(alarm) => Some(format!(
+                "{} line {}: {}",
+                alarm.code.code(),
+                alarm.span.map_or(0, |s| s.line),
+                alarm.message
+            )),
+        })
+        .collect()
+}
+
+/// The outlines of `text` run held whole (by the interpreter, and by a pipeline), and from a
+/// file in `dir` (streamed, then from an index into the file once it jumps).
+fn outlines(dir: &TempDir, name: &str, text: &[u8], options: Options) -> [Vec<String>; 3] {
+    let machine = Machine::default();
+    let whole = outline(interpret_bytes(text, &machine, options.clone()));
+    let held = Pipeline::new(&machine)
+        .options(options.clone())
+        .open_text(text, name);
+    let path = dir.write(name, text);
+    let file = Pipeline::new(&machine)
+        .options(options)
+        .open_path(&path)
+        .expect("the file was just written");
+    [whole, outline(held), outline(file)]
+}
+
+/// A program that jumps (WHILE), calls a subprogram after its M30 and has a comment on its first
+/// line: every reader of the text meets each line end.
+const JUMPS_AND_CALLS: &str = "%\n(FIRST LINE)\nO0001\nG90 G21 G17 G0 X0 Y0 Z5.\n#1 = 0\n\
+WHILE [#1 LT 3] DO1\nG1 X[#1 * 10] F500.\n#1 = #1 + 1\nEND1\nM98 P1234\nG0 Z10.\nM30\n\
+O1234\nG1 Y7. F300.\nM99\n%\n";
+
+#[test]
+fn a_byte_order_mark_and_old_mac_line_ends_read_as_plain_line_feeds() {
+    let dir = TempDir::new("line-ends");
+    let [expected, ..] = outlines(
+        &dir,
+        "lf.nc",
+        JUMPS_AND_CALLS.as_bytes(),
+        Options::default(),
+    );
+    assert_eq!(expected.len(), 5, "{expected:#?}");
+    let variants: [(&str, Vec<u8>); 4] = [
+        (
+            "bom.nc",
+            [b"\xEF\xBB\xBF", JUMPS_AND_CALLS.as_bytes()].concat(),
+        ),
+        ("cr.nc", JUMPS_AND_CALLS.replace('\n', "\r").into_bytes()),
+        (
+            "crlf.nc",
+            JUMPS_AND_CALLS.replace('\n', "\r\n").into_bytes(),
+        ),
+        (
+            "bom-cr.nc",
+            [
+                b"\xEF\xBB\xBF",
+                JUMPS_AND_CALLS.replace('\n', "\r").as_bytes(),
+            ]
+            .concat(),
+        ),
+    ];
+    for (name, text) in variants {
+        for (path, got) in
+            ["whole", "held", "file"]
+                .iter()
+                .zip(outlines(&dir, name, &text, Options::default()))
+        {
+            assert_eq!(got, expected, "{name} read {path}");
+        }
+    }
+}
+
+#[test]
+fn old_mac_line_ends_cut_by_every_read_size_give_the_same_lines() {
+    // A `\r` at the end of one read and its line's text in the next: the line reader must not
+    // take the two lines for one. (A program read from a reader cannot jump.)
+    let text = "\u{feff}%\rG90 G0 X1. Y2.\rG1 X3. F100.\r\rG1 Y4.\r\nG1 Z-1.\rM30\r%";
+    assert!(text.starts_with('\u{feff}'));
+    let machine = Machine::default();
+    let expected = outline(interpret_bytes(
+        text.as_bytes(),
+        &machine,
+        Options::default(),
+    ));
+    for chunk in 1..9 {
+        let reader = Trickle {
+            data: text.as_bytes().to_vec(),
+            at: 0,
+            chunk,
+        };
+        let stream = Pipeline::new(&machine)
+            .open_reader(reader, "trickle.nc")
+            .expect("a reader in memory opens");
+        assert_eq!(outline(stream), expected, "reads of {chunk} bytes");
+    }
+    assert_eq!(
+        expected,
+        [
+            "line 2: 1.000 2.000 0.000",
+            "line 3: 3.000 2.000 0.000",
+            "line 5: 3.000 4.000 0.000",
+            "line 6: 3.000 4.000 -1.000"
+        ]
+    );
+}
+
+/// A reader that hands out at most `chunk` bytes per read.
+struct Trickle {
+    data: Vec<u8>,
+    at: usize,
+    chunk: usize,
+}
+
+impl std::io::Read for Trickle {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.chunk.min(buf.len()).min(self.data.len() - self.at);
+        buf[..n].copy_from_slice(&self.data[self.at..self.at + n]);
+        self.at += n;
+        Ok(n)
+    }
+}
