@@ -123,6 +123,10 @@ pub enum AlarmCode {
     /// M98, M198, G65 or G66 calls a program that is neither in the file nor in the program
     /// directory. FANUC alarm PS0078.
     ProgramNotFound,
+    /// A called program number that more than one file of a program directory holds (two files
+    /// named for it, or headed by it): vcnc cannot tell which one the control would have in its
+    /// memory. Fix: keep one of them in the directory, or renumber one.
+    ProgramAmbiguous,
     /// DO and END that do not pair: END without its DO, a loop number outside 1-3, a DO that
     /// never ends. FANUC alarms PS0126/PS0128.
     LoopStructure,
@@ -180,6 +184,7 @@ impl AlarmCode {
             BadVariable => "bad_variable",
             SequenceNotFound => "sequence_not_found",
             ProgramNotFound => "program_not_found",
+            ProgramAmbiguous => "program_ambiguous",
             LoopStructure => "loop_structure",
             MacroLimit => "macro_limit",
             UserAlarm => "user_alarm",
@@ -232,6 +237,7 @@ impl AlarmCode {
             MacroLimit => "V086",
             UserAlarm => "V087",
             InterruptIgnored => "V088",
+            ProgramAmbiguous => "V089",
         }
     }
 
@@ -274,6 +280,7 @@ impl AlarmCode {
         AlarmCode::BadVariable,
         AlarmCode::SequenceNotFound,
         AlarmCode::ProgramNotFound,
+        AlarmCode::ProgramAmbiguous,
         AlarmCode::LoopStructure,
         AlarmCode::MacroLimit,
         AlarmCode::UserAlarm,

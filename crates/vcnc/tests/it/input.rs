@@ -163,3 +163,75 @@ impl std::io::Read for Trickle {
         Ok(n)
     }
 }
+
+/// The outline of the main program `main` in `dir` (its own directory is its library).
+fn run_in(dir: &TempDir, main: &str) -> Vec<String> {
+    let path = dir.write("main.nc", main.as_bytes());
+    let stream = Pipeline::new(&Machine::default())
+        .open_path(&path)
+        .expect("the file was just written");
+    outline(stream)
+}
+
+const CALLS_10: &str = "%\nG90 G21 G17 G0 X0 Y0 Z5.\nM98 P[10]\nM30\n%\n";
+const SUB_10: &str = "%\nO0010\nG1 X10. F300.\nM99\n%\n";
+
+#[test]
+fn a_called_program_is_found_by_its_exact_name_or_its_header_not_by_a_name_that_holds_it() {
+    let dir = TempDir::new("lookup-exact");
+    // Named for the number in every accepted form: found.
+    for name in ["O0010.nc", "o10", "0010.NC", "10.txt"] {
+        dir.write(name, b"G1 X10. F300.\nM99\n");
+        let got = run_in(&dir, CALLS_10);
+        assert_eq!(
+            got.last().unwrap(),
+            "line 1: 10.000 0.000 5.000",
+            "{name}: {got:#?}"
+        );
+        std::fs::remove_file(dir.0.join(name)).unwrap();
+    }
+    // A name that only holds the number, without a header: not the program.
+    dir.write("bolt_O0010_circle.nc", b"G1 X10. F300.\nM99\n");
+    let got = run_in(&dir, CALLS_10);
+    assert!(got.last().unwrap().starts_with("V084 line 3"), "{got:#?}");
+    // Headed O0010 (the file's first program): found by its header.
+    dir.write("bolt_O0010_circle.nc", SUB_10.as_bytes());
+    let got = run_in(&dir, CALLS_10);
+    assert_eq!(
+        got.last().unwrap(),
+        "line 3: 10.000 0.000 5.000",
+        "{got:#?}"
+    );
+}
+
+#[test]
+fn two_files_that_could_be_the_called_program_are_an_alarm_naming_both() {
+    let dir = TempDir::new("lookup-two");
+    dir.write("bolt_circle.nc", SUB_10.as_bytes());
+    dir.write("z64_bolts.nc", SUB_10.replace("X10.", "X20.").as_bytes());
+    let got = run_in(&dir, CALLS_10);
+    let alarm = got.last().unwrap();
+    assert!(
+        alarm.starts_with("V089 line 3: program O0010 is in more than one file: "),
+        "{alarm}"
+    );
+    assert!(
+        alarm.contains("bolt_circle.nc and ") && alarm.ends_with("z64_bolts.nc"),
+        "{alarm}"
+    );
+    assert_eq!(got.len(), 2, "nothing runs of either: {got:#?}");
+    // A file named for the number and one headed by it: two candidates as well.
+    std::fs::remove_file(dir.0.join("z64_bolts.nc")).unwrap();
+    dir.write("O10.nc", b"G1 X30. F300.\nM99\n");
+    let alarm = run_in(&dir, CALLS_10).pop().unwrap();
+    assert!(alarm.starts_with("V089 line 3: "), "{alarm}");
+    assert!(
+        alarm.contains("O10.nc") && alarm.contains("bolt_circle.nc"),
+        "{alarm}"
+    );
+    // Two names for one number.
+    std::fs::remove_file(dir.0.join("bolt_circle.nc")).unwrap();
+    dir.write("O0010", b"G1 X40. F300.\nM99\n");
+    let alarm = run_in(&dir, CALLS_10).pop().unwrap();
+    assert!(alarm.starts_with("V089 line 3: "), "{alarm}");
+}

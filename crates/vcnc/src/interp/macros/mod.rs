@@ -700,7 +700,10 @@ impl Core {
         span: Span,
     ) -> Result<Option<StoredProgram>, Alarm> {
         let syntax = self.exec.profile.syntax();
-        let Some(text) = self.macros.library.as_mut().and_then(|l| l.find(number)) else {
+        let Some(library) = self.macros.library.as_mut() else {
+            return Ok(None);
+        };
+        let Some(text) = library.find(number).map_err(|e| lookup_alarm(&e, span))? else {
             return Ok(None);
         };
         if text.text.len() > self.options.limits.program_bytes {
@@ -1321,6 +1324,21 @@ fn read_alarm(span: Span, error: &std::io::Error) -> Alarm {
         span,
         format!("cannot read the program again: {error}"),
     )
+}
+
+/// The library could not give the program called at `span`.
+fn lookup_alarm(error: &programs::LookupError, span: Span) -> Alarm {
+    match error {
+        programs::LookupError::Ambiguous { .. } => {
+            alarm(AlarmCode::ProgramAmbiguous, span, error.to_string()).with_help(
+                "a control holds one program per number: keep one of these files in the \
+                 directory, or renumber the other",
+            )
+        }
+        programs::LookupError::Unreadable { .. } => {
+            alarm(AlarmCode::ReadError, span, error.to_string())
+        }
+    }
 }
 
 fn too_large(number: u32, span: Span) -> Alarm {
