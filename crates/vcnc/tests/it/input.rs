@@ -235,3 +235,34 @@ fn two_files_that_could_be_the_called_program_are_an_alarm_naming_both() {
     let alarm = run_in(&dir, CALLS_10).pop().unwrap();
     assert!(alarm.starts_with("V089 line 3: "), "{alarm}");
 }
+
+#[test]
+fn a_main_program_opened_by_a_tape_mark_repeats_from_the_block_after_it_on_m99() {
+    // Read again from its first line, the `%` ended the program after one pass.
+    let dir = TempDir::new("main-passes");
+    let program = "%\nG90 G21 G17\nG1 X1. F100.\nG1 X0\nM99\n";
+    let options = Options {
+        limits: vcnc::interp::Limits {
+            main_program_passes: 10,
+            ..vcnc::interp::Limits::default()
+        },
+        ..Options::default()
+    };
+    for with_comment in [false, true] {
+        let text = if with_comment {
+            format!("\n(PASSES)\n{program}")
+        } else {
+            program.to_string()
+        };
+        for (path, got) in ["whole", "held", "file"].iter().zip(outlines(
+            &dir,
+            "passes.nc",
+            text.as_bytes(),
+            options.clone(),
+        )) {
+            let moves = got.iter().filter(|l| l.starts_with("line")).count();
+            assert_eq!(moves, 20, "{path}: {got:#?}");
+            assert!(got.last().unwrap().starts_with("V086"), "{path}: {got:#?}");
+        }
+    }
+}

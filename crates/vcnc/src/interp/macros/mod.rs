@@ -1186,7 +1186,9 @@ impl Core {
                     )
                 })?
             }
-            None => (0, 0),
+            None => program
+                .start_after_tape_mark()
+                .map_err(|e| read_alarm(span, &e))?,
         };
         self.macros.loops.clear();
         self.place = Place::stored(program, target);

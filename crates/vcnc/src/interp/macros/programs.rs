@@ -18,7 +18,7 @@ use crate::syntax::iso::{
     parse_program, parse_program_piece, LineBlocks, ProgramBlocks, SyntaxOptions,
 };
 use crate::syntax::lines::normalize;
-use crate::syntax::Block;
+use crate::syntax::{Block, BlockKind};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -302,6 +302,33 @@ impl Program {
         match self {
             Program::Stored(program) => program.line(line).is_some(),
             Program::Indexed(file) => line < file.lines(),
+        }
+    }
+
+    /// Where the program starts again after M99: after the `%` that opens the tape, when one
+    /// comes before anything else runs (read there again, it would end the program), else at
+    /// its first line. Leading lines with nothing to run (blank, comments only) are looked
+    /// through; the search stops at the first line that has something.
+    ///
+    /// # Errors
+    /// Reading an indexed program's file again failed.
+    pub(crate) fn start_after_tape_mark(&self) -> std::io::Result<Position> {
+        let mut line = 0;
+        loop {
+            let blocks = match self {
+                Program::Stored(program) => program.line(line).map(<[Block]>::to_vec),
+                Program::Indexed(file) => file
+                    .chunk_of(line)?
+                    .and_then(|chunk| chunk.line(line).map(<[Block]>::to_vec)),
+            };
+            let Some(blocks) = blocks else {
+                return Ok((0, 0));
+            };
+            match blocks.iter().find(|block| !block.is_empty()) {
+                None => line += 1,
+                Some(block) if block.kind == BlockKind::TapeMark => return Ok((line + 1, 0)),
+                Some(_) => return Ok((0, 0)),
+            }
         }
     }
 
