@@ -266,3 +266,31 @@ fn a_main_program_opened_by_a_tape_mark_repeats_from_the_block_after_it_on_m99()
         }
     }
 }
+
+#[test]
+fn a_number_with_an_exponent_says_iso_g_code_has_none() {
+    let machine = Machine::default();
+    let first_alarm = |text: &str| {
+        outline(interpret_bytes(
+            text.as_bytes(),
+            &machine,
+            Options::default(),
+        ))
+        .into_iter()
+        .find(|l| l.starts_with('V'))
+        .unwrap_or_default()
+    };
+    for (text, code, written) in [
+        ("G0 X1e308\nM30\n", "V003", "`X1e308`"),
+        ("G1 X1.5E-3 F100.\nM30\n", "V003", "`X1.5E-3`"),
+        ("G1 Y2.E+3 F100.\nM30\n", "V003", "`Y2.E+3`"),
+        ("#1=1E308\nG0 X#1\nM30\n", "V080", "`1E308`"),
+        ("#1=[2.5e-3 * 2]\nM30\n", "V080", "`2.5e-3`"),
+    ] {
+        let alarm = first_alarm(text);
+        assert!(alarm.starts_with(&format!("{code} line 1: {written}: ISO G-code has no exponent notation, and E is an address")), "{text}: {alarm}");
+    }
+    // E with digits after a number is the address E (a G65 argument, a tapping cycle's E).
+    let alarm = first_alarm("G65 P9000 A1. V0E41\nM30\n");
+    assert!(alarm.starts_with("V084"), "{alarm}");
+}
