@@ -18,6 +18,7 @@ mod front_end;
 mod input;
 mod interrupt;
 mod lcnc_traces;
+mod macro_alarms;
 mod macros;
 mod mangled;
 mod modal;

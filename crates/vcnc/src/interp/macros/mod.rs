@@ -278,7 +278,7 @@ impl Core {
                     self.blocks_executed += 1;
                     return;
                 }
-                Err(alarm) => return self.fail(alarm),
+                Err(alarm) => return self.fail(self.with_call_stack(alarm)),
             }
         }
         if !block.words.iter().any(|w| w.letter != b'N') {
@@ -288,9 +288,29 @@ impl Core {
         let mut resolved = std::mem::take(&mut self.macros.resolved);
         match self.resolve_words(block, &mut resolved) {
             Ok(()) => self.run_words(&resolved, main_text),
-            Err(alarm) => self.fail(alarm),
+            Err(alarm) => self.fail(self.with_call_stack(alarm)),
         }
         self.macros.resolved = resolved;
+    }
+
+    /// `alarm` with the calls that led to it, innermost first: one label on each calling
+    /// block (G65/G66, M98, M96's interrupt), saying which program it called.
+    fn with_call_stack(&self, mut alarm: Alarm) -> Alarm {
+        for frame in self.macros.calls.iter().rev() {
+            let called = frame
+                .program
+                .number()
+                .map_or_else(|| "a program".to_string(), |n| format!("O{n:04}"));
+            let how = if frame.interrupted.is_some() {
+                "the interrupt signal called"
+            } else if frame.arguments.is_some() {
+                "this macro call ran"
+            } else {
+                "this call ran"
+            };
+            alarm = alarm.with_label(frame.span, format!("{how} {called}"));
+        }
+        alarm
     }
 
     /// The words of `block` with their expressions evaluated, into `out`: a vacant value
@@ -852,11 +872,19 @@ impl Core {
     }
 
     /// The calls, returns and modal calls of the block just run.
+    ///
+    /// # Errors
+    /// The alarm of a call or return that cannot be made, with the calls that led to it.
     pub(super) fn run_calls(
         &mut self,
         block: &Block,
         main_text: Option<&[u8]>,
     ) -> Result<(), Alarm> {
+        self.run_calls_of(block, main_text)
+            .map_err(|alarm| self.with_call_stack(alarm))
+    }
+
+    fn run_calls_of(&mut self, block: &Block, main_text: Option<&[u8]>) -> Result<(), Alarm> {
         if self
             .command
             .group(Group::ModalMacro)
