@@ -123,6 +123,10 @@ pub enum AlarmCode {
     /// M98, M198, G65 or G66 calls a program that is neither in the file nor in the program
     /// directory. FANUC alarm PS0078.
     ProgramNotFound,
+    /// A called program number that more than one file of a program directory holds (two files
+    /// named for it, or headed by it): vcnc cannot tell which one the control would have in its
+    /// memory. Fix: keep one of them in the directory, or renumber one.
+    ProgramAmbiguous,
     /// DO and END that do not pair: END without its DO, a loop number outside 1-3, a DO that
     /// never ends. FANUC alarms PS0126/PS0128.
     LoopStructure,
@@ -180,6 +184,7 @@ impl AlarmCode {
             BadVariable => "bad_variable",
             SequenceNotFound => "sequence_not_found",
             ProgramNotFound => "program_not_found",
+            ProgramAmbiguous => "program_ambiguous",
             LoopStructure => "loop_structure",
             MacroLimit => "macro_limit",
             UserAlarm => "user_alarm",
@@ -232,6 +237,57 @@ impl AlarmCode {
             MacroLimit => "V086",
             UserAlarm => "V087",
             InterruptIgnored => "V088",
+            ProgramAmbiguous => "V089",
+        }
+    }
+
+    /// A line on how to fix an alarm of this code, for alarms that carry no help of their own
+    /// ([`Alarm::help_line`]).
+    pub fn help(self) -> &'static str {
+        use AlarmCode::*;
+        match self {
+            UnexpectedCharacter => "remove the character, or put it inside a ( ) comment",
+            MissingValue => "give the address its number (`X10.`), or remove the letter",
+            BadNumber => "write the number as digits with at most one decimal point (`X-12.5`)",
+            UnclosedComment => "close the comment with `)` on the same line",
+            DuplicateAddress => "keep one of the two words, or split the block in two",
+            DecimalPointNotAllowed => "write this address as a whole number (`H1`, `M3`)",
+            ValueOutOfRange => "use a value in the range the message gives",
+            UnknownGCode => "check the G code against the control's manual, or choose the profile the program was written for (--profile)",
+            SameGroupGCodes => "keep one G code of the group in the block",
+            NotSupportedYet => "vcnc cannot run this yet: see docs/DEVIATIONS.md and the issue the message names, if any",
+            DialectNotSupported => "vcnc runs FANUC-family ISO programs; SINUMERIK comes later",
+            NoFeedRate => "program an F word before or in the first G01/G02/G03 block",
+            ArcWithoutCenter => "give the arc its radius (R) or its centre (I, J, K)",
+            ArcEndNotOnCircle => "check the end point and the centre (I, J, K): they must describe one circle",
+            ArcRadiusTooSmall => "make R at least half the distance between the start and the end point",
+            OffsetNumberOutOfRange => "use an offset number the tool table has (max_offset_number of the profile)",
+            WorkOffsetOutOfRange => "use a work offset the control has (G54-G59, G54.1 P1 and up to the profile's count)",
+            BadDataInput => "check the L and P words of G10 against the profile's table",
+            AxisNotOnMachine => "add the axis to the machine file (`[axes.a]` ...) or remove the word",
+            WordNotAllowed => "remove the word, or move it to a block that reads it",
+            ReferencePointOutOfRange => "use a reference point the machine has (G30 P2 to P4 on most controls)",
+            NoIntermediatePoint => "run G28 or G30 for this axis before G29",
+            MissingProgramEnd => "end the program with M30 (or M02), and a called program with M99",
+            BadFeedRate => "program a feed rate above zero",
+            BadDwell => "give the dwell a time of zero or more",
+            ReadError => "check that the file exists and can be read",
+            CutterCompensation => "use a smaller tool radius (D), or change the contour so that the tool fits",
+            PositionOffset => "cancel cutter compensation first, and give G45-G48 arcs of 90 or 270 degrees with I, J",
+            CycleData => "give the cycle the words it needs (Z, R, Q ...); cancel it with G80 before changing the plane",
+            CircleCutting => "give G12/G13 a D offset smaller than the circle's radius I",
+            SmoothingCommand => "give the smoothing code its words (P, Q, E), and switch it on outside G61/G63/G93",
+            Overtravel => "move the program's zero (work offset) or change the travel limits of the machine file",
+            MacroSyntax => "check the brackets and keywords of the statement: the macro language is in docs/MACROS.md",
+            MacroArithmetic => "check the values of the variables the expression reads (shown under them)",
+            BadVariable => "locals are #1-#33, commons #100-#499 and #500-#999; the system variables vcnc has are in docs/MACROS.md",
+            SequenceNotFound => "add the block with that N number, or change the jump's target",
+            ProgramNotFound => "put the program after M30 in the same file, or pass its directory with --lib DIR",
+            ProgramAmbiguous => "keep one file per program number in the directory",
+            LoopStructure => "pair every WHILE [..] DOn with an ENDn of the same number (1-3)",
+            MacroLimit => "raise the limit (--max-jumps, --main-passes), or end the loop",
+            UserAlarm => "the program raised this alarm itself (#3000): see its message",
+            InterruptIgnored => "name a block where M96 is in force and no excluding mode (G41/G42, G16 ...) is on",
         }
     }
 
@@ -274,6 +330,7 @@ impl AlarmCode {
         AlarmCode::BadVariable,
         AlarmCode::SequenceNotFound,
         AlarmCode::ProgramNotFound,
+        AlarmCode::ProgramAmbiguous,
         AlarmCode::LoopStructure,
         AlarmCode::MacroLimit,
         AlarmCode::UserAlarm,
@@ -360,6 +417,11 @@ impl Alarm {
             message: message.into(),
         });
         self
+    }
+
+    /// How to fix it: the alarm's own help, else its code's ([`AlarmCode::help`]).
+    pub fn help_line(&self) -> &str {
+        self.help.as_deref().unwrap_or(self.code.help())
     }
 
     /// True when the run stops here.

@@ -6,7 +6,7 @@
 
 pub use crate::axis::{Axis, AXES};
 use crate::plan::{PlannerConfig, PlannerFile};
-use crate::profile::{Profile, ProfileName};
+use crate::profile::{check_range, Lower, Profile, ProfileName};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
@@ -211,6 +211,8 @@ impl Machine {
     pub fn from_toml(text: &str) -> Result<Machine, MachineError> {
         let file: MachineFile = toml::from_str(text)?;
         let profile = Profile::with_overrides(file.profile, &file.profile_overrides)?;
+        profile.check_ranges().map_err(MachineError::Invalid)?;
+        file.check_ranges(&profile).map_err(MachineError::Invalid)?;
         let mut axes: [Option<AxisConfig>; AXES] = Default::default();
         for (letter, config) in file.axes {
             let axis = single_letter(&letter)
@@ -220,10 +222,10 @@ impl Machine {
                 })?;
             if config.min > config.max {
                 return Err(MachineError::Invalid(format!(
-                    "axis {letter}: min is above max"
+                    "axes.{letter}: min = {} is above max = {}",
+                    config.min, config.max
                 )));
             }
-            check_rates(&letter, &config)?;
             axes[axis.index()] = Some(config);
         }
         let count = profile.reference_points.max(1) as usize;
@@ -273,6 +275,7 @@ impl Machine {
     /// When the machine file's overrides do not fit the new profile.
     pub fn with_profile(mut self, name: ProfileName) -> Result<Machine, MachineError> {
         self.profile = Profile::with_overrides(name, &self.profile_overrides)?;
+        self.profile.check_ranges().map_err(MachineError::Invalid)?;
         Ok(self)
     }
 
@@ -295,23 +298,59 @@ impl Default for Machine {
     }
 }
 
-/// Rates and limits must be positive numbers (jerk may be `inf`: no jerk limit), so that the
-/// planner never divides by zero or meets a NaN.
-fn check_rates(letter: &str, config: &AxisConfig) -> Result<(), MachineError> {
-    for (name, value, infinite_ok) in [
-        ("rapid", config.rapid, false),
-        ("max_feed", config.max_feed, false),
-        ("acceleration", config.acceleration, false),
-        ("jerk", config.jerk, true),
-    ] {
-        let ok = value > 0.0 && (value.is_finite() || (infinite_ok && value == f64::INFINITY));
-        if !ok {
-            return Err(MachineError::Invalid(format!(
-                "axis {letter}: {name} = {value}: expected a positive number"
-            )));
+/// The largest coordinate or offset a machine file may give, mm: a kilometre, far past any
+/// machine, and small enough that sums and squares of positions stay exact enough.
+const MAX_POSITION: f64 = 1e6;
+
+/// The fastest rate a machine file may give, mm/min (or deg/min).
+const MAX_RATE: f64 = 1e7;
+
+impl MachineFile {
+    /// Every number of the file is one a machine could have: rates and limits positive (so that
+    /// the planner never divides by zero or meets a NaN; jerk may be `inf`, no limit), positions
+    /// and offsets finite, offset numbers among the profile's.
+    fn check_ranges(&self, profile: &Profile) -> Result<(), String> {
+        use Lower::{Above, AtLeast};
+        let position =
+            |key: &str, value: f64| check_range(key, value, AtLeast(-MAX_POSITION), MAX_POSITION);
+        for (letter, axis) in &self.axes {
+            let key = |name: &str| format!("axes.{letter}.{name}");
+            position(&key("min"), axis.min)?;
+            position(&key("max"), axis.max)?;
+            check_range(&key("rapid"), axis.rapid, Above(0.0), MAX_RATE)?;
+            check_range(&key("max_feed"), axis.max_feed, Above(0.0), MAX_RATE)?;
+            check_range(&key("acceleration"), axis.acceleration, Above(0.0), 1e6)?;
+            check_range(&key("jerk"), axis.jerk, Above(0.0), f64::INFINITY)?;
         }
+        let tables = [("start".to_string(), &self.start)]
+            .into_iter()
+            .chain(
+                self.reference_points
+                    .iter()
+                    .map(|(k, v)| (format!("reference_points.{k}"), v)),
+            )
+            .chain(
+                self.work_offsets
+                    .iter()
+                    .map(|(k, v)| (format!("work_offsets.{k}"), v)),
+            );
+        for (table, values) in tables {
+            for (letter, value) in ["x", "y", "z", "a", "b", "c"].iter().zip(values.to_array()) {
+                position(&format!("{table}.{letter}"), value)?;
+            }
+        }
+        for tool in &self.tool_offsets {
+            let number = tool.number;
+            let key = |name: &str| format!("tool_offsets (number {number}).{name}");
+            let most = f64::from(profile.max_offset_number);
+            check_range(&key("number"), f64::from(number), AtLeast(1.0), most)?;
+            position(&key("length"), tool.length)?;
+            position(&key("length_wear"), tool.length_wear)?;
+            position(&key("radius"), tool.radius)?;
+            position(&key("radius_wear"), tool.radius_wear)?;
+        }
+        check_range("spindle.max_rpm", self.spindle.max_rpm, Above(0.0), 1e6)
     }
-    Ok(())
 }
 
 fn single_letter(text: &str) -> Option<u8> {
@@ -384,6 +423,54 @@ mod tests {
         let text = DEFAULT_MACHINE_TOML.replace("acceleration = 2000.0", "acceleration = 0.0");
         let error = Machine::from_toml(&text).unwrap_err().to_string();
         assert!(error.contains("acceleration"), "{error}");
+    }
+
+    #[test]
+    fn every_number_of_the_machine_file_has_its_range_checked() {
+        let cases = [
+            (
+                "max_rpm = 12000.0",
+                "max_rpm = -5",
+                "spindle.max_rpm = -5: expected more than 0, up to 1000000",
+            ),
+            (
+                "rapid = 24000.0",
+                "rapid = 0",
+                "axes.z.rapid = 0: expected more than 0, up to 10000000",
+            ),
+            (
+                "jerk = 50000.0\n\n[axes.y]",
+                "jerk = -1\n\n[axes.y]",
+                "axes.x.jerk = -1: expected more than 0 (inf for no limit)",
+            ),
+            (
+                "min = -1000.0",
+                "min = nan",
+                "axes.x.min = NaN: expected -1000000 or more, up to 1000000",
+            ),
+            (
+                "1 = { x = 0.0,",
+                "1 = { x = 1e300,",
+                "reference_points.1.x = 1e300: expected -1000000 or more, up to 1000000",
+            ),
+            (
+                "number = 1\n",
+                "number = 0\n",
+                "tool_offsets (number 0).number = 0: expected 1 or more, up to 400",
+            ),
+        ];
+        for (from, to, expected) in cases {
+            assert!(DEFAULT_MACHINE_TOML.contains(from), "{from}");
+            let text = DEFAULT_MACHINE_TOML.replacen(from, to, 1);
+            let error = Machine::from_toml(&text).unwrap_err().to_string();
+            assert_eq!(error, format!("machine file: {expected}"));
+        }
+        let text = format!("{DEFAULT_MACHINE_TOML}\n[profile_overrides]\nmax_offset_number = 0\n");
+        let error = Machine::from_toml(&text).unwrap_err().to_string();
+        assert!(
+            error.contains("profile_overrides.max_offset_number = 0"),
+            "{error}"
+        );
     }
 
     #[test]

@@ -72,38 +72,52 @@ pub struct LineColumn {
     pub column: u32,
 }
 
+/// True when byte `i` of `text` ends a line: a `\n`, or a `\r` not followed by one (old Mac
+/// line ends, which the line readers take for line ends too).
+fn ends_line(text: &[u8], i: usize) -> bool {
+    match text[i] {
+        b'\n' => true,
+        b'\r' => text.get(i + 1) != Some(&b'\n'),
+        _ => false,
+    }
+}
+
 /// The 1-based line and column of byte `offset` in `text`.
 ///
-/// Bytes that are not valid UTF-8 (Latin-1 comments) count as one column each.
+/// Bytes that are not valid UTF-8 (Latin-1 comments) count as one column each; a byte-order mark
+/// at the file's start counts as none.
 pub fn line_column(text: &[u8], offset: u32) -> LineColumn {
     let offset = (offset as usize).min(text.len());
-    let before = &text[..offset];
-    let line_start = before
-        .iter()
-        .rposition(|&b| b == b'\n')
-        .map_or(0, |i| i + 1);
-    let line = before.iter().filter(|&&b| b == b'\n').count() as u32 + 1;
-    let column = before[line_start..]
-        .iter()
-        .filter(|&&b| (b & 0xC0) != 0x80)
-        .count() as u32
-        + 1;
-    LineColumn { line, column }
+    let breaks = (0..offset).filter(|&i| ends_line(text, i));
+    let (count, last) = breaks.fold((0u32, None), |(n, _), i| (n + 1, Some(i)));
+    let line_start = last.map_or(0, |i| i + 1);
+    let mut before = &text[line_start..offset];
+    if line_start == 0 {
+        before = before.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(before);
+    }
+    let column = before.iter().filter(|&&b| (b & 0xC0) != 0x80).count() as u32 + 1;
+    LineColumn {
+        line: count + 1,
+        column,
+    }
 }
 
 /// The text of the line containing byte `offset`, without its line end.
 pub fn line_text(text: &[u8], offset: u32) -> &[u8] {
     let offset = (offset as usize).min(text.len());
-    let start = text[..offset]
-        .iter()
-        .rposition(|&b| b == b'\n')
+    let start = (0..offset)
+        .rev()
+        .find(|&i| ends_line(text, i))
         .map_or(0, |i| i + 1);
-    let end = text[offset..]
-        .iter()
-        .position(|&b| b == b'\n')
-        .map_or(text.len(), |i| offset + i);
+    let end = (offset..text.len())
+        .find(|&i| ends_line(text, i))
+        .unwrap_or(text.len());
     let line = &text[start..end];
-    line.strip_suffix(b"\r").unwrap_or(line)
+    let line = line.strip_suffix(b"\r").unwrap_or(line);
+    if start == 0 {
+        return line.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(line);
+    }
+    line
 }
 
 #[cfg(test)]
@@ -117,5 +131,15 @@ mod tests {
         assert_eq!(line_column(text, 10), LineColumn { line: 2, column: 4 });
         assert_eq!(line_text(text, 10), b"G1 Y2");
         assert_eq!(line_text(text, 2), b"G0 X1");
+    }
+
+    #[test]
+    fn lone_carriage_returns_end_lines_and_a_byte_order_mark_takes_no_column() {
+        let text = b"\xEF\xBB\xBFG0 X1\rG1 Y2\r\nM30";
+        assert_eq!(line_column(text, 3), LineColumn { line: 1, column: 1 });
+        assert_eq!(line_column(text, 12), LineColumn { line: 2, column: 4 });
+        assert_eq!(line_column(text, 16), LineColumn { line: 3, column: 1 });
+        assert_eq!(line_text(text, 12), b"G1 Y2");
+        assert_eq!(line_text(text, 4), b"G0 X1");
     }
 }

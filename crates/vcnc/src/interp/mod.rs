@@ -52,7 +52,7 @@ pub use front_end::{FrontEnd, Run, Step};
 pub use kernel::{Kernel, Origin};
 pub use macros::interrupt::InterruptAt;
 pub use macros::programs::{
-    DirectoryLibrary, LoadedFiles, MemoryLibrary, ProgramLibrary, ProgramText,
+    DirectoryLibrary, LoadedFiles, LookupError, MemoryLibrary, ProgramLibrary, ProgramText,
 };
 pub use macros::vars::PersistentVariables;
 pub use macros::Limits;

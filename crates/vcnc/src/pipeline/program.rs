@@ -7,7 +7,7 @@
 
 use super::Parsing;
 use crate::interp::{
-    DirectoryLibrary, Interpreter, LoadedFiles, Options, ProgramLibrary, ProgramText,
+    DirectoryLibrary, Interpreter, LoadedFiles, LookupError, Options, ProgramLibrary, ProgramText,
 };
 use crate::machine::Machine;
 use crate::source::FileId;
@@ -205,7 +205,7 @@ struct WithMainText {
 }
 
 impl ProgramLibrary for WithMainText {
-    fn find(&mut self, number: u32) -> Option<ProgramText> {
+    fn find(&mut self, number: u32) -> Result<Option<ProgramText>, LookupError> {
         self.library.find(number)
     }
 

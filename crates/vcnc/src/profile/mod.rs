@@ -466,6 +466,82 @@ impl Profile {
         toml::Value::Table(base).try_into()
     }
 
+    /// Checks that every number of the profile is one a control could have, for a profile
+    /// changed by a machine file's `[profile_overrides]`.
+    ///
+    /// # Errors
+    /// A sentence naming the first field out of range, its value and the range allowed.
+    pub fn check_ranges(&self) -> Result<(), String> {
+        use Lower::{Above, AtLeast};
+        let key = |name: &str| format!("profile_overrides.{name}");
+        for (name, value, lower, upper) in [
+            ("increment_mm", self.increment_mm, Above(0.0), 1.0),
+            ("increment_inch", self.increment_inch, Above(0.0), 0.1),
+            ("increment_deg", self.increment_deg, Above(0.0), 1.0),
+            ("peck_retract", self.peck_retract, AtLeast(0.0), 1000.0),
+            ("peck_clearance", self.peck_clearance, AtLeast(0.0), 1000.0),
+            ("max_word_value", self.max_word_value, AtLeast(1.0), 1e15),
+            (
+                "arc_radius_tolerance",
+                self.arc_radius_tolerance,
+                Above(0.0),
+                100.0,
+            ),
+            (
+                "polar_interpolation_tolerance",
+                self.polar_interpolation_tolerance,
+                Above(0.0),
+                10.0,
+            ),
+        ] {
+            check_range(&key(name), value, lower, upper)?;
+        }
+        if let Some(feed) = self.default_feed {
+            check_range(&key("default_feed"), feed, Above(0.0), 1e6)?;
+        }
+        for (name, value, low, high) in [
+            ("g54_1_count", self.g54_1_count, 0, 300),
+            ("g10_work_l", self.g10_work_l, 0, 99),
+            ("g10_extended_work_l", self.g10_extended_work_l, 0, 99),
+            (
+                "cutter_comp_look_ahead",
+                self.cutter_comp_look_ahead,
+                1,
+                100,
+            ),
+            ("m_codes_per_block", self.m_codes_per_block, 1, 16),
+            ("max_offset_number", self.max_offset_number, 1, 9999),
+            ("reference_points", self.reference_points, 1, 10),
+            ("macro_call_depth", self.macro_call_depth, 1, 100),
+            ("call_depth", self.call_depth, 1, 100),
+            ("loop_numbers", self.loop_numbers, 1, 999),
+        ] {
+            check_range(
+                &key(name),
+                f64::from(value),
+                AtLeast(f64::from(low)),
+                f64::from(high),
+            )?;
+        }
+        for &code in &self.subprogram_m_codes {
+            check_range(
+                &key("subprogram_m_codes"),
+                f64::from(code),
+                AtLeast(0.0),
+                9999.0,
+            )?;
+        }
+        if let Some((low, high)) = self.extended_common_variables {
+            if low > high {
+                return Err(format!(
+                    "{} = [{low}, {high}]: expected the first number at most the second",
+                    key("extended_common_variables")
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// The character-level options of the ISO front end.
     pub fn syntax(&self) -> SyntaxOptions {
         SyntaxOptions {
@@ -474,6 +550,40 @@ impl Profile {
             colon_program_number: self.colon_program_number,
         }
     }
+}
+
+/// The lower end of an allowed range.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Lower {
+    /// The value must be above this (a rate or a tolerance of zero would make nothing move).
+    Above(f64),
+    /// The value may be this or more.
+    AtLeast(f64),
+}
+
+/// `key = value` of a settings file must lie in the range `lower` to `upper` (an upper end of
+/// infinity takes `inf` too); the error names the key, the value and the range.
+pub(crate) fn check_range(key: &str, value: f64, lower: Lower, upper: f64) -> Result<(), String> {
+    let (low_ok, low_text) = match lower {
+        Lower::Above(low) => (value > low, format!("more than {low}")),
+        Lower::AtLeast(low) => (value >= low, format!("{low} or more")),
+    };
+    let high_ok = value <= upper && (value.is_finite() || upper == f64::INFINITY);
+    if low_ok && high_ok {
+        return Ok(());
+    }
+    let range = if upper == f64::INFINITY {
+        format!("{low_text} (inf for no limit)")
+    } else {
+        format!("{low_text}, up to {upper}")
+    };
+    // Huge values in exponent form, not as three hundred digits.
+    let shown = if value.abs() >= 1e15 {
+        format!("{value:e}")
+    } else {
+        value.to_string()
+    };
+    Err(format!("{key} = {shown}: expected {range}"))
 }
 
 impl Default for Profile {
@@ -500,6 +610,29 @@ mod tests {
         let profile = Profile::with_overrides(ProfileName::Syntec, &overrides).unwrap();
         assert_eq!(profile.rapid_path, RapidPath::PerAxis);
         assert!(profile.slash_slash_comments);
+    }
+
+    #[test]
+    fn every_builtin_profile_is_in_range() {
+        for name in ProfileName::ALL {
+            assert_eq!(Profile::builtin(name).check_ranges(), Ok(()), "{name}");
+        }
+    }
+
+    #[test]
+    fn an_override_out_of_range_names_the_key_the_value_and_the_range() {
+        let overrides: toml::Table = toml::from_str("increment_mm = -0.001").unwrap();
+        let profile = Profile::with_overrides(ProfileName::Fanuc, &overrides).unwrap();
+        assert_eq!(
+            profile.check_ranges(),
+            Err("profile_overrides.increment_mm = -0.001: expected more than 0, up to 1".into())
+        );
+        let overrides: toml::Table = toml::from_str("loop_numbers = 0").unwrap();
+        let profile = Profile::with_overrides(ProfileName::Fanuc, &overrides).unwrap();
+        assert_eq!(
+            profile.check_ranges(),
+            Err("profile_overrides.loop_numbers = 0: expected 1 or more, up to 999".into())
+        );
     }
 
     #[test]

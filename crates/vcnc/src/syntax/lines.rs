@@ -3,12 +3,73 @@
 //! The interpreter streams: it reads a line, runs its blocks, and forgets it. A [`LineSource`]
 //! hands out lines with their byte offset and line number, from text in memory
 //! ([`TextLines`]) or from any reader ([`ReaderLines`]), so a program of any length runs in
-//! constant memory. Line ends (`\n`, `\r\n`) are stripped; bytes are passed on as they are
-//! (comments may be Latin-1). A reader that finds a line's end itself as it reads the line (the
+//! constant memory. Line ends (`\n`, `\r\n`, and a lone `\r` as old Mac editors wrote) are
+//! stripped; bytes are passed on as they are (comments may be Latin-1), but for the two that
+//! [`normalize`] rewrites in place without moving any other byte: a UTF-8 byte-order mark at the
+//! file's start and a lone `\r`. A reader that finds a line's end itself as it reads the line (the
 //! ISO front end's reader of plain lines) takes the text at hand instead
 //! ([`LineSource::unread`]) and then skips the line ([`LineSource::skip_line`]).
 
+use std::borrow::Cow;
 use std::io::{self, Read};
+
+/// The UTF-8 byte-order mark some editors put at a file's start.
+const BYTE_ORDER_MARK: &[u8] = b"\xEF\xBB\xBF";
+
+/// Rewrites the two things that make the same program read differently by the editor that
+/// saved it, keeping every byte where it is (spans stay file offsets): a UTF-8 byte-order mark
+/// at the file's start becomes three blanks, and a `\r` not followed by `\n` (old Mac line
+/// ends) becomes `\n`. `starts_file`: `bytes[0]` is the file's first byte. A `\r` at the end
+/// of `bytes` is taken for a line end: nothing follows it.
+pub fn normalize(bytes: &mut [u8], starts_file: bool) {
+    if starts_file && bytes.starts_with(BYTE_ORDER_MARK) {
+        bytes[..3].fill(b' ');
+    }
+    let mut from = 0;
+    while let Some(i) = find_byte(&bytes[from..], b'\r') {
+        let at = from + i;
+        if bytes.get(at + 1) != Some(&b'\n') {
+            bytes[at] = b'\n';
+        }
+        from = at + 1;
+    }
+}
+
+/// True when [`normalize`] would change `bytes`.
+pub fn needs_normalizing(bytes: &[u8], starts_file: bool) -> bool {
+    if starts_file && bytes.starts_with(BYTE_ORDER_MARK) {
+        return true;
+    }
+    let mut from = 0;
+    while let Some(i) = find_byte(&bytes[from..], b'\r') {
+        let at = from + i;
+        if bytes.get(at + 1) != Some(&b'\n') {
+            return true;
+        }
+        from = at + 1;
+    }
+    false
+}
+
+/// [`normalize`] for a buffer that is read in pieces: `buffer[from..to]` was just read, and
+/// `buffer[0]` is at byte `offset` of the file. A `\r` at the end of what was read before is
+/// looked at again now that what follows it is known; one at `to - 1` is left for the next read
+/// (at the text's end, a line reader strips it as the `\r` of a line end).
+pub(crate) fn normalize_read(buffer: &mut [u8], from: usize, to: usize, offset: u64) {
+    let start = from.saturating_sub(1);
+    let end = if buffer[..to].ends_with(b"\r") {
+        to - 1
+    } else {
+        to
+    };
+    if end > start {
+        // A `\r` at `end - 1` is followed by the `\r` at `end` or by nothing read: lone either way.
+        normalize(&mut buffer[start..end], false);
+    }
+    if offset == 0 && from < BYTE_ORDER_MARK.len() && buffer[..to].starts_with(BYTE_ORDER_MARK) {
+        buffer[..3].fill(b' ');
+    }
+}
 
 /// One line of program text.
 #[derive(Clone, Copy, Debug)]
@@ -74,10 +135,11 @@ pub trait LineSource {
     }
 }
 
-/// Lines of a text held in memory.
+/// Lines of a text held in memory: borrowed as it is, or copied once and [`normalize`]d when it
+/// has a byte-order mark or lone `\r` line ends.
 #[derive(Clone, Debug)]
 pub struct TextLines<'a> {
-    text: &'a [u8],
+    text: Cow<'a, [u8]>,
     /// The file offset of `text[0]`: zero unless the text is a piece of a file read apart.
     base: usize,
     position: usize,
@@ -87,24 +149,15 @@ pub struct TextLines<'a> {
 impl<'a> TextLines<'a> {
     /// Lines of `text`.
     pub fn new(text: &'a [u8]) -> TextLines<'a> {
-        TextLines {
-            text,
-            base: 0,
-            position: 0,
-            number: 0,
-        }
+        TextLines::piece(text, 0, 1)
     }
-}
 
-impl<'a> TextLines<'a> {
     /// Lines of `text` from byte `offset` on, which starts line `number` (1-based): for reading
     /// one program out of a file that holds several.
     pub fn starting_at(text: &'a [u8], offset: usize, number: u32) -> TextLines<'a> {
         TextLines {
-            text,
-            base: 0,
             position: offset.min(text.len()),
-            number: number.saturating_sub(1),
+            ..TextLines::piece(text, 0, number)
         }
     }
 
@@ -112,6 +165,14 @@ impl<'a> TextLines<'a> {
     /// `number` (1-based): offsets are the file's, for reading a program out of a file that is
     /// not held whole.
     pub fn piece(text: &'a [u8], base: usize, number: u32) -> TextLines<'a> {
+        let starts_file = base == 0;
+        let text = if needs_normalizing(text, starts_file) {
+            let mut copy = text.to_vec();
+            normalize(&mut copy, starts_file);
+            Cow::Owned(copy)
+        } else {
+            Cow::Borrowed(text)
+        };
         TextLines {
             text,
             base,
@@ -120,16 +181,16 @@ impl<'a> TextLines<'a> {
         }
     }
 
-    /// The whole text.
-    pub fn text(&self) -> &'a [u8] {
-        self.text
+    /// The whole text (normalized).
+    pub fn text(&self) -> &[u8] {
+        &self.text
     }
 }
 
 impl LineSource for TextLines<'_> {
     fn text(&self) -> Option<&[u8]> {
         // A piece of a file is not the program's whole text.
-        (self.base == 0).then_some(self.text)
+        (self.base == 0).then_some(&self.text)
     }
 
     fn unread(&self) -> Option<Unread<'_>> {
@@ -228,6 +289,7 @@ impl<R: Read> ReaderLines<R> {
                     return Ok(false);
                 }
                 Ok(n) => {
+                    normalize_read(&mut self.buffer, self.end, self.end + n, self.buffer_offset);
                     self.end += n;
                     return Ok(true);
                 }
@@ -292,7 +354,8 @@ impl<R: Read> ReaderLines<R> {
     #[cold]
     fn refill_to_newline(&mut self) -> io::Result<Option<usize>> {
         loop {
-            let searched = self.end - self.start;
+            // The last byte searched may be a `\r` that the read turns into a line end.
+            let searched = (self.end - self.start).saturating_sub(1);
             if !self.refill()? {
                 return Ok(None);
             }
@@ -303,18 +366,24 @@ impl<R: Read> ReaderLines<R> {
     }
 }
 
-/// The first `\n` in `bytes`, eight bytes at a time: a byte equal to `\n` becomes zero after
-/// the XOR, and the classic has-zero-byte test finds it without a branch per byte.
+/// The first `\n` in `bytes`.
 #[inline(always)]
 pub(crate) fn memchr_newline(bytes: &[u8]) -> Option<usize> {
+    find_byte(bytes, b'\n')
+}
+
+/// The first `byte` in `bytes`, eight bytes at a time: a byte equal to `byte` becomes zero after
+/// the XOR, and the classic has-zero-byte test finds it without a branch per byte.
+#[inline(always)]
+fn find_byte(bytes: &[u8], byte: u8) -> Option<usize> {
     const ONES: u64 = 0x0101_0101_0101_0101;
     const HIGHS: u64 = 0x8080_8080_8080_8080;
-    const NEWLINES: u64 = ONES * b'\n' as u64;
+    let pattern: u64 = ONES * u64::from(byte);
     let mut chunks = bytes.chunks_exact(8);
     let mut base = 0;
     for chunk in chunks.by_ref() {
         let word =
-            u64::from_le_bytes(chunk.try_into().expect("chunks_exact gives 8 bytes")) ^ NEWLINES;
+            u64::from_le_bytes(chunk.try_into().expect("chunks_exact gives 8 bytes")) ^ pattern;
         let found = word.wrapping_sub(ONES) & !word & HIGHS;
         if found != 0 {
             return Some(base + (found.trailing_zeros() / 8) as usize);
@@ -324,7 +393,7 @@ pub(crate) fn memchr_newline(bytes: &[u8]) -> Option<usize> {
     chunks
         .remainder()
         .iter()
-        .position(|&b| b == b'\n')
+        .position(|&b| b == byte)
         .map(|i| base + i)
 }
 
@@ -467,5 +536,25 @@ pub(crate) mod tests {
         assert_eq!(a, b);
         assert_eq!(a[1], ("G1 Y2".to_string(), 7, 2));
         assert_eq!(a[3], ("M30".to_string(), 14, 4));
+    }
+
+    #[test]
+    fn old_mac_line_ends_and_a_byte_order_mark_read_as_line_feeds_in_every_reader() {
+        let text = b"\xEF\xBB\xBFG0 X1\rG1 Y2\r\rG2 X3\r\nM30\r";
+        let expected = vec![
+            ("   G0 X1".to_string(), 0, 1),
+            ("G1 Y2".to_string(), 9, 2),
+            ("".to_string(), 15, 3),
+            ("G2 X3".to_string(), 16, 4),
+            ("M30".to_string(), 23, 5),
+        ];
+        assert_eq!(collect(&mut TextLines::new(text)), expected);
+        for chunk in 1..8 {
+            let reader = Trickle { data: text, chunk };
+            assert_eq!(collect(&mut ReaderLines::new(reader)), expected, "{chunk}");
+        }
+        // A piece of a file read apart is not its start: three bytes there are text.
+        let piece = collect(&mut TextLines::piece(b"\xEF\xBB\xBFX\r", 5, 2));
+        assert_eq!(piece[0].0, "\u{feff}X");
     }
 }

@@ -187,8 +187,10 @@ pub enum Dialect {
 
 /// Guesses the dialect of a program from its file name and first lines.
 ///
-/// SINUMERIK programs are recognised by their `.MPF`/`.SPF` extension or by `%_N_..._MPF`
-/// headers, `PROC`, `DEF` and `;` comments at the start of a line followed by SINUMERIK words.
+/// SINUMERIK programs are recognised by their `.MPF`/`.SPF` extension, by `%_N_..._MPF`
+/// headers and `PROC`, `DEF` or `EXTERN` lines, and by `MSG(` — but `MSG(` is also a Syntec
+/// macro function: a program with a `%@MACRO` header, `:=` assignments, `//` comments or `#`
+/// variables in its first lines is ISO whatever else it holds.
 pub fn detect_dialect(file_name: &str, head: &[u8]) -> Dialect {
     let lower = file_name.to_ascii_lowercase();
     if lower.ends_with(".mpf") || lower.ends_with(".spf") {
@@ -196,20 +198,36 @@ pub fn detect_dialect(file_name: &str, head: &[u8]) -> Dialect {
     }
     let head = &head[..head.len().min(4096)];
     let text = String::from_utf8_lossy(head);
-    for line in text.lines().take(40) {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let (mut sinumerik, mut message, mut iso_macro) = (false, false, false);
+    for line in text.split(['\n', '\r']).take(40) {
         let line = line.trim_start();
         let upper = line.to_ascii_uppercase();
-        if upper.starts_with("%_N_")
+        sinumerik |= upper.starts_with("%_N_")
             || upper.starts_with("PROC ")
             || upper.starts_with("DEF ")
-            || upper.starts_with("EXTERN ")
-            || upper.contains("MSG(")
-            || upper.contains("MSG (\"")
-        {
-            return Dialect::Sinumerik;
-        }
+            || upper.starts_with("EXTERN ");
+        message |= upper.contains("MSG(") || upper.contains("MSG (\"");
+        iso_macro |= upper.starts_with("%@MACRO")
+            || upper.starts_with("//")
+            || upper.contains(":=")
+            || has_numbered_variable(&upper);
+    }
+    if iso_macro && !sinumerik {
+        return Dialect::Iso;
+    }
+    if sinumerik || message {
+        return Dialect::Sinumerik;
     }
     Dialect::Iso
+}
+
+/// True when `line` holds a `#` followed by a digit or `[` (`#1`, `#[#2+1]`): a FANUC-family
+/// macro variable, which SINUMERIK does not write.
+fn has_numbered_variable(line: &str) -> bool {
+    line.as_bytes()
+        .windows(2)
+        .any(|w| w[0] == b'#' && (w[1].is_ascii_digit() || w[1] == b'['))
 }
 
 #[cfg(test)]
@@ -236,5 +254,33 @@ mod tests {
             Dialect::Sinumerik
         );
         assert_eq!(detect_dialect("a.nc", b"%\nO1000\nG0 X1.\n"), Dialect::Iso);
+        assert_eq!(
+            detect_dialect("a.nc", b"G0 X1\rMSG(\"START\")\rM30"),
+            Dialect::Sinumerik
+        );
+    }
+
+    #[test]
+    fn syntec_macro_programs_with_msg_are_iso() {
+        let syntec = [
+            &b"%@MACRO\nMSG(\"ROUGHING\");\nG0 X1.;\nM30;\n"[..],
+            b"\xEF\xBB\xBF%@MACRO\r// roughing\rMSG(\"GO\");\rM30;\r",
+            b"%\n@1 := 10;\nMSG(\"A\");\n",
+            b"O1000\n#1 = 5\nMSG(\"A\")\nM30\n",
+            b"// by hand\nMSG(\"B\");\n",
+        ];
+        for text in syntec {
+            assert_eq!(
+                detect_dialect("p.nc", text),
+                Dialect::Iso,
+                "{}",
+                String::from_utf8_lossy(text)
+            );
+        }
+        // The headers that only SINUMERIK writes outweigh all of that.
+        assert_eq!(
+            detect_dialect("p.nc", b"%_N_P_MPF\nDEF INT N := 1\nMSG(\"X\")\n"),
+            Dialect::Sinumerik
+        );
     }
 }

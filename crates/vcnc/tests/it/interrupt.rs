@@ -327,7 +327,10 @@ fn a_streamed_main_program_is_loaded_when_the_signal_comes() {
     // signal on (as a jump does); the stream gives its text through the library.
     struct WithMain(MemoryLibrary, &'static str);
     impl vcnc::interp::ProgramLibrary for WithMain {
-        fn find(&mut self, number: u32) -> Option<vcnc::interp::ProgramText> {
+        fn find(
+            &mut self,
+            number: u32,
+        ) -> Result<Option<vcnc::interp::ProgramText>, vcnc::interp::LookupError> {
             self.0.find(number)
         }
         fn main_text(&mut self) -> Option<std::sync::Arc<[u8]>> {

@@ -40,6 +40,50 @@ pub(crate) fn evaluate(
     {
         return variables.read(*n, *span);
     }
+    run(code, variables).map_err(|alarm| with_values(alarm, code, variables))
+}
+
+/// Labels `alarm` with the values of the variables `code` reads (`#1 = 0` under the `#1` of
+/// `#2 = 10 / #1`): the alarm says which operation failed, the values say why. Read again
+/// only here, when the evaluation failed; an alarm about a variable itself is left as it is.
+fn with_values(
+    mut alarm: Alarm,
+    code: &[Instruction],
+    variables: &mut dyn VariableReader,
+) -> Alarm {
+    /// A few are enough to see why; a long expression would bury the alarm.
+    const MOST: usize = 6;
+    if alarm.code == AlarmCode::BadVariable {
+        return alarm;
+    }
+    let mut shown: Vec<(u8, u32)> = Vec::new();
+    for instruction in code {
+        let (sigil, number) = match instruction.op {
+            Op::Variable(n) => (b'#', n),
+            Op::Public(n) => (b'@', n),
+            _ => continue,
+        };
+        if shown.len() == MOST || shown.contains(&(sigil, number)) {
+            continue;
+        }
+        shown.push((sigil, number));
+        let value = match sigil {
+            b'#' => variables.read(number, instruction.span),
+            _ => variables.read_public(number, instruction.span),
+        };
+        let sigil = sigil as char;
+        let text = match value {
+            Ok(Some(v)) => format!("{sigil}{number} = {v}"),
+            Ok(None) => format!("{sigil}{number} is vacant"),
+            Err(_) => continue,
+        };
+        alarm = alarm.with_label(instruction.span, text);
+    }
+    alarm
+}
+
+/// The evaluation proper: the postfix code on a stack.
+fn run(code: &[Instruction], variables: &mut dyn VariableReader) -> Result<MacroValue, Alarm> {
     let mut stack = [None; STACK];
     let mut depth = 0usize;
     for instruction in code {

@@ -27,7 +27,9 @@
 use super::programs::{header_number, sequence_number, starts_code, LoopEnd, Position};
 use crate::source::FileId;
 use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
-use crate::syntax::lines::{memchr_newline, Line, LineSource, TextLines};
+use crate::syntax::lines::{
+    memchr_newline, normalize, normalize_read, Line, LineSource, TextLines,
+};
 use crate::syntax::{Block, Statement};
 use std::collections::HashMap;
 use std::fs::File;
@@ -78,12 +80,15 @@ impl Bytes {
                 let mut bytes = Vec::new();
                 file.take(end.saturating_sub(start))
                     .read_to_end(&mut bytes)?;
+                normalize(&mut bytes, start == 0);
                 Ok(bytes)
             }
             Bytes::Memory(text) => {
                 let end = usize::try_from(end).unwrap_or(usize::MAX).min(text.len());
                 let start = usize::try_from(start).unwrap_or(usize::MAX).min(end);
-                Ok(text[start..end].to_vec())
+                let mut bytes = text[start..end].to_vec();
+                normalize(&mut bytes, start == 0);
+                Ok(bytes)
             }
         }
     }
@@ -135,8 +140,9 @@ impl Chunk {
 /// read through one buffer in large blocks.
 fn for_each_line(mut reader: impl Read, mut each: impl FnMut(&[u8])) -> io::Result<()> {
     let mut buffer = vec![0u8; 1 << 20];
-    // `buffer[start..searched]` is known to hold no `\n`.
+    // `buffer[start..searched]` is known to hold no `\n`; `buffer[0]` is at `offset` in the file.
     let (mut start, mut searched, mut end) = (0usize, 0usize, 0usize);
+    let mut offset = 0u64;
     loop {
         if let Some(i) = memchr_newline(&buffer[searched..end]) {
             each(&buffer[start..=searched + i]);
@@ -145,9 +151,11 @@ fn for_each_line(mut reader: impl Read, mut each: impl FnMut(&[u8])) -> io::Resu
             continue;
         }
         buffer.copy_within(start..end, 0);
+        offset += start as u64;
         end -= start;
         start = 0;
-        searched = end;
+        // The last byte may be a `\r` that the read turns into a line end.
+        searched = end.saturating_sub(1);
         if end == buffer.len() {
             buffer.resize(end * 2, 0);
         }
@@ -161,6 +169,7 @@ fn for_each_line(mut reader: impl Read, mut each: impl FnMut(&[u8])) -> io::Resu
             }
             return Ok(());
         }
+        normalize_read(&mut buffer, end, end + read, offset);
         end += read;
     }
 }

@@ -28,6 +28,7 @@ use crate::motion::{EndKind, SegmentKind, StopKind};
 use crate::profile::{DecimalLess, GCode, Group, MCode};
 use crate::source::Span;
 use crate::syntax::expr::{Expr, Instruction, Statement, Target, VariableBank};
+use crate::syntax::lines::{needs_normalizing, normalize};
 use crate::syntax::{Block, Number, Word};
 use indexed::IndexedFile;
 use programs::{Position, Program, ProgramLibrary, StoredProgram};
@@ -283,7 +284,7 @@ impl Core {
                     self.blocks_executed += 1;
                     return;
                 }
-                Err(alarm) => return self.fail(alarm),
+                Err(alarm) => return self.fail(self.with_call_stack(alarm)),
             }
         }
         if !block.words.iter().any(|w| w.letter != b'N') {
@@ -293,9 +294,29 @@ impl Core {
         let mut resolved = std::mem::take(&mut self.macros.resolved);
         match self.resolve_words(block, &mut resolved) {
             Ok(()) => self.run_words(&resolved, main_text),
-            Err(alarm) => self.fail(alarm),
+            Err(alarm) => self.fail(self.with_call_stack(alarm)),
         }
         self.macros.resolved = resolved;
+    }
+
+    /// `alarm` with the calls that led to it, innermost first: one label on each calling
+    /// block (G65/G66, M98, M96's interrupt), saying which program it called.
+    fn with_call_stack(&self, mut alarm: Alarm) -> Alarm {
+        for frame in self.macros.calls.iter().rev() {
+            let called = frame
+                .program
+                .number()
+                .map_or_else(|| "a program".to_string(), |n| format!("O{n:04}"));
+            let how = if frame.interrupted.is_some() {
+                "the interrupt signal called"
+            } else if frame.arguments.is_some() {
+                "this macro call ran"
+            } else {
+                "this call ran"
+            };
+            alarm = alarm.with_label(frame.span, format!("{how} {called}"));
+        }
+        alarm
     }
 
     /// The words of `block` with their expressions evaluated, into `out`: a vacant value
@@ -562,6 +583,14 @@ impl Core {
     /// A main program's file held whole, its headers found.
     fn whole_file(&self, text: Arc<[u8]>, span: Span) -> Result<FileText, Alarm> {
         self.check_held_size(text.len(), span)?;
+        // Read as the line readers read it: a byte-order mark and lone `\r`s rewritten.
+        let text = if needs_normalizing(&text, true) {
+            let mut copy = text.to_vec();
+            normalize(&mut copy, true);
+            Arc::from(copy)
+        } else {
+            text
+        };
         let headers = programs::program_headers(&text, &self.exec.kernel.setup.profile().syntax());
         let main_end = programs::main_program_end(&text, &headers);
         Ok(FileText {
@@ -697,7 +726,10 @@ impl Core {
         span: Span,
     ) -> Result<Option<StoredProgram>, Alarm> {
         let syntax = self.exec.kernel.setup.profile().syntax();
-        let Some(text) = self.macros.library.as_mut().and_then(|l| l.find(number)) else {
+        let Some(library) = self.macros.library.as_mut() else {
+            return Ok(None);
+        };
+        let Some(text) = library.find(number).map_err(|e| lookup_alarm(&e, span))? else {
             return Ok(None);
         };
         if text.text.len() > self.options.limits.program_bytes {
@@ -846,11 +878,19 @@ impl Core {
     }
 
     /// The calls, returns and modal calls of the block just run.
+    ///
+    /// # Errors
+    /// The alarm of a call or return that cannot be made, with the calls that led to it.
     pub(super) fn run_calls(
         &mut self,
         block: &Block,
         main_text: Option<&[u8]>,
     ) -> Result<(), Alarm> {
+        self.run_calls_of(block, main_text)
+            .map_err(|alarm| self.with_call_stack(alarm))
+    }
+
+    fn run_calls_of(&mut self, block: &Block, main_text: Option<&[u8]>) -> Result<(), Alarm> {
         if self
             .command
             .group(Group::ModalMacro)
@@ -1183,7 +1223,9 @@ impl Core {
                     )
                 })?
             }
-            None => (0, 0),
+            None => program
+                .start_after_tape_mark()
+                .map_err(|e| read_alarm(span, &e))?,
         };
         self.macros.loops.clear();
         self.place = Place::stored(program, target);
@@ -1322,6 +1364,21 @@ fn read_alarm(span: Span, error: &std::io::Error) -> Alarm {
         span,
         format!("cannot read the program again: {error}"),
     )
+}
+
+/// The library could not give the program called at `span`.
+fn lookup_alarm(error: &programs::LookupError, span: Span) -> Alarm {
+    match error {
+        programs::LookupError::Ambiguous { .. } => {
+            alarm(AlarmCode::ProgramAmbiguous, span, error.to_string()).with_help(
+                "a control holds one program per number: keep one of these files in the \
+                 directory, or renumber the other",
+            )
+        }
+        programs::LookupError::Unreadable { .. } => {
+            alarm(AlarmCode::ReadError, span, error.to_string())
+        }
+    }
 }
 
 fn too_large(number: u32, span: Span) -> Alarm {

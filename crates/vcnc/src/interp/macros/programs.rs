@@ -17,7 +17,8 @@ use crate::syntax::iso::structure::Structure;
 use crate::syntax::iso::{
     parse_program, parse_program_piece, LineBlocks, ProgramBlocks, SyntaxOptions,
 };
-use crate::syntax::Block;
+use crate::syntax::lines::normalize;
+use crate::syntax::{Block, BlockKind};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -31,10 +32,46 @@ pub struct ProgramText {
     pub text: Arc<[u8]>,
 }
 
+/// Why a library cannot give a program it has.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LookupError {
+    /// More than one file could be the program: their paths, in name order.
+    #[error("program O{number:04} is in more than one file: {}", list(.files))]
+    Ambiguous {
+        /// The program number.
+        number: u32,
+        /// The files that hold it.
+        files: Vec<PathBuf>,
+    },
+    /// The program's file was found and cannot be read.
+    #[error("program O{number:04} is in {}, which cannot be read: {error}", .path.display())]
+    Unreadable {
+        /// The program number.
+        number: u32,
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        error: String,
+    },
+}
+
+/// `a`, `b` and `c`.
+fn list(files: &[PathBuf]) -> String {
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    match names.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}
+
 /// Where the interpreter finds programs that are not in the main program's file.
 pub trait ProgramLibrary: Send {
-    /// Program number `number` (`O1234`), if the library has it.
-    fn find(&mut self, number: u32) -> Option<ProgramText>;
+    /// Program `number` (`O1234`), if the library has it.
+    ///
+    /// # Errors
+    /// [`LookupError`]: the program is in several files, or its file cannot be read.
+    fn find(&mut self, number: u32) -> Result<Option<ProgramText>, LookupError>;
 
     /// The main program's text, when the block source streams it and cannot give it whole.
     fn main_text(&mut self) -> Option<Arc<[u8]>> {
@@ -63,19 +100,21 @@ impl MemoryLibrary {
 
     /// Adds program `number` with `text`, whose spans will carry `file`.
     pub fn insert(&mut self, number: u32, file: FileId, text: &str) {
+        let mut text = text.as_bytes().to_vec();
+        normalize(&mut text, true);
         self.programs.insert(
             number,
             ProgramText {
                 file,
-                text: Arc::from(text.as_bytes()),
+                text: Arc::from(text),
             },
         );
     }
 }
 
 impl ProgramLibrary for MemoryLibrary {
-    fn find(&mut self, number: u32) -> Option<ProgramText> {
-        self.programs.get(&number).cloned()
+    fn find(&mut self, number: u32) -> Result<Option<ProgramText>, LookupError> {
+        Ok(self.programs.get(&number).cloned())
     }
 }
 
@@ -83,15 +122,18 @@ impl ProgramLibrary for MemoryLibrary {
 /// diagnostics in them.
 pub type LoadedFiles = Arc<Mutex<Vec<(FileId, PathBuf)>>>;
 
-/// Programs in directories: files named `O1234`, `O1234.nc`, `1234.nc` (any extension, any
-/// case, leading zeros or none), and files named otherwise that hold `O1234` headers; and the
-/// main program's file, indexed when it jumps or calls (read whole when it is not a regular
-/// file).
+/// Programs in directories: files named exactly for the number, `O1234`, `O1234.nc`, `1234.nc`
+/// (any extension, any case, leading zeros or none), and files named otherwise that hold an
+/// `O1234` header line; and the main program's file, indexed when it jumps or calls (read whole
+/// when it is not a regular file). A name that only contains the number (`part_O1234.nc`) does
+/// not count. The first directory that has the program gives it; two files of that directory
+/// that could both be it are an alarm ([`LookupError::Ambiguous`]).
 #[derive(Debug)]
 pub struct DirectoryLibrary {
     main: Option<PathBuf>,
     directories: Vec<PathBuf>,
-    index: Option<HashMap<u32, PathBuf>>,
+    /// The files that could be each program, from the first directory that has it.
+    index: Option<HashMap<u32, Vec<PathBuf>>>,
     next_file: u32,
     loaded: LoadedFiles,
 }
@@ -118,45 +160,61 @@ impl DirectoryLibrary {
         Arc::clone(&self.loaded)
     }
 
-    fn index(&mut self) -> &HashMap<u32, PathBuf> {
+    fn index(&mut self) -> &HashMap<u32, Vec<PathBuf>> {
         self.index.get_or_insert_with(|| {
-            let mut index = HashMap::new();
+            let mut index: HashMap<u32, Vec<PathBuf>> = HashMap::new();
             for directory in &self.directories {
-                let Ok(entries) = std::fs::read_dir(directory) else {
-                    continue;
-                };
-                let mut paths: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
-                paths.sort();
-                for path in &paths {
-                    if let Some(number) = program_number_of_file(path) {
-                        index.entry(number).or_insert_with(|| path.clone());
-                    }
-                }
-                // Files named otherwise are found by the `O1234` headers in them.
-                for path in paths {
-                    if program_number_of_file(&path).is_some() || !path.is_file() {
-                        continue;
-                    }
-                    let Ok(file) = std::fs::File::open(&path) else {
-                        continue;
-                    };
-                    let mut head = Vec::new();
-                    if std::io::Read::read_to_end(
-                        &mut std::io::Read::take(file, HEADER_SCAN),
-                        &mut head,
-                    )
-                    .is_err()
-                    {
-                        continue;
-                    }
-                    for (number, _, _) in program_headers(&head, &SyntaxOptions::default()) {
-                        index.entry(number).or_insert_with(|| path.clone());
-                    }
+                for (number, files) in directory_programs(directory) {
+                    index.entry(number).or_insert(files);
                 }
             }
             index
         })
     }
+}
+
+/// The programs of one directory: for each number, the files that could be it, in name order.
+fn directory_programs(directory: &Path) -> HashMap<u32, Vec<PathBuf>> {
+    let mut programs: HashMap<u32, Vec<PathBuf>> = HashMap::new();
+    let Ok(entries) = std::fs::read_dir(directory) else {
+        return programs;
+    };
+    let mut paths: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
+    paths.sort();
+    for path in paths {
+        if let Some(number) = program_number_of_file(&path) {
+            programs.entry(number).or_default().push(path);
+            continue;
+        }
+        // Files named otherwise are found by the `O1234` headers in them.
+        let mut numbers = header_numbers_of_file(&path);
+        numbers.sort_unstable();
+        numbers.dedup();
+        for number in numbers {
+            programs.entry(number).or_default().push(path.clone());
+        }
+    }
+    programs
+}
+
+/// The numbers of the `O1234` header lines in the first part of the file at `path` (none when
+/// it is not a regular file or cannot be read).
+fn header_numbers_of_file(path: &Path) -> Vec<u32> {
+    if !path.is_file() {
+        return Vec::new();
+    }
+    let Ok(file) = std::fs::File::open(path) else {
+        return Vec::new();
+    };
+    let mut head = Vec::new();
+    if std::io::Read::read_to_end(&mut std::io::Read::take(file, HEADER_SCAN), &mut head).is_err() {
+        return Vec::new();
+    }
+    normalize(&mut head, true);
+    program_headers(&head, &SyntaxOptions::default())
+        .into_iter()
+        .map(|(number, _, _)| number)
+        .collect()
 }
 
 /// How much of a file is searched for program headers when its name is not a program number.
@@ -179,22 +237,37 @@ fn program_number_of_file(path: &Path) -> Option<u32> {
 }
 
 impl ProgramLibrary for DirectoryLibrary {
-    fn find(&mut self, number: u32) -> Option<ProgramText> {
-        let path = self.index().get(&number)?.clone();
-        let text = std::fs::read(&path).ok()?;
+    fn find(&mut self, number: u32) -> Result<Option<ProgramText>, LookupError> {
+        let path = match self.index().get(&number).map(Vec::as_slice) {
+            None | Some([]) => return Ok(None),
+            Some([path]) => path.clone(),
+            Some(files) => {
+                return Err(LookupError::Ambiguous {
+                    number,
+                    files: files.to_vec(),
+                })
+            }
+        };
+        let mut text = std::fs::read(&path).map_err(|error| LookupError::Unreadable {
+            number,
+            path: path.clone(),
+            error: error.to_string(),
+        })?;
+        normalize(&mut text, true);
         let file = FileId(self.next_file);
         self.next_file += 1;
         if let Ok(mut loaded) = self.loaded.lock() {
             loaded.push((file, path));
         }
-        Some(ProgramText {
+        Ok(Some(ProgramText {
             file,
             text: Arc::from(text),
-        })
+        }))
     }
 
     fn main_text(&mut self) -> Option<Arc<[u8]>> {
-        let text = std::fs::read(self.main.as_ref()?).ok()?;
+        let mut text = std::fs::read(self.main.as_ref()?).ok()?;
+        normalize(&mut text, true);
         Some(Arc::from(text))
     }
 
@@ -229,6 +302,33 @@ impl Program {
         match self {
             Program::Stored(program) => program.line(line).is_some(),
             Program::Indexed(file) => line < file.lines(),
+        }
+    }
+
+    /// Where the program starts again after M99: after the `%` that opens the tape, when one
+    /// comes before anything else runs (read there again, it would end the program), else at
+    /// its first line. Leading lines with nothing to run (blank, comments only) are looked
+    /// through; the search stops at the first line that has something.
+    ///
+    /// # Errors
+    /// Reading an indexed program's file again failed.
+    pub(crate) fn start_after_tape_mark(&self) -> std::io::Result<Position> {
+        let mut line = 0;
+        loop {
+            let blocks = match self {
+                Program::Stored(program) => program.line(line).map(<[Block]>::to_vec),
+                Program::Indexed(file) => file
+                    .chunk_of(line)?
+                    .and_then(|chunk| chunk.line(line).map(<[Block]>::to_vec)),
+            };
+            let Some(blocks) = blocks else {
+                return Ok((0, 0));
+            };
+            match blocks.iter().find(|block| !block.is_empty()) {
+                None => line += 1,
+                Some(block) if block.kind == BlockKind::TapeMark => return Ok((line + 1, 0)),
+                Some(_) => return Ok((0, 0)),
+            }
         }
     }
 

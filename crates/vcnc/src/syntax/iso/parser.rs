@@ -128,6 +128,68 @@ struct Reader<'a, 'o> {
     line_breaks: &'a [usize],
 }
 
+/// Where a number written with an exponent was met.
+#[derive(Clone, Copy, Debug)]
+enum Exponent {
+    /// After the value of a word (`X1e308`).
+    AfterWord,
+    /// After a constant of a macro expression (`#1 = 1E308`).
+    InExpression,
+}
+
+/// True when `rest`, what follows a word's number with no blank between, is written as an
+/// exponent: a lower-case `e`, or `E` and a sign, then a digit (`1e308`, `1.5E-3`, as `printf`
+/// writes them). A capital E and digits (`V0E41`) is the E address of a G65 argument or a
+/// tapping cycle, and is left to be one.
+fn looks_like_exponent(rest: &[u8]) -> bool {
+    matches!(
+        rest,
+        [b'e', b'0'..=b'9', ..] | [b'e' | b'E', b'+' | b'-', b'0'..=b'9', ..]
+    )
+}
+
+impl Reader<'_, '_> {
+    /// The alarm for a number written with an exponent, from `start` (its word or constant)
+    /// to the end of the exponent's digits.
+    fn exponent_alarm(&mut self, block: &mut crate::syntax::Block, start: usize, at: Exponent) {
+        let exponent = self.pos;
+        let mut end = exponent + 1;
+        if matches!(self.text.get(end), Some(b'+' | b'-')) {
+            end += 1;
+        }
+        end += self.text[end.min(self.text.len())..]
+            .iter()
+            .take_while(|b| b.is_ascii_digit())
+            .count();
+        let end = end.min(self.text.len());
+        let written = String::from_utf8_lossy(&self.text[start..end]).into_owned();
+        let (code, reads_as) = match at {
+            Exponent::AfterWord => (
+                AlarmCode::BadNumber,
+                format!(
+                    "this reads as the word {} followed by the address E",
+                    String::from_utf8_lossy(&self.text[start..exponent]).to_ascii_uppercase()
+                ),
+            ),
+            Exponent::InExpression => (
+                AlarmCode::MacroSyntax,
+                "E cannot follow a constant inside an expression".to_string(),
+            ),
+        };
+        block.alarms.push(
+            Alarm::error(
+                code,
+                self.span(start, end),
+                format!(
+                    "`{written}`: ISO G-code has no exponent notation, and E is an address here \
+                     (the thread lead or feed on FANUC, a macro argument): {reads_as}"
+                ),
+            )
+            .with_help("write the number out with a decimal point (`X0.0015`, not `X1.5e-3`)"),
+        );
+    }
+}
+
 #[cfg(test)]
 pub(super) use macros::tests::describe as describe_block;
 
@@ -392,7 +454,7 @@ impl Reader<'_, '_> {
             return false;
         };
         let end = start + 1 + sign + length;
-        if self.text.get(end) == Some(&b'=') {
+        if self.text.get(end) == Some(&b'=') || looks_like_exponent(&self.text[end..]) {
             return false;
         }
         let letter = self.text[start].to_ascii_uppercase();
@@ -474,6 +536,10 @@ impl Reader<'_, '_> {
             return false;
         };
         let end = self.pos;
+        if looks_like_exponent(&self.text[end..]) {
+            self.exponent_alarm(block, start, Exponent::AfterWord);
+            return false;
+        }
         self.skip_blanks();
         let mut index = 0u8;
         let mut number = first;

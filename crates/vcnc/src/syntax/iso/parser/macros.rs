@@ -14,7 +14,7 @@
 //! `@n` is a public variable.
 
 use super::Format;
-use super::{fast_number, Reader};
+use super::{fast_number, Exponent, Reader};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::syntax::expr::{
     BinaryOp, Expr, Function, Function2, Instruction, Op, Statement, Target, VariableBank,
@@ -378,14 +378,26 @@ impl Reader<'_, '_> {
     /// A constant inside an expression.
     fn expression_number(&mut self, block: &mut Block) -> Read<f64> {
         let start = self.pos;
-        if let Some((number, length)) = fast_number(&self.text[self.pos..], false) {
+        let value = if let Some((number, length)) = fast_number(&self.text[self.pos..], false) {
             self.pos += length;
-            return Ok(number.value);
+            number.value
+        } else {
+            match self.read_digits(start, b'#', false, block) {
+                Some(number) => number.value,
+                None => return Err(Failed),
+            }
+        };
+        // Inside an expression E and a digit can be nothing but an exponent, which ISO G-code
+        // does not have (EQ is an operator: `#1EQ#2`).
+        let rest = &self.text[self.pos..];
+        if matches!(
+            rest,
+            [b'e' | b'E', b'0'..=b'9', ..] | [b'e' | b'E', b'+' | b'-', b'0'..=b'9', ..]
+        ) {
+            self.exponent_alarm(block, start, Exponent::InExpression);
+            return Err(Failed);
         }
-        match self.read_digits(start, b'#', false, block) {
-            Some(number) => Ok(number.value),
-            None => Err(Failed),
-        }
+        Ok(value)
     }
 
     /// `SIN[..]`, `ATAN[..]/[..]`, `ATAN[..,..]`, `POW[..,..]`.

@@ -117,7 +117,9 @@ fn read_plain_words<const WINDOWED: bool>(
         // An ASCII letter and its capital differ in bit 5 alone: one mask tests for a letter and
         // gives the capital.
         let capital = letter & !0x20;
-        if !capital.is_ascii_uppercase() {
+        // E words are rare in plain lines; the general reader tells an exponent (`X1e308`) from
+        // the address.
+        if !capital.is_ascii_uppercase() || capital == b'E' {
             // Read from the text at hand, the blanks between words leave out `\r`: the `\r` of
             // a `\r\n` ends the line's span, and is found here, off the common path, instead of
             // by a look back from the `\n`. A line with a `\r` elsewhere is left to the line
