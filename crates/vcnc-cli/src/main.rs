@@ -6,6 +6,7 @@
 mod cmd;
 mod diagnostics;
 mod error;
+mod excerpt;
 mod numbers;
 mod program;
 mod setup;
@@ -46,7 +47,10 @@ fn main() -> ExitCode {
         }
     };
     let result = match cli.command {
-        Command::Run(args) => cmd::run::run(&args),
+        Command::Run(mut args) => {
+            args.machine.keeps_state = true;
+            cmd::run::run(&args)
+        }
         Command::Check(args) => cmd::check::run(&args),
         Command::Trace(args) => cmd::trace::run(&args),
         Command::Machine => {
@@ -57,6 +61,7 @@ fn main() -> ExitCode {
     match result {
         Ok(cmd::Outcome::Clean) => ExitCode::SUCCESS,
         Ok(cmd::Outcome::Alarm) => ExitCode::from(1),
+        Ok(cmd::Outcome::Unread) => ExitCode::from(2),
         Err(error) => {
             eprintln!("vcnc: {error}");
             ExitCode::from(2)

@@ -31,10 +31,17 @@ pub(crate) struct MachineArgs {
     #[arg(long = "lib", value_name = "DIR")]
     pub(crate) lib: Vec<PathBuf>,
     /// Machine state file: the persistent macro variables #500-#999 are read from it and
-    /// saved to it (default: beside the machine file as `<machine>.state.toml`; none for the
-    /// embedded machine).
-    #[arg(long, value_name = "FILE")]
+    /// saved to it. `run` keeps one by default, beside the machine file as
+    /// `<machine>.state.toml` (none for the embedded machine); `check` and `trace` only with
+    /// this option, so that running them twice gives the same result.
+    #[arg(long, value_name = "FILE", conflicts_with = "no_state")]
     pub(crate) state: Option<PathBuf>,
+    /// Neither read nor save a state file: the persistent variables start vacant.
+    #[arg(long = "no-state")]
+    pub(crate) no_state: bool,
+    /// True for a command that keeps the machine's default state file (`run`).
+    #[arg(skip)]
+    pub(crate) keeps_state: bool,
     /// How many times a main program that ends in M99 runs (the control repeats it forever).
     #[arg(long = "main-passes", value_name = "N", default_value_t = 1)]
     pub(crate) main_passes: u32,
@@ -115,9 +122,23 @@ impl MachineArgs {
         Ok(options)
     }
 
-    /// The machine state file, if there is one.
+    /// Finds the errors of the machine file and the options before any program runs.
+    pub(crate) fn check(&self) -> Result<(), CliError> {
+        self.machine()?;
+        self.options()?;
+        self.plan_options()?;
+        Ok(())
+    }
+
+    /// The machine state file, if the command keeps one.
     pub(crate) fn state_file(&self) -> Option<PathBuf> {
+        if self.no_state {
+            return None;
+        }
         self.state.clone().or_else(|| {
+            if !self.keeps_state {
+                return None;
+            }
             let machine = self.machine.as_ref()?;
             let stem = machine.file_stem()?.to_string_lossy().into_owned();
             Some(machine.with_file_name(format!("{stem}.state.toml")))

@@ -6,6 +6,9 @@
 #[path = "../../../vcnc/tests/it/common/shared.rs"]
 mod shared;
 
+mod check_report;
 mod cli;
 mod golden;
+mod inputs;
+mod state;
 mod traces;
