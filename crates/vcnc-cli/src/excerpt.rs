@@ -47,6 +47,8 @@ const WORDS: usize = 160;
 /// The bytes of a file around an alarm's start, and where its line begins and ends in them.
 pub(crate) struct Region {
     bytes: Vec<u8>,
+    /// Where `bytes` start in the file.
+    at: u64,
     /// The span's start, in `bytes`.
     start: usize,
     /// The line's first byte in `bytes`, or `None` when the line begins before them; then
@@ -62,6 +64,7 @@ impl Region {
     pub(crate) fn empty() -> Region {
         Region {
             bytes: Vec::new(),
+            at: 0,
             start: 0,
             first: Some(0),
             columns_before: 0,
@@ -103,6 +106,7 @@ impl Region {
             });
         Ok(Region {
             bytes,
+            at,
             start,
             first,
             columns_before,
@@ -159,11 +163,20 @@ struct Excerpt {
 }
 
 /// One line of an excerpt: where it is in the excerpt's source, its number in the file, and
-/// the file's column of each character shown (an escaped character shows as several).
+/// for each character shown (an escaped character shows as several) its column and offset in
+/// the file, then the end's.
 struct ExcerptLine {
     range: Range<usize>,
     number: usize,
-    columns: Vec<(usize, usize)>,
+    columns: Vec<Shown>,
+}
+
+/// A character shown: where in the excerpt, its column and its offset in the file.
+#[derive(Clone, Copy)]
+struct Shown {
+    at: usize,
+    column: usize,
+    offset: u64,
 }
 
 impl Excerpts {
@@ -187,6 +200,9 @@ impl Excerpts {
 
 impl Excerpt {
     fn add(&mut self, region: &Region, span: Span) -> Range<usize> {
+        if let Some(range) = self.on_a_line_shown(span) {
+            return range;
+        }
         let bytes = &region.bytes;
         let start = region.start;
         let first = region.first.unwrap_or(0);
@@ -219,7 +235,11 @@ impl Excerpt {
                 range_end = Some(self.source.len());
             }
             let (c, len) = decode(&bytes[at..to]);
-            columns.push((self.source.len(), column));
+            columns.push(Shown {
+                at: self.source.len(),
+                column,
+                offset: region.at + at as u64,
+            });
             push_char(&mut self.source, c);
             column += 1;
             at += len;
@@ -229,7 +249,11 @@ impl Excerpt {
         if to < last || region.last.is_none() {
             self.source.push('…');
         }
-        columns.push((self.source.len(), column));
+        columns.push(Shown {
+            at: self.source.len(),
+            column,
+            offset: region.at + to as u64,
+        });
         self.lines.push(ExcerptLine {
             range: line_begin..self.source.len(),
             number: span.line as usize,
@@ -237,6 +261,24 @@ impl Excerpt {
         });
         self.source.push('\n');
         range_start..range_end
+    }
+
+    /// The range of `span` in a line shown already (a second label on a line), when the line's
+    /// window holds its start.
+    fn on_a_line_shown(&self, span: Span) -> Option<Range<usize>> {
+        let (start, end) = (u64::from(span.start), u64::from(span.end));
+        let line = self.lines.iter().find(|line| {
+            let (first, last) = (line.columns[0].offset, line.columns[line.columns.len() - 1]);
+            line.number == span.line as usize && first <= start && start < last.offset
+        })?;
+        let at = |offset: u64| {
+            line.columns
+                .iter()
+                .find(|shown| shown.offset >= offset)
+                .or(line.columns.last())
+                .map_or(0, |shown| shown.at)
+        };
+        Some(at(start)..at(end).max(at(start)))
     }
 
     fn line(&self, byte: usize) -> usize {
@@ -304,8 +346,8 @@ impl<'a> Files<'a> for Excerpts {
             .columns
             .iter()
             .rev()
-            .find(|(at, _)| *at <= byte_index)
-            .map_or(1, |&(_, column)| column))
+            .find(|shown| shown.at <= byte_index)
+            .map_or(1, |shown| shown.column))
     }
 
     fn line_range(&'a self, id: usize, line_index: usize) -> Result<Range<usize>, FilesError> {
@@ -377,6 +419,20 @@ mod tests {
             "{source}"
         );
         assert_eq!(column, 250_001);
+    }
+
+    #[test]
+    fn two_labels_on_one_line_share_it() {
+        let text = b"S600 M03 M08;\n";
+        let mut excerpts = Excerpts::default();
+        let id = excerpts.add_file(String::new());
+        let mut add = |range: Range<u32>| {
+            let span = Span::new(FileId(0), 1, range.clone());
+            let region = Region::read(&mut io::Cursor::new(text), range.start).unwrap();
+            excerpts.add_line(id, &region, span)
+        };
+        assert_eq!((add(5..8), add(9..12)), (5..8, 9..12));
+        assert_eq!(excerpts.files[id].source, "S600 M03 M08;\n");
     }
 
     #[test]
