@@ -30,8 +30,9 @@ enum Command {
     Check(cmd::check::Args),
     /// Print the motion stream (machine coordinates) as JSON lines or CSV.
     Trace(cmd::trace::Args),
-    /// Print the embedded default machine file, to copy and edit.
-    Machine,
+    /// Print the embedded default machine file (or --machine's), with --profile's name and its
+    /// settings spelled out, to copy and edit.
+    Machine(cmd::machine::Args),
 }
 
 fn main() -> ExitCode {
@@ -53,10 +54,7 @@ fn main() -> ExitCode {
         }
         Command::Check(args) => cmd::check::run(&args),
         Command::Trace(args) => cmd::trace::run(&args),
-        Command::Machine => {
-            print!("{}", vcnc::machine::DEFAULT_MACHINE_TOML);
-            Ok(cmd::Outcome::Clean)
-        }
+        Command::Machine(args) => cmd::machine::run(&args),
     };
     match result {
         Ok(cmd::Outcome::Clean) => ExitCode::SUCCESS,

@@ -6,15 +6,54 @@ use std::path::PathBuf;
 use vcnc::plan::PlanOptions;
 use vcnc::{Machine, Options, ProfileName};
 
-/// Machine and control options.
+/// The machine file and the profile: the options every command takes.
 #[derive(Args, Debug, Clone)]
-pub(crate) struct MachineArgs {
+pub(crate) struct MachineChoice {
     /// Machine file (TOML; `vcnc machine` prints the default to start from).
     #[arg(long, value_name = "FILE")]
     pub(crate) machine: Option<PathBuf>,
     /// Controller profile: fanuc, syntec, fanuc0m, mitsubishi or haas (default: the machine file's, else fanuc).
     #[arg(long, value_name = "NAME")]
     pub(crate) profile: Option<ProfileName>,
+}
+
+impl MachineChoice {
+    /// The machine file's text (the embedded default's without `--machine`).
+    pub(crate) fn text(&self) -> Result<String, CliError> {
+        match &self.machine {
+            Some(path) => std::fs::read_to_string(path).map_err(|source| CliError::ReadMachine {
+                path: path.clone(),
+                source,
+            }),
+            None => Ok(vcnc::machine::DEFAULT_MACHINE_TOML.to_string()),
+        }
+    }
+
+    /// The machine to run on.
+    pub(crate) fn machine(&self) -> Result<Machine, CliError> {
+        let machine = match &self.machine {
+            Some(path) => {
+                Machine::from_toml(&self.text()?).map_err(|source| CliError::Machine {
+                    path: Some(path.clone()),
+                    source,
+                })?
+            }
+            None => Machine::default(),
+        };
+        match self.profile {
+            Some(name) => machine
+                .with_profile(name)
+                .map_err(|source| CliError::Machine { path: None, source }),
+            None => Ok(machine),
+        }
+    }
+}
+
+/// Machine and control options.
+#[derive(Args, Debug, Clone)]
+pub(crate) struct MachineArgs {
+    #[command(flatten)]
+    pub(crate) choice: MachineChoice,
     /// Turn block skip switch N on (1-9; repeatable): blocks starting with `/N` are skipped.
     #[arg(long = "block-skip", value_name = "N", num_args = 0..=1, default_missing_value = "1")]
     pub(crate) block_skip: Vec<u8>,
@@ -59,26 +98,7 @@ pub(crate) struct MachineArgs {
 impl MachineArgs {
     /// The machine to run on.
     pub(crate) fn machine(&self) -> Result<Machine, CliError> {
-        let machine = match &self.machine {
-            Some(path) => {
-                let text =
-                    std::fs::read_to_string(path).map_err(|source| CliError::ReadMachine {
-                        path: path.clone(),
-                        source,
-                    })?;
-                Machine::from_toml(&text).map_err(|source| CliError::Machine {
-                    path: Some(path.clone()),
-                    source,
-                })?
-            }
-            None => Machine::default(),
-        };
-        match self.profile {
-            Some(name) => machine
-                .with_profile(name)
-                .map_err(|source| CliError::Machine { path: None, source }),
-            None => Ok(machine),
-        }
+        self.choice.machine()
     }
 
     /// The planner's options (the feed override dial).
@@ -139,7 +159,7 @@ impl MachineArgs {
             if !self.keeps_state {
                 return None;
             }
-            let machine = self.machine.as_ref()?;
+            let machine = self.choice.machine.as_ref()?;
             let stem = machine.file_stem()?.to_string_lossy().into_owned();
             Some(machine.with_file_name(format!("{stem}.state.toml")))
         })

@@ -1,6 +1,7 @@
 //! The subcommands, one module each.
 
 pub(crate) mod check;
+pub(crate) mod machine;
 pub(crate) mod run;
 pub(crate) mod trace;
 

@@ -177,6 +177,26 @@ fn machine_prints_a_file_that_loads_back() {
 }
 
 #[test]
+fn machine_takes_the_profile_and_shows_how_it_reads_numbers_without_a_point() {
+    let out = vcnc(&["machine", "--profile", "haas"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("\nprofile = \"haas\"\n"), "{text}");
+    assert!(
+        text.contains("decimal_less = \"increments\" on this profile"),
+        "{text}"
+    );
+    let path = temp_program("haas.toml", &text);
+    let out = vcnc(&["run", "--format", "json", "--machine", &path, &example()]);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["profile"], "haas");
+    // --machine is taken too: its file, with the profile asked for.
+    let out = vcnc(&["machine", "--machine", &path, "--profile", "syntec"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("\nprofile = \"syntec\"\n"), "{text}");
+}
+
+#[test]
 fn sinumerik_programs_are_named_as_not_supported_yet() {
     let program = temp_program("PART.MPF", "G0 X=10\nM30\n");
     let out = vcnc(&["check", &program]);
