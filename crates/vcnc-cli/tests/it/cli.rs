@@ -41,6 +41,21 @@ fn run_summarises_the_bundled_example() {
 }
 
 #[test]
+fn run_takes_several_programs_and_goes_on_after_one_it_cannot_read() {
+    let bad = temp_program("several_bad.nc", "G0 X1.\nG1 X2.\nM30\n");
+    let out = vcnc(&["run", &example(), "/no/such/part.nc", &bad]);
+    assert_eq!(out.status.code(), Some(2), "the missing file");
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.matches("  result  ").count(), 2, "{text}");
+    assert!(text.contains("ended with M30"), "{text}");
+    assert!(text.contains("stopped by alarm V030"), "{text}");
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("/no/such/part.nc"), "{stderr}");
+    let out = vcnc(&["run", &example(), &bad]);
+    assert_eq!(out.status.code(), Some(1), "an alarm in the second");
+}
+
+#[test]
 fn run_json_is_one_object_with_the_totals() {
     let out = vcnc(&["run", "--format", "json", &example()]);
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
