@@ -9,6 +9,7 @@ mod error;
 mod excerpt;
 mod numbers;
 mod program;
+mod progress;
 mod setup;
 
 use clap::{Parser, Subcommand};

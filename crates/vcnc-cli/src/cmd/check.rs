@@ -8,6 +8,7 @@
 use super::{Outcome, SetupError};
 use crate::diagnostics::Output;
 use crate::program::Source;
+use crate::progress::Progress;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
@@ -150,7 +151,19 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
                 Layout::for_idle_consumer(),
             )?;
             let texts = crate::program::files(&stream, &source);
-            let alarms: Vec<Alarm> = stream.by_ref().filter_map(Result::err).collect();
+            let name = source.name().display().to_string();
+            let mut progress = Progress::on_stderr(&name, args.format != Format::Json);
+            let alarms: Vec<Alarm> = stream
+                .by_ref()
+                .filter_map(|item| match item {
+                    Ok(segment) => {
+                        progress.segment(segment.span.line);
+                        None
+                    }
+                    Err(alarm) => Some(alarm),
+                })
+                .collect();
+            progress.finish();
             let (_, saved) = crate::program::finish(stream, &args.machine);
             saved?;
             Ok((source, texts, alarms))

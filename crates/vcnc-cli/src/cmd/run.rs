@@ -3,6 +3,7 @@
 use super::{Outcome, SetupError};
 use crate::diagnostics::Output;
 use crate::program::{open_planned, Planned, Source};
+use crate::progress::Progress;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use serde_json::json;
@@ -63,10 +64,13 @@ fn run_one(args: &Args, path: &Path) -> Result<Outcome, SetupError> {
     let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut end = None;
+    let name = source.name().display().to_string();
+    let mut progress = Progress::on_stderr(&name, args.format == Format::Human);
     stream.for_each_timed(plan_options, |items, timings| {
         for (item, timing) in items.iter().zip(timings) {
             match item {
                 Ok(segment) => {
+                    progress.segment(segment.span.line);
                     if let SegmentKind::End { kind } = segment.kind {
                         end = Some(kind);
                     }
@@ -78,6 +82,7 @@ fn run_one(args: &Args, path: &Path) -> Result<Outcome, SetupError> {
         }
         true
     });
+    progress.finish();
     let (blocks, saved) = crate::program::finish(stream, &args.machine);
     let error = alarms.iter().find(|a| a.is_error());
     let result = match (error, end) {

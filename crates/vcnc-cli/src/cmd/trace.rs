@@ -12,9 +12,10 @@ use crate::numbers::{
     FixedText, Key, OutBuffer, PaddedText, RecordText, Remembered, RememberedRun,
 };
 use crate::program::{open_planned, Planned, Source};
+use crate::progress::Progress;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use vcnc::motion::{ArcDirection, EndKind, Feed, Move, Plane, SpindleState, StopKind};
 use vcnc::pipeline::{Item, ProgramFiles};
@@ -77,7 +78,13 @@ fn write_trace(args: &Args, output: &mut impl Write) -> Result<Traced, SetupErro
     }
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut written = Ok(());
+    // Beside a trace written to a file or a pipe, never among the records on a terminal.
+    let name = source.name().display().to_string();
+    let mut progress = Progress::on_stderr(&name, !std::io::stdout().is_terminal());
     stream.for_each_timed(plan_options, |items, timings| {
+        if let Some(Ok(last)) = items.last() {
+            progress.batch(last.span.line, items.len());
+        }
         writer.batch(items, timings, args.format, &mut alarms);
         if writer.out.is_full() {
             written = output.write_all(writer.out.as_bytes());
@@ -90,6 +97,7 @@ fn write_trace(args: &Args, output: &mut impl Write) -> Result<Traced, SetupErro
             .write_all(writer.out.as_bytes())
             .and_then(|()| output.flush());
     }
+    progress.finish();
     let (_, saved) = crate::program::finish(stream, &args.machine);
     match written {
         // The reader went away (`| head`): it has what it wanted.

@@ -1,6 +1,7 @@
 //! Programs from pipes, FIFOs and standard input, and text that could upset a terminal or a
 //! renderer (control bytes, a line of megabytes): each is read whole or alarmed, never run
-//! empty, and its diagnostics stay short and printable.
+//! empty, and its diagnostics stay short and printable. And the progress line a long run shows
+//! on a terminal, never in a pipe.
 
 use super::cli::{example, temp_program, vcnc};
 use std::io::Write;
@@ -171,4 +172,46 @@ fn a_long_line_is_reported_as_a_window_around_the_alarm() {
 #[ignore]
 fn a_50_mb_line_is_reported_as_a_window_around_the_alarm() {
     assert_long_line_reported_briefly(50);
+}
+
+/// A loop of 200,000 moves, and progress told to show at once (a run of a second is not the
+/// same on every machine).
+const LONG_RUN: &str =
+    "#1=0\nWHILE [#1 LT 200000] DO1\nG1 X[#1 MOD 100] F100000.\n#1=#1+1\nEND1\nM30\n";
+const AFTER: (&str, &str) = ("VCNC_PROGRESS_AFTER_MS", "0");
+
+#[test]
+fn a_long_run_shows_progress_on_a_terminal_and_never_in_a_pipe() {
+    let program = temp_program("long_run.nc", LONG_RUN);
+    let piped = {
+        let program = program.clone();
+        std::thread::spawn(move || {
+            Command::new(env!("CARGO_BIN_EXE_vcnc"))
+                .args(["check", &program])
+                .env(AFTER.0, AFTER.1)
+                .output()
+                .unwrap()
+        })
+    };
+    // `script` runs the command on a terminal of its own (util-linux); without it, only the
+    // pipe is checked.
+    let command = format!("{} check {program}", env!("CARGO_BIN_EXE_vcnc"));
+    let on_terminal = Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .env("NO_COLOR", "1")
+        .env(AFTER.0, AFTER.1)
+        .stdin(Stdio::null())
+        .output();
+    let piped = piped.join().unwrap();
+    assert_eq!(piped.status.code(), Some(0));
+    assert!(
+        !piped.stderr.contains(&b'\r') && !piped.stdout.contains(&b'\r'),
+        "{}",
+        String::from_utf8_lossy(&piped.stderr)
+    );
+    if let Some(out) = on_terminal.ok().filter(|out| out.status.success()) {
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("long_run.nc: line "), "{text}");
+        assert!(text.contains(" segments, "), "{text}");
+    }
 }
