@@ -47,6 +47,12 @@ pub(crate) enum CliError {
         path: PathBuf,
         source: std::io::Error,
     },
+    /// A pipe or standard input that gave nothing.
+    #[error("{}: nothing to read (an empty pipe: did the command writing it fail?)", .0.display())]
+    EmptyStream(PathBuf),
+    /// `-` named twice.
+    #[error("standard input (`-`) can be read once")]
+    StdinTwice,
     /// A directory where a program file was expected.
     #[error("{} is a directory (check takes directories; run and trace take one program file)", .0.display())]
     Directory(PathBuf),

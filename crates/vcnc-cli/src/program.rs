@@ -9,6 +9,7 @@ use crate::setup::MachineArgs;
 use std::fs::File;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use vcnc::interp::PersistentVariables;
 use vcnc::pipeline::{Layout, PersistentStore, Pipeline, ProgramFiles, Stream};
@@ -16,6 +17,9 @@ use vcnc::{Machine, Options};
 
 /// The name a program read from standard input (`-`) has in diagnostics.
 pub(crate) const STDIN_NAME: &str = "<stdin>";
+
+/// Standard input can be read once: a second `-` would be an empty program.
+static STDIN_READ: AtomicBool = AtomicBool::new(false);
 
 /// A program as the command line names it: a regular file, read as the program runs, or a
 /// stream (standard input, a pipe, a FIFO, a device) read whole first, since it cannot be read
@@ -35,15 +39,15 @@ impl Source {
             })
         };
         if path.as_os_str() == "-" {
+            if STDIN_READ.swap(true, Ordering::Relaxed) {
+                return Err(CliError::StdinTwice);
+            }
             let mut text = Vec::new();
             std::io::stdin()
                 .lock()
                 .read_to_end(&mut text)
                 .map_err(read_error)?;
-            return Ok(Source::Memory {
-                name: PathBuf::from(STDIN_NAME),
-                text: text.into(),
-            });
+            return Source::memory(PathBuf::from(STDIN_NAME), text);
         }
         let metadata = std::fs::metadata(path).map_err(|source| {
             CliError::Open(vcnc::pipeline::OpenError::Open {
@@ -62,8 +66,17 @@ impl Source {
         File::open(path)
             .and_then(|mut file| file.read_to_end(&mut text))
             .map_err(read_error)?;
+        Source::memory(path.to_path_buf(), text)
+    }
+
+    /// A program read from a stream. Nothing at all is an error, not an empty program: the
+    /// command that should have written it failed (`cat missing.nc | vcnc run -`).
+    fn memory(name: PathBuf, text: Vec<u8>) -> Result<Source, CliError> {
+        if text.is_empty() {
+            return Err(CliError::EmptyStream(name));
+        }
         Ok(Source::Memory {
-            name: path.to_path_buf(),
+            name,
             text: text.into(),
         })
     }

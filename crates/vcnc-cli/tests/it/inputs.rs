@@ -52,6 +52,20 @@ fn a_program_on_standard_input_runs_whole_by_dash_and_by_dev_stdin() {
 }
 
 #[test]
+fn an_empty_pipe_or_a_second_dash_is_an_error_not_an_empty_program() {
+    let out = vcnc_with_input(&["check", "-"], b"");
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("<stdin>: nothing to read"), "{stderr}");
+    let out = vcnc_with_input(&["check", "-", "-"], b"G0 X1.\nM30\n");
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("can be read once"), "{stderr}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("2 programs: 1 ok"), "{stdout}");
+}
+
+#[test]
 fn a_program_from_a_pipe_may_jump() {
     let program = b"#1=0\nWHILE [#1 LT 3] DO1\nG1 X[#1+1] F100.\n#1=#1+1\nEND1\nM30\n";
     let out = vcnc_with_input(&["run", "--format", "json", "-"], program);
