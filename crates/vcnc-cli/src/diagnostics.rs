@@ -1,124 +1,191 @@
-//! Alarms for people (rustc-style, with the source line and the word underlined) and for
-//! machines (JSON).
+//! Alarms for people (rustc-style, with the source line and the word underlined), for editors
+//! and grep (one line each: `file:line:col: severity[code]: message`) and for machines (JSON).
+//!
+//! Whatever a program holds, the terminal never gets a raw control byte from it (they are
+//! shown escaped, `\x1b`), and a long line is shown as a window around its column
+//! (`excerpt.rs`): rendering never costs the whole line.
 
+use crate::excerpt::{escape, Excerpts, Region};
 use codespan_reporting::diagnostic::{Diagnostic, Label, Severity as CsSeverity};
-use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use codespan_reporting::term::{self, Config};
 use serde_json::{json, Value};
 use std::collections::HashMap;
-use std::io::IsTerminal;
+use std::fs::File;
+use std::io::{Cursor, IsTerminal, Write};
+use std::path::PathBuf;
+use std::sync::Arc;
 use vcnc::pipeline::ProgramFiles;
-use vcnc::source::line_column;
-use vcnc::{Alarm, FileId, Severity};
+use vcnc::{Alarm, FileId, Severity, Span};
 
-/// The text of a program for showing its lines: bytes that are not UTF-8 (Latin-1 comments)
-/// become `?`, one byte each, so byte offsets stay right.
-pub(crate) fn display_text(bytes: &[u8]) -> String {
-    let mut out = String::with_capacity(bytes.len());
-    let mut rest = bytes;
-    loop {
-        match std::str::from_utf8(rest) {
-            Ok(valid) => {
-                out.push_str(valid);
-                return out;
-            }
-            Err(error) => {
-                let (valid, after) = rest.split_at(error.valid_up_to());
-                out.push_str(std::str::from_utf8(valid).unwrap_or_default());
-                let bad = error.error_len().unwrap_or(after.len());
-                out.extend(std::iter::repeat_n('?', bad));
-                rest = &after[bad..];
-            }
-        }
+/// The files of a run, for the lines the diagnostics show (a program read from a pipe is held
+/// in memory from the start: it cannot be read again).
+pub(crate) struct Texts {
+    files: ProgramFiles,
+    main: Option<Arc<[u8]>>,
+}
+
+impl Texts {
+    /// The files of a run; `main` is the main program's text when it is held in memory.
+    pub(crate) fn new(files: ProgramFiles, main: Option<Arc<[u8]>>) -> Texts {
+        Texts { files, main }
+    }
+
+    /// The name of `file` as the diagnostics show it.
+    pub(crate) fn name(&self, file: FileId) -> String {
+        escape(&self.path(file).display().to_string())
+    }
+
+    fn path(&self, file: FileId) -> PathBuf {
+        self.files.path(file)
+    }
+
+    /// The bytes around `span`'s start (none when its file cannot be read any more).
+    fn region(&self, span: Span) -> Region {
+        let read = match (&self.main, span.file) {
+            (Some(text), FileId(0)) => Region::read(&mut Cursor::new(&text[..]), span.start),
+            _ => File::open(self.path(span.file))
+                .and_then(|mut file| Region::read(&mut file, span.start)),
+        };
+        read.unwrap_or_else(|_| Region::empty())
     }
 }
 
-/// Prints alarms of one program to stderr like rustc prints errors; an alarm in a called
-/// program shows that program's line.
-pub(crate) fn print_human(files: &ProgramFiles, alarms: &[Alarm]) {
+/// Where a diagnostic goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Output {
+    Stdout,
+    Stderr,
+}
+
+/// An alarm and how many identical ones it stands for (warnings repeat: the same V070 on
+/// every block of a loop); the lines of the others.
+pub(crate) struct Folded<'a> {
+    pub(crate) alarm: &'a Alarm,
+    pub(crate) lines: Vec<u32>,
+}
+
+impl Folded<'_> {
+    /// How many alarms this one stands for.
+    pub(crate) fn count(&self) -> usize {
+        self.lines.len() + 1
+    }
+}
+
+/// `alarms` with each warning that repeats an earlier one (same code, same message) folded
+/// into the first; errors are never folded.
+pub(crate) fn fold(alarms: &[Alarm]) -> Vec<Folded<'_>> {
+    let mut folded: Vec<Folded> = Vec::new();
+    let mut first: HashMap<(&str, &str), usize> = HashMap::new();
+    for alarm in alarms {
+        if !alarm.is_error() {
+            let key = (alarm.code.code(), alarm.message.as_str());
+            if let Some(&index) = first.get(&key) {
+                folded[index].lines.push(alarm.span.map_or(0, |s| s.line));
+                continue;
+            }
+            first.insert(key, folded.len());
+        }
+        folded.push(Folded {
+            alarm,
+            lines: Vec::new(),
+        });
+    }
+    folded
+}
+
+/// How many lines of a folded warning are named.
+const LINES_NAMED: usize = 5;
+
+fn repeat_note(folded: &Folded) -> Option<String> {
+    if folded.lines.is_empty() {
+        return None;
+    }
+    let mut named: Vec<String> = folded
+        .lines
+        .iter()
+        .take(LINES_NAMED)
+        .map(u32::to_string)
+        .collect();
+    if folded.lines.len() > LINES_NAMED {
+        named.push(format!("{} more", folded.lines.len() - LINES_NAMED));
+    }
+    Some(format!(
+        "{} x{}: the same warning also at line{} {}",
+        folded.alarm.code.code(),
+        folded.count(),
+        if folded.lines.len() == 1 { "" } else { "s" },
+        named.join(", ")
+    ))
+}
+
+/// Prints alarms of one program like rustc prints errors, identical warnings folded; an alarm
+/// in a called program shows that program's line, an alarm of the whole file its name.
+pub(crate) fn print_human(texts: &Texts, alarms: &[Alarm], output: Output) {
     if alarms.is_empty() {
         return;
     }
-    let mut sources = SimpleFiles::new();
-    let mut ids: HashMap<FileId, (usize, usize)> = HashMap::new();
-    let mut id_of = |file: FileId| {
-        *ids.entry(file).or_insert_with(|| {
-            let path = files.path(file);
-            let bytes = std::fs::read(&path).unwrap_or_default();
-            let len = bytes.len();
-            (
-                sources.add(path.display().to_string(), display_text(&bytes)),
-                len,
-            )
-        })
+    let terminal = match output {
+        Output::Stdout => std::io::stdout().is_terminal(),
+        Output::Stderr => std::io::stderr().is_terminal(),
     };
-    let diagnostics: Vec<_> = alarms.iter().map(|a| to_codespan(a, &mut id_of)).collect();
-    let color = if std::env::var_os("NO_COLOR").is_none() && std::io::stderr().is_terminal() {
+    let color = if std::env::var_os("NO_COLOR").is_none() && terminal {
         ColorChoice::Auto
     } else {
         ColorChoice::Never
     };
-    let writer = StandardStream::stderr(color);
+    let writer = match output {
+        Output::Stdout => StandardStream::stdout(color),
+        Output::Stderr => StandardStream::stderr(color),
+    };
     let config = Config::default();
-    for diagnostic in &diagnostics {
-        let _ = term::emit(&mut writer.lock(), &config, &sources, diagnostic);
+    for folded in fold(alarms) {
+        let (excerpts, diagnostic) = to_codespan(&folded, texts);
+        let _ = term::emit(&mut writer.lock(), &config, &excerpts, &diagnostic);
     }
 }
 
-fn to_codespan(
-    alarm: &Alarm,
-    id_of: &mut impl FnMut(FileId) -> (usize, usize),
-) -> Diagnostic<usize> {
-    let severity = match alarm.severity {
-        Severity::Error => CsSeverity::Error,
-        Severity::Warning => CsSeverity::Warning,
-    };
-    let mut place = |span: vcnc::Span| {
-        let (id, len) = id_of(span.file);
-        let start = (span.start as usize).min(len);
-        (id, start..(span.end as usize).clamp(start, len))
-    };
-    let mut labels = Vec::new();
-    if let Some(span) = alarm.span {
-        let (id, range) = place(span);
-        labels.push(Label::primary(id, range));
+/// Prints alarms one a line, `file:line:col: severity[code]: message`, identical warnings
+/// folded (`(x8)` at the end).
+pub(crate) fn print_short(
+    texts: &Texts,
+    alarms: &[Alarm],
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    for folded in fold(alarms) {
+        let alarm = folded.alarm;
+        let file = alarm.span.map_or(FileId(0), |s| s.file);
+        let place = match alarm.span {
+            Some(span) => {
+                let column = texts.region(span).column();
+                format!("{}:{}:{column}", texts.name(file), span.line)
+            }
+            None => texts.name(file),
+        };
+        let repeats = match folded.count() {
+            1 => String::new(),
+            n => format!(" (x{n})"),
+        };
+        writeln!(
+            out,
+            "{place}: {}[{}]: {}{repeats}",
+            alarm.severity.as_str(),
+            alarm.code.code(),
+            escape(&alarm.message)
+        )?;
     }
-    for label in &alarm.labels {
-        let (id, range) = place(label.span);
-        labels.push(Label::secondary(id, range).with_message(label.message.clone()));
-    }
-    let mut diagnostic = Diagnostic::new(severity)
-        .with_code(alarm.code.code())
-        .with_message(alarm.message.clone())
-        .with_labels(labels);
-    if let Some(help) = &alarm.help {
-        diagnostic = diagnostic.with_notes(vec![format!("help: {help}")]);
-    }
-    diagnostic
+    Ok(())
 }
 
 /// One alarm as a JSON object: file, line, column, code, id, severity, message, help.
-/// `texts` keeps the files read so far.
-pub(crate) fn to_json(
-    files: &ProgramFiles,
-    texts: &mut HashMap<FileId, Vec<u8>>,
-    alarm: &Alarm,
-) -> Value {
+pub(crate) fn to_json(texts: &Texts, alarm: &Alarm) -> Value {
     let file = alarm.span.map_or(FileId(0), |s| s.file);
-    let path = files.path(file);
     let (line, column) = match alarm.span {
-        Some(span) => {
-            let text = texts
-                .entry(file)
-                .or_insert_with(|| std::fs::read(&path).unwrap_or_default());
-            let at = line_column(text, span.start);
-            (Some(at.line), Some(at.column))
-        }
+        Some(span) => (Some(span.line), Some(texts.region(span).column())),
         None => (None, None),
     };
     json!({
-        "file": path.display().to_string(),
+        "file": texts.path(file).display().to_string(),
         "line": line,
         "column": column,
         "code": alarm.code.code(),
@@ -127,4 +194,67 @@ pub(crate) fn to_json(
         "message": alarm.message,
         "help": alarm.help,
     })
+}
+
+/// The diagnostic of `folded` and the excerpts of the lines it shows. An alarm without a
+/// place (a whole file's) points at the start of the main program, so that it names its file.
+fn to_codespan(folded: &Folded, texts: &Texts) -> (Excerpts, Diagnostic<usize>) {
+    let alarm = folded.alarm;
+    let severity = match alarm.severity {
+        Severity::Error => CsSeverity::Error,
+        Severity::Warning => CsSeverity::Warning,
+    };
+    let mut excerpts = Excerpts::default();
+    let mut ids: Vec<FileId> = Vec::new();
+    let mut place = |span: Span, excerpts: &mut Excerpts| {
+        let id = match ids.iter().position(|&f| f == span.file) {
+            Some(id) => id,
+            None => {
+                ids.push(span.file);
+                excerpts.add_file(texts.name(span.file))
+            }
+        };
+        (id, excerpts.add_line(id, &texts.region(span), span))
+    };
+    let mut labels = Vec::new();
+    let primary = alarm.span.unwrap_or(Span::new(FileId(0), 1, 0..0));
+    let (id, range) = place(primary, &mut excerpts);
+    labels.push(Label::primary(id, range));
+    for label in &alarm.labels {
+        let (id, range) = place(label.span, &mut excerpts);
+        labels.push(Label::secondary(id, range).with_message(escape(&label.message)));
+    }
+    let mut notes = Vec::new();
+    if let Some(help) = &alarm.help {
+        notes.push(format!("help: {}", escape(help)));
+    }
+    notes.extend(repeat_note(folded));
+    let diagnostic = Diagnostic::new(severity)
+        .with_code(alarm.code.code())
+        .with_message(escape(&alarm.message))
+        .with_labels(labels)
+        .with_notes(notes);
+    (excerpts, diagnostic)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vcnc::{AlarmCode, Span};
+
+    #[test]
+    fn identical_warnings_fold_into_the_first() {
+        let warning = |line| {
+            Alarm::warning(
+                AlarmCode::NotSupportedYet,
+                Span::new(FileId(0), line, 0..1),
+                "same",
+            )
+        };
+        let alarms = vec![warning(1), warning(2), warning(3)];
+        let folded = fold(&alarms);
+        assert_eq!(folded.len(), 1);
+        assert_eq!(folded[0].count(), 3);
+        assert_eq!(folded[0].lines, vec![2, 3]);
+    }
 }

@@ -38,6 +38,24 @@ pub(crate) enum CliError {
         path: PathBuf,
         source: toml::de::Error,
     },
+    /// The state file holds something that is not a numbered variable, or cannot be saved to.
+    #[error("state file {}: {problem}", path.display())]
+    StateContent { path: PathBuf, problem: String },
+    /// The state file cannot be saved: the persistent variables of the run are lost.
+    #[error("cannot save state file {}: {source}", path.display())]
+    SaveState {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    /// A pipe or standard input that gave nothing.
+    #[error("{}: nothing to read (an empty pipe: did the command writing it fail?)", .0.display())]
+    EmptyStream(PathBuf),
+    /// `-` named twice.
+    #[error("standard input (`-`) can be read once")]
+    StdinTwice,
+    /// A directory where a program file was expected.
+    #[error("{} is a directory (check takes directories; run and trace take one program file)", .0.display())]
+    Directory(PathBuf),
     /// The program cannot be opened.
     #[error(transparent)]
     Open(#[from] vcnc::pipeline::OpenError),

@@ -6,8 +6,10 @@
 mod cmd;
 mod diagnostics;
 mod error;
+mod excerpt;
 mod numbers;
 mod program;
+mod progress;
 mod setup;
 
 use clap::{Parser, Subcommand};
@@ -29,8 +31,9 @@ enum Command {
     Check(cmd::check::Args),
     /// Print the motion stream (machine coordinates) as JSON lines or CSV.
     Trace(cmd::trace::Args),
-    /// Print the embedded default machine file, to copy and edit.
-    Machine,
+    /// Print the embedded default machine file (or --machine's), with --profile's name and its
+    /// settings spelled out, to copy and edit.
+    Machine(cmd::machine::Args),
 }
 
 fn main() -> ExitCode {
@@ -46,17 +49,18 @@ fn main() -> ExitCode {
         }
     };
     let result = match cli.command {
-        Command::Run(args) => cmd::run::run(&args),
+        Command::Run(mut args) => {
+            args.machine.keeps_state = true;
+            cmd::run::run(&args)
+        }
         Command::Check(args) => cmd::check::run(&args),
         Command::Trace(args) => cmd::trace::run(&args),
-        Command::Machine => {
-            print!("{}", vcnc::machine::DEFAULT_MACHINE_TOML);
-            Ok(cmd::Outcome::Clean)
-        }
+        Command::Machine(args) => cmd::machine::run(&args),
     };
     match result {
         Ok(cmd::Outcome::Clean) => ExitCode::SUCCESS,
         Ok(cmd::Outcome::Alarm) => ExitCode::from(1),
+        Ok(cmd::Outcome::Unread) => ExitCode::from(2),
         Err(error) => {
             eprintln!("vcnc: {error}");
             ExitCode::from(2)

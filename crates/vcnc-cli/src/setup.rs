@@ -6,15 +6,54 @@ use std::path::PathBuf;
 use vcnc::plan::PlanOptions;
 use vcnc::{Machine, Options, ProfileName};
 
-/// Machine and control options.
+/// The machine file and the profile: the options every command takes.
 #[derive(Args, Debug, Clone)]
-pub(crate) struct MachineArgs {
+pub(crate) struct MachineChoice {
     /// Machine file (TOML; `vcnc machine` prints the default to start from).
     #[arg(long, value_name = "FILE")]
     pub(crate) machine: Option<PathBuf>,
     /// Controller profile: fanuc, syntec, fanuc0m, mitsubishi or haas (default: the machine file's, else fanuc).
     #[arg(long, value_name = "NAME")]
     pub(crate) profile: Option<ProfileName>,
+}
+
+impl MachineChoice {
+    /// The machine file's text (the embedded default's without `--machine`).
+    pub(crate) fn text(&self) -> Result<String, CliError> {
+        match &self.machine {
+            Some(path) => std::fs::read_to_string(path).map_err(|source| CliError::ReadMachine {
+                path: path.clone(),
+                source,
+            }),
+            None => Ok(vcnc::machine::DEFAULT_MACHINE_TOML.to_string()),
+        }
+    }
+
+    /// The machine to run on.
+    pub(crate) fn machine(&self) -> Result<Machine, CliError> {
+        let machine = match &self.machine {
+            Some(path) => {
+                Machine::from_toml(&self.text()?).map_err(|source| CliError::Machine {
+                    path: Some(path.clone()),
+                    source,
+                })?
+            }
+            None => Machine::default(),
+        };
+        match self.profile {
+            Some(name) => machine
+                .with_profile(name)
+                .map_err(|source| CliError::Machine { path: None, source }),
+            None => Ok(machine),
+        }
+    }
+}
+
+/// Machine and control options.
+#[derive(Args, Debug, Clone)]
+pub(crate) struct MachineArgs {
+    #[command(flatten)]
+    pub(crate) choice: MachineChoice,
     /// Turn block skip switch N on (1-9; repeatable): blocks starting with `/N` are skipped.
     #[arg(long = "block-skip", value_name = "N", num_args = 0..=1, default_missing_value = "1")]
     pub(crate) block_skip: Vec<u8>,
@@ -31,10 +70,17 @@ pub(crate) struct MachineArgs {
     #[arg(long = "lib", value_name = "DIR")]
     pub(crate) lib: Vec<PathBuf>,
     /// Machine state file: the persistent macro variables #500-#999 are read from it and
-    /// saved to it (default: beside the machine file as `<machine>.state.toml`; none for the
-    /// embedded machine).
-    #[arg(long, value_name = "FILE")]
+    /// saved to it. `run` keeps one by default, beside the machine file as
+    /// `<machine>.state.toml` (none for the embedded machine); `check` and `trace` only with
+    /// this option, so that running them twice gives the same result.
+    #[arg(long, value_name = "FILE", conflicts_with = "no_state")]
     pub(crate) state: Option<PathBuf>,
+    /// Neither read nor save a state file: the persistent variables start vacant.
+    #[arg(long = "no-state")]
+    pub(crate) no_state: bool,
+    /// True for a command that keeps the machine's default state file (`run`).
+    #[arg(skip)]
+    pub(crate) keeps_state: bool,
     /// How many times a main program that ends in M99 runs (the control repeats it forever).
     #[arg(long = "main-passes", value_name = "N", default_value_t = 1)]
     pub(crate) main_passes: u32,
@@ -52,26 +98,7 @@ pub(crate) struct MachineArgs {
 impl MachineArgs {
     /// The machine to run on.
     pub(crate) fn machine(&self) -> Result<Machine, CliError> {
-        let machine = match &self.machine {
-            Some(path) => {
-                let text =
-                    std::fs::read_to_string(path).map_err(|source| CliError::ReadMachine {
-                        path: path.clone(),
-                        source,
-                    })?;
-                Machine::from_toml(&text).map_err(|source| CliError::Machine {
-                    path: Some(path.clone()),
-                    source,
-                })?
-            }
-            None => Machine::default(),
-        };
-        match self.profile {
-            Some(name) => machine
-                .with_profile(name)
-                .map_err(|source| CliError::Machine { path: None, source }),
-            None => Ok(machine),
-        }
+        self.choice.machine()
     }
 
     /// The planner's options (the feed override dial).
@@ -115,10 +142,24 @@ impl MachineArgs {
         Ok(options)
     }
 
-    /// The machine state file, if there is one.
+    /// Finds the errors of the machine file and the options before any program runs.
+    pub(crate) fn check(&self) -> Result<(), CliError> {
+        self.machine()?;
+        self.options()?;
+        self.plan_options()?;
+        Ok(())
+    }
+
+    /// The machine state file, if the command keeps one.
     pub(crate) fn state_file(&self) -> Option<PathBuf> {
+        if self.no_state {
+            return None;
+        }
         self.state.clone().or_else(|| {
-            let machine = self.machine.as_ref()?;
+            if !self.keeps_state {
+                return None;
+            }
+            let machine = self.choice.machine.as_ref()?;
             let stem = machine.file_stem()?.to_string_lossy().into_owned();
             Some(machine.with_file_name(format!("{stem}.state.toml")))
         })

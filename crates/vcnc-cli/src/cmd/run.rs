@@ -1,11 +1,13 @@
 //! `vcnc run`: run a program and print the summary a CNC programmer wants.
 
 use super::{Outcome, SetupError};
-use crate::program::{open_planned, Planned};
+use crate::diagnostics::Output;
+use crate::program::{open_planned, Planned, Source};
+use crate::progress::Progress;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use serde_json::json;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use vcnc::motion::EndKind;
 use vcnc::plan::{TimeKind, TimeReport};
 use vcnc::summary::{Extents, Summary};
@@ -16,20 +18,22 @@ use vcnc::{Alarm, SegmentKind};
 pub(crate) enum Format {
     /// A table for people.
     Human,
-    /// One JSON object.
+    /// One JSON object per program.
     Json,
 }
 
 /// `vcnc run` arguments.
 #[derive(ClapArgs, Debug)]
 pub(crate) struct Args {
-    /// The program.
-    program: PathBuf,
+    /// The programs, each run on its own from a fresh start (`-`: standard input; a pipe
+    /// or FIFO is read whole first).
+    #[arg(required = true)]
+    programs: Vec<PathBuf>,
     /// Output format.
     #[arg(long, value_enum, default_value = "human")]
     format: Format,
     #[command(flatten)]
-    machine: MachineArgs,
+    pub(crate) machine: MachineArgs,
 }
 
 const ESTIMATE_NOTE: &str = "length / feed and rapid rates, without acceleration or corners";
@@ -38,20 +42,35 @@ const PLAN_NOTE: &str = "planned: per-axis speed, acceleration and jerk, look-ah
 exact stops, dwell, tool change and spindle times from the machine file";
 
 pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
+    args.machine.check()?;
+    let mut first = true;
+    Ok(super::each_program(&args.programs, |path| {
+        if !std::mem::take(&mut first) && args.format == Format::Human {
+            println!();
+        }
+        run_one(args, path)
+    }))
+}
+
+fn run_one(args: &Args, path: &Path) -> Result<Outcome, SetupError> {
+    let source = Source::read(path)?;
     let Planned {
         plan_options,
         mut stream,
-    } = open_planned(&args.program, &args.machine, true)?;
+    } = open_planned(&source, &args.machine, true)?;
     let machine = stream.machine().clone();
-    let files = stream.files().clone();
+    let texts = crate::program::files(&stream, &source);
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut end = None;
+    let name = source.name().display().to_string();
+    let mut progress = Progress::on_stderr(&name, args.format == Format::Human);
     stream.for_each_timed(plan_options, |items, timings| {
         for (item, timing) in items.iter().zip(timings) {
             match item {
                 Ok(segment) => {
+                    progress.segment(segment.span.line);
                     if let SegmentKind::End { kind } = segment.kind {
                         end = Some(kind);
                     }
@@ -63,7 +82,8 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         }
         true
     });
-    let blocks = crate::program::finish(stream, &args.machine);
+    progress.finish();
+    let (blocks, saved) = crate::program::finish(stream, &args.machine);
     let error = alarms.iter().find(|a| a.is_error());
     let result = match (error, end) {
         (Some(alarm), _) => format!(
@@ -82,18 +102,17 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let warnings = alarms.iter().filter(|a| !a.is_error()).count();
     match args.format {
         Format::Human => {
-            print_human(args, &machine, &summary, blocks, &result, warnings);
+            print_human(source.name(), &machine, &summary, blocks, &result, warnings);
             print_time_human(&report, &summary, plan_options.feed_override);
-            crate::diagnostics::print_human(&files, &alarms);
+            crate::diagnostics::print_human(&texts, &alarms, Output::Stderr);
         }
         Format::Json => {
-            let mut texts = std::collections::HashMap::new();
             let list: Vec<_> = alarms
                 .iter()
-                .map(|a| crate::diagnostics::to_json(&files, &mut texts, a))
+                .map(|a| crate::diagnostics::to_json(&texts, a))
                 .collect();
             let value = json!({
-                "file": args.program.display().to_string(),
+                "file": source.name().display().to_string(),
                 "machine": machine.name,
                 "profile": machine.profile.name.as_str(),
                 "blocks": blocks,
@@ -115,6 +134,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             println!("{value:#}");
         }
     }
+    saved?;
     Ok(if error.is_some() {
         Outcome::Alarm
     } else {
@@ -123,7 +143,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
 }
 
 fn print_human(
-    args: &Args,
+    name: &Path,
     machine: &vcnc::Machine,
     summary: &Summary,
     blocks: u64,
@@ -132,7 +152,7 @@ fn print_human(
 ) {
     println!(
         "{}  ({}, {} profile)",
-        args.program.display(),
+        crate::excerpt::escape(&name.display().to_string()),
         machine.name,
         machine.profile.name
     );

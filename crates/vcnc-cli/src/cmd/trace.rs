@@ -7,13 +7,15 @@
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
 
 use super::{Outcome, SetupError};
+use crate::diagnostics::{Output, Texts};
 use crate::numbers::{
     FixedText, Key, OutBuffer, PaddedText, RecordText, Remembered, RememberedRun,
 };
-use crate::program::{open_planned, Planned};
+use crate::program::{open_planned, Planned, Source};
+use crate::progress::Progress;
 use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use vcnc::motion::{ArcDirection, EndKind, Feed, Move, Plane, SpindleState, StopKind};
 use vcnc::pipeline::{Item, ProgramFiles};
@@ -32,7 +34,7 @@ pub(crate) enum Format {
 /// `vcnc trace` arguments.
 #[derive(ClapArgs, Debug)]
 pub(crate) struct Args {
-    /// The program.
+    /// The program (`-`: standard input; a pipe or FIFO is read whole first).
     program: PathBuf,
     /// Output format.
     #[arg(long, value_enum, default_value = "jsonl")]
@@ -46,8 +48,9 @@ pub(crate) struct Args {
 
 pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let stdout = std::io::stdout();
-    let (alarms, files) = write_trace(args, &mut stdout.lock())?;
-    crate::diagnostics::print_human(&files, &alarms);
+    let (alarms, texts, saved) = write_trace(args, &mut stdout.lock())?;
+    crate::diagnostics::print_human(&texts, &alarms, Output::Stderr);
+    saved?;
     Ok(if alarms.iter().any(Alarm::is_error) {
         Outcome::Alarm
     } else {
@@ -55,17 +58,19 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     })
 }
 
-/// Runs the program and writes its trace to `output`; returns the alarms and warnings met on
-/// the way (for the diagnostics) and the files read. A reader that goes away (`| head`) ends
-/// the run quietly.
-fn write_trace(
-    args: &Args,
-    output: &mut impl Write,
-) -> Result<(Vec<Alarm>, ProgramFiles), SetupError> {
+/// What a trace leaves for the diagnostics: the alarms and warnings met on the way, the files
+/// read, and whether the state file (kept only with `--state`) was saved.
+type Traced = (Vec<Alarm>, Texts, Result<(), SetupError>);
+
+/// Runs the program and writes its trace to `output`. A reader that goes away (`| head`)
+/// ends the run quietly.
+fn write_trace(args: &Args, output: &mut impl Write) -> Result<Traced, SetupError> {
+    let source = Source::read(&args.program)?;
     let Planned {
         plan_options,
         mut stream,
-    } = open_planned(&args.program, &args.machine, false)?;
+    } = open_planned(&source, &args.machine, false)?;
+    let texts = crate::program::files(&stream, &source);
     let files = stream.files().clone();
     let mut writer = Writer::new(files.clone(), stream.machine(), args.work);
     if args.format == Format::Csv {
@@ -73,7 +78,13 @@ fn write_trace(
     }
     let mut alarms: Vec<Alarm> = Vec::new();
     let mut written = Ok(());
+    // Beside a trace written to a file or a pipe, never among the records on a terminal.
+    let name = source.name().display().to_string();
+    let mut progress = Progress::on_stderr(&name, !std::io::stdout().is_terminal());
     stream.for_each_timed(plan_options, |items, timings| {
+        if let Some(Ok(last)) = items.last() {
+            progress.batch(last.span.line, items.len());
+        }
         writer.batch(items, timings, args.format, &mut alarms);
         if writer.out.is_full() {
             written = output.write_all(writer.out.as_bytes());
@@ -86,13 +97,14 @@ fn write_trace(
             .write_all(writer.out.as_bytes())
             .and_then(|()| output.flush());
     }
-    crate::program::finish(stream, &args.machine);
+    progress.finish();
+    let (_, saved) = crate::program::finish(stream, &args.machine);
     match written {
         // The reader went away (`| head`): it has what it wanted.
         Err(error) if error.kind() != std::io::ErrorKind::BrokenPipe => {
             Err(SetupError::Output(error))
         }
-        _ => Ok((alarms, files)),
+        _ => Ok((alarms, texts, saved)),
     }
 }
 
@@ -694,7 +706,7 @@ mod tests {
             ]);
             let args = &command.args;
             let mut streamed = Vec::new();
-            let (alarms, _) = write_trace(args, &mut streamed).unwrap();
+            let (alarms, _, _) = write_trace(args, &mut streamed).unwrap();
             assert!(alarms.is_empty(), "{alarms:?}");
 
             let machine = Machine::default();

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-fn vcnc(args: &[&str]) -> Output {
+pub(crate) fn vcnc(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_vcnc"))
         .args(args)
         .env("NO_COLOR", "1")
@@ -11,14 +11,14 @@ fn vcnc(args: &[&str]) -> Output {
         .expect("vcnc runs")
 }
 
-fn example() -> String {
+pub(crate) fn example() -> String {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/bracket.nc")
         .display()
         .to_string()
 }
 
-fn temp_program(name: &str, text: &str) -> String {
+pub(crate) fn temp_program(name: &str, text: &str) -> String {
     let dir = std::env::temp_dir().join(format!("vcnc-cli-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
@@ -41,6 +41,21 @@ fn run_summarises_the_bundled_example() {
 }
 
 #[test]
+fn run_takes_several_programs_and_goes_on_after_one_it_cannot_read() {
+    let bad = temp_program("several_bad.nc", "G0 X1.\nG1 X2.\nM30\n");
+    let out = vcnc(&["run", &example(), "/no/such/part.nc", &bad]);
+    assert_eq!(out.status.code(), Some(2), "the missing file");
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.matches("  result  ").count(), 2, "{text}");
+    assert!(text.contains("ended with M30"), "{text}");
+    assert!(text.contains("stopped by alarm V030"), "{text}");
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("/no/such/part.nc"), "{stderr}");
+    let out = vcnc(&["run", &example(), &bad]);
+    assert_eq!(out.status.code(), Some(1), "an alarm in the second");
+}
+
+#[test]
 fn run_json_is_one_object_with_the_totals() {
     let out = vcnc(&["run", "--format", "json", &example()]);
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
@@ -55,10 +70,11 @@ fn check_exits_0_when_clean_1_on_an_alarm_and_2_on_misuse() {
     let bad = temp_program("bad.nc", "G0 X1.\nG1 X2.\nM30\n");
     let out = vcnc(&["check", &bad]);
     assert_eq!(out.status.code(), Some(1));
-    let stderr = String::from_utf8(out.stderr).unwrap();
-    assert!(stderr.contains("error[V030]"), "{stderr}");
-    assert!(stderr.contains("bad.nc:2:1"), "{stderr}");
-    assert!(stderr.contains("G1 X2."), "{stderr}");
+    // The report is on standard output.
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.contains("error[V030]"), "{stdout}");
+    assert!(stdout.contains("bad.nc:2:1"), "{stdout}");
+    assert!(stdout.contains("G1 X2."), "{stdout}");
     assert_eq!(vcnc(&["check"]).status.code(), Some(2));
     assert_eq!(
         vcnc(&["check", "--profile", "nonsense", &example()])
@@ -176,11 +192,31 @@ fn machine_prints_a_file_that_loads_back() {
 }
 
 #[test]
+fn machine_takes_the_profile_and_shows_how_it_reads_numbers_without_a_point() {
+    let out = vcnc(&["machine", "--profile", "haas"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("\nprofile = \"haas\"\n"), "{text}");
+    assert!(
+        text.contains("decimal_less = \"increments\" on this profile"),
+        "{text}"
+    );
+    let path = temp_program("haas.toml", &text);
+    let out = vcnc(&["run", "--format", "json", "--machine", &path, &example()]);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["profile"], "haas");
+    // --machine is taken too: its file, with the profile asked for.
+    let out = vcnc(&["machine", "--machine", &path, "--profile", "syntec"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("\nprofile = \"syntec\"\n"), "{text}");
+}
+
+#[test]
 fn sinumerik_programs_are_named_as_not_supported_yet() {
     let program = temp_program("PART.MPF", "G0 X=10\nM30\n");
     let out = vcnc(&["check", &program]);
     assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8(out.stderr)
+    assert!(String::from_utf8(out.stdout)
         .unwrap()
         .contains("SINUMERIK programs are not supported yet"));
 }
@@ -212,9 +248,9 @@ fn called_programs_come_from_a_lib_directory_and_alarms_show_their_file() {
     let bad = temp_program("calls_bad.nc", "M98 P7002\nM30\n");
     let out = vcnc(&["check", "--lib", &lib, &bad]);
     assert_eq!(out.status.code(), Some(1));
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("O7002.nc:2:5"), "{stderr}");
-    assert!(stderr.contains("division by zero"), "{stderr}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("O7002.nc:2:5"), "{stdout}");
+    assert!(stdout.contains("division by zero"), "{stdout}");
 }
 
 #[test]

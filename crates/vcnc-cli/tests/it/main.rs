@@ -6,7 +6,10 @@
 #[path = "../../../vcnc/tests/it/common/shared.rs"]
 mod shared;
 
+mod check_report;
 mod cli;
 mod golden;
-mod input;
+mod inputs;
+mod saved_programs;
+mod state;
 mod traces;

@@ -3,15 +3,7 @@
 //! `%`, and a machine file with a number out of range. The library's tests cover each path in
 //! detail (`crates/vcnc/tests/it/input.rs`); these check what a user of `vcnc` sees.
 
-use std::process::{Command, Output};
-
-fn vcnc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("vcnc runs")
-}
+use super::cli::vcnc;
 
 /// Writes `text` to `name` in a directory of this test process, and gives its path.
 fn temp_file(name: &str, text: &[u8]) -> String {
