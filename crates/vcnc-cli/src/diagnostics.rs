@@ -192,7 +192,7 @@ pub(crate) fn to_json(texts: &Texts, alarm: &Alarm) -> Value {
         "id": alarm.code.id(),
         "severity": alarm.severity.as_str(),
         "message": alarm.message,
-        "help": alarm.help,
+        "help": alarm.help_line(),
     })
 }
 
@@ -225,9 +225,7 @@ fn to_codespan(folded: &Folded, texts: &Texts) -> (Excerpts, Diagnostic<usize>) 
         labels.push(Label::secondary(id, range).with_message(escape(&label.message)));
     }
     let mut notes = Vec::new();
-    if let Some(help) = &alarm.help {
-        notes.push(format!("help: {}", escape(help)));
-    }
+    notes.push(format!("help: {}", escape(alarm.help_line())));
     notes.extend(repeat_note(folded));
     let diagnostic = Diagnostic::new(severity)
         .with_code(alarm.code.code())

@@ -82,6 +82,8 @@ impl Region {
         file.by_ref()
             .take((start + REACH).min(len) - at)
             .read_to_end(&mut bytes)?;
+        // Lines end as the interpreter reads them: old Mac `\r`s too, a byte-order mark blank.
+        vcnc::syntax::lines::normalize(&mut bytes, at == 0);
         let start = ((start - at) as usize).min(bytes.len());
         let first = match bytes[..start].iter().rposition(|&b| b == b'\n') {
             Some(i) => Some(i + 1),
