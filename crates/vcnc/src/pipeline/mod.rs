@@ -196,13 +196,17 @@ impl Pipeline {
     }
 
     /// Opens the program file `path` and starts interpreting it. Its dialect is detected from
-    /// its name and first lines.
+    /// its name and first lines. A path that is not a regular file (a pipe, a FIFO,
+    /// `/dev/stdin`) is read once and whole, as [`Pipeline::open_text`] takes it.
     ///
     /// # Errors
     /// The file cannot be opened or read.
     pub fn open_path(self, path: impl AsRef<Path>) -> Result<Stream, OpenError> {
         let path = path.as_ref();
-        let (head, file) = program::open_file(path)?;
+        let (head, file) = match program::open_file(path)? {
+            program::OpenedFile::Regular { head, file } => (head, file),
+            program::OpenedFile::Stream(text) => return Ok(self.open_text(text, path)),
+        };
         let dialect = program::dialect(path, &head);
         let length = file.metadata().map_or(0, |m| m.len());
         Ok(self.start(Opened {

@@ -217,24 +217,40 @@ impl ProgramLibrary for WithMainText {
 /// How much of a program's start is read to tell its dialect.
 const HEAD: u64 = 4096;
 
-/// Opens the file at `path` and reads its first bytes; the file returned is at its start.
-pub(crate) fn open_file(path: &Path) -> Result<(Vec<u8>, File), OpenError> {
+/// A program file, opened.
+pub(crate) enum OpenedFile {
+    /// A regular file: its first bytes, and the file again at its start.
+    Regular { head: Vec<u8>, file: File },
+    /// A pipe, a FIFO or a terminal, read once and whole: it cannot be read again for its
+    /// head, nor for a jump back.
+    Stream(Vec<u8>),
+}
+
+/// Opens the file at `path`: a regular file with its first bytes, anything else read whole.
+pub(crate) fn open_file(path: &Path) -> Result<OpenedFile, OpenError> {
     let open = || {
         File::open(path).map_err(|source| OpenError::Open {
             path: path.to_path_buf(),
             source,
         })
     };
+    let read_error = |source| OpenError::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    let mut file = open()?;
+    if !file.metadata().is_ok_and(|m| m.is_file()) {
+        let mut text = Vec::new();
+        file.read_to_end(&mut text).map_err(read_error)?;
+        return Ok(OpenedFile::Stream(text));
+    }
     let mut head = Vec::with_capacity(HEAD as usize);
-    open()?
-        .take(HEAD)
-        .read_to_end(&mut head)
-        .map_err(|source| OpenError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+    file.take(HEAD).read_to_end(&mut head).map_err(read_error)?;
     // Opened again rather than rewound: the program's reader then starts as a fresh file.
-    Ok((head, open()?))
+    Ok(OpenedFile::Regular {
+        head,
+        file: open()?,
+    })
 }
 
 /// Reads the first bytes of `reader` (named `name`), and gives them back in front of the rest.
@@ -282,7 +298,9 @@ mod tests {
     #[test]
     fn a_missing_file_names_itself_in_the_error() {
         let path = Path::new("/nonexistent/vcnc/part.nc");
-        let error = open_file(path).unwrap_err();
+        let Err(error) = open_file(path) else {
+            panic!("opened")
+        };
         assert!(matches!(error, OpenError::Open { .. }));
         assert!(
             error
