@@ -882,3 +882,23 @@ fn an_arc_radius_whose_square_overflows_stops_with_an_alarm() {
     // R = 1e155: its square is +inf, and the arc's centre came out as (NaN, -inf).
     check_stops_with_an_alarm(&format!("G2X1.R{}F1.", power_of_ten(155)));
 }
+
+/// A line of a million words (8 MB) is refused at its 513th word, whether the fast reader or
+/// the general one reads it; before, every word was kept (a 50 MB line of `X1.` held 658 MB).
+#[test]
+fn a_line_of_a_million_words_is_refused_not_held() {
+    let machine = Machine::default();
+    for word in ["X1. ", "#1=1 ", "G1 "] {
+        let text = format!("G1 F100 {}\nM30\n", word.repeat(1_000_000));
+        let items: Vec<_> =
+            interpret_bytes(text.as_bytes(), &machine, Options::default()).collect();
+        let alarm = items
+            .iter()
+            .find_map(|item| item.as_ref().err().filter(|a| a.is_error()))
+            .unwrap_or_else(|| panic!("{word:?}: no error"));
+        assert!(
+            alarm.message.contains("more than 512 words"),
+            "{word:?}: {alarm}"
+        );
+    }
+}

@@ -21,6 +21,11 @@ pub(crate) use parser::parse_plain_line_in;
 pub use parser::{parse_line, SyntaxOptions};
 pub use program::{parse_program, parse_program_piece, ProgramBlocks};
 
+/// The most words (and macro statements) one block may hold: far beyond any real block (a G65
+/// call with argument specification II has under 40), and a bound on what a line of megabytes
+/// costs to read.
+pub(crate) const MAX_WORDS_PER_BLOCK: usize = 512;
+
 /// A reusable set of blocks: the blocks of one line, overwritten line after line so that reading
 /// does not allocate once the buffers have grown.
 #[derive(Debug, Default)]

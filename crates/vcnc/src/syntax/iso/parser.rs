@@ -293,6 +293,21 @@ impl Reader<'_, '_> {
             let Some(byte) = self.peek() else {
                 return BlockEnd::Line;
             };
+            if block.words.len() + block.statements.len() >= super::MAX_WORDS_PER_BLOCK {
+                // A line of megabytes of words would otherwise be held word by word.
+                block.alarms.push(
+                    Alarm::error(
+                        AlarmCode::ValueOutOfRange,
+                        self.span(self.pos, self.pos + 1),
+                        format!(
+                            "the block has more than {} words",
+                            super::MAX_WORDS_PER_BLOCK
+                        ),
+                    )
+                    .with_help("no control takes a block this long: end blocks with a line end"),
+                );
+                return self.abandon(block);
+            }
             let at_block_start =
                 block.words.is_empty() && block.statements.is_empty() && block.skip.is_none();
             match byte {

@@ -104,6 +104,10 @@ fn read_plain_words<const WINDOWED: bool>(
     block.span = Span::new(file, line_number, offset_of(first_word)..0);
     let mut rest = first_word;
     loop {
+        // A block of more words than any control takes is the general reader's to refuse.
+        if block.words.len() >= super::super::MAX_WORDS_PER_BLOCK {
+            return None;
+        }
         // A word's number needs its window: WINDOW bytes after the letter and the sign. Tested
         // once here, before the letter, the tests of the letter, the sign and the window fold
         // into it (a line's end closer than that to the end of the text is left to the line
