@@ -136,6 +136,22 @@ pub enum AlarmCode {
     /// interrupts (G41/G42, G12.1, G16, G51, G51.1, G05, G05.1). Fix: name a block where M96 is in force
     /// and none of these modes is on.
     InterruptIgnored,
+    /// A warning: the program looks written for another of vcnc's profiles. Its text holds
+    /// something that this profile runs otherwise, and that one as written: `M97 P15` with an
+    /// N15 in the program (Haas's local subprogram call; elsewhere an M code for the machine),
+    /// a system variable this profile does not have (#3026, #5405). Fix: `--profile`, or the
+    /// machine file's `profile`.
+    WrittenForAnotherProfile,
+    /// A warning: lengths written without a decimal point come out under a millimetre read in
+    /// least increments (`G0 X10 Y10` goes to 0.010 mm): a program meant in whole units. Fix:
+    /// `decimal_less = "whole_units"` under `[profile_overrides]` in the machine file, or the
+    /// decimal points.
+    DecimalLessScale,
+    /// A warning: a cutting move while the spindle is stopped (before M03/M04, after M05).
+    CuttingWithSpindleStopped,
+    /// A warning: a spindle speed above the machine's `max_rpm` (the control clamps it, or
+    /// refuses it).
+    SpindleSpeedAboveMaximum,
 }
 
 impl AlarmCode {
@@ -184,6 +200,10 @@ impl AlarmCode {
             MacroLimit => "macro_limit",
             UserAlarm => "user_alarm",
             InterruptIgnored => "interrupt_ignored",
+            WrittenForAnotherProfile => "written_for_another_profile",
+            DecimalLessScale => "decimal_less_scale",
+            CuttingWithSpindleStopped => "cutting_with_spindle_stopped",
+            SpindleSpeedAboveMaximum => "spindle_speed_above_maximum",
         }
     }
 
@@ -232,6 +252,10 @@ impl AlarmCode {
             MacroLimit => "V086",
             UserAlarm => "V087",
             InterruptIgnored => "V088",
+            WrittenForAnotherProfile => "V100",
+            DecimalLessScale => "V101",
+            CuttingWithSpindleStopped => "V102",
+            SpindleSpeedAboveMaximum => "V103",
         }
     }
 
@@ -278,6 +302,10 @@ impl AlarmCode {
         AlarmCode::MacroLimit,
         AlarmCode::UserAlarm,
         AlarmCode::InterruptIgnored,
+        AlarmCode::WrittenForAnotherProfile,
+        AlarmCode::DecimalLessScale,
+        AlarmCode::CuttingWithSpindleStopped,
+        AlarmCode::SpindleSpeedAboveMaximum,
     ];
 }
 

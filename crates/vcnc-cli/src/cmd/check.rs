@@ -43,7 +43,12 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             Layout::for_idle_consumer(),
         )?;
         let files = stream.files().clone();
-        let alarms: Vec<Alarm> = stream.by_ref().filter_map(Result::err).collect();
+        let scan = vcnc::program_scan::ProgramScan::of_file(path);
+        let mut alarms: Vec<Alarm> = scan
+            .ok()
+            .flatten()
+            .map_or_else(Vec::new, |s| s.warnings(&machine));
+        alarms.extend(stream.by_ref().filter_map(Result::err));
         crate::program::finish(stream, &args.machine);
         let failed = alarms.iter().any(Alarm::is_error);
         if failed {

@@ -46,7 +46,12 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let files = stream.files().clone();
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
-    let mut alarms: Vec<Alarm> = Vec::new();
+    // What the text says of the control it was written for comes first: it explains the rest.
+    let scan = vcnc::program_scan::ProgramScan::of_file(&args.program);
+    let mut alarms: Vec<Alarm> = scan
+        .ok()
+        .flatten()
+        .map_or_else(Vec::new, |s| s.warnings(&machine));
     let mut end = None;
     stream.for_each_timed(plan_options, |items, timings| {
         for (item, timing) in items.iter().zip(timings) {

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-fn vcnc(args: &[&str]) -> Output {
+pub(crate) fn vcnc(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_vcnc"))
         .args(args)
         .env("NO_COLOR", "1")
@@ -18,7 +18,7 @@ fn example() -> String {
         .to_string()
 }
 
-fn temp_program(name: &str, text: &str) -> String {
+pub(crate) fn temp_program(name: &str, text: &str) -> String {
     let dir = std::env::temp_dir().join(format!("vcnc-cli-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);

@@ -8,4 +8,5 @@ mod shared;
 
 mod cli;
 mod golden;
+mod results;
 mod traces;
