@@ -15,6 +15,7 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Machine;
 use crate::profile::{DecimalLess, Profile, ProfileName};
 use crate::source::{FileId, Span};
+use crate::summary::LengthUnit;
 use crate::Options;
 use std::collections::BTreeMap;
 use std::io::{self, BufRead};
@@ -100,6 +101,8 @@ pub struct ProgramScan {
     /// The largest of them, in the units written.
     largest_decimal_point: f64,
     units: Units,
+    /// The units of the first G20 or G21.
+    first_units: Option<Units>,
     /// The line being read: its number, the offset of its first byte, its first bytes (at most
     /// [`LINE_CAP`]) and its length.
     line_number: u32,
@@ -147,6 +150,7 @@ impl ProgramScan {
             decimal_point_words: 0,
             largest_decimal_point: 0.0,
             units: Units::PowerOn,
+            first_units: None,
             line_number: 1,
             line_offset: 0,
             line: Vec::new(),
@@ -294,8 +298,10 @@ impl ProgramScan {
         for word in words {
             if word.is(b'G', 20) {
                 self.units = Units::Inch;
+                self.first_units.get_or_insert(Units::Inch);
             } else if word.is(b'G', 21) {
                 self.units = Units::Millimetre;
+                self.first_units.get_or_insert(Units::Millimetre);
             } else if word.letter == b'N' && !word.fraction && word.whole < SEQUENCE_BITS as u64 {
                 let n = word.whole as usize;
                 self.sequences[n / 64] |= 1 << (n % 64);
@@ -329,6 +335,16 @@ impl ProgramScan {
                     .then(|| self.place(word.start, word.end));
                 self.decimal_less[units].add(word.whole, place);
             }
+        }
+    }
+
+    /// The unit the program is written in: its first G20 or G21, else the profile's power-on
+    /// unit.
+    pub fn program_unit(&self, profile: &Profile) -> LengthUnit {
+        match self.first_units {
+            Some(Units::Inch) => LengthUnit::Inch,
+            Some(_) => LengthUnit::Millimetre,
+            None => power_on_unit(profile),
         }
     }
 
@@ -568,7 +584,7 @@ impl ProgramScan {
         if profile.decimal_less != DecimalLess::Increments {
             return None;
         }
-        let power_on_inch = profile.power_on.units == 200;
+        let power_on_inch = power_on_unit(profile) == LengthUnit::Inch;
         let increment_mm = |units: usize| {
             let inch = units == Units::Inch as usize || (units == 0 && power_on_inch);
             if inch {
@@ -649,6 +665,15 @@ impl ProgramScan {
                 place.text
             )),
         )
+    }
+}
+
+/// The unit `profile` starts in (G20 or G21 at power-on).
+pub fn power_on_unit(profile: &Profile) -> LengthUnit {
+    if profile.power_on.units == 200 {
+        LengthUnit::Inch
+    } else {
+        LengthUnit::Millimetre
     }
 }
 

@@ -7,8 +7,10 @@ use clap::{Args as ClapArgs, ValueEnum};
 use serde_json::json;
 use std::path::PathBuf;
 use vcnc::motion::EndKind;
+use vcnc::pipeline::ProgramFiles;
 use vcnc::plan::{TimeKind, TimeReport};
-use vcnc::summary::{Extents, Summary};
+use vcnc::program_scan::{power_on_unit, ProgramScan};
+use vcnc::summary::{Extents, LengthUnit, Summary};
 use vcnc::{Alarm, SegmentKind};
 
 /// Output format of the summary.
@@ -47,11 +49,12 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let mut summary = Summary::new(&machine);
     let mut report = TimeReport::new();
     // What the text says of the control it was written for comes first: it explains the rest.
-    let scan = vcnc::program_scan::ProgramScan::of_file(&args.program);
-    let mut alarms: Vec<Alarm> = scan
-        .ok()
-        .flatten()
-        .map_or_else(Vec::new, |s| s.warnings(&machine));
+    let scan = ProgramScan::of_file(&args.program).ok().flatten();
+    let unit = scan.as_ref().map_or_else(
+        || power_on_unit(&machine.profile),
+        |s| s.program_unit(&machine.profile),
+    );
+    let mut alarms: Vec<Alarm> = scan.map_or_else(Vec::new, |s| s.warnings(&machine));
     let mut end = None;
     stream.for_each_timed(plan_options, |items, timings| {
         for (item, timing) in items.iter().zip(timings) {
@@ -69,6 +72,12 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         true
     });
     let blocks = crate::program::finish(stream, &args.machine);
+    // The run's own warnings go before the alarm that stopped it, if one did.
+    let at = alarms
+        .iter()
+        .position(Alarm::is_error)
+        .unwrap_or(alarms.len());
+    alarms.splice(at..at, summary.warnings());
     let error = alarms.iter().find(|a| a.is_error());
     let result = match (error, end) {
         (Some(alarm), _) => format!(
@@ -87,8 +96,8 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let warnings = alarms.iter().filter(|a| !a.is_error()).count();
     match args.format {
         Format::Human => {
-            print_human(args, &machine, &summary, blocks, &result, warnings);
-            print_time_human(&report, &summary, plan_options.feed_override);
+            print_human(args, &machine, &summary, blocks, &result, warnings, unit);
+            print_time_human(&report, &summary, plan_options.feed_override, &files);
             crate::diagnostics::print_human(&files, &alarms);
         }
         Format::Json => {
@@ -110,10 +119,10 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
                 "dwell_seconds": summary.dwell_seconds,
                 "estimated_seconds": summary.estimated_seconds(),
                 "estimate_method": ESTIMATE_NOTE,
-                "time": time_json(&report, plan_options.feed_override),
+                "time": time_json(&report, plan_options.feed_override, &files),
                 "tools": summary.tools.iter().collect::<Vec<_>>(),
                 "tool_changes": summary.tool_changes,
-                "extents": { "machine": extents_json(&summary.machine_extents), "program": extents_json(&summary.work_extents),
+                "extents": { "program_unit": unit.as_str(), "machine": extents_json(&summary.machine_extents), "program": extents_json(&summary.work_extents),
                              "cutting": extents_json(&summary.cutting_extents) },
                 "alarms": list,
             });
@@ -134,6 +143,7 @@ fn print_human(
     blocks: u64,
     result: &str,
     warnings: usize,
+    unit: LengthUnit,
 ) {
     println!(
         "{}  ({}, {} profile)",
@@ -172,22 +182,27 @@ fn print_human(
             )
         }
     );
-    println!(
-        "  extents machine   {}",
-        extents_text(&summary.machine_extents)
-    );
-    println!(
-        "  extents program   {}",
-        extents_text(&summary.work_extents)
-    );
-    println!(
-        "  extents cutting   {}",
-        extents_text(&summary.cutting_extents)
-    );
+    let extents = [
+        ("machine", &summary.machine_extents),
+        ("program", &summary.work_extents),
+        ("cutting", &summary.cutting_extents),
+    ];
+    for (name, e) in extents {
+        println!("  extents {name:<10}{}", e.describe(unit));
+        // An inch program's extents in mm too, for the machine's side.
+        if unit == LengthUnit::Inch && !e.is_empty() {
+            println!("{:<20}{}", "", e.describe(LengthUnit::Millimetre));
+        }
+    }
 }
 
 /// The planned time, where it goes, and the length / feed estimate beside it.
-fn print_time_human(report: &TimeReport, summary: &Summary, feed_override: f64) {
+fn print_time_human(
+    report: &TimeReport,
+    summary: &Summary,
+    feed_override: f64,
+    files: &ProgramFiles,
+) {
     let percent = if feed_override == 1.0 {
         String::new()
     } else {
@@ -227,9 +242,10 @@ fn print_time_human(report: &TimeReport, summary: &Summary, feed_override: f64) 
     println!("  time by tool      {}", tools.join(", "));
     for (i, block) in report.slowest_blocks().iter().enumerate() {
         let label = if i == 0 { "  slowest blocks" } else { "" };
+        let (file, text) = block_place(files, block.span);
         println!(
-            "{label:<20}line {:<8} {:>9.3} s",
-            block.span.line, block.seconds
+            "{label:<20}{:>9.3} s  {file}:{}  {text}",
+            block.seconds, block.span.line
         );
     }
 }
@@ -238,7 +254,26 @@ fn tool_name(tool: Option<u32>) -> String {
     tool.map_or_else(|| "no tool".to_string(), |t| format!("T{t}"))
 }
 
-fn time_json(report: &TimeReport, feed_override: f64) -> serde_json::Value {
+/// The file name and the text of the block at `span`, for the slowest blocks: read from the
+/// file at the span (a line of a program of any size).
+fn block_place(files: &ProgramFiles, span: vcnc::Span) -> (String, String) {
+    use std::io::{Read, Seek};
+    let path = files.path(span.file);
+    let name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let mut bytes = Vec::new();
+    if let Ok(mut file) = std::fs::File::open(&path) {
+        let _ = file.seek(std::io::SeekFrom::Start(u64::from(span.start)));
+        let _ = file.take(120).read_to_end(&mut bytes);
+    }
+    let end = bytes.iter().position(|&b| b == b'\n' || b == b'\r');
+    let text = crate::diagnostics::display_text(&bytes[..end.unwrap_or(bytes.len())]);
+    (name, text.trim_end().to_string())
+}
+
+fn time_json(report: &TimeReport, feed_override: f64, files: &ProgramFiles) -> serde_json::Value {
     let by_kind: serde_json::Map<String, serde_json::Value> = TimeKind::ALL
         .iter()
         .map(|k| (k.as_str().to_string(), json!(report.seconds(*k))))
@@ -251,7 +286,10 @@ fn time_json(report: &TimeReport, feed_override: f64) -> serde_json::Value {
     let slowest: Vec<_> = report
         .slowest_blocks()
         .iter()
-        .map(|b| json!({ "line": b.span.line, "seconds": b.seconds }))
+        .map(|b| {
+            let (file, text) = block_place(files, b.span);
+            json!({ "file": file, "line": b.span.line, "text": text, "seconds": b.seconds })
+        })
         .collect();
     json!({
         "total_seconds": report.total,
@@ -269,16 +307,6 @@ fn clock(seconds: f64) -> String {
     let minutes = ((total - hours * 3600.0) / 60.0).floor();
     let rest = total - hours * 3600.0 - minutes * 60.0;
     format!("{}:{:02}:{:04.1}", hours as u64, minutes as u64, rest)
-}
-
-fn extents_text(e: &Extents) -> String {
-    if e.is_empty() {
-        return "no motion".to_string();
-    }
-    format!(
-        "X {:.3} .. {:.3}  Y {:.3} .. {:.3}  Z {:.3} .. {:.3}",
-        e.min[0], e.max[0], e.min[1], e.max[1], e.min[2], e.max[2]
-    )
 }
 
 fn extents_json(e: &Extents) -> serde_json::Value {

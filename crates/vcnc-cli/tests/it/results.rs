@@ -59,7 +59,7 @@ fn a_system_variable_of_another_profile_names_that_profile() {
 fn whole_units_without_decimal_points_are_warned_once_with_the_fix() {
     let path = temp_program(
         "whole_units.nc",
-        "G90 G21 G17\nG0 X10 Y10\nZ5\nG1 Z-2 F100\nX60\nY40\nG0 Z5\nM30\n",
+        "G90 G21 G17\nS1000 M3\nG0 X10 Y10\nZ5\nG1 Z-2 F100\nX60\nY40\nG0 Z5\nM30\n",
     );
     let (_, stderr) = ok(&["run", &path]);
     assert_eq!(stderr.matches("warning[V101]").count(), 1, "{stderr}");
@@ -87,8 +87,70 @@ fn whole_units_without_decimal_points_are_warned_once_with_the_fix() {
 fn a_program_written_in_increments_gets_no_warning() {
     let path = temp_program(
         "increments.nc",
-        "G90 G21 G17\nG0 X10000 Y10000\nZ5000\nG1 Z-2000 F100\nX60000\nG4 X500\nM30\n",
+        "G90 G21 G17\nS1000 M3\nG0 X10000 Y10000\nZ5000\nG1 Z-2000 F100\nX60000\nG4 X500\nM30\n",
     );
     let (_, stderr) = ok(&["run", &path]);
     assert!(!stderr.contains("V10"), "{stderr}");
+}
+
+#[test]
+fn the_slowest_blocks_name_their_file_line_and_text() {
+    let path = temp_program(
+        "slow.nc",
+        "G90 G21 G17\nS1000 M3\nG1 X100. F100.\nX110.\nM30\n",
+    );
+    let (stdout, _) = ok(&["run", &path]);
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("  slowest blocks"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(line.contains("slow.nc:3  G1 X100. F100."), "{stdout}");
+    let (json, _) = ok(&["run", "--format", "json", &path]);
+    let value: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let slowest = &value["time"]["slowest_blocks"][0];
+    assert_eq!(slowest["file"], "slow.nc", "{slowest}");
+    assert_eq!(slowest["line"], 3, "{slowest}");
+    assert_eq!(slowest["text"], "G1 X100. F100.", "{slowest}");
+}
+
+#[test]
+fn an_inch_program_shows_its_extents_in_inches_with_mm_beside() {
+    let path = temp_program(
+        "inch.nc",
+        "G90 G20 G17\nS1000 M3\nG0 X0 Y0\nG1 X2. Y-0.5 F10.\nM30\n",
+    );
+    let (stdout, _) = ok(&["run", &path]);
+    assert!(
+        stdout.contains("extents cutting   X 0.0000 .. 2.0000  Y -0.5000 .. 0.0000  Z 0.0000 .. 0.0000 in\n                    X 0.000 .. 50.800  Y -12.700 .. 0.000  Z 0.000 .. 0.000 mm"),
+        "{stdout}"
+    );
+    let (json, _) = ok(&["run", "--format", "json", &path]);
+    let value: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(value["extents"]["program_unit"], "in", "{value}");
+    // A metric program says its unit too.
+    let (stdout, _) = ok(&[
+        "run",
+        &temp_program("mm.nc", "G21 S1000 M3\nG1 X2. F10.\nM30\n"),
+    ]);
+    assert!(stdout.contains("Z 0.000 .. 0.000 mm\n"), "{stdout}");
+}
+
+#[test]
+fn cutting_with_the_spindle_stopped_and_too_fast_is_warned() {
+    let stopped = temp_program("no_spindle.nc", "G90 G21\nG1 X10. F100.\nM30\n");
+    let (stdout, stderr) = ok(&["run", &stopped]);
+    assert!(stdout.contains("1 warning(s)"), "{stdout}");
+    assert!(
+        stderr.contains("warning[V102]: cutting with the spindle stopped"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("no_spindle.nc:2:1"), "{stderr}");
+    let fast = temp_program("fast.nc", "G90 G21\nS30000 M3\nG1 X10. F100.\nM30\n");
+    let (_, stderr) = ok(&["run", &fast]);
+    assert!(
+        stderr.contains(
+            "warning[V103]: the spindle speed is above the machine's maximum of 12000 rpm"
+        ),
+        "{stderr}"
+    );
 }
