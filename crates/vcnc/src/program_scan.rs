@@ -111,6 +111,9 @@ pub struct ProgramScan {
     line_length: u64,
     /// The last byte was a `\r` that ended a line: a `\n` right after it is the same line end.
     after_cr: bool,
+    /// The words of the line being read, kept from line to line.
+    words: Vec<Word>,
+    variable_words: Vec<(u32, usize, usize)>,
 }
 
 /// One address word of a line.
@@ -119,8 +122,9 @@ struct Word {
     letter: u8,
     /// The whole part of the number (saturating).
     whole: u64,
-    /// The number's magnitude.
-    value: f64,
+    /// The digits after the point as an integer over `scale` (enough for a magnitude).
+    after: u64,
+    scale: u64,
     /// Digits after the decimal point, not all zero.
     fraction: bool,
     decimal_point: bool,
@@ -156,6 +160,8 @@ impl ProgramScan {
             line: Vec::new(),
             line_length: 0,
             after_cr: false,
+            words: Vec::new(),
+            variable_words: Vec::new(),
         }
     }
 
@@ -216,25 +222,23 @@ impl ProgramScan {
     }
 
     /// Reads the next bytes of the text. A line ends at `\n`, `\r\n` or a lone `\r`.
-    pub fn add(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            match b {
-                b'\n' if self.after_cr => {
-                    self.after_cr = false;
-                    self.line_offset += 1;
-                }
-                b'\n' | b'\r' => {
-                    self.end_line();
-                    self.after_cr = b == b'\r';
-                }
-                _ => {
-                    self.after_cr = false;
-                    if self.line.len() < LINE_CAP {
-                        self.line.push(b);
-                    }
-                    self.line_length += 1;
-                }
+    pub fn add(&mut self, mut bytes: &[u8]) {
+        while let Some(&first) = bytes.first() {
+            if std::mem::take(&mut self.after_cr) && first == b'\n' {
+                // The `\n` of a `\r\n` whose `\r` ended the line.
+                self.line_offset += 1;
+                bytes = &bytes[1..];
+                continue;
             }
+            let end = bytes.iter().position(|&b| b == b'\n' || b == b'\r');
+            let piece = &bytes[..end.unwrap_or(bytes.len())];
+            let room = LINE_CAP.saturating_sub(self.line.len());
+            self.line.extend_from_slice(&piece[..piece.len().min(room)]);
+            self.line_length += piece.len() as u64;
+            let Some(end) = end else { break };
+            self.after_cr = bytes[end] == b'\r';
+            self.end_line();
+            bytes = &bytes[end + 1..];
         }
     }
 
@@ -281,8 +285,12 @@ impl ProgramScan {
                 .count();
             self.colon_number = Some(self.place(indent, indent + 1 + digits));
         }
-        let (words, variables) = words_of(&self.line);
-        for (number, start, end) in variables {
+        let (mut words, mut variables) = (
+            std::mem::take(&mut self.words),
+            std::mem::take(&mut self.variable_words),
+        );
+        words_of(&self.line, &mut words, &mut variables);
+        for &(number, start, end) in &variables {
             if number >= 1000
                 && self.variables.len() < KEPT
                 && !self.variables.contains_key(&number)
@@ -292,6 +300,7 @@ impl ProgramScan {
             }
         }
         self.read_words(&words);
+        (self.words, self.variable_words) = (words, variables);
     }
 
     fn read_words(&mut self, words: &[Word]) {
@@ -327,7 +336,11 @@ impl ProgramScan {
         for word in words.iter().filter(|w| b"XYZIJ".contains(&w.letter)) {
             if word.decimal_point {
                 self.decimal_point_words += 1;
-                self.largest_decimal_point = self.largest_decimal_point.max(word.value);
+                // Converted only when it may be the largest: most words are not.
+                if word.whole as f64 + 1.0 > self.largest_decimal_point {
+                    let value = word.whole as f64 + word.after as f64 / word.scale as f64;
+                    self.largest_decimal_point = self.largest_decimal_point.max(value);
+                }
             } else if word.whole > 0 {
                 let units = self.units as usize;
                 let place = self.decimal_less[units]
@@ -359,15 +372,15 @@ impl ProgramScan {
     }
 }
 
-/// The address words and the `#` variable numbers of a line: (number, start, end).
-fn words_of(line: &[u8]) -> (Vec<Word>, Vec<(u32, usize, usize)>) {
-    let mut words = Vec::new();
-    let mut variables = Vec::new();
+/// The address words and the `#` variable numbers (number, start, end) of a line, into the
+/// two lists (emptied first; kept from line to line so that no line allocates).
+fn words_of(line: &[u8], words: &mut Vec<Word>, variables: &mut Vec<(u32, usize, usize)>) {
+    words.clear();
+    variables.clear();
     let mut i = 0;
     let alpha = |i: usize| line.get(i).is_some_and(u8::is_ascii_alphabetic);
     while i < line.len() {
-        let b = line[i].to_ascii_uppercase();
-        match b {
+        match line[i].to_ascii_uppercase() {
             b'(' => {
                 i += line[i..]
                     .iter()
@@ -388,8 +401,11 @@ fn words_of(line: &[u8]) -> (Vec<Word>, Vec<(u32, usize, usize)>) {
                 }
                 i += digits;
             }
-            // A letter inside a keyword (GOTO, DO1, SIN, THEN) is no address.
-            b'A'..=b'Z' if !(alpha(i + 1) || (i > 0 && alpha(i - 1))) => {
+            // The addresses the scan reads; a letter inside a keyword (GOTO, DO1, SIN, THEN) is
+            // none. The digits of the other words fall through below.
+            b'G' | b'M' | b'N' | b'P' | b'X' | b'Y' | b'Z' | b'I' | b'J'
+                if !(alpha(i + 1) || (i > 0 && alpha(i - 1))) =>
+            {
                 if let Some(word) = number_after(line, i) {
                     i = word.end - 1;
                     words.push(word);
@@ -399,7 +415,6 @@ fn words_of(line: &[u8]) -> (Vec<Word>, Vec<(u32, usize, usize)>) {
         }
         i += 1;
     }
-    (words, variables)
 }
 
 /// The word whose letter is at `at`, when a number follows it (`X10.`, `Y -5`, not `X#1`).
@@ -415,8 +430,8 @@ fn number_after(line: &[u8], at: usize) -> Option<Word> {
         i += 1;
         skip_spaces(&mut i);
     }
-    let digits_start = i;
     let (mut whole, mut digits, mut fraction, mut decimal_point) = (0u64, 0, false, false);
+    let (mut after, mut scale) = (0u64, 1u64);
     while let Some(&c) = line.get(i) {
         match c {
             b'0'..=b'9' if !decimal_point => {
@@ -426,20 +441,21 @@ fn number_after(line: &[u8], at: usize) -> Option<Word> {
             b'0'..=b'9' => {
                 fraction |= c != b'0';
                 digits += 1;
+                if scale < 1_000_000_000_000 {
+                    after = after * 10 + u64::from(c - b'0');
+                    scale *= 10;
+                }
             }
             b'.' if !decimal_point => decimal_point = true,
             _ => break,
         }
         i += 1;
     }
-    let value = std::str::from_utf8(&line[digits_start..i])
-        .ok()
-        .and_then(|t| t.parse::<f64>().ok())
-        .unwrap_or(whole as f64);
     (digits > 0).then_some(Word {
         letter: line[at].to_ascii_uppercase(),
         whole,
-        value,
+        after,
+        scale,
         fraction,
         decimal_point,
         start: at,

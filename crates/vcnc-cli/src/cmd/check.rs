@@ -43,12 +43,10 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             Layout::for_idle_consumer(),
         )?;
         let files = stream.files().clone();
-        let scan = vcnc::program_scan::ProgramScan::of_file(path);
-        let mut alarms: Vec<Alarm> = scan
-            .ok()
-            .flatten()
-            .map_or_else(Vec::new, |s| s.warnings(&machine));
-        alarms.extend(stream.by_ref().filter_map(Result::err));
+        let scanning = super::run::scan_beside(path);
+        let mut alarms: Vec<Alarm> = stream.by_ref().filter_map(Result::err).collect();
+        let scan = scanning.join().ok().flatten();
+        alarms.splice(0..0, scan.map_or_else(Vec::new, |s| s.warnings(&machine)));
         crate::program::finish(stream, &args.machine);
         let failed = alarms.iter().any(Alarm::is_error);
         if failed {
