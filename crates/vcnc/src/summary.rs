@@ -138,15 +138,20 @@ pub struct Summary {
     pub untimed_moves: u64,
     /// Extents of all motion, machine coordinates.
     pub machine_extents: Extents,
-    /// Extents of all motion, program coordinates.
+    /// Extents of all motion, program coordinates: X and Y from the zero in force at the first
+    /// move, so that a pattern repeated under G52, G92 or G68 (a thread milled at four places,
+    /// holes on a bolt circle) is measured where it is cut, not stacked on its local zero; Z
+    /// from each move's own zero and tool length.
     pub work_extents: Extents,
-    /// Extents of cutting motion only, program coordinates.
+    /// Extents of cutting motion only, program coordinates as [`Summary::work_extents`].
     pub cutting_extents: Extents,
     /// Tools put in the spindle (M06).
     pub tools: BTreeSet<u32>,
     /// Tool changes.
     pub tool_changes: u64,
     rapid_rates: [f64; AXES],
+    /// Machine minus program X and Y at the first move: the zero the program extents keep.
+    first_zero: Option<[f64; 2]>,
     /// Where the last move ended, its offset and whether it cut.
     last_end: Option<(MachinePos, [f64; AXES], bool)>,
     spindle: Spindle,
@@ -175,6 +180,7 @@ impl Summary {
             tools: BTreeSet::new(),
             tool_changes: 0,
             rapid_rates,
+            first_zero: None,
             last_end: None,
             spindle: Spindle::Stopped,
             max_rpm: machine.spindle.max_rpm,
@@ -338,11 +344,12 @@ impl Summary {
     #[inline]
     fn extend_point(&mut self, motion: &Move, p: [f64; 3], cutting: bool) {
         self.machine_extents.add(p);
-        let work = [
-            p[0] - motion.offset[0],
-            p[1] - motion.offset[1],
-            p[2] - motion.offset[2],
-        ];
+        // In X and Y the machine point less a fixed zero: exact for every point of a move,
+        // turned or not (a move's own offset holds at its end point only under G68).
+        let zero = *self
+            .first_zero
+            .get_or_insert([motion.offset[0], motion.offset[1]]);
+        let work = [p[0] - zero[0], p[1] - zero[1], p[2] - motion.offset[2]];
         self.work_extents.add(work);
         if cutting {
             self.cutting_extents.add(work);
@@ -425,13 +432,50 @@ mod tests {
     }
 
     #[test]
-    fn extents_count_the_start_of_a_cut_after_a_rapid_and_each_offset() {
+    fn extents_count_the_start_of_a_cut_after_a_rapid() {
         // The cut starts where the rapid ended: that point belongs to the cutting extents too.
-        let s = summary_of("G90 G54 G0 X5. Y5. Z0\nG1 X6. F100.\nG52 X100.\nG1 X7.\nM30\n");
-        assert_eq!(s.cutting_extents.max[0], 7.0);
-        // After G52 the tool stands at X-94. of the shifted program coordinates: the last cut
-        // starts there.
-        assert_eq!(s.cutting_extents.min[0], -94.0);
-        assert_eq!(s.work_extents.max[0], 7.0);
+        let s = summary_of("G90 G54 G0 X5. Y5. Z0\nG1 X6. F100.\nM30\n");
+        assert_eq!(s.cutting_extents.min[0], 5.0);
+        assert_eq!(s.cutting_extents.max[0], 6.0);
+    }
+
+    #[test]
+    fn a_pattern_repeated_under_g52_is_measured_where_it_is_cut() {
+        // A circle of radius 1.6 milled about two local zeros, 97.5 mm each side of the
+        // part's: the cut spans +-99.1, not +-1.6.
+        let circle = "G0 X0 Y0\nG1 Z-1. F300.\nG1 X1.6\nG3 I-1.6\nG0 Z5.\n";
+        let program = format!(
+            "G90 G17 G54 G0 X0 Y0 Z5.\nG52 X97.5\n{circle}G52 X-97.5\n{circle}G52 X0\nM30\n"
+        );
+        let s = summary_of(&program);
+        let c = s.cutting_extents;
+        assert!(
+            (c.min[0] + 99.1).abs() < 1e-9 && (c.max[0] - 99.1).abs() < 1e-9,
+            "{c:?}"
+        );
+        assert!(
+            (c.min[1] + 1.6).abs() < 1e-9 && (c.max[1] - 1.6).abs() < 1e-9,
+            "{c:?}"
+        );
+    }
+
+    #[test]
+    fn holes_on_a_circle_turned_with_g68_are_measured_where_they_are_drilled() {
+        // The same hole at X50 turned by 0, 90, 180 and 270 degrees: the holes lie on a circle
+        // of radius 50, not all at X50 Y0.
+        let mut program = String::from("G90 G17 G54 G0 X0 Y0 Z5.\n");
+        for angle in [0, 90, 180, 270] {
+            program.push_str(&format!(
+                "G68 X0 Y0 R{angle}.\nG0 X50. Y0\nG1 Z-2. F100.\nG0 Z5.\nG69\n"
+            ));
+        }
+        program.push_str("M30\n");
+        let c = summary_of(&program).cutting_extents;
+        for (got, want) in c.min[..2].iter().zip([-50.0, -50.0]) {
+            assert!((got - want).abs() < 1e-9, "{c:?}");
+        }
+        for (got, want) in c.max[..2].iter().zip([50.0, 50.0]) {
+            assert!((got - want).abs() < 1e-9, "{c:?}");
+        }
     }
 }
