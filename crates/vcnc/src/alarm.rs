@@ -152,6 +152,10 @@ pub enum AlarmCode {
     /// A warning: a spindle speed above the machine's `max_rpm` (the control clamps it, or
     /// refuses it).
     SpindleSpeedAboveMaximum,
+    /// A warning: the program never selects its unit (no G20 or G21), the profile starts in
+    /// mm, and the program's comments give sizes in inches (`1/2" END MILL`): written for a
+    /// control that starts in inches. Fix: G20 at the program's start.
+    UnitNotSelected,
 }
 
 impl AlarmCode {
@@ -204,6 +208,7 @@ impl AlarmCode {
             DecimalLessScale => "decimal_less_scale",
             CuttingWithSpindleStopped => "cutting_with_spindle_stopped",
             SpindleSpeedAboveMaximum => "spindle_speed_above_maximum",
+            UnitNotSelected => "unit_not_selected",
         }
     }
 
@@ -256,6 +261,7 @@ impl AlarmCode {
             DecimalLessScale => "V101",
             CuttingWithSpindleStopped => "V102",
             SpindleSpeedAboveMaximum => "V103",
+            UnitNotSelected => "V104",
         }
     }
 
@@ -306,6 +312,7 @@ impl AlarmCode {
         AlarmCode::DecimalLessScale,
         AlarmCode::CuttingWithSpindleStopped,
         AlarmCode::SpindleSpeedAboveMaximum,
+        AlarmCode::UnitNotSelected,
     ];
 }
 

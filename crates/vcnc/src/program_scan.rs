@@ -103,6 +103,10 @@ pub struct ProgramScan {
     units: Units,
     /// The units of the first G20 or G21.
     first_units: Option<Units>,
+    /// A G70 or G71 (units on Syntec).
+    g70_or_g71: bool,
+    /// The first comment that gives a size in inches (`1/2" END MILL`, `3/8IN DRILL`).
+    inch_comment: Option<Place>,
     /// The line being read: its number, the offset of its first byte, its first bytes (at most
     /// [`LINE_CAP`]) and its length.
     line_number: u32,
@@ -155,6 +159,8 @@ impl ProgramScan {
             largest_decimal_point: 0.0,
             units: Units::PowerOn,
             first_units: None,
+            g70_or_g71: false,
+            inch_comment: None,
             line_number: 1,
             line_offset: 0,
             line: Vec::new(),
@@ -285,6 +291,9 @@ impl ProgramScan {
                 .count();
             self.colon_number = Some(self.place(indent, indent + 1 + digits));
         }
+        if self.inch_comment.is_none() && self.line.contains(&b'(') {
+            self.inch_comment = inch_size_in_comment(&self.line).map(|(a, b)| self.place(a, b));
+        }
         let (mut words, mut variables) = (
             std::mem::take(&mut self.words),
             std::mem::take(&mut self.variable_words),
@@ -311,6 +320,8 @@ impl ProgramScan {
             } else if word.is(b'G', 21) {
                 self.units = Units::Millimetre;
                 self.first_units.get_or_insert(Units::Millimetre);
+            } else if word.is(b'G', 70) || word.is(b'G', 71) {
+                self.g70_or_g71 = true;
             } else if word.letter == b'N' && !word.fraction && word.whole < SEQUENCE_BITS as u64 {
                 let n = word.whole as usize;
                 self.sequences[n / 64] |= 1 << (n % 64);
@@ -368,8 +379,78 @@ impl ProgramScan {
         self.profile_warning(machine)
             .into_iter()
             .chain(self.decimal_less_warning(&machine.profile))
+            .chain(self.unit_warning(&machine.profile))
             .collect()
     }
+
+    /// One warning when a program that never selects its unit, on a profile that starts in
+    /// mm, gives its sizes in inches in its comments: a shop whose control starts in inches
+    /// (Haas setting 9) writes no G20, and the part would come out 25.4 times too small.
+    fn unit_warning(&self, profile: &Profile) -> Option<Alarm> {
+        let selected = self.first_units.is_some() || (self.g70_or_g71 && profile.g70_g71_units);
+        if selected || power_on_unit(profile) != LengthUnit::Millimetre {
+            return None;
+        }
+        let place = self.inch_comment.as_ref()?;
+        Some(
+            Alarm::warning(
+                AlarmCode::UnitNotSelected,
+                place.span,
+                format!(
+                    "the program never selects its unit (no G20 or G21) and its comments give sizes in inches (`{}`): the {} profile starts in mm, so the part comes out 25.4 times too small if it is meant in inches",
+                    place.text,
+                    profile.name.as_str()
+                ),
+            )
+            .with_help("if it is, add G20 at its start (the control it was written for starts in inches)"),
+        )
+    }
+}
+
+/// The first size in inches inside a comment of `line`: a number written against `IN`,
+/// `INCH` or `"` (`1IN`, `3/8IN`, `.238"`), or a fraction before them (`1/4 IN`). Prose such
+/// as `Z-5 in G54` is none. Returns its bytes.
+fn inch_size_in_comment(line: &[u8]) -> Option<(usize, usize)> {
+    let mut depth = 0;
+    for (i, &b) in line.iter().enumerate() {
+        match b {
+            b'(' => depth += 1,
+            b')' => depth = std::cmp::max(depth, 1) - 1,
+            b'0'..=b'9' if depth > 0 && !line.get(i + 1).is_some_and(u8::is_ascii_digit) => {
+                let start = line[..i]
+                    .iter()
+                    .rposition(|c| !(c.is_ascii_digit() || *c == b'.' || *c == b'/'))
+                    .map_or(0, |p| p + 1);
+                let fraction = line[start..=i].contains(&b'/');
+                let mut j = i + 1;
+                if fraction {
+                    while line.get(j) == Some(&b' ') {
+                        j += 1;
+                    }
+                }
+                let rest = &line[j..];
+                let unit = if rest.first() == Some(&b'"') {
+                    1
+                } else if rest.len() >= 2 && rest[..2].eq_ignore_ascii_case(b"IN") {
+                    // `IN` or `INCH`, not the start of another word (`10INSERTS`).
+                    let word = rest.iter().take_while(|c| c.is_ascii_alphabetic()).count();
+                    let inch = word == 2 || (word == 4 && rest[..4].eq_ignore_ascii_case(b"INCH"));
+                    if inch {
+                        word
+                    } else {
+                        0
+                    }
+                } else {
+                    0
+                };
+                if unit > 0 {
+                    return Some((start, j + unit));
+                }
+            }
+            _ => {}
+        }
+    }
+    None
 }
 
 /// The address words and the `#` variable numbers (number, start, end) of a line, into the
@@ -800,6 +881,33 @@ mod tests {
         assert!(ProgramScan::of_text(tiny.as_bytes())
             .warnings(&machine)
             .is_empty());
+    }
+
+    #[test]
+    fn inch_sizes_in_the_comments_of_a_program_without_g20_are_found() {
+        let program = "O1\n(T 2 = 1/2 END MILL)\n(T 5 = 1/4 IN DRILL)\nG0 X1. Y.5\nM30\n";
+        let warnings = check(program, ProfileName::Haas);
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        assert_eq!(warnings[0].0, AlarmCode::UnitNotSelected);
+        assert!(warnings[0].1.contains("(`1/4 IN`)"), "{warnings:?}");
+        // G20 says it; prose is no size; a machine that starts in inches needs nothing.
+        assert!(check(&format!("G20\n{program}"), ProfileName::Haas).is_empty());
+        assert!(check(
+            "(Z-5 in G54, 20000 inch)\nG0 X1.\nM30\n",
+            ProfileName::Fanuc
+        )
+        .is_empty());
+        let mut machine = Machine::default();
+        machine.profile.power_on.units = 200;
+        assert!(ProgramScan::of_text(program.as_bytes())
+            .warnings(&machine)
+            .is_empty());
+        assert_eq!(
+            inch_size_in_comment(b"(T22 = .238\" B DRILL)"),
+            Some((7, 12))
+        );
+        assert_eq!(inch_size_in_comment(b"(1IN FACE MILL)"), Some((1, 4)));
+        assert_eq!(inch_size_in_comment(b"(10INSERTS) X1IN"), None);
     }
 
     #[test]

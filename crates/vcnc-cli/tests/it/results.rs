@@ -154,3 +154,15 @@ fn cutting_with_the_spindle_stopped_and_too_fast_is_warned() {
         "{stderr}"
     );
 }
+
+#[test]
+fn an_inch_program_without_g20_on_a_metric_profile_is_warned() {
+    let path = temp_program(
+        "inch_shop.nc",
+        "O10020\n(T 1 = 1IN FACE MILL)\nS5000 M3\nG0 X-1.5 Y.51\nG1 Z-.1 F20.\nX3.51\nM30\n",
+    );
+    let (_, stderr) = ok(&["run", "--profile", "haas", &path]);
+    assert!(stderr.contains("warning[V104]"), "{stderr}");
+    assert!(stderr.contains("(`1IN`)"), "{stderr}");
+    assert!(stderr.contains("add G20"), "{stderr}");
+}

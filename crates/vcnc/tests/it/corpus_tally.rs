@@ -2,7 +2,8 @@
 //! its dialect needs, and the settings its author's control evidently had): every run that ends
 //! without an error must give a plausible result, not merely "ok". A program whose text cuts
 //! (G01, G02, G03 or a canned cycle) cuts at least once; the program scan finds no sign that
-//! it was written for another profile or for whole-unit input; the travel check passes.
+//! it was written for another profile, for whole-unit input or in inches; the travel check
+//! passes.
 //!
 //! `VCNC_TALLY=FILE cargo test -p vcnc --test it corpus_tally::` also writes the table
 //! (program, profile, result, cutting moves, cutting extents, warnings, reason) as markdown.
@@ -125,6 +126,8 @@ fn run_one(folder: &str, path: &std::path::Path, corpus: &std::path::Path) -> Ro
         Some("written for another profile than its best".to_string())
     } else if codes.contains(&AlarmCode::DecimalLessScale) {
         Some("lengths read a thousandth of their size".to_string())
+    } else if codes.contains(&AlarmCode::UnitNotSelected) {
+        Some("an inch program run in mm".to_string())
     } else {
         None
     };
