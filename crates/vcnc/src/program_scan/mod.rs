@@ -85,6 +85,42 @@ enum Units {
     Inch = 2,
 }
 
+/// The length words of a program (X Y Z I J outside G04, G10, G65 and G66 blocks).
+#[derive(Clone, Debug, Default)]
+struct Lengths {
+    /// Those without a decimal point, by unit mode, indexed by [`Units`].
+    decimal_less: [DecimalLessWords; 3],
+    /// Those with a decimal point.
+    decimal_point_words: u64,
+    /// The largest of them, in the units written.
+    largest_decimal_point: f64,
+}
+
+/// What the text says of its unit.
+#[derive(Clone, Debug)]
+struct UnitMarks {
+    /// The mode in force at the line being read.
+    current: Units,
+    /// The units of the first G20 or G21.
+    first: Option<Units>,
+    /// A G70 or G71 (units on Syntec).
+    g70_or_g71: bool,
+    /// The first comment that gives a size in inches (`1/2" END MILL`, `3/8IN DRILL`).
+    inch_comment: Option<Place>,
+}
+
+/// The line being read: its number, the offset of its first byte, its first bytes (at most
+/// [`LINE_CAP`]) and its whole length.
+#[derive(Clone, Debug)]
+struct LineBuffer {
+    number: u32,
+    offset: u64,
+    bytes: Vec<u8>,
+    length: u64,
+    /// The last byte was a `\r` that ended a line: a `\n` right after it is the same line end.
+    after_cr: bool,
+}
+
 /// What a program's text shows of the control it was written for (see the module doc).
 #[derive(Clone, Debug)]
 pub struct ProgramScan {
@@ -99,27 +135,12 @@ pub struct ProgramScan {
     syntec_macro: Option<Place>,
     /// A `:1234` program number (FANUC 0M tapes).
     colon_number: Option<Place>,
-    /// Decimal-less lengths by unit mode, indexed by [`Units`].
-    decimal_less: [DecimalLessWords; 3],
-    /// Length words written with a decimal point.
-    decimal_point_words: u64,
-    /// The largest of them, in the units written.
-    largest_decimal_point: f64,
-    units: Units,
-    /// The units of the first G20 or G21.
-    first_units: Option<Units>,
-    /// A G70 or G71 (units on Syntec).
-    g70_or_g71: bool,
-    /// The first comment that gives a size in inches (`1/2" END MILL`, `3/8IN DRILL`).
-    inch_comment: Option<Place>,
-    /// The line being read: its number, the offset of its first byte, its first bytes (at most
-    /// [`LINE_CAP`]) and its length.
-    line_number: u32,
-    line_offset: u64,
-    line: Vec<u8>,
-    line_length: u64,
-    /// The last byte was a `\r` that ended a line: a `\n` right after it is the same line end.
-    after_cr: bool,
+    /// The length words, with and without a decimal point.
+    lengths: Lengths,
+    /// The unit codes and the inch sizes in comments.
+    units: UnitMarks,
+    /// The line being read.
+    line: LineBuffer,
     /// The words of the line being read, kept from line to line.
     words: Vec<Word>,
     variable_words: Vec<(u32, usize, usize)>,
@@ -135,18 +156,20 @@ impl ProgramScan {
             variables: BTreeMap::new(),
             syntec_macro: None,
             colon_number: None,
-            decimal_less: Default::default(),
-            decimal_point_words: 0,
-            largest_decimal_point: 0.0,
-            units: Units::PowerOn,
-            first_units: None,
-            g70_or_g71: false,
-            inch_comment: None,
-            line_number: 1,
-            line_offset: 0,
-            line: Vec::new(),
-            line_length: 0,
-            after_cr: false,
+            lengths: Lengths::default(),
+            units: UnitMarks {
+                current: Units::PowerOn,
+                first: None,
+                g70_or_g71: false,
+                inch_comment: None,
+            },
+            line: LineBuffer {
+                number: 1,
+                offset: 0,
+                bytes: Vec::new(),
+                length: 0,
+                after_cr: false,
+            },
             words: Vec::new(),
             variable_words: Vec::new(),
         }
@@ -211,19 +234,21 @@ impl ProgramScan {
     /// Reads the next bytes of the text. A line ends at `\n`, `\r\n` or a lone `\r`.
     pub fn add(&mut self, mut bytes: &[u8]) {
         while let Some(&first) = bytes.first() {
-            if std::mem::take(&mut self.after_cr) && first == b'\n' {
+            if std::mem::take(&mut self.line.after_cr) && first == b'\n' {
                 // The `\n` of a `\r\n` whose `\r` ended the line.
-                self.line_offset += 1;
+                self.line.offset += 1;
                 bytes = &bytes[1..];
                 continue;
             }
             let end = bytes.iter().position(|&b| b == b'\n' || b == b'\r');
             let piece = &bytes[..end.unwrap_or(bytes.len())];
-            let room = LINE_CAP.saturating_sub(self.line.len());
-            self.line.extend_from_slice(&piece[..piece.len().min(room)]);
-            self.line_length += piece.len() as u64;
+            let room = LINE_CAP.saturating_sub(self.line.bytes.len());
+            self.line
+                .bytes
+                .extend_from_slice(&piece[..piece.len().min(room)]);
+            self.line.length += piece.len() as u64;
             let Some(end) = end else { break };
-            self.after_cr = bytes[end] == b'\r';
+            self.line.after_cr = bytes[end] == b'\r';
             self.end_line();
             bytes = &bytes[end + 1..];
         }
@@ -231,31 +256,31 @@ impl ProgramScan {
 
     /// Ends the text: a last line without a line end is read too.
     pub fn finish(&mut self) {
-        if self.line_length > 0 {
+        if self.line.length > 0 {
             self.scan_line();
         }
     }
 
     fn end_line(&mut self) {
         self.scan_line();
-        self.line_number = self.line_number.saturating_add(1);
-        self.line_offset += self.line_length + 1;
-        self.line.clear();
-        self.line_length = 0;
+        self.line.number = self.line.number.saturating_add(1);
+        self.line.offset += self.line.length + 1;
+        self.line.bytes.clear();
+        self.line.length = 0;
     }
 
     /// The place of bytes `start..end` of the line being read.
     fn place(&self, start: usize, end: usize) -> Place {
-        let at = |i: usize| u32::try_from(self.line_offset + i as u64).unwrap_or(u32::MAX);
+        let at = |i: usize| u32::try_from(self.line.offset + i as u64).unwrap_or(u32::MAX);
         Place {
-            span: Span::new(self.file, self.line_number, at(start)..at(end)),
-            text: String::from_utf8_lossy(&self.line[start..end]).into_owned(),
+            span: Span::new(self.file, self.line.number, at(start)..at(end)),
+            text: String::from_utf8_lossy(&self.line.bytes[start..end]).into_owned(),
         }
     }
 
     fn scan_line(&mut self) {
-        let trimmed = self.line.trim_ascii_start();
-        let indent = self.line.len() - trimmed.len();
+        let trimmed = self.line.bytes.trim_ascii_start();
+        let indent = self.line.bytes.len() - trimmed.len();
         if self.syntec_macro.is_none()
             && trimmed.len() >= 7
             && trimmed[..7].eq_ignore_ascii_case(b"%@MACRO")
@@ -272,14 +297,15 @@ impl ProgramScan {
                 .count();
             self.colon_number = Some(self.place(indent, indent + 1 + digits));
         }
-        if self.inch_comment.is_none() && self.line.contains(&b'(') {
-            self.inch_comment = inch_size_in_comment(&self.line).map(|(a, b)| self.place(a, b));
+        if self.units.inch_comment.is_none() && self.line.bytes.contains(&b'(') {
+            self.units.inch_comment =
+                inch_size_in_comment(&self.line.bytes).map(|(a, b)| self.place(a, b));
         }
         let (mut words, mut variables) = (
             std::mem::take(&mut self.words),
             std::mem::take(&mut self.variable_words),
         );
-        words_of(&self.line, &mut words, &mut variables);
+        words_of(&self.line.bytes, &mut words, &mut variables);
         for &(number, start, end) in &variables {
             if number >= 1000
                 && self.variables.len() < KEPT
@@ -296,13 +322,13 @@ impl ProgramScan {
     fn read_words(&mut self, words: &[Word]) {
         for word in words {
             if word.is(b'G', 20) {
-                self.units = Units::Inch;
-                self.first_units.get_or_insert(Units::Inch);
+                self.units.current = Units::Inch;
+                self.units.first.get_or_insert(Units::Inch);
             } else if word.is(b'G', 21) {
-                self.units = Units::Millimetre;
-                self.first_units.get_or_insert(Units::Millimetre);
+                self.units.current = Units::Millimetre;
+                self.units.first.get_or_insert(Units::Millimetre);
             } else if word.is(b'G', 70) || word.is(b'G', 71) {
-                self.g70_or_g71 = true;
+                self.units.g70_or_g71 = true;
             } else if word.letter == b'N' && !word.fraction && word.whole < SEQUENCE_BITS as u64 {
                 let n = word.whole as usize;
                 self.sequences[n / 64] |= 1 << (n % 64);
@@ -327,18 +353,19 @@ impl ProgramScan {
         }
         for word in words.iter().filter(|w| b"XYZIJ".contains(&w.letter)) {
             if word.decimal_point {
-                self.decimal_point_words += 1;
+                self.lengths.decimal_point_words += 1;
                 // Converted only when it may be the largest: most words are not.
-                if word.whole as f64 + 1.0 > self.largest_decimal_point {
+                if word.whole as f64 + 1.0 > self.lengths.largest_decimal_point {
                     let value = word.whole as f64 + word.after as f64 / word.scale as f64;
-                    self.largest_decimal_point = self.largest_decimal_point.max(value);
+                    self.lengths.largest_decimal_point =
+                        self.lengths.largest_decimal_point.max(value);
                 }
             } else if word.whole > 0 {
-                let units = self.units as usize;
-                let place = self.decimal_less[units]
+                let units = self.units.current as usize;
+                let place = self.lengths.decimal_less[units]
                     .keeps(word.whole)
                     .then(|| self.place(word.start, word.end));
-                self.decimal_less[units].add(word.whole, place);
+                self.lengths.decimal_less[units].add(word.whole, place);
             }
         }
     }
@@ -352,7 +379,7 @@ impl ProgramScan {
     /// The unit the program is written in: its first G20 or G21, else the profile's power-on
     /// unit.
     pub fn program_unit(&self, profile: &Profile) -> LengthUnit {
-        match self.first_units {
+        match self.units.first {
             Some(Units::Inch) => LengthUnit::Inch,
             Some(_) => LengthUnit::Millimetre,
             None => power_on_unit(profile),
@@ -360,8 +387,9 @@ impl ProgramScan {
     }
 
     /// The warnings this program's text gives on `machine`: a program that looks written for
-    /// another of vcnc's profiles, and lengths without a decimal point that make the part a
-    /// thousandth of its size.
+    /// another of vcnc's profiles (V100), lengths without a decimal point that make the part a
+    /// thousandth of its size (V101), an inch program without G20 on a profile that starts in
+    /// mm (V104).
     pub fn warnings(&self, machine: &Machine) -> Vec<Alarm> {
         self.profile_warning(machine)
             .into_iter()

@@ -122,7 +122,7 @@ fn inch_sizes_in_the_comments_of_a_program_without_g20_are_found() {
 #[test]
 fn places_are_byte_offsets_of_the_file_whatever_its_line_ends() {
     let scan = ProgramScan::of_text(b"G21\r\nG0 X1.\rZ5\n");
-    let (_, place) = scan.decimal_less[Units::Millimetre as usize]
+    let (_, place) = scan.lengths.decimal_less[Units::Millimetre as usize]
         .smallest
         .clone()
         .unwrap();
@@ -138,7 +138,14 @@ fn keywords_comments_and_arguments_are_not_words() {
     let scan = ProgramScan::of_text(
         b"(X5 IN A COMMENT)\nIF [#1 GT 10] GOTO20\nWHILE [#2 LT 3] DO1\nEND1\nG65 P9000 X5\n",
     );
-    assert_eq!(scan.decimal_less.iter().map(|b| b.count).sum::<u64>(), 0);
+    assert_eq!(
+        scan.lengths
+            .decimal_less
+            .iter()
+            .map(|b| b.count)
+            .sum::<u64>(),
+        0
+    );
     // GOTO20 and DO1 set no sequence number.
     assert!(!scan.has_sequence(20) && !scan.has_sequence(1));
 }

@@ -150,12 +150,13 @@ impl ProgramScan {
             }
         };
         let buckets = self
+            .lengths
             .decimal_less
             .iter()
             .enumerate()
             .filter(|(_, b)| b.count > 0);
-        let count: u64 = self.decimal_less.iter().map(|b| b.count).sum();
-        let suspicious = if self.decimal_point_words == 0 {
+        let count: u64 = self.lengths.decimal_less.iter().map(|b| b.count).sum();
+        let suspicious = if self.lengths.decimal_point_words == 0 {
             count > 0
                 && buckets
                     .clone()
@@ -193,7 +194,7 @@ impl ProgramScan {
                 format!("{n} lengths")
             }
         };
-        let others = if self.decimal_point_words == 0 {
+        let others = if self.lengths.decimal_point_words == 0 {
             format!(
                 "{} in this program, none with a decimal point, all come out under {SMALL_MM} mm so",
                 lengths(count)
@@ -202,8 +203,8 @@ impl ProgramScan {
             format!(
                 "{} in this program without a decimal point, beside {} with one (up to {})",
                 lengths(count),
-                self.decimal_point_words,
-                self.largest_decimal_point
+                self.lengths.decimal_point_words,
+                self.lengths.largest_decimal_point
             )
         };
         Some(
@@ -227,11 +228,12 @@ impl ProgramScan {
     /// mm, gives its sizes in inches in its comments: a shop whose control starts in inches
     /// (Haas setting 9) writes no G20, and the part would come out 25.4 times too small.
     pub(super) fn unit_warning(&self, profile: &Profile) -> Option<Alarm> {
-        let selected = self.first_units.is_some() || (self.g70_or_g71 && profile.g70_g71_units);
+        let selected =
+            self.units.first.is_some() || (self.units.g70_or_g71 && profile.g70_g71_units);
         if selected || power_on_unit(profile) != LengthUnit::Millimetre {
             return None;
         }
-        let place = self.inch_comment.as_ref()?;
+        let place = self.units.inch_comment.as_ref()?;
         Some(
             Alarm::warning(
                 AlarmCode::UnitNotSelected,
