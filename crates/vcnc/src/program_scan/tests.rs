@@ -149,3 +149,33 @@ fn keywords_comments_and_arguments_are_not_words() {
     // GOTO20 and DO1 set no sequence number.
     assert!(!scan.has_sequence(20) && !scan.has_sequence(1));
 }
+
+proptest::proptest! {
+    #[test]
+    fn any_bytes_scan_without_panic_and_every_place_lies_in_the_text(
+        bytes in proptest::collection::vec(
+            proptest::prop_oneof![
+                proptest::sample::select(b"XYZIJGMNP#()/.-+ 0123456789\r\n:%@".to_vec()),
+                proptest::num::u8::ANY,
+            ],
+            0..400,
+        ),
+        split in 0usize..400,
+    ) {
+        // Fed in two pieces, cut anywhere (a `\r\n` too), as a reader hands it over.
+        let mut scan = ProgramScan::new(FileId(0));
+        let (a, b) = bytes.split_at(split.min(bytes.len()));
+        scan.add(a);
+        scan.add(b);
+        scan.finish();
+        for profile in ProfileName::ALL {
+            let machine = Machine::default().with_profile(profile).unwrap();
+            for alarm in scan.warnings(&machine) {
+                let span = alarm.span.unwrap();
+                proptest::prop_assert!(span.start <= span.end && span.end as usize <= bytes.len());
+            }
+        }
+        let whole = ProgramScan::of_text(&bytes);
+        proptest::prop_assert_eq!(whole.line.number, scan.line.number);
+    }
+}

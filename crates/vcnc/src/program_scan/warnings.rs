@@ -34,7 +34,7 @@ impl ProgramScan {
                 .find(|(n, _)| self.has_sequence(**n));
             if let Some((n, place)) = called {
                 let instead = if profile.subprogram_m_codes.contains(&97) {
-                    "reads M97 as another code"
+                    "turns the interrupt program off with M97"
                 } else {
                     "passes M97 to the machine as an M code"
                 };
