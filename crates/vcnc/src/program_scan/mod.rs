@@ -135,6 +135,8 @@ pub struct ProgramScan {
     syntec_macro: Option<Place>,
     /// A `:1234` program number (FANUC 0M tapes).
     colon_number: Option<Place>,
+    /// The first G41 or G42 block with H and no D (`G42 H19`, FANUC 0M's radius by H).
+    radius_by_h: Option<Place>,
     /// The length words, with and without a decimal point.
     lengths: Lengths,
     /// The unit codes and the inch sizes in comments.
@@ -156,6 +158,7 @@ impl ProgramScan {
             variables: BTreeMap::new(),
             syntec_macro: None,
             colon_number: None,
+            radius_by_h: None,
             lengths: Lengths::default(),
             units: UnitMarks {
                 current: Units::PowerOn,
@@ -342,6 +345,16 @@ impl ProgramScan {
                     let place = self.place(m97.start.min(p.start), m97.end.max(p.end));
                     self.m97_targets.insert(number, place);
                 }
+            }
+        }
+        if self.radius_by_h.is_none() && words.iter().any(|w| w.is(b'G', 41) || w.is(b'G', 42)) {
+            let h = words.iter().find(|w| w.letter == b'H');
+            if let (Some(h), false) = (h, words.iter().any(|w| w.letter == b'D')) {
+                let start = words
+                    .iter()
+                    .find(|w| w.is(b'G', 41) || w.is(b'G', 42))
+                    .map_or(h.start, |g| g.start.min(h.start));
+                self.radius_by_h = Some(self.place(start, h.end.max(start)));
             }
         }
         // X of G04 is a time; the words of G10, G65 and G66 are data and arguments.

@@ -50,6 +50,29 @@ fn a_variable_only_another_profile_has_names_it() {
 }
 
 #[test]
+fn radius_compensation_by_h_names_the_0m_profile_with_its_colon_mark() {
+    let program = ":0097\nG55 G0 X2. Y0\nG42 H19 Y10. F39\nX11.\nM30\n";
+    let warnings = check(program, ProfileName::Fanuc);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(
+        warnings[0].1.contains("for the fanuc0m profile, not fanuc"),
+        "{warnings:?}"
+    );
+    assert!(
+        warnings[0]
+            .1
+            .contains("`G42 H19` (line 3) takes the cutter radius from H"),
+        "{warnings:?}"
+    );
+    assert!(
+        warnings[0].1.contains("`:0097` (line 1) is fanuc0m's"),
+        "{warnings:?}"
+    );
+    assert!(check(program, ProfileName::Fanuc0m).is_empty());
+    assert!(check("G41 D1 H1 X1.\nM30\n", ProfileName::Fanuc).is_empty());
+}
+
+#[test]
 fn a_syntec_mark_backs_up_a_syntec_variable() {
     let warnings = check("%@MACRO\n#1 := #1000;\nM30;\n", ProfileName::Fanuc);
     assert_eq!(warnings.len(), 1, "{warnings:?}");

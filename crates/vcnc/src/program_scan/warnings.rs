@@ -50,6 +50,22 @@ impl ProgramScan {
                 });
             }
         }
+        if let (Some(place), false) = (&self.radius_by_h, profile.radius_offset_by_h) {
+            let fits: Vec<ProfileName> = ProfileName::ALL
+                .into_iter()
+                .filter(|&n| Profile::builtin(n).radius_offset_by_h)
+                .collect();
+            clues.push(Clue {
+                says: format!(
+                    "`{}` (line {}) takes the cutter radius from H on {}, but {here} from D (none here)",
+                    place.text,
+                    place.span.line,
+                    names(&fits)
+                ),
+                place: place.clone(),
+                fits,
+            });
+        }
         for (&number, place) in &self.variables {
             if has_variable(machine, number) {
                 continue;

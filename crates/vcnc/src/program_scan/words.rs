@@ -107,7 +107,7 @@ pub(super) fn words_of(
             }
             // The addresses the scan reads; a letter inside a keyword (GOTO, DO1, SIN, THEN) is
             // none. The digits of the other words fall through below.
-            b'G' | b'M' | b'N' | b'P' | b'X' | b'Y' | b'Z' | b'I' | b'J'
+            b'G' | b'M' | b'N' | b'P' | b'X' | b'Y' | b'Z' | b'I' | b'J' | b'H' | b'D'
                 if !(alpha(i + 1) || (i > 0 && alpha(i - 1))) =>
             {
                 if let Some(word) = number_after(line, i) {
