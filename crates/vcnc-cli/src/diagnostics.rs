@@ -12,7 +12,7 @@ use codespan_reporting::term::{self, Config};
 use serde_json::{json, Value};
 use std::collections::HashMap;
 use std::fs::File;
-use std::io::{Cursor, IsTerminal, Write};
+use std::io::{Cursor, IsTerminal, Read, Seek, SeekFrom, Write};
 use std::path::PathBuf;
 use std::sync::Arc;
 use vcnc::pipeline::ProgramFiles;
@@ -38,6 +38,35 @@ impl Texts {
 
     fn path(&self, file: FileId) -> PathBuf {
         self.files.path(file)
+    }
+
+    /// The file name of `file` (without its folders), and up to `most` bytes of its text from
+    /// `span`'s start to the line's end, escaped: a block as the summary names it.
+    pub(crate) fn block(&self, span: Span, most: u64) -> (String, String) {
+        let path = self.path(span.file);
+        let name = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        let mut bytes = Vec::new();
+        let start = u64::from(span.start);
+        match (&self.main, span.file) {
+            (Some(text), FileId(0)) => {
+                let from = (start as usize).min(text.len());
+                let to = (from + most as usize).min(text.len());
+                bytes.extend_from_slice(&text[from..to]);
+            }
+            _ => {
+                if let Ok(mut file) = File::open(&path) {
+                    if file.seek(SeekFrom::Start(start)).is_ok() {
+                        let _ = file.take(most).read_to_end(&mut bytes);
+                    }
+                }
+            }
+        }
+        let end = bytes.iter().position(|&b| b == b'\n' || b == b'\r');
+        let text = String::from_utf8_lossy(&bytes[..end.unwrap_or(bytes.len())]).into_owned();
+        (escape(&name), escape(text.trim_end()))
     }
 
     /// The bytes around `span`'s start (none when its file cannot be read any more).

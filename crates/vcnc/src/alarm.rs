@@ -140,6 +140,26 @@ pub enum AlarmCode {
     /// interrupts (G41/G42, G12.1, G16, G51, G51.1, G05, G05.1). Fix: name a block where M96 is in force
     /// and none of these modes is on.
     InterruptIgnored,
+    /// A warning: the program looks written for another of vcnc's profiles. Its text holds
+    /// something that this profile runs otherwise, and that one as written: `M97 P15` with an
+    /// N15 in the program (Haas's local subprogram call; elsewhere an M code for the machine),
+    /// a system variable this profile does not have (#3026, #5405). Fix: `--profile`, or the
+    /// machine file's `profile`.
+    WrittenForAnotherProfile,
+    /// A warning: lengths written without a decimal point come out under a millimetre read in
+    /// least increments (`G0 X10 Y10` goes to 0.010 mm): a program meant in whole units. Fix:
+    /// `decimal_less = "whole_units"` under `[profile_overrides]` in the machine file, or the
+    /// decimal points.
+    DecimalLessScale,
+    /// A warning: a cutting move while the spindle is stopped (before M03/M04, after M05).
+    CuttingWithSpindleStopped,
+    /// A warning: a spindle speed above the machine's `max_rpm` (the control clamps it, or
+    /// refuses it).
+    SpindleSpeedAboveMaximum,
+    /// A warning: the program never selects its unit (no G20 or G21), the profile starts in
+    /// mm, and the program's comments give sizes in inches (`1/2" END MILL`): written for a
+    /// control that starts in inches. Fix: G20 at the program's start.
+    UnitNotSelected,
 }
 
 impl AlarmCode {
@@ -189,6 +209,11 @@ impl AlarmCode {
             MacroLimit => "macro_limit",
             UserAlarm => "user_alarm",
             InterruptIgnored => "interrupt_ignored",
+            WrittenForAnotherProfile => "written_for_another_profile",
+            DecimalLessScale => "decimal_less_scale",
+            CuttingWithSpindleStopped => "cutting_with_spindle_stopped",
+            SpindleSpeedAboveMaximum => "spindle_speed_above_maximum",
+            UnitNotSelected => "unit_not_selected",
         }
     }
 
@@ -238,6 +263,11 @@ impl AlarmCode {
             UserAlarm => "V087",
             InterruptIgnored => "V088",
             ProgramAmbiguous => "V089",
+            WrittenForAnotherProfile => "V100",
+            DecimalLessScale => "V101",
+            CuttingWithSpindleStopped => "V102",
+            SpindleSpeedAboveMaximum => "V103",
+            UnitNotSelected => "V104",
         }
     }
 
@@ -288,6 +318,11 @@ impl AlarmCode {
             MacroLimit => "raise the limit (--max-jumps, --main-passes), or end the loop",
             UserAlarm => "the program raised this alarm itself (#3000): see its message",
             InterruptIgnored => "name a block where M96 is in force and no excluding mode (G41/G42, G16 ...) is on",
+            WrittenForAnotherProfile => "run it with the profile the warning names (--profile), or set that profile in the machine file",
+            DecimalLessScale => "write the lengths with a decimal point, or set decimal_less = \"whole_units\" in the machine file's [profile_overrides]",
+            CuttingWithSpindleStopped => "start the spindle (M03 or M04 with S) before the first cut",
+            SpindleSpeedAboveMaximum => "program S within the machine file's spindle.max_rpm",
+            UnitNotSelected => "add G20 (inch) or G21 (mm) at the program's start",
         }
     }
 
@@ -335,6 +370,11 @@ impl AlarmCode {
         AlarmCode::MacroLimit,
         AlarmCode::UserAlarm,
         AlarmCode::InterruptIgnored,
+        AlarmCode::WrittenForAnotherProfile,
+        AlarmCode::DecimalLessScale,
+        AlarmCode::CuttingWithSpindleStopped,
+        AlarmCode::SpindleSpeedAboveMaximum,
+        AlarmCode::UnitNotSelected,
     ];
 }
 

@@ -42,6 +42,7 @@ pub mod motion;
 pub mod pipeline;
 pub mod plan;
 pub mod profile;
+pub mod program_scan;
 pub mod source;
 pub mod summary;
 pub mod syntax;

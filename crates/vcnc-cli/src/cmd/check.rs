@@ -152,8 +152,9 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             )?;
             let texts = crate::program::files(&stream, &source);
             let name = source.name().display().to_string();
+            let scanning = super::run::scan_beside(&source);
             let mut progress = Progress::on_stderr(&name, args.format != Format::Json);
-            let alarms: Vec<Alarm> = stream
+            let mut alarms: Vec<Alarm> = stream
                 .by_ref()
                 .filter_map(|item| match item {
                     Ok(segment) => {
@@ -164,6 +165,9 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
                 })
                 .collect();
             progress.finish();
+            // What the text says of the control it was written for comes first.
+            let scan = scanning.join().ok().flatten();
+            alarms.splice(0..0, scan.map_or_else(Vec::new, |s| s.warnings(&machine)));
             let (_, saved) = crate::program::finish(stream, &args.machine);
             saved?;
             Ok((source, texts, alarms))

@@ -10,6 +10,7 @@ mod check_report;
 mod cli;
 mod golden;
 mod inputs;
+mod results;
 mod saved_programs;
 mod state;
 mod traces;

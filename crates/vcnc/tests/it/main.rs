@@ -12,6 +12,7 @@ mod compensation_cases;
 mod compensation_corpus;
 mod compensation_property;
 mod corpus;
+mod corpus_tally;
 mod cycles;
 mod frames;
 mod front_end;
