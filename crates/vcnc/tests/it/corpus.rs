@@ -29,58 +29,51 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
     let mut counts = Counts::default();
     let mut failures = Vec::new();
     let mut total = 0;
-    for folder in ["fanuc", "large", "sinumerik"] {
-        let mut files: Vec<_> = std::fs::read_dir(corpus.join(folder))
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .collect();
-        files.sort();
-        for path in files {
-            total += 1;
-            let name = path.file_name().unwrap().to_string_lossy().into_owned();
-            let text = std::fs::read(&path).unwrap();
-            let machine = machine_for(&name);
-            let options = Options {
-                dialect: detect_dialect(&name, &text),
-                ..Options::default()
-            };
-            // Called programs: the same author's programs, as in that control's memory.
-            let library = common::corpus::library_for(&name, &corpus.join(folder));
-            let run = common::run_with_library(&text, &machine, options.clone(), Box::new(library));
-            let ended = run
-                .segments
-                .iter()
-                .any(|s| matches!(s.kind, SegmentKind::End { .. }));
-            let expected = common::corpus::expected_alarm(&name);
-            match run.error() {
-                None if ended && expected.is_none() => counts.ran_to_end += 1,
-                None if ended => failures.push(format!(
-                    "{folder}/{name}: ran to its end, expected {expected:?}"
-                )),
-                Some(alarm) if Some((alarm.code, alarm.span.map_or(0, |s| s.line))) == expected => {
-                    counts.expected_alarms += 1;
-                }
-                None => failures.push(format!("{folder}/{name}: no end and no alarm")),
-                Some(alarm) if alarm.code == AlarmCode::DialectNotSupported => {
-                    if folder != "sinumerik" {
-                        failures.push(format!("{folder}/{name}: taken for SINUMERIK"));
-                    }
-                    counts.dialect += 1;
-                }
-                Some(alarm) if alarm.code == AlarmCode::NotSupportedYet => {
-                    *counts
-                        .not_supported_yet
-                        .entry(alarm.message.clone())
-                        .or_default() += 1;
-                }
-                Some(alarm) => failures.push(format!(
-                    "{folder}/{name}:{}: {alarm}",
-                    alarm.span.map_or(0, |s| s.line)
-                )),
+    for (folder, path) in common::corpus::programs(&corpus) {
+        total += 1;
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let text = std::fs::read(&path).unwrap();
+        let machine = machine_for(&name);
+        let options = Options {
+            dialect: detect_dialect(&name, &text),
+            ..Options::default()
+        };
+        // Called programs: the same author's programs, as in that control's memory.
+        let library = common::corpus::library_for(&name, &corpus.join(folder));
+        let run = common::run_with_library(&text, &machine, options.clone(), Box::new(library));
+        let ended = run
+            .segments
+            .iter()
+            .any(|s| matches!(s.kind, SegmentKind::End { .. }));
+        let expected = common::corpus::expected_alarm(&name);
+        match run.error() {
+            None if ended && expected.is_none() => counts.ran_to_end += 1,
+            None if ended => failures.push(format!(
+                "{folder}/{name}: ran to its end, expected {expected:?}"
+            )),
+            Some(alarm) if Some((alarm.code, alarm.span.map_or(0, |s| s.line))) == expected => {
+                counts.expected_alarms += 1;
             }
-            if folder == "sinumerik" && options.dialect != Dialect::Sinumerik {
-                failures.push(format!("{folder}/{name}: not recognised as SINUMERIK"));
+            None => failures.push(format!("{folder}/{name}: no end and no alarm")),
+            Some(alarm) if alarm.code == AlarmCode::DialectNotSupported => {
+                if folder != "sinumerik" {
+                    failures.push(format!("{folder}/{name}: taken for SINUMERIK"));
+                }
+                counts.dialect += 1;
             }
+            Some(alarm) if alarm.code == AlarmCode::NotSupportedYet => {
+                *counts
+                    .not_supported_yet
+                    .entry(alarm.message.clone())
+                    .or_default() += 1;
+            }
+            Some(alarm) => failures.push(format!(
+                "{folder}/{name}:{}: {alarm}",
+                alarm.span.map_or(0, |s| s.line)
+            )),
+        }
+        if folder == "sinumerik" && options.dialect != Dialect::Sinumerik {
+            failures.push(format!("{folder}/{name}: not recognised as SINUMERIK"));
         }
     }
     println!("corpus: {total} programs");

@@ -180,15 +180,8 @@ fn every_corpus_run_that_ends_ok_has_a_plausible_result() {
     };
     let corpus = shared.join("corpus");
     let mut rows = Vec::new();
-    for folder in ["fanuc", "large", "sinumerik"] {
-        let mut files: Vec<_> = std::fs::read_dir(corpus.join(folder))
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .collect();
-        files.sort();
-        for path in files {
-            rows.push(run_one(folder, &path, &corpus));
-        }
+    for (folder, path) in common::corpus::programs(&corpus) {
+        rows.push(run_one(folder, &path, &corpus));
     }
     let mut table = String::from(
         "| program | profile | result | cutting moves | cutting extents (program, mm) | warnings | reason |\n|---|---|---|---:|---|---|---|\n",

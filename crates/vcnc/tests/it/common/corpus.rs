@@ -157,3 +157,17 @@ pub fn expected_alarm(name: &str) -> Option<(AlarmCode, u32)> {
         .find(|(file, ..)| *file == name)
         .map(|&(_, code, line, _)| (code, line))
 }
+
+/// The corpus's folders, and the programs of each in name order.
+pub fn programs(corpus: &std::path::Path) -> Vec<(&'static str, std::path::PathBuf)> {
+    let mut programs = Vec::new();
+    for folder in ["fanuc", "large", "sinumerik"] {
+        let mut files: Vec<_> = std::fs::read_dir(corpus.join(folder))
+            .unwrap_or_else(|e| panic!("{folder}: {e}"))
+            .map(|e| e.expect("a folder entry").path())
+            .collect();
+        files.sort();
+        programs.extend(files.into_iter().map(|path| (folder, path)));
+    }
+    programs
+}
