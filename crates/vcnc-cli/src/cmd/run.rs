@@ -37,6 +37,34 @@ pub(crate) struct Args {
     pub(crate) machine: MachineArgs,
 }
 
+/// `println!` into the report being built: written out whole at the end, so that a reader that
+/// goes away (`| head`) ends the output quietly instead of a panic of `println!`.
+macro_rules! outln {
+    ($out:expr) => {
+        $out.push('\n')
+    };
+    ($out:expr, $($arg:tt)*) => {{
+        // Writing into a String cannot fail.
+        let _ = std::fmt::Write::write_fmt($out, format_args!($($arg)*));
+        $out.push('\n');
+    }};
+}
+
+/// Writes the report to standard output; a reader that went away is no error.
+fn emit(report: &str) -> Result<(), SetupError> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(report.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
+        Err(error) if error.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(SetupError::Output(error))
+        }
+        _ => Ok(()),
+    }
+}
+
 const ESTIMATE_NOTE: &str = "length / feed and rapid rates, without acceleration or corners";
 
 const PLAN_NOTE: &str = "planned: per-axis speed, acceleration and jerk, look-ahead, corners, \
@@ -47,7 +75,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let mut first = true;
     Ok(super::each_program(&args.programs, |path| {
         if !std::mem::take(&mut first) && args.format == Format::Human {
-            println!();
+            emit("\n")?;
         }
         run_one(args, path)
     }))
@@ -115,18 +143,26 @@ fn run_one(args: &Args, path: &Path) -> Result<Outcome, SetupError> {
         (None, _) => "ended at the end of the text (no M02/M30)".to_string(),
     };
     let warnings = alarms.iter().filter(|a| !a.is_error()).count();
+    let mut out = String::new();
     match args.format {
         Format::Human => {
             print_human(
+                &mut out,
                 source.name(),
                 &machine,
                 &summary,
-                blocks,
-                &result,
+                (blocks, &result),
                 warnings,
                 unit,
             );
-            print_time_human(&report, &summary, plan_options.feed_override, &texts);
+            print_time_human(
+                &mut out,
+                &report,
+                &summary,
+                plan_options.feed_override,
+                &texts,
+            );
+            emit(&out)?;
             crate::diagnostics::print_human(&texts, &alarms, Output::Stderr);
         }
         Format::Json => {
@@ -154,7 +190,8 @@ fn run_one(args: &Args, path: &Path) -> Result<Outcome, SetupError> {
                              "cutting": extents_json(&summary.cutting_extents) },
                 "alarms": list,
             });
-            println!("{value:#}");
+            outln!(&mut out, "{value:#}");
+            emit(&out)?;
         }
     }
     saved?;
@@ -181,21 +218,23 @@ pub(crate) fn scan_beside(source: &Source) -> std::thread::JoinHandle<Option<Pro
 }
 
 fn print_human(
+    out: &mut String,
     name: &Path,
     machine: &vcnc::Machine,
     summary: &Summary,
-    blocks: u64,
-    result: &str,
+    (blocks, result): (u64, &str),
     warnings: usize,
     unit: LengthUnit,
 ) {
-    println!(
+    outln!(
+        out,
         "{}  ({}, {} profile)",
         crate::excerpt::escape(&name.display().to_string()),
         machine.name,
         machine.profile.name
     );
-    println!(
+    outln!(
+        out,
         "  result            {result}{}",
         if warnings > 0 {
             format!(", {warnings} warning(s)")
@@ -203,17 +242,22 @@ fn print_human(
             String::new()
         }
     );
-    println!("  blocks executed   {blocks}");
-    println!(
+    outln!(out, "  blocks executed   {blocks}");
+    outln!(
+        out,
         "  rapid             {:>7} moves  {:>12.3} mm",
-        summary.rapid_moves, summary.rapid_length
+        summary.rapid_moves,
+        summary.rapid_length
     );
-    println!(
+    outln!(
+        out,
         "  cutting           {:>7} moves  {:>12.3} mm",
-        summary.feed_moves, summary.feed_length
+        summary.feed_moves,
+        summary.feed_length
     );
     let tools: Vec<String> = summary.tools.iter().map(|t| format!("T{t}")).collect();
-    println!(
+    outln!(
+        out,
         "  tools             {}",
         if tools.is_empty() {
             "none changed".to_string()
@@ -232,24 +276,31 @@ fn print_human(
         ("cutting", &summary.cutting_extents),
     ];
     for (name, e) in extents {
-        println!("  extents {name:<10}{}", e.describe(unit));
+        outln!(out, "  extents {name:<10}{}", e.describe(unit));
         // An inch program's extents in mm too, for the machine's side.
         if unit == LengthUnit::Inch && !e.is_empty() {
-            println!("{:<20}{}", "", e.describe(LengthUnit::Millimetre));
+            outln!(out, "{:<20}{}", "", e.describe(LengthUnit::Millimetre));
         }
     }
 }
 
 /// The planned time, where it goes, and the length / feed estimate beside it.
-fn print_time_human(report: &TimeReport, summary: &Summary, feed_override: f64, files: &Texts) {
+fn print_time_human(
+    out: &mut String,
+    report: &TimeReport,
+    summary: &Summary,
+    feed_override: f64,
+    files: &Texts,
+) {
     let percent = if feed_override == 1.0 {
         String::new()
     } else {
         format!(", feed override {:.0} %", feed_override * 100.0)
     };
-    println!("  cycle time        {}{percent}", clock(report.total));
-    println!("                    {PLAN_NOTE}");
-    println!(
+    outln!(out, "  cycle time        {}{percent}", clock(report.total));
+    outln!(out, "                    {PLAN_NOTE}");
+    outln!(
+        out,
         "  length / feed     {}  (rapid {:.1} s, cutting {:.1} s, dwell {:.1} s: {ESTIMATE_NOTE})",
         clock(summary.estimated_seconds()),
         summary.rapid_seconds,
@@ -257,7 +308,7 @@ fn print_time_human(report: &TimeReport, summary: &Summary, feed_override: f64, 
         summary.dwell_seconds
     );
     if summary.untimed_moves > 0 {
-        println!(
+        outln!(out,
             "                    {} cutting moves at the axes' limit (feed per revolution without S)",
             summary.untimed_moves
         );
@@ -272,19 +323,21 @@ fn print_time_human(report: &TimeReport, summary: &Summary, feed_override: f64, 
             )
         })
         .collect();
-    println!("  time by kind      {}", kinds.join(", "));
+    outln!(out, "  time by kind      {}", kinds.join(", "));
     let tools: Vec<String> = report
         .by_tool
         .iter()
         .map(|(tool, s)| format!("{} {s:.1} s", tool_name(*tool)))
         .collect();
-    println!("  time by tool      {}", tools.join(", "));
+    outln!(out, "  time by tool      {}", tools.join(", "));
     for (i, block) in report.slowest_blocks().iter().enumerate() {
         let label = if i == 0 { "  slowest blocks" } else { "" };
         let (file, text) = block_place(files, block.span);
-        println!(
+        outln!(
+            out,
             "{label:<20}{:>9.3} s  {file}:{}  {text}",
-            block.seconds, block.span.line
+            block.seconds,
+            block.span.line
         );
     }
 }

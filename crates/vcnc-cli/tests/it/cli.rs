@@ -495,3 +495,28 @@ fn a_reader_that_goes_away_ends_the_trace_quietly() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// `vcnc run ... | head -1`: the reader goes away after a line; vcnc ends quietly (it
+/// panicked in `println!` before), exit 0.
+#[test]
+fn a_reader_that_goes_away_ends_the_run_report_quietly() {
+    use std::io::{BufRead, BufReader};
+    let example = example();
+    let mut args = vec!["run".to_string()];
+    args.extend(std::iter::repeat_n(example, 40));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(&args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("vcnc runs");
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().expect("stdout"))
+        .read_line(&mut first)
+        .expect("a line");
+    assert!(first.contains("bracket.nc"), "{first}");
+    let out = child.wait_with_output().expect("vcnc ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+}
