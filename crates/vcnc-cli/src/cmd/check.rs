@@ -278,17 +278,78 @@ fn programs(arguments: &[PathBuf], totals: &mut Totals) -> Vec<PathBuf> {
     for argument in arguments {
         if argument.is_dir() {
             search(argument, &mut found, totals);
-        } else {
-            if !argument.exists() && argument.to_string_lossy().contains(['*', '?', '[']) {
-                eprintln!(
-                    "vcnc: {}: no such file (vcnc does not expand globs: leave them unquoted for the shell)",
-                    argument.display()
-                );
+        } else if let Some(matches) = glob(argument) {
+            // A quoted glob (or a shell that does not expand them): `*` and `?` in the file
+            // name, matched in its folder, in name order.
+            if matches.is_empty() {
+                eprintln!("vcnc: {}: matches no file", argument.display());
+                totals.add(Verdict::Unread);
             }
+            found.extend(matches);
+        } else {
             found.push(argument.clone());
         }
     }
     found
+}
+
+/// The files that `pattern` names, when it is a glob: a path that does not exist whose file
+/// name holds `*` (any characters) or `?` (one character). Hidden files match only a pattern
+/// that starts with `.`.
+fn glob(pattern: &Path) -> Option<Vec<PathBuf>> {
+    let name = pattern.file_name()?.to_string_lossy().into_owned();
+    if pattern.exists() || !name.contains(['*', '?']) {
+        return None;
+    }
+    let folder = match pattern.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let wanted: Vec<char> = name.chars().collect();
+    let mut matches: Vec<PathBuf> = std::fs::read_dir(&folder)
+        .map(|entries| {
+            entries
+                .filter_map(Result::ok)
+                .filter(|e| e.path().is_file())
+                .filter(|e| {
+                    let file: Vec<char> = e.file_name().to_string_lossy().chars().collect();
+                    (wanted.first() == Some(&'.') || file.first() != Some(&'.'))
+                        && wildcard_match(&wanted, &file)
+                })
+                .map(|e| folder.join(e.file_name()))
+                .collect()
+        })
+        .unwrap_or_default();
+    matches.sort();
+    Some(matches)
+}
+
+/// Whether `name` matches `pattern` (`*` any run of characters, `?` one character).
+fn wildcard_match(pattern: &[char], name: &[char]) -> bool {
+    // The classic two-pointer match with one backtrack point for the last `*`.
+    let (mut p, mut n) = (0, 0);
+    let mut star: Option<(usize, usize)> = None;
+    while n < name.len() {
+        match pattern.get(p) {
+            Some('*') => {
+                star = Some((p, n));
+                p += 1;
+            }
+            Some(&c) if c == '?' || c == name[n] => {
+                p += 1;
+                n += 1;
+            }
+            _ => match star {
+                Some((sp, sn)) => {
+                    p = sp + 1;
+                    n = sn + 1;
+                    star = Some((sp, sn + 1));
+                }
+                None => return false,
+            },
+        }
+    }
+    pattern[p..].iter().all(|&c| c == '*')
 }
 
 /// Adds the NC programs under `directory` to `found`, in name order. Hidden entries (`.git`)
@@ -358,6 +419,24 @@ fn starts_like_a_program(path: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wildcards_match_as_a_shell_does() {
+        let m = |p: &str, n: &str| {
+            wildcard_match(
+                &p.chars().collect::<Vec<_>>(),
+                &n.chars().collect::<Vec<_>>(),
+            )
+        };
+        assert!(m("*.nc", "part.nc"));
+        assert!(!m("*.nc", "part.ngc"));
+        assert!(m("p?rt*", "part.nc"));
+        assert!(m("*a*b*", "xaxxbx"));
+        assert!(!m("*a*b", "xaxxbx"));
+        assert!(m("*", ""));
+        assert!(!m("?", ""));
+        assert!(m("O00**1.nc", "O0001.nc"));
+    }
 
     #[test]
     fn the_totals_line_counts_each_kind() {

@@ -132,3 +132,28 @@ fn json_reports_each_program_s_result_and_the_totals() {
     assert_eq!(value["totals"]["programs"], 2);
     assert_eq!(value["totals"]["alarm"], 1);
 }
+
+/// A quoted glob (`vcnc check 'dir/*.nc'`, or a shell that does not expand it) names the
+/// matching files; one that matches nothing is said, and counted as not read.
+#[test]
+fn a_quoted_glob_names_the_programs_it_matches() {
+    let dir = std::env::temp_dir().join(format!("vcnc-glob-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["a.nc", "b.nc", "c.txt.bak"] {
+        std::fs::write(dir.join(name), "G0 X1.\nM30\n").unwrap();
+    }
+    let pattern = dir.join("*.nc").display().to_string();
+    let out = vcnc(&["check", &pattern]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("a.nc: ok") && stdout.contains("b.nc: ok"),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("c.txt.bak"), "{stdout}");
+    assert!(stdout.contains("2 programs: 2 ok"), "{stdout}");
+    let none = dir.join("*.xyz").display().to_string();
+    let out = vcnc(&["check", &none]);
+    assert_ne!(out.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("matches no file"));
+}
