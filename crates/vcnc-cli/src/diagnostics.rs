@@ -206,14 +206,15 @@ pub(crate) fn print_short(
     Ok(())
 }
 
-/// One alarm as a JSON object: file, line, column, code, id, severity, message, help.
+/// One alarm as a JSON object: file, line, column, code, id, severity, message, help, and the
+/// labels of its other places when it has any.
 pub(crate) fn to_json(texts: &Texts, alarm: &Alarm) -> Value {
     let file = alarm.span.map_or(FileId(0), |s| s.file);
     let (line, column) = match alarm.span {
         Some(span) => (Some(span.line), Some(texts.region(span).column())),
         None => (None, None),
     };
-    json!({
+    let mut value = json!({
         "file": texts.path(file).display().to_string(),
         "line": line,
         "column": column,
@@ -222,7 +223,25 @@ pub(crate) fn to_json(texts: &Texts, alarm: &Alarm) -> Value {
         "severity": alarm.severity.as_str(),
         "message": alarm.message,
         "help": alarm.help_line(),
-    })
+    });
+    // The other places an alarm names (the calls that led to a macro alarm, the values its
+    // expression read, the first of two words): only when it has some.
+    if !alarm.labels.is_empty() {
+        let labels: Vec<Value> = alarm
+            .labels
+            .iter()
+            .map(|label| {
+                json!({
+                    "file": texts.path(label.span.file).display().to_string(),
+                    "line": label.span.line,
+                    "column": texts.region(label.span).column(),
+                    "message": label.message,
+                })
+            })
+            .collect();
+        value["labels"] = Value::Array(labels);
+    }
+    value
 }
 
 /// The diagnostic of `folded` and the excerpts of the lines it shows. An alarm without a

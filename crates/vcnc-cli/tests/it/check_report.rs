@@ -157,3 +157,23 @@ fn a_quoted_glob_names_the_programs_it_matches() {
     assert_ne!(out.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&out.stderr).contains("matches no file"));
 }
+
+/// A macro alarm in JSON says how the program got there, as the terminal view does: the
+/// values its expression read and the call that ran the macro, each with its place.
+#[test]
+fn json_alarms_carry_their_labels() {
+    let dir = std::env::temp_dir().join(format!("vcnc-labels-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let program = dir.join("macro.nc");
+    std::fs::write(&program, "O1\nG65 P2 A0\nM30\nO2\n#2=10/#1\nM99\n").unwrap();
+    let out = vcnc(&["check", "--format", "json", &program.display().to_string()]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let labels = &report["programs"][0]["alarms"][0]["labels"];
+    assert_eq!(labels[0]["message"], "#1 = 0", "{report:#}");
+    assert_eq!(labels[0]["line"], 5, "{report:#}");
+    assert_eq!(
+        labels[1]["message"], "this macro call ran O0002",
+        "{report:#}"
+    );
+    assert_eq!(labels[1]["line"], 2, "{report:#}");
+}
