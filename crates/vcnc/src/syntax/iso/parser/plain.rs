@@ -24,6 +24,11 @@ use crate::syntax::{Number, Word};
 /// program, take the general reader.
 const MAX_DIGITS: usize = 15;
 
+/// The longest line the fast path reads: two bytes a word at the least (`X1Y2`), so a plain
+/// line holds at most [`super::super::MAX_WORDS_PER_BLOCK`] words; a longer line (none of a
+/// real program) is the general reader's, which refuses a block of more words than that.
+const MAX_PLAIN_BYTES: usize = 2 * super::super::MAX_WORDS_PER_BLOCK;
+
 /// Reads `line` into one block of `out` when it is a plain line: blanks, then words such as
 /// `X-12.5`, `g1` or `Y.5` (a letter, an optional sign, digits with an optional decimal point),
 /// each followed by blanks or directly by the next word's letter. Returns false for any other
@@ -39,6 +44,9 @@ pub(super) fn read_plain_line(line: Line<'_>, file: FileId, out: &mut LineBlocks
     else {
         return false;
     };
+    if line.text.len() > MAX_PLAIN_BYTES {
+        return false;
+    }
     // Read as text at hand that ends where the line ends.
     let text = Unread {
         text: line.text,
@@ -61,9 +69,16 @@ pub(super) fn read_plain_line_in(
     out: &mut LineBlocks,
 ) -> Option<usize> {
     // The text at hand runs past the line, nearly always far enough for the numbers' windows;
-    // a number too close to its end leaves the line to the line reader.
+    // a number too close to its end leaves the line to the line reader. Cut to
+    // [`MAX_PLAIN_BYTES`]: a longer line ends the same way, and goes to the general reader.
+    let cut = unread.text.len().saturating_sub(MAX_PLAIN_BYTES);
+    let unread = Unread {
+        text: &unread.text[..unread.text.len() - cut],
+        end_offset: unread.end_offset - cut as u32,
+        number: unread.number,
+    };
     match read_plain_words::<true>(unread, file, out)? {
-        LineEnd::Newline(after) => Some(after),
+        LineEnd::Newline(after) => Some(after + cut),
         LineEnd::TextEnd => None,
     }
 }
@@ -104,10 +119,6 @@ fn read_plain_words<const WINDOWED: bool>(
     block.span = Span::new(file, line_number, offset_of(first_word)..0);
     let mut rest = first_word;
     loop {
-        // A block of more words than any control takes is the general reader's to refuse.
-        if block.words.len() >= super::super::MAX_WORDS_PER_BLOCK {
-            return None;
-        }
         // A word's number needs its window: WINDOW bytes after the letter and the sign. Tested
         // once here, before the letter, the tests of the letter, the sign and the window fold
         // into it (a line's end closer than that to the end of the text is left to the line
