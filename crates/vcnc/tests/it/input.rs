@@ -294,3 +294,37 @@ fn a_number_with_an_exponent_says_iso_g_code_has_none() {
     let alarm = first_alarm("G65 P9000 A1. V0E41\nM30\n");
     assert!(alarm.starts_with("V084"), "{alarm}");
 }
+
+/// Text in memory is searched for lone `\r` a chunk ahead of the reading, not all at once: line
+/// ends of any kind, first met far into a large text or on a chunk's edge, read as the same
+/// program as its LF twin.
+#[test]
+fn line_ends_met_late_in_a_large_text_read_as_its_lf_twin() {
+    let lf: String = (0..30_000)
+        .map(|i| format!("G1 X{}.{} Y{}. F500.\n", i % 97, i % 10, i % 89))
+        .collect::<String>()
+        + "M30\n";
+    let twin = outline(interpret_bytes(
+        lf.as_bytes(),
+        &Machine::default(),
+        Options::default(),
+    ));
+    let cut = lf.len() / 2;
+    let second_half_cr = format!("{}{}", &lf[..cut], lf[cut..].replace('\n', "\r"));
+    let crlf = lf.replace('\n', "\r\n");
+    // A lone `\r` in a comment line near the end, after megabytes of LF lines.
+    let late_comment = lf.replacen("M30\n", "(LAST)\rM30\n", 1);
+    for (name, text) in [
+        ("second half CR", second_half_cr),
+        ("CRLF", crlf),
+        ("late CR", late_comment),
+    ] {
+        let got = outline(interpret_bytes(
+            text.as_bytes(),
+            &Machine::default(),
+            Options::default(),
+        ));
+        assert_eq!(got.len(), twin.len(), "{name}");
+        assert!(got == twin, "{name}: another stream");
+    }
+}
