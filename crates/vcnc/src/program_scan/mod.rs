@@ -323,44 +323,59 @@ impl ProgramScan {
     }
 
     fn read_words(&mut self, words: &[Word]) {
+        // One pass for the codes; a second over the lengths, once the line's G20/G21 is known.
+        let (mut m97, mut p, mut compensation, mut h) = (None, None, None, None);
+        let (mut d, mut data) = (false, false);
         for word in words {
-            if word.is(b'G', 20) {
-                self.units.current = Units::Inch;
-                self.units.first.get_or_insert(Units::Inch);
-            } else if word.is(b'G', 21) {
-                self.units.current = Units::Millimetre;
-                self.units.first.get_or_insert(Units::Millimetre);
-            } else if word.is(b'G', 70) || word.is(b'G', 71) {
-                self.units.g70_or_g71 = true;
-            } else if word.letter == b'N' && !word.fraction && word.whole < SEQUENCE_BITS as u64 {
-                let n = word.whole as usize;
-                self.sequences[n / 64] |= 1 << (n % 64);
+            match (word.letter, word.fraction) {
+                (b'G', false) => match word.whole {
+                    20 => {
+                        self.units.current = Units::Inch;
+                        self.units.first.get_or_insert(Units::Inch);
+                    }
+                    21 => {
+                        self.units.current = Units::Millimetre;
+                        self.units.first.get_or_insert(Units::Millimetre);
+                    }
+                    70 | 71 => self.units.g70_or_g71 = true,
+                    41 | 42 => {
+                        compensation.get_or_insert(word);
+                    }
+                    // X of G04 is a time; the words of G10, G65 and G66 are data and arguments.
+                    4 | 10 | 65 | 66 => data = true,
+                    _ => {}
+                },
+                (b'N', false) if word.whole < SEQUENCE_BITS as u64 => {
+                    let n = word.whole as usize;
+                    self.sequences[n / 64] |= 1 << (n % 64);
+                }
+                (b'M', false) if word.whole == 97 => {
+                    m97.get_or_insert(word);
+                }
+                (b'P', false) => {
+                    p.get_or_insert(word);
+                }
+                (b'H', _) => {
+                    h.get_or_insert(word);
+                }
+                (b'D', _) => d = true,
+                _ => {}
             }
         }
-        if let Some(m97) = words.iter().find(|w| w.is(b'M', 97)) {
-            let target = words.iter().find(|w| w.letter == b'P' && !w.fraction);
-            if let Some(p) = target.and_then(|p| u32::try_from(p.whole).ok().map(|n| (n, p))) {
-                let (number, p) = p;
+        if let (Some(m97), Some(p)) = (m97, p) {
+            if let Ok(number) = u32::try_from(p.whole) {
                 if self.m97_targets.len() < KEPT && !self.m97_targets.contains_key(&number) {
                     let place = self.place(m97.start.min(p.start), m97.end.max(p.end));
                     self.m97_targets.insert(number, place);
                 }
             }
         }
-        if self.radius_by_h.is_none() && words.iter().any(|w| w.is(b'G', 41) || w.is(b'G', 42)) {
-            let h = words.iter().find(|w| w.letter == b'H');
-            if let (Some(h), false) = (h, words.iter().any(|w| w.letter == b'D')) {
-                let start = words
-                    .iter()
-                    .find(|w| w.is(b'G', 41) || w.is(b'G', 42))
-                    .map_or(h.start, |g| g.start.min(h.start));
+        if self.radius_by_h.is_none() && !d {
+            if let (Some(g), Some(h)) = (compensation, h) {
+                let start = g.start.min(h.start);
                 self.radius_by_h = Some(self.place(start, h.end.max(start)));
             }
         }
-        // X of G04 is a time; the words of G10, G65 and G66 are data and arguments.
-        let data = words
-            .iter()
-            .any(|w| w.is(b'G', 4) || w.is(b'G', 10) || w.is(b'G', 65) || w.is(b'G', 66));
         if data {
             return;
         }

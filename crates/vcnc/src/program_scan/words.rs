@@ -19,13 +19,6 @@ pub(super) struct Word {
     pub(super) end: usize,
 }
 
-impl Word {
-    /// `G04`, `M97`: the letter with this whole number.
-    pub(super) fn is(&self, letter: u8, number: u64) -> bool {
-        self.letter == letter && !self.fraction && self.whole == number
-    }
-}
-
 /// The first size in inches inside a comment of `line`: a number written against `IN`,
 /// `INCH` or `"` (`1IN`, `3/8IN`, `.238"`), or a fraction before them (`1/4 IN`). Prose such
 /// as `Z-5 in G54` is none. Returns its bytes.
