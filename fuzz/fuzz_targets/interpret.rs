@@ -20,8 +20,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
-use vcnc::motion::{Feed, Move};
 use vcnc::interp::InterruptAt;
+use vcnc::motion::{Feed, Move};
 use vcnc::{interpret_bytes, Alarm, Machine, Options, ProfileName, Segment, SegmentKind, Span};
 
 /// Items one block may yield: a cycle block's 100,000 moves, each with at most a spindle event
@@ -69,10 +69,7 @@ fuzz_target!(|data: &[u8]| {
         options.limits.jumps = JUMPS;
         // An interrupt signal (M96) on a line and a sequence number the input chooses, so that
         // the interrupt paths run too: the line from the input's length, N10 always.
-        options.interrupts = vec![
-            InterruptAt::Line(1 + len % 8),
-            InterruptAt::Sequence(10),
-        ];
+        options.interrupts = vec![InterruptAt::Line(1 + len % 8), InterruptAt::Sequence(10)];
         // Every jump may run a block once more (a subprogram call runs its blocks once per
         // call, and calls nest only as deep as the profile allows: their passes are jumps too
         // when they repeat).
