@@ -332,7 +332,7 @@ fn print_time_human(
     outln!(out, "  time by tool      {}", tools.join(", "));
     for (i, block) in report.slowest_blocks().iter().enumerate() {
         let label = if i == 0 { "  slowest blocks" } else { "" };
-        let (file, text) = block_place(files, block.span);
+        let (file, text) = files.block(block.span, BLOCK_TEXT);
         outln!(
             out,
             "{label:<20}{:>9.3} s  {file}:{}  {text}",
@@ -346,10 +346,8 @@ fn tool_name(tool: Option<u32>) -> String {
     tool.map_or_else(|| "no tool".to_string(), |t| format!("T{t}"))
 }
 
-/// The file name and the text of the block at `span`, for the slowest blocks.
-fn block_place(texts: &Texts, span: vcnc::Span) -> (String, String) {
-    texts.block(span, 120)
-}
+/// How much of a slowest block's text the summary shows.
+const BLOCK_TEXT: u64 = 120;
 
 fn time_json(report: &TimeReport, feed_override: f64, files: &Texts) -> serde_json::Value {
     let by_kind: serde_json::Map<String, serde_json::Value> = TimeKind::ALL
@@ -365,7 +363,7 @@ fn time_json(report: &TimeReport, feed_override: f64, files: &Texts) -> serde_js
         .slowest_blocks()
         .iter()
         .map(|b| {
-            let (file, text) = block_place(files, b.span);
+            let (file, text) = files.block(b.span, BLOCK_TEXT);
             json!({ "file": file, "line": b.span.line, "text": text, "seconds": b.seconds })
         })
         .collect();
