@@ -61,6 +61,45 @@ pub struct ToolOffset {
     pub radius_wear: f64,
 }
 
+/// One cutting edge of a tool in the tool table of a SINUMERIK machine (`[[tools]]`): the tool
+/// is named by its number T and, optionally, by a name (`T="PF60"`); D is its edge (offset)
+/// number, 1 to 12 on the control.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToolEdge {
+    /// The tool number (T).
+    pub t: u32,
+    /// The tool's name, if programs select it by name.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The edge number (D), 1 when not given.
+    #[serde(default = "first_edge")]
+    pub d: u32,
+    /// The tool type ($TC_DP1): 100-199 milling, 200-299 drills; 120 (end mill) when not given.
+    #[serde(default = "end_mill", rename = "type")]
+    pub tool_type: u32,
+    /// Length 1 (along the tool axis), mm.
+    #[serde(default)]
+    pub length: f64,
+    /// Lengths 2 and 3 (along the plane's other axes), mm.
+    #[serde(default)]
+    pub length2: f64,
+    /// Length 3, mm.
+    #[serde(default)]
+    pub length3: f64,
+    /// The edge radius, mm.
+    #[serde(default)]
+    pub radius: f64,
+}
+
+fn first_edge() -> u32 {
+    1
+}
+
+fn end_mill() -> u32 {
+    120
+}
+
 /// A position given per axis letter in a machine file; missing axes are zero.
 #[derive(Clone, Debug, PartialEq, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -118,6 +157,8 @@ struct MachineFile {
     work_offsets: BTreeMap<String, AxisValues>,
     #[serde(default)]
     tool_offsets: Vec<ToolOffset>,
+    #[serde(default)]
+    tools: Vec<ToolEdge>,
     spindle: SpindleConfig,
     #[serde(default)]
     planner: PlannerFile,
@@ -196,6 +237,8 @@ pub struct Machine {
     pub work_offsets: BTreeMap<WorkOffsetId, [f64; AXES]>,
     /// Tool offset memory at the start of the run, by number.
     pub tool_offsets: BTreeMap<u32, ToolOffset>,
+    /// The tool table of a SINUMERIK machine: tools by number and name, with their edges.
+    pub tools: Vec<ToolEdge>,
     /// The spindle.
     pub spindle: SpindleConfig,
     /// The planner's settings (`[planner]`): look-ahead, corners, event times.
@@ -263,6 +306,7 @@ impl Machine {
             reference_points,
             work_offsets,
             tool_offsets,
+            tools: file.tools,
             spindle: file.spindle,
             planner,
             profile_overrides: file.profile_overrides,

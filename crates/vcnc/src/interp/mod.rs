@@ -31,6 +31,7 @@ mod polar_interpolation;
 mod position_offset;
 mod reference;
 mod setup;
+mod sinumerik;
 mod skip;
 mod smoothing;
 mod spindle;

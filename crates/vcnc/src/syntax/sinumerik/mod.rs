@@ -8,6 +8,7 @@
 mod block;
 mod expr;
 mod scan;
+mod statement;
 
 pub use block::{parse_block, Block, Value, Word};
 pub use expr::{BinaryOp, Expr, ExprKind, UnaryOp};
