@@ -57,6 +57,9 @@ pub enum AlarmCode {
     NotSupportedYet,
     /// A program in a dialect vcnc does not run yet (e.g. SINUMERIK).
     DialectNotSupported,
+    /// A command of the control that is outside what vcnc models (turning, grinding, couplings,
+    /// several channels, orientation transformations). The message names it and says why.
+    NotInProduct,
     /// A cutting move (G01/G02/G03) before any feed rate was programmed. FANUC alarm 011.
     NoFeedRate,
     /// A circular move with neither a radius (R) nor centre words (I J K).
@@ -178,6 +181,7 @@ impl AlarmCode {
             SameGroupGCodes => "same_group_g_codes",
             NotSupportedYet => "not_supported_yet",
             DialectNotSupported => "dialect_not_supported",
+            NotInProduct => "not_in_product",
             NoFeedRate => "no_feed_rate",
             ArcWithoutCenter => "arc_without_center",
             ArcEndNotOnCircle => "arc_end_not_on_circle",
@@ -232,6 +236,7 @@ impl AlarmCode {
             SameGroupGCodes => "V011",
             NotSupportedYet => "V020",
             DialectNotSupported => "V021",
+            NotInProduct => "V022",
             NoFeedRate => "V030",
             ArcWithoutCenter => "V031",
             ArcEndNotOnCircle => "V032",
@@ -287,6 +292,7 @@ impl AlarmCode {
             SameGroupGCodes => "keep one G code of the group in the block",
             NotSupportedYet => "vcnc cannot run this yet: see docs/DEVIATIONS.md and the issue the message names, if any",
             DialectNotSupported => "vcnc runs FANUC-family ISO programs; SINUMERIK comes later",
+            NotInProduct => "vcnc simulates 3-axis milling on one channel: run this part of the program on the control",
             NoFeedRate => "program an F word before or in the first G01/G02/G03 block",
             ArcWithoutCenter => "give the arc its radius (R) or its centre (I, J, K)",
             ArcEndNotOnCircle => "check the end point and the centre (I, J, K): they must describe one circle",
@@ -339,6 +345,7 @@ impl AlarmCode {
         AlarmCode::SameGroupGCodes,
         AlarmCode::NotSupportedYet,
         AlarmCode::DialectNotSupported,
+        AlarmCode::NotInProduct,
         AlarmCode::NoFeedRate,
         AlarmCode::ArcWithoutCenter,
         AlarmCode::ArcEndNotOnCircle,

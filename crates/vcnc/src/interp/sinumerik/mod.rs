@@ -14,5 +14,6 @@ mod arcs;
 mod contour;
 mod eval;
 mod frame;
+mod polar;
 mod value;
 mod vars;
