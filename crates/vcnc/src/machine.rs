@@ -184,6 +184,9 @@ pub enum WorkOffsetId {
     Standard(u8),
     /// G54.1 Pn.
     Extended(u32),
+    /// SINUMERIK's settable frames beyond G54..G57: G500 (0, zero unless set) and G505..G599
+    /// (5..99), `$P_UIFR[n]`.
+    Settable(u32),
 }
 
 impl WorkOffsetId {
@@ -192,6 +195,14 @@ impl WorkOffsetId {
         let key = key.trim().to_ascii_uppercase();
         if key == "EXTERNAL" || key == "EXT" {
             return Some(WorkOffsetId::External);
+        }
+        if let Some(n) = key
+            .strip_prefix("G5")
+            .filter(|n| n.len() == 2)
+            .and_then(|n| n.parse::<u32>().ok())
+            .filter(|&n| n == 0 || (5..=99).contains(&n))
+        {
+            return Some(WorkOffsetId::Settable(n));
         }
         if let Some(rest) = key.strip_prefix("G54.1") {
             let number = rest.trim().strip_prefix('P')?.trim().parse().ok()?;
@@ -216,6 +227,7 @@ impl WorkOffsetId {
             WorkOffsetId::Standard(n @ 1..=6) => format!("G{}", 53 + n),
             WorkOffsetId::Standard(n) => format!("G59.{}", n - 6),
             WorkOffsetId::Extended(p) => format!("G54.1 P{p}"),
+            WorkOffsetId::Settable(n) => format!("G5{n:02}"),
         }
     }
 }

@@ -31,7 +31,7 @@ mod polar_interpolation;
 mod position_offset;
 mod reference;
 mod setup;
-mod sinumerik;
+pub mod sinumerik;
 mod skip;
 mod smoothing;
 mod spindle;

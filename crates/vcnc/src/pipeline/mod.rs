@@ -261,6 +261,18 @@ impl Pipeline {
 
     /// Builds the interpreter over the opened text and starts its thread.
     fn start(self, opened: Opened) -> Stream {
+        if opened.is_sinumerik(&self.machine) {
+            let (front_end, machine, files) =
+                opened.sinumerik(&self.machine, &self.options, &self.library_directories);
+            let run = crate::interp::Run::new(front_end, Kernel::new(&machine));
+            let started = threads::Started {
+                source: run,
+                store: None,
+                files,
+                machine,
+            };
+            return Stream::spawn(started, self.layout);
+        }
         let mut layout = self.layout;
         let mut options = self.options;
         options.dialect = opened.dialect;

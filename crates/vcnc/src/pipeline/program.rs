@@ -6,10 +6,12 @@
 //! jumps. This module starts no interpreter: `threads.rs` does.
 
 use super::Parsing;
+use crate::interp::sinumerik::Sinumerik;
 use crate::interp::{
     DirectoryLibrary, Interpreter, LoadedFiles, LookupError, Options, ProgramLibrary, ProgramText,
 };
 use crate::machine::Machine;
+use crate::profile::ProfileName;
 use crate::source::FileId;
 use crate::syntax::blocks::{BackgroundParser, BlockSource, ParsedLines};
 use crate::syntax::iso::SyntaxOptions;
@@ -167,6 +169,48 @@ impl Opened {
     }
 }
 
+impl Opened {
+    /// True when the program runs on the SINUMERIK front end: written in the SINUMERIK language,
+    /// or run on a SINUMERIK profile.
+    pub(crate) fn is_sinumerik(&self, machine: &Machine) -> bool {
+        self.dialect == Dialect::Sinumerik || machine.profile.name.is_sinumerik()
+    }
+
+    /// Its SINUMERIK front end on `machine` (a SINUMERIK profile: the machine's own, or the 840D
+    /// when the machine is an ISO one), calling programs from `directories` (and its own
+    /// directory); with the machine it runs on and the files it will read.
+    pub(crate) fn sinumerik(
+        mut self,
+        machine: &Machine,
+        options: &Options,
+        directories: &[PathBuf],
+    ) -> (Sinumerik, Machine, ProgramFiles) {
+        let machine = if machine.profile.name.is_sinumerik() {
+            machine.clone()
+        } else {
+            machine
+                .clone()
+                .with_profile(ProfileName::Sinumerik)
+                .unwrap_or_else(|_| machine.clone())
+        };
+        let mut text = Vec::with_capacity(self.length as usize);
+        // A read error mid-way runs what was read: the front end's end-of-text alarm says the
+        // program ends without M30.
+        let _ = self.reader.read_to_end(&mut text);
+        let (library, loaded) = library(self.main, directories);
+        let files = ProgramFiles::new(self.name, loaded);
+        let mut front_end = Sinumerik::new(text, FileId(0), &machine).with_library(library);
+        for (switch, &on) in options.block_skip.iter().enumerate() {
+            // Switch 1 is `/` and `/0` as well as `/1` (the ISO panel has switches 1 to 9).
+            if switch == 0 {
+                front_end = front_end.with_skip_level(0, on);
+            }
+            front_end = front_end.with_skip_level(switch as u8 + 1, on);
+        }
+        (front_end, machine, files)
+    }
+}
+
 /// The programs a run can call: from `directories`, then from the main program file's own
 /// directory; and the main program's whole text for its jumps. Called files get ids from 1 on.
 pub(crate) fn library(
@@ -207,6 +251,10 @@ struct WithMainText {
 impl ProgramLibrary for WithMainText {
     fn find(&mut self, number: u32) -> Result<Option<ProgramText>, LookupError> {
         self.library.find(number)
+    }
+
+    fn find_named(&mut self, name: &str) -> Result<Option<ProgramText>, LookupError> {
+        self.library.find_named(name)
     }
 
     fn main_text(&mut self) -> Option<Arc<[u8]>> {

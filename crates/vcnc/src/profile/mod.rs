@@ -7,6 +7,7 @@
 //! the library (`profile/*.toml`); a machine file can override any field.
 
 mod codes;
+mod sinumerik;
 
 pub use codes::{
     classify_g, classify_m, g_name, not_supported_description, supported_codes_markdown, CycleKind,
@@ -15,6 +16,7 @@ pub use codes::{
 
 use crate::syntax::iso::SyntaxOptions;
 use serde::{Deserialize, Serialize};
+pub use sinumerik::{SinumerikSettings, Variant};
 use std::fmt;
 use std::str::FromStr;
 
@@ -33,10 +35,15 @@ pub enum ProfileName {
     Mitsubishi,
     /// FANUC plus the habits of Haas mills seen in real programs.
     Haas,
+    /// SINUMERIK 840D sl milling (manual seed 002), its own language and front end.
+    Sinumerik,
+    /// SINUMERIK 828D milling: the 840D language with the 828D's variant (G58/G59 as the 5th
+    /// and 6th settable frames).
+    Sinumerik828d,
 }
 
 impl ProfileName {
-    /// Every built-in profile.
+    /// Every built-in ISO profile (the FANUC family: one interpreter, one code table).
     pub const ALL: [ProfileName; 5] = [
         ProfileName::Fanuc,
         ProfileName::Syntec,
@@ -44,6 +51,14 @@ impl ProfileName {
         ProfileName::Mitsubishi,
         ProfileName::Haas,
     ];
+
+    /// The SINUMERIK profiles: programs in the SINUMERIK language.
+    pub const SINUMERIK: [ProfileName; 2] = [ProfileName::Sinumerik, ProfileName::Sinumerik828d];
+
+    /// True for the SINUMERIK profiles.
+    pub fn is_sinumerik(self) -> bool {
+        ProfileName::SINUMERIK.contains(&self)
+    }
 
     /// The name used on the command line and in machine files.
     pub fn as_str(self) -> &'static str {
@@ -53,6 +68,8 @@ impl ProfileName {
             ProfileName::Fanuc0m => "fanuc0m",
             ProfileName::Mitsubishi => "mitsubishi",
             ProfileName::Haas => "haas",
+            ProfileName::Sinumerik => "sinumerik",
+            ProfileName::Sinumerik828d => "sinumerik828d",
         }
     }
 
@@ -64,6 +81,8 @@ impl ProfileName {
             ProfileName::Fanuc0m => include_str!("fanuc0m.toml"),
             ProfileName::Mitsubishi => include_str!("mitsubishi.toml"),
             ProfileName::Haas => include_str!("haas.toml"),
+            ProfileName::Sinumerik => include_str!("sinumerik.toml"),
+            ProfileName::Sinumerik828d => include_str!("sinumerik828d.toml"),
         }
     }
 }
@@ -79,8 +98,9 @@ impl FromStr for ProfileName {
     fn from_str(s: &str) -> Result<ProfileName, String> {
         ProfileName::ALL
             .into_iter()
+            .chain(ProfileName::SINUMERIK)
             .find(|p| p.as_str().eq_ignore_ascii_case(s))
-            .ok_or_else(|| format!("unknown profile `{s}` (expected one of fanuc, syntec, fanuc0m, mitsubishi, haas)"))
+            .ok_or_else(|| format!("unknown profile `{s}` (expected one of fanuc, syntec, fanuc0m, mitsubishi, haas, sinumerik, sinumerik828d)"))
     }
 }
 
@@ -398,6 +418,9 @@ pub struct Profile {
     pub smoothing_codes: SmoothingCodes,
     /// Power-on modal state.
     pub power_on: PowerOn,
+    /// What a SINUMERIK machine's data decide (the SINUMERIK profiles only).
+    #[serde(default)]
+    pub sinumerik: Option<SinumerikSettings>,
 }
 
 fn default_macro_call_depth() -> u32 {

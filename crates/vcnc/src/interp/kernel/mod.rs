@@ -16,11 +16,14 @@ pub(crate) use state::{check_position, same_place, KernelState, MoveModes};
 
 use super::arc::{arc_center, in_plane, ArcSpec};
 use super::circular::ArcTo;
-use super::modal::{FeedMode, ModalState};
+use super::modal::FeedMode;
+use super::modal::ModalState;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::machine::{Machine, AXES};
-use crate::motion::{ArcDirection, EndKind, MachinePos, Plane, Segment, SegmentKind};
+use crate::machine::{Machine, WorkOffsetId, AXES};
+use crate::motion::{
+    ArcDirection, EndKind, MachinePos, PathMode, Plane, Segment, SegmentKind, SpindleState,
+};
 use crate::source::Span;
 
 /// The block an operation of the kernel belongs to: its span, for alarms and for every segment
@@ -186,6 +189,82 @@ impl Kernel {
         let modes = self.modes;
         self.state
             .queue_arc(&origin, arc, plane, modes, &mut self.out)
+    }
+
+    /// The plane of arcs from here on.
+    pub fn set_plane(&mut self, plane: Plane) {
+        self.plane = plane;
+    }
+
+    /// How F reads from here on, and its value in that mode (None: no feed in force, as after
+    /// a change of the feed type on SINUMERIK).
+    pub fn set_feed_in(&mut self, mode: FeedMode, value: Option<f64>) {
+        self.feed_mode = mode;
+        self.state.feed = value;
+    }
+
+    /// How the moves to come are made: path mode, and an exact stop at their end.
+    pub fn set_path_mode(&mut self, path_mode: PathMode, exact_stop: bool) {
+        self.modes.path_mode = path_mode;
+        self.modes.exact_stop = exact_stop;
+    }
+
+    /// An event of the stream (spindle, coolant, tool, stop, auxiliary function) at this
+    /// place of the program. Moves, dwells and the end have their own operations.
+    pub fn event(&mut self, kind: SegmentKind, origin: Origin) {
+        debug_assert!(!matches!(
+            kind,
+            SegmentKind::Rapid { .. }
+                | SegmentKind::Line { .. }
+                | SegmentKind::Arc { .. }
+                | SegmentKind::End { .. }
+        ));
+        self.out.push(&origin, kind);
+    }
+
+    /// The spindle's programmed speed and state change (either may stay): what `G95` feeds
+    /// read; the spindle event says so in the stream.
+    pub fn spindle(&mut self, speed: Option<f64>, state: Option<SpindleState>, origin: Origin) {
+        if let Some(speed) = speed {
+            self.state.spindle.set_speed(speed);
+        }
+        let event = match state {
+            Some(state) => self.state.spindle.turn(state),
+            None => self.state.spindle.event(),
+        };
+        self.out.push(&origin, event);
+    }
+
+    /// The settable work offset in force from here on (G54 ...); it moves nothing until the
+    /// next move of each axis.
+    pub fn select_work_offset(&mut self, id: WorkOffsetId) {
+        self.state.frames.select(id);
+    }
+
+    /// The tool length applied along Z from here on (the next move of Z travels it).
+    pub fn set_tool_length(&mut self, length: f64) {
+        self.state.frames.set_length_vector(length);
+    }
+
+    /// A rapid to a machine position (a frame-suppressing block: G53, SUPA).
+    pub(crate) fn rapid_to_machine(
+        &mut self,
+        to: [f64; AXES],
+        origin: Origin,
+    ) -> Result<(), Alarm> {
+        self.state.rapid_to(to, &origin, self.modes, &mut self.out)
+    }
+
+    /// A cutting line to a machine position (a frame-suppressing block: G53, SUPA).
+    pub(crate) fn feed_to_machine(&mut self, to: [f64; AXES], origin: Origin) -> Result<(), Alarm> {
+        let feed_mode = self.feed_mode;
+        self.state
+            .feed_to(to, &origin, feed_mode, self.modes, &mut self.out)
+    }
+
+    /// The kernel's machine state, for a front end's reads (frames, tools, spindle).
+    pub(crate) fn state(&self) -> &KernelState {
+        &self.state
     }
 
     /// A dwell of `seconds`.

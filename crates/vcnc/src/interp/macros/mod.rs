@@ -1375,7 +1375,8 @@ fn lookup_alarm(error: &programs::LookupError, span: Span) -> Alarm {
                  directory, or renumber the other",
             )
         }
-        programs::LookupError::Unreadable { .. } => {
+        programs::LookupError::Unreadable { .. }
+        | programs::LookupError::NamedUnreadable { .. } => {
             alarm(AlarmCode::ReadError, span, error.to_string())
         }
     }

@@ -53,6 +53,16 @@ pub enum LookupError {
         /// What the system said.
         error: String,
     },
+    /// A program called by name (SINUMERIK) was found and cannot be read.
+    #[error("program {name} is in {}, which cannot be read: {error}", .path.display())]
+    NamedUnreadable {
+        /// The program's name.
+        name: String,
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        error: String,
+    },
 }
 
 /// `a`, `b` and `c`.
@@ -73,6 +83,16 @@ pub trait ProgramLibrary: Send {
     /// [`LookupError`]: the program is in several files, or its file cannot be read.
     fn find(&mut self, number: u32) -> Result<Option<ProgramText>, LookupError>;
 
+    /// The program called by `name` (SINUMERIK: `L100`, `CHAMFER`; upper case, no
+    /// extension), if the library has it.
+    ///
+    /// # Errors
+    /// [`LookupError`]: the program's file cannot be read.
+    fn find_named(&mut self, name: &str) -> Result<Option<ProgramText>, LookupError> {
+        let _ = name;
+        Ok(None)
+    }
+
     /// The main program's text, when the block source streams it and cannot give it whole.
     fn main_text(&mut self) -> Option<Arc<[u8]>> {
         None
@@ -90,6 +110,7 @@ pub trait ProgramLibrary: Send {
 #[derive(Clone, Debug, Default)]
 pub struct MemoryLibrary {
     programs: HashMap<u32, ProgramText>,
+    named: HashMap<String, ProgramText>,
 }
 
 impl MemoryLibrary {
@@ -112,9 +133,33 @@ impl MemoryLibrary {
     }
 }
 
+impl MemoryLibrary {
+    /// Adds the program called by `name` (any case; an extension such as `.SPF` is dropped)
+    /// with `text`, whose spans will carry `file`.
+    pub fn insert_named(&mut self, name: &str, file: FileId, text: &str) {
+        self.named.insert(
+            program_name(name),
+            ProgramText {
+                file,
+                text: Arc::from(text.as_bytes()),
+            },
+        );
+    }
+}
+
+/// A program's name as calls use it: upper case, without an extension.
+fn program_name(name: &str) -> String {
+    let stem = name.rsplit_once('.').map_or(name, |(stem, _)| stem);
+    stem.to_ascii_uppercase()
+}
+
 impl ProgramLibrary for MemoryLibrary {
     fn find(&mut self, number: u32) -> Result<Option<ProgramText>, LookupError> {
         Ok(self.programs.get(&number).cloned())
+    }
+
+    fn find_named(&mut self, name: &str) -> Result<Option<ProgramText>, LookupError> {
+        Ok(self.named.get(&program_name(name)).cloned())
     }
 }
 
@@ -250,6 +295,53 @@ impl ProgramLibrary for DirectoryLibrary {
         };
         let mut text = std::fs::read(&path).map_err(|error| LookupError::Unreadable {
             number,
+            path: path.clone(),
+            error: error.to_string(),
+        })?;
+        normalize(&mut text, true);
+        let file = FileId(self.next_file);
+        self.next_file += 1;
+        if let Ok(mut loaded) = self.loaded.lock() {
+            loaded.push((file, path));
+        }
+        Ok(Some(ProgramText {
+            file,
+            text: Arc::from(text),
+        }))
+    }
+
+    fn find_named(&mut self, name: &str) -> Result<Option<ProgramText>, LookupError> {
+        // SINUMERIK keeps programs as NAME.SPF or NAME.MPF (any case); the first directory that
+        // has one gives it, a subprogram before a main program.
+        let wanted = program_name(name);
+        let found = self.directories.iter().find_map(|directory| {
+            let entries = std::fs::read_dir(directory).ok()?;
+            let mut matches: Vec<PathBuf> = entries
+                .flatten()
+                .map(|e| e.path())
+                .filter(|path| {
+                    path.is_file()
+                        && path.file_name().and_then(|n| n.to_str()).is_some_and(|n| {
+                            program_name(n) == wanted
+                                && n.rsplit_once('.').is_some_and(|(_, ext)| {
+                                    ext.eq_ignore_ascii_case("SPF")
+                                        || ext.eq_ignore_ascii_case("MPF")
+                                })
+                        })
+                })
+                .collect();
+            // SPF sorts after MPF: a subprogram named like a main program wins.
+            matches.sort_by_key(|p| {
+                let spf = p.extension().is_some_and(|e| e.eq_ignore_ascii_case("SPF"));
+                (!spf, p.clone())
+            });
+            matches.into_iter().next()
+        });
+        let Some(path) = found else {
+            return Ok(None);
+        };
+        let mut text = std::fs::read(&path).map_err(|error| LookupError::NamedUnreadable {
+            name: wanted.clone(),
             path: path.clone(),
             error: error.to_string(),
         })?;

@@ -366,7 +366,9 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
         14 => match m.work_offset {
             WorkOffsetId::Standard(n) => 530.0 + 10.0 * f64::from(n),
             WorkOffsetId::Extended(_) => 541.0,
-            WorkOffsetId::External => 540.0,
+            // ISO programs select neither: the external offset and SINUMERIK's G500 are no
+            // work system of their own.
+            WorkOffsetId::External | WorkOffsetId::Settable(_) => 540.0,
         },
         15 => match m.path_mode {
             PathMode::ExactStop => 610.0,

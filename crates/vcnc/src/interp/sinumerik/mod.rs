@@ -1,19 +1,315 @@
-//! The SINUMERIK 840D sl / 828D front end: a block sequencer over the [`Kernel`](super::Kernel)
-//! (docs/SINUMERIK.md is the execution model it implements).
+//! The SINUMERIK 840D sl / 828D front end: a block sequencer over the [`Kernel`] (docs/SINUMERIK.md
+//! is the execution model it implements).
 //!
 //! It reads its own blocks (`crate::syntax::sinumerik`), keeps its own modal state, variables
 //! and call stack, and asks the kernel for what every control shares: moves, dwells, events,
 //! the frame chain, the tool length. It never builds a segment itself and never reads ISO
 //! words.
 //!
-//! The parts: the language's values, variables and expressions (`value.rs`, `vars.rs`,
-//! `eval.rs`), the programmable frame's algebra (`frame.rs`), the geometry of arcs and contour
-//! definitions (`arcs.rs`, `contour.rs`).
+//! The parts: the texts and their lines (`program.rs`), the G functions by group (`gcodes.rs`),
+//! one block's words in the control's order (`block.rs`), the language's values, variables and
+//! expressions (`value.rs`, `vars.rs`, `eval.rs`), the programmable frame's algebra
+//! (`frame.rs`), the geometry of arcs, polar coordinates and contour definitions (`arcs.rs`,
+//! `polar.rs`, `contour.rs`).
 
 mod arcs;
+mod block;
 mod contour;
 mod eval;
 mod frame;
+mod gcodes;
 mod polar;
+mod program;
 mod value;
 mod vars;
+
+use super::front_end::{FrontEnd, Run, Step};
+use super::kernel::{Kernel, Origin};
+use super::macros::programs::ProgramLibrary;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::machine::{Machine, ToolEdge, AXES};
+use crate::motion::{EndKind, Plane};
+use crate::profile::{SinumerikSettings, Variant};
+use crate::source::{FileId, Span};
+use crate::syntax::sinumerik::parse_block;
+use gcodes::{FeedType, Motion};
+use program::Program;
+use std::sync::Arc;
+
+/// A SINUMERIK program running on the kernel: the [`FrontEnd`] of [`Run`].
+pub struct Sinumerik {
+    programs: Vec<Program>,
+    /// The call stack: the main program at the bottom.
+    levels: Vec<Level>,
+    library: Option<Box<dyn ProgramLibrary>>,
+    settings: SinumerikSettings,
+    tools: Vec<ToolEdge>,
+    modal: Modal,
+    /// The programmed position of every axis, in the work system (Siemens' `$P_EP`).
+    programmed: [f64; AXES],
+    /// The axes the machine has, by index (X Y Z A B C).
+    axes: [bool; AXES],
+    /// Block skip levels /0 .. /9 switched on.
+    skip: [bool; 10],
+    /// R parameters (the language's variables come with `vars.rs`).
+    r: Vec<f64>,
+    tool: ToolState,
+    /// Blocks run and jumps made, against the settings' limit.
+    iterations: u64,
+    /// The last block's span, for the alarm at the end of the text.
+    last_span: Span,
+}
+
+/// One program level of the call stack.
+struct Level {
+    /// Index into `programs`.
+    program: usize,
+    /// The next line to run.
+    next: usize,
+    /// Passes of the subprogram still to run after this one (`P`).
+    passes_left: u32,
+}
+
+/// The modal state of the groups vcnc runs.
+#[derive(Clone, Copy, Debug)]
+struct Modal {
+    motion: Motion,
+    plane: Plane,
+    absolute: bool,
+    inch: bool,
+    /// G700/G710: feeds convert with the unit too.
+    inch_feeds: bool,
+    feed_type: FeedType,
+    /// G60 (true) or a continuous-path mode.
+    exact_stop: bool,
+}
+
+/// The tools: selected, in the spindle, and the edge in force.
+#[derive(Clone, Debug, Default)]
+struct ToolState {
+    selected: Option<u32>,
+    in_spindle: Option<u32>,
+    /// D: 0 is no offset.
+    edge: u32,
+}
+
+impl Sinumerik {
+    /// The program `text` (file `file`) on `machine`, whose profile must be a SINUMERIK one (an
+    /// ISO profile gets the 840D's settings).
+    pub fn new(text: impl Into<Arc<[u8]>>, file: FileId, machine: &Machine) -> Sinumerik {
+        let settings = machine.profile.sinumerik.clone().unwrap_or_else(|| {
+            crate::profile::Profile::builtin(crate::ProfileName::Sinumerik)
+                .sinumerik
+                .expect("the SINUMERIK profile has its settings (checked by tests)")
+        });
+        let mut front_end = Sinumerik {
+            programs: vec![Program::new(file, "", text.into())],
+            levels: vec![Level {
+                program: 0,
+                next: 0,
+                passes_left: 0,
+            }],
+            library: None,
+            r: vec![0.0; settings.r_parameters as usize],
+            tools: machine.tools.clone(),
+            modal: Modal {
+                motion: Motion::Line,
+                plane: Plane::Xy,
+                absolute: true,
+                inch: false,
+                inch_feeds: false,
+                feed_type: FeedType::PerMinute,
+                exact_stop: true,
+            },
+            programmed: [0.0; AXES],
+            axes: std::array::from_fn(|i| machine.axes[i].is_some()),
+            skip: [false; 10],
+            tool: ToolState::default(),
+            iterations: 0,
+            last_span: Span::new(file, 1, 0..0),
+            settings,
+        };
+        front_end.skip[0] = false;
+        front_end
+    }
+
+    /// Where called programs come from.
+    pub fn with_library(mut self, library: Box<dyn ProgramLibrary>) -> Sinumerik {
+        self.library = Some(library);
+        self
+    }
+
+    /// Block skip level `level` (0 for `/` and `/0`, 1 to 9) switched on or off.
+    pub fn with_skip_level(mut self, level: u8, on: bool) -> Sinumerik {
+        if let Some(switch) = self.skip.get_mut(level as usize) {
+            *switch = on;
+        }
+        self
+    }
+
+    /// The power-on state of MD20150, applied to the kernel before the first block.
+    fn power_on(&mut self, kernel: &mut Kernel) -> Result<(), Alarm> {
+        let span = self.last_span;
+        let names = self.settings.power_on.clone();
+        for name in &names {
+            let function = gcodes::function(name, self.is_828d()).ok_or_else(|| {
+                Alarm::error(
+                    AlarmCode::UnknownGCode,
+                    span,
+                    format!("the machine data's power-on state names `{name}`, which is not a G function"),
+                )
+            })?;
+            block::apply_modal(self, kernel, function, span)?;
+        }
+        self.programmed = kernel.program_position();
+        Ok(())
+    }
+
+    fn is_828d(&self) -> bool {
+        self.settings.variant == Variant::M828d
+    }
+
+    /// The current level.
+    fn level(&mut self) -> &mut Level {
+        self.levels
+            .last_mut()
+            .expect("the main program's level stays until the end")
+    }
+
+    /// The edge in force: the tool in the spindle's edge D (none for D0 or no tool).
+    fn edge(&self) -> Option<&ToolEdge> {
+        let tool = self.tool.in_spindle?;
+        (self.tool.edge != 0).then_some(())?;
+        self.tools
+            .iter()
+            .find(|e| e.t == tool && e.d == self.tool.edge)
+    }
+
+    /// The text of the current level ran out: a subprogram returns, the main program ends.
+    fn end_of_text(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
+        if self.levels.len() > 1 {
+            self.return_from_subprogram();
+            return Ok(Step::Next);
+        }
+        kernel.warn(
+            Alarm::warning(
+                AlarmCode::MissingProgramEnd,
+                self.last_span,
+                "the program ends without M2, M30 or M17",
+            )
+            .with_help("end the main program with M30"),
+        );
+        kernel.end(EndKind::EndOfText, Origin::at(self.last_span));
+        Ok(Step::End)
+    }
+
+    /// M17, RET or the end of a subprogram's text: the next pass, or back to the caller.
+    fn return_from_subprogram(&mut self) {
+        let level = self.level();
+        if level.passes_left > 0 {
+            level.passes_left -= 1;
+            level.next = 0;
+            return;
+        }
+        self.levels.pop();
+    }
+
+    /// Calls subprogram `name` for `passes` passes from the block at `span`.
+    fn call(&mut self, name: &str, passes: u32, span: Span) -> Result<(), Alarm> {
+        if self.levels.len() > self.settings.call_depth as usize {
+            return Err(Alarm::error(
+                AlarmCode::MacroLimit,
+                span,
+                format!(
+                    "calling {name} would nest more than {} program levels",
+                    self.settings.call_depth
+                ),
+            )
+            .with_help("a program that calls itself needs a condition that ends the calls"));
+        }
+        let program = match self.programs.iter().position(|p| *p.name == *name) {
+            Some(index) => index,
+            None => self.load(name, span)?,
+        };
+        if passes == 0 {
+            return Ok(());
+        }
+        self.levels.push(Level {
+            program,
+            next: 0,
+            passes_left: passes - 1,
+        });
+        Ok(())
+    }
+
+    /// Loads subprogram `name` from the library.
+    fn load(&mut self, name: &str, span: Span) -> Result<usize, Alarm> {
+        let found = match self.library.as_mut() {
+            Some(library) => library
+                .find_named(name)
+                .map_err(|error| Alarm::error(AlarmCode::ReadError, span, error.to_string()))?,
+            None => None,
+        };
+        let Some(found) = found else {
+            return Err(Alarm::error(
+                AlarmCode::ProgramNotFound,
+                span,
+                format!("subprogram {name} not found"),
+            )
+            .with_help(format!(
+                "put {name}.SPF in the program's directory or in a directory given with --lib"
+            )));
+        };
+        self.programs
+            .push(Program::new(found.file, name, found.text));
+        Ok(self.programs.len() - 1)
+    }
+}
+
+impl FrontEnd for Sinumerik {
+    fn step(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
+        if self.iterations == 0 {
+            self.power_on(kernel)?;
+        }
+        loop {
+            self.iterations += 1;
+            if self.iterations > self.settings.iteration_limit {
+                return Err(Alarm::error(
+                    AlarmCode::MacroLimit,
+                    self.last_span,
+                    format!(
+                        "the program ran {} blocks without ending",
+                        self.settings.iteration_limit
+                    ),
+                )
+                .with_help("a loop or jump never ends; the limit is iteration_limit in the profile's [sinumerik] table"));
+            }
+            let level = self.levels.last().expect("a level");
+            let (program, index) = (level.program, level.next);
+            let text = &self.programs[program];
+            let Some(line) = text.line(index) else {
+                return self.end_of_text(kernel);
+            };
+            let block = parse_block(line.bytes, text.file, line.number, line.base);
+            self.level().next = index + 1;
+            if block.words.is_empty() && block.statement.is_none() && block.alarm.is_none() {
+                continue;
+            }
+            if block.skip.is_some_and(|level| self.skip[level as usize]) {
+                continue;
+            }
+            let span = self.programs[program].line_span(index);
+            self.last_span = span;
+            if let Some(alarm) = block.alarm {
+                return Err(alarm);
+            }
+            return block::run(self, kernel, &block, span);
+        }
+    }
+}
+
+/// A SINUMERIK program held in memory, as file 0, on `machine`.
+pub fn run_str(text: &str, machine: &Machine) -> Run<Sinumerik> {
+    let front_end = Sinumerik::new(text.as_bytes(), FileId(0), machine);
+    Run::new(front_end, Kernel::new(machine))
+}

@@ -1,0 +1,768 @@
+//! One SINUMERIK block run in the control's order (docs/SINUMERIK.md 3.2): read and check the
+//! words, assignments, G functions, settable frame, feed, spindle, tool, other functions, the
+//! motion, then the block's end (stops, calls, returns, the program end).
+//!
+//! Never: let the written order of the words change what a block does, or run a word it does not
+//! understand: an unknown address or name is an alarm naming it.
+
+use super::gcodes::{self, FeedType, Function, Motion, OneBlock};
+use super::{Sinumerik, Step};
+use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::arc::{arc_center, ArcSpec};
+use crate::interp::kernel::{Kernel, Origin};
+use crate::interp::modal::FeedMode;
+use crate::machine::{WorkOffsetId, AXES};
+use crate::motion::{
+    ArcDirection, EndKind, PathMode, SegmentKind, SpindleState, StopKind, ToolGeometry,
+};
+use crate::source::Span;
+use crate::syntax::sinumerik::{Block, Expr, ExprKind, UnaryOp, Value, Word};
+
+/// The axis letters, by kernel index.
+const AXIS_NAMES: [&str; AXES] = ["X", "Y", "Z", "A", "B", "C"];
+
+/// A value on an axis or centre word: as written, or made absolute or incremental for this word
+/// (`X=AC(10)`, `X=IC(5)`).
+#[derive(Clone, Copy, Debug)]
+struct AxisValue {
+    value: f64,
+    /// Some(true) for AC, Some(false) for IC.
+    absolute: Option<bool>,
+}
+
+/// The words of one block, sorted by what they do.
+#[derive(Default)]
+struct Words<'a> {
+    functions: Vec<(Function, &'a Word)>,
+    axes: [Option<AxisValue>; AXES],
+    centre: [Option<AxisValue>; 3],
+    radius: Option<(f64, Span)>,
+    feed: Option<(f64, Span)>,
+    speed: Option<(f64, Span)>,
+    tool: Option<(u32, Span)>,
+    edge: Option<(u32, Span)>,
+    m: Vec<(u32, Span)>,
+    call: Option<(String, Span)>,
+    passes: Option<(u32, Span)>,
+    ends: Option<(End, Span)>,
+}
+
+/// How a block ends the program or the subprogram.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum End {
+    /// M2 or M30: the main program ends (a subprogram returns).
+    Program(EndKind),
+    /// M17 or RET: a subprogram returns.
+    Return,
+}
+
+/// Runs `block` (at `span`) of the front end on the kernel.
+pub(super) fn run(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    block: &Block,
+    span: Span,
+) -> Result<Step, Alarm> {
+    let origin = Origin {
+        span,
+        sequence: block.number,
+    };
+    if let Some((keyword, at)) = &block.statement {
+        return Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            *at,
+            format!("the SINUMERIK statement {keyword} is not run yet"),
+        )
+        .with_help("vcnc runs SINUMERIK motion, frames and tools today; the language's control structures come with issue 20's next part"));
+    }
+    let words = read(front, block)?;
+    // G functions take their new members before any value of the block is read.
+    let mut one_block = Vec::new();
+    let mut groups = [None::<Span>; 64];
+    for &(function, word) in &words.functions {
+        if let Some(group) = gcodes::group(&word.address) {
+            if let Some(first) = groups[group as usize].replace(word.span) {
+                return Err(Alarm::error(
+                    AlarmCode::SameGroupGCodes,
+                    word.span,
+                    format!("two G functions of group {group} in one block"),
+                )
+                .with_label(first, "the first one")
+                .with_help("keep one G function of each group in a block"));
+            }
+        }
+        match function {
+            Function::OneBlock(f) => one_block.push((f, word.span)),
+            _ => apply_modal(front, kernel, function, word.span)?,
+        }
+    }
+    let dwell = one_block.iter().any(|(f, _)| *f == OneBlock::Dwell);
+    if let Some((feed, span)) = words.feed {
+        if !dwell {
+            set_feed(front, kernel, feed, span)?;
+        }
+    }
+    spindle(front, kernel, &words, origin);
+    tool(front, kernel, &words, origin)?;
+    for &(code, span) in &words.m {
+        auxiliary(kernel, code, Origin { span, ..origin });
+    }
+    if dwell {
+        return dwell_block(front, kernel, &words, origin).map(|()| Step::Next);
+    }
+    let exact_stop = one_block.iter().any(|(f, _)| *f == OneBlock::ExactStop);
+    let path_mode = if front.modal.exact_stop {
+        PathMode::ExactStop
+    } else {
+        PathMode::Continuous
+    };
+    kernel.set_path_mode(path_mode, exact_stop);
+    let suppress = one_block.iter().find_map(|&(f, _)| match f {
+        OneBlock::SuppressFrames | OneBlock::SuppressBasic | OneBlock::SuppressAll => Some(f),
+        _ => None,
+    });
+    match suppress {
+        Some(level) => suppressed_move(front, kernel, &words, level, origin)?,
+        None => motion(front, kernel, &words, origin)?,
+    }
+    for &(code, span) in &words.m {
+        if let Some(kind) = stop_kind(code) {
+            kernel.event(SegmentKind::Stop { kind }, Origin { span, ..origin });
+        }
+    }
+    if let Some((name, span)) = &words.call {
+        let passes = words.passes.map_or(1, |(p, _)| p);
+        front.call(name, passes, *span)?;
+    }
+    match words.ends {
+        Some((End::Program(kind), span)) if front.levels.len() == 1 => {
+            kernel.end(kind, Origin { span, ..origin });
+            Ok(Step::End)
+        }
+        Some(_) if front.levels.len() > 1 => {
+            front.return_from_subprogram();
+            Ok(Step::Next)
+        }
+        // M17 or RET in the main program ends it, as M30 would (docs/SINUMERIK.md 8.3).
+        Some((End::Return, span)) => {
+            kernel.end(EndKind::M30, Origin { span, ..origin });
+            Ok(Step::End)
+        }
+        _ => Ok(Step::Next),
+    }
+}
+
+/// Sorts the block's words; a word vcnc does not run is an alarm naming it.
+fn read<'a>(front: &mut Sinumerik, block: &'a Block) -> Result<Words<'a>, Alarm> {
+    let mut words = Words::default();
+    for word in &block.words {
+        let address = &*word.address;
+        if let Some(function) = gcodes_word(front, word)? {
+            words.functions.push((function, word));
+            continue;
+        }
+        if let Some(axis) = AXIS_NAMES.iter().position(|a| *a == address) {
+            if !front.axes[axis] {
+                return Err(Alarm::error(
+                    AlarmCode::AxisNotOnMachine,
+                    word.span,
+                    format!("the machine has no axis {address}"),
+                )
+                .with_help("add the axis to the machine file's [axes], or remove the word"));
+            }
+            words.axes[axis] = Some(axis_value(front, word)?);
+            continue;
+        }
+        match address {
+            "I" | "J" | "K" => {
+                let i = (address.as_bytes()[0] - b'I') as usize;
+                words.centre[i] = Some(axis_value(front, word)?);
+            }
+            "CR" => words.radius = Some((number(front, word)?, word.span)),
+            "F" => words.feed = Some((number(front, word)?, word.span)),
+            "S" => words.speed = Some((number(front, word)?, word.span)),
+            "T" => words.tool = Some((tool_number(front, word)?, word.span)),
+            "D" => words.edge = Some((whole(front, word)?, word.span)),
+            "P" => words.passes = Some((whole(front, word)?, word.span)),
+            "M" => {
+                let code = whole(front, word)?;
+                match code {
+                    2 => words.ends = Some((End::Program(EndKind::M02), word.span)),
+                    30 => words.ends = Some((End::Program(EndKind::M30), word.span)),
+                    17 => words.ends = Some((End::Return, word.span)),
+                    _ => words.m.push((code, word.span)),
+                }
+            }
+            "RET" => words.ends = Some((End::Return, word.span)),
+            "L" => {
+                let n = whole(front, word)?;
+                words.call = Some((format!("L{n}"), word.span));
+            }
+            "STOPRE" | "MSG" => {}
+            _ if address.starts_with('R')
+                && address.len() > 1
+                && address[1..].bytes().all(|b| b.is_ascii_digit()) =>
+            {
+                let index: usize = address[1..].parse().unwrap_or(usize::MAX);
+                let value = number(front, word)?;
+                let Some(slot) = front.r.get_mut(index) else {
+                    return Err(Alarm::error(
+                        AlarmCode::BadVariable,
+                        word.span,
+                        format!(
+                            "{address} is beyond the {} R parameters of the machine",
+                            front.r.len()
+                        ),
+                    )
+                    .with_help(
+                        "use R0 to R99, or raise r_parameters in the profile's [sinumerik] table",
+                    ));
+                };
+                *slot = value;
+            }
+            _ => return Err(unknown_word(word)),
+        }
+    }
+    Ok(words)
+}
+
+/// The alarm of a word vcnc does not run: out of the product, planned, or unknown.
+fn unknown_word(word: &Word) -> Alarm {
+    let name = &*word.address;
+    if let Some(what) = gcodes::out_of_product(name) {
+        return Alarm::error(
+            AlarmCode::NotInProduct,
+            word.span,
+            format!("{name} belongs to {what}, which vcnc does not simulate"),
+        );
+    }
+    if gcodes::planned_call(name) {
+        return Alarm::error(
+            AlarmCode::NotSupportedYet,
+            word.span,
+            format!("{name} is not run yet (planned: issue 22, SINUMERIK cycles and compensation)"),
+        );
+    }
+    if matches!(word.value, Value::Bare | Value::Call(_)) {
+        return Alarm::error(
+            AlarmCode::NotSupportedYet,
+            word.span,
+            format!("{name} is not run yet by vcnc's SINUMERIK front end"),
+        )
+        .with_help("see docs/SINUMERIK.md for what runs today");
+    }
+    Alarm::error(
+        AlarmCode::WordNotAllowed,
+        word.span,
+        format!("the address {name} is not run yet by vcnc's SINUMERIK front end"),
+    )
+    .with_help("see docs/SINUMERIK.md for what runs today")
+}
+
+/// The G function a word is: `G1`, or a named one (`CIP`, `SOFT`); None for other words.
+fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<Function>, Alarm> {
+    let name: std::borrow::Cow<'_, str> = match (&*word.address, &word.value) {
+        ("G", Value::Constant(n)) => {
+            if n.value.fract() != 0.0 || n.value < 0.0 {
+                return Err(Alarm::error(
+                    AlarmCode::UnknownGCode,
+                    word.span,
+                    format!("G{} is not a G function", n.value),
+                ));
+            }
+            format!("G{}", n.value as u32).into()
+        }
+        (name, Value::Bare) => name.into(),
+        _ => return Ok(None),
+    };
+    let function = gcodes::function(&name, front.is_828d());
+    match function {
+        Some(Function::Planned) => Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            word.span,
+            format!("{name} is not run yet (planned: issue 22, SINUMERIK path control, compensation and working area)"),
+        )),
+        Some(Function::OutOfProduct(what)) => Err(Alarm::error(
+            AlarmCode::NotInProduct,
+            word.span,
+            format!("{name} belongs to {what}, which vcnc does not simulate"),
+        )),
+        Some(f) => Ok(Some(f)),
+        None if word.address.as_ref() == "G" => Err(Alarm::error(
+            AlarmCode::UnknownGCode,
+            word.span,
+            format!("{name} is not a G function of the SINUMERIK"),
+        )),
+        None => Ok(None),
+    }
+}
+
+/// Applies a modal G function.
+pub(super) fn apply_modal(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    function: Function,
+    _span: Span,
+) -> Result<(), Alarm> {
+    match function {
+        Function::Motion(motion) => front.modal.motion = motion,
+        Function::Plane(plane) => {
+            front.modal.plane = plane;
+            kernel.set_plane(plane);
+        }
+        Function::Absolute(absolute) => front.modal.absolute = absolute,
+        Function::Units { inch, feeds } => {
+            front.modal.inch = inch;
+            front.modal.inch_feeds = feeds;
+        }
+        Function::FeedType(feed_type) => {
+            // A change of feed type leaves no feed in force (docs/SINUMERIK.md 4.1).
+            if feed_type != front.modal.feed_type {
+                front.modal.feed_type = feed_type;
+                kernel.set_feed_in(feed_mode(feed_type), None);
+            }
+        }
+        Function::Settable(n) => kernel.select_work_offset(match n {
+            1..=4 => WorkOffsetId::Standard(n as u8),
+            n => WorkOffsetId::Settable(n),
+        }),
+        Function::ExactStop => front.modal.exact_stop = true,
+        Function::State | Function::OneBlock(_) | Function::Planned | Function::OutOfProduct(_) => {
+        }
+    }
+    Ok(())
+}
+
+fn feed_mode(feed_type: FeedType) -> FeedMode {
+    match feed_type {
+        FeedType::InverseTime => FeedMode::InverseTime,
+        FeedType::PerMinute => FeedMode::PerMinute,
+        FeedType::PerRevolution => FeedMode::PerRevolution,
+    }
+}
+
+/// F: converted with the unit under G700/G710 only.
+fn set_feed(front: &Sinumerik, kernel: &mut Kernel, feed: f64, span: Span) -> Result<(), Alarm> {
+    if feed < 0.0 {
+        return Err(Alarm::error(
+            AlarmCode::BadFeedRate,
+            span,
+            "the feed cannot be negative",
+        ));
+    }
+    let factor = if front.modal.inch && front.modal.inch_feeds {
+        25.4
+    } else {
+        1.0
+    };
+    kernel.set_feed_in(feed_mode(front.modal.feed_type), Some(feed * factor));
+    Ok(())
+}
+
+/// S, M3, M4, M5, M19: before the motion (docs/SINUMERIK.md 3.2 step 7).
+fn spindle(front: &Sinumerik, kernel: &mut Kernel, words: &Words<'_>, origin: Origin) {
+    let _ = front;
+    let state = words.m.iter().find_map(|&(code, _)| match code {
+        3 => Some(SpindleState::Clockwise),
+        4 => Some(SpindleState::CounterClockwise),
+        5 => Some(SpindleState::Stopped),
+        19 => Some(SpindleState::Oriented),
+        _ => None,
+    });
+    let speed = words.speed.map(|(s, _)| s);
+    if speed.is_some() || state.is_some() {
+        kernel.spindle(speed, state, origin);
+    }
+}
+
+/// T, M6, D in that order whatever their written order (docs/SINUMERIK.md 3.2 step 8).
+fn tool(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    words: &Words<'_>,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    let change = words.m.iter().any(|&(code, _)| code == 6);
+    if let Some((t, _)) = words.tool {
+        front.tool.selected = Some(t);
+        kernel.event(SegmentKind::ToolSelect { tool: t }, origin);
+    }
+    let changing = change || (words.tool.is_some() && front.settings.t_changes_tool);
+    if changing {
+        let Some(t) = front.tool.selected else {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                origin.span,
+                "M6 without a tool selected (T)",
+            )
+            .with_help("select the tool with T before M6"));
+        };
+        front.tool.in_spindle = Some(t);
+        // A change activates the new tool's first edge unless the block says D (MD20270).
+        if words.edge.is_none() {
+            front.tool.edge = 1;
+        }
+        let geometry = front
+            .tools
+            .iter()
+            .find(|e| e.t == t && e.d == 1)
+            .map(|e| ToolGeometry {
+                length: e.length,
+                radius: e.radius,
+            });
+        kernel.event(SegmentKind::ToolChange { tool: t, geometry }, origin);
+    }
+    if let Some((d, _)) = words.edge {
+        front.tool.edge = d;
+    }
+    if changing || words.edge.is_some() {
+        let length = front.edge().map_or(0.0, |e| e.length);
+        kernel.set_tool_length(length);
+    }
+    Ok(())
+}
+
+/// M functions other than the spindle's, the tool change and the ends: coolant and the machine's
+/// own, output before the motion; M0 and M1 come after it.
+fn auxiliary(kernel: &mut Kernel, code: u32, origin: Origin) {
+    let kind = match code {
+        3 | 4 | 5 | 19 | 6 | 0 | 1 => return,
+        7 | 8 => SegmentKind::Coolant { on: true },
+        9 => SegmentKind::Coolant { on: false },
+        code => SegmentKind::Auxiliary { code },
+    };
+    kernel.event(kind, origin);
+}
+
+fn stop_kind(code: u32) -> Option<StopKind> {
+    match code {
+        0 => Some(StopKind::Program),
+        1 => Some(StopKind::Optional),
+        _ => None,
+    }
+}
+
+/// G4: F seconds or S spindle revolutions.
+fn dwell_block(
+    front: &Sinumerik,
+    kernel: &mut Kernel,
+    words: &Words<'_>,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    let _ = front;
+    let seconds = match (words.feed, words.speed) {
+        (Some((f, _)), None) => f,
+        (None, Some((s, span))) => {
+            let rpm = kernel.state().spindle.speed();
+            if rpm <= 0.0 {
+                return Err(Alarm::error(
+                    AlarmCode::BadDwell,
+                    span,
+                    "a dwell in revolutions (G4 S) needs the spindle's speed",
+                ));
+            }
+            s * 60.0 / rpm
+        }
+        _ => {
+            return Err(Alarm::error(
+                AlarmCode::BadDwell,
+                origin.span,
+                "G4 takes either F (seconds) or S (revolutions)",
+            ))
+        }
+    };
+    kernel.dwell(seconds, origin)
+}
+
+/// The factor of lengths: 25.4 under G70/G700.
+fn unit(front: &Sinumerik) -> f64 {
+    if front.modal.inch {
+        25.4
+    } else {
+        1.0
+    }
+}
+
+/// The block's end point in the work system, per axis (None: not programmed).
+fn end_point(front: &Sinumerik, words: &Words<'_>) -> [Option<f64>; AXES] {
+    let unit = unit(front);
+    std::array::from_fn(|i| {
+        let v = words.axes[i]?;
+        // Rotary axes are in degrees whatever the unit.
+        let scale = if i < 3 { unit } else { 1.0 };
+        Some(if v.absolute.unwrap_or(front.modal.absolute) {
+            v.value * scale
+        } else {
+            front.programmed[i] + v.value * scale
+        })
+    })
+}
+
+/// The block's motion in the work system: G0, G1, G2, G3.
+fn motion(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    words: &Words<'_>,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    let target = end_point(front, words);
+    let moves = target.iter().any(Option::is_some);
+    let arc = matches!(
+        front.modal.motion,
+        Motion::Clockwise | Motion::CounterClockwise
+    );
+    if !moves && !(arc && (words.centre.iter().any(Option::is_some) || words.radius.is_some())) {
+        return Ok(());
+    }
+    match front.modal.motion {
+        Motion::Rapid => kernel.rapid_to(target, origin)?,
+        Motion::Line => kernel.feed_to(target, origin)?,
+        Motion::Clockwise | Motion::CounterClockwise => {
+            arc_move(front, kernel, words, target, origin)?;
+        }
+        Motion::ThroughPoint | Motion::Tangential => {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                origin.span,
+                "CIP and CT arcs are not run yet by vcnc's SINUMERIK front end",
+            ))
+        }
+    }
+    for (p, t) in front.programmed.iter_mut().zip(target) {
+        if let Some(t) = t {
+            *p = t;
+        }
+    }
+    Ok(())
+}
+
+/// G2/G3 with a centre (I J K, incremental from the start unless `=AC(..)`) or a radius CR.
+fn arc_move(
+    front: &Sinumerik,
+    kernel: &mut Kernel,
+    words: &Words<'_>,
+    target: [Option<f64>; AXES],
+    origin: Origin,
+) -> Result<(), Alarm> {
+    let direction = match front.modal.motion {
+        Motion::Clockwise => ArcDirection::Clockwise,
+        _ => ArcDirection::CounterClockwise,
+    };
+    let (a, b, _) = front.modal.plane.axes();
+    let start = (front.programmed[a], front.programmed[b]);
+    let end = (target[a].unwrap_or(start.0), target[b].unwrap_or(start.1));
+    let unit = unit(front);
+    let centre_of = |axis: usize, start: f64| -> Option<f64> {
+        let v = words.centre[axis]?;
+        Some(if v.absolute == Some(true) {
+            v.value * unit
+        } else {
+            start + v.value * unit
+        })
+    };
+    let (ia, ib) = (centre_index(a), centre_index(b));
+    let centre =
+        match (words.radius, centre_of(ia, start.0), centre_of(ib, start.1)) {
+            (Some((radius, span)), None, None) => {
+                let tolerance = kernel.state().setup.profile().arc_radius_tolerance;
+                arc_center(
+                    start,
+                    end,
+                    ArcSpec::Radius {
+                        radius: radius * unit,
+                        span,
+                    },
+                    direction,
+                    tolerance,
+                )?
+            }
+            (None, ca, cb) if ca.is_some() || cb.is_some() => {
+                (ca.unwrap_or(start.0), cb.unwrap_or(start.1))
+            }
+            (Some((_, span)), _, _) => {
+                return Err(Alarm::error(
+                    AlarmCode::WordNotAllowed,
+                    span,
+                    "an arc takes its centre (I J K) or its radius (CR), not both",
+                ))
+            }
+            _ => return Err(Alarm::error(
+                AlarmCode::ArcWithoutCenter,
+                origin.span,
+                "G2/G3 without a centre (I J K) or a radius (CR=)",
+            )
+            .with_help(
+                "give the centre with I, J, K (incremental from the start) or the radius with CR=",
+            )),
+        };
+    kernel.arc_to(target, centre, direction, origin)
+}
+
+/// The centre word (I J K) of axis `axis` (X Y Z).
+fn centre_index(axis: usize) -> usize {
+    axis
+}
+
+/// A move of a block with G53, G153 or SUPA: the programmed axes go to machine positions
+/// without the suppressed frames; the tool length stays (docs/SINUMERIK.md 5.6).
+fn suppressed_move(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    words: &Words<'_>,
+    level: OneBlock,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    if words.axes.iter().all(Option::is_none) {
+        return Ok(());
+    }
+    let state = kernel.state();
+    let external = match level {
+        OneBlock::SuppressAll => [0.0; AXES],
+        _ => state.frames.work_offset(WorkOffsetId::External),
+    };
+    let length = state.frames.length_vector();
+    let here = state.position;
+    let unit = unit(front);
+    let mut to = here;
+    for (i, value) in words.axes.iter().enumerate() {
+        let Some(v) = value else { continue };
+        let scale = if i < 3 { unit } else { 1.0 };
+        let length = if i == 2 { length } else { 0.0 };
+        to[i] = if v.absolute.unwrap_or(front.modal.absolute) {
+            v.value * scale + external[i] + length
+        } else {
+            here[i] + v.value * scale
+        };
+    }
+    match front.modal.motion {
+        Motion::Rapid => kernel.rapid_to_machine(to, origin)?,
+        Motion::Line => kernel.feed_to_machine(to, origin)?,
+        _ => {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                origin.span,
+                "G53, G153 and SUPA take G0 or G1",
+            ))
+        }
+    }
+    // The next block starts from where the tool stands, seen through the normal chain.
+    let now = kernel.program_position();
+    for (i, value) in words.axes.iter().enumerate() {
+        if value.is_some() {
+            front.programmed[i] = now[i];
+        }
+    }
+    Ok(())
+}
+
+/// An axis or centre word's value, with `AC(..)` or `IC(..)` when written so.
+fn axis_value(front: &Sinumerik, word: &Word) -> Result<AxisValue, Alarm> {
+    if let Value::Expression(Expr {
+        kind: ExprKind::Call(name, args),
+        ..
+    }) = &word.value
+    {
+        let absolute = match &**name {
+            "AC" => Some(true),
+            "IC" => Some(false),
+            _ => None,
+        };
+        if let Some(absolute) = absolute {
+            let [Some(arg)] = args.as_slice() else {
+                return Err(Alarm::error(
+                    AlarmCode::MacroSyntax,
+                    word.span,
+                    format!("{name}(..) takes one value"),
+                ));
+            };
+            return Ok(AxisValue {
+                value: evaluate(front, arg)?,
+                absolute: Some(absolute),
+            });
+        }
+    }
+    Ok(AxisValue {
+        value: number(front, word)?,
+        absolute: None,
+    })
+}
+
+/// A word's value as a number.
+fn number(front: &Sinumerik, word: &Word) -> Result<f64, Alarm> {
+    match &word.value {
+        Value::Constant(n) => Ok(n.value),
+        Value::Expression(expr) => evaluate(front, expr),
+        _ => Err(Alarm::error(
+            AlarmCode::MissingValue,
+            word.span,
+            format!("{} needs a value", word.address),
+        )),
+    }
+}
+
+/// A word's value as a whole number (M, D, P, L).
+fn whole(front: &Sinumerik, word: &Word) -> Result<u32, Alarm> {
+    let value = number(front, word)?;
+    if value.fract() != 0.0 || !(0.0..=f64::from(u32::MAX)).contains(&value) {
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            word.span,
+            format!("{} takes a whole number, not {value}", word.address),
+        ));
+    }
+    Ok(value as u32)
+}
+
+/// T by number, or `T="name"` from the machine's tool table.
+fn tool_number(front: &Sinumerik, word: &Word) -> Result<u32, Alarm> {
+    if let Value::Expression(Expr {
+        kind: ExprKind::Text(name),
+        ..
+    }) = &word.value
+    {
+        return front
+            .tools
+            .iter()
+            .find(|e| {
+                e.name
+                    .as_deref()
+                    .is_some_and(|n| n.eq_ignore_ascii_case(name))
+            })
+            .map(|e| e.t)
+            .ok_or_else(|| {
+                Alarm::error(
+                    AlarmCode::OffsetNumberOutOfRange,
+                    word.span,
+                    format!("the tool table has no tool named \"{name}\""),
+                )
+                .with_help("add the tool to the machine file's [[tools]] with its name")
+            });
+    }
+    whole(front, word)
+}
+
+/// An expression's value. (The language's whole evaluation comes with `eval.rs`: numbers, R
+/// parameters and signs for now.)
+fn evaluate(front: &Sinumerik, expr: &Expr) -> Result<f64, Alarm> {
+    match &expr.kind {
+        ExprKind::Number(n) => Ok(*n),
+        ExprKind::Unary(UnaryOp::Minus, inner) => Ok(-evaluate(front, inner)?),
+        ExprKind::Name(name)
+            if name.starts_with('R') && name[1..].bytes().all(|b| b.is_ascii_digit()) =>
+        {
+            let index: usize = name[1..].parse().unwrap_or(usize::MAX);
+            front.r.get(index).copied().ok_or_else(|| {
+                Alarm::error(
+                    AlarmCode::BadVariable,
+                    expr.span,
+                    format!("{name} is beyond the machine's R parameters"),
+                )
+            })
+        }
+        _ => Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            expr.span,
+            "this expression is not evaluated yet by vcnc's SINUMERIK front end",
+        )),
+    }
+}

@@ -1,0 +1,253 @@
+//! The G functions and the named modal functions of SINUMERIK (`G1`, `CIP`, `SOFT`, `G500`):
+//! which group each belongs to, and what vcnc does with it (docs/SINUMERIK.md 4.1).
+//!
+//! Never: accept a function without saying what it does. A function is run, kept as state with
+//! no geometric effect on a 3-axis mill, planned for the next SINUMERIK issue (alarm V020 naming
+//! it), or outside the product (alarm V022 naming it).
+
+/// What a G function or named modal function does in vcnc.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Function {
+    /// Group 1: how the block's end point is reached.
+    Motion(Motion),
+    /// G4, G9, G53, G153, SUPA, G63: for this block only.
+    OneBlock(OneBlock),
+    /// G17, G18, G19.
+    Plane(crate::motion::Plane),
+    /// G90 (true) or G91.
+    Absolute(bool),
+    /// G70, G71, G700, G710: inch (true) or metric, and whether F converts too.
+    Units { inch: bool, feeds: bool },
+    /// G93, G94, G95.
+    FeedType(FeedType),
+    /// G500 (0), G54..G57 (1..4), G505..G599 (5..99); on the 828D, G58 and G59 are 5 and 6.
+    Settable(u32),
+    /// G60 exact stop.
+    ExactStop,
+    /// Kept as state: no geometric effect on a 3-axis mill (or the planner's default already).
+    State,
+    /// The next SINUMERIK issue adds it.
+    Planned,
+    /// Outside the product: the name says what it belongs to.
+    OutOfProduct(&'static str),
+}
+
+/// The motions of group 1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Motion {
+    /// G0.
+    Rapid,
+    /// G1.
+    Line,
+    /// G2.
+    Clockwise,
+    /// G3.
+    CounterClockwise,
+    /// CIP: circle through an intermediate point.
+    ThroughPoint,
+    /// CT: tangential circle.
+    Tangential,
+}
+
+/// The one-block functions vcnc runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum OneBlock {
+    /// G4.
+    Dwell,
+    /// G9.
+    ExactStop,
+    /// G53: without the programmable and settable frames.
+    SuppressFrames,
+    /// G153: also without the basic frame.
+    SuppressBasic,
+    /// SUPA: also without the external offsets.
+    SuppressAll,
+}
+
+/// The feed types of group 15 that vcnc runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum FeedType {
+    /// G93: inverse time.
+    InverseTime,
+    /// G94: mm/min.
+    PerMinute,
+    /// G95: mm/rev.
+    PerRevolution,
+}
+
+/// The SINUMERIK group of a G function, by number (docs/SINUMERIK.md 4.1): blocks may hold one
+/// function per group.
+pub(super) fn group(name: &str) -> Option<u8> {
+    let g = |n: u8| Some(n);
+    match name {
+        "G0" | "G1" | "G2" | "G3" | "CIP" | "CT" | "G33" | "G34" | "G35" | "G331" | "G332"
+        | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "INVCW" | "INVCCW" | "OEMIPO1"
+        | "OEMIPO2" => g(1),
+        "G4" | "G63" | "G74" | "G75" | "G147" | "G148" | "G247" | "G248" | "G347" | "G348" => g(2),
+        "G17" | "G18" | "G19" => g(6),
+        "G40" | "G41" | "G42" => g(7),
+        "G53" | "G153" | "SUPA" => g(9),
+        "G60" | "G64" | "G641" | "G642" | "G643" | "G644" | "G645" => g(10),
+        "G9" => g(11),
+        "G601" | "G602" | "G603" => g(12),
+        "G70" | "G71" | "G700" | "G710" => g(13),
+        "G90" | "G91" => g(14),
+        "G93" | "G94" | "G95" | "G96" | "G97" | "G931" | "G961" | "G971" | "G942" | "G952"
+        | "G962" | "G972" | "G973" => g(15),
+        "CFC" | "CFTCP" | "CFIN" => g(16),
+        "NORM" | "KONT" | "KONTT" | "KONTC" => g(17),
+        "G450" | "G451" => g(18),
+        "BRISK" | "SOFT" | "DRIVE" => g(21),
+        "CUT2D" | "CUT2DF" | "CUT3DC" | "CUT3DF" | "CUT3DFS" | "CUT3DFF" | "CUT3DCC"
+        | "CUT3DCCD" => g(22),
+        "FFWOF" | "FFWON" => g(24),
+        "WALIMON" | "WALIMOF" => g(28),
+        "DIAMOF" | "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN"
+        | "DIAMCYCOF" => g(29),
+        "COMPOF" | "COMPON" | "COMPCURV" | "COMPCAD" => g(30),
+        "FNORM" | "FLIN" | "FCUB" | "FPO" => g(37),
+        "G290" | "G291" => g(47),
+        "RTLION" | "RTLIOF" => g(55),
+        "DYNNORM" | "DYNPOS" | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" => g(59),
+        "G140" | "G141" | "G142" | "G143" => g(43),
+        "G340" | "G341" => g(44),
+        "G460" | "G461" | "G462" => g(48),
+        "CDOF" | "CDON" | "CDOF2" => g(40),
+        "G500" | "G54" | "G55" | "G56" | "G57" => g(8),
+        _ => settable_number(name).map(|_| 8),
+    }
+}
+
+/// The settable frame a `G5xx` name selects beyond G54..G57 (G505..G599: 5..99).
+fn settable_number(name: &str) -> Option<u32> {
+    let n: u32 = name.strip_prefix("G5")?.parse().ok()?;
+    (name.len() == 4 && (5..=99).contains(&n)).then_some(n)
+}
+
+/// What `name` does, on the 828D when `m828d`; None for a name that is not a G function or a
+/// named modal function.
+pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
+    use Function::*;
+    let f = match name {
+        "G0" => Motion(self::Motion::Rapid),
+        "G1" => Motion(self::Motion::Line),
+        "G2" => Motion(self::Motion::Clockwise),
+        "G3" => Motion(self::Motion::CounterClockwise),
+        "CIP" => Motion(self::Motion::ThroughPoint),
+        "CT" => Motion(self::Motion::Tangential),
+        "G4" => OneBlock(self::OneBlock::Dwell),
+        "G9" => OneBlock(self::OneBlock::ExactStop),
+        "G53" => OneBlock(self::OneBlock::SuppressFrames),
+        "G153" => OneBlock(self::OneBlock::SuppressBasic),
+        "SUPA" => OneBlock(self::OneBlock::SuppressAll),
+        "G17" => Plane(crate::motion::Plane::Xy),
+        "G18" => Plane(crate::motion::Plane::Zx),
+        "G19" => Plane(crate::motion::Plane::Yz),
+        "G90" => Absolute(true),
+        "G91" => Absolute(false),
+        "G70" => Units {
+            inch: true,
+            feeds: false,
+        },
+        "G71" => Units {
+            inch: false,
+            feeds: false,
+        },
+        "G700" => Units {
+            inch: true,
+            feeds: true,
+        },
+        "G710" => Units {
+            inch: false,
+            feeds: true,
+        },
+        "G93" => FeedType(self::FeedType::InverseTime),
+        "G94" => FeedType(self::FeedType::PerMinute),
+        "G95" => FeedType(self::FeedType::PerRevolution),
+        "G500" => Settable(0),
+        "G54" => Settable(1),
+        "G55" => Settable(2),
+        "G56" => Settable(3),
+        "G57" => Settable(4),
+        "G58" if m828d => Settable(5),
+        "G59" if m828d => Settable(6),
+        "G60" => ExactStop,
+        "G40" | "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "NORM" | "G450" | "BRISK"
+        | "SOFT" | "DRIVE" | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF"
+        | "COMPOF" | "COMPON" | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF"
+        | "DYNNORM" | "DYNPOS" | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF"
+        | "CDON" | "CDOF2" | "TRAFOOF" => State,
+        "G41" | "G42" | "G451" | "G64" | "G641" | "G642" | "G643" | "G644" | "G645" | "KONT"
+        | "KONTT" | "KONTC" | "CUT2DF" | "G140" | "G141" | "G142" | "G143" | "G147" | "G148"
+        | "G247" | "G248" | "G347" | "G348" | "G340" | "G341" | "G460" | "G461" | "G462"
+        | "G25" | "G26" | "CUTCONON" | "CUTCONOF" | "FLIN" | "FCUB" | "G33" | "G331" | "G332"
+        | "G63" | "G74" | "G75" | "G96" | "G961" | "G97" | "G971" | "G291" => Planned,
+        "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
+            OutOfProduct("turning (diameter programming)")
+        }
+        "CUT3DC" | "CUT3DF" | "CUT3DFS" | "CUT3DFF" | "CUT3DCC" | "CUT3DCCD" => {
+            OutOfProduct("5-axis 3D tool radius compensation")
+        }
+        "G34" | "G35" => OutOfProduct("turning (threads of variable lead)"),
+        "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" => OutOfProduct("spline interpolation"),
+        "INVCW" | "INVCCW" => OutOfProduct("involute interpolation"),
+        "OEMIPO1" | "OEMIPO2" => OutOfProduct("OEM interpolation"),
+        "G931" | "G942" | "G952" | "G962" | "G972" | "G973" | "FPO" => {
+            OutOfProduct("feed types of turning and grinding")
+        }
+        _ => {
+            let n = settable_number(name)?;
+            if m828d {
+                return None;
+            }
+            Settable(n)
+        }
+    };
+    Some(f)
+}
+
+/// Predefined procedures and keywords outside the product, by what they belong to.
+pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "TRANSMIT" | "TRACYL" | "TRAORI" | "TRAANG" | "TRACON" | "TRAFOON" => {
+            "kinematic transformations"
+        }
+        "COUPON" | "COUPOF" | "COUPDEF" | "COUPDEL" | "TRAILON" | "TRAILOF" | "LEADON"
+        | "LEADOF" | "EGON" | "EGOFS" => "axis couplings",
+        "WAITM" | "WAITMC" | "WAITE" | "SETM" | "CLEARM" | "START" | "INIT" => "several channels",
+        "GWPSON" | "GWPSOF" | "PUNCHACC" | "SPOF" | "SON" | "PON" => "grinding and punching",
+        "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIEULER" | "ORIRPY" => {
+            "orientation transformations"
+        }
+        "TRAFOOF" => return None,
+        _ => return None,
+    })
+}
+
+/// Predefined procedures and cycles the next SINUMERIK issue adds.
+pub(super) fn planned_call(name: &str) -> bool {
+    name.starts_with("CYCLE") && name != "CYCLE800" && name != "CYCLE832"
+        || name.starts_with("POCKET")
+        || name.starts_with("SLOT")
+        || name.starts_with("HOLES")
+        || matches!(name, "LONGHOLE" | "WALCS1" | "DISC" | "OFFN")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_function_has_a_group() {
+        for name in [
+            "G0", "CIP", "G17", "G500", "G505", "G599", "SOFT", "G9", "SUPA",
+        ] {
+            assert!(group(name).is_some(), "{name}");
+            assert!(function(name, false).is_some(), "{name}");
+        }
+        assert_eq!(function("G599", false), Some(Function::Settable(99)));
+        assert_eq!(function("G505", true), None);
+        assert_eq!(function("G58", true), Some(Function::Settable(5)));
+        assert_eq!(function("G5", false), None);
+    }
+}
