@@ -33,7 +33,8 @@ struct AxisValue {
 /// The words of one block, sorted by what they do.
 #[derive(Default)]
 struct Words<'a> {
-    functions: Vec<(Function, &'a Word)>,
+    /// The G functions, with their groups.
+    functions: Vec<(Function, Option<u8>, &'a Word)>,
     axes: [Option<AxisValue>; AXES],
     centre: [Option<AxisValue>; 3],
     radius: Option<(f64, Span)>,
@@ -79,8 +80,8 @@ pub(super) fn run(
     // G functions take their new members before any value of the block is read.
     let mut one_block = Vec::new();
     let mut groups = [None::<Span>; 64];
-    for &(function, word) in &words.functions {
-        if let Some(group) = gcodes::group(&word.address) {
+    for &(function, group, word) in &words.functions {
+        if let Some(group) = group {
             if let Some(first) = groups[group as usize].replace(word.span) {
                 return Err(Alarm::error(
                     AlarmCode::SameGroupGCodes,
@@ -102,7 +103,9 @@ pub(super) fn run(
             set_feed(front, kernel, feed, span)?;
         }
     }
-    spindle(front, kernel, &words, origin);
+    if !dwell {
+        spindle(front, kernel, &words, origin);
+    }
     tool(front, kernel, &words, origin)?;
     for &(code, span) in &words.m {
         auxiliary(kernel, code, Origin { span, ..origin });
@@ -157,8 +160,8 @@ fn read<'a>(front: &mut Sinumerik, block: &'a Block) -> Result<Words<'a>, Alarm>
     let mut words = Words::default();
     for word in &block.words {
         let address = &*word.address;
-        if let Some(function) = gcodes_word(front, word)? {
-            words.functions.push((function, word));
+        if let Some((function, group)) = gcodes_word(front, word)? {
+            words.functions.push((function, group, word));
             continue;
         }
         if let Some(axis) = AXIS_NAMES.iter().position(|a| *a == address) {
@@ -199,6 +202,14 @@ fn read<'a>(front: &mut Sinumerik, block: &'a Block) -> Result<Words<'a>, Alarm>
                 words.call = Some((format!("L{n}"), word.span));
             }
             "STOPRE" | "MSG" => {}
+            // A name alone that is no keyword calls the subprogram of that name (`L140`,
+            // `CHAMFER`).
+            _ if matches!(word.value, Value::Bare)
+                && gcodes::out_of_product(address).is_none()
+                && !gcodes::planned_call(address) =>
+            {
+                words.call = Some((address.to_string(), word.span));
+            }
             _ if address.starts_with('R')
                 && address.len() > 1
                 && address[1..].bytes().all(|b| b.is_ascii_digit()) =>
@@ -259,8 +270,9 @@ fn unknown_word(word: &Word) -> Alarm {
     .with_help("see docs/SINUMERIK.md for what runs today")
 }
 
-/// The G function a word is: `G1`, or a named one (`CIP`, `SOFT`); None for other words.
-fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<Function>, Alarm> {
+/// The G function a word is (`G1`, or a named one: `CIP`, `SOFT`) and its group; None for
+/// other words.
+fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<(Function, Option<u8>)>, Alarm> {
     let name: std::borrow::Cow<'_, str> = match (&*word.address, &word.value) {
         ("G", Value::Constant(n)) => {
             if n.value.fract() != 0.0 || n.value < 0.0 {
@@ -287,7 +299,7 @@ fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<Function>, Alarm
             word.span,
             format!("{name} belongs to {what}, which vcnc does not simulate"),
         )),
-        Some(f) => Ok(Some(f)),
+        Some(f) => Ok(Some((f, gcodes::group(&name)))),
         None if word.address.as_ref() == "G" => Err(Alarm::error(
             AlarmCode::UnknownGCode,
             word.span,
@@ -322,8 +334,10 @@ pub(super) fn apply_modal(
                 kernel.set_feed_in(feed_mode(feed_type), None);
             }
         }
+        // The 828D's G58 and G59 are the machine file's `G58` and `G59`.
         Function::Settable(n) => kernel.select_work_offset(match n {
             1..=4 => WorkOffsetId::Standard(n as u8),
+            5 | 6 if front.is_828d() => WorkOffsetId::Standard(n as u8),
             n => WorkOffsetId::Settable(n),
         }),
         Function::ExactStop => front.modal.exact_stop = true,

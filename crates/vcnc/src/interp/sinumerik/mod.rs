@@ -290,6 +290,12 @@ impl FrontEnd for Sinumerik {
             let Some(line) = text.line(index) else {
                 return self.end_of_text(kernel);
             };
+            // `%_N_PART_MPF` (or `%` alone) names the file for the control's file system: a
+            // header, not a block (docs/SINUMERIK.md 2.1).
+            if line.bytes.trim_ascii_start().starts_with(b"%") {
+                self.level().next = index + 1;
+                continue;
+            }
             let block = parse_block(line.bytes, text.file, line.number, line.base);
             self.level().next = index + 1;
             if block.words.is_empty() && block.statement.is_none() && block.alarm.is_none() {

@@ -1,0 +1,482 @@
+//! The SINUMERIK front end's semantics, block by block, with positions worked out by hand
+//! (docs/SINUMERIK.md names the manual's rules; each test says which it checks).
+
+use vcnc::interp::sinumerik::{run_str, Sinumerik};
+use vcnc::interp::{Kernel, MemoryLibrary, Run};
+use vcnc::machine::{ToolEdge, WorkOffsetId};
+use vcnc::motion::{ArcDirection, EndKind, SpindleState};
+use vcnc::{Alarm, AlarmCode, FileId, Machine, ProfileName, Segment, SegmentKind};
+
+fn machine() -> Machine {
+    Machine::default()
+        .with_profile(ProfileName::Sinumerik)
+        .unwrap()
+}
+
+/// G54 at X100 Y50, G55 at X200; tool 1 "MILL10" with D1 length 100 and D2 length 50.
+fn shop() -> Machine {
+    let mut machine = machine();
+    machine
+        .work_offsets
+        .insert(WorkOffsetId::Standard(1), [100.0, 50.0, 0.0, 0.0, 0.0, 0.0]);
+    machine
+        .work_offsets
+        .insert(WorkOffsetId::Standard(2), [200.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    machine
+        .work_offsets
+        .insert(WorkOffsetId::External, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    for (d, length) in [(1, 100.0), (2, 50.0)] {
+        machine.tools.push(ToolEdge {
+            t: 1,
+            name: Some("MILL10".into()),
+            d,
+            tool_type: 120,
+            length,
+            length2: 0.0,
+            length3: 0.0,
+            radius: 5.0,
+        });
+    }
+    machine
+}
+
+/// The stream of `text` on `machine`, stopping at the first error.
+fn stream(text: &str, machine: &Machine) -> (Vec<Segment>, Vec<Alarm>) {
+    collect(run_str(text, machine))
+}
+
+fn collect(run: Run<Sinumerik>) -> (Vec<Segment>, Vec<Alarm>) {
+    let mut segments = Vec::new();
+    let mut alarms = Vec::new();
+    for item in run {
+        match item {
+            Ok(segment) => segments.push(segment),
+            Err(alarm) => alarms.push(alarm),
+        }
+    }
+    (segments, alarms)
+}
+
+/// The end points of the moves, machine coordinates X Y Z.
+fn ends(segments: &[Segment]) -> Vec<[f64; 3]> {
+    segments
+        .iter()
+        .filter_map(Segment::motion)
+        .map(|m| [m.to.0[0], m.to.0[1], m.to.0[2]])
+        .collect()
+}
+
+fn moves(text: &str, machine: &Machine) -> Vec<[f64; 3]> {
+    let (segments, alarms) = stream(text, machine);
+    assert!(alarms.iter().all(|a| !a.is_error()), "{text}\n{alarms:#?}");
+    ends(&segments)
+}
+
+fn error(text: &str, machine: &Machine) -> Alarm {
+    let (_, alarms) = stream(text, machine);
+    alarms
+        .into_iter()
+        .find(Alarm::is_error)
+        .unwrap_or_else(|| panic!("no error in\n{text}"))
+}
+
+/// The first arc of a stream.
+fn arc(segments: &[Segment]) -> Option<SegmentKind> {
+    segments
+        .iter()
+        .map(|s| s.kind)
+        .find(|k| matches!(k, SegmentKind::Arc { .. }))
+}
+
+fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+    a.iter().zip(b).all(|(p, q)| (p - q).abs() < 1e-6)
+}
+
+#[track_caller]
+fn assert_moves(text: &str, machine: &Machine, expected: &[[f64; 3]]) {
+    let got = moves(text, machine);
+    assert!(
+        got.len() == expected.len() && got.iter().zip(expected).all(|(g, e)| close(*g, *e)),
+        "{text}\ngot {got:?}\nwanted {expected:?}"
+    );
+}
+
+#[test]
+fn power_on_is_g500_g90_g71_g1_g17_without_a_work_offset() {
+    // G500: no settable offset; G1 at power-on with a feed: the first block cuts.
+    let (segments, _) = stream("F100 X10 Y5\nM30\n", &shop());
+    assert!(matches!(segments[0].kind, SegmentKind::Line { .. }));
+    assert!(close(ends(&segments)[0], [10.0 + 1.0, 5.0, 0.0]));
+}
+
+#[test]
+fn g54_acts_in_its_own_block() {
+    // PGsl 8.1: `G54 G0 X-72` already uses G54 (X100 Y50), plus the external X1.
+    assert_moves("G54 G0 X-72 Y-72\nM30\n", &shop(), &[[29.0, -22.0, 0.0]]);
+}
+
+#[test]
+fn incremental_values_add_to_the_programmed_position() {
+    assert_moves(
+        "G54 G0 X10 Y0\nG91 X5\nX5 Y1\nM30\n",
+        &shop(),
+        &[[111.0, 50.0, 0.0], [116.0, 50.0, 0.0], [121.0, 51.0, 0.0]],
+    );
+}
+
+#[test]
+fn ac_and_ic_act_on_one_word_without_changing_the_group() {
+    // docs/SINUMERIK.md 6.2: `G90 G0 X10` / `X=IC(5)` / `X20` -> X15 then X20; `G91 X=AC(50)`.
+    assert_moves(
+        "G0 X10\nX=IC(5)\nX20\nG91 X=AC(50) Y2\nY2\nM30\n",
+        &machine(),
+        &[
+            [10.0, 0.0, 0.0],
+            [15.0, 0.0, 0.0],
+            [20.0, 0.0, 0.0],
+            [50.0, 2.0, 0.0],
+            [50.0, 4.0, 0.0],
+        ],
+    );
+}
+
+#[test]
+fn a_word_written_after_g91_is_still_incremental() {
+    // The G functions of a block act before its values are read (3.2 step 3).
+    assert_moves(
+        "G0 X10\nX10 G91\nM30\n",
+        &machine(),
+        &[[10.0, 0.0, 0.0], [20.0, 0.0, 0.0]],
+    );
+}
+
+#[test]
+fn g70_converts_positions_but_not_the_feed() {
+    // Ex. A-78: G70 X2.75 Y3.22 -> X69.85 Y81.788 mm; F500 stays 500 mm/min.
+    let (segments, _) = stream("G70 G1 X2.75 Y3.22 F500\nM30\n", &machine());
+    assert!(close(ends(&segments)[0], [69.85, 81.788, 0.0]));
+    let SegmentKind::Line { feed, .. } = segments[0].kind else {
+        panic!("{segments:?}")
+    };
+    assert_eq!(feed, vcnc::motion::Feed::PerMinute(500.0));
+}
+
+#[test]
+fn g700_converts_the_feed_too() {
+    let (segments, _) = stream("G700 G1 X1 F10\nM30\n", &machine());
+    let SegmentKind::Line { feed, .. } = segments[0].kind else {
+        panic!("{segments:?}")
+    };
+    assert_eq!(feed, vcnc::motion::Feed::PerMinute(254.0));
+}
+
+#[test]
+fn a_change_of_feed_type_leaves_no_feed() {
+    // PGsl 7.1: after G95 the G94 feed is gone; the next cut without F alarms.
+    let alarm = error("G1 X1 F100\nG95 S1000 M3\nX2\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::NoFeedRate);
+    assert_eq!(alarm.span.unwrap().line, 3);
+}
+
+#[test]
+fn cr_gives_the_short_arc_when_positive_and_the_long_one_when_negative() {
+    for (cr, centre_y) in [("10", -0.0), ("-10", 0.0)] {
+        let text = format!("G0 X0 Y0\nG2 X20 Y0 CR={cr} F100\nM30\n");
+        let (segments, alarms) = stream(&text, &machine());
+        assert!(alarms.is_empty(), "{alarms:?}");
+        let Some(SegmentKind::Arc {
+            center, direction, ..
+        }) = arc(&segments)
+        else {
+            panic!("{segments:?}")
+        };
+        // Chord 20 = diameter: both arcs are half circles about (10, 0).
+        assert!((center.0[0] - 10.0).abs() < 1e-9 && (center.0[1] - centre_y).abs() < 1e-9);
+        assert_eq!(direction, ArcDirection::Clockwise);
+    }
+    // Chord 10, radius 10: the centre is 8.660 off the chord's middle, on the right of the
+    // way for the short clockwise arc and on the left for the long one.
+    for (cr, centre_y) in [("10", -8.660254), ("-10", 8.660254)] {
+        let text = format!("G0 X0 Y0\nG2 X10 Y0 CR={cr} F100\nM30\n");
+        let (segments, _) = stream(&text, &machine());
+        let Some(SegmentKind::Arc { center, .. }) = arc(&segments) else {
+            panic!("{segments:?}")
+        };
+        assert!(
+            (center.0[0] - 5.0).abs() < 1e-6 && (center.0[1] - centre_y).abs() < 1e-6,
+            "CR={cr}: {center:?}"
+        );
+    }
+}
+
+#[test]
+fn i_j_are_incremental_unless_written_with_ac() {
+    // Ex.: from X45 Y60, `G2 X20 Y35 I=AC(45) J=AC(35)` equals `I0 J-25`.
+    for centre in ["I=AC(45) J=AC(35)", "I0 J-25"] {
+        let text = format!("G0 X45 Y60\nG2 X20 Y35 {centre} F100\nM30\n");
+        let (segments, alarms) = stream(&text, &machine());
+        assert!(alarms.is_empty(), "{alarms:?}");
+        let SegmentKind::Arc { center, .. } = segments[1].kind else {
+            panic!("{segments:?}")
+        };
+        assert!(close([center.0[0], center.0[1], 0.0], [45.0, 35.0, 0.0]));
+    }
+}
+
+#[test]
+fn an_arc_needs_a_centre_or_a_radius() {
+    let alarm = error("G0 X0 Y0\nG2 X10 Y0 F100\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::ArcWithoutCenter);
+}
+
+#[test]
+fn g18_arcs_turn_in_z_x() {
+    let (segments, _) = stream("G18 G0 X0 Z0\nG3 X20 Z0 I10 K0 F100\nM30\n", &machine());
+    let Some(SegmentKind::Arc { plane, center, .. }) = arc(&segments) else {
+        panic!("{segments:?}")
+    };
+    assert_eq!(plane, vcnc::motion::Plane::Zx);
+    assert!((center.0[0] - 10.0).abs() < 1e-9);
+}
+
+#[test]
+fn t_by_name_m6_and_d_apply_the_edge_length_on_the_next_z_move() {
+    // PGsl 5.6: the length is traversed by the next move of Z; D2 changes it to 50.
+    assert_moves(
+        "T=\"MILL10\"\nM6\nG0 X0 Y0\nZ10\nD2\nZ10\nD0\nZ10\nM30\n",
+        &shop(),
+        &[
+            [1.0, 0.0, 0.0],
+            [1.0, 0.0, 110.0],
+            [1.0, 0.0, 60.0],
+            [1.0, 0.0, 10.0],
+        ],
+    );
+}
+
+#[test]
+fn a_tool_change_is_in_the_stream() {
+    let (segments, _) = stream("T1 D1 M6\nM30\n", &shop());
+    let kinds: Vec<_> = segments.iter().map(|s| s.kind).collect();
+    assert!(matches!(kinds[0], SegmentKind::ToolSelect { tool: 1 }));
+    assert!(matches!(kinds[1], SegmentKind::ToolChange { tool: 1, .. }));
+}
+
+#[test]
+fn an_unknown_tool_name_alarms() {
+    let alarm = error("T=\"DRILL5\"\nM30\n", &shop());
+    assert!(alarm.message.contains("DRILL5"), "{alarm:?}");
+}
+
+#[test]
+fn g53_suppresses_the_frames_but_keeps_the_length() {
+    // docs/SINUMERIK.md 5.6: G54 X100 + external X1; G53 X0 -> X1; SUPA X0 -> X0; SUPA Z0 keeps
+    // the length (100); the next plain block has the frames again.
+    assert_moves(
+        "T1 M6 D1\nG54 G0 X0 Y0 Z0\nG53 X0\nSUPA X0\nSUPA Z0\nX0\nM30\n",
+        &shop(),
+        &[
+            [101.0, 50.0, 100.0],
+            [1.0, 50.0, 100.0],
+            [0.0, 50.0, 100.0],
+            [101.0, 50.0, 100.0],
+        ],
+    );
+}
+
+#[test]
+fn a_work_offset_change_moves_only_the_axes_programmed() {
+    // docs/SINUMERIK.md 6.4 rule 2: G55 (X200) then `G0 Y7`: X stays where it is.
+    assert_moves(
+        "G54 G0 X10 Y0\nG55\nY7\nX10\nM30\n",
+        &shop(),
+        &[[111.0, 50.0, 0.0], [111.0, 7.0, 0.0], [211.0, 7.0, 0.0]],
+    );
+}
+
+#[test]
+fn g4_dwells_f_seconds_or_s_revolutions_and_keeps_the_feed() {
+    // PGsl 14.10, ex. B-85: F in a G4 block is the time; the modal F stays.
+    let (segments, alarms) = stream(
+        "G1 F200 X1\nG4 F2.5\nS600 M3\nG4 S30\nX2\nM30\n",
+        &machine(),
+    );
+    assert!(alarms.is_empty(), "{alarms:?}");
+    let dwells: Vec<f64> = segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Dwell { seconds } => Some(seconds),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(dwells, [2.5, 3.0]);
+    let last_feed = segments.iter().rev().find_map(|s| match s.kind {
+        SegmentKind::Line { feed, .. } => Some(feed),
+        _ => None,
+    });
+    assert_eq!(last_feed, Some(vcnc::motion::Feed::PerMinute(200.0)));
+}
+
+#[test]
+fn the_spindle_starts_before_the_motion_of_its_block() {
+    let (segments, _) = stream("G0 X10 S1000 M3\nM30\n", &machine());
+    assert!(matches!(
+        segments[0].kind,
+        SegmentKind::Spindle {
+            state: SpindleState::Clockwise,
+            speed
+        } if speed == 1000.0
+    ));
+    assert!(matches!(segments[1].kind, SegmentKind::Rapid { .. }));
+}
+
+#[test]
+fn two_g_functions_of_one_group_in_a_block_alarm() {
+    let alarm = error("G0 G1 X10\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::SameGroupGCodes);
+}
+
+#[test]
+fn r_parameters_are_set_left_to_right_in_a_block() {
+    // 3.2 step 2: `R1=5 X=R1` moves to X5; `X=R1 R1=7` still uses 5.
+    assert_moves(
+        "R1=5 G0 X=R1\nX=-R1 R1=7\nX=R1\nM30\n",
+        &machine(),
+        &[[5.0, 0.0, 0.0], [-5.0, 0.0, 0.0], [7.0, 0.0, 0.0]],
+    );
+}
+
+#[test]
+fn subprograms_run_by_name_and_by_l_with_p_passes() {
+    let mut library = MemoryLibrary::new();
+    library.insert_named("L10.SPF", FileId(1), "G91 G0 X1\nM17\n");
+    library.insert_named("SIDE", FileId(2), "G91 G0 Y1\nRET\n");
+    let text = "G0 X0 Y0\nL10 P3\nSIDE\nG90 X0\nM30\n";
+    let machine = machine();
+    let front_end =
+        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
+    let (segments, alarms) = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert!(alarms.is_empty(), "{alarms:?}");
+    let got = ends(&segments);
+    let wanted = [
+        [1.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [3.0, 0.0, 0.0],
+        [3.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
+    assert!(
+        got.iter().zip(&wanted).all(|(g, w)| close(*g, *w)) && got.len() == 5,
+        "{got:?}"
+    );
+}
+
+#[test]
+fn a_missing_subprogram_alarms_with_its_name() {
+    let alarm = error("G0 X0\nPART7\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::ProgramNotFound);
+    assert!(alarm.message.contains("PART7"));
+}
+
+#[test]
+fn a_program_that_calls_itself_stops_at_the_depth_limit() {
+    let mut library = MemoryLibrary::new();
+    library.insert_named("AGAIN", FileId(1), "G91 G0 X1\nAGAIN\nM17\n");
+    let machine = machine();
+    let front_end =
+        Sinumerik::new(&b"AGAIN\nM30\n"[..], FileId(0), &machine).with_library(Box::new(library));
+    let (_, alarms) = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert_eq!(alarms.last().unwrap().code, AlarmCode::MacroLimit);
+}
+
+#[test]
+fn m2_and_m30_end_the_program_and_nothing_after_runs() {
+    let (segments, _) = stream("G0 X1\nM2\nG0 X5\n", &machine());
+    assert_eq!(ends(&segments).len(), 1);
+    assert!(matches!(
+        segments.last().unwrap().kind,
+        SegmentKind::End { kind: EndKind::M02 }
+    ));
+}
+
+#[test]
+fn a_program_without_an_end_warns() {
+    let (segments, alarms) = stream("G0 X1\n", &machine());
+    assert_eq!(alarms[0].code, AlarmCode::MissingProgramEnd);
+    assert!(!alarms[0].is_error());
+    assert!(matches!(
+        segments.last().unwrap().kind,
+        SegmentKind::End {
+            kind: EndKind::EndOfText
+        }
+    ));
+}
+
+#[test]
+fn a_file_header_and_comments_are_no_blocks() {
+    assert_moves(
+        "%_N_PART_MPF\n;$PATH=/_N_MPF_DIR\nN10 G0 X3 ; to the start\nM30\n",
+        &machine(),
+        &[[3.0, 0.0, 0.0]],
+    );
+}
+
+#[test]
+fn skipped_blocks_run_unless_their_level_is_on() {
+    let machine = machine();
+    let text = "G0 X1\n/ X2\n/3 X3\nM30\n";
+    assert_eq!(moves(text, &machine).len(), 3);
+    let front_end = Sinumerik::new(text.as_bytes(), FileId(0), &machine)
+        .with_skip_level(0, true)
+        .with_skip_level(3, true);
+    let (segments, _) = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert_eq!(ends(&segments).len(), 1);
+}
+
+#[test]
+fn what_the_next_issue_adds_alarms_planned_with_its_number() {
+    for (text, name) in [
+        ("G41 G1 X10 F100\nM30\n", "G41"),
+        ("G64\nM30\n", "G64"),
+        ("CYCLE81(10,0,2,-5)\nM30\n", "CYCLE81"),
+        ("POCKET3(1,2,3)\nM30\n", "POCKET3"),
+    ] {
+        let alarm = error(text, &machine());
+        assert_eq!(alarm.code, AlarmCode::NotSupportedYet, "{text}");
+        assert!(
+            alarm.message.contains(name) && alarm.message.contains("issue 22"),
+            "{alarm:?}"
+        );
+    }
+}
+
+#[test]
+fn what_is_outside_the_product_alarms_with_what_it_belongs_to() {
+    for (text, what) in [
+        ("TRACYL(20)\nM30\n", "kinematic transformations"),
+        ("DIAMON\nM30\n", "turning"),
+        ("COUPON(C2,C1,1)\nM30\n", "couplings"),
+    ] {
+        let alarm = error(text, &machine());
+        assert_eq!(alarm.code, AlarmCode::NotInProduct, "{text}");
+        assert!(alarm.message.contains(what), "{alarm:?}");
+    }
+}
+
+#[test]
+fn an_axis_the_machine_lacks_alarms() {
+    let alarm = error("G0 A10\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::AxisNotOnMachine);
+}
+
+#[test]
+fn the_828d_has_g58_as_a_settable_frame() {
+    let mut machine = Machine::default()
+        .with_profile(ProfileName::Sinumerik828d)
+        .unwrap();
+    machine
+        .work_offsets
+        .insert(WorkOffsetId::Standard(5), [7.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    assert_moves("G58 G0 X1\nM30\n", &machine, &[[8.0, 0.0, 0.0]]);
+    assert_eq!(error("G505\nM30\n", &machine).code, AlarmCode::UnknownGCode);
+}
