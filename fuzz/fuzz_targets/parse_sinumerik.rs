@@ -4,7 +4,7 @@
 //! Properties: no panic (deep nesting is an alarm, not a stack overflow); a block that cannot
 //! be read carries an alarm with a span inside its line that names the line; every word's span
 //! and every expression's span lie inside the line, and words follow each other without
-//! overlap; a statement's rest lies inside the line.
+//! overlap; a statement and its expressions lie inside the line.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -62,8 +62,15 @@ fuzz_target!(|data: &[u8]| {
                 Value::Constant(_) | Value::Bare => {}
             }
         }
-        if let Some((_, rest)) = &block.statement {
-            inside(*rest, "statement");
+        if let Some(statement) = &block.statement {
+            inside(statement.span, "statement");
+            assert!(
+                statement.span.start >= previous,
+                "statement {statement:?} overlaps the words"
+            );
+            for expr in statement.expressions() {
+                check_expr(expr, &inside);
+            }
         }
         offset = end + 1;
     }

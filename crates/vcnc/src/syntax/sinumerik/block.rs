@@ -4,13 +4,14 @@
 //! address or name with `=` and an expression (`X=10*R1`, `CR=5`, `X1=10`, `T="PF60"`), a name
 //! with indices and `=` (`$P_UIFR[1]=...`), a call (`CYCLE82(2,,1)`, `MSG("...")`), or a name alone
 //! (`TRANS`, `MCALL`, `RET`). After a single address letter, digits followed by `=`, `(` or `[`
-//! are a numeric extension (`X1=10` is axis X1, `X110` is X at 110: manual L604-606). The words
-//! of control structures (IF, WHILE, GOTOF ...) are kept as the rest of the block's text for the
-//! interpreter (`Block::statement`). Parsing never fails as a whole: a block that cannot be read
-//! carries its alarm.
+//! are a numeric extension (`X1=10` is axis X1, `X110` is X at 110: manual L604-606). A control
+//! structure or declaration (IF, WHILE, DEF ...) first in the block, or a jump or synchronized
+//! action after its words, is read by `statement.rs` into `Block::statement`. Parsing never
+//! fails as a whole: a block that cannot be read carries its alarm.
 
 use super::expr::{self, Expr};
 use super::scan::{unexpected, Scanner};
+use super::statement::{self, Place, Spanned, Statement};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
 use crate::syntax::Number;
@@ -26,9 +27,9 @@ pub struct Block {
     pub label: Option<Box<str>>,
     /// The block's words, in order.
     pub words: Vec<Word>,
-    /// A control structure or declaration (IF, WHILE, DEF, GOTOF ...): its keyword, upper case,
-    /// and the span of the rest of the block, read by the interpreter.
-    pub statement: Option<(Box<str>, Span)>,
+    /// The block's statement: a control structure or declaration (IF, WHILE, DEF ...) after the
+    /// number and label, or a jump or synchronized action after the words.
+    pub statement: Option<Statement>,
     /// Why the block could not be read, if it could not.
     pub alarm: Option<Alarm>,
 }
@@ -59,17 +60,6 @@ pub enum Value {
     Bare,
 }
 
-/// The keywords that, first in a block, make it a statement of the language, not words.
-const STATEMENTS: [&str; 24] = [
-    "IF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "FOR", "ENDFOR", "REPEAT", "REPEATB", "UNTIL",
-    "LOOP", "ENDLOOP", "CASE", "DEF", "GOTO", "GOTOF", "GOTOB", "GOTOC", "GOTOS", "PROC", "EXTERN",
-    "DEFINE", "SAVE", "ENDLABEL",
-];
-
-/// The keywords of synchronized actions: the rest of the block, from any word on, is the action
-/// (`IDS=2 WHENEVER ... DO ...`).
-const ACTIONS: [&str; 4] = ["WHEN", "WHENEVER", "EVERY", "FROM"];
-
 /// Reads the block on `text`, line `line` of `file` at byte `base`.
 pub fn parse_block(text: &[u8], file: FileId, line: u32, base: u32) -> Block {
     let mut scanner = Scanner::new(text, file, line, base);
@@ -93,7 +83,17 @@ fn read(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
         }
     }
     block_number(scanner, block)?;
-    label(scanner, block);
+    if let Some(span) = label(scanner, block) {
+        if block.label.as_deref() == Some("ENDLABEL") {
+            // `ENDLABEL:` is a label and the end marker of REPEAT: a statement of its own.
+            let keyword = Spanned {
+                value: "ENDLABEL".into(),
+                span,
+            };
+            block.statement = Some(statement::read(scanner, keyword)?);
+            return Ok(());
+        }
+    }
     while !scanner.at_end() {
         let start = scanner.mark();
         match scanner.peek_byte() {
@@ -101,15 +101,12 @@ fn read(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
             Some(b) => return Err(unexpected(scanner.here(), b)),
             None => break,
         }
-        if block.statement.is_none() {
-            if let Some(keyword) = statement_keyword(scanner, block.words.is_empty()) {
-                scanner.skip_blanks();
-                let rest = scanner.mark()..scanner.text().len();
-                block.statement = Some((keyword, scanner.span(rest)));
-                return Ok(());
-            }
-            scanner.reset(start);
+        if let Some(keyword) = statement_keyword(scanner, block.words.is_empty())? {
+            let statement = statement::read(scanner, keyword)?;
+            block.statement = Some(statement);
+            return Ok(());
         }
+        scanner.reset(start);
         let word = word(scanner)?;
         if scanner.mark() == start {
             // Nothing read: a guard, so that no line can loop here.
@@ -159,36 +156,57 @@ fn block_number(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alar
     Ok(())
 }
 
-/// `NAME:` at the start of the block (not `NAME:=`, and not a block number).
-fn label(scanner: &mut Scanner<'_>, block: &mut Block) {
+/// `NAME:` at the start of the block (not `NAME:=`, and not a block number); the span of the
+/// name, if there is one.
+fn label(scanner: &mut Scanner<'_>, block: &mut Block) -> Option<Span> {
     scanner.skip_blanks();
     let start = scanner.mark();
     if !scanner
         .peek_byte()
         .is_some_and(|b| b.is_ascii_alphabetic() || b == b'_')
     {
-        return;
+        return None;
     }
     scanner.name_rest();
     let end = scanner.mark();
     if scanner.peek_byte() == Some(b':') {
         scanner.bump();
         block.label = Some(expr::upper(&scanner.text()[start..end]));
+        Some(scanner.span(start..end))
     } else {
         scanner.reset(start);
+        None
     }
 }
 
 /// The keyword of a statement at the position, consumed, if the rest of the block is one
-/// (`first`: no word before it).
-fn statement_keyword(scanner: &mut Scanner<'_>, first: bool) -> Option<Box<str>> {
+/// (`first`: no word before it); an alarm for a keyword that must come first but does not.
+fn statement_keyword(
+    scanner: &mut Scanner<'_>,
+    first: bool,
+) -> Result<Option<statement::Name>, Alarm> {
     let start = scanner.mark();
     scanner.name_rest();
     let name = expr::upper(&scanner.text()[start..scanner.mark()]);
+    let span = scanner.span(start..scanner.mark());
     // `DEF` and `IF` are keywords only as written; `DEFX=1` is not a declaration.
-    let separated = !matches!(scanner.peek_byte(), Some(b'=' | b'['));
-    let keyword = (first && STATEMENTS.contains(&&*name)) || ACTIONS.contains(&&*name);
-    (separated && keyword).then_some(name)
+    if matches!(scanner.peek_byte(), Some(b'=' | b'[')) {
+        return Ok(None);
+    }
+    match statement::place(&name) {
+        Some(Place::AfterWords) => {}
+        Some(Place::First) if first => {}
+        Some(Place::First) => {
+            return Err(Alarm::error(
+                AlarmCode::MacroSyntax,
+                span,
+                format!("{name} must begin its block"),
+            )
+            .with_help("put the words before it in a block of their own"))
+        }
+        None => return Ok(None),
+    }
+    Ok(Some(Spanned { value: name, span }))
 }
 
 /// One word at the position (a letter, `_` or `$` there).

@@ -6,9 +6,16 @@
 //! and spans. What the words mean is the SINUMERIK interpreter's business.
 
 mod block;
+mod declare;
 mod expr;
 mod scan;
 mod statement;
 
 pub use block::{parse_block, Block, Value, Word};
+pub use declare::{
+    DataType, Definition, External, Initializer, Macro, Parameter, Procedure, Scope, Variable,
+};
 pub use expr::{BinaryOp, Expr, ExprKind, UnaryOp};
+pub use statement::{
+    Case, CaseBranch, Jump, JumpKind, JumpTarget, Name, Spanned, Statement, StatementKind,
+};

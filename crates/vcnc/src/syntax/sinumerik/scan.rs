@@ -284,7 +284,7 @@ impl<'a> Scanner<'a> {
 }
 
 /// Separators: blank, tab, `&`, and characters that do not print (manual 3.2).
-fn is_blank(byte: u8) -> bool {
+pub(super) fn is_blank(byte: u8) -> bool {
     byte == b' ' || byte == b'&' || byte < 0x20 || byte == 0x7f
 }
 
