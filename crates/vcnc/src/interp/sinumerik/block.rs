@@ -68,14 +68,6 @@ pub(super) fn run(
         span,
         sequence: block.number,
     };
-    if let Some((keyword, at)) = &block.statement {
-        return Err(Alarm::error(
-            AlarmCode::NotSupportedYet,
-            *at,
-            format!("the SINUMERIK statement {keyword} is not run yet"),
-        )
-        .with_help("vcnc runs SINUMERIK motion, frames and tools today; the language's control structures come with issue 20's next part"));
-    }
     let words = read(front, block)?;
     // G functions take their new members before any value of the block is read.
     let mut one_block = Vec::new();
@@ -755,9 +747,29 @@ fn tool_number(front: &Sinumerik, word: &Word) -> Result<u32, Alarm> {
     whole(front, word)
 }
 
+/// Sets R parameter `target` to `value`.
+pub(super) fn assign_r(front: &mut Sinumerik, target: &Expr, value: f64) -> Result<(), Alarm> {
+    if let ExprKind::Name(name) = &target.kind {
+        if let Some(index) = name
+            .strip_prefix('R')
+            .and_then(|n| n.parse::<usize>().ok())
+        {
+            if let Some(slot) = front.r.get_mut(index) {
+                *slot = value;
+                return Ok(());
+            }
+        }
+    }
+    Err(Alarm::error(
+        AlarmCode::NotSupportedYet,
+        target.span,
+        "only R parameters can be set yet",
+    ))
+}
+
 /// An expression's value. (The language's whole evaluation comes with `eval.rs`: numbers, R
 /// parameters and signs for now.)
-fn evaluate(front: &Sinumerik, expr: &Expr) -> Result<f64, Alarm> {
+pub(super) fn evaluate(front: &Sinumerik, expr: &Expr) -> Result<f64, Alarm> {
     match &expr.kind {
         ExprKind::Number(n) => Ok(*n),
         ExprKind::Unary(UnaryOp::Minus, inner) => Ok(-evaluate(front, inner)?),

@@ -15,7 +15,9 @@
 mod arcs;
 mod block;
 mod contour;
+mod control;
 mod eval;
+mod flow;
 mod frame;
 mod gcodes;
 mod polar;
@@ -58,6 +60,10 @@ pub struct Sinumerik {
     iterations: u64,
     /// The last block's span, for the alarm at the end of the text.
     last_span: Span,
+    /// Structure partners, labels and block numbers found so far.
+    structure: flow::Structure,
+    /// Jumps made (GOTO, CASE, loops back).
+    jumps: u64,
 }
 
 /// One program level of the call stack.
@@ -67,6 +73,17 @@ struct Level {
     /// The next line to run.
     next: usize,
     /// Passes of the subprogram still to run after this one (`P`).
+    passes_left: u32,
+    /// The part repetitions running (REPEAT, REPEATB), innermost last.
+    sections: Vec<Section>,
+}
+
+/// A part repetition running: lines `first..=last`, then on at `back`.
+struct Section {
+    first: usize,
+    last: usize,
+    back: usize,
+    /// Passes still to run after this one.
     passes_left: u32,
 }
 
@@ -108,7 +125,10 @@ impl Sinumerik {
                 program: 0,
                 next: 0,
                 passes_left: 0,
+                sections: Vec::new(),
             }],
+            structure: flow::Structure::default(),
+            jumps: 0,
             library: None,
             r: vec![0.0; settings.r_parameters as usize],
             tools: machine.tools.clone(),
@@ -167,6 +187,68 @@ impl Sinumerik {
 
     fn is_828d(&self) -> bool {
         self.settings.variant == Variant::M828d
+    }
+
+    /// The program and line to run next: the current level's next line, unless a part
+    /// repetition ends there (then its next pass, or the line after its REPEAT).
+    fn next_line(&mut self) -> (usize, usize) {
+        let level = self.level();
+        while let Some(section) = level.sections.last_mut() {
+            if level.next != section.last + 1 {
+                break;
+            }
+            if section.passes_left > 0 {
+                section.passes_left -= 1;
+                level.next = section.first;
+                break;
+            }
+            level.next = section.back;
+            level.sections.pop();
+        }
+        (level.program, level.next)
+    }
+
+    /// The truth of a condition: a value other than zero (comparisons give 1 or 0).
+    fn condition(&mut self, expr: &crate::syntax::sinumerik::Expr) -> Result<bool, Alarm> {
+        Ok(self.value(expr)? != 0.0)
+    }
+
+    /// An expression's value as a number.
+    fn value(&mut self, expr: &crate::syntax::sinumerik::Expr) -> Result<f64, Alarm> {
+        block::evaluate(self, expr)
+    }
+
+    /// An expression's value as text (a jump target held in a variable).
+    fn text(&mut self, expr: &crate::syntax::sinumerik::Expr) -> Result<String, Alarm> {
+        Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            expr.span,
+            "jump targets computed from strings are not run yet",
+        ))
+    }
+
+    /// Sets the variable `target` (a name, or a name with indices) to `value`.
+    fn assign(&mut self, target: &crate::syntax::sinumerik::Expr, value: f64) -> Result<(), Alarm> {
+        block::assign_r(self, target, value)
+    }
+
+    /// DEF, PROC and DEFINE.
+    fn declaration(
+        &mut self,
+        statement: &crate::syntax::sinumerik::Statement,
+        span: Span,
+    ) -> Result<Step, Alarm> {
+        use crate::syntax::sinumerik::StatementKind;
+        match &statement.kind {
+            StatementKind::Procedure(procedure) if procedure.parameters.is_empty() => {
+                Ok(Step::Next)
+            }
+            _ => Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                span,
+                "variable definitions and procedures with parameters are not run yet",
+            )),
+        }
     }
 
     /// The current level.
@@ -238,6 +320,7 @@ impl Sinumerik {
             program,
             next: 0,
             passes_left: passes - 1,
+            sections: Vec::new(),
         });
         Ok(())
     }
@@ -284,8 +367,7 @@ impl FrontEnd for Sinumerik {
                 )
                 .with_help("a loop or jump never ends; the limit is iteration_limit in the profile's [sinumerik] table"));
             }
-            let level = self.levels.last().expect("a level");
-            let (program, index) = (level.program, level.next);
+            let (program, index) = self.next_line();
             let text = &self.programs[program];
             let Some(line) = text.line(index) else {
                 return self.end_of_text(kernel);
@@ -309,7 +391,15 @@ impl FrontEnd for Sinumerik {
             if let Some(alarm) = block.alarm {
                 return Err(alarm);
             }
-            return block::run(self, kernel, &block, span);
+            let step = if block.words.is_empty() {
+                Step::Next
+            } else {
+                block::run(self, kernel, &block, span)?
+            };
+            return match (&block.statement, step) {
+                (Some(statement), Step::Next) => control::run(self, statement, index, span),
+                _ => Ok(step),
+            };
         }
     }
 }

@@ -52,7 +52,6 @@ impl Program {
     }
 
     /// The number of lines.
-    #[cfg(test)]
     pub(super) fn lines(&self) -> usize {
         self.starts.len() - 1
     }

@@ -1,0 +1,243 @@
+//! Running a statement of the SINUMERIK language: where the program goes next after an IF, a
+//! loop's head or end, a CASE, a jump or a part repetition (`flow.rs` finds the lines).
+//!
+//! Never: move the machine. A statement changes only which line runs next (and a FOR
+//! counter).
+
+use super::flow::{Mark, Structure, Target};
+use super::{Section, Sinumerik, Step};
+use crate::alarm::{Alarm, AlarmCode};
+use crate::source::Span;
+use crate::syntax::sinumerik::{Expr, Jump, JumpTarget, Statement, StatementKind};
+
+/// Runs `statement` of line `line` of the current level's program.
+pub(super) fn run(
+    front: &mut Sinumerik,
+    statement: &Statement,
+    line: usize,
+    span: Span,
+) -> Result<Step, Alarm> {
+    let program = front.levels.last().expect("a level").program;
+    let next = match &statement.kind {
+        StatementKind::If {
+            condition,
+            jump: None,
+        } => {
+            if front.condition(condition)? {
+                None
+            } else {
+                Some(front.structure.skip_if(&front.programs, program, line, span)?)
+            }
+        }
+        StatementKind::If {
+            condition,
+            jump: Some(jump),
+        } => {
+            if front.condition(condition)? {
+                return jump_to(front, jump, line);
+            }
+            None
+        }
+        // The true branch ran to its ELSE: on after the ENDIF.
+        StatementKind::Else => {
+            Some(front.structure.past_end(&front.programs, program, line, Mark::If, span)?)
+        }
+        StatementKind::While { condition } => {
+            if front.condition(condition)? {
+                None
+            } else {
+                Some(front.structure.past_end(
+                    &front.programs,
+                    program,
+                    line,
+                    Mark::While,
+                    span,
+                )?)
+            }
+        }
+        StatementKind::EndWhile => {
+            Some(front.structure.head(&front.programs, program, line, Mark::EndWhile, span)?)
+        }
+        StatementKind::For {
+            variable,
+            start,
+            end,
+        } => {
+            let first = front.value(start)?;
+            front.assign(variable, first)?;
+            if first <= front.value(end)? {
+                None
+            } else {
+                Some(front.structure.past_end(&front.programs, program, line, Mark::For, span)?)
+            }
+        }
+        StatementKind::EndFor => {
+            let head = front.structure.head(&front.programs, program, line, Mark::EndFor, span)?;
+            let (variable, end) = for_parts(front, program, head)?;
+            let counter = front.value(&variable)? + 1.0;
+            front.assign(&variable, counter)?;
+            // The end value is read again at every pass (choice: the manual does not say when).
+            (counter <= front.value(&end)?).then_some(head + 1)
+        }
+        StatementKind::Until { condition } => {
+            if front.condition(condition)? {
+                None
+            } else {
+                let head = front.structure.head(&front.programs, program, line, Mark::Until, span)?;
+                Some(head + 1)
+            }
+        }
+        StatementKind::EndLoop => {
+            let head = front.structure.head(&front.programs, program, line, Mark::EndLoop, span)?;
+            Some(head + 1)
+        }
+        StatementKind::Case(case) => {
+            let selector = front.value(&case.selector)?;
+            for branch in &case.branches {
+                if front.value(&branch.value)? == selector {
+                    return jump_to(front, &branch.jump, line);
+                }
+            }
+            if let Some(jump) = &case.default {
+                return jump_to(front, jump, line);
+            }
+            None
+        }
+        StatementKind::RepeatSection { start, end, passes } => {
+            let passes = passes_of(front, passes.as_ref())?;
+            let first = front.structure.label(
+                &front.programs,
+                program,
+                line,
+                &start.value,
+                false,
+                start.span,
+            )?;
+            let last = match end {
+                Some(end) => {
+                    let at = front.structure.label(
+                        &front.programs,
+                        program,
+                        first,
+                        &end.value,
+                        true,
+                        end.span,
+                    )?;
+                    at
+                }
+                // One label: to an ENDLABEL between it and this block, or to the block before
+                // this one.
+                None => Structure::end_label(&front.programs, program, first, line)
+                    .unwrap_or(line.saturating_sub(1)),
+            };
+            repeat(front, first, last, line, passes)
+        }
+        StatementKind::RepeatBlock { label, passes } => {
+            let passes = passes_of(front, passes.as_ref())?;
+            let at = front.structure.label(
+                &front.programs,
+                program,
+                line,
+                &label.value,
+                false,
+                label.span,
+            )?;
+            repeat(front, at, at, line, passes)
+        }
+        StatementKind::Jump(jump) => return jump_to(front, jump, line),
+        StatementKind::EndIf
+        | StatementKind::Repeat
+        | StatementKind::Loop
+        | StatementKind::EndLabel
+        | StatementKind::External(_)
+        | StatementKind::Save => None,
+        StatementKind::Action { keyword, .. } => {
+            return Err(Alarm::error(
+                AlarmCode::NotInProduct,
+                keyword.span,
+                format!(
+                    "{} starts a synchronized action, which belongs to the control's real-time events, which vcnc does not simulate",
+                    keyword.value
+                ),
+            ))
+        }
+        StatementKind::Definition(_) | StatementKind::Procedure(_) | StatementKind::Macro(_) => {
+            return front.declaration(statement, span);
+        }
+    };
+    if let Some(next) = next {
+        front.level().next = next;
+    }
+    Ok(Step::Next)
+}
+
+/// The counter and the end of the FOR at line `head`.
+fn for_parts(front: &Sinumerik, program: usize, head: usize) -> Result<(Expr, Expr), Alarm> {
+    let text = &front.programs[program];
+    let line = text.line(head).expect("the head was found on this line");
+    let block = crate::syntax::sinumerik::parse_block(line.bytes, text.file, line.number, line.base);
+    match block.statement.map(|s| s.kind) {
+        Some(StatementKind::For { variable, end, .. }) => Ok((variable, end)),
+        _ => unreachable!("flow.rs matched an ENDFOR with a FOR"),
+    }
+}
+
+/// `P=n` of a repetition: 1 when left out.
+fn passes_of(front: &mut Sinumerik, passes: Option<&Expr>) -> Result<u32, Alarm> {
+    let Some(expr) = passes else { return Ok(1) };
+    let value = front.value(expr)?;
+    if value.fract() != 0.0 || !(0.0..=1e9).contains(&value) {
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            expr.span,
+            format!("P={value}: the number of repetitions is a whole number from 0"),
+        ));
+    }
+    Ok(value as u32)
+}
+
+/// Runs lines `first..=last` `passes` times, then goes on after line `back`.
+fn repeat(front: &mut Sinumerik, first: usize, last: usize, back: usize, passes: u32) -> Option<usize> {
+    if passes == 0 || last < first {
+        return None;
+    }
+    front.level().sections.push(Section {
+        first,
+        last,
+        back: back + 1,
+        passes_left: passes - 1,
+    });
+    Some(first)
+}
+
+/// Jumps as `jump` says from `line`.
+fn jump_to(front: &mut Sinumerik, jump: &Jump, line: usize) -> Result<Step, Alarm> {
+    let program = front.levels.last().expect("a level").program;
+    let label;
+    let target = match &jump.target {
+        None => Target::Number(0),
+        Some(JumpTarget::Label(name)) => Target::Label(&name.value),
+        Some(JumpTarget::BlockNumber(n)) => Target::Number(n.value),
+        Some(JumpTarget::Expression(expr)) => {
+            label = front.text(expr)?;
+            match label
+                .strip_prefix('N')
+                .and_then(|n| n.parse::<u32>().ok())
+            {
+                Some(n) => Target::Number(n),
+                None => Target::Label(&label),
+            }
+        }
+    };
+    front.jumps += 1;
+    if let Some(next) = front
+        .structure
+        .jump(&front.programs, program, line, jump, target)?
+    {
+        // A jump leaves the part repetitions it jumps out of.
+        let level = front.level();
+        level.sections.retain(|s| (s.first..=s.last).contains(&next));
+        level.next = next;
+    }
+    Ok(Step::Next)
+}
