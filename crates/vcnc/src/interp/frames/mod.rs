@@ -137,17 +137,23 @@ impl Frames {
         }
     }
 
+    /// True when the chain turns the plane of axes `(a, b)` over, so that arcs (and G41/G42)
+    /// swap: a mirror of one plane axis (or a negative factor), or a programmable frame that
+    /// turns the plane over; two such frames cancel.
+    pub(crate) fn reverses_plane(&self, (a, b): (usize, usize)) -> bool {
+        let scaled = self.scaling().is_some_and(|s| s.reverses((a, b)));
+        let framed = self.programmable().is_some_and(|f| f.reverses((a, b)));
+        scaled != framed
+    }
+
     /// The direction on the machine of an arc programmed `direction` in the plane of axes
-    /// `(a, b)`: a mirror of one plane axis (or a negative factor), or a programmable frame that
-    /// turns the plane over, turns it the other way; two such frames cancel.
+    /// `(a, b)`: reversed where [`Frames::reverses_plane`] says so.
     pub(crate) fn arc_direction(
         &self,
         (a, b): (usize, usize),
         direction: ArcDirection,
     ) -> ArcDirection {
-        let scaled = self.scaling().is_some_and(|s| s.reverses((a, b)));
-        let framed = self.programmable().is_some_and(|f| f.reverses((a, b)));
-        if scaled != framed {
+        if self.reverses_plane((a, b)) {
             direction.reversed()
         } else {
             direction
@@ -425,8 +431,10 @@ mod tests {
         let mirror = [[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]];
         chain.set_programmable(Affine::new(mirror, [0.0; AXES]));
         assert_eq!(chain.arc_direction(xy, cw), cw.reversed());
+        assert!(chain.reverses_plane(xy) && !chain.reverses_plane((2, 0)));
         chain.set_scaling(Some(scaling([-1.0, 1.0, 1.0, 1.0, 1.0, 1.0])));
         assert_eq!(chain.arc_direction(xy, cw), cw);
+        assert!(!chain.reverses_plane(xy));
     }
 
     #[test]
@@ -447,6 +455,18 @@ mod tests {
         let mirrored = Affine::new(mirrored, [0.0; AXES]).unwrap();
         assert!(mirrored.keeps_plane(zx) && mirrored.reverses(zx));
         assert_eq!(mirrored.plane_factor(zx), 3.0);
+        // Large factors keep their planes despite the rounding of their products: a turn by 30
+        // degrees with both factors a million.
+        let (sin, cos) = sin_cos_degrees(30.0);
+        let big = 1.0e6;
+        let turned = [
+            [big * cos, -big * sin, 0.0],
+            [big * sin, big * cos, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let turned = Affine::new(turned, [0.0; AXES]).unwrap();
+        assert!(turned.keeps_plane(xy));
+        assert!((turned.plane_factor(xy) - big).abs() < 1e-6);
     }
 
     proptest! {

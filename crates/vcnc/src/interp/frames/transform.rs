@@ -159,9 +159,11 @@ impl Affine {
         let l = &self.linear;
         let size = l.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
         let zero = |v: f64| v.abs() <= ZERO * size;
+        // Products of two entries are compared with the square of the size.
+        let zero_product = |v: f64| v.abs() <= ZERO * size * size;
         let [[p, q], [r, s]] = self.in_plane((a, b));
         // Columns (p, r) and (q, s) of equal length and at right angles: a similarity.
-        let similar = zero(p * p + r * r - q * q - s * s) && zero(p * q + r * s);
+        let similar = zero_product(p * p + r * r - q * q - s * s) && zero_product(p * q + r * s);
         similar
             && zero(l[normal][a])
             && zero(l[normal][b])
