@@ -3,8 +3,9 @@
 //! machine = chain(program) + G52 local + G92 shift + work offset (G54 ...) + external offset
 //!           + tool length vector (Z only)
 //!
-//! The chain is a list of general frames ([`transform::Frame`]) applied in slot order: for the
-//! ISO codes, scaling or mirror (G51, G51.1: stretching the programmed coordinates of some axes
+//! The chain is a list of general frames ([`transform::Frame`]) applied in slot order: first
+//! SINUMERIK's programmable frame (an affine map of X Y Z, never set by the ISO codes), then for
+//! the ISO codes scaling or mirror (G51, G51.1: stretching the programmed coordinates of some axes
 //! about a centre), then the G68 rotation (about a centre in the plane selected when it was
 //! programmed), then Syntec's rotated preset (G92.1 with K R). The FANUC family applies them in
 //! that order (spec/iso-syntec-milling.md 0.1.3, seed L4493-4497). What follows the chain is a
@@ -26,7 +27,9 @@ pub(crate) mod rotation;
 pub(crate) mod scaling;
 mod transform;
 
-pub(crate) use transform::{sin_cos_degrees, Frame, FrameSlot, Rotation, Scaling, Transform};
+pub(crate) use transform::{
+    multiply, sin_cos_degrees, Affine, Frame, FrameSlot, Rotation, Scaling, Transform,
+};
 
 use crate::machine::{Machine, WorkOffsetId, AXES};
 use crate::motion::ArcDirection;
@@ -54,7 +57,9 @@ pub(crate) struct Frames {
 }
 
 impl Frames {
-    /// True when a rotation turns the program's plane (G68 or Syntec's rotated G92.1).
+    /// True when a rotation turns the program's plane (G68 or Syntec's rotated G92.1). The
+    /// ISO codes ask it; SINUMERIK's programmable frame is not counted (its front end asks the
+    /// frame itself, `ProgrammableFrame::has_rotation`).
     pub(crate) fn rotated(&self) -> bool {
         self.rotation().is_some() || self.preset_rotation().is_some()
     }
@@ -124,17 +129,43 @@ impl Frames {
         }
     }
 
+    /// SINUMERIK's programmable frame, while one is set.
+    pub(crate) fn programmable(&self) -> Option<&Affine> {
+        match self.frame(FrameSlot::Programmable) {
+            Some(Transform::Affine(affine)) => Some(affine),
+            _ => None,
+        }
+    }
+
+    /// True when the chain turns the plane of axes `(a, b)` over, so that arcs (and G41/G42)
+    /// swap: a mirror of one plane axis (or a negative factor), or a programmable frame that
+    /// turns the plane over; two such frames cancel.
+    pub(crate) fn reverses_plane(&self, (a, b): (usize, usize)) -> bool {
+        let scaled = self.scaling().is_some_and(|s| s.reverses((a, b)));
+        let framed = self.programmable().is_some_and(|f| f.reverses((a, b)));
+        scaled != framed
+    }
+
     /// The direction on the machine of an arc programmed `direction` in the plane of axes
-    /// `(a, b)`: a mirror of one plane axis (or a negative factor) turns it the other way.
+    /// `(a, b)`: reversed where [`Frames::reverses_plane`] says so.
     pub(crate) fn arc_direction(
         &self,
         (a, b): (usize, usize),
         direction: ArcDirection,
     ) -> ArcDirection {
-        match self.scaling() {
-            Some(scaling) if scaling.reverses((a, b)) => direction.reversed(),
-            _ => direction,
+        if self.reverses_plane((a, b)) {
+            direction.reversed()
+        } else {
+            direction
         }
+    }
+
+    /// Sets SINUMERIK's programmable frame, or clears it (`None`, also for the identity, so that
+    /// a program without frames keeps the chain's fast path). It changes the chain only, not
+    /// the position (docs/SINUMERIK.md 6.4 rule 1).
+    #[cfg_attr(not(test), allow(dead_code))] // wired in by the SINUMERIK front end (issue 20)
+    pub(crate) fn set_programmable(&mut self, frame: Option<Affine>) {
+        self.set_frame(FrameSlot::Programmable, frame.map(Transform::Affine));
     }
 
     /// Sets or ends G68's rotation.
@@ -336,7 +367,140 @@ mod tests {
         assert_eq!(chain.frame(FrameSlot::Scaling), None);
     }
 
+    /// An affine map: a quarter turn about Z, X scaled by `factor`, then moved by `shift` (and
+    /// A by 5).
+    fn affine(factor: f64, shift: [f64; 3]) -> Affine {
+        let linear = [[0.0, -1.0, 0.0], [factor, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        let [x, y, z] = shift;
+        Affine::new(linear, [x, y, z, 5.0, 0.0, 0.0]).expect("a regular matrix")
+    }
+
+    #[test]
+    fn the_programmable_frame_comes_first_in_the_chain() {
+        let mut chain = frames();
+        chain.set_scaling(Some(scaling([2.0; AXES])));
+        chain.set_programmable(Some(affine(1.0, [1.0, 0.0, 0.0])));
+        assert!(matches!(
+            chain.frame(FrameSlot::Programmable),
+            Some(Transform::Affine(_))
+        ));
+        assert!(chain.programmable().is_some() && chain.transformed() && !chain.rotated());
+        let point = [3.0, 0.0, 0.0, 1.0, 0.0, 0.0];
+        // The affine map first: (3, 0) turned a quarter is (0, 3), moved to (1, 3); then scaled
+        // by 2 about (1, 2): (1, 4). A moves by 5 to 6, then is scaled about 0 to 12.
+        let expected = [1.0, 4.0, 0.0, 12.0, 0.0, 0.0];
+        assert_eq!(chain.to_machine(&point, 0.0), expected);
+        chain.set_programmable(None);
+        assert!(chain.programmable().is_none());
+        assert_eq!(
+            chain.frame(FrameSlot::Scaling),
+            Some(&Transform::Scale(scaling([2.0; AXES])))
+        );
+    }
+
+    #[test]
+    fn an_affine_map_is_kept_with_its_parts() {
+        let map = affine(2.0, [1.0, 2.0, 3.0]);
+        assert_eq!(map.linear()[1], [2.0, 0.0, 0.0]);
+        assert_eq!(map.translation(), &[1.0, 2.0, 3.0, 5.0, 0.0, 0.0]);
+        assert_eq!(
+            map.apply(&[1.0, 1.0, 1.0, 1.0, 1.0, 1.0]),
+            [0.0, 4.0, 4.0, 6.0, 1.0, 1.0]
+        );
+        // A zero row, or a number that is not one, cannot be undone.
+        let flat = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.0]];
+        assert_eq!(Affine::new(flat, [0.0; AXES]), None);
+        let mut huge = flat;
+        huge[2][2] = f64::INFINITY;
+        assert_eq!(Affine::new(huge, [0.0; AXES]), None);
+        assert_eq!(
+            Affine::new(*affine(1.0, [0.0; 3]).linear(), [f64::NAN; AXES]),
+            None
+        );
+    }
+
+    #[test]
+    fn arcs_reverse_when_one_frame_turns_the_plane_over() {
+        let xy = (0, 1);
+        let cw = ArcDirection::Clockwise;
+        let mut chain = frames();
+        // A quarter turn with X stretched keeps the orientation of XY.
+        chain.set_programmable(Some(affine(2.0, [0.0; 3])));
+        assert_eq!(chain.arc_direction(xy, cw), cw);
+        // Y mirrored in the affine map: reversed; with G51.1 X as well: the two cancel.
+        let mirror = [[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]];
+        chain.set_programmable(Affine::new(mirror, [0.0; AXES]));
+        assert_eq!(chain.arc_direction(xy, cw), cw.reversed());
+        assert!(chain.reverses_plane(xy) && !chain.reverses_plane((2, 0)));
+        chain.set_scaling(Some(scaling([-1.0, 1.0, 1.0, 1.0, 1.0, 1.0])));
+        assert_eq!(chain.arc_direction(xy, cw), cw);
+        assert!(!chain.reverses_plane(xy));
+    }
+
+    #[test]
+    fn an_affine_map_keeps_a_plane_only_when_it_stays_parallel_and_even() {
+        let (xy, zx, yz) = ((0, 1), (2, 0), (1, 2));
+        // A quarter turn about Z with X stretched: XY is distorted, YZ and ZX are not kept
+        // parallel (X goes to Y).
+        let map = affine(2.0, [0.0; 3]);
+        assert!(!map.keeps_plane(xy) && !map.keeps_plane(yz) && !map.keeps_plane(zx));
+        let even = affine(1.0, [7.0, 8.0, 9.0]);
+        assert!(even.keeps_plane(xy) && !even.keeps_plane(zx));
+        assert_eq!(even.plane_factor(xy), 1.0);
+        // A shear of Z into X: XY keeps its shape but a helix would lean.
+        let shear = [[1.0, 0.0, 0.5], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert!(!Affine::new(shear, [0.0; AXES]).unwrap().keeps_plane(xy));
+        // Mirrored and scaled by 3 evenly in ZX: kept, factor 3, reversed.
+        let mirrored = [[-3.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 3.0]];
+        let mirrored = Affine::new(mirrored, [0.0; AXES]).unwrap();
+        assert!(mirrored.keeps_plane(zx) && mirrored.reverses(zx));
+        assert_eq!(mirrored.plane_factor(zx), 3.0);
+        // Large factors keep their planes despite the rounding of their products: a turn by 30
+        // degrees with both factors a million.
+        let (sin, cos) = sin_cos_degrees(30.0);
+        let big = 1.0e6;
+        let turned = [
+            [big * cos, -big * sin, 0.0],
+            [big * sin, big * cos, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let turned = Affine::new(turned, [0.0; AXES]).unwrap();
+        assert!(turned.keeps_plane(xy));
+        assert!((turned.plane_factor(xy) - big).abs() < 1e-6);
+    }
+
     proptest! {
+        #[test]
+        fn a_point_through_a_chain_with_an_affine_map_and_back_is_where_it_started(
+            point in prop::array::uniform6(-500.0f64..500.0),
+            linear in prop::array::uniform3(prop::array::uniform3(-3.0f64..3.0)),
+            translation in prop::array::uniform6(-100.0f64..100.0),
+            factor in prop::array::uniform6(prop_oneof![0.1f64..4.0, -4.0f64..-0.1]),
+            degrees in -720.0f64..720.0,
+            length in -50.0f64..50.0,
+        ) {
+            let map = Affine::new(linear, translation);
+            let determinant = map.map(|m| {
+                let l = m.linear();
+                l[0][0] * (l[1][1] * l[2][2] - l[1][2] * l[2][1])
+                    - l[0][1] * (l[1][0] * l[2][2] - l[1][2] * l[2][0])
+                    + l[0][2] * (l[1][0] * l[2][1] - l[1][1] * l[2][0])
+            });
+            // A nearly singular map loses the point's digits on the way back.
+            prop_assume!(determinant.is_some_and(|d| d.abs() > 0.1));
+            let mut chain = frames();
+            chain.set_programmable(map);
+            chain.set_scaling(Some(scaling(factor)));
+            chain.set_rotation(Some(Rotation::new((1, 2), (10.0, -20.0), degrees)));
+            chain.set_work_offset(WorkOffsetId::Standard(1), 0, 100.0);
+            let machine = chain.to_machine(&point, length);
+            chain.set_length_vector(length);
+            let back = chain.to_program(&machine);
+            for (p, b) in point.iter().zip(back) {
+                prop_assert!((p - b).abs() < 1e-7, "{point:?} came back as {back:?}");
+            }
+        }
+
         #[test]
         fn a_point_through_the_chain_and_back_is_where_it_started(
             point in prop::array::uniform6(-500.0f64..500.0),

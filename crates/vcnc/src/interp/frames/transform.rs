@@ -1,12 +1,14 @@
 //! The frames of the coordinate chain: what one frame does to a point, and how it is undone.
 //!
-//! A frame is a [`Transform`] in a [`FrameSlot`]: a scaling or mirror about a centre, or a
-//! rotation about a centre in the plane of any two axes (translations that follow the chain are
-//! added into one shift, `mod.rs`). The ISO codes fill three slots (G51/G51.1, G68, Syntec's
-//! G92.1 R); SINUMERIK's frames (TRANS, ROT, SCALE, MIRROR in the programmable and settable
-//! frames) are to be compositions of such transforms in slots of their own. Each transform is applied in the
-//! form the manual writes it (`c + f (x - c)`, `c + Rot (p - c)`), not as a matrix, so that a
-//! program's positions come out exactly as the control's formula gives them.
+//! A frame is a [`Transform`] in a [`FrameSlot`]: a scaling or mirror about a centre, a
+//! rotation about a centre in the plane of any two axes, or a general affine map of the geometry
+//! axes (translations that follow the chain are added into one shift, `mod.rs`). The ISO codes
+//! fill three slots (G51/G51.1, G68, Syntec's G92.1 R) and never the affine one; SINUMERIK's
+//! programmable frame (TRANS, ROT, SCALE, MIRROR, `interp/sinumerik/frame.rs`) is one [`Affine`]
+//! in a slot of its own. The ISO transforms are applied in the form the manual writes them
+//! (`c + f (x - c)`, `c + Rot (p - c)`), not as a matrix, so that a program's positions come out
+//! exactly as the control's formula gives them; the SINUMERIK manual gives its frames as
+//! components whose product is a matrix, so a matrix is their form.
 
 use crate::machine::AXES;
 
@@ -14,6 +16,9 @@ use crate::machine::AXES;
 /// program's coordinates towards the machine's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) enum FrameSlot {
+    /// SINUMERIK's programmable frame (`$P_PFRAME`): the first frame a program point meets, WCS to
+    /// SZS (docs/SINUMERIK.md 5.1); the settable frame's translation is the shift after the chain.
+    Programmable,
     /// G51 scaling or G51.1 mirror (FANUC applies them before a rotation).
     Scaling,
     /// G68 coordinate rotation.
@@ -36,6 +41,9 @@ pub(crate) enum Transform {
     Scale(Scaling),
     /// `p' = c + Rot (p - c)` in the rotation's plane.
     Rotate(Rotation),
+    /// `p' = L p + t` on X Y Z, `p' = p + t` on the other axes.
+    #[cfg_attr(not(test), allow(dead_code))] // wired in by the SINUMERIK front end (issue 20)
+    Affine(Affine),
 }
 
 impl Transform {
@@ -48,6 +56,7 @@ impl Transform {
                 }
             }
             Transform::Rotate(rotation) => rotation.turn(point, rotation.sin),
+            Transform::Affine(affine) => *point = affine.apply(point),
         }
     }
 
@@ -60,8 +69,142 @@ impl Transform {
                 }
             }
             Transform::Rotate(rotation) => rotation.turn(point, -rotation.sin),
+            Transform::Affine(affine) => *point = affine.undo(point),
         }
     }
+}
+
+/// A general affine map of the geometry axes X Y Z, `p' = L p + t`, with the other axes (A B C)
+/// only translated: the SINUMERIK frame `parent = T + R S M p` multiplied out
+/// (docs/SINUMERIK.md 5.2). Its inverse is kept beside it, since every block maps a point back.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Affine {
+    /// `L`, row by row: `L[i][j]` is how much child axis `j` moves parent axis `i`.
+    linear: [[f64; 3]; 3],
+    /// `L` inverted.
+    inverse: [[f64; 3]; 3],
+    /// `t`, per axis of the machine.
+    translation: [f64; AXES],
+}
+
+/// How far from zero an entry of a linear map may be and still count as zero: rounding of sines
+/// and products of a few rotations stays near 1e-16 per unit; programs write no more than
+/// micrometre digits, far above this.
+#[cfg_attr(not(test), allow(dead_code))]
+const ZERO: f64 = 1e-12;
+
+#[cfg_attr(not(test), allow(dead_code))] // wired in by the SINUMERIK front end (issue 20)
+impl Affine {
+    /// The map `p' = linear p + translation`; `None` when `linear` cannot be inverted (a scale
+    /// factor of zero) or holds a number that is not finite.
+    pub(crate) fn new(linear: [[f64; 3]; 3], translation: [f64; AXES]) -> Option<Affine> {
+        let inverse = invert(&linear)?;
+        translation.iter().all(|t| t.is_finite()).then_some(Affine {
+            linear,
+            inverse,
+            translation,
+        })
+    }
+
+    /// The linear part `L`, row by row.
+    pub(crate) fn linear(&self) -> &[[f64; 3]; 3] {
+        &self.linear
+    }
+
+    /// The translation `t`.
+    pub(crate) fn translation(&self) -> &[f64; AXES] {
+        &self.translation
+    }
+
+    /// The image of `point`, towards the machine.
+    pub(crate) fn apply(&self, point: &[f64; AXES]) -> [f64; AXES] {
+        let mut image: [f64; AXES] = std::array::from_fn(|i| point[i] + self.translation[i]);
+        let turned = multiply(&self.linear, [point[0], point[1], point[2]]);
+        for (i, value) in turned.into_iter().enumerate() {
+            image[i] = value + self.translation[i];
+        }
+        image
+    }
+
+    /// The point whose image is `image`: [`Affine::apply`] undone.
+    pub(crate) fn undo(&self, image: &[f64; AXES]) -> [f64; AXES] {
+        let mut point: [f64; AXES] = std::array::from_fn(|i| image[i] - self.translation[i]);
+        let back = multiply(&self.inverse, [point[0], point[1], point[2]]);
+        point[..3].copy_from_slice(&back);
+        point
+    }
+
+    /// The linear part seen in the plane of axes `(a, b)` (first and second, as
+    /// `Plane::axes` orders them): the 2x2 block `[[L_aa, L_ab], [L_ba, L_bb]]`.
+    fn in_plane(&self, (a, b): (usize, usize)) -> [[f64; 2]; 2] {
+        let l = &self.linear;
+        [[l[a][a], l[a][b]], [l[b][a], l[b][b]]]
+    }
+
+    /// True when the map turns the plane of axes `(a, b)` over: seen from the plane's normal, a
+    /// counter-clockwise arc comes out clockwise (one plane axis mirrored, or a half turn about an
+    /// axis of the plane). Meaningful where [`Affine::keeps_plane`] holds.
+    pub(crate) fn reverses(&self, (a, b): (usize, usize)) -> bool {
+        let [[p, q], [r, s]] = self.in_plane((a, b));
+        p * s - q * r < 0.0
+    }
+
+    /// True when an arc in the plane of axes `(a, b)` stays a circular arc in the same machine
+    /// plane, with its helix axis along the plane's normal: the plane is mapped parallel to
+    /// itself (nothing of `a` or `b` leaks into the normal axis and nothing of the normal into
+    /// `a` or `b`) and scaled by the same factor in every direction (the 2x2 block is a turn,
+    /// or a turn and a mirror, times one factor). A SINUMERIK front end alarms otherwise.
+    pub(crate) fn keeps_plane(&self, (a, b): (usize, usize)) -> bool {
+        let normal = 3 - a - b;
+        let l = &self.linear;
+        let size = l.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let zero = |v: f64| v.abs() <= ZERO * size;
+        // Products of two entries are compared with the square of the size.
+        let zero_product = |v: f64| v.abs() <= ZERO * size * size;
+        let [[p, q], [r, s]] = self.in_plane((a, b));
+        // Columns (p, r) and (q, s) of equal length and at right angles: a similarity.
+        let similar = zero_product(p * p + r * r - q * q - s * s) && zero_product(p * q + r * s);
+        similar
+            && zero(l[normal][a])
+            && zero(l[normal][b])
+            && zero(l[a][normal])
+            && zero(l[b][normal])
+    }
+
+    /// How much a length in the plane of axes `(a, b)` grows through the map (a radius `CR`):
+    /// the length of the image of a unit vector along `a`. Meaningful where
+    /// [`Affine::keeps_plane`] holds.
+    pub(crate) fn plane_factor(&self, (a, b): (usize, usize)) -> f64 {
+        let [[p, _], [r, _]] = self.in_plane((a, b));
+        p.hypot(r)
+    }
+}
+
+/// `matrix · vector`, a 3x3 matrix given row by row.
+pub(crate) fn multiply(matrix: &[[f64; 3]; 3], vector: [f64; 3]) -> [f64; 3] {
+    matrix.map(|row| row[0] * vector[0] + row[1] * vector[1] + row[2] * vector[2])
+}
+
+/// The inverse of `m` by its adjugate, `None` when `m` is singular or not finite.
+fn invert(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    // cofactor(i, j) of the transpose: the adjugate's entry (i, j).
+    let cofactor = |i: usize, j: usize| {
+        let (r0, r1) = ((j + 1) % 3, (j + 2) % 3);
+        let (c0, c1) = ((i + 1) % 3, (i + 2) % 3);
+        m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
+    };
+    let adjugate: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| cofactor(i, j)));
+    let determinant =
+        m[0][0] * adjugate[0][0] + m[0][1] * adjugate[1][0] + m[0][2] * adjugate[2][0];
+    if determinant == 0.0 || !determinant.is_finite() {
+        return None;
+    }
+    let inverse = adjugate.map(|row| row.map(|v| v / determinant));
+    inverse
+        .iter()
+        .flatten()
+        .all(|v| v.is_finite())
+        .then_some(inverse)
 }
 
 /// G51 scaling or G51.1 mirror: each axis' programmed coordinate is stretched about a centre,
