@@ -539,7 +539,10 @@ fn gotof_searches_forwards_and_gotob_backwards() {
     if alarms.iter().any(|a| a.code == AlarmCode::NotSupportedYet) {
         return;
     }
-    assert_eq!(ends(&segments).iter().map(|p| p[0]).collect::<Vec<_>>(), [1.0, 3.0]);
+    assert_eq!(
+        ends(&segments).iter().map(|p| p[0]).collect::<Vec<_>>(),
+        [1.0, 3.0]
+    );
     let text = "G0 X0\nBACK: G91 G0 X1\nR2=R2-1\nIF R2 GOTOB BACK\nM30\n";
     let _ = text;
 }
@@ -633,4 +636,167 @@ fn an_endless_loop_stops_at_the_iteration_limit() {
     machine.profile.sinumerik.as_mut().unwrap().iteration_limit = 1000;
     let alarm = error("LOOP\nG91 G0 X1\nENDLOOP\nM30\n", &machine);
     assert_eq!(alarm.code, AlarmCode::MacroLimit);
+}
+
+/// G54 = X100 Y50 Z0 only: the numbers of docs/SINUMERIK.md 5.3.
+fn g54() -> Machine {
+    let mut machine = machine();
+    machine
+        .work_offsets
+        .insert(WorkOffsetId::Standard(1), [100.0, 50.0, 0.0, 0.0, 0.0, 0.0]);
+    machine
+}
+
+/// The machine X Y of the last move of `frames` (each line a block after `G54`) then `moves`.
+fn last_xy(program: &str) -> [f64; 2] {
+    let text = format!("G54\n{program}\nM30\n");
+    let got = moves(&text, &g54());
+    let last = got.last().unwrap_or_else(|| panic!("no move in\n{text}"));
+    [last[0], last[1]]
+}
+
+#[track_caller]
+fn assert_xy(program: &str, x: f64, y: f64) {
+    let [gx, gy] = last_xy(program);
+    assert!(
+        (gx - x).abs() < 1e-3 && (gy - y).abs() < 1e-3,
+        "{program}\ngot X{gx} Y{gy}, wanted X{x} Y{y}"
+    );
+}
+
+#[test]
+fn trans_replaces_and_atrans_adds() {
+    // Rule 1, ex. B-60: the second TRANS does not add.
+    assert_xy("TRANS X10 Y10\nTRANS X50 Y10\nG0 X0 Y0", 150.0, 60.0);
+    assert_xy("TRANS X10 Y10\nATRANS X5\nG0 X0 Y0", 115.0, 60.0);
+}
+
+#[test]
+fn each_replacing_instruction_clears_the_others() {
+    // Rule 2: ROT deletes the translation; TRANS deletes the rotation.
+    assert_xy("TRANS X10\nROT RPL=90\nG0 X10 Y0", 100.0, 60.0);
+    assert_xy("ROT RPL=90\nTRANS X10\nG0 X10 Y0", 120.0, 50.0);
+}
+
+#[test]
+fn an_additive_rotation_turns_about_the_new_zero() {
+    // Rule 3 and ex. B-63: TRANS X20 Y40 / AROT RPL=60 / G0 X100 Y100 -> X83.397 Y226.603.
+    assert_xy("TRANS X10\nAROT RPL=90\nG0 X10 Y0", 110.0, 60.0);
+    assert_xy("TRANS X20 Y40\nAROT RPL=60\nG0 X100 Y100", 83.397, 226.603);
+}
+
+#[test]
+fn atrans_after_a_rotation_runs_along_the_turned_axes() {
+    // Rule 4.
+    assert_xy("ROT RPL=90\nATRANS X10\nG0 X0 Y0", 100.0, 60.0);
+    assert_xy("ROT RPL=90\nATRANS X10\nG0 X10 Y0", 100.0, 70.0);
+}
+
+#[test]
+fn mirror_and_amirror_reverse_axes_about_the_zero() {
+    // Rule 6, ex. B-67.
+    assert_xy("MIRROR X0\nG0 X10 Y5", 90.0, 55.0);
+    assert_xy("MIRROR X0\nAMIRROR Y0\nG0 X10 Y5", 90.0, 45.0);
+    assert_xy("MIRROR X0\nAMIRROR Y0\nMIRROR Y0\nG0 X10 Y5", 110.0, 45.0);
+}
+
+#[test]
+fn scale_scales_about_the_zero_and_scales_a_later_atrans() {
+    // Rule 7 and ex. B-66.
+    assert_xy("SCALE X2 Y2\nATRANS X10\nG0 X5 Y5", 130.0, 60.0);
+    assert_xy("TRANS X10\nASCALE X2 Y2\nG0 X5 Y5", 120.0, 60.0);
+    assert_xy(
+        "TRANS X40 Y20\nAROT RPL=35\nASCALE X0.7 Y0.7\nG0 X300 Y100",
+        271.872,
+        247.792,
+    );
+}
+
+#[test]
+fn a_frame_word_alone_clears_the_frame() {
+    assert_xy("TRANS X10\nTRANS\nG0 X0 Y0", 100.0, 50.0);
+}
+
+#[test]
+fn a_translation_moves_only_the_axes_programmed_next() {
+    // 6.4 rule 2: `G0 X10 Y0` / `TRANS X5` / `G0 Y7` -> X110 Y57; then `G0 X10` -> X115.
+    let got = moves("G54 G0 X10 Y0\nTRANS X5\nG0 Y7\nG0 X10\nM30\n", &g54());
+    assert!(
+        close(got[1], [110.0, 57.0, 0.0]) && close(got[2], [115.0, 57.0, 0.0]),
+        "{got:?}"
+    );
+}
+
+#[test]
+fn with_a_rotation_all_geometry_axes_go_to_their_programmed_values() {
+    // 6.4 rule 3: `G0 X10 Y0` / `ROT RPL=90` / `G0 X20` -> X100 Y70.
+    assert_xy("G0 X10 Y0\nROT RPL=90\nG0 X20", 100.0, 70.0);
+}
+
+#[test]
+fn an_increment_after_a_frame_change_travels_the_change_too() {
+    // 6.4 rule 4 (SD42440 = 1): TRANS X5 then G91 X1: p = 11, machine X116.
+    assert_xy("G0 X10 Y0\nTRANS X5\nG91 G0 X1", 116.0, 50.0);
+    assert_xy("G0 X10 Y0\nROT RPL=90\nG91 G1 X5 F100", 100.0, 65.0);
+}
+
+#[test]
+fn a_settable_frame_change_keeps_the_programmable_frame() {
+    // 5.5: G54 / TRANS X10 / G55 (X200) / G0 X0 -> X210.
+    let mut machine = g54();
+    machine
+        .work_offsets
+        .insert(WorkOffsetId::Standard(2), [200.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let got = moves("G54\nTRANS X10\nG55\nG0 X0\nM30\n", &machine);
+    assert!(close(got[0], [210.0, 0.0, 0.0]), "{got:?}");
+}
+
+#[test]
+fn g58_and_g59_replace_the_coarse_and_fine_parts_on_the_840d() {
+    // 5.4, ex. B-62: TRANS X10 Y10 / ATRANS X5 Y5 / G58 X20 / G59 X10 Y10 -> total X30 Y20.
+    assert_xy(
+        "TRANS X10 Y10 Z10\nATRANS X5 Y5\nG58 X20\nG59 X10 Y10\nG0 X0 Y0",
+        130.0,
+        70.0,
+    );
+}
+
+#[test]
+fn a_frame_instruction_stands_in_its_own_block() {
+    let alarm = error("TRANS X10 G0\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::WordNotAllowed);
+    let alarm = error("TRANS X10 F100\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::WordNotAllowed);
+}
+
+#[test]
+fn arcs_turn_with_the_frame_and_mirroring_reverses_them() {
+    // ROT RPL=90: an arc from (10,0) about (0,0) to (0,10) ends at machine (-10, 0) rel. G54.
+    let text = "G54 G0 X10 Y0\nROT RPL=90\nG0 X10 Y0\nG3 X0 Y10 I-10 J0 F100\nMIRROR X0\nG0 X10 Y0\nG3 X0 Y10 I-10 J0\nM30\n";
+    let (segments, alarms) = stream(text, &g54());
+    assert!(alarms.is_empty(), "{alarms:?}");
+    let arcs: Vec<_> = segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Arc {
+                motion, direction, ..
+            } => Some((motion.to.0, direction)),
+            _ => None,
+        })
+        .collect();
+    assert!(
+        close([arcs[0].0[0], arcs[0].0[1], 0.0], [90.0, 50.0, 0.0]),
+        "{arcs:?}"
+    );
+    assert_eq!(arcs[0].1, ArcDirection::CounterClockwise);
+    assert_eq!(arcs[1].1, ArcDirection::Clockwise);
+}
+
+#[test]
+fn an_arc_in_a_tilted_plane_alarms() {
+    let alarm = error(
+        "ROT Y30\nG0 X10 Y0\nG2 X0 Y10 CR=10 F100\nM30\n",
+        &machine(),
+    );
+    assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
 }

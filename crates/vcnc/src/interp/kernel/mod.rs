@@ -262,6 +262,12 @@ impl Kernel {
             .feed_to(to, &origin, feed_mode, self.modes, &mut self.out)
     }
 
+    /// The programmable frame from here on (None: no frame); it moves nothing until the next
+    /// move of each axis.
+    pub(crate) fn set_programmable(&mut self, frame: Option<crate::interp::frames::Affine>) {
+        self.state.frames.set_programmable(frame);
+    }
+
     /// The kernel's machine state, for a front end's reads (frames, tools, spindle).
     pub(crate) fn state(&self) -> &KernelState {
         &self.state

@@ -5,7 +5,7 @@
 //! Never: let the written order of the words change what a block does, or run a word it does not
 //! understand: an unknown address or name is an alarm naming it.
 
-use super::gcodes::{self, FeedType, Function, Motion, OneBlock};
+use super::gcodes::{self, FeedType, FrameOp, Function, Motion, OneBlock};
 use super::{Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::arc::{arc_center, ArcSpec};
@@ -38,6 +38,8 @@ struct Words<'a> {
     axes: [Option<AxisValue>; AXES],
     centre: [Option<AxisValue>; 3],
     radius: Option<(f64, Span)>,
+    /// RPL: the angle of a rotation in the plane.
+    rpl: Option<(f64, Span)>,
     feed: Option<(f64, Span)>,
     speed: Option<(f64, Span)>,
     tool: Option<(u32, Span)>,
@@ -88,6 +90,14 @@ pub(super) fn run(
             Function::OneBlock(f) => one_block.push((f, word.span)),
             _ => apply_modal(front, kernel, function, word.span)?,
         }
+    }
+    if let Some(&(Function::Frame(op), _, word)) = words
+        .functions
+        .iter()
+        .find(|(f, _, _)| matches!(f, Function::Frame(_)))
+    {
+        frame_instruction(front, kernel, &words, op, word)?;
+        return Ok(Step::Next);
     }
     let dwell = one_block.iter().any(|(f, _)| *f == OneBlock::Dwell);
     if let Some((feed, span)) = words.feed {
@@ -174,6 +184,7 @@ fn read<'a>(front: &mut Sinumerik, block: &'a Block) -> Result<Words<'a>, Alarm>
                 words.centre[i] = Some(axis_value(front, word)?);
             }
             "CR" => words.radius = Some((number(front, word)?, word.span)),
+            "RPL" => words.rpl = Some((number(front, word)?, word.span)),
             "F" => words.feed = Some((number(front, word)?, word.span)),
             "S" => words.speed = Some((number(front, word)?, word.span)),
             "T" => words.tool = Some((tool_number(front, word)?, word.span)),
@@ -333,8 +344,11 @@ pub(super) fn apply_modal(
             n => WorkOffsetId::Settable(n),
         }),
         Function::ExactStop => front.modal.exact_stop = true,
-        Function::State | Function::OneBlock(_) | Function::Planned | Function::OutOfProduct(_) => {
-        }
+        Function::Frame(_)
+        | Function::State
+        | Function::OneBlock(_)
+        | Function::Planned
+        | Function::OutOfProduct(_) => {}
     }
     Ok(())
 }
@@ -480,6 +494,72 @@ fn dwell_block(
     kernel.dwell(seconds, origin)
 }
 
+/// A frame instruction: the programmable frame changes, nothing moves (docs/SINUMERIK.md 5.3).
+fn frame_instruction(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    words: &Words<'_>,
+    op: FrameOp,
+    word: &Word,
+) -> Result<(), Alarm> {
+    if let Some(&(_, _, other)) = words
+        .functions
+        .iter()
+        .find(|(f, _, w)| !std::ptr::eq(*w, word) && !matches!(f, Function::Plane(_)))
+    {
+        return Err(own_block(word, other.span));
+    }
+    if words.feed.is_some() || words.speed.is_some() || words.tool.is_some() || !words.m.is_empty()
+    {
+        return Err(own_block(word, word.span));
+    }
+    let unit = unit(front);
+    let lengths: [Option<f64>; AXES] = std::array::from_fn(|i| {
+        let scale = if i < 3 { unit } else { 1.0 };
+        words.axes[i].map(|v| v.value * scale)
+    });
+    let plain: [Option<f64>; 3] = std::array::from_fn(|i| words.axes[i].map(|v| v.value));
+    let frame = &mut front.frame;
+    let plane = front.modal.plane;
+    let result = match op {
+        FrameOp::Trans => frame.trans(lengths),
+        FrameOp::Atrans => frame.atrans(lengths),
+        FrameOp::G58 => frame.g58(lengths),
+        FrameOp::G59 => frame.g59(lengths),
+        FrameOp::Rot | FrameOp::Rots | FrameOp::Arot | FrameOp::Arots => match (words.rpl, op) {
+            (Some((angle, _)), FrameOp::Rot | FrameOp::Rots) => frame.rot_rpl(plane, angle),
+            (Some((angle, _)), _) => frame.arot_rpl(plane, angle),
+            (None, FrameOp::Rot) => frame.rot(plain),
+            (None, FrameOp::Rots) => frame.rots(plain),
+            (None, FrameOp::Arot) => frame.arot(plain),
+            (None, _) => frame.arots(plain),
+        },
+        FrameOp::Scale => frame.scale(plain),
+        FrameOp::Ascale => frame.ascale(plain),
+        FrameOp::Mirror => {
+            frame.mirror(plain.map(|v| v.is_some()));
+            Ok(())
+        }
+        FrameOp::Amirror => {
+            frame.amirror(plain.map(|v| v.is_some()));
+            Ok(())
+        }
+    };
+    result.map_err(|error| Alarm::error(AlarmCode::ValueOutOfRange, word.span, error.message()))?;
+    kernel.set_programmable(front.frame.to_affine());
+    Ok(())
+}
+
+/// The alarm of an instruction that must stand in a block of its own (docs/SINUMERIK.md 3.1).
+fn own_block(word: &Word, at: Span) -> Alarm {
+    Alarm::error(
+        AlarmCode::WordNotAllowed,
+        at,
+        format!("{} must be programmed in a block of its own", word.address),
+    )
+    .with_help("put the frame instruction in its own block, with its axis values only")
+}
+
 /// The factor of lengths: 25.4 under G70/G700.
 fn unit(front: &Sinumerik) -> f64 {
     if front.modal.inch {
@@ -511,8 +591,15 @@ fn motion(
     words: &Words<'_>,
     origin: Origin,
 ) -> Result<(), Alarm> {
-    let target = end_point(front, words);
+    let mut target = end_point(front, words);
     let moves = target.iter().any(Option::is_some);
+    // With a rotation in the frame, every geometry axis goes to its programmed value
+    // (docs/SINUMERIK.md 6.4 rule 3).
+    if moves && front.frame.has_rotation() {
+        for (t, p) in target.iter_mut().zip(front.programmed).take(3) {
+            t.get_or_insert(p);
+        }
+    }
     let arc = matches!(
         front.modal.motion,
         Motion::Clockwise | Motion::CounterClockwise
@@ -555,6 +642,16 @@ fn arc_move(
         _ => ArcDirection::CounterClockwise,
     };
     let (a, b, _) = front.modal.plane.axes();
+    if let Some(frame) = kernel.state().frames.programmable() {
+        if !frame.keeps_plane((a, b)) {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                origin.span,
+                "an arc in a plane the frame tilts or scales unevenly is not run yet",
+            )
+            .with_help("vcnc cuts arcs in a machine plane: turn the frame about the plane's normal only, and scale the plane's two axes alike"));
+        }
+    }
     let start = (front.programmed[a], front.programmed[b]);
     let end = (target[a].unwrap_or(start.0), target[b].unwrap_or(start.1));
     let unit = unit(front);
@@ -750,10 +847,7 @@ fn tool_number(front: &Sinumerik, word: &Word) -> Result<u32, Alarm> {
 /// Sets R parameter `target` to `value`.
 pub(super) fn assign_r(front: &mut Sinumerik, target: &Expr, value: f64) -> Result<(), Alarm> {
     if let ExprKind::Name(name) = &target.kind {
-        if let Some(index) = name
-            .strip_prefix('R')
-            .and_then(|n| n.parse::<usize>().ok())
-        {
+        if let Some(index) = name.strip_prefix('R').and_then(|n| n.parse::<usize>().ok()) {
             if let Some(slot) = front.r.get_mut(index) {
                 *slot = value;
                 return Ok(());

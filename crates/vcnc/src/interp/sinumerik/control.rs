@@ -175,7 +175,8 @@ pub(super) fn run(
 fn for_parts(front: &Sinumerik, program: usize, head: usize) -> Result<(Expr, Expr), Alarm> {
     let text = &front.programs[program];
     let line = text.line(head).expect("the head was found on this line");
-    let block = crate::syntax::sinumerik::parse_block(line.bytes, text.file, line.number, line.base);
+    let block =
+        crate::syntax::sinumerik::parse_block(line.bytes, text.file, line.number, line.base);
     match block.statement.map(|s| s.kind) {
         Some(StatementKind::For { variable, end, .. }) => Ok((variable, end)),
         _ => unreachable!("flow.rs matched an ENDFOR with a FOR"),
@@ -197,7 +198,13 @@ fn passes_of(front: &mut Sinumerik, passes: Option<&Expr>) -> Result<u32, Alarm>
 }
 
 /// Runs lines `first..=last` `passes` times, then goes on after line `back`.
-fn repeat(front: &mut Sinumerik, first: usize, last: usize, back: usize, passes: u32) -> Option<usize> {
+fn repeat(
+    front: &mut Sinumerik,
+    first: usize,
+    last: usize,
+    back: usize,
+    passes: u32,
+) -> Option<usize> {
     if passes == 0 || last < first {
         return None;
     }
@@ -220,10 +227,7 @@ fn jump_to(front: &mut Sinumerik, jump: &Jump, line: usize) -> Result<Step, Alar
         Some(JumpTarget::BlockNumber(n)) => Target::Number(n.value),
         Some(JumpTarget::Expression(expr)) => {
             label = front.text(expr)?;
-            match label
-                .strip_prefix('N')
-                .and_then(|n| n.parse::<u32>().ok())
-            {
+            match label.strip_prefix('N').and_then(|n| n.parse::<u32>().ok()) {
                 Some(n) => Target::Number(n),
                 None => Target::Label(&label),
             }
@@ -236,7 +240,9 @@ fn jump_to(front: &mut Sinumerik, jump: &Jump, line: usize) -> Result<Step, Alar
     {
         // A jump leaves the part repetitions it jumps out of.
         let level = front.level();
-        level.sections.retain(|s| (s.first..=s.last).contains(&next));
+        level
+            .sections
+            .retain(|s| (s.first..=s.last).contains(&next));
         level.next = next;
     }
     Ok(Step::Next)

@@ -344,7 +344,12 @@ impl Structure {
     }
 
     /// The first ENDLABEL after `from` and before `to`, if any.
-    pub(super) fn end_label(programs: &[Program], program: usize, from: usize, to: usize) -> Option<usize> {
+    pub(super) fn end_label(
+        programs: &[Program],
+        program: usize,
+        from: usize,
+        to: usize,
+    ) -> Option<usize> {
         (from + 1..to).find(|&i| mark(&programs[program], i) == Mark::EndLabel)
     }
 }
@@ -355,4 +360,3 @@ pub(super) enum Target<'a> {
     Label(&'a str),
     Number(u32),
 }
-

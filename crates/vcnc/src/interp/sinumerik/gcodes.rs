@@ -24,6 +24,8 @@ pub(super) enum Function {
     Settable(u32),
     /// G60 exact stop.
     ExactStop,
+    /// A frame instruction of group 3 (a block of its own; its axis words are the frame's).
+    Frame(FrameOp),
     /// Kept as state: no geometric effect on a 3-axis mill (or the planner's default already).
     State,
     /// The next SINUMERIK issue adds it.
@@ -64,6 +66,25 @@ pub(super) enum OneBlock {
     SuppressAll,
 }
 
+/// The frame instructions (docs/SINUMERIK.md 5.3, 5.4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum FrameOp {
+    Trans,
+    Atrans,
+    Rot,
+    Arot,
+    Rots,
+    Arots,
+    Scale,
+    Ascale,
+    Mirror,
+    Amirror,
+    /// 840D: the coarse translation of the named axes.
+    G58,
+    /// 840D: the fine translation of the named axes.
+    G59,
+}
+
 /// The feed types of group 15 that vcnc runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum FeedType {
@@ -83,6 +104,8 @@ pub(super) fn group(name: &str) -> Option<u8> {
         "G0" | "G1" | "G2" | "G3" | "CIP" | "CT" | "G33" | "G34" | "G35" | "G331" | "G332"
         | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "INVCW" | "INVCCW" | "OEMIPO1"
         | "OEMIPO2" => g(1),
+        "TRANS" | "ATRANS" | "ROT" | "AROT" | "ROTS" | "AROTS" | "SCALE" | "ASCALE" | "MIRROR"
+        | "AMIRROR" | "G58" | "G59" | "G25" | "G26" | "G110" | "G111" | "G112" => g(3),
         "G4" | "G63" | "G74" | "G75" | "G147" | "G148" | "G247" | "G248" | "G347" | "G348" => g(2),
         "G17" | "G18" | "G19" => g(6),
         "G40" | "G41" | "G42" => g(7),
@@ -172,6 +195,18 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G58" if m828d => Settable(5),
         "G59" if m828d => Settable(6),
         "G60" => ExactStop,
+        "TRANS" => Frame(FrameOp::Trans),
+        "ATRANS" => Frame(FrameOp::Atrans),
+        "ROT" => Frame(FrameOp::Rot),
+        "AROT" => Frame(FrameOp::Arot),
+        "ROTS" => Frame(FrameOp::Rots),
+        "AROTS" => Frame(FrameOp::Arots),
+        "SCALE" => Frame(FrameOp::Scale),
+        "ASCALE" => Frame(FrameOp::Ascale),
+        "MIRROR" => Frame(FrameOp::Mirror),
+        "AMIRROR" => Frame(FrameOp::Amirror),
+        "G58" => Frame(FrameOp::G58),
+        "G59" => Frame(FrameOp::G59),
         "G40" | "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "NORM" | "G450" | "BRISK"
         | "SOFT" | "DRIVE" | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF"
         | "COMPOF" | "COMPON" | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF"

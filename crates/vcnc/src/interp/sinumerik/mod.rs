@@ -60,6 +60,8 @@ pub struct Sinumerik {
     iterations: u64,
     /// The last block's span, for the alarm at the end of the text.
     last_span: Span,
+    /// The programmable frame ($P_PFRAME).
+    frame: frame::ProgrammableFrame,
     /// Structure partners, labels and block numbers found so far.
     structure: flow::Structure,
     /// Jumps made (GOTO, CASE, loops back).
@@ -128,6 +130,7 @@ impl Sinumerik {
                 sections: Vec::new(),
             }],
             structure: flow::Structure::default(),
+            frame: frame::ProgrammableFrame::default(),
             jumps: 0,
             library: None,
             r: vec![0.0; settings.r_parameters as usize],
