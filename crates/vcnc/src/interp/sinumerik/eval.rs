@@ -3,9 +3,9 @@
 //! and string functions, and assignments to R parameters and user variables.
 //!
 //! The tree comes from `crate::syntax::sinumerik` (its doc gives the precedence); names are
-//! resolved here: TRUE and FALSE, `$` system variables (asked of the [`Environment`]), R
-//! parameters and user variables ([`Variables`]), then axis names (the environment knows
-//! them). The front end strips `AC(..)`/`IC(..)` and similar value functions of a word before
+//! resolved here: TRUE, FALSE and `$PI`, the other `$` system variables (asked of the
+//! [`Environment`]), R parameters and user variables ([`Variables`]), then axis names (the
+//! environment knows them). The front end strips `AC(..)`/`IC(..)` and similar value functions of a word before
 //! calling [`evaluate`]; a call that neither this module nor the environment knows is a
 //! NotSupportedYet alarm that names it.
 //!
@@ -276,6 +276,9 @@ impl Evaluator<'_> {
         match name {
             "TRUE" => return Ok(Value::Bool(true)),
             "FALSE" => return Ok(Value::Bool(false)),
+            // The circle constant is the language's, not the machine's (PGsl 7.1 example,
+            // L2476-2500: `FGREF[A]=360/(2*$PI)`).
+            "$PI" => return Ok(Value::Real(std::f64::consts::PI)),
             _ => {}
         }
         if name.starts_with('$') {
@@ -872,6 +875,12 @@ mod tests {
         check("X<>A1", Value::Bool(true));
         assert_eq!(alarm("X<Y").code, AlarmCode::MacroArithmetic);
         check("R99", Value::Real(0.0));
+    }
+
+    #[test]
+    fn pi_is_a_constant_of_the_language() {
+        // Example sinumerik-a/37-fgroup-fgref.mpf N300: 360/(2*pi) = 57.29577951 (57.296).
+        check_real("360/(2*$PI)", 57.295_779_513_082_32);
     }
 
     #[test]
