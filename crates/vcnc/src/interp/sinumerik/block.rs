@@ -16,10 +16,13 @@ use crate::motion::{
     ArcDirection, EndKind, PathMode, SegmentKind, SpindleState, StopKind, ToolGeometry,
 };
 use crate::source::Span;
-use crate::syntax::sinumerik::{Block, Expr, ExprKind, UnaryOp, Value, Word};
+use super::language::Argument;
+use crate::syntax::sinumerik::{Block, Expr, ExprKind, Value, Word};
 
-/// The axis letters, by kernel index.
-const AXIS_NAMES: [&str; AXES] = ["X", "Y", "Z", "A", "B", "C"];
+/// Predefined procedures that are neither subprograms nor cycles (the language's own).
+const PREDEFINED: [&str; 4] = ["MSG", "SETAL", "STOPRE", "CYCLE800"];
+
+use super::language::AXIS_NAMES;
 
 /// A value on an axis or centre word: as written, or made absolute or incremental for this word
 /// (`X=AC(10)`, `X=IC(5)`).
@@ -46,6 +49,8 @@ struct Words<'a> {
     edge: Option<(u32, Span)>,
     m: Vec<(u32, Span)>,
     call: Option<(String, Span)>,
+    /// The arguments of a call with parentheses, evaluated where the call stands.
+    arguments: Option<Vec<Argument>>,
     passes: Option<(u32, Span)>,
     ends: Option<(End, Span)>,
 }
@@ -70,7 +75,7 @@ pub(super) fn run(
         span,
         sequence: block.number,
     };
-    let words = read(front, block)?;
+    let words = read(front, kernel, block)?;
     // G functions take their new members before any value of the block is read.
     let mut one_block = Vec::new();
     let mut groups = [None::<Span>; 64];
@@ -137,7 +142,7 @@ pub(super) fn run(
     }
     if let Some((name, span)) = &words.call {
         let passes = words.passes.map_or(1, |(p, _)| p);
-        front.call(name, passes, *span)?;
+        front.call(name, passes, *span, words.arguments.clone())?;
     }
     match words.ends {
         Some((End::Program(kind), span)) if front.levels.len() == 1 => {
@@ -158,7 +163,11 @@ pub(super) fn run(
 }
 
 /// Sorts the block's words; a word vcnc does not run is an alarm naming it.
-fn read<'a>(front: &mut Sinumerik, block: &'a Block) -> Result<Words<'a>, Alarm> {
+fn read<'a>(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    block: &'a Block,
+) -> Result<Words<'a>, Alarm> {
     let mut words = Words::default();
     for word in &block.words {
         let address = &*word.address;
@@ -175,23 +184,23 @@ fn read<'a>(front: &mut Sinumerik, block: &'a Block) -> Result<Words<'a>, Alarm>
                 )
                 .with_help("add the axis to the machine file's [axes], or remove the word"));
             }
-            words.axes[axis] = Some(axis_value(front, word)?);
+            words.axes[axis] = Some(axis_value(front, kernel, word)?);
             continue;
         }
         match address {
             "I" | "J" | "K" => {
                 let i = (address.as_bytes()[0] - b'I') as usize;
-                words.centre[i] = Some(axis_value(front, word)?);
+                words.centre[i] = Some(axis_value(front, kernel, word)?);
             }
-            "CR" => words.radius = Some((number(front, word)?, word.span)),
-            "RPL" => words.rpl = Some((number(front, word)?, word.span)),
-            "F" => words.feed = Some((number(front, word)?, word.span)),
-            "S" => words.speed = Some((number(front, word)?, word.span)),
-            "T" => words.tool = Some((tool_number(front, word)?, word.span)),
-            "D" => words.edge = Some((whole(front, word)?, word.span)),
-            "P" => words.passes = Some((whole(front, word)?, word.span)),
+            "CR" => words.radius = Some((number(front, kernel, word)?, word.span)),
+            "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
+            "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
+            "S" => words.speed = Some((number(front, kernel, word)?, word.span)),
+            "T" => words.tool = Some((tool_number(front, kernel, word)?, word.span)),
+            "D" => words.edge = Some((whole(front, kernel, word)?, word.span)),
+            "P" => words.passes = Some((whole(front, kernel, word)?, word.span)),
             "M" => {
-                let code = whole(front, word)?;
+                let code = whole(front, kernel, word)?;
                 match code {
                     2 => words.ends = Some((End::Program(EndKind::M02), word.span)),
                     30 => words.ends = Some((End::Program(EndKind::M30), word.span)),
@@ -201,7 +210,7 @@ fn read<'a>(front: &mut Sinumerik, block: &'a Block) -> Result<Words<'a>, Alarm>
             }
             "RET" => words.ends = Some((End::Return, word.span)),
             "L" => {
-                let n = whole(front, word)?;
+                let n = whole(front, kernel, word)?;
                 words.call = Some((format!("L{n}"), word.span));
             }
             "STOPRE" | "MSG" => {}
@@ -213,26 +222,28 @@ fn read<'a>(front: &mut Sinumerik, block: &'a Block) -> Result<Words<'a>, Alarm>
             {
                 words.call = Some((address.to_string(), word.span));
             }
-            _ if address.starts_with('R')
-                && address.len() > 1
-                && address[1..].bytes().all(|b| b.is_ascii_digit()) =>
+            // An assignment: `R1=5`, `COUNT=COUNT+1`, `$P_UIFR[1,X,TR]=10`, `ARR[2]=7`.
+            _ if matches!(word.value, Value::Expression(_) | Value::Indexed(_, Some(_)))
+                && (address.starts_with('$') || front.is_variable(address)) =>
             {
-                let index: usize = address[1..].parse().unwrap_or(usize::MAX);
-                let value = number(front, word)?;
-                let Some(slot) = front.r.get_mut(index) else {
-                    return Err(Alarm::error(
-                        AlarmCode::BadVariable,
-                        word.span,
-                        format!(
-                            "{address} is beyond the {} R parameters of the machine",
-                            front.r.len()
-                        ),
-                    )
-                    .with_help(
-                        "use R0 to R99, or raise r_parameters in the profile's [sinumerik] table",
-                    ));
+                let (indices, expr) = match &word.value {
+                    Value::Expression(expr) => (&[][..], expr),
+                    Value::Indexed(indices, Some(expr)) => (&indices[..], expr),
+                    _ => unreachable!("matched above"),
                 };
-                *slot = value;
+                front.assign_word(kernel, address, indices, expr, word.span)?;
+            }
+            // A call with arguments: a procedure (`L140(2)`, `CHAMFER(5)`).
+            _ if matches!(word.value, Value::Call(_))
+                && gcodes::out_of_product(address).is_none()
+                && !gcodes::planned_call(address)
+                && !PREDEFINED.contains(&address) =>
+            {
+                let Value::Call(arguments) = &word.value else {
+                    unreachable!("matched above")
+                };
+                words.call = Some((address.to_string(), word.span));
+                words.arguments = Some(front.arguments(kernel, arguments)?);
             }
             _ => return Err(unknown_word(word)),
         }
@@ -337,12 +348,10 @@ pub(super) fn apply_modal(
                 kernel.set_feed_in(feed_mode(feed_type), None);
             }
         }
-        // The 828D's G58 and G59 are the machine file's `G58` and `G59`.
-        Function::Settable(n) => kernel.select_work_offset(match n {
-            1..=4 => WorkOffsetId::Standard(n as u8),
-            5 | 6 if front.is_828d() => WorkOffsetId::Standard(n as u8),
-            n => WorkOffsetId::Settable(n),
-        }),
+        Function::Settable(n) => {
+            front.modal.settable = n;
+            kernel.select_work_offset(settable_id(n, front.is_828d()));
+        }
         Function::ExactStop => front.modal.exact_stop = true,
         Function::Frame(_)
         | Function::State
@@ -351,6 +360,16 @@ pub(super) fn apply_modal(
         | Function::OutOfProduct(_) => {}
     }
     Ok(())
+}
+
+/// The machine file's work offset of settable frame `n` (`$P_UIFR[n]`): G54..G57 are its
+/// `G54`..`G57`; the 828D's G58 and G59 its `G58` and `G59`; G500 and G505.. its `G500`, `G505`...
+pub(super) fn settable_id(n: u32, m828d: bool) -> WorkOffsetId {
+    match n {
+        1..=4 => WorkOffsetId::Standard(n as u8),
+        5 | 6 if m828d => WorkOffsetId::Standard(n as u8),
+        n => WorkOffsetId::Settable(n),
+    }
 }
 
 fn feed_mode(feed_type: FeedType) -> FeedMode {
@@ -759,7 +778,7 @@ fn suppressed_move(
 }
 
 /// An axis or centre word's value, with `AC(..)` or `IC(..)` when written so.
-fn axis_value(front: &Sinumerik, word: &Word) -> Result<AxisValue, Alarm> {
+fn axis_value(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<AxisValue, Alarm> {
     if let Value::Expression(Expr {
         kind: ExprKind::Call(name, args),
         ..
@@ -779,22 +798,22 @@ fn axis_value(front: &Sinumerik, word: &Word) -> Result<AxisValue, Alarm> {
                 ));
             };
             return Ok(AxisValue {
-                value: evaluate(front, arg)?,
+                value: front.value(kernel, arg)?,
                 absolute: Some(absolute),
             });
         }
     }
     Ok(AxisValue {
-        value: number(front, word)?,
+        value: number(front, kernel, word)?,
         absolute: None,
     })
 }
 
 /// A word's value as a number.
-fn number(front: &Sinumerik, word: &Word) -> Result<f64, Alarm> {
+fn number(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<f64, Alarm> {
     match &word.value {
         Value::Constant(n) => Ok(n.value),
-        Value::Expression(expr) => evaluate(front, expr),
+        Value::Expression(expr) => front.value(kernel, expr),
         _ => Err(Alarm::error(
             AlarmCode::MissingValue,
             word.span,
@@ -804,8 +823,8 @@ fn number(front: &Sinumerik, word: &Word) -> Result<f64, Alarm> {
 }
 
 /// A word's value as a whole number (M, D, P, L).
-fn whole(front: &Sinumerik, word: &Word) -> Result<u32, Alarm> {
-    let value = number(front, word)?;
+fn whole(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<u32, Alarm> {
+    let value = number(front, kernel, word)?;
     if value.fract() != 0.0 || !(0.0..=f64::from(u32::MAX)).contains(&value) {
         return Err(Alarm::error(
             AlarmCode::ValueOutOfRange,
@@ -817,7 +836,7 @@ fn whole(front: &Sinumerik, word: &Word) -> Result<u32, Alarm> {
 }
 
 /// T by number, or `T="name"` from the machine's tool table.
-fn tool_number(front: &Sinumerik, word: &Word) -> Result<u32, Alarm> {
+fn tool_number(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<u32, Alarm> {
     if let Value::Expression(Expr {
         kind: ExprKind::Text(name),
         ..
@@ -841,48 +860,5 @@ fn tool_number(front: &Sinumerik, word: &Word) -> Result<u32, Alarm> {
                 .with_help("add the tool to the machine file's [[tools]] with its name")
             });
     }
-    whole(front, word)
-}
-
-/// Sets R parameter `target` to `value`.
-pub(super) fn assign_r(front: &mut Sinumerik, target: &Expr, value: f64) -> Result<(), Alarm> {
-    if let ExprKind::Name(name) = &target.kind {
-        if let Some(index) = name.strip_prefix('R').and_then(|n| n.parse::<usize>().ok()) {
-            if let Some(slot) = front.r.get_mut(index) {
-                *slot = value;
-                return Ok(());
-            }
-        }
-    }
-    Err(Alarm::error(
-        AlarmCode::NotSupportedYet,
-        target.span,
-        "only R parameters can be set yet",
-    ))
-}
-
-/// An expression's value. (The language's whole evaluation comes with `eval.rs`: numbers, R
-/// parameters and signs for now.)
-pub(super) fn evaluate(front: &Sinumerik, expr: &Expr) -> Result<f64, Alarm> {
-    match &expr.kind {
-        ExprKind::Number(n) => Ok(*n),
-        ExprKind::Unary(UnaryOp::Minus, inner) => Ok(-evaluate(front, inner)?),
-        ExprKind::Name(name)
-            if name.starts_with('R') && name[1..].bytes().all(|b| b.is_ascii_digit()) =>
-        {
-            let index: usize = name[1..].parse().unwrap_or(usize::MAX);
-            front.r.get(index).copied().ok_or_else(|| {
-                Alarm::error(
-                    AlarmCode::BadVariable,
-                    expr.span,
-                    format!("{name} is beyond the machine's R parameters"),
-                )
-            })
-        }
-        _ => Err(Alarm::error(
-            AlarmCode::NotSupportedYet,
-            expr.span,
-            "this expression is not evaluated yet by vcnc's SINUMERIK front end",
-        )),
-    }
+    whole(front, kernel, word)
 }

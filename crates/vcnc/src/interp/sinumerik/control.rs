@@ -7,12 +7,14 @@
 use super::flow::{Mark, Structure, Target};
 use super::{Section, Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::kernel::Kernel;
 use crate::source::Span;
 use crate::syntax::sinumerik::{Expr, Jump, JumpTarget, Statement, StatementKind};
 
 /// Runs `statement` of line `line` of the current level's program.
 pub(super) fn run(
     front: &mut Sinumerik,
+    kernel: &Kernel,
     statement: &Statement,
     line: usize,
     span: Span,
@@ -23,7 +25,7 @@ pub(super) fn run(
             condition,
             jump: None,
         } => {
-            if front.condition(condition)? {
+            if front.condition(kernel, condition)? {
                 None
             } else {
                 Some(front.structure.skip_if(&front.programs, program, line, span)?)
@@ -33,8 +35,8 @@ pub(super) fn run(
             condition,
             jump: Some(jump),
         } => {
-            if front.condition(condition)? {
-                return jump_to(front, jump, line);
+            if front.condition(kernel, condition)? {
+                return jump_to(front, kernel, jump, line);
             }
             None
         }
@@ -43,7 +45,7 @@ pub(super) fn run(
             Some(front.structure.past_end(&front.programs, program, line, Mark::If, span)?)
         }
         StatementKind::While { condition } => {
-            if front.condition(condition)? {
+            if front.condition(kernel, condition)? {
                 None
             } else {
                 Some(front.structure.past_end(
@@ -63,9 +65,9 @@ pub(super) fn run(
             start,
             end,
         } => {
-            let first = front.value(start)?;
-            front.assign(variable, first)?;
-            if first <= front.value(end)? {
+            let first = front.value(kernel, start)?;
+            front.assign(kernel, variable, first)?;
+            if first <= front.value(kernel, end)? {
                 None
             } else {
                 Some(front.structure.past_end(&front.programs, program, line, Mark::For, span)?)
@@ -74,13 +76,13 @@ pub(super) fn run(
         StatementKind::EndFor => {
             let head = front.structure.head(&front.programs, program, line, Mark::EndFor, span)?;
             let (variable, end) = for_parts(front, program, head)?;
-            let counter = front.value(&variable)? + 1.0;
-            front.assign(&variable, counter)?;
+            let counter = front.value(kernel, &variable)? + 1.0;
+            front.assign(kernel, &variable, counter)?;
             // The end value is read again at every pass (choice: the manual does not say when).
-            (counter <= front.value(&end)?).then_some(head + 1)
+            (counter <= front.value(kernel, &end)?).then_some(head + 1)
         }
         StatementKind::Until { condition } => {
-            if front.condition(condition)? {
+            if front.condition(kernel, condition)? {
                 None
             } else {
                 let head = front.structure.head(&front.programs, program, line, Mark::Until, span)?;
@@ -92,19 +94,19 @@ pub(super) fn run(
             Some(head + 1)
         }
         StatementKind::Case(case) => {
-            let selector = front.value(&case.selector)?;
+            let selector = front.value(kernel, &case.selector)?;
             for branch in &case.branches {
-                if front.value(&branch.value)? == selector {
-                    return jump_to(front, &branch.jump, line);
+                if front.value(kernel, &branch.value)? == selector {
+                    return jump_to(front, kernel, &branch.jump, line);
                 }
             }
             if let Some(jump) = &case.default {
-                return jump_to(front, jump, line);
+                return jump_to(front, kernel, jump, line);
             }
             None
         }
         StatementKind::RepeatSection { start, end, passes } => {
-            let passes = passes_of(front, passes.as_ref())?;
+            let passes = passes_of(front, kernel, passes.as_ref())?;
             let first = front.structure.label(
                 &front.programs,
                 program,
@@ -133,7 +135,7 @@ pub(super) fn run(
             repeat(front, first, last, line, passes)
         }
         StatementKind::RepeatBlock { label, passes } => {
-            let passes = passes_of(front, passes.as_ref())?;
+            let passes = passes_of(front, kernel, passes.as_ref())?;
             let at = front.structure.label(
                 &front.programs,
                 program,
@@ -144,7 +146,7 @@ pub(super) fn run(
             )?;
             repeat(front, at, at, line, passes)
         }
-        StatementKind::Jump(jump) => return jump_to(front, jump, line),
+        StatementKind::Jump(jump) => return jump_to(front, kernel, jump, line),
         StatementKind::EndIf
         | StatementKind::Repeat
         | StatementKind::Loop
@@ -162,7 +164,7 @@ pub(super) fn run(
             ))
         }
         StatementKind::Definition(_) | StatementKind::Procedure(_) | StatementKind::Macro(_) => {
-            return front.declaration(statement, span);
+            return front.declaration(kernel, statement, span);
         }
     };
     if let Some(next) = next {
@@ -184,9 +186,9 @@ fn for_parts(front: &Sinumerik, program: usize, head: usize) -> Result<(Expr, Ex
 }
 
 /// `P=n` of a repetition: 1 when left out.
-fn passes_of(front: &mut Sinumerik, passes: Option<&Expr>) -> Result<u32, Alarm> {
+fn passes_of(front: &mut Sinumerik, kernel: &Kernel, passes: Option<&Expr>) -> Result<u32, Alarm> {
     let Some(expr) = passes else { return Ok(1) };
-    let value = front.value(expr)?;
+    let value = front.value(kernel, expr)?;
     if value.fract() != 0.0 || !(0.0..=1e9).contains(&value) {
         return Err(Alarm::error(
             AlarmCode::ValueOutOfRange,
@@ -218,7 +220,7 @@ fn repeat(
 }
 
 /// Jumps as `jump` says from `line`.
-fn jump_to(front: &mut Sinumerik, jump: &Jump, line: usize) -> Result<Step, Alarm> {
+fn jump_to(front: &mut Sinumerik, kernel: &Kernel, jump: &Jump, line: usize) -> Result<Step, Alarm> {
     let program = front.levels.last().expect("a level").program;
     let label;
     let target = match &jump.target {
@@ -226,7 +228,7 @@ fn jump_to(front: &mut Sinumerik, jump: &Jump, line: usize) -> Result<Step, Alar
         Some(JumpTarget::Label(name)) => Target::Label(&name.value),
         Some(JumpTarget::BlockNumber(n)) => Target::Number(n.value),
         Some(JumpTarget::Expression(expr)) => {
-            label = front.text(expr)?;
+            label = front.text(kernel, expr)?;
             match label.strip_prefix('N').and_then(|n| n.parse::<u32>().ok()) {
                 Some(n) => Target::Number(n),
                 None => Target::Label(&label),

@@ -268,6 +268,45 @@ pub(super) fn planned_call(name: &str) -> bool {
         || matches!(name, "LONGHOLE" | "WALCS1" | "DISC" | "OFFN")
 }
 
+/// The number of the member of `group` in force, as `$P_GG[group]` reads it (the tables'
+/// "No." column); 0 for a group vcnc keeps no state of.
+pub(super) fn member(modal: &super::Modal, group: u32) -> i32 {
+    use crate::motion::Plane;
+    match group {
+        1 => match modal.motion {
+            Motion::Rapid => 1,
+            Motion::Line => 2,
+            Motion::Clockwise => 3,
+            Motion::CounterClockwise => 4,
+            Motion::ThroughPoint => 5,
+            Motion::Tangential => 15,
+        },
+        6 => match modal.plane {
+            Plane::Xy => 1,
+            Plane::Zx => 2,
+            Plane::Yz => 3,
+        },
+        8 => match modal.settable {
+            0 => 1,
+            n => n as i32 + 1,
+        },
+        10 => 1 + i32::from(!modal.exact_stop),
+        13 => match (modal.inch, modal.inch_feeds) {
+            (true, false) => 1,
+            (false, false) => 2,
+            (true, true) => 3,
+            (false, true) => 4,
+        },
+        14 => 2 - i32::from(modal.absolute),
+        15 => match modal.feed_type {
+            FeedType::InverseTime => 1,
+            FeedType::PerMinute => 2,
+            FeedType::PerRevolution => 3,
+        },
+        _ => 0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -20,6 +20,7 @@ mod eval;
 mod flow;
 mod frame;
 mod gcodes;
+mod language;
 mod polar;
 mod program;
 mod value;
@@ -53,8 +54,8 @@ pub struct Sinumerik {
     axes: [bool; AXES],
     /// Block skip levels /0 .. /9 switched on.
     skip: [bool; 10],
-    /// R parameters (the language's variables come with `vars.rs`).
-    r: Vec<f64>,
+    /// R parameters and user variables.
+    vars: vars::Variables,
     tool: ToolState,
     /// Blocks run and jumps made, against the settings' limit.
     iterations: u64,
@@ -78,6 +79,8 @@ struct Level {
     passes_left: u32,
     /// The part repetitions running (REPEAT, REPEATB), innermost last.
     sections: Vec<Section>,
+    /// The arguments of the call, until its PROC takes them.
+    arguments: Option<Vec<language::Argument>>,
 }
 
 /// A part repetition running: lines `first..=last`, then on at `back`.
@@ -91,7 +94,7 @@ struct Section {
 
 /// The modal state of the groups vcnc runs.
 #[derive(Clone, Copy, Debug)]
-struct Modal {
+pub(super) struct Modal {
     motion: Motion,
     plane: Plane,
     absolute: bool,
@@ -101,11 +104,13 @@ struct Modal {
     feed_type: FeedType,
     /// G60 (true) or a continuous-path mode.
     exact_stop: bool,
+    /// The settable frame: 0 for G500, 1..4 for G54..G57, 5.. beyond.
+    settable: u32,
 }
 
 /// The tools: selected, in the spindle, and the edge in force.
 #[derive(Clone, Debug, Default)]
-struct ToolState {
+pub(super) struct ToolState {
     selected: Option<u32>,
     in_spindle: Option<u32>,
     /// D: 0 is no offset.
@@ -128,12 +133,13 @@ impl Sinumerik {
                 next: 0,
                 passes_left: 0,
                 sections: Vec::new(),
+                arguments: None,
             }],
             structure: flow::Structure::default(),
             frame: frame::ProgrammableFrame::default(),
             jumps: 0,
             library: None,
-            r: vec![0.0; settings.r_parameters as usize],
+            vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
             modal: Modal {
                 motion: Motion::Line,
@@ -143,6 +149,7 @@ impl Sinumerik {
                 inch_feeds: false,
                 feed_type: FeedType::PerMinute,
                 exact_stop: true,
+                settable: 0,
             },
             programmed: [0.0; AXES],
             axes: std::array::from_fn(|i| machine.axes[i].is_some()),
@@ -211,47 +218,29 @@ impl Sinumerik {
         (level.program, level.next)
     }
 
-    /// The truth of a condition: a value other than zero (comparisons give 1 or 0).
-    fn condition(&mut self, expr: &crate::syntax::sinumerik::Expr) -> Result<bool, Alarm> {
-        Ok(self.value(expr)? != 0.0)
-    }
-
-    /// An expression's value as a number.
-    fn value(&mut self, expr: &crate::syntax::sinumerik::Expr) -> Result<f64, Alarm> {
-        block::evaluate(self, expr)
-    }
-
-    /// An expression's value as text (a jump target held in a variable).
-    fn text(&mut self, expr: &crate::syntax::sinumerik::Expr) -> Result<String, Alarm> {
-        Err(Alarm::error(
-            AlarmCode::NotSupportedYet,
-            expr.span,
-            "jump targets computed from strings are not run yet",
-        ))
-    }
-
-    /// Sets the variable `target` (a name, or a name with indices) to `value`.
-    fn assign(&mut self, target: &crate::syntax::sinumerik::Expr, value: f64) -> Result<(), Alarm> {
-        block::assign_r(self, target, value)
-    }
-
     /// DEF, PROC and DEFINE.
     fn declaration(
         &mut self,
+        kernel: &Kernel,
         statement: &crate::syntax::sinumerik::Statement,
         span: Span,
     ) -> Result<Step, Alarm> {
         use crate::syntax::sinumerik::StatementKind;
         match &statement.kind {
-            StatementKind::Procedure(procedure) if procedure.parameters.is_empty() => {
-                Ok(Step::Next)
+            StatementKind::Procedure(procedure) => {
+                let arguments = self.level().arguments.take().unwrap_or_default();
+                self.bind(arguments, procedure, span)?;
             }
-            _ => Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
-                span,
-                "variable definitions and procedures with parameters are not run yet",
-            )),
+            StatementKind::Definition(definition) => self.define(kernel, definition)?,
+            _ => {
+                return Err(Alarm::error(
+                    AlarmCode::NotSupportedYet,
+                    span,
+                    "DEFINE macros are not run yet by vcnc",
+                ))
+            }
         }
+        Ok(Step::Next)
     }
 
     /// The current level.
@@ -297,10 +286,18 @@ impl Sinumerik {
             return;
         }
         self.levels.pop();
+        self.vars.pop_level();
     }
 
-    /// Calls subprogram `name` for `passes` passes from the block at `span`.
-    fn call(&mut self, name: &str, passes: u32, span: Span) -> Result<(), Alarm> {
+    /// Calls subprogram `name` for `passes` passes from the block at `span`, with the
+    /// arguments of a call in parentheses.
+    fn call(
+        &mut self,
+        name: &str,
+        passes: u32,
+        span: Span,
+        arguments: Option<Vec<language::Argument>>,
+    ) -> Result<(), Alarm> {
         if self.levels.len() > self.settings.call_depth as usize {
             return Err(Alarm::error(
                 AlarmCode::MacroLimit,
@@ -319,11 +316,13 @@ impl Sinumerik {
         if passes == 0 {
             return Ok(());
         }
+        self.vars.push_level(span)?;
         self.levels.push(Level {
             program,
             next: 0,
             passes_left: passes - 1,
             sections: Vec::new(),
+            arguments,
         });
         Ok(())
     }
@@ -400,7 +399,7 @@ impl FrontEnd for Sinumerik {
                 block::run(self, kernel, &block, span)?
             };
             return match (&block.statement, step) {
-                (Some(statement), Step::Next) => control::run(self, statement, index, span),
+                (Some(statement), Step::Next) => control::run(self, kernel, statement, index, span),
                 _ => Ok(step),
             };
         }

@@ -1,0 +1,413 @@
+//! The front end's side of the language: what the evaluator asks of the machine (system
+//! variables, axis names), definitions (DEF), and the parameters of a PROC call.
+//!
+//! Never: let a program write machine state the manual keeps read-only; a system variable vcnc
+//! does not model is an alarm naming it, never a silent 0.
+
+use super::eval::{self, Environment};
+use super::frame::ProgrammableFrame;
+use super::value::{Type, Value};
+use super::vars::{Init, ParamType, Variables};
+use super::{Modal, Sinumerik, ToolState};
+use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::kernel::Kernel;
+use crate::machine::{ToolEdge, AXES};
+use crate::source::Span;
+use crate::syntax::sinumerik::{
+    DataType, Definition, Expr, ExprKind, Parameter, Procedure, Scope,
+};
+
+/// The axis letters, by kernel index.
+pub(super) const AXIS_NAMES: [&str; AXES] = ["X", "Y", "Z", "A", "B", "C"];
+
+/// What the evaluator may read of the machine: the front end's state beside its variables.
+pub(super) struct Machine<'a> {
+    pub(super) kernel: &'a Kernel,
+    pub(super) programmed: &'a [f64; AXES],
+    pub(super) axes: &'a [bool; AXES],
+    pub(super) frame: &'a ProgrammableFrame,
+    pub(super) tool: &'a ToolState,
+    pub(super) tools: &'a [ToolEdge],
+    pub(super) modal: &'a Modal,
+}
+
+/// The front end's variables, and the machine the evaluator reads, borrowed apart.
+pub(super) fn split<'a>(
+    front: &'a mut Sinumerik,
+    kernel: &'a Kernel,
+) -> (&'a mut Variables, Machine<'a>) {
+    (
+        &mut front.vars,
+        Machine {
+            kernel,
+            programmed: &front.programmed,
+            axes: &front.axes,
+            frame: &front.frame,
+            tool: &front.tool,
+            tools: &front.tools,
+            modal: &front.modal,
+        },
+    )
+}
+
+impl Machine<'_> {
+    /// The kernel index of an axis value (`X`, or an AXIS variable's value).
+    fn axis(&self, value: Option<&Value>, span: Span) -> Result<usize, Alarm> {
+        let name = match value {
+            Some(Value::Axis(name) | Value::Str(name)) => name.as_str(),
+            _ => "",
+        };
+        AXIS_NAMES
+            .iter()
+            .position(|a| *a == name)
+            .filter(|&i| self.axes[i])
+            .ok_or_else(|| {
+                Alarm::error(
+                    AlarmCode::BadVariable,
+                    span,
+                    format!("`{name}` is not an axis of the machine"),
+                )
+            })
+    }
+
+    /// The edge `$TC_DP..[t, d]` names.
+    fn edge(&self, indices: &[Value], span: Span) -> Result<Option<&ToolEdge>, Alarm> {
+        let number = |v: Option<&Value>| v.and_then(Value::as_f64).map(|x| x as u32);
+        let (Some(t), Some(d)) = (number(indices.first()), number(indices.get(1))) else {
+            return Err(Alarm::error(
+                AlarmCode::BadVariable,
+                span,
+                "$TC_DP.. takes the tool and the edge: $TC_DP3[1,1]",
+            ));
+        };
+        Ok(self.tools.iter().find(|e| e.t == t && e.d == d))
+    }
+}
+
+impl Environment for Machine<'_> {
+    fn system_variable(
+        &mut self,
+        name: &str,
+        indices: &[Value],
+        span: Span,
+    ) -> Result<Value, Alarm> {
+        let real = |x: f64| Value::real(x, span);
+        match name {
+            // The machine position and the work position at the end of the previous block
+            // (docs/SINUMERIK.md 3.2 step 2).
+            "$AA_IM" | "$AA_IW" | "$P_EP" | "$AC_RETPOINT" => {
+                let axis = self.axis(indices.first(), span)?;
+                let value = match name {
+                    "$AA_IM" => self.kernel.position().0[axis],
+                    "$AA_IW" => self.kernel.program_position()[axis],
+                    _ => self.programmed[axis],
+                };
+                real(value)
+            }
+            "$P_TOOLNO" | "$TC_MPP6" => Ok(Value::Int(self.tool.in_spindle.unwrap_or(0) as i32)),
+            "$P_TOOL" => Ok(Value::Int(self.tool.edge as i32)),
+            "$P_TOOLP" => Ok(Value::Int(self.tool.selected.unwrap_or(0) as i32)),
+            "$P_F" => real(self.kernel.state().feed.unwrap_or(0.0)),
+            "$P_S" => real(self.kernel.state().spindle.speed()),
+            "$P_GG" => {
+                let group = indices.first().and_then(Value::as_f64).unwrap_or(0.0) as u32;
+                Ok(Value::Int(super::gcodes::member(self.modal, group)))
+            }
+            "$TC_DP1" | "$TC_DP3" | "$TC_DP4" | "$TC_DP5" | "$TC_DP6" => {
+                let edge = self.edge(indices, span)?;
+                let value = edge.map_or(0.0, |e| match name {
+                    "$TC_DP1" => f64::from(e.tool_type),
+                    "$TC_DP3" => e.length,
+                    "$TC_DP4" => e.length2,
+                    "$TC_DP5" => e.length3,
+                    _ => e.radius,
+                });
+                if name == "$TC_DP1" {
+                    return Ok(Value::Int(value as i32));
+                }
+                real(value)
+            }
+            "$P_PFRAME" => {
+                let axis = self.axis(indices.first(), span)?;
+                let part = match indices.get(1) {
+                    Some(Value::Str(part) | Value::Axis(part)) => part.as_str(),
+                    _ => "TR",
+                };
+                let value = match (part, axis) {
+                    ("TR", i) => self.frame.translation()[i],
+                    ("RT", i) if i < 3 => self.frame.rpy_degrees()[i],
+                    ("SC", i) if i < 3 => self.frame.scale_factors()[i],
+                    ("MI", i) if i < 3 => f64::from(u8::from(self.frame.mirrored()[i])),
+                    _ => {
+                        return Err(Alarm::error(
+                            AlarmCode::BadVariable,
+                            span,
+                            format!("$P_PFRAME has no part {part} for this axis"),
+                        ))
+                    }
+                };
+                real(value)
+            }
+            "$P_UIFR" => {
+                let n = indices.first().and_then(Value::as_f64).unwrap_or(-1.0);
+                let axis = self.axis(indices.get(1), span)?;
+                let id = super::block::settable_id(n as u32, false);
+                real(self.kernel.state().frames.work_offset(id)[axis])
+            }
+            _ => Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                span,
+                format!("the system variable {name} is not modelled by vcnc"),
+            )
+            .with_help("vcnc reads $AA_IM, $AA_IW, $P_EP, $P_TOOLNO, $P_TOOL, $P_F, $P_S, $P_GG, $P_PFRAME, $P_UIFR and $TC_DP1..6")),
+        }
+    }
+
+    fn is_axis(&self, name: &str) -> bool {
+        AXIS_NAMES
+            .iter()
+            .position(|a| *a == name)
+            .is_some_and(|i| self.axes[i])
+    }
+}
+
+impl Sinumerik {
+    /// An expression's value.
+    pub(super) fn evaluate(&mut self, kernel: &Kernel, expr: &Expr) -> Result<Value, Alarm> {
+        let (vars, mut machine) = split(self, kernel);
+        eval::evaluate(expr, vars, &mut machine)
+    }
+
+    /// An expression's value as a number.
+    pub(super) fn value(&mut self, kernel: &Kernel, expr: &Expr) -> Result<f64, Alarm> {
+        let value = self.evaluate(kernel, expr)?;
+        value.as_f64().ok_or_else(|| {
+            Alarm::error(
+                AlarmCode::MacroArithmetic,
+                expr.span,
+                format!("a number is needed here, not {}", value.to_text()),
+            )
+        })
+    }
+
+    /// The truth of a condition.
+    pub(super) fn condition(&mut self, kernel: &Kernel, expr: &Expr) -> Result<bool, Alarm> {
+        match self.evaluate(kernel, expr)?.convert(Type::Bool, expr.span)? {
+            Value::Bool(b) => Ok(b),
+            _ => unreachable!("converted to BOOL"),
+        }
+    }
+
+    /// An expression's value as text.
+    pub(super) fn text(&mut self, kernel: &Kernel, expr: &Expr) -> Result<String, Alarm> {
+        Ok(self.evaluate(kernel, expr)?.to_text())
+    }
+
+    /// `target = value`: a variable, an element, an R parameter or a writable system variable.
+    pub(super) fn assign(
+        &mut self,
+        kernel: &Kernel,
+        target: &Expr,
+        value: f64,
+    ) -> Result<(), Alarm> {
+        let (name, indices) = match &target.kind {
+            ExprKind::Name(name) => (name, &[][..]),
+            ExprKind::Index(name, indices) => (name, &indices[..]),
+            _ => {
+                return Err(Alarm::error(
+                    AlarmCode::BadVariable,
+                    target.span,
+                    "a variable is needed here",
+                ))
+            }
+        };
+        let (vars, mut machine) = split(self, kernel);
+        let indices = indices
+            .iter()
+            .map(|i| eval::evaluate(i, vars, &mut machine))
+            .collect::<Result<Vec<_>, _>>()?;
+        let value = Value::real(value, target.span)?;
+        eval::assign(vars, name, &indices, value, target.span)
+    }
+
+    /// The assignment word `name[indices] = expr` of a block.
+    pub(super) fn assign_word(
+        &mut self,
+        kernel: &Kernel,
+        name: &str,
+        indices: &[Expr],
+        expr: &Expr,
+        span: Span,
+    ) -> Result<(), Alarm> {
+        let (vars, mut machine) = split(self, kernel);
+        eval::assign_expr(vars, &mut machine, name, indices, expr, span)
+    }
+
+    /// True when `name` is an R parameter or a variable visible here.
+    pub(super) fn is_variable(&self, name: &str) -> bool {
+        self.vars.is_defined(name)
+    }
+
+    /// DEF: the variables of a definition, declared in the current program level.
+    pub(super) fn define(&mut self, kernel: &Kernel, definition: &Definition) -> Result<(), Alarm> {
+        let ty = value_type(definition.data_type.value, definition.data_type.span)?;
+        for variable in &definition.variables {
+            let (vars, mut machine) = split(self, kernel);
+            let dims = variable
+                .dimensions
+                .iter()
+                .map(|d| eval::evaluate(d, vars, &mut machine))
+                .collect::<Result<Vec<_>, _>>()?;
+            let init = match &variable.init {
+                None => Init::Default,
+                Some(init) => initialiser(vars, &mut machine, &init.value)?,
+            };
+            let name = &variable.name.value;
+            match definition.scope.map(|s| s.value) {
+                Some(Scope::Nck | Scope::Chan) => {
+                    vars.declare_global(name, ty, &dims, init, variable.span)?;
+                }
+                None => vars.declare(name, ty, &dims, init, variable.span)?,
+            }
+        }
+        Ok(())
+    }
+
+    /// Binds the arguments of a call (evaluated in the caller's level, before it is left) to the
+    /// parameters of `procedure`, in the new level the call made.
+    pub(super) fn bind(&mut self, arguments: Vec<Argument>, procedure: &Procedure, span: Span) -> Result<(), Alarm> {
+        if arguments.len() > procedure.parameters.len() {
+            return Err(Alarm::error(
+                AlarmCode::MacroSyntax,
+                span,
+                format!(
+                    "{} takes {} parameters, the call gives {}",
+                    procedure.name.value,
+                    procedure.parameters.len(),
+                    arguments.len()
+                ),
+            ));
+        }
+        for (n, parameter) in procedure.parameters.iter().enumerate() {
+            let Some(name) = &parameter.name else { continue };
+            let ty = value_type(parameter.data_type.value, parameter.data_type.span)?;
+            match (arguments.get(n), parameter.by_reference) {
+                (Some(Argument::Place(place)), Some(_)) => {
+                    let param = ParamType {
+                        ty,
+                        dims: parameter_dims(parameter),
+                    };
+                    self.vars
+                        .bind_reference(&name.value, &param, place.clone(), span)?;
+                }
+                (Some(Argument::Value(value)), None) => {
+                    self.vars
+                        .bind_value(&name.value, ty, value.clone(), span)?;
+                }
+                (Some(Argument::Place(place)), None) => {
+                    // A variable passed by value: its value.
+                    let value = self.vars.get(place, span)?;
+                    self.vars.bind_value(&name.value, ty, value, span)?;
+                }
+                (Some(Argument::Value(_)), Some(at)) => {
+                    return Err(Alarm::error(
+                        AlarmCode::BadVariable,
+                        at,
+                        format!("VAR {} needs a variable in the call, not a value", name.value),
+                    ))
+                }
+                // A parameter left out keeps its type's default (PGAsl: omitted parameters).
+                (None | Some(Argument::Omitted), _) => {
+                    self.vars
+                        .declare(&name.value, ty, &[], Init::Default, span)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The arguments of a call, evaluated in the caller's level: a place for an argument that
+    /// is a variable (a VAR parameter may take it), else a value.
+    pub(super) fn arguments(
+        &mut self,
+        kernel: &Kernel,
+        arguments: &[Option<Expr>],
+    ) -> Result<Vec<Argument>, Alarm> {
+        let (vars, mut machine) = split(self, kernel);
+        arguments
+            .iter()
+            .map(|argument| {
+                let Some(expr) = argument else {
+                    return Ok(Argument::Omitted);
+                };
+                let is_variable = match &expr.kind {
+                    ExprKind::Name(name) | ExprKind::Index(name, _) => {
+                        !name.starts_with('$') && vars.is_defined(name)
+                    }
+                    _ => false,
+                };
+                if is_variable {
+                    if let Ok(place) = eval::place_of(expr, vars, &mut machine) {
+                        return Ok(Argument::Place(place));
+                    }
+                }
+                eval::evaluate(expr, vars, &mut machine).map(Argument::Value)
+            })
+            .collect()
+    }
+}
+
+/// One argument of a call.
+#[derive(Clone, Debug)]
+pub(super) enum Argument {
+    /// Left out (`CYCLE(1,,3)`).
+    Omitted,
+    /// A value.
+    Value(Value),
+    /// A variable, for a VAR parameter (or its value for one by value).
+    Place(super::vars::Place),
+}
+
+/// The value type of a data type; FRAME variables are not run yet.
+fn value_type(data_type: DataType, span: Span) -> Result<Type, Alarm> {
+    Ok(match data_type {
+        DataType::Int => Type::Int,
+        DataType::Real => Type::Real,
+        DataType::Bool => Type::Bool,
+        DataType::Char => Type::Char,
+        DataType::String(n) => Type::string(i64::from(n), span)?,
+        DataType::Axis => Type::Axis,
+        DataType::Frame => {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                span,
+                "FRAME variables are not run yet by vcnc",
+            ))
+        }
+    })
+}
+
+fn parameter_dims(parameter: &Parameter) -> Vec<Option<usize>> {
+    parameter
+        .dimensions
+        .iter()
+        .map(|d| match d.as_ref().map(|e| &e.kind) {
+            Some(ExprKind::Number(n)) if *n >= 1.0 => Some(*n as usize),
+            _ => None,
+        })
+        .collect()
+}
+
+fn initialiser(
+    vars: &Variables,
+    machine: &mut Machine<'_>,
+    init: &crate::syntax::sinumerik::Initializer,
+) -> Result<Init, Alarm> {
+    use crate::syntax::sinumerik::Initializer;
+    let mut value = |e: &Expr| eval::evaluate(e, vars, machine);
+    Ok(match init {
+        Initializer::Value(e) => Init::Value(value(e)?),
+        Initializer::Set(list) => Init::Set(list.iter().map(&mut value).collect::<Result<_, _>>()?),
+        Initializer::Rep { value: v, .. } => Init::Rep(value(v)?),
+    })
+}
