@@ -1191,6 +1191,53 @@ mod tests {
     }
 
     #[test]
+    fn set_and_rep_need_their_values() {
+        let variables = Variables::default();
+        for text in ["SET()", "SET(1,,3)", "REP()", "REP(1,2)"] {
+            let alarm = initialiser(&expr(text), &variables, &mut Machine).unwrap_err();
+            assert_eq!(alarm.code, AlarmCode::MacroSyntax, "{text}");
+        }
+        assert_eq!(
+            initialiser(&expr("SET(1,2)"), &variables, &mut Machine),
+            Ok(Init::Set(vec![Value::Int(1), Value::Int(2)]))
+        );
+    }
+
+    #[test]
+    fn a_chained_string_longer_than_200_characters_alarms() {
+        // 150 + 60 = 210 characters.
+        let long = format!("\"{}\"<<\"{}\"", "A".repeat(150), "B".repeat(60));
+        let alarm = alarm(&long);
+        assert_eq!(alarm.code, AlarmCode::MacroArithmetic);
+        assert!(alarm.message.contains("210 characters"));
+        let fits = format!("\"{}\"<<\"{}\"", "A".repeat(150), "B".repeat(50));
+        assert!(eval(&fits).is_ok());
+    }
+
+    #[test]
+    fn a_call_with_too_many_arguments_alarms_before_evaluating_them() {
+        let text = format!("MAXVAL({})", vec!["1"; 65].join(","));
+        assert_eq!(alarm(&text).code, AlarmCode::MacroSyntax);
+    }
+
+    #[test]
+    fn array_indices_are_numbers() {
+        let mut variables = Variables::default();
+        variables
+            .declare("ARR", Type::Int, &[Value::Int(2)], Init::Default, span())
+            .unwrap();
+        for text in ["ARR[\"A\"]", "ARR[TRUE]", "ARR[X]"] {
+            let alarm = eval_in(&variables, text).unwrap_err();
+            assert_eq!(alarm.code, AlarmCode::BadVariable, "{text}");
+            assert!(alarm.message.contains("an index is a number"), "{text}");
+        }
+        // R parameters are REAL and index arrays: R1 = 1.
+        run_assignment(&mut variables, "R1=1").unwrap();
+        run_assignment(&mut variables, "ARR[R1]=3").unwrap();
+        assert_eq!(eval_in(&variables, "ARR[1]"), Ok(Value::Int(3)));
+    }
+
+    #[test]
     fn system_variables_are_read_only_unless_the_front_end_writes_them() {
         let mut variables = Variables::default();
         let alarm = run_assignment(&mut variables, "$P_TOOLNO=3").unwrap_err();
