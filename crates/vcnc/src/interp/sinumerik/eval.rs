@@ -1238,6 +1238,54 @@ mod tests {
     }
 
     #[test]
+    fn any_short_expression_gives_a_finite_value_or_an_alarm_with_a_span() {
+        // Every sequence of four of these pieces that the reader accepts: 20^4 = 160000.
+        const PIECES: [&str; 20] = [
+            "1",
+            "-",
+            "0",
+            "/",
+            "R1",
+            "X",
+            "\"A\"",
+            "(",
+            ")",
+            "SUBSTR(\"AB\",",
+            "<<",
+            "AND",
+            "B_NOT ",
+            " MOD ",
+            " DIV ",
+            "1EX300",
+            "*",
+            ",",
+            "ARR[",
+            "]",
+        ];
+        let mut variables = Variables::default();
+        variables
+            .declare("ARR", Type::Int, &[Value::Int(2)], Init::Default, span())
+            .unwrap();
+        let mut evaluated = 0;
+        for n in 0..PIECES.len().pow(4) {
+            let text: String = (0..4)
+                .map(|k| PIECES[n / PIECES.len().pow(k) % PIECES.len()])
+                .collect();
+            let block = parse_block(format!("R1={text}").as_bytes(), FileId(0), 1, 0);
+            let Some(WordValue::Expression(expr)) = block.words.first().map(|w| &w.value) else {
+                continue;
+            };
+            evaluated += 1;
+            match evaluate(expr, &variables, &mut Machine) {
+                Ok(Value::Real(x)) => assert!(x.is_finite(), "{text}"),
+                Ok(_) => {}
+                Err(alarm) => assert!(alarm.span.is_some(), "{text}"),
+            }
+        }
+        assert!(evaluated > 1000, "{evaluated}");
+    }
+
+    #[test]
     fn system_variables_are_read_only_unless_the_front_end_writes_them() {
         let mut variables = Variables::default();
         let alarm = run_assignment(&mut variables, "$P_TOOLNO=3").unwrap_err();
