@@ -1191,6 +1191,101 @@ mod tests {
     }
 
     #[test]
+    fn set_and_rep_need_their_values() {
+        let variables = Variables::default();
+        for text in ["SET()", "SET(1,,3)", "REP()", "REP(1,2)"] {
+            let alarm = initialiser(&expr(text), &variables, &mut Machine).unwrap_err();
+            assert_eq!(alarm.code, AlarmCode::MacroSyntax, "{text}");
+        }
+        assert_eq!(
+            initialiser(&expr("SET(1,2)"), &variables, &mut Machine),
+            Ok(Init::Set(vec![Value::Int(1), Value::Int(2)]))
+        );
+    }
+
+    #[test]
+    fn a_chained_string_longer_than_200_characters_alarms() {
+        // 150 + 60 = 210 characters.
+        let long = format!("\"{}\"<<\"{}\"", "A".repeat(150), "B".repeat(60));
+        let alarm = alarm(&long);
+        assert_eq!(alarm.code, AlarmCode::MacroArithmetic);
+        assert!(alarm.message.contains("210 characters"));
+        let fits = format!("\"{}\"<<\"{}\"", "A".repeat(150), "B".repeat(50));
+        assert!(eval(&fits).is_ok());
+    }
+
+    #[test]
+    fn a_call_with_too_many_arguments_alarms_before_evaluating_them() {
+        let text = format!("MAXVAL({})", vec!["1"; 65].join(","));
+        assert_eq!(alarm(&text).code, AlarmCode::MacroSyntax);
+    }
+
+    #[test]
+    fn array_indices_are_numbers() {
+        let mut variables = Variables::default();
+        variables
+            .declare("ARR", Type::Int, &[Value::Int(2)], Init::Default, span())
+            .unwrap();
+        for text in ["ARR[\"A\"]", "ARR[TRUE]", "ARR[X]"] {
+            let alarm = eval_in(&variables, text).unwrap_err();
+            assert_eq!(alarm.code, AlarmCode::BadVariable, "{text}");
+            assert!(alarm.message.contains("an index is a number"), "{text}");
+        }
+        // R parameters are REAL and index arrays: R1 = 1.
+        run_assignment(&mut variables, "R1=1").unwrap();
+        run_assignment(&mut variables, "ARR[R1]=3").unwrap();
+        assert_eq!(eval_in(&variables, "ARR[1]"), Ok(Value::Int(3)));
+    }
+
+    #[test]
+    fn any_short_expression_gives_a_finite_value_or_an_alarm_with_a_span() {
+        // Every sequence of four of these pieces that the reader accepts: 20^4 = 160000.
+        const PIECES: [&str; 20] = [
+            "1",
+            "-",
+            "0",
+            "/",
+            "R1",
+            "X",
+            "\"A\"",
+            "(",
+            ")",
+            "SUBSTR(\"AB\",",
+            "<<",
+            "AND",
+            "B_NOT ",
+            " MOD ",
+            " DIV ",
+            "1EX300",
+            "*",
+            ",",
+            "ARR[",
+            "]",
+        ];
+        let mut variables = Variables::default();
+        variables
+            .declare("ARR", Type::Int, &[Value::Int(2)], Init::Default, span())
+            .unwrap();
+        let mut evaluated = 0;
+        for n in 0..PIECES.len().pow(4) {
+            let text: String = (0..4)
+                .map(|k| PIECES[n / PIECES.len().pow(k) % PIECES.len()])
+                .collect();
+            let block = parse_block(format!("R1={text}").as_bytes(), FileId(0), 1, 0);
+            let Some(WordValue::Expression(expr)) = block.words.first().map(|w| &w.value) else {
+                continue;
+            };
+            evaluated += 1;
+            match evaluate(expr, &variables, &mut Machine) {
+                Ok(Value::Real(x)) => assert!(x.is_finite(), "{text}"),
+                Ok(_) => {}
+                Err(alarm) => assert!(alarm.span.is_some(), "{text}"),
+            }
+        }
+        assert!(evaluated > 1000, "{evaluated}");
+    }
+
+    #[test]
     fn system_variables_are_read_only_unless_the_front_end_writes_them() {
         let mut variables = Variables::default();
         let alarm = run_assignment(&mut variables, "$P_TOOLNO=3").unwrap_err();

@@ -1,7 +1,7 @@
 #![cfg_attr(not(test), allow(dead_code))] // wired in by the front end (issue 20)
 //! The SINUMERIK language's values and data types, and the conversions between them.
 //!
-//! The types are the control's: INT, REAL, BOOL, CHAR, STRING[n] and AXIS (an axis name).
+//! The types are the control's: INT, REAL, BOOL, CHAR, `STRING[n]` and AXIS (an axis name).
 //! FRAME variables belong to the frame module and are not values here. A value never holds a
 //! NaN or an infinity: every constructor from `f64` checks, and a conversion that cannot be made
 //! is an alarm with the span of its cause, never a panic or a silent default.
@@ -16,7 +16,7 @@ use crate::source::Span;
 use std::fmt::Write as _;
 
 /// The longest STRING the control holds, and the length of `DEF STRING` without `[n]`
-/// (**choice**: PGAsl limits STRING[n] to 200 characters; the Fundamentals manual is silent).
+/// (**choice**: PGAsl limits `STRING[n]` to 200 characters; the Fundamentals manual is silent).
 pub(crate) const MAX_STRING: usize = 200;
 
 /// A data type of the language, as `DEF` names it.
@@ -187,7 +187,7 @@ impl Value {
     ///
     /// # Errors
     /// [`AlarmCode::MacroArithmetic`] for a conversion the table forbids, a number out of the
-    /// target's range, a string longer than STRING[n].
+    /// target's range, a string longer than `STRING[n]`.
     pub(crate) fn convert(self, to: Type, span: Span) -> Result<Value, Alarm> {
         let from = self.type_of();
         let refused = |help: &str| {

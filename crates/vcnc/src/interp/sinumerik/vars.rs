@@ -59,7 +59,7 @@ enum Store {
 }
 
 /// Where a variable, an array or one element lives: what a name is bound to, and what a `VAR`
-/// parameter aliases.
+/// parameter aliases. Valid until the program level it lives in is popped.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Place {
     store: Store,
@@ -398,7 +398,10 @@ impl Variables {
         if !place.dims.is_empty() {
             return Err(whole_array(span));
         }
-        Ok(self.cells(place.store)[place.base].clone())
+        self.cells(place.store)
+            .get(place.base)
+            .cloned()
+            .ok_or_else(|| gone(span))
     }
 
     /// Reads `name` with `indices` ([`Variables::place`], then [`Variables::get`]).
@@ -418,7 +421,11 @@ impl Variables {
             return Err(whole_array(span));
         }
         let value = value.convert(place.ty, span)?;
-        self.cells_mut(place.store)[place.base] = value;
+        let cell = self
+            .span_of(place, span)?
+            .first_mut()
+            .ok_or_else(|| gone(span))?;
+        *cell = value;
         Ok(())
     }
 
@@ -447,8 +454,7 @@ impl Variables {
             .into_iter()
             .map(|v| v.convert(place.ty, span))
             .collect::<Result<Vec<_>, _>>()?;
-        let cells = self.cells_mut(place.store);
-        for (cell, value) in cells[place.base..].iter_mut().zip(converted) {
+        for (cell, value) in self.span_of(place, span)?.iter_mut().zip(converted) {
             *cell = value;
         }
         Ok(())
@@ -460,8 +466,7 @@ impl Variables {
     /// The conversion's alarms.
     pub(crate) fn fill(&mut self, place: &Place, value: Value, span: Span) -> Result<(), Alarm> {
         let value = value.convert(place.ty, span)?;
-        let cells = self.cells_mut(place.store);
-        for cell in &mut cells[place.base..place.end] {
+        for cell in self.span_of(place, span)? {
             *cell = value.clone();
         }
         Ok(())
@@ -494,8 +499,11 @@ impl Variables {
         }
     }
 
-    fn cells_mut(&mut self, store: Store) -> &mut [Value] {
-        self.cells_vec(store)
+    /// The cells from the place to the end of its array (its one cell for a scalar).
+    fn span_of(&mut self, place: &Place, span: Span) -> Result<&mut [Value], Alarm> {
+        self.cells_vec(place.store)
+            .get_mut(place.base..place.end)
+            .ok_or_else(|| gone(span))
     }
 
     fn cells_vec(&mut self, store: Store) -> &mut Vec<Value> {
@@ -661,6 +669,15 @@ fn whole_array(span: Span) -> Alarm {
     bad(
         span,
         "an array is read and written element by element: give its indices",
+    )
+}
+
+/// A place kept past the end of its program level: the front end's mistake, not the
+/// program's, but an alarm rather than a panic.
+fn gone(span: Span) -> Alarm {
+    bad(
+        span,
+        "the variable no longer exists: its program level has ended",
     )
 }
 
@@ -1037,6 +1054,18 @@ mod tests {
             .bind_reference("PP", &four, array, span())
             .unwrap_err();
         assert!(alarm.message.contains("REAL[4]"));
+    }
+
+    #[test]
+    fn a_place_kept_past_its_level_alarms_instead_of_panicking() {
+        let mut variables = Variables::default();
+        variables.push_level(span()).unwrap();
+        declare(&mut variables, "LOCAL", Type::Int, &[3], Init::Default);
+        let place = variables.place("LOCAL", &[int(2)], span()).unwrap();
+        variables.pop_level();
+        assert!(variables.get(&place, span()).is_err());
+        assert!(variables.set(&place, int(1), span()).is_err());
+        assert!(variables.fill(&place, int(1), span()).is_err());
     }
 
     #[test]

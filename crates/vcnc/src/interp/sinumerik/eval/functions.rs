@@ -297,7 +297,7 @@ fn required(name: &str, args: &[Option<Value>], n: usize, span: Span) -> Result<
         .ok_or_else(|| missing(name, n, span))
 }
 
-pub(super) fn count(name: &str, wanted: &str, given: usize, span: Span) -> Alarm {
+fn count(name: &str, wanted: &str, given: usize, span: Span) -> Alarm {
     syntax(
         span,
         format!("{name} takes {wanted} arguments, {given} given"),
