@@ -263,9 +263,14 @@ fn a_tool_change_is_in_the_stream() {
 }
 
 #[test]
-fn an_unknown_tool_name_alarms() {
-    let alarm = error("T=\"DRILL5\"\nM30\n", &shop());
-    assert!(alarm.message.contains("DRILL5"), "{alarm:?}");
+fn a_tool_name_the_table_lacks_runs_without_offsets_and_is_said_once() {
+    let (segments, alarms) = stream(
+        "T=\"DRILL5\" M6 D1\nG0 Z10\nT=\"DRILL5\" M6\nM30\n",
+        &shop(),
+    );
+    assert_eq!(alarms.len(), 1, "{alarms:?}");
+    assert!(!alarms[0].is_error() && alarms[0].message.contains("DRILL5"));
+    assert!(close(ends(&segments)[0], [0.0, 0.0, 10.0]));
 }
 
 #[test]

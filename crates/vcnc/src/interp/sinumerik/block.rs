@@ -19,6 +19,9 @@ use crate::source::Span;
 use super::language::Argument;
 use crate::syntax::sinumerik::{Block, Expr, ExprKind, Value, Word};
 
+/// The numbers given to tools called by a name the tool table lacks.
+const UNLISTED_TOOLS: u32 = 1_000_000;
+
 /// Predefined procedures that are neither subprograms nor cycles (the language's own).
 const PREDEFINED: [&str; 4] = ["MSG", "SETAL", "STOPRE", "CYCLE800"];
 
@@ -49,6 +52,8 @@ struct Words<'a> {
     edge: Option<(u32, Span)>,
     m: Vec<(u32, Span)>,
     call: Option<(String, Span)>,
+    /// Warnings the words raised, for the stream.
+    warnings: Vec<Alarm>,
     /// The arguments of a call with parentheses, evaluated where the call stands.
     arguments: Option<Vec<Argument>>,
     passes: Option<(u32, Span)>,
@@ -75,7 +80,10 @@ pub(super) fn run(
         span,
         sequence: block.number,
     };
-    let words = read(front, kernel, block)?;
+    let mut words = read(front, kernel, block)?;
+    for warning in words.warnings.drain(..) {
+        kernel.warn(warning);
+    }
     // G functions take their new members before any value of the block is read.
     let mut one_block = Vec::new();
     let mut groups = [None::<Span>; 64];
@@ -196,7 +204,10 @@ fn read<'a>(
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
             "S" => words.speed = Some((number(front, kernel, word)?, word.span)),
-            "T" => words.tool = Some((tool_number(front, kernel, word)?, word.span)),
+            "T" => {
+                let t = tool_number(front, kernel, word, &mut words.warnings)?;
+                words.tool = Some((t, word.span));
+            }
             "D" => words.edge = Some((whole(front, kernel, word)?, word.span)),
             "P" => words.passes = Some((whole(front, kernel, word)?, word.span)),
             "M" => {
@@ -213,7 +224,17 @@ fn read<'a>(
                 let n = whole(front, kernel, word)?;
                 words.call = Some((format!("L{n}"), word.span));
             }
+            // The message only shows on the control's screen; STOPRE only waits for the
+            // block preparation (vcnc prepares block by block).
             "STOPRE" | "MSG" => {}
+            "SETAL" => return Err(user_alarm(front, kernel, word)?),
+            // CYCLE832 sets the tolerance and path mode of high-speed milling: state for the
+            // planner of issue 22; CYCLE800 without a rotation resets the swivel vcnc does not
+            // have (docs/SINUMERIK.md 1).
+            "CYCLE832" => {}
+            // The blank of ShopMill programs: the simulation's stock (issue 21), no motion.
+            "WORKPIECE" => {}
+            "CYCLE800" => swivel(front, kernel, word)?,
             // A name alone that is no keyword calls the subprogram of that name (`L140`,
             // `CHAMFER`).
             _ if matches!(word.value, Value::Bare)
@@ -249,6 +270,51 @@ fn read<'a>(
         }
     }
     Ok(words)
+}
+
+/// SETAL(number[, text]): the program raises an alarm of its own (cycle alarms 60000-67999
+/// stop it).
+fn user_alarm(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Alarm, Alarm> {
+    let Value::Call(arguments) = &word.value else {
+        return Err(Alarm::error(
+            AlarmCode::MacroSyntax,
+            word.span,
+            "SETAL takes the alarm number in parentheses: SETAL(61000)",
+        ));
+    };
+    let number = match arguments.first() {
+        Some(Some(expr)) => front.value(kernel, expr)?,
+        _ => 0.0,
+    };
+    let text = match arguments.get(1) {
+        Some(Some(expr)) => format!(": {}", front.text(kernel, expr)?),
+        _ => String::new(),
+    };
+    Ok(Alarm::error(
+        AlarmCode::UserAlarm,
+        word.span,
+        format!("alarm {number}{text} (set by the program with SETAL)"),
+    ))
+}
+
+/// CYCLE800: the swivel cycle. Without a rotation (all angles 0, or no parameters) it resets
+/// the swivel, which vcnc's 3-axis model never has; a rotation is issue 22's.
+fn swivel(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Alarm> {
+    let arguments = match &word.value {
+        Value::Call(arguments) => arguments.as_slice(),
+        _ => &[],
+    };
+    // _A, _B, _C are the 8th to 10th parameters.
+    for argument in arguments.iter().skip(7).take(3).flatten() {
+        if front.value(kernel, argument)? != 0.0 {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                word.span,
+                "CYCLE800 with a rotation is not run yet (planned: issue 22, SINUMERIK cycles and swivel data records)",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The alarm of a word vcnc does not run: out of the product, planned, or unknown.
@@ -836,29 +902,42 @@ fn whole(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<u32, Ala
 }
 
 /// T by number, or `T="name"` from the machine's tool table.
-fn tool_number(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<u32, Alarm> {
+fn tool_number(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    word: &Word,
+    warnings: &mut Vec<Alarm>,
+) -> Result<u32, Alarm> {
     if let Value::Expression(Expr {
         kind: ExprKind::Text(name),
         ..
     }) = &word.value
     {
-        return front
-            .tools
-            .iter()
-            .find(|e| {
-                e.name
-                    .as_deref()
-                    .is_some_and(|n| n.eq_ignore_ascii_case(name))
-            })
-            .map(|e| e.t)
-            .ok_or_else(|| {
-                Alarm::error(
+        let known = front.tools.iter().find(|e| {
+            e.name
+                .as_deref()
+                .is_some_and(|n| n.eq_ignore_ascii_case(name))
+        });
+        if let Some(edge) = known {
+            return Ok(edge.t);
+        }
+        // A tool the machine file does not list runs without offsets, as a T number without
+        // registers does on the ISO side; said once per name (the control itself would refuse
+        // a tool its magazine lacks, but the machine file is rarely the whole magazine).
+        let upper = name.to_ascii_uppercase();
+        let count = front.unknown_tools.len() as u32;
+        let number = *front.unknown_tools.entry(upper).or_insert_with(|| {
+            warnings.push(
+                Alarm::warning(
                     AlarmCode::OffsetNumberOutOfRange,
                     word.span,
-                    format!("the tool table has no tool named \"{name}\""),
+                    format!("the tool table has no tool named \"{name}\": it runs without length or radius"),
                 )
-                .with_help("add the tool to the machine file's [[tools]] with its name")
-            });
+                .with_help("add the tool to the machine file's [[tools]] with its name, edges and lengths"),
+            );
+            UNLISTED_TOOLS + count
+        });
+        return Ok(number);
     }
     whole(front, kernel, word)
 }

@@ -61,6 +61,8 @@ pub struct Sinumerik {
     iterations: u64,
     /// The last block's span, for the alarm at the end of the text.
     last_span: Span,
+    /// Tools called by names the tool table lacks, and the numbers they run under.
+    unknown_tools: std::collections::HashMap<String, u32>,
     /// The programmable frame ($P_PFRAME).
     frame: frame::ProgrammableFrame,
     /// Structure partners, labels and block numbers found so far.
@@ -137,6 +139,7 @@ impl Sinumerik {
             }],
             structure: flow::Structure::default(),
             frame: frame::ProgrammableFrame::default(),
+            unknown_tools: std::collections::HashMap::new(),
             jumps: 0,
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
