@@ -33,6 +33,7 @@ mod readme;
 mod rotation;
 mod scaling;
 mod seed_examples;
+mod sinumerik_examples;
 mod sinumerik_syntax;
 mod skip;
 mod smoothing;
