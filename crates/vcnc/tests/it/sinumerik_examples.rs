@@ -100,6 +100,7 @@ const KEYS: &[&str] = &[
     "skip_levels",
     "prelude",
     "append",
+    "replace",
     "lines",
     "programs",
     "program_texts",
@@ -153,6 +154,9 @@ struct Example {
     prelude: Option<String>,
     /// Blocks run after the example: they make a state it sets visible as a position.
     append: Option<String>,
+    /// Placeholders of the seed that the header itself resolves, as [text, replacement].
+    #[serde(default)]
+    replace: Vec<[String; 2]>,
     /// The lines of the file that make this alternative (1-based), instead of the whole file.
     lines: Option<Vec<usize>>,
     /// Subprograms it calls that are other example files, by name.
@@ -233,6 +237,14 @@ impl Example {
 
     /// The program text: prelude, the file (or the chosen lines of it), appended blocks.
     fn program(&self, text: &str) -> Result<String, String> {
+        let mut text = text.to_string();
+        for [from, to] in &self.replace {
+            if !text.contains(from.as_str()) {
+                return Err(format!("replace: no `{from}` in the file"));
+            }
+            text = text.replace(from.as_str(), to);
+        }
+        let text = text.as_str();
         let mut program = String::new();
         if let Some(prelude) = &self.prelude {
             program.push_str(prelude);
