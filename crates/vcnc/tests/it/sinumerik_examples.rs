@@ -312,7 +312,10 @@ fn run_sinumerik(text: &str, setup: Setup<'_>) -> Option<Result<common::Run, Str
     {
         use vcnc::interp::{Kernel, MemoryLibrary, Run};
         use vcnc::FileId;
-        let profile: vcnc::ProfileName = setup.profile.parse().ok()?;
+        let profile: vcnc::ProfileName = match setup.profile.parse() {
+            Ok(profile) => profile,
+            Err(e) => return Some(Err(e)),
+        };
         let machine = match setup.machine.with_profile(profile) {
             Ok(machine) => machine,
             Err(e) => return Some(Err(format!("profile: {e}"))),
