@@ -1,5 +1,5 @@
 //! The SINUMERIK manual's 169 example programs (../shared/spec/examples/sinumerik-a and -b) and
-//! what each must do: the expectations are data, tests/data/seed_examples_sinumerik.toml, one
+//! what each must do: the expectations are data, tests/data/sinumerik_examples.toml, one
 //! entry per example (several, each with an `id`, for a file of alternative blocks), written from
 //! each file's header and the manual's lines it cites, with the arithmetic redone.
 //!
@@ -356,13 +356,12 @@ fn examples_dir() -> Option<PathBuf> {
 }
 
 fn table_text() -> String {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/seed_examples_sinumerik.toml");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/sinumerik_examples.toml");
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 fn table() -> Table {
-    toml::from_str(&table_text()).unwrap_or_else(|e| panic!("seed_examples_sinumerik.toml: {e}"))
+    toml::from_str(&table_text()).unwrap_or_else(|e| panic!("sinumerik_examples.toml: {e}"))
 }
 
 /// Keys of the entries that no field reads (a misspelt key would silently assert nothing).
