@@ -3,6 +3,7 @@
 
 pub mod contour;
 pub mod corpus;
+pub mod example_checks;
 pub mod lcnc_canon;
 pub mod plan;
 pub mod plane;

@@ -1,0 +1,615 @@
+//! The SINUMERIK manual's 169 example programs (../shared/spec/examples/sinumerik-a and -b) and
+//! what each must do: the expectations are data, tests/data/sinumerik_examples.toml, one
+//! entry per example (several, each with an `id`, for a file of alternative blocks), written from
+//! each file's header and the manual's lines it cites, with the arithmetic redone.
+//!
+//! An entry either asserts positions or paths (issue 20, acceptance 2) or expects the run to stop
+//! with an alarm that names the command: V022 for what is out of the product, V020 for what the
+//! next SINUMERIK issue (22) or a later one adds. `examples_table_is_complete` checks the table
+//! itself and runs today; `sinumerik_examples_run_as_expected` runs the programs through
+//! [`run_sinumerik`], the one function that needs the front end.
+
+use crate::common;
+use crate::common::example_checks::{Expected, Point};
+
+use serde::Deserialize;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use vcnc::machine::{ToolEdge, WorkOffsetId};
+use vcnc::{Axis, Machine};
+
+/// Acceptance 2 of issue 20: examples with their expected positions or paths asserted.
+const ASSERTED_REQUIRED: usize = 110;
+
+/// The number of example files the manual gives.
+const EXAMPLE_FILES: usize = 169;
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Table {
+    example: Vec<Example>,
+}
+
+/// A tool edge as the SINUMERIK machine file gives it (`[[tools]]`), plus what the file cannot
+/// hold yet.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+struct Tool {
+    t: u32,
+    name: Option<String>,
+    #[serde(default = "first_edge")]
+    d: u32,
+    #[serde(default = "end_mill", rename = "type")]
+    tool_type: u32,
+    #[serde(default)]
+    length: f64,
+    #[serde(default)]
+    radius: f64,
+    /// Number of teeth ($TC_DPNT) for FZ: `ToolEdge` has no field for it yet.
+    teeth: Option<u32>,
+}
+
+fn first_edge() -> u32 {
+    1
+}
+
+fn end_mill() -> u32 {
+    120
+}
+
+/// The command (or one of the commands) an alarm's message must name.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(untagged)]
+enum Names {
+    One(String),
+    Any(Vec<String>),
+}
+
+impl Names {
+    fn all(&self) -> Vec<&str> {
+        match self {
+            Names::One(name) => vec![name.as_str()],
+            Names::Any(names) => names.iter().map(String::as_str).collect(),
+        }
+    }
+}
+
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+struct ExpectedAlarm {
+    /// "V022" (not in the product) or "V020" (not supported yet: issue 22 or later).
+    code: String,
+    /// The message names this command (any of them, when a list).
+    names: Names,
+}
+
+/// Every key an entry may have (serde cannot deny unknown fields beside a flattened struct).
+const KEYS: &[&str] = &[
+    "file",
+    "source",
+    "id",
+    "profile",
+    "start",
+    "rotary_axes",
+    "tool_change",
+    "tools",
+    "work_offsets",
+    "reference_points",
+    "fixed_points",
+    "machine_data",
+    "skip_levels",
+    "prelude",
+    "append",
+    "replace",
+    "lines",
+    "programs",
+    "program_texts",
+    "alarm",
+    "note",
+    "end",
+    "points",
+    "visits",
+    "feed_length",
+    "rapid_length",
+    "length_tolerance",
+    "feeds",
+    "dwell_seconds",
+    "tolerance",
+];
+
+#[derive(Deserialize, Debug)]
+struct Example {
+    /// The example file, relative to spec/examples.
+    file: String,
+    /// The manual's lines: `002_....txt:L1-L2`.
+    source: String,
+    /// Names one of several alternatives of one file (with `lines`).
+    id: Option<String>,
+    /// "sinumerik" (840D sl, the default) or "sinumerik828d".
+    profile: Option<String>,
+    /// Machine position at the start (missing axes 0).
+    start: Option<Point>,
+    /// Rotary axes the machine has besides X Y Z: "a", "c".
+    #[serde(default)]
+    rotary_axes: Vec<String>,
+    /// "m6" (T preselects, M6 changes: the milling default) or "t" (T changes at once).
+    tool_change: Option<String>,
+    #[serde(default)]
+    tools: Vec<Tool>,
+    #[serde(default)]
+    work_offsets: BTreeMap<String, Point>,
+    /// Reference points by number (G74 approaches 1).
+    #[serde(default)]
+    reference_points: BTreeMap<String, Point>,
+    /// Fixed points by number (G75 FP=n, MD30600), machine coordinates.
+    #[serde(default)]
+    fixed_points: BTreeMap<String, Point>,
+    /// Setting and machine data the example needs, by name (`SD42440 = 0`).
+    #[serde(default)]
+    machine_data: BTreeMap<String, f64>,
+    /// Skip levels switched on (`/0` ... `/9`).
+    #[serde(default)]
+    skip_levels: Vec<u8>,
+    /// Blocks run before the example: a precondition its header states.
+    prelude: Option<String>,
+    /// Blocks run after the example: they make a state it sets visible as a position.
+    append: Option<String>,
+    /// Placeholders of the seed that the header itself resolves, as [text, replacement].
+    #[serde(default)]
+    replace: Vec<[String; 2]>,
+    /// The lines of the file that make this alternative (1-based), instead of the whole file.
+    lines: Option<Vec<usize>>,
+    /// Subprograms it calls that are other example files, by name.
+    #[serde(default)]
+    programs: BTreeMap<String, String>,
+    /// Subprograms the header says the harness supplies, by name: their text.
+    #[serde(default)]
+    program_texts: BTreeMap<String, String>,
+    #[serde(flatten)]
+    expected: Expected,
+    alarm: Option<ExpectedAlarm>,
+    #[allow(dead_code)]
+    note: Option<String>,
+}
+
+impl Example {
+    fn name(&self) -> String {
+        match &self.id {
+            Some(id) => format!("{} [{id}]", self.file),
+            None => self.file.clone(),
+        }
+    }
+
+    fn profile(&self) -> &str {
+        self.profile.as_deref().unwrap_or("sinumerik")
+    }
+
+    /// The machine without its profile (which [`run_sinumerik`] sets).
+    fn machine(&self) -> Result<Machine, String> {
+        let mut machine = Machine::default();
+        // The rotary axis of the ISO tests' C-axis machine, for whichever letters are asked.
+        let rotary = common::with_c_axis(vcnc::ProfileName::Fanuc).axes[Axis::C.index()].clone();
+        for axis in &self.rotary_axes {
+            let axis = match axis.as_str() {
+                "a" => Axis::A,
+                "c" => Axis::C,
+                other => return Err(format!("rotary_axes: unknown axis {other}")),
+            };
+            machine.axes[axis.index()] = rotary.clone();
+        }
+        let values = |point: &Point| {
+            let mut values = [0.0; 6];
+            for (i, v) in point.axes() {
+                values[i] = v.unwrap_or(0.0);
+            }
+            values
+        };
+        if let Some(start) = &self.start {
+            machine.start = values(start);
+        }
+        for (key, offset) in &self.work_offsets {
+            let id = WorkOffsetId::parse(key).ok_or(format!("bad work offset {key}"))?;
+            machine.work_offsets.insert(id, values(offset));
+        }
+        for (key, point) in &self.reference_points {
+            let n: usize = key.parse().map_err(|_| format!("reference point {key}"))?;
+            *machine
+                .reference_points
+                .get_mut(n.wrapping_sub(1))
+                .ok_or(format!("reference point {key}"))? = values(point);
+        }
+        machine.tools = self
+            .tools
+            .iter()
+            .map(|tool| ToolEdge {
+                t: tool.t,
+                name: tool.name.clone(),
+                d: tool.d,
+                tool_type: tool.tool_type,
+                length: tool.length,
+                length2: 0.0,
+                length3: 0.0,
+                radius: tool.radius,
+            })
+            .collect();
+        Ok(machine)
+    }
+
+    /// The program text: prelude, the file (or the chosen lines of it), appended blocks.
+    fn program(&self, text: &str) -> Result<String, String> {
+        let mut text = text.to_string();
+        for [from, to] in &self.replace {
+            if !text.contains(from.as_str()) {
+                return Err(format!("replace: no `{from}` in the file"));
+            }
+            text = text.replace(from.as_str(), to);
+        }
+        let text = text.as_str();
+        let mut program = String::new();
+        if let Some(prelude) = &self.prelude {
+            program.push_str(prelude);
+            program.push('\n');
+        }
+        match &self.lines {
+            Some(lines) => {
+                let all: Vec<&str> = text.lines().collect();
+                for &n in lines {
+                    let line = all.get(n.wrapping_sub(1)).ok_or(format!("no line {n}"))?;
+                    program.push_str(line);
+                    program.push('\n');
+                }
+            }
+            None => {
+                program.push_str(text);
+                if !text.ends_with('\n') {
+                    program.push('\n');
+                }
+            }
+        }
+        if let Some(append) = &self.append {
+            program.push_str(append);
+            program.push('\n');
+        }
+        Ok(program)
+    }
+
+    /// The subprograms it may call, by name, with their text.
+    fn subprograms(&self, examples_dir: &Path) -> Result<Vec<(String, String)>, String> {
+        let mut programs = Vec::new();
+        for (name, file) in &self.programs {
+            let text = std::fs::read_to_string(examples_dir.join(file))
+                .map_err(|e| format!("program {name}: {file}: {e}"))?;
+            programs.push((name.clone(), text));
+        }
+        for (name, text) in &self.program_texts {
+            programs.push((name.clone(), text.clone()));
+        }
+        Ok(programs)
+    }
+}
+
+/// What [`run_sinumerik`] needs besides the program text.
+struct Setup<'a> {
+    profile: &'a str,
+    machine: Machine,
+    tool_change: Option<&'a str>,
+    machine_data: &'a BTreeMap<String, f64>,
+    fixed_points: &'a BTreeMap<String, Point>,
+    skip_levels: &'a [u8],
+    /// Teeth of the tool edges that give them, as (t, d, teeth): $TC_DPNT for FZ.
+    teeth: Vec<(u32, u32, u32)>,
+    /// Subprograms by name (`L47`, `CONTOUR1`) and their text.
+    subprograms: Vec<(String, String)>,
+}
+
+/// Runs a SINUMERIK program through the front end, on the machine `setup` describes.
+fn run_sinumerik(text: &str, setup: Setup<'_>) -> Option<Result<common::Run, String>> {
+    use vcnc::interp::sinumerik::Sinumerik;
+    use vcnc::interp::{Kernel, MemoryLibrary, Run};
+    use vcnc::FileId;
+    let profile: vcnc::ProfileName = match setup.profile.parse() {
+        Ok(profile) => profile,
+        Err(e) => return Some(Err(e)),
+    };
+    let mut machine = match setup.machine.with_profile(profile) {
+        Ok(machine) => machine,
+        Err(e) => return Some(Err(format!("profile: {e}"))),
+    };
+    let Some(settings) = machine.profile.sinumerik.as_mut() else {
+        return Some(Err(format!("{profile} is not a SINUMERIK profile")));
+    };
+    settings.t_changes_tool = setup.tool_change == Some("t");
+    if let Some(&sd) = setup.machine_data.get("SD42440") {
+        settings.frame_change_in_increments = sd != 0.0;
+    }
+    if !setup.fixed_points.is_empty() || !setup.teeth.is_empty() {
+        // G75 fixed points and tool teeth are not in the machine file yet: the examples that
+        // need them stop where the front end meets G75 or FZ.
+    }
+    let mut library = MemoryLibrary::new();
+    for (i, (name, program)) in setup.subprograms.iter().enumerate() {
+        library.insert_named(name, FileId(i as u32 + 1), program);
+    }
+    let mut front_end = Sinumerik::new(text.as_bytes(), FileId(0), &machine)
+        .with_library(Box::new(library));
+    for &level in setup.skip_levels {
+        front_end = front_end.with_skip_level(level, true);
+    }
+    let run = Run::new(front_end, Kernel::new(&machine));
+    Some(Ok(common::collect(run)))
+}
+
+fn examples_dir() -> Option<PathBuf> {
+    common::shared_dir().map(|shared| shared.join("spec/examples"))
+}
+
+fn table_text() -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/sinumerik_examples.toml");
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn table() -> Table {
+    toml::from_str(&table_text()).unwrap_or_else(|e| panic!("sinumerik_examples.toml: {e}"))
+}
+
+/// Keys of the entries that no field reads (a misspelt key would silently assert nothing).
+fn unknown_keys() -> Vec<String> {
+    let value: toml::Table = toml::from_str(&table_text()).unwrap();
+    let mut unknown = Vec::new();
+    for entry in value["example"].as_array().into_iter().flatten() {
+        for key in entry.as_table().into_iter().flat_map(|t| t.keys()) {
+            if !KEYS.contains(&key.as_str()) {
+                unknown.push(format!("{}: unknown key {key}", entry["file"]));
+            }
+        }
+    }
+    unknown
+}
+
+/// The example files of the two folders, as `sinumerik-a/01-....mpf`.
+fn example_files(examples_dir: &Path) -> BTreeSet<String> {
+    let mut files = BTreeSet::new();
+    for folder in ["sinumerik-a", "sinumerik-b"] {
+        for entry in std::fs::read_dir(examples_dir.join(folder)).unwrap() {
+            let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+            files.insert(format!("{folder}/{name}"));
+        }
+    }
+    files
+}
+
+/// Per example file: asserted (every entry asserts) or stopping with an alarm, by code and name.
+struct Tally {
+    asserted: usize,
+    alarms: BTreeMap<String, BTreeMap<String, usize>>,
+}
+
+fn tally(table: &Table) -> Tally {
+    let mut by_file: BTreeMap<&str, Vec<&Example>> = BTreeMap::new();
+    for example in &table.example {
+        by_file.entry(&example.file).or_default().push(example);
+    }
+    let mut tally = Tally {
+        asserted: 0,
+        alarms: BTreeMap::new(),
+    };
+    for entries in by_file.values() {
+        if entries.iter().all(|e| e.expected.asserts()) {
+            tally.asserted += 1;
+        } else if let Some(alarm) = entries.iter().find_map(|e| e.alarm.as_ref()) {
+            *tally
+                .alarms
+                .entry(alarm.code.clone())
+                .or_default()
+                .entry(alarm.names.all()[0].to_string())
+                .or_default() += 1;
+        }
+    }
+    tally
+}
+
+/// The table covers every example file exactly once (several entries only as named
+/// alternatives), names only files and programs that exist, and each entry either asserts
+/// positions or expects an alarm of the two codes. Prints the tally by code and command.
+#[test]
+fn examples_table_is_complete() {
+    let table = table();
+    let mut problems = unknown_keys();
+    let mut seen: BTreeMap<&str, Vec<Option<&str>>> = BTreeMap::new();
+    for example in &table.example {
+        seen.entry(&example.file)
+            .or_default()
+            .push(example.id.as_deref());
+        let name = example.name();
+        if !matches!(example.profile(), "sinumerik" | "sinumerik828d") {
+            problems.push(format!("{name}: profile {}", example.profile()));
+        }
+        match (&example.alarm, example.expected.asserts()) {
+            (Some(_), true) => problems.push(format!("{name}: both an alarm and positions")),
+            (None, false) => problems.push(format!("{name}: neither an alarm nor positions")),
+            _ => {}
+        }
+        if let Some(alarm) = &example.alarm {
+            if !matches!(alarm.code.as_str(), "V020" | "V022") {
+                problems.push(format!("{name}: alarm code {}", alarm.code));
+            }
+            if alarm.names.all().iter().any(|n| n.trim().is_empty()) || alarm.names.all().is_empty()
+            {
+                problems.push(format!("{name}: the alarm names no command"));
+            }
+        }
+        if let Some(mode) = &example.tool_change {
+            if !matches!(mode.as_str(), "t" | "m6") {
+                problems.push(format!("{name}: tool_change {mode}"));
+            }
+        }
+        if let Err(e) = example.machine() {
+            problems.push(format!("{name}: {e}"));
+        }
+        if example.skip_levels.iter().any(|&level| level > 9) {
+            problems.push(format!("{name}: skip level above 9"));
+        }
+    }
+    for (file, ids) in &seen {
+        if ids.len() > 1
+            && (ids.iter().any(Option::is_none) || {
+                let distinct: BTreeSet<_> = ids.iter().collect();
+                distinct.len() != ids.len()
+            })
+        {
+            problems.push(format!(
+                "{file}: {} entries; several entries need distinct ids",
+                ids.len()
+            ));
+        }
+    }
+    if let Some(dir) = examples_dir() {
+        let files = example_files(&dir);
+        for file in &files {
+            if !seen.contains_key(file.as_str()) {
+                problems.push(format!("{file}: no entry"));
+            }
+        }
+        for example in &table.example {
+            let name = example.name();
+            match std::fs::read_to_string(dir.join(&example.file)) {
+                Ok(text) => {
+                    if let Err(e) = example.program(&text) {
+                        problems.push(format!("{name}: {e}"));
+                    }
+                }
+                Err(e) => problems.push(format!("{name}: {e}")),
+            }
+            if let Err(e) = example.subprograms(&dir) {
+                problems.push(format!("{name}: {e}"));
+            }
+        }
+        assert_eq!(files.len(), EXAMPLE_FILES, "the manual has 169 examples");
+    }
+    assert_eq!(
+        seen.len(),
+        EXAMPLE_FILES,
+        "one entry (or named alternatives) per example"
+    );
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    print_tally(&tally(&table));
+}
+
+fn print_tally(tally: &Tally) {
+    println!("SINUMERIK examples: {} asserted", tally.asserted);
+    for (code, names) in &tally.alarms {
+        let total: usize = names.values().sum();
+        println!("  {code}: {total} {names:?}");
+    }
+}
+
+/// Acceptance 2 of issue 20: at least 110 of the 169 examples have positions or paths asserted.
+/// The table asserts 87 (every other example stops at a command out of the product, of issue 22,
+/// or of no issue yet: the notes say which); ignored until the lead decides how to close the gap.
+#[test]
+#[ignore = "acceptance 2 of issue 20: the table asserts 87 of the 110 examples asked for"]
+fn at_least_110_examples_asserted() {
+    let tally = tally(&table());
+    print_tally(&tally);
+    assert!(
+        tally.asserted >= ASSERTED_REQUIRED,
+        "issue 20 asks for at least {ASSERTED_REQUIRED} examples with positions asserted; the table asserts {}",
+        tally.asserted
+    );
+}
+
+/// Every example runs as its entry says: to the expected positions, or to the named alarm.
+#[test]
+fn sinumerik_examples_run_as_expected() {
+    let Some(dir) = examples_dir() else {
+        return;
+    };
+    let table = table();
+    let mut failures = Vec::new();
+    let mut ran = 0;
+    for example in &table.example {
+        let fail = |what: String| format!("{} (manual {}): {what}", example.name(), example.source);
+        let text = std::fs::read_to_string(dir.join(&example.file)).unwrap();
+        let (program, machine, subprograms) = match (
+            example.program(&text),
+            example.machine(),
+            example.subprograms(&dir),
+        ) {
+            (Ok(p), Ok(m), Ok(s)) => (p, m, s),
+            (p, m, s) => {
+                let errors = [p.err(), m.err(), s.err()];
+                failures.push(fail(format!(
+                    "{:?}",
+                    errors.iter().flatten().collect::<Vec<_>>()
+                )));
+                continue;
+            }
+        };
+        let start = machine.start;
+        let setup = Setup {
+            profile: example.profile(),
+            machine,
+            tool_change: example.tool_change.as_deref(),
+            machine_data: &example.machine_data,
+            fixed_points: &example.fixed_points,
+            skip_levels: &example.skip_levels,
+            teeth: example
+                .tools
+                .iter()
+                .filter_map(|tool| tool.teeth.map(|teeth| (tool.t, tool.d, teeth)))
+                .collect(),
+            subprograms,
+        };
+        let run = match run_sinumerik(&program, setup) {
+            None => continue,
+            Some(Err(e)) => {
+                failures.push(fail(e));
+                continue;
+            }
+            Some(Ok(run)) => run,
+        };
+        ran += 1;
+        match (&example.alarm, run.error()) {
+            (Some(expected), Some(alarm)) => {
+                let message = alarm.message.to_ascii_uppercase();
+                let named = expected
+                    .names
+                    .all()
+                    .iter()
+                    .any(|n| message.contains(&n.to_ascii_uppercase()));
+                if alarm.code.code() != expected.code || !named {
+                    failures.push(fail(format!(
+                        "alarm {alarm}, expected {} naming {:?}",
+                        expected.code,
+                        expected.names.all()
+                    )));
+                }
+            }
+            (Some(expected), None) => failures.push(fail(format!(
+                "ran to its end, expected alarm {} naming {:?}",
+                expected.code,
+                expected.names.all()
+            ))),
+            (None, Some(alarm)) => failures.push(fail(format!("alarm: {alarm}"))),
+            (None, None) => {
+                failures.extend(
+                    example
+                        .expected
+                        .check(&run.segments, start)
+                        .into_iter()
+                        .map(fail),
+                );
+            }
+        }
+    }
+    println!(
+        "SINUMERIK examples: {ran} of {} entries run",
+        table.example.len()
+    );
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
