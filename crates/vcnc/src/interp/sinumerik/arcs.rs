@@ -379,11 +379,12 @@ fn norm(p: Point3) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
+    //! Also the helpers of the polar and contour tests.
     use super::*;
     use crate::interp::comp::geometry::Element;
 
-    const SPAN: Span = Span {
+    pub(in crate::interp::sinumerik) const SPAN: Span = Span {
         file: crate::source::FileId(0),
         start: 0,
         end: 0,
@@ -392,11 +393,11 @@ mod tests {
     const CW: ArcDirection = ArcDirection::Clockwise;
     const CCW: ArcDirection = ArcDirection::CounterClockwise;
 
-    fn p(x: f64, y: f64) -> V2 {
+    pub(in crate::interp::sinumerik) fn p(x: f64, y: f64) -> V2 {
         V2::new(x, y)
     }
 
-    fn assert_near(got: V2, want: (f64, f64), tolerance: f64) {
+    pub(in crate::interp::sinumerik) fn assert_near(got: V2, want: (f64, f64), tolerance: f64) {
         assert!(
             (got.x - want.0).abs() <= tolerance && (got.y - want.1).abs() <= tolerance,
             "got {got:?}, want {want:?}"
