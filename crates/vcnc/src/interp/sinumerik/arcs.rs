@@ -125,13 +125,22 @@ pub(crate) fn end_from_opening(
             "the arc's centre is on its start point",
         ));
     }
-    let (sin, cos) = (opening.to_radians() * ccw_sign(direction)).sin_cos();
-    let radial = start - centre;
-    Ok(centre
+    Ok(turned(
+        start,
+        centre,
+        opening.to_radians() * ccw_sign(direction),
+    ))
+}
+
+/// `point` turned about `centre` by `angle` radians, counter-clockwise when positive.
+pub(super) fn turned(point: V2, centre: V2, angle: f64) -> V2 {
+    let (sin, cos) = angle.sin_cos();
+    let radial = point - centre;
+    centre
         + V2::new(
             radial.x * cos - radial.y * sin,
             radial.x * sin + radial.y * cos,
-        ))
+        )
 }
 
 /// `AR=` takes an opening of more than 0 and less than 360 degrees.
