@@ -659,4 +659,65 @@ pub(super) mod tests {
             );
         }
     }
+
+    proptest::proptest! {
+        #[test]
+        fn ct_arcs_pass_through_both_ends_leaving_along_the_tangent(
+            sx in -100.0..100.0f64, sy in -100.0..100.0f64,
+            ex in -100.0..100.0f64, ey in -100.0..100.0f64,
+            heading in 0.0..std::f64::consts::TAU,
+        ) {
+            let (start, end) = (p(sx, sy), p(ex, ey));
+            proptest::prop_assume!(start.distance(end) > 1e-3);
+            let tangent = p(heading.cos(), heading.sin());
+            let Ok(Tangential::Arc { centre, direction }) =
+                tangential_arc(start, end, tangent, SPAN)
+            else {
+                return Ok(());
+            };
+            let radius = start.distance(centre);
+            proptest::prop_assert!((end.distance(centre) - radius).abs() < 1e-6 * radius.max(1.0));
+            let arc = Element::Arc { start, end, center: centre, ccw: direction == CCW };
+            proptest::prop_assert!(arc.start_tangent().distance(tangent) < 1e-6);
+        }
+
+        #[test]
+        fn ar_arcs_sweep_their_opening_between_their_ends(
+            sx in -100.0..100.0f64, sy in -100.0..100.0f64,
+            ex in -100.0..100.0f64, ey in -100.0..100.0f64,
+            opening in 0.5..359.5f64, ccw in proptest::bool::ANY,
+        ) {
+            let (start, end) = (p(sx, sy), p(ex, ey));
+            proptest::prop_assume!(start.distance(end) > 1e-3);
+            let direction = if ccw { CCW } else { CW };
+            let centre = centre_from_opening(start, end, opening, direction, SPAN).unwrap();
+            let radius = start.distance(centre);
+            proptest::prop_assert!((end.distance(centre) - radius).abs() < 1e-6 * radius.max(1.0));
+            // The centre form of the same arc ends where the end point form started from.
+            let back = end_from_opening(start, centre, opening, direction, SPAN).unwrap();
+            proptest::prop_assert!(back.distance(end) < 1e-6 * radius.max(1.0), "{back:?}");
+        }
+
+        #[test]
+        fn cip_circles_pass_through_their_three_points_in_order(
+            centre in proptest::array::uniform3(-100.0..100.0f64),
+            radius in 1.0..100.0f64,
+            tilt in 0.0..3.1f64, spin in 0.0..std::f64::consts::TAU,
+            angles in proptest::array::uniform3(0.0..std::f64::consts::TAU),
+        ) {
+            // A circle of `radius` about `centre` in a plane tilted by `tilt` about an axis
+            // turned by `spin`; three points on it at `angles`, taken in increasing angle.
+            let mut a = angles;
+            a.sort_by(f64::total_cmp);
+            proptest::prop_assume!(a[1] - a[0] > 0.05 && a[2] - a[1] > 0.05 && a[2] - a[0] < 6.2);
+            let u = [spin.cos(), spin.sin(), 0.0];
+            let w = [-spin.sin() * tilt.cos(), spin.cos() * tilt.cos(), tilt.sin()];
+            let point = |t: f64| add(centre, add(scale(u, radius * t.cos()), scale(w, radius * t.sin())));
+            let circle = circle_through(point(a[0]), point(a[1]), point(a[2]), SPAN).unwrap();
+            assert_near3(circle.centre, centre, 1e-6 * radius);
+            proptest::prop_assert!((circle.radius - radius).abs() < 1e-6 * radius);
+            proptest::prop_assert!((circle.sweep - (a[2] - a[0])).abs() < 1e-6);
+            proptest::prop_assert!(dot(circle.normal, cross(u, w)) > 0.999_999);
+        }
+    }
 }

@@ -612,12 +612,15 @@ mod tests {
         cuts
     }
 
+    fn element_of(cut: &Cut<usize>) -> &Element {
+        match cut {
+            Cut::Block { element, .. } | Cut::Corner { element, .. } => element,
+        }
+    }
+
     /// The start, end and (for an arc) centre and direction of a cut's element.
     fn ends(cut: &Cut<usize>) -> (V2, V2, Option<(V2, bool)>) {
-        let element = match cut {
-            Cut::Block { element, .. } | Cut::Corner { element, .. } => element,
-        };
-        match *element {
+        match *element_of(cut) {
             Element::Line { start, end } => (start, end, None),
             Element::Arc {
                 start,
@@ -1002,5 +1005,54 @@ mod tests {
         // By hand: 45 degrees from (0,0) meets the line at 135 degrees through (10,0) at (5,5).
         let corner = angle_corner(start, 45.0, p(10.0, 0.0), 135.0, SPAN).unwrap();
         assert_near(corner, (5.0, 5.0), 1e-12);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn corners_join_the_pieces_of_a_polyline_without_gaps(
+            points in proptest::collection::vec((-50.0..50.0f64, -50.0..50.0f64), 3..8),
+            sizes in proptest::collection::vec((0..4u8, 0.1..20.0f64), 8),
+        ) {
+            let corners: Vec<_> = sizes
+                .iter()
+                .map(|&(kind, size)| match kind {
+                    0 => None,
+                    1 => round(size),
+                    2 => spec(CornerKind::Chamfer, size),
+                    _ => spec(CornerKind::ChamferLeg, size),
+                })
+                .collect();
+            let mut contour = Contour::new();
+            let mut cuts = Vec::new();
+            let direction = |i: usize| (p(points[i + 1].0, points[i + 1].1) - p(points[i].0, points[i].1)).unit();
+            for (i, pair) in points.windows(2).enumerate() {
+                proptest::prop_assume!(p(pair[0].0, pair[0].1).distance(p(pair[1].0, pair[1].1)) > 0.01);
+                let more = match contour.push(line(pair[0], pair[1]), i, corners[i]) {
+                    Ok(more) => more,
+                    // Only a corner that turns back may refuse.
+                    Err(alarm) => {
+                        proptest::prop_assert_eq!(alarm.code, AlarmCode::ContourDefinition);
+                        return Ok(());
+                    }
+                };
+                // A rounding made now joins line i - 1 to line i, tangent to both.
+                for cut in &more {
+                    if let Cut::Corner { kind: CornerKind::Round, element, .. } = cut {
+                        proptest::prop_assert!(element.start_tangent().distance(direction(i - 1)) < 1e-6, "{:?}", cut);
+                        proptest::prop_assert!(element.end_tangent().distance(direction(i)) < 1e-6, "{:?}", cut);
+                    }
+                }
+                cuts.extend(more);
+            }
+            cuts.extend(contour.flush());
+            let mut at = p(points[0].0, points[0].1);
+            for cut in &cuts {
+                let (start, end, _) = ends(cut);
+                proptest::prop_assert!(start.distance(at) < 1e-6, "{:?} after {:?}", cut, at);
+                at = end;
+            }
+            let last = points[points.len() - 1];
+            proptest::prop_assert!(at.distance(p(last.0, last.1)) < 1e-6);
+        }
     }
 }
