@@ -105,6 +105,152 @@ pub(crate) fn angle_corner(
     Ok(start + u * ((end - start).cross(v) / across))
 }
 
+/// The first block of a two-line definition (`ANG=` and no coordinate of the plane), waiting
+/// for the second, which fixes the corner.
+#[derive(Clone, Debug, PartialEq)]
+struct OpenLine<T> {
+    start: V2,
+    angle: f64,
+    tag: T,
+    corner: Option<CornerSpec>,
+    span: Span,
+}
+
+/// What an `ANG=` block gives.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum AngleStep<T> {
+    /// The first block of a two-line definition: nothing moves until the next block.
+    Held,
+    /// Lines to push into the [`Contour`], in order, each with its block's tag and corner
+    /// (lines of no length in the plane are left out).
+    Lines(Vec<(Element, T, Option<CornerSpec>)>),
+}
+
+/// The contour definitions by angle (PGsl 9.9.2-9.9.5, L5868-6107): a line from `ANG=` and one
+/// coordinate, or two lines, the first given by `ANG=` alone, the second by its end and
+/// `ANG=`, meeting at the corner they define. The front end calls [`AngleLines::block`] for
+/// each G0/G1 block with `ANG=`, and for the block after a held one.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct AngleLines<T> {
+    open: Option<OpenLine<T>>,
+}
+
+impl<T> Default for AngleLines<T> {
+    fn default() -> Self {
+        AngleLines { open: None }
+    }
+}
+
+impl<T> AngleLines<T> {
+    pub(crate) fn new() -> Self {
+        AngleLines::default()
+    }
+
+    /// True while the first block of a two-line definition waits for the second.
+    pub(crate) fn is_open(&self) -> bool {
+        self.open.is_some()
+    }
+
+    /// A line block from `start` with the plane coordinates it writes (abscissa, ordinate;
+    /// absolute), its `ANG=` if any, its tag and its corner (L6078-6107):
+    ///
+    /// - no coordinate of the plane: the first block of two (held); if one is held, the second,
+    ///   whose end in the plane is its start (the definition then moves at most out of the
+    ///   plane);
+    /// - one coordinate: after a held block the second, the other coordinate that of the start
+    ///   (the last position reached); otherwise a single line ([`angle_line_end`]);
+    /// - both: the second block of two; without a held first block, an alarm.
+    ///
+    /// # Errors
+    /// [`AlarmCode::ContourDefinition`] for both coordinates and `ANG=` without a held first
+    /// block, a held first block followed by a block without `ANG=`, and the alarms of
+    /// [`angle_line_end`] and [`angle_corner`].
+    pub(crate) fn block(
+        &mut self,
+        start: V2,
+        written: (Option<f64>, Option<f64>),
+        angle: Option<f64>,
+        tag: T,
+        corner: Option<CornerSpec>,
+        span: Span,
+    ) -> Result<AngleStep<T>, Alarm> {
+        let end = V2::new(written.0.unwrap_or(start.x), written.1.unwrap_or(start.y));
+        let Some(angle) = angle else {
+            if let Some(open) = self.open.take() {
+                return Err(without_end(&open)
+                    .with_label(span, "the next block gives no angle for the second line"));
+            }
+            return Ok(lines(vec![(line(start, end), tag, corner)]));
+        };
+        if let Some(open) = self.open.take() {
+            let meet = angle_corner(open.start, open.angle, end, angle, span)?;
+            return Ok(lines(vec![
+                (line(open.start, meet), open.tag, open.corner),
+                (line(meet, end), tag, corner),
+            ]));
+        }
+        let known = match written {
+            (None, None) => {
+                self.open = Some(OpenLine {
+                    start,
+                    angle,
+                    tag,
+                    corner,
+                    span,
+                });
+                return Ok(AngleStep::Held);
+            }
+            (Some(abscissa), None) => AngleEnd::Abscissa(abscissa),
+            (None, Some(ordinate)) => AngleEnd::Ordinate(ordinate),
+            (Some(_), Some(_)) => {
+                return Err(Alarm::error(
+                    AlarmCode::ContourDefinition,
+                    span,
+                    "both coordinates with ANG= need a block with ANG= alone before them",
+                )
+                .with_help("write one coordinate with ANG=, or leave ANG= out"))
+            }
+        };
+        let end = angle_line_end(start, angle, known, span)?;
+        Ok(lines(vec![(line(start, end), tag, corner)]))
+    }
+
+    /// No further block can finish a held first line (the program ends, or the front end
+    /// meets a block that cannot be its second).
+    ///
+    /// # Errors
+    /// [`AlarmCode::ContourDefinition`] when a first line is held.
+    pub(crate) fn close(&mut self) -> Result<(), Alarm> {
+        match self.open.take() {
+            None => Ok(()),
+            Some(open) => Err(without_end(&open)),
+        }
+    }
+}
+
+/// The alarm for a held first line that no second line finishes.
+fn without_end<T>(open: &OpenLine<T>) -> Alarm {
+    Alarm::error(
+        AlarmCode::ContourDefinition,
+        open.span,
+        format!("the line of ANG={} has no end", open.angle),
+    )
+    .with_help("follow it with the second line's end and angle: X.. Z.. ANG=..")
+}
+
+fn line(start: V2, end: V2) -> Element {
+    Element::Line { start, end }
+}
+
+/// The lines of an [`AngleStep`], without those of no length.
+fn lines<T>(all: Vec<(Element, T, Option<CornerSpec>)>) -> AngleStep<T> {
+    AngleStep::Lines(
+        all.into_iter()
+            .filter(|(element, ..)| element.start().distance(element.end()) >= SHORT)
+            .collect(),
+    )
+}
+
 /// What the control inserts at a corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum CornerKind {
@@ -699,18 +845,53 @@ mod tests {
         assert_cut(&cuts[5], false, (40.0, -30.0), (-41.0, -30.0), 1e-12);
     }
 
+    /// A line block: (abscissa, ordinate) as written, ANG=, corner.
+    type AngleBlock = ((Option<f64>, Option<f64>), Option<f64>, Option<CornerSpec>);
+
+    /// Runs blocks (start taken from the previous block's end) through [`AngleLines`] and
+    /// [`Contour`].
+    fn angle_program(start: (f64, f64), blocks: &[AngleBlock]) -> Vec<Cut<usize>> {
+        let mut angles = AngleLines::new();
+        let mut contour = Contour::new();
+        let mut at = p(start.0, start.1);
+        let mut cuts = Vec::new();
+        for (i, &(written, angle, corner)) in blocks.iter().enumerate() {
+            let step = angles.block(at, written, angle, i, corner, SPAN).unwrap();
+            let AngleStep::Lines(lines) = step else {
+                continue;
+            };
+            for (element, tag, corner) in lines {
+                at = element.end();
+                cuts.extend(contour.push(element, tag, corner).unwrap());
+            }
+        }
+        angles.close().unwrap();
+        cuts.extend(contour.flush());
+        cuts
+    }
+
     #[test]
     fn two_angle_lines_of_example_b29_meet_and_get_their_chamfer() {
         // sinumerik-b/29-contour-2lines.mpf in (Z, X): from Z80 X10, ANG=148.65 CHR=5.5, then
         // X85 Z40 ANG=100: corner Z50.002 X28.275, chamfer Z54.699 X25.413 -> Z49.047 X33.691.
         let corner = angle_corner(p(80.0, 10.0), 148.65, p(40.0, 85.0), 100.0, SPAN).unwrap();
         assert_near(corner, (50.002, 28.275), 1e-3);
-        let c = (corner.x, corner.y);
-        let corners = [spec(CornerKind::ChamferLeg, 5.5), None];
-        let cuts = polyline(&[(80.0, 10.0), c, (40.0, 85.0)], &corners);
+        let cuts = angle_program(
+            (80.0, 10.0),
+            &[
+                (
+                    (None, None),
+                    Some(148.65),
+                    spec(CornerKind::ChamferLeg, 5.5),
+                ),
+                ((Some(40.0), Some(85.0)), Some(100.0), None),
+            ],
+        );
         assert_eq!(cuts.len(), 3, "{cuts:?}");
+        assert_cut(&cuts[0], false, (80.0, 10.0), (54.699, 25.413), 1e-3);
         assert_cut(&cuts[1], true, (54.699, 25.413), (49.047, 33.691), 1e-3);
         assert_cut(&cuts[2], false, (49.047, 33.691), (40.0, 85.0), 1e-3);
+        assert!(matches!(cuts[2], Cut::Block { tag: 1, .. }));
     }
 
     #[test]
@@ -721,14 +902,14 @@ mod tests {
         // about Z61.521 X64.580, a left turn of 110.74 degrees.
         let corner = angle_corner(p(100.0, 10.0), 140.0, p(70.0, 80.0), 95.824, SPAN).unwrap();
         assert_near(corner, (75.0, 30.977), 1e-3);
-        let points = [
+        let cuts = angle_program(
             (100.0, 10.0),
-            (corner.x, corner.y),
-            (70.0, 80.0),
-            (50.0, 70.0),
-        ];
-        let corners = [spec(CornerKind::ChamferLeg, 7.5), round(10.0), None];
-        let cuts = polyline(&points, &corners);
+            &[
+                ((None, None), Some(140.0), spec(CornerKind::ChamferLeg, 7.5)),
+                ((Some(70.0), Some(80.0)), Some(95.824), round(10.0)),
+                ((Some(50.0), Some(70.0)), None, None),
+            ],
+        );
         assert_eq!(cuts.len(), 5, "{cuts:?}");
         assert_cut(&cuts[0], false, (100.0, 10.0), (80.746, 26.156), 1e-3);
         assert_cut(&cuts[1], true, (80.746, 26.156), (74.239, 38.439), 1e-3);
@@ -736,6 +917,51 @@ mod tests {
         assert_cut(&cuts[3], true, (71.469, 65.595), (57.049, 73.524), 1e-3);
         assert_centre(&cuts[3], (61.521, 64.580), true, 1e-3);
         assert_cut(&cuts[4], false, (57.049, 73.524), (50.0, 70.0), 1e-3);
+    }
+
+    #[test]
+    fn angle_blocks_that_cannot_define_a_line_are_alarms() {
+        // L6099-6101: both coordinates with ANG= need an ANG= block alone before them.
+        let mut angles = AngleLines::<usize>::new();
+        let both = angles.block(
+            p(0.0, 0.0),
+            (Some(1.0), Some(2.0)),
+            Some(30.0),
+            0,
+            None,
+            SPAN,
+        );
+        assert_eq!(both.unwrap_err().code, AlarmCode::ContourDefinition);
+        // A held first line and then a block without ANG=, or the end of the program.
+        let held = angles.block(p(0.0, 0.0), (None, None), Some(30.0), 0, None, SPAN);
+        assert_eq!(held, Ok(AngleStep::Held));
+        assert!(angles.is_open());
+        let next = angles.block(p(0.0, 0.0), (Some(5.0), Some(5.0)), None, 1, None, SPAN);
+        assert_eq!(next.unwrap_err().code, AlarmCode::ContourDefinition);
+        angles
+            .block(p(0.0, 0.0), (None, None), Some(30.0), 2, None, SPAN)
+            .unwrap();
+        assert_eq!(
+            angles.close().unwrap_err().code,
+            AlarmCode::ContourDefinition
+        );
+        assert_eq!(angles.close(), Ok(()));
+    }
+
+    #[test]
+    fn a_second_angle_block_with_one_coordinate_keeps_the_other_from_the_start() {
+        // L6094-6097. By hand: from (0,0), ANG=45 alone, then X10 (abscissa) ANG=135: the end
+        // is (10, 0), the ordinate of the start; the lines meet at (5, 5).
+        let cuts = angle_program(
+            (0.0, 0.0),
+            &[
+                ((None, None), Some(45.0), None),
+                ((Some(10.0), None), Some(135.0), None),
+            ],
+        );
+        assert_eq!(cuts.len(), 2, "{cuts:?}");
+        assert_cut(&cuts[0], false, (0.0, 0.0), (5.0, 5.0), 1e-12);
+        assert_cut(&cuts[1], false, (5.0, 5.0), (10.0, 0.0), 1e-12);
     }
 
     #[test]
@@ -989,6 +1215,9 @@ mod tests {
         let end = angle_line_end(start, 110.0, AngleEnd::Abscissa(39.5), SPAN).unwrap();
         assert_near(end, (39.5, 88.8), 1e-2);
         assert_eq!(end.x, 39.5);
+        let cuts = angle_program((70.0, 5.0), &[((None, Some(88.8)), Some(110.0), None)]);
+        assert_eq!(cuts.len(), 1, "{cuts:?}");
+        assert_cut(&cuts[0], false, (70.0, 5.0), (39.499, 88.8), 1e-3);
     }
 
     #[test]
