@@ -10,7 +10,11 @@
 //! ([`Contour::flush`]: a block out of the plane, a plane change, too many blocks without
 //! motion, the program's end; the control then makes no corner, L6797-6803). It holds at most
 //! one element, never moves anything itself, and never drops a programmed element that still
-//! has length.
+//! has length. [`AngleLines`] does the same for the first block of a two-line `ANG=`
+//! definition, whose end only the second block fixes; its lines then go through [`Contour`].
+//!
+//! The file's seam, should it grow: the `ANG=` definitions above [`CornerKind`], the corners
+//! below.
 //!
 //! [`Plane::axes`]: crate::motion::Plane::axes
 #![cfg_attr(not(test), allow(dead_code))] // wired in by the front end (issue 20)
@@ -1282,6 +1286,69 @@ mod tests {
             }
             let last = points[points.len() - 1];
             proptest::prop_assert!(at.distance(p(last.0, last.1)) < 1e-6);
+        }
+
+        #[test]
+        fn roundings_touch_lines_and_arcs_tangentially(
+            a_arc in proptest::bool::ANY, b_arc in proptest::bool::ANY,
+            a_turn in 0.3..3.0f64, b_turn in 0.3..3.0f64,
+            a_heading in 0.0..std::f64::consts::TAU, b_heading in 0.0..std::f64::consts::TAU,
+            a_ccw in proptest::bool::ANY, b_ccw in proptest::bool::ANY,
+            a_size in 5.0..50.0f64, b_size in 5.0..50.0f64, radius in 0.1..10.0f64,
+        ) {
+            // Two elements meeting at the origin: `a` arrives heading `a_heading`, `b` leaves
+            // heading `b_heading`; an arc turns by `*_turn` radians on a circle of `*_size`.
+            let corner = p(0.0, 0.0);
+            let heading = |angle: f64| p(angle.cos(), angle.sin());
+            // The side of its travel an arc's centre is on: the left when counter-clockwise.
+            let inward = |travel: V2, ccw: bool| if ccw { travel.left() } else { -travel.left() };
+            let a = if a_arc {
+                let centre = corner + inward(heading(a_heading), a_ccw) * a_size;
+                let start = turned(corner, centre, if a_ccw { -a_turn } else { a_turn });
+                Element::Arc { start, end: corner, center: centre, ccw: a_ccw }
+            } else {
+                Element::Line { start: corner - heading(a_heading) * a_size, end: corner }
+            };
+            let b = if b_arc {
+                let centre = corner + inward(heading(b_heading), b_ccw) * b_size;
+                let end = turned(corner, centre, if b_ccw { b_turn } else { -b_turn });
+                Element::Arc { start: corner, end, center: centre, ccw: b_ccw }
+            } else {
+                Element::Line { start: corner, end: corner + heading(b_heading) * b_size }
+            };
+            proptest::prop_assert!(a.end_tangent().distance(heading(a_heading)) < 1e-9);
+            proptest::prop_assert!(b.start_tangent().distance(heading(b_heading)) < 1e-9);
+            let mut contour = Contour::new();
+            contour.push(a, 0, round(radius)).unwrap();
+            let cuts = match contour.push(b, 1, None) {
+                Ok(cuts) => cuts,
+                Err(alarm) => {
+                    proptest::prop_assert_eq!(alarm.code, AlarmCode::ContourDefinition);
+                    return Ok(());
+                }
+            };
+            let mut at = a.start();
+            let mut previous: Option<Element> = None;
+            for cut in &cuts {
+                let element = *element_of(cut);
+                proptest::prop_assert!(element.start().distance(at) < 1e-6, "{:?}", cuts);
+                if let Some(previous) = previous {
+                    // Pieces of a and b meet the rounding tangentially.
+                    proptest::prop_assert!(
+                        previous.end_tangent().distance(element.start_tangent()) < 1e-6,
+                        "{:?}", cuts
+                    );
+                }
+                // Pieces of a programmed arc keep its centre.
+                if let (Cut::Block { tag, .. }, Element::Arc { center, .. }) = (cut, element) {
+                    let programmed = if *tag == 0 { a } else { b };
+                    let same = matches!(programmed, Element::Arc { center: c, .. } if c == center);
+                    proptest::prop_assert!(same, "{:?}", cuts);
+                }
+                at = element.end();
+                previous = Some(element);
+            }
+            proptest::prop_assert!(at.distance(b.end()) < 1e-6);
         }
     }
 }
