@@ -69,6 +69,11 @@ pub enum AlarmCode {
     ArcEndNotOnCircle,
     /// A circular move with R smaller than half the distance between start and end.
     ArcRadiusTooSmall,
+    /// A SINUMERIK contour definition that cannot be made: two `ANG=` lines that are parallel,
+    /// an `ANG=` line along the axis of its one coordinate, a chamfer or rounding where the path
+    /// turns back on itself or where no rounding touches both elements. As a warning: a chamfer
+    /// or rounding too large for its elements, made smaller as the control does (PGsl 9.15).
+    ContourDefinition,
     /// An H or D offset number the tool table does not have.
     OffsetNumberOutOfRange,
     /// A work offset number that does not exist (G54.1 P0, P301 ...).
@@ -186,6 +191,7 @@ impl AlarmCode {
             ArcWithoutCenter => "arc_without_center",
             ArcEndNotOnCircle => "arc_end_not_on_circle",
             ArcRadiusTooSmall => "arc_radius_too_small",
+            ContourDefinition => "contour_definition",
             OffsetNumberOutOfRange => "offset_number_out_of_range",
             WorkOffsetOutOfRange => "work_offset_out_of_range",
             BadDataInput => "bad_data_input",
@@ -241,6 +247,7 @@ impl AlarmCode {
             ArcWithoutCenter => "V031",
             ArcEndNotOnCircle => "V032",
             ArcRadiusTooSmall => "V033",
+            ContourDefinition => "V034",
             OffsetNumberOutOfRange => "V040",
             WorkOffsetOutOfRange => "V041",
             BadDataInput => "V042",
@@ -297,6 +304,7 @@ impl AlarmCode {
             ArcWithoutCenter => "give the arc its radius (R) or its centre (I, J, K)",
             ArcEndNotOnCircle => "check the end point and the centre (I, J, K): they must describe one circle",
             ArcRadiusTooSmall => "make R at least half the distance between the start and the end point",
+            ContourDefinition => "check the angles (ANG=) and the chamfer or rounding (CHF=, CHR=, RND=) against the lengths of the elements they join",
             OffsetNumberOutOfRange => "use an offset number the tool table has (max_offset_number of the profile)",
             WorkOffsetOutOfRange => "use a work offset the control has (G54-G59, G54.1 P1 and up to the profile's count)",
             BadDataInput => "check the L and P words of G10 against the profile's table",
@@ -350,6 +358,7 @@ impl AlarmCode {
         AlarmCode::ArcWithoutCenter,
         AlarmCode::ArcEndNotOnCircle,
         AlarmCode::ArcRadiusTooSmall,
+        AlarmCode::ContourDefinition,
         AlarmCode::OffsetNumberOutOfRange,
         AlarmCode::WorkOffsetOutOfRange,
         AlarmCode::BadDataInput,
