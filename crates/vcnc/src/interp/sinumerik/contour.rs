@@ -299,7 +299,9 @@ pub(crate) enum Cut<T> {
     /// A programmed element, or what its corners leave of it, with the caller's tag of its
     /// block. An element a corner uses up entirely gives no cut.
     Block { element: Element, tag: T },
-    /// The chamfer (a line) or rounding (an arc) at the corner after the previous block.
+    /// The chamfer (a line) or rounding (an arc) at the corner after the previous block: the
+    /// one pushed before the push that returns it (its technology, MD20201, comes from one of
+    /// the two).
     Corner {
         element: Element,
         kind: CornerKind,
