@@ -120,6 +120,23 @@ struct OpenLine<T> {
     span: Span,
 }
 
+/// A G0/G1 block as [`AngleLines`] needs it.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct LineBlock<T> {
+    /// Where it starts: the last position reached.
+    pub(crate) start: V2,
+    /// The plane coordinates it writes (abscissa, ordinate), absolute.
+    pub(crate) written: (Option<f64>, Option<f64>),
+    /// `ANG=`, degrees, if written.
+    pub(crate) angle: Option<f64>,
+    /// The caller's tag of the block.
+    pub(crate) tag: T,
+    /// The chamfer or rounding at its end.
+    pub(crate) corner: Option<CornerSpec>,
+    /// The block, for alarms.
+    pub(crate) span: Span,
+}
+
 /// What an `ANG=` block gives.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum AngleStep<T> {
@@ -155,8 +172,7 @@ impl<T> AngleLines<T> {
         self.open.is_some()
     }
 
-    /// A line block from `start` with the plane coordinates it writes (abscissa, ordinate;
-    /// absolute), its `ANG=` if any, its tag and its corner (L6078-6107):
+    /// A line block (L6078-6107):
     ///
     /// - no coordinate of the plane: the first block of two (held); if one is held, the second,
     ///   whose end in the plane is its start (the definition then moves at most out of the
@@ -169,15 +185,15 @@ impl<T> AngleLines<T> {
     /// [`AlarmCode::ContourDefinition`] for both coordinates and `ANG=` without a held first
     /// block, a held first block followed by a block without `ANG=`, and the alarms of
     /// [`angle_line_end`] and [`angle_corner`].
-    pub(crate) fn block(
-        &mut self,
-        start: V2,
-        written: (Option<f64>, Option<f64>),
-        angle: Option<f64>,
-        tag: T,
-        corner: Option<CornerSpec>,
-        span: Span,
-    ) -> Result<AngleStep<T>, Alarm> {
+    pub(crate) fn block(&mut self, block: LineBlock<T>) -> Result<AngleStep<T>, Alarm> {
+        let LineBlock {
+            start,
+            written,
+            angle,
+            tag,
+            corner,
+            span,
+        } = block;
         let end = V2::new(written.0.unwrap_or(start.x), written.1.unwrap_or(start.y));
         let Some(angle) = angle else {
             if let Some(open) = self.open.take() {
@@ -283,7 +299,9 @@ pub(crate) enum Cut<T> {
     /// A programmed element, or what its corners leave of it, with the caller's tag of its
     /// block. An element a corner uses up entirely gives no cut.
     Block { element: Element, tag: T },
-    /// The chamfer (a line) or rounding (an arc) at the corner after the previous block.
+    /// The chamfer (a line) or rounding (an arc) at the corner after the previous block: the
+    /// one pushed before the push that returns it (its technology, MD20201, comes from one of
+    /// the two).
     Corner {
         element: Element,
         kind: CornerKind,
@@ -852,6 +870,23 @@ mod tests {
     /// A line block: (abscissa, ordinate) as written, ANG=, corner.
     type AngleBlock = ((Option<f64>, Option<f64>), Option<f64>, Option<CornerSpec>);
 
+    fn line_block(
+        start: V2,
+        written: (Option<f64>, Option<f64>),
+        angle: Option<f64>,
+        tag: usize,
+        corner: Option<CornerSpec>,
+    ) -> LineBlock<usize> {
+        LineBlock {
+            start,
+            written,
+            angle,
+            tag,
+            corner,
+            span: SPAN,
+        }
+    }
+
     /// Runs blocks (start taken from the previous block's end) through [`AngleLines`] and
     /// [`Contour`].
     fn angle_program(start: (f64, f64), blocks: &[AngleBlock]) -> Vec<Cut<usize>> {
@@ -860,7 +895,9 @@ mod tests {
         let mut at = p(start.0, start.1);
         let mut cuts = Vec::new();
         for (i, &(written, angle, corner)) in blocks.iter().enumerate() {
-            let step = angles.block(at, written, angle, i, corner, SPAN).unwrap();
+            let step = angles
+                .block(line_block(at, written, angle, i, corner))
+                .unwrap();
             let AngleStep::Lines(lines) = step else {
                 continue;
             };
@@ -927,24 +964,23 @@ mod tests {
     fn angle_blocks_that_cannot_define_a_line_are_alarms() {
         // L6099-6101: both coordinates with ANG= need an ANG= block alone before them.
         let mut angles = AngleLines::<usize>::new();
-        let both = angles.block(
-            p(0.0, 0.0),
+        let origin = p(0.0, 0.0);
+        let both = angles.block(line_block(
+            origin,
             (Some(1.0), Some(2.0)),
             Some(30.0),
             0,
             None,
-            SPAN,
-        );
+        ));
         assert_eq!(both.unwrap_err().code, AlarmCode::ContourDefinition);
         // A held first line and then a block without ANG=, or the end of the program.
-        let held = angles.block(p(0.0, 0.0), (None, None), Some(30.0), 0, None, SPAN);
+        let held = angles.block(line_block(origin, (None, None), Some(30.0), 0, None));
         assert_eq!(held, Ok(AngleStep::Held));
         assert!(angles.is_open());
-        let next = angles.block(p(0.0, 0.0), (Some(5.0), Some(5.0)), None, 1, None, SPAN);
+        let next = angles.block(line_block(origin, (Some(5.0), Some(5.0)), None, 1, None));
         assert_eq!(next.unwrap_err().code, AlarmCode::ContourDefinition);
-        angles
-            .block(p(0.0, 0.0), (None, None), Some(30.0), 2, None, SPAN)
-            .unwrap();
+        let again = angles.block(line_block(origin, (None, None), Some(30.0), 2, None));
+        assert_eq!(again, Ok(AngleStep::Held));
         assert_eq!(
             angles.close().unwrap_err().code,
             AlarmCode::ContourDefinition

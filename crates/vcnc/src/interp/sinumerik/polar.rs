@@ -60,6 +60,23 @@ pub(crate) enum PolarMove {
     Circle,
 }
 
+/// A block with polar end coordinates, as the front end has read it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PolarBlock {
+    pub(crate) plane: Plane,
+    /// Where the move starts, work coordinates (X, Y, Z).
+    pub(crate) start: Point3,
+    /// `AP=`, if written.
+    pub(crate) angle: Option<PolarValue>,
+    /// `RP=`, if written.
+    pub(crate) radius: Option<PolarValue>,
+    /// G90 or G91 in force.
+    pub(crate) distance: DistanceMode,
+    pub(crate) motion: PolarMove,
+    /// The block, for alarms.
+    pub(crate) span: Span,
+}
+
 /// The pole and the stored polar angle and radius.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub(crate) struct Polar {
@@ -129,8 +146,8 @@ impl Polar {
         self.radius = None;
     }
 
-    /// The end point in `plane` of a block with `AP=`/`RP=` (either may be missing), moving
-    /// from `start` (work coordinates) under `distance` (G90/G91): `pole + RP (cos AP, sin AP)`,
+    /// The end point in the block's plane of a block with `AP=`/`RP=` (either may be missing):
+    /// `pole + RP (cos AP, sin AP)`,
     /// AP counter-clockwise from the abscissa (PGsl 9.3.2, L4925-5002). Stores the AP and RP
     /// used.
     ///
@@ -147,20 +164,12 @@ impl Polar {
     /// # Errors
     /// [`AlarmCode::ArcRadiusTooSmall`] for a circle of radius 0 (Siemens alarm 14095),
     /// [`AlarmCode::ValueOutOfRange`] for a negative radius.
-    pub(crate) fn end_point(
-        &mut self,
-        plane: Plane,
-        start: Point3,
-        words: (Option<PolarValue>, Option<PolarValue>),
-        distance: DistanceMode,
-        motion: PolarMove,
-        span: Span,
-    ) -> Result<V2, Alarm> {
-        let (angle_word, radius_word) = words;
-        let pole = self.pole_in(plane);
-        let from_pole = in_plane(plane, start) - pole;
-        let angle = self.angle_for(angle_word, from_pole, distance);
-        let radius = self.radius_for(radius_word, from_pole);
+    pub(crate) fn end_point(&mut self, block: &PolarBlock) -> Result<V2, Alarm> {
+        let span = block.span;
+        let pole = self.pole_in(block.plane);
+        let from_pole = in_plane(block.plane, block.start) - pole;
+        let angle = self.angle_for(block.angle, from_pole, block.distance);
+        let radius = self.radius_for(block.radius, from_pole);
         if radius < 0.0 {
             return Err(Alarm::error(
                 AlarmCode::ValueOutOfRange,
@@ -170,7 +179,7 @@ impl Polar {
         }
         self.angle = Some(angle);
         if radius < EPSILON {
-            return match motion {
+            return match block.motion {
                 PolarMove::Line => Ok(pole),
                 PolarMove::Circle => Err(Alarm::error(
                     AlarmCode::ArcRadiusTooSmall,
@@ -231,6 +240,25 @@ mod tests {
     const G90: DistanceMode = DistanceMode::Absolute;
     const G91: DistanceMode = DistanceMode::Incremental;
 
+    /// A block of the words (AP, RP).
+    fn block(
+        plane: Plane,
+        start: Point3,
+        (angle, radius): (Option<PolarValue>, Option<PolarValue>),
+        distance: DistanceMode,
+        motion: PolarMove,
+    ) -> PolarBlock {
+        PolarBlock {
+            plane,
+            start,
+            angle,
+            radius,
+            distance,
+            motion,
+            span: SPAN,
+        }
+    }
+
     /// A line end point in G17 from `start` (X, Y; Z 0).
     fn line_end(
         polar: &mut Polar,
@@ -239,7 +267,7 @@ mod tests {
         distance: DistanceMode,
     ) -> Result<V2, Alarm> {
         let start = [start.0, start.1, 0.0];
-        polar.end_point(Plane::Xy, start, words, distance, PolarMove::Line, SPAN)
+        polar.end_point(&block(Plane::Xy, start, words, distance, PolarMove::Line))
     }
 
     #[test]
@@ -282,14 +310,13 @@ mod tests {
             Some(PolarValue::Plain(200.052)),
             Some(PolarValue::Plain(34.913)),
         );
-        let end = polar.end_point(
+        let end = polar.end_point(&block(
             Plane::Xy,
             [67.5, 80.211, 0.0],
             words,
             G90,
             PolarMove::Circle,
-            SPAN,
-        );
+        ));
         assert_near(end.unwrap(), (17.2034, 38.0293), 1e-4);
     }
 
@@ -428,7 +455,7 @@ mod tests {
         // L4969-4977: no radius stored and the start on the pole.
         let mut polar = Polar::new();
         let words = (Some(PolarValue::Plain(45.0)), None);
-        let circle = polar.end_point(Plane::Xy, [0.0; 3], words, G90, PolarMove::Circle, SPAN);
+        let circle = polar.end_point(&block(Plane::Xy, [0.0; 3], words, G90, PolarMove::Circle));
         assert_eq!(circle.unwrap_err().code, AlarmCode::ArcRadiusTooSmall);
         let line = line_end(&mut polar, (0.0, 0.0), words, G90);
         assert_near(line.unwrap(), (0.0, 0.0), 0.0);
@@ -457,14 +484,13 @@ mod tests {
             Some(PolarValue::Plain(142.326)),
             Some(PolarValue::Plain(30.0)),
         );
-        let end = polar.end_point(
+        let end = polar.end_point(&block(
             Plane::Zx,
             [40.0, 0.0, -25.0],
             words,
             G90,
             PolarMove::Circle,
-            SPAN,
-        );
+        ));
         assert_near(end.unwrap(), (-77.9950, 51.6650), 1e-4);
     }
 }
