@@ -110,6 +110,7 @@ pub(crate) fn arc(
         center: center_plane,
         direction,
         feed,
+        extra_turns: 0,
     };
     let modes = exec.modal.move_modes(cmd);
     let plane = exec.modal.plane;
@@ -124,6 +125,8 @@ pub(crate) struct ArcTo {
     pub(crate) center: (f64, f64),
     pub(crate) direction: ArcDirection,
     pub(crate) feed: Feed,
+    /// Full turns beyond the first (a helix of several turns: SINUMERIK's TURN=).
+    pub(crate) extra_turns: u32,
 }
 
 /// G02/G03 of a plain block (`Executor::run_plain`): [`arc`] for the common arc of a CAM

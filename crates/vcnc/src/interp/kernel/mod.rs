@@ -164,8 +164,24 @@ impl Kernel {
         direction: ArcDirection,
         origin: Origin,
     ) -> Result<(), Alarm> {
+        self.arc_in(self.plane, target, center, direction, 0, origin)
+    }
+
+    /// [`Kernel::arc_to`] in `plane` (whatever plane is in force), with `turns` full turns
+    /// beyond the first (a helix of several turns).
+    ///
+    /// # Errors
+    /// As [`Kernel::arc_to`].
+    pub fn arc_in(
+        &mut self,
+        plane: Plane,
+        target: [Option<f64>; AXES],
+        center: (f64, f64),
+        direction: ArcDirection,
+        turns: u32,
+        origin: Origin,
+    ) -> Result<(), Alarm> {
         let feed = self.state.cutting_feed(self.feed_mode, &origin)?;
-        let plane = self.plane;
         let (a, b, _) = plane.axes();
         let frames = &self.state.frames;
         let direction = frames.arc_direction((a, b), direction);
@@ -185,6 +201,7 @@ impl Kernel {
             center,
             direction,
             feed,
+            extra_turns: turns,
         };
         let modes = self.modes;
         self.state

@@ -148,7 +148,7 @@ impl KernelState {
             center: MachinePos(center),
             direction: arc.direction,
             plane,
-            extra_turns: 0,
+            extra_turns: arc.extra_turns,
             feed: arc.feed,
         });
         Ok(())

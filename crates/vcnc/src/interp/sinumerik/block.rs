@@ -5,18 +5,18 @@
 //! Never: let the written order of the words change what a block does, or run a word it does not
 //! understand: an unknown address or name is an alarm naming it.
 
-use super::gcodes::{self, FeedType, FrameOp, Function, Motion, OneBlock};
+use super::gcodes::{self, FeedType, FrameOp, Function, OneBlock};
 use super::{Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
-use crate::interp::arc::{arc_center, ArcSpec};
 use crate::interp::kernel::{Kernel, Origin};
 use crate::interp::modal::FeedMode;
 use crate::machine::{WorkOffsetId, AXES};
 use crate::motion::{
-    ArcDirection, EndKind, PathMode, SegmentKind, SpindleState, StopKind, ToolGeometry,
+    EndKind, PathMode, SegmentKind, SpindleState, StopKind, ToolGeometry,
 };
 use crate::source::Span;
 use super::language::Argument;
+use super::motion::{self, unit};
 use crate::syntax::sinumerik::{Block, Expr, ExprKind, Value, Word};
 
 /// The numbers given to tools called by a name the tool table lacks.
@@ -30,20 +30,38 @@ use super::language::AXIS_NAMES;
 /// A value on an axis or centre word: as written, or made absolute or incremental for this word
 /// (`X=AC(10)`, `X=IC(5)`).
 #[derive(Clone, Copy, Debug)]
-struct AxisValue {
-    value: f64,
+pub(super) struct AxisValue {
+    pub(super) value: f64,
     /// Some(true) for AC, Some(false) for IC.
-    absolute: Option<bool>,
+    pub(super) absolute: Option<bool>,
 }
 
 /// The words of one block, sorted by what they do.
 #[derive(Default)]
-struct Words<'a> {
+pub(super) struct Words<'a> {
     /// The G functions, with their groups.
     functions: Vec<(Function, Option<u8>, &'a Word)>,
-    axes: [Option<AxisValue>; AXES],
-    centre: [Option<AxisValue>; 3],
-    radius: Option<(f64, Span)>,
+    pub(super) axes: [Option<AxisValue>; AXES],
+    /// I J K.
+    pub(super) centre: [Option<AxisValue>; 3],
+    /// I1 J1 K1: CIP's intermediate point.
+    pub(super) via: [Option<AxisValue>; 3],
+    /// CR=.
+    pub(super) radius: Option<(f64, Span)>,
+    /// AR=: the opening angle.
+    pub(super) opening: Option<(f64, Span)>,
+    /// TURN=.
+    pub(super) turn: Option<(f64, Span)>,
+    /// AP= and RP=.
+    pub(super) ap: Option<AxisValue>,
+    pub(super) rp: Option<AxisValue>,
+    /// ANG=.
+    pub(super) ang: Option<(f64, Span)>,
+    /// RND=, CHF=, CHR= at the block's end; RNDM= from it on.
+    pub(super) rnd: Option<(f64, Span)>,
+    pub(super) chf: Option<(f64, Span)>,
+    pub(super) chr: Option<(f64, Span)>,
+    pub(super) rndm: Option<(f64, Span)>,
     /// RPL: the angle of a rotation in the plane.
     rpl: Option<(f64, Span)>,
     feed: Option<(f64, Span)>,
@@ -112,7 +130,32 @@ pub(super) fn run(
         frame_instruction(front, kernel, &words, op, word)?;
         return Ok(Step::Next);
     }
+    if let Some(&(Function::Pole(reference), _, _)) = words
+        .functions
+        .iter()
+        .find(|(f, _, _)| matches!(f, Function::Pole(_)))
+    {
+        front.flush_contour(kernel)?;
+        return pole(front, &words, reference, origin).map(|()| Step::Next);
+    }
     let dwell = one_block.iter().any(|(f, _)| *f == OneBlock::Dwell);
+    let suppress = one_block.iter().find_map(|&(f, _)| match f {
+        OneBlock::SuppressFrames | OneBlock::SuppressBasic | OneBlock::SuppressAll => Some(f),
+        _ => None,
+    });
+    if let Some((radius, span)) = words.rndm {
+        front.contour.set_modal_rounding(radius * unit(front), span)?;
+        front.rounding_modal = radius != 0.0;
+    }
+    let mut prepared = if dwell || suppress.is_some() {
+        motion::Prepared::None
+    } else {
+        motion::prepare(front, kernel, &words, origin)?
+    };
+    if matches!(prepared, motion::Prepared::None) {
+        front.flush_contour(kernel)?;
+    }
+    prepared.release_held(front, kernel)?;
     if let Some((feed, span)) = words.feed {
         if !dwell {
             set_feed(front, kernel, feed, span)?;
@@ -135,13 +178,9 @@ pub(super) fn run(
         PathMode::Continuous
     };
     kernel.set_path_mode(path_mode, exact_stop);
-    let suppress = one_block.iter().find_map(|&(f, _)| match f {
-        OneBlock::SuppressFrames | OneBlock::SuppressBasic | OneBlock::SuppressAll => Some(f),
-        _ => None,
-    });
     match suppress {
-        Some(level) => suppressed_move(front, kernel, &words, level, origin)?,
-        None => motion(front, kernel, &words, origin)?,
+        Some(level) => motion::suppressed_move(front, kernel, &words, level, origin)?,
+        None => prepared.finish(front, kernel)?,
     }
     for &(code, span) in &words.m {
         if let Some(kind) = stop_kind(code) {
@@ -201,6 +240,19 @@ fn read<'a>(
                 words.centre[i] = Some(axis_value(front, kernel, word)?);
             }
             "CR" => words.radius = Some((number(front, kernel, word)?, word.span)),
+            "I1" | "J1" | "K1" => {
+                let i = (address.as_bytes()[0] - b'I') as usize;
+                words.via[i] = Some(axis_value(front, kernel, word)?);
+            }
+            "AR" => words.opening = Some((number(front, kernel, word)?, word.span)),
+            "TURN" => words.turn = Some((number(front, kernel, word)?, word.span)),
+            "AP" => words.ap = Some(axis_value(front, kernel, word)?),
+            "RP" => words.rp = Some(axis_value(front, kernel, word)?),
+            "ANG" => words.ang = Some((number(front, kernel, word)?, word.span)),
+            "RND" => words.rnd = Some((number(front, kernel, word)?, word.span)),
+            "CHF" => words.chf = Some((number(front, kernel, word)?, word.span)),
+            "CHR" => words.chr = Some((number(front, kernel, word)?, word.span)),
+            "RNDM" => words.rndm = Some((number(front, kernel, word)?, word.span)),
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
             "S" => words.speed = Some((number(front, kernel, word)?, word.span)),
@@ -399,6 +451,11 @@ pub(super) fn apply_modal(
     match function {
         Function::Motion(motion) => front.modal.motion = motion,
         Function::Plane(plane) => {
+            if plane != front.modal.plane {
+                front.flush_contour(kernel)?;
+                front.polar.plane_changed();
+                front.tangent = None;
+            }
             front.modal.plane = plane;
             kernel.set_plane(plane);
         }
@@ -420,6 +477,7 @@ pub(super) fn apply_modal(
         }
         Function::ExactStop => front.modal.exact_stop = true,
         Function::Frame(_)
+        | Function::Pole(_)
         | Function::State
         | Function::OneBlock(_)
         | Function::Planned
@@ -635,6 +693,47 @@ fn frame_instruction(
     Ok(())
 }
 
+/// G110, G111, G112: a new pole, from the words of its block (docs/SINUMERIK.md 6.5).
+fn pole(
+    front: &mut Sinumerik,
+    words: &Words<'_>,
+    reference: gcodes::Pole,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    use super::polar::{PoleDefinition, PoleReference};
+    let plane = front.modal.plane;
+    let unit = unit(front);
+    let reference = match reference {
+        gcodes::Pole::LastPoint => PoleReference::LastPoint([
+            front.programmed[0],
+            front.programmed[1],
+            front.programmed[2],
+        ]),
+        gcodes::Pole::WorkZero => PoleReference::WorkZero,
+        gcodes::Pole::LastPole => PoleReference::LastPole,
+    };
+    let definition = match (words.ap, words.rp) {
+        (None, None) => PoleDefinition::Cartesian(std::array::from_fn(|i| {
+            words.axes[i].map(|v| v.value * unit)
+        })),
+        (ap, rp) => {
+            if words.axes.iter().take(3).any(Option::is_some) {
+                return Err(Alarm::error(
+                    AlarmCode::WordNotAllowed,
+                    origin.span,
+                    "a pole takes either axis values or AP= and RP=",
+                ));
+            }
+            PoleDefinition::Polar {
+                angle: ap.map_or(0.0, |v| v.value),
+                radius: rp.map_or(0.0, |v| v.value * unit),
+            }
+        }
+    };
+    front.polar.set_pole(reference, definition, plane);
+    Ok(())
+}
+
 /// The alarm of an instruction that must stand in a block of its own (docs/SINUMERIK.md 3.1).
 fn own_block(word: &Word, at: Span) -> Alarm {
     Alarm::error(
@@ -643,204 +742,6 @@ fn own_block(word: &Word, at: Span) -> Alarm {
         format!("{} must be programmed in a block of its own", word.address),
     )
     .with_help("put the frame instruction in its own block, with its axis values only")
-}
-
-/// The factor of lengths: 25.4 under G70/G700.
-fn unit(front: &Sinumerik) -> f64 {
-    if front.modal.inch {
-        25.4
-    } else {
-        1.0
-    }
-}
-
-/// The block's end point in the work system, per axis (None: not programmed).
-fn end_point(front: &Sinumerik, words: &Words<'_>) -> [Option<f64>; AXES] {
-    let unit = unit(front);
-    std::array::from_fn(|i| {
-        let v = words.axes[i]?;
-        // Rotary axes are in degrees whatever the unit.
-        let scale = if i < 3 { unit } else { 1.0 };
-        Some(if v.absolute.unwrap_or(front.modal.absolute) {
-            v.value * scale
-        } else {
-            front.programmed[i] + v.value * scale
-        })
-    })
-}
-
-/// The block's motion in the work system: G0, G1, G2, G3.
-fn motion(
-    front: &mut Sinumerik,
-    kernel: &mut Kernel,
-    words: &Words<'_>,
-    origin: Origin,
-) -> Result<(), Alarm> {
-    let mut target = end_point(front, words);
-    let moves = target.iter().any(Option::is_some);
-    // With a rotation in the frame, every geometry axis goes to its programmed value
-    // (docs/SINUMERIK.md 6.4 rule 3).
-    if moves && front.frame.has_rotation() {
-        for (t, p) in target.iter_mut().zip(front.programmed).take(3) {
-            t.get_or_insert(p);
-        }
-    }
-    let arc = matches!(
-        front.modal.motion,
-        Motion::Clockwise | Motion::CounterClockwise
-    );
-    if !moves && !(arc && (words.centre.iter().any(Option::is_some) || words.radius.is_some())) {
-        return Ok(());
-    }
-    match front.modal.motion {
-        Motion::Rapid => kernel.rapid_to(target, origin)?,
-        Motion::Line => kernel.feed_to(target, origin)?,
-        Motion::Clockwise | Motion::CounterClockwise => {
-            arc_move(front, kernel, words, target, origin)?;
-        }
-        Motion::ThroughPoint | Motion::Tangential => {
-            return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
-                origin.span,
-                "CIP and CT arcs are not run yet by vcnc's SINUMERIK front end",
-            ))
-        }
-    }
-    for (p, t) in front.programmed.iter_mut().zip(target) {
-        if let Some(t) = t {
-            *p = t;
-        }
-    }
-    Ok(())
-}
-
-/// G2/G3 with a centre (I J K, incremental from the start unless `=AC(..)`) or a radius CR.
-fn arc_move(
-    front: &Sinumerik,
-    kernel: &mut Kernel,
-    words: &Words<'_>,
-    target: [Option<f64>; AXES],
-    origin: Origin,
-) -> Result<(), Alarm> {
-    let direction = match front.modal.motion {
-        Motion::Clockwise => ArcDirection::Clockwise,
-        _ => ArcDirection::CounterClockwise,
-    };
-    let (a, b, _) = front.modal.plane.axes();
-    if let Some(frame) = kernel.state().frames.programmable() {
-        if !frame.keeps_plane((a, b)) {
-            return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
-                origin.span,
-                "an arc in a plane the frame tilts or scales unevenly is not run yet",
-            )
-            .with_help("vcnc cuts arcs in a machine plane: turn the frame about the plane's normal only, and scale the plane's two axes alike"));
-        }
-    }
-    let start = (front.programmed[a], front.programmed[b]);
-    let end = (target[a].unwrap_or(start.0), target[b].unwrap_or(start.1));
-    let unit = unit(front);
-    let centre_of = |axis: usize, start: f64| -> Option<f64> {
-        let v = words.centre[axis]?;
-        Some(if v.absolute == Some(true) {
-            v.value * unit
-        } else {
-            start + v.value * unit
-        })
-    };
-    let (ia, ib) = (centre_index(a), centre_index(b));
-    let centre =
-        match (words.radius, centre_of(ia, start.0), centre_of(ib, start.1)) {
-            (Some((radius, span)), None, None) => {
-                let tolerance = kernel.state().setup.profile().arc_radius_tolerance;
-                arc_center(
-                    start,
-                    end,
-                    ArcSpec::Radius {
-                        radius: radius * unit,
-                        span,
-                    },
-                    direction,
-                    tolerance,
-                )?
-            }
-            (None, ca, cb) if ca.is_some() || cb.is_some() => {
-                (ca.unwrap_or(start.0), cb.unwrap_or(start.1))
-            }
-            (Some((_, span)), _, _) => {
-                return Err(Alarm::error(
-                    AlarmCode::WordNotAllowed,
-                    span,
-                    "an arc takes its centre (I J K) or its radius (CR), not both",
-                ))
-            }
-            _ => return Err(Alarm::error(
-                AlarmCode::ArcWithoutCenter,
-                origin.span,
-                "G2/G3 without a centre (I J K) or a radius (CR=)",
-            )
-            .with_help(
-                "give the centre with I, J, K (incremental from the start) or the radius with CR=",
-            )),
-        };
-    kernel.arc_to(target, centre, direction, origin)
-}
-
-/// The centre word (I J K) of axis `axis` (X Y Z).
-fn centre_index(axis: usize) -> usize {
-    axis
-}
-
-/// A move of a block with G53, G153 or SUPA: the programmed axes go to machine positions
-/// without the suppressed frames; the tool length stays (docs/SINUMERIK.md 5.6).
-fn suppressed_move(
-    front: &mut Sinumerik,
-    kernel: &mut Kernel,
-    words: &Words<'_>,
-    level: OneBlock,
-    origin: Origin,
-) -> Result<(), Alarm> {
-    if words.axes.iter().all(Option::is_none) {
-        return Ok(());
-    }
-    let state = kernel.state();
-    let external = match level {
-        OneBlock::SuppressAll => [0.0; AXES],
-        _ => state.frames.work_offset(WorkOffsetId::External),
-    };
-    let length = state.frames.length_vector();
-    let here = state.position;
-    let unit = unit(front);
-    let mut to = here;
-    for (i, value) in words.axes.iter().enumerate() {
-        let Some(v) = value else { continue };
-        let scale = if i < 3 { unit } else { 1.0 };
-        let length = if i == 2 { length } else { 0.0 };
-        to[i] = if v.absolute.unwrap_or(front.modal.absolute) {
-            v.value * scale + external[i] + length
-        } else {
-            here[i] + v.value * scale
-        };
-    }
-    match front.modal.motion {
-        Motion::Rapid => kernel.rapid_to_machine(to, origin)?,
-        Motion::Line => kernel.feed_to_machine(to, origin)?,
-        _ => {
-            return Err(Alarm::error(
-                AlarmCode::WordNotAllowed,
-                origin.span,
-                "G53, G153 and SUPA take G0 or G1",
-            ))
-        }
-    }
-    // The next block starts from where the tool stands, seen through the normal chain.
-    let now = kernel.program_position();
-    for (i, value) in words.axes.iter().enumerate() {
-        if value.is_some() {
-            front.programmed[i] = now[i];
-        }
-    }
-    Ok(())
 }
 
 /// An axis or centre word's value, with `AC(..)` or `IC(..)` when written so.

@@ -26,6 +26,8 @@ pub(super) enum Function {
     ExactStop,
     /// A frame instruction of group 3 (a block of its own; its axis words are the frame's).
     Frame(FrameOp),
+    /// G110, G111, G112: the pole of polar coordinates.
+    Pole(Pole),
     /// Kept as state: no geometric effect on a 3-axis mill (or the planner's default already).
     State,
     /// The next SINUMERIK issue adds it.
@@ -64,6 +66,17 @@ pub(super) enum OneBlock {
     SuppressBasic,
     /// SUPA: also without the external offsets.
     SuppressAll,
+}
+
+/// What the pole is measured from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Pole {
+    /// G110: the last programmed point.
+    LastPoint,
+    /// G111: the work zero.
+    WorkZero,
+    /// G112: the last pole.
+    LastPole,
 }
 
 /// The frame instructions (docs/SINUMERIK.md 5.3, 5.4).
@@ -195,6 +208,9 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G58" if m828d => Settable(5),
         "G59" if m828d => Settable(6),
         "G60" => ExactStop,
+        "G110" => Pole(self::Pole::LastPoint),
+        "G111" => Pole(self::Pole::WorkZero),
+        "G112" => Pole(self::Pole::LastPole),
         "TRANS" => Frame(FrameOp::Trans),
         "ATRANS" => Frame(FrameOp::Atrans),
         "ROT" => Frame(FrameOp::Rot),

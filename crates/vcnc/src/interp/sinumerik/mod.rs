@@ -21,6 +21,7 @@ mod flow;
 mod frame;
 mod gcodes;
 mod language;
+mod motion;
 mod polar;
 mod program;
 mod value;
@@ -61,6 +62,20 @@ pub struct Sinumerik {
     iterations: u64,
     /// The last block's span, for the alarm at the end of the text.
     last_span: Span,
+    /// The pole and the stored polar angle and radius.
+    polar: polar::Polar,
+    /// A two-line ANG= definition waiting for its second block.
+    angle_lines: contour::AngleLines<motion::Tag>,
+    /// The block held for the chamfer or rounding at its end.
+    contour: contour::Contour<motion::Tag>,
+    /// RNDM in force.
+    rounding_modal: bool,
+    /// The block the corner being cut follows, for its segments' origin.
+    corner_origin: Option<Origin>,
+    /// The direction the path left the last block's end in the plane (CT's tangent).
+    tangent: Option<crate::interp::comp::geometry::V2>,
+    /// The profile's arc tolerance.
+    arc_tolerance: f64,
     /// Tools called by names the tool table lacks, and the numbers they run under.
     unknown_tools: std::collections::HashMap<String, u32>,
     /// The programmable frame ($P_PFRAME).
@@ -140,6 +155,13 @@ impl Sinumerik {
             structure: flow::Structure::default(),
             frame: frame::ProgrammableFrame::default(),
             unknown_tools: std::collections::HashMap::new(),
+            polar: polar::Polar::new(),
+            angle_lines: contour::AngleLines::new(),
+            contour: contour::Contour::new(),
+            rounding_modal: false,
+            corner_origin: None,
+            tangent: None,
+            arc_tolerance: machine.profile.arc_radius_tolerance,
             jumps: 0,
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
@@ -244,6 +266,15 @@ impl Sinumerik {
             }
         }
         Ok(Step::Next)
+    }
+
+    /// No element in the plane joins the held block: it moves without its corner.
+    fn flush_contour(&mut self, kernel: &mut Kernel) -> Result<(), Alarm> {
+        self.angle_lines.close()?;
+        let cuts = self.contour.flush();
+        let mut flushed = motion::Prepared::Cuts { cuts, held: 0 };
+        flushed.release_held(self, kernel)?;
+        flushed.finish(self, kernel)
     }
 
     /// The current level.

@@ -1,0 +1,667 @@
+//! A block's motion: its end point from the axis words, AC/IC, G90/G91, polar words and `ANG=`
+//! (docs/SINUMERIK.md 6), its path (G0, G1, G2/G3 with I J K, CR=, AR=, TURN=, CT, CIP), the
+//! chamfers and roundings between blocks (`contour.rs`), and the moves the kernel makes of it.
+//!
+//! The programmed position p moves when a block is read; the machine follows when the kernel
+//! moves. A block held for the corner at its end is moved when the next block arrives
+//! ([`Contour`]): the caller runs [`prepare`], then [`Prepared::release_held`] (the held
+//! block's moves), then the block's own events, then [`Prepared::finish`].
+//!
+//! Never: move an axis the block does not move, except the geometry axes under a rotation
+//! (docs/SINUMERIK.md 6.4 rule 3).
+
+use super::arcs::{self, Tangential};
+use super::block::Words;
+use super::contour::{AngleStep, CornerKind, CornerSpec, Cut, LineBlock};
+use super::gcodes::{Motion, OneBlock};
+use super::polar::{PolarBlock, PolarMove, PolarValue};
+use super::Sinumerik;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::comp::geometry::{Element, V2};
+use crate::interp::kernel::{Kernel, Origin};
+use crate::interp::modal::DistanceMode;
+use crate::machine::{WorkOffsetId, AXES};
+use crate::motion::{ArcDirection, Plane};
+
+/// What the contour state machine keeps of a block: where it goes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Tag {
+    origin: Origin,
+    /// The work position the block ends at, every axis it moves.
+    target: [Option<f64>; AXES],
+    rapid: bool,
+    turns: u32,
+}
+
+/// A block's motion, prepared.
+pub(super) enum Prepared {
+    /// Nothing moves.
+    None,
+    /// Cuts of the contour: the held block's first (`held` of them), then this block's.
+    Cuts { cuts: Vec<Cut<Tag>>, held: usize },
+    /// A move made directly (no corner to wait for).
+    Direct(Tag, Option<Arc>),
+    /// A circle in no plane of G17/G18/G19 (CIP): straight pieces along it.
+    Chords(Tag, Vec<[f64; 3]>),
+}
+
+/// The arc of a direct move: centre (plane coordinates) and direction, in `plane`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Arc {
+    centre: V2,
+    direction: ArcDirection,
+    plane: Plane,
+}
+
+/// The factor of lengths: 25.4 under G70/G700.
+pub(super) fn unit(front: &Sinumerik) -> f64 {
+    if front.modal.inch {
+        25.4
+    } else {
+        1.0
+    }
+}
+
+fn in_plane(plane: Plane, point: &[f64; AXES]) -> V2 {
+    let (a, b, _) = plane.axes();
+    V2::new(point[a], point[b])
+}
+
+fn distance_mode(front: &Sinumerik) -> DistanceMode {
+    if front.modal.absolute {
+        DistanceMode::Absolute
+    } else {
+        DistanceMode::Incremental
+    }
+}
+
+/// The block's end point in the work system, per axis (None: not programmed).
+fn end_point(front: &Sinumerik, words: &Words<'_>) -> [Option<f64>; AXES] {
+    let unit = unit(front);
+    std::array::from_fn(|i| {
+        let v = words.axes[i]?;
+        // Rotary axes are in degrees whatever the unit.
+        let scale = if i < 3 { unit } else { 1.0 };
+        Some(if v.absolute.unwrap_or(front.modal.absolute) {
+            v.value * scale
+        } else {
+            front.programmed[i] + v.value * scale
+        })
+    })
+}
+
+/// A polar word's value as the polar module reads it.
+fn polar_value(value: Option<super::block::AxisValue>, scale: f64) -> Option<PolarValue> {
+    let v = value?;
+    Some(match v.absolute {
+        None => PolarValue::Plain(v.value * scale),
+        Some(true) => PolarValue::Absolute(v.value * scale),
+        Some(false) => PolarValue::Incremental(v.value * scale),
+    })
+}
+
+/// Prepares the block's motion: its end point and path, p moved to its end, the contour's
+/// corners.
+pub(super) fn prepare(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    words: &Words<'_>,
+    origin: Origin,
+) -> Result<Prepared, Alarm> {
+    let plane = front.modal.plane;
+    let (a, b, _) = plane.axes();
+    let unit = unit(front);
+    let mut target = end_point(front, words);
+    let motion = front.modal.motion;
+    let arc = matches!(motion, Motion::Clockwise | Motion::CounterClockwise);
+    // Polar end points (AP=, RP=) in the plane.
+    if words.ap.is_some() || words.rp.is_some() {
+        if target[a].is_some() || target[b].is_some() {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                origin.span,
+                "a block with AP= or RP= takes no axis of the plane",
+            )
+            .with_help("give the end point either by its polar angle and radius or by the plane's axes"));
+        }
+        let start = [front.programmed[0], front.programmed[1], front.programmed[2]];
+        let kind = if arc { PolarMove::Circle } else { PolarMove::Line };
+        let block = PolarBlock {
+            plane,
+            start,
+            angle: polar_value(words.ap, 1.0),
+            radius: polar_value(words.rp, unit),
+            distance: distance_mode(front),
+            motion: kind,
+            span: origin.span,
+        };
+        let end = front.polar.end_point(&block)?;
+        target[a] = Some(end.x);
+        target[b] = Some(end.y);
+    }
+    let start = in_plane(plane, &front.programmed);
+    // ANG= lines (one or two blocks).
+    let corner = corner_spec(words)?;
+    if words.ang.is_some() || front.angle_lines.is_open() {
+        if !matches!(motion, Motion::Rapid | Motion::Line) {
+            return Err(Alarm::error(
+                AlarmCode::ContourDefinition,
+                origin.span,
+                "ANG= defines straight lines: it takes G0 or G1",
+            ));
+        }
+        let tag = tag(front, target, origin, motion == Motion::Rapid, 0);
+        let step = front.angle_lines.block(LineBlock {
+            start,
+            written: (target[a], target[b]),
+            angle: words.ang.map(|(v, _)| v),
+            tag,
+            corner,
+            span: origin.span,
+        })?;
+        let lines = match step {
+            AngleStep::Held => {
+                advance(front, &target);
+                return Ok(Prepared::None);
+            }
+            AngleStep::Lines(lines) => lines,
+        };
+        // The lines' ends are where the block goes.
+        if let Some((last, _, _)) = lines.last() {
+            target[a] = Some(last.end().x);
+            target[b] = Some(last.end().y);
+        }
+        let mut cuts = Vec::new();
+        let mut held = None;
+        for (element, mut tag, corner) in lines {
+            tag.target[a] = Some(element.end().x);
+            tag.target[b] = Some(element.end().y);
+            let before = front.contour.is_holding();
+            let new = front.contour.push(element, tag, corner)?;
+            if before && held.is_none() {
+                held = Some(new.iter().filter(|c| !is_of(c, origin)).count());
+            }
+            cuts.extend(new);
+        }
+        advance(front, &target);
+        return Ok(Prepared::Cuts {
+            held: held.unwrap_or(0),
+            cuts,
+        });
+    }
+    let moves = target.iter().any(Option::is_some);
+    let has_arc_data = words.centre.iter().any(Option::is_some)
+        || words.radius.is_some()
+        || words.opening.is_some();
+    if !moves && !(arc && has_arc_data) && motion != Motion::ThroughPoint {
+        return Ok(Prepared::None);
+    }
+    // With a rotation in the frame, every geometry axis goes to its programmed value
+    // (docs/SINUMERIK.md 6.4 rule 3).
+    if front.frame.has_rotation() {
+        for (t, p) in target.iter_mut().zip(front.programmed).take(3) {
+            t.get_or_insert(p);
+        }
+    }
+    let turns = match words.turn {
+        Some((turn, span)) if arc => arcs::extra_turns(turn, span)?,
+        Some((_, span)) => {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                span,
+                "TURN= makes a helix of G2 or G3",
+            ))
+        }
+        None => 0,
+    };
+    let rapid = motion == Motion::Rapid;
+    let element;
+    let mut direct_arc = None;
+    match motion {
+        Motion::Rapid | Motion::Line => {
+            let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
+            element = Some(Element::Line { start, end });
+        }
+        Motion::Clockwise | Motion::CounterClockwise => {
+            let direction = if motion == Motion::Clockwise {
+                ArcDirection::Clockwise
+            } else {
+                ArcDirection::CounterClockwise
+            };
+            check_arc_plane(kernel, plane, origin)?;
+            let (centre, end) = arc_geometry(front, words, &target, direction, origin)?;
+            target[a] = Some(end.x);
+            target[b] = Some(end.y);
+            element = Some(Element::Arc {
+                start,
+                end,
+                center: centre,
+                ccw: direction == ArcDirection::CounterClockwise,
+            });
+            direct_arc = Some(Arc {
+                centre,
+                direction,
+                plane,
+            });
+        }
+        Motion::Tangential => {
+            check_arc_plane(kernel, plane, origin)?;
+            let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
+            let tangent = front.tangent.unwrap_or_default();
+            match arcs::tangential_arc(start, end, tangent, origin.span)? {
+                Tangential::Line => element = Some(Element::Line { start, end }),
+                Tangential::Arc { centre, direction } => {
+                    element = Some(Element::Arc {
+                        start,
+                        end,
+                        center: centre,
+                        ccw: direction == ArcDirection::CounterClockwise,
+                    });
+                    direct_arc = Some(Arc {
+                        centre,
+                        direction,
+                        plane,
+                    });
+                }
+            }
+        }
+        Motion::ThroughPoint => {
+            return through_point(front, kernel, words, target, origin);
+        }
+    }
+    let element = element.expect("every motion above makes an element");
+    let tag = tag(front, target, origin, rapid, turns);
+    update_tangent(front, &element, &target, plane);
+    advance(front, &target);
+    if corner.is_none() && !front.contour.is_holding() && !front.rounding_modal {
+        return Ok(Prepared::Direct(tag, direct_arc));
+    }
+    let held = front.contour.is_holding();
+    let cuts = front.contour.push(element, tag, corner)?;
+    let held = if held {
+        cuts.iter().filter(|c| !is_of(c, origin)).count()
+    } else {
+        0
+    };
+    Ok(Prepared::Cuts { cuts, held })
+}
+
+/// True when `cut` is the block of `origin` (not the held one, not a corner).
+fn is_of(cut: &Cut<Tag>, origin: Origin) -> bool {
+    matches!(cut, Cut::Block { tag, .. } if tag.origin == origin)
+}
+
+fn tag(
+    front: &Sinumerik,
+    target: [Option<f64>; AXES],
+    origin: Origin,
+    rapid: bool,
+    turns: u32,
+) -> Tag {
+    let _ = front;
+    Tag {
+        origin,
+        target,
+        rapid,
+        turns,
+    }
+}
+
+/// p of the axes the block moves becomes their end.
+fn advance(front: &mut Sinumerik, target: &[Option<f64>; AXES]) {
+    for (p, t) in front.programmed.iter_mut().zip(target) {
+        if let Some(t) = t {
+            *p = *t;
+        }
+    }
+}
+
+/// The direction the path leaves the block's end in the plane: what CT is tangent to.
+fn update_tangent(
+    front: &mut Sinumerik,
+    element: &Element,
+    target: &[Option<f64>; AXES],
+    plane: Plane,
+) {
+    let (a, b, _) = plane.axes();
+    if target[a].is_none() && target[b].is_none() && matches!(element, Element::Line { .. }) {
+        return;
+    }
+    let tangent = element.end_tangent();
+    if tangent.length() > 0.0 {
+        front.tangent = Some(tangent);
+    }
+}
+
+/// The chamfer or rounding a block programs at its end.
+fn corner_spec(words: &Words<'_>) -> Result<Option<CornerSpec>, Alarm> {
+    let specs = [
+        (words.rnd, CornerKind::Round),
+        (words.chf, CornerKind::Chamfer),
+        (words.chr, CornerKind::ChamferLeg),
+    ];
+    let mut found = None;
+    for (word, kind) in specs {
+        if let Some((size, span)) = word {
+            if found.is_some() {
+                return Err(Alarm::error(
+                    AlarmCode::ContourDefinition,
+                    span,
+                    "a block takes one chamfer or rounding at its end",
+                ));
+            }
+            found = Some(CornerSpec { kind, size, span });
+        }
+    }
+    Ok(found)
+}
+
+/// An arc of the plane in force must stay an arc of a machine plane through the frame.
+fn check_arc_plane(kernel: &Kernel, plane: Plane, origin: Origin) -> Result<(), Alarm> {
+    let (a, b, _) = plane.axes();
+    if let Some(frame) = kernel.state().frames.programmable() {
+        if !frame.keeps_plane((a, b)) {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                origin.span,
+                "an arc in a plane the frame tilts or scales unevenly is not run yet",
+            )
+            .with_help("vcnc cuts arcs in a machine plane: turn the frame about the plane's normal only, and scale the plane's two axes alike"));
+        }
+    }
+    Ok(())
+}
+
+/// The centre and end (plane coordinates) of G2/G3: with I J K (incremental from the start
+/// unless `=AC(..)`), CR=, or AR= with the end or the centre; a polar arc turns about the pole.
+fn arc_geometry(
+    front: &Sinumerik,
+    words: &Words<'_>,
+    target: &[Option<f64>; AXES],
+    direction: ArcDirection,
+    origin: super::Origin,
+) -> Result<(V2, V2), Alarm> {
+    let plane = front.modal.plane;
+    let (a, b, _) = plane.axes();
+    let start = in_plane(plane, &front.programmed);
+    let unit = unit(front);
+    let centre_of = |axis: usize, start: f64| -> Option<f64> {
+        let v = words.centre[axis]?;
+        Some(if v.absolute == Some(true) {
+            v.value * unit
+        } else {
+            start + v.value * unit
+        })
+    };
+    let (ca, cb) = (centre_of(a, start.x), centre_of(b, start.y));
+    let tolerance = front.arc_tolerance;
+    let end_written = target[a].is_some() || target[b].is_some();
+    let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
+    // A polar arc: the pole is its centre (PGsl 9.6.5).
+    if words.ap.is_some() || words.rp.is_some() {
+        return Ok((front.polar.pole_in(plane), end));
+    }
+    let centre_given = ca.is_some() || cb.is_some();
+    let centre = V2::new(ca.unwrap_or(start.x), cb.unwrap_or(start.y));
+    match (words.radius, words.opening, centre_given) {
+        (Some((radius, span)), None, false) => Ok((
+            arcs::centre_from_radius(start, end, radius * unit, direction, tolerance, span)?,
+            end,
+        )),
+        (None, Some((opening, span)), false) if end_written => Ok((
+            arcs::centre_from_opening(start, end, opening, direction, span)?,
+            end,
+        )),
+        (None, Some((opening, span)), true) if !end_written => Ok((
+            centre,
+            arcs::end_from_opening(start, centre, opening, direction, span)?,
+        )),
+        (None, None, true) => Ok((centre, end)),
+        (Some((_, span)), _, _) | (_, Some((_, span)), _) => Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            span,
+            "an arc takes its centre (I J K), its radius (CR=) or its opening (AR=) with the end or the centre, one of these",
+        )),
+        _ => Err(Alarm::error(
+            AlarmCode::ArcWithoutCenter,
+            origin.span,
+            "G2/G3 without a centre (I J K), a radius (CR=) or an opening (AR=)",
+        )
+        .with_help("give the centre with I, J, K (incremental from the start) or the radius with CR=")),
+    }
+}
+
+/// CIP: the circle through the intermediate point I1 J1 K1 (absolute unless `=IC(..)`, or under
+/// G91) to the end. In a plane of G17/G18/G19 it is an ordinary arc; inclined, straight pieces
+/// along it within a micrometre.
+fn through_point(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    words: &Words<'_>,
+    target: [Option<f64>; AXES],
+    origin: Origin,
+) -> Result<Prepared, Alarm> {
+    let unit = unit(front);
+    let p = front.programmed;
+    let via: [f64; 3] = std::array::from_fn(|i| match words.via[i] {
+        Some(v) if v.absolute.unwrap_or(front.modal.absolute) => v.value * unit,
+        Some(v) => p[i] + v.value * unit,
+        None => p[i],
+    });
+    let start = [p[0], p[1], p[2]];
+    let end: [f64; 3] = std::array::from_fn(|i| target[i].unwrap_or(p[i]));
+    let circle = arcs::circle_through(start, via, end, origin.span)?;
+    let mut full = target;
+    for (i, t) in full.iter_mut().enumerate().take(3) {
+        *t = Some(end[i]);
+    }
+    let tag = tag(front, full, origin, false, 0);
+    advance(front, &full);
+    if let Some((plane, direction)) = circle.machine_plane() {
+        let (a, b, _) = plane.axes();
+        if kernel
+            .state()
+            .frames
+            .programmable()
+            .is_none_or(|f| f.keeps_plane((a, b)))
+        {
+            let centre = V2::new(circle.centre[a], circle.centre[b]);
+            let element = Element::Arc {
+                start: V2::new(start[a], start[b]),
+                end: V2::new(end[a], end[b]),
+                center: centre,
+                ccw: direction == ArcDirection::CounterClockwise,
+            };
+            if plane == front.modal.plane {
+                update_tangent(front, &element, &full, plane);
+            }
+            return Ok(Prepared::Direct(
+                tag,
+                Some(Arc {
+                    centre,
+                    direction,
+                    plane,
+                }),
+            ));
+        }
+    }
+    // Chords of at most 1 µm from the circle: 2 r (1 - cos(step / 2)) <= tolerance.
+    let tolerance = 0.001_f64;
+    let step = 2.0 * (1.0 - tolerance / circle.radius).clamp(-1.0, 1.0).acos();
+    let pieces = ((circle.sweep / step.max(1e-6)).ceil() as usize).clamp(1, 100_000);
+    let u: [f64; 3] = std::array::from_fn(|i| (start[i] - circle.centre[i]) / circle.radius);
+    let n = circle.normal;
+    let v = [
+        n[1] * u[2] - n[2] * u[1],
+        n[2] * u[0] - n[0] * u[2],
+        n[0] * u[1] - n[1] * u[0],
+    ];
+    let points = (1..=pieces)
+        .map(|k| {
+            if k == pieces {
+                return end;
+            }
+            let angle = circle.sweep * k as f64 / pieces as f64;
+            let (sin, cos) = angle.sin_cos();
+            std::array::from_fn(|i| circle.centre[i] + circle.radius * (cos * u[i] + sin * v[i]))
+        })
+        .collect();
+    Ok(Prepared::Chords(tag, points))
+}
+
+impl Prepared {
+    /// Moves the held block (and the corner after it): what comes before this block's events.
+    pub(super) fn release_held(
+        &mut self,
+        front: &mut Sinumerik,
+        kernel: &mut Kernel,
+    ) -> Result<(), Alarm> {
+        if let Prepared::Cuts { cuts, held } = self {
+            let held_cuts: Vec<_> = cuts.drain(..*held).collect();
+            *held = 0;
+            for cut in held_cuts {
+                execute(front, kernel, cut)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Moves this block.
+    pub(super) fn finish(self, front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> {
+        match self {
+            Prepared::None => Ok(()),
+            Prepared::Cuts { cuts, .. } => {
+                for cut in cuts {
+                    execute(front, kernel, cut)?;
+                }
+                Ok(())
+            }
+            Prepared::Direct(tag, arc) => direct(kernel, &tag, arc),
+            Prepared::Chords(tag, points) => {
+                for point in points {
+                    let mut target = tag.target;
+                    for (i, v) in point.into_iter().enumerate() {
+                        target[i] = Some(v);
+                    }
+                    kernel.feed_to(target, tag.origin)?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+fn direct(kernel: &mut Kernel, tag: &Tag, arc: Option<Arc>) -> Result<(), Alarm> {
+    match arc {
+        None if tag.rapid => kernel.rapid_to(tag.target, tag.origin),
+        None => kernel.feed_to(tag.target, tag.origin),
+        Some(arc) => kernel.arc_in(
+            arc.plane,
+            tag.target,
+            (arc.centre.x, arc.centre.y),
+            arc.direction,
+            tag.turns,
+            tag.origin,
+        ),
+    }
+}
+
+/// One cut of the contour.
+fn execute(front: &mut Sinumerik, kernel: &mut Kernel, cut: Cut<Tag>) -> Result<(), Alarm> {
+    let plane = front.modal.plane;
+    let (a, b, _) = plane.axes();
+    let (element, tag) = match cut {
+        Cut::Block { element, tag } => (element, tag),
+        Cut::Corner {
+            element, warning, ..
+        } => {
+            if let Some(warning) = warning {
+                kernel.warn(warning);
+            }
+            let origin = front.corner_origin.unwrap_or(Origin::at(front.last_span));
+            let mut target = [None; AXES];
+            target[a] = Some(element.end().x);
+            target[b] = Some(element.end().y);
+            let tag = Tag {
+                origin,
+                target,
+                rapid: false,
+                turns: 0,
+            };
+            (element, tag)
+        }
+    };
+    front.corner_origin = Some(tag.origin);
+    let mut target = tag.target;
+    target[a] = Some(element.end().x);
+    target[b] = Some(element.end().y);
+    let tag = Tag { target, ..tag };
+    match element {
+        Element::Line { .. } => direct(kernel, &tag, None),
+        Element::Arc { center, ccw, .. } => direct(
+            kernel,
+            &tag,
+            Some(Arc {
+                centre: center,
+                direction: if ccw {
+                    ArcDirection::CounterClockwise
+                } else {
+                    ArcDirection::Clockwise
+                },
+                plane,
+            }),
+        ),
+    }
+}
+
+/// A move of a block with G53, G153 or SUPA: the programmed axes go to machine positions
+/// without the suppressed frames; the tool length stays (docs/SINUMERIK.md 5.6).
+pub(super) fn suppressed_move(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    words: &Words<'_>,
+    level: OneBlock,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    if words.axes.iter().all(Option::is_none) {
+        return Ok(());
+    }
+    let state = kernel.state();
+    let external = match level {
+        OneBlock::SuppressAll => [0.0; AXES],
+        _ => state.frames.work_offset(WorkOffsetId::External),
+    };
+    let length = state.frames.length_vector();
+    let here = state.position;
+    let unit = unit(front);
+    let mut to = here;
+    for (i, value) in words.axes.iter().enumerate() {
+        let Some(v) = value else { continue };
+        let scale = if i < 3 { unit } else { 1.0 };
+        let length = if i == 2 { length } else { 0.0 };
+        to[i] = if v.absolute.unwrap_or(front.modal.absolute) {
+            v.value * scale + external[i] + length
+        } else {
+            here[i] + v.value * scale
+        };
+    }
+    match front.modal.motion {
+        Motion::Rapid => kernel.rapid_to_machine(to, origin)?,
+        Motion::Line => kernel.feed_to_machine(to, origin)?,
+        _ => {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                origin.span,
+                "G53, G153 and SUPA take G0 or G1",
+            ))
+        }
+    }
+    // The next block starts from where the tool stands, seen through the normal chain.
+    let now = kernel.program_position();
+    for (i, value) in words.axes.iter().enumerate() {
+        if value.is_some() {
+            front.programmed[i] = now[i];
+        }
+    }
+    Ok(())
+}
