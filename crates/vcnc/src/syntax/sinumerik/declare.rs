@@ -154,15 +154,21 @@ const TYPES_HELP: &str = "the types are INT, REAL, BOOL, CHAR, STRING[length], A
 /// `DEF ...` after its keyword.
 pub(super) fn definition(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<Definition, Alarm> {
     let mark = scanner.mark();
-    let scope = match take_name(scanner)? {
-        Some(name) if &*name.value == "NCK" => Some(Scope::Nck).zip(Some(name.span)),
-        Some(name) if &*name.value == "CHAN" => Some(Scope::Chan).zip(Some(name.span)),
-        _ => {
-            scanner.reset(mark);
-            None
-        }
+    let scope = take_name(scanner)?.and_then(|name| {
+        let value = match &*name.value {
+            "NCK" => Scope::Nck,
+            "CHAN" => Scope::Chan,
+            _ => return None,
+        };
+        Some(Spanned {
+            value,
+            span: name.span,
+        })
+    });
+    if scope.is_none() {
+        // The name is the type.
+        scanner.reset(mark);
     }
-    .map(|(value, span)| Spanned { value, span });
     let Some(data_type) = data_type(scanner)? else {
         let at = after(scanner, keyword.span);
         return Err(syntax(at, "DEF needs a type").with_help(TYPES_HELP));
