@@ -472,6 +472,22 @@ fn forms_real_programs_write() {
         &text[rest.start as usize..rest.end as usize],
         "$AA_IM[AX4] > 100 DO ACCLIMA[AX4]=80"
     );
+    // An action without a condition (example a/37-fgroup-fgref.mpf).
+    let text = "N130 DO $R1=$AC_TIME ; R1 = time";
+    let b = block(text);
+    assert!(b.words.is_empty());
+    let Some(Statement {
+        kind: StatementKind::Action { keyword, rest },
+        ..
+    }) = b.statement
+    else {
+        panic!("{:?}", b.statement)
+    };
+    assert_eq!(&*keyword.value, "DO");
+    assert_eq!(
+        &text[rest.start as usize..rest.end as usize],
+        "$R1=$AC_TIME ; R1 = time"
+    );
 }
 
 // ---- Statements ----

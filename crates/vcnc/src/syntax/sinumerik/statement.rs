@@ -104,8 +104,8 @@ pub enum StatementKind {
     Macro(Macro),
     /// `SAVE` alone.
     Save,
-    /// A synchronized action (`WHEN`, `WHENEVER`, `EVERY`, `FROM` ... `DO` ...), not read yet:
-    /// its keyword and the rest of the block after it.
+    /// A synchronized action (`WHEN`, `WHENEVER`, `EVERY`, `FROM` ... `DO` ..., or `DO` ...
+    /// alone), not read yet: its keyword and the rest of the block after it.
     Action {
         /// The keyword.
         keyword: Name,
@@ -272,7 +272,7 @@ pub(super) enum Place {
 }
 
 /// The keywords that make the rest of a block a statement, and where each may stand.
-const KEYWORDS: [(&str, Place); 28] = [
+const KEYWORDS: [(&str, Place); 29] = [
     ("IF", Place::First),
     ("ELSE", Place::First),
     ("ENDIF", Place::First),
@@ -302,6 +302,8 @@ const KEYWORDS: [(&str, Place); 28] = [
     ("WHENEVER", Place::AfterWords),
     ("EVERY", Place::AfterWords),
     ("FROM", Place::AfterWords),
+    // An action without a condition (example a/37: `N130 DO $R1=$AC_TIME`).
+    ("DO", Place::AfterWords),
 ];
 
 /// Where the statement keyword `name` (upper case) may stand, if it is one.
