@@ -162,6 +162,19 @@ pub enum JumpKind {
     GotoS,
 }
 
+impl JumpKind {
+    /// The keyword, upper case (`GOTOF`), for messages.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            JumpKind::Goto => "GOTO",
+            JumpKind::GotoF => "GOTOF",
+            JumpKind::GotoB => "GOTOB",
+            JumpKind::GotoC => "GOTOC",
+            JumpKind::GotoS => "GOTOS",
+        }
+    }
+}
+
 /// The target of a jump.
 #[derive(Clone, Debug, PartialEq)]
 pub enum JumpTarget {
@@ -202,6 +215,36 @@ pub struct CaseBranch {
     pub value: Expr,
     /// Where to jump when the selector equals it.
     pub jump: Jump,
+}
+
+impl StatementKind {
+    /// The keyword that starts the statement, upper case (`IF`, `REPEATB`, `GOTOF`, `WHEN`), for
+    /// messages such as "ENDIF without IF".
+    pub fn keyword(&self) -> &str {
+        match self {
+            StatementKind::If { .. } => "IF",
+            StatementKind::Else => "ELSE",
+            StatementKind::EndIf => "ENDIF",
+            StatementKind::While { .. } => "WHILE",
+            StatementKind::EndWhile => "ENDWHILE",
+            StatementKind::For { .. } => "FOR",
+            StatementKind::EndFor => "ENDFOR",
+            StatementKind::Repeat | StatementKind::RepeatSection { .. } => "REPEAT",
+            StatementKind::RepeatBlock { .. } => "REPEATB",
+            StatementKind::Until { .. } => "UNTIL",
+            StatementKind::Loop => "LOOP",
+            StatementKind::EndLoop => "ENDLOOP",
+            StatementKind::Case(_) => "CASE",
+            StatementKind::EndLabel => "ENDLABEL",
+            StatementKind::Jump(jump) => jump.kind.keyword(),
+            StatementKind::Definition(_) => "DEF",
+            StatementKind::Procedure(_) => "PROC",
+            StatementKind::External(_) => "EXTERN",
+            StatementKind::Macro(_) => "DEFINE",
+            StatementKind::Save => "SAVE",
+            StatementKind::Action { keyword, .. } => &keyword.value,
+        }
+    }
 }
 
 impl Statement {
