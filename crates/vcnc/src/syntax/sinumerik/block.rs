@@ -6,12 +6,13 @@
 //! (`TRANS`, `MCALL`, `RET`). After a single address letter, digits followed by `=`, `(` or `[`
 //! are a numeric extension (`X1=10` is axis X1, `X110` is X at 110: manual L604-606). A control
 //! structure or declaration (IF, WHILE, DEF ...) first in the block, or a jump or synchronized
-//! action after its words, is read by `statement.rs` into `Block::statement`. Parsing never
+//! action after its words, is read by `control.rs` into `Block::statement`. Parsing never
 //! fails as a whole: a block that cannot be read carries its alarm.
 
+use super::control::{self, Place};
 use super::expr::{self, Expr};
 use super::scan::{unexpected, Scanner};
-use super::statement::{self, Place, Spanned, Statement};
+use super::statement::{Name, Spanned, Statement};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
 use crate::syntax::Number;
@@ -90,7 +91,7 @@ fn read(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
                 value: "ENDLABEL".into(),
                 span,
             };
-            block.statement = Some(statement::read(scanner, keyword)?);
+            block.statement = Some(control::read(scanner, keyword)?);
             return Ok(());
         }
     }
@@ -102,7 +103,7 @@ fn read(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
             None => break,
         }
         if let Some(keyword) = statement_keyword(scanner, block.words.is_empty())? {
-            let statement = statement::read(scanner, keyword)?;
+            let statement = control::read(scanner, keyword)?;
             block.statement = Some(statement);
             return Ok(());
         }
@@ -181,10 +182,7 @@ fn label(scanner: &mut Scanner<'_>, block: &mut Block) -> Option<Span> {
 
 /// The keyword of a statement at the position, consumed, if the rest of the block is one
 /// (`first`: no word before it); an alarm for a keyword that must come first but does not.
-fn statement_keyword(
-    scanner: &mut Scanner<'_>,
-    first: bool,
-) -> Result<Option<statement::Name>, Alarm> {
+fn statement_keyword(scanner: &mut Scanner<'_>, first: bool) -> Result<Option<Name>, Alarm> {
     let start = scanner.mark();
     scanner.name_rest();
     let name = expr::upper(&scanner.text()[start..scanner.mark()]);
@@ -193,7 +191,7 @@ fn statement_keyword(
     if matches!(scanner.peek_byte(), Some(b'=' | b'[')) {
         return Ok(None);
     }
-    match statement::place(&name) {
+    match control::place(&name) {
         Some(Place::AfterWords) => {}
         Some(Place::First) if first => {}
         Some(Place::First) => {

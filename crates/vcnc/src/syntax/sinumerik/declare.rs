@@ -1,5 +1,5 @@
-//! SINUMERIK declarations: `DEF` (variables), `PROC` (a procedure's header), `EXTERN` (a
-//! subprogram's parameter types) and `DEFINE` (a macro), read into typed parts with their spans.
+//! Reads the SINUMERIK declarations into their parts with spans: `DEF` (variables), `PROC` (a
+//! procedure's header), `EXTERN` (a subprogram's parameter types) and `DEFINE` (a macro).
 //!
 //! The forms are the programming manual's (PGAsl), as the tables of spec/sinumerik-tables.md
 //! name their keywords (DEF, PROC, VAR, EXTERN, DEFINE ... AS, SET, REP, NCK, CHAN, the types)
@@ -8,143 +8,15 @@
 //! name is defined twice) is the interpreter's business. Never panics: a malformed declaration
 //! is an alarm with the span of its cause.
 
+use super::control::{ahead, syntax, take_keyword, take_name, take_symbol, written_to};
 use super::expr::{self, Expr, ExprKind};
 use super::scan::{is_blank, Scanner};
 use super::statement::{
-    ahead, syntax, take_keyword, take_name, take_symbol, written_to, Name, Spanned,
+    DataType, Definition, External, Initializer, Macro, Name, Parameter, Procedure, Scope, Spanned,
+    Variable,
 };
 use crate::alarm::Alarm;
 use crate::source::Span;
-
-/// `DEF [NCK|CHAN] type name[dims]=init, name2, ...`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Definition {
-    /// `NCK` or `CHAN` before the type (global user data), if written.
-    pub scope: Option<Spanned<Scope>>,
-    /// The type of every variable of the definition.
-    pub data_type: Spanned<DataType>,
-    /// The variables, in written order (at least one).
-    pub variables: Vec<Variable>,
-}
-
-/// Where a global variable of a definition is valid (tables: NCK, CHAN).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Scope {
-    /// `NCK`: the whole control.
-    Nck,
-    /// `CHAN`: the channel.
-    Chan,
-}
-
-/// The data types of the language (tables: INT, REAL, BOOL, CHAR, STRING, AXIS, FRAME).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DataType {
-    /// `INT`: a signed integer.
-    Int,
-    /// `REAL`: a floating-point number.
-    Real,
-    /// `BOOL`: TRUE or FALSE.
-    Bool,
-    /// `CHAR`: an ASCII character.
-    Char,
-    /// `STRING[n]`: a string of at most `n` characters.
-    String(u32),
-    /// `AXIS`: an axis identifier.
-    Axis,
-    /// `FRAME`: a coordinate transformation.
-    Frame,
-}
-
-/// One variable of a definition.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Variable {
-    /// Its name.
-    pub name: Name,
-    /// The sizes of an array's dimensions (`ARR[3,4]`); empty for a single value.
-    pub dimensions: Vec<Expr>,
-    /// Its initial value, if written.
-    pub init: Option<Spanned<Initializer>>,
-    /// From the name to the end of the initial value.
-    pub span: Span,
-}
-
-/// The initial value of a variable.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Initializer {
-    /// `= expression`.
-    Value(Expr),
-    /// `= SET(v1, v2, ...)`: an array's first elements, in order.
-    Set(Vec<Expr>),
-    /// `= REP(v)` or `= REP(v, n)`: every element (or the first `n`) set to `v`.
-    Rep {
-        /// The value.
-        value: Expr,
-        /// How many elements, if written.
-        count: Option<Expr>,
-    },
-}
-
-/// `PROC name(parameters) attributes`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Procedure {
-    /// The procedure's name.
-    pub name: Name,
-    /// Its formal parameters, in order; each has a name.
-    pub parameters: Vec<Parameter>,
-    /// The words after the parameters (`SAVE`, `DISPLOF`, `SBLOF`, `ACTBLOCNO` ...), upper case.
-    pub attributes: Vec<Name>,
-}
-
-/// `EXTERN name(types)`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct External {
-    /// The subprogram's name.
-    pub name: Name,
-    /// Its parameters' types, in order; none has a name.
-    pub parameters: Vec<Parameter>,
-}
-
-/// A parameter of PROC (`VAR REAL X[,3]`) or EXTERN (`VAR REAL[,3]`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Parameter {
-    /// The span of `VAR` (passed by reference), if written.
-    pub by_reference: Option<Span>,
-    /// Its type.
-    pub data_type: Spanned<DataType>,
-    /// Its name (PROC), or `None` (EXTERN).
-    pub name: Option<Name>,
-    /// An array's dimensions; a size left out (`[,3]`) is `None`.
-    pub dimensions: Vec<Option<Expr>>,
-    /// The whole parameter.
-    pub span: Span,
-}
-
-/// `DEFINE name AS text`: the text is kept as written, for the interpreter to substitute.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Macro {
-    /// The macro's name.
-    pub name: Name,
-    /// The text after `AS` up to the comment, blanks trimmed (never empty).
-    pub body: Span,
-}
-
-impl Definition {
-    /// The dimensions and initial values of every variable, in written order.
-    pub(super) fn expressions<'a>(&'a self, all: &mut Vec<&'a Expr>) {
-        for variable in &self.variables {
-            all.extend(&variable.dimensions);
-            match variable.init.as_ref().map(|i| &i.value) {
-                Some(Initializer::Value(value)) => all.push(value),
-                Some(Initializer::Set(values)) => all.extend(values),
-                Some(Initializer::Rep { value, count }) => {
-                    all.push(value);
-                    all.extend(count);
-                }
-                None => {}
-            }
-        }
-    }
-}
 
 const DIMENSIONS_HELP: &str =
     "an array has one to three dimensions: NAME[n], NAME[n, m], NAME[n, m, k]";
@@ -154,15 +26,21 @@ const TYPES_HELP: &str = "the types are INT, REAL, BOOL, CHAR, STRING[length], A
 /// `DEF ...` after its keyword.
 pub(super) fn definition(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<Definition, Alarm> {
     let mark = scanner.mark();
-    let scope = match take_name(scanner)? {
-        Some(name) if &*name.value == "NCK" => Some(Scope::Nck).zip(Some(name.span)),
-        Some(name) if &*name.value == "CHAN" => Some(Scope::Chan).zip(Some(name.span)),
-        _ => {
-            scanner.reset(mark);
-            None
-        }
+    let scope = take_name(scanner)?.and_then(|name| {
+        let value = match &*name.value {
+            "NCK" => Scope::Nck,
+            "CHAN" => Scope::Chan,
+            _ => return None,
+        };
+        Some(Spanned {
+            value,
+            span: name.span,
+        })
+    });
+    if scope.is_none() {
+        // The name is the type.
+        scanner.reset(mark);
     }
-    .map(|(value, span)| Spanned { value, span });
     let Some(data_type) = data_type(scanner)? else {
         let at = after(scanner, keyword.span);
         return Err(syntax(at, "DEF needs a type").with_help(TYPES_HELP));

@@ -1,19 +1,13 @@
-//! SINUMERIK statements: the control structures and jumps of the language (IF, WHILE, FOR,
-//! REPEAT, LOOP, CASE, GOTO ..., part repetition) read from the rest of a block into a typed
-//! [`Statement`], with a span on every part for the interpreter's alarms. Declarations (DEF,
-//! PROC, EXTERN, DEFINE) are read by `declare.rs`.
+//! The SINUMERIK statements as the syntax layer gives them to the interpreter: control
+//! structures, jumps and declarations, each part with its span for alarms ([`Statement`],
+//! [`StatementKind`] and the types of their parts). `control.rs` reads the control structures
+//! and jumps, `declare.rs` the declarations.
 //!
-//! It reads one block's statement only: whether an IF has its ENDIF, a label exists or a
+//! Plain data: no reading and no meaning here. Whether an IF has its ENDIF, a label exists or a
 //! variable is defined is the interpreter's business (its structure scan), and so is what a
-//! name in a jump target means (a label, or a STRING variable holding one). The forms are those
-//! of the programming manual (PGAsl) as the tables name them (spec/sinumerik-tables.md) and the
-//! corpus writes them. Never panics: a malformed statement is an alarm with the span of its
-//! cause and a help line.
+//! name in a jump target means (a label, or a STRING variable holding one).
 
-use super::declare::{self, Definition, External, Macro, Procedure};
-use super::expr::{self, Expr, ExprKind};
-use super::scan::{is_blank, Scanner, Token};
-use crate::alarm::{Alarm, AlarmCode};
+use super::expr::Expr;
 use crate::source::Span;
 
 /// A statement of the language, from its keyword to its last part.
@@ -104,8 +98,8 @@ pub enum StatementKind {
     Macro(Macro),
     /// `SAVE` alone.
     Save,
-    /// A synchronized action (`WHEN`, `WHENEVER`, `EVERY`, `FROM` ... `DO` ...), not read yet:
-    /// its keyword and the rest of the block after it.
+    /// A synchronized action (`WHEN`, `WHENEVER`, `EVERY`, `FROM` ... `DO` ..., or `DO` ...
+    /// alone), not read yet: its keyword and the rest of the block after it.
     Action {
         /// The keyword.
         keyword: Name,
@@ -162,6 +156,19 @@ pub enum JumpKind {
     GotoS,
 }
 
+impl JumpKind {
+    /// The keyword, upper case (`GOTOF`), for messages.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            JumpKind::Goto => "GOTO",
+            JumpKind::GotoF => "GOTOF",
+            JumpKind::GotoB => "GOTOB",
+            JumpKind::GotoC => "GOTOC",
+            JumpKind::GotoS => "GOTOS",
+        }
+    }
+}
+
 /// The target of a jump.
 #[derive(Clone, Debug, PartialEq)]
 pub enum JumpTarget {
@@ -202,6 +209,36 @@ pub struct CaseBranch {
     pub value: Expr,
     /// Where to jump when the selector equals it.
     pub jump: Jump,
+}
+
+impl StatementKind {
+    /// The keyword that starts the statement, upper case (`IF`, `REPEATB`, `GOTOF`, `WHEN`), for
+    /// messages such as "ENDIF without IF".
+    pub fn keyword(&self) -> &str {
+        match self {
+            StatementKind::If { .. } => "IF",
+            StatementKind::Else => "ELSE",
+            StatementKind::EndIf => "ENDIF",
+            StatementKind::While { .. } => "WHILE",
+            StatementKind::EndWhile => "ENDWHILE",
+            StatementKind::For { .. } => "FOR",
+            StatementKind::EndFor => "ENDFOR",
+            StatementKind::Repeat | StatementKind::RepeatSection { .. } => "REPEAT",
+            StatementKind::RepeatBlock { .. } => "REPEATB",
+            StatementKind::Until { .. } => "UNTIL",
+            StatementKind::Loop => "LOOP",
+            StatementKind::EndLoop => "ENDLOOP",
+            StatementKind::Case(_) => "CASE",
+            StatementKind::EndLabel => "ENDLABEL",
+            StatementKind::Jump(jump) => jump.kind.keyword(),
+            StatementKind::Definition(_) => "DEF",
+            StatementKind::Procedure(_) => "PROC",
+            StatementKind::External(_) => "EXTERN",
+            StatementKind::Macro(_) => "DEFINE",
+            StatementKind::Save => "SAVE",
+            StatementKind::Action { keyword, .. } => &keyword.value,
+        }
+    }
 }
 
 impl Statement {
@@ -262,460 +299,132 @@ impl Statement {
     }
 }
 
-/// Where a statement's keyword may stand in its block.
+/// `DEF [NCK|CHAN] type name[dims]=init, name2, ...`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Definition {
+    /// `NCK` or `CHAN` before the type (global user data), if written.
+    pub scope: Option<Spanned<Scope>>,
+    /// The type of every variable of the definition.
+    pub data_type: Spanned<DataType>,
+    /// The variables, in written order (at least one).
+    pub variables: Vec<Variable>,
+}
+
+/// Where a global variable of a definition is valid (tables: NCK, CHAN).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Place {
-    /// First, after the block number and label only (docs/SINUMERIK.md 3.1).
-    First,
-    /// Also after other words: jumps and synchronized actions.
-    AfterWords,
+pub enum Scope {
+    /// `NCK`: the whole control.
+    Nck,
+    /// `CHAN`: the channel.
+    Chan,
 }
 
-/// The keywords that make the rest of a block a statement, and where each may stand.
-const KEYWORDS: [(&str, Place); 28] = [
-    ("IF", Place::First),
-    ("ELSE", Place::First),
-    ("ENDIF", Place::First),
-    ("WHILE", Place::First),
-    ("ENDWHILE", Place::First),
-    ("FOR", Place::First),
-    ("ENDFOR", Place::First),
-    ("REPEAT", Place::First),
-    ("REPEATB", Place::First),
-    ("UNTIL", Place::First),
-    ("LOOP", Place::First),
-    ("ENDLOOP", Place::First),
-    ("CASE", Place::First),
-    ("DEF", Place::First),
-    ("PROC", Place::First),
-    ("EXTERN", Place::First),
-    ("DEFINE", Place::First),
-    ("SAVE", Place::First),
-    ("ENDLABEL", Place::First),
-    ("GOTO", Place::AfterWords),
-    ("GOTOF", Place::AfterWords),
-    ("GOTOB", Place::AfterWords),
-    ("GOTOC", Place::AfterWords),
-    ("GOTOS", Place::AfterWords),
-    // Synchronized actions: the rest of the block from any word on (`IDS=2 WHENEVER ...`).
-    ("WHEN", Place::AfterWords),
-    ("WHENEVER", Place::AfterWords),
-    ("EVERY", Place::AfterWords),
-    ("FROM", Place::AfterWords),
-];
-
-/// Where the statement keyword `name` (upper case) may stand, if it is one.
-pub(super) fn place(name: &str) -> Option<Place> {
-    KEYWORDS
-        .iter()
-        .find(|(keyword, _)| *keyword == name)
-        .map(|(_, place)| *place)
+/// The data types of the language (tables: INT, REAL, BOOL, CHAR, STRING, AXIS, FRAME).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DataType {
+    /// `INT`: a signed integer.
+    Int,
+    /// `REAL`: a floating-point number.
+    Real,
+    /// `BOOL`: TRUE or FALSE.
+    Bool,
+    /// `CHAR`: an ASCII character.
+    Char,
+    /// `STRING[n]`: a string of at most `n` characters.
+    String(u32),
+    /// `AXIS`: an axis identifier.
+    Axis,
+    /// `FRAME`: a coordinate transformation.
+    Frame,
 }
 
-/// Reads the statement of `keyword` (consumed, upper case) to the end of the block.
-///
-/// # Errors
-/// [`AlarmCode::MacroSyntax`] for a malformed statement or anything after its end; the
-/// expression reader's and the scanner's alarms.
-pub(super) fn read(scanner: &mut Scanner<'_>, keyword: Name) -> Result<Statement, Alarm> {
-    let kind = match &*keyword.value {
-        "IF" => if_statement(scanner, &keyword)?,
-        "ELSE" => StatementKind::Else,
-        "ENDIF" => StatementKind::EndIf,
-        "WHILE" => StatementKind::While {
-            condition: condition(scanner, &keyword)?,
-        },
-        "ENDWHILE" => StatementKind::EndWhile,
-        "FOR" => for_statement(scanner, &keyword)?,
-        "ENDFOR" => StatementKind::EndFor,
-        "REPEAT" => repeat(scanner)?,
-        "REPEATB" => repeat_block(scanner, &keyword)?,
-        "UNTIL" => StatementKind::Until {
-            condition: condition(scanner, &keyword)?,
-        },
-        "LOOP" => StatementKind::Loop,
-        "ENDLOOP" => StatementKind::EndLoop,
-        "CASE" => StatementKind::Case(case(scanner, &keyword)?),
-        "DEF" => StatementKind::Definition(declare::definition(scanner, &keyword)?),
-        "PROC" => StatementKind::Procedure(declare::procedure(scanner, &keyword)?),
-        "EXTERN" => StatementKind::External(declare::external(scanner, &keyword)?),
-        "DEFINE" => StatementKind::Macro(declare::macro_definition(scanner, &keyword)?),
-        "SAVE" => StatementKind::Save,
-        "ENDLABEL" => StatementKind::EndLabel,
-        other => match jump_kind(other) {
-            Some(kind) => StatementKind::Jump(jump(scanner, kind, keyword.span)?),
-            None => {
-                // A synchronized action: kept as text for now.
-                scanner.skip_blanks();
-                let rest = scanner.span(scanner.mark()..scanner.text().len());
-                scanner.reset(scanner.text().len());
-                let span = keyword.span.to(rest);
-                return Ok(Statement {
-                    kind: StatementKind::Action { keyword, rest },
-                    span,
-                });
+/// One variable of a definition.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variable {
+    /// Its name.
+    pub name: Name,
+    /// The sizes of an array's dimensions (`ARR[3,4]`); empty for a single value.
+    pub dimensions: Vec<Expr>,
+    /// Its initial value, if written.
+    pub init: Option<Spanned<Initializer>>,
+    /// From the name to the end of the initial value.
+    pub span: Span,
+}
+
+/// The initial value of a variable.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Initializer {
+    /// `= expression`.
+    Value(Expr),
+    /// `= SET(v1, v2, ...)`: an array's first elements, in order.
+    Set(Vec<Expr>),
+    /// `= REP(v)` or `= REP(v, n)`: every element (or the first `n`) set to `v`.
+    Rep {
+        /// The value.
+        value: Expr,
+        /// How many elements, if written.
+        count: Option<Expr>,
+    },
+}
+
+/// `PROC name(parameters) attributes`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Procedure {
+    /// The procedure's name.
+    pub name: Name,
+    /// Its formal parameters, in order; each has a name.
+    pub parameters: Vec<Parameter>,
+    /// The words after the parameters (`SAVE`, `DISPLOF`, `SBLOF`, `ACTBLOCNO` ...), upper case.
+    pub attributes: Vec<Name>,
+}
+
+/// `EXTERN name(types)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct External {
+    /// The subprogram's name.
+    pub name: Name,
+    /// Its parameters' types, in order; none has a name.
+    pub parameters: Vec<Parameter>,
+}
+
+/// A parameter of PROC (`VAR REAL X[,3]`) or EXTERN (`VAR REAL[,3]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parameter {
+    /// The span of `VAR` (passed by reference), if written.
+    pub by_reference: Option<Span>,
+    /// Its type.
+    pub data_type: Spanned<DataType>,
+    /// Its name (PROC), or `None` (EXTERN).
+    pub name: Option<Name>,
+    /// An array's dimensions; a size left out (`[,3]`) is `None`.
+    pub dimensions: Vec<Option<Expr>>,
+    /// The whole parameter.
+    pub span: Span,
+}
+
+/// `DEFINE name AS text`: the text is kept as written, for the interpreter to substitute.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Macro {
+    /// The macro's name.
+    pub name: Name,
+    /// The text after `AS` up to the comment, blanks trimmed (never empty).
+    pub body: Span,
+}
+
+impl Definition {
+    /// The dimensions and initial values of every variable, in written order.
+    fn expressions<'a>(&'a self, all: &mut Vec<&'a Expr>) {
+        for variable in &self.variables {
+            all.extend(&variable.dimensions);
+            match variable.init.as_ref().map(|i| &i.value) {
+                Some(Initializer::Value(value)) => all.push(value),
+                Some(Initializer::Set(values)) => all.extend(values),
+                Some(Initializer::Rep { value, count }) => {
+                    all.push(value);
+                    all.extend(count);
+                }
+                None => {}
             }
-        },
-    };
-    let span = keyword.span.to(written_to(scanner));
-    end(scanner, &keyword.value)?;
-    Ok(Statement { kind, span })
-}
-
-/// The jump of a keyword, if it is one.
-fn jump_kind(keyword: &str) -> Option<JumpKind> {
-    Some(match keyword {
-        "GOTO" => JumpKind::Goto,
-        "GOTOF" => JumpKind::GotoF,
-        "GOTOB" => JumpKind::GotoB,
-        "GOTOC" => JumpKind::GotoC,
-        "GOTOS" => JumpKind::GotoS,
-        _ => return None,
-    })
-}
-
-/// `IF cond` or `IF cond GOTOx target`.
-fn if_statement(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<StatementKind, Alarm> {
-    let condition = condition(scanner, keyword)?;
-    if scanner.at_end() {
-        return Ok(StatementKind::If {
-            condition,
-            jump: None,
-        });
-    }
-    let Some(keyword) = take_name(scanner)? else {
-        return Err(after_condition(ahead(scanner)));
-    };
-    let Some(kind) = jump_kind(&keyword.value) else {
-        return Err(after_condition(keyword.span));
-    };
-    let jump = jump(scanner, kind, keyword.span)?;
-    Ok(StatementKind::If {
-        condition,
-        jump: Some(jump),
-    })
-}
-
-fn after_condition(span: Span) -> Alarm {
-    syntax(
-        span,
-        "expected a jump (GOTOF, GOTOB, GOTO, GOTOC) or the end of the block after the IF condition",
-    )
-    .with_help("an IF with other words after its condition is no SINUMERIK form; write IF cond, the blocks, ENDIF")
-}
-
-/// The condition of IF, WHILE or UNTIL.
-fn condition(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<Expr, Alarm> {
-    if scanner.at_end() {
-        return Err(
-            syntax(keyword.span, format!("{} needs a condition", keyword.value)).with_help(
-                format!(
-                    "write the condition after {}, as in {} R1>0",
-                    keyword.value, keyword.value
-                ),
-            ),
-        );
-    }
-    expr::parse(scanner)
-}
-
-/// `FOR variable = start TO end`.
-fn for_statement(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<StatementKind, Alarm> {
-    let help = "the form is FOR variable = start TO end";
-    if scanner.at_end() {
-        return Err(syntax(keyword.span, "FOR needs its counter").with_help(help));
-    }
-    let variable = expr::parse(scanner)?;
-    if !matches!(variable.kind, ExprKind::Name(_) | ExprKind::Index(..)) {
-        return Err(syntax(variable.span, "the counter of FOR must be a variable").with_help(help));
-    }
-    if !scanner.take_equals() {
-        return Err(syntax(ahead(scanner), "expected `=` after the FOR counter").with_help(help));
-    }
-    let start = expr::parse(scanner)?;
-    if take_keyword(scanner, "TO")?.is_none() {
-        return Err(
-            syntax(ahead(scanner), "expected TO after the start value of FOR").with_help(help),
-        );
-    }
-    let end = expr::parse(scanner)?;
-    Ok(StatementKind::For {
-        variable,
-        start,
-        end,
-    })
-}
-
-/// `REPEAT` alone (a loop head) or `REPEAT start [end] [P=n]`.
-fn repeat(scanner: &mut Scanner<'_>) -> Result<StatementKind, Alarm> {
-    if scanner.at_end() {
-        return Ok(StatementKind::Repeat);
-    }
-    let help = "the forms are REPEAT alone (a loop up to UNTIL) and REPEAT label [label] [P=n]";
-    let start = label(scanner, "REPEAT", help)?;
-    let end = match passes(scanner)? {
-        Some(passes) => {
-            return Ok(StatementKind::RepeatSection {
-                start,
-                end: None,
-                passes: Some(passes),
-            })
-        }
-        None if scanner.at_end() => None,
-        None => Some(label(scanner, "REPEAT", help)?),
-    };
-    Ok(StatementKind::RepeatSection {
-        start,
-        end,
-        passes: passes(scanner)?,
-    })
-}
-
-/// `REPEATB label [P=n]`.
-fn repeat_block(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<StatementKind, Alarm> {
-    let help = "the form is REPEATB label [P=n]";
-    if scanner.at_end() {
-        return Err(syntax(keyword.span, "REPEATB needs the label of its block").with_help(help));
-    }
-    let label = label(scanner, "REPEATB", help)?;
-    Ok(StatementKind::RepeatBlock {
-        label,
-        passes: passes(scanner)?,
-    })
-}
-
-/// `P=n` after the labels of REPEAT and REPEATB, if it comes.
-fn passes(scanner: &mut Scanner<'_>) -> Result<Option<Expr>, Alarm> {
-    let mark = scanner.mark();
-    scanner.skip_blanks();
-    let is_p = scanner
-        .peek_byte()
-        .is_some_and(|b| b.eq_ignore_ascii_case(&b'P'));
-    if is_p {
-        scanner.bump();
-        if scanner.take_equals() {
-            return expr::parse(scanner).map(Some);
         }
     }
-    scanner.reset(mark);
-    Ok(None)
-}
-
-/// A label name after REPEAT or REPEATB.
-fn label(scanner: &mut Scanner<'_>, keyword: &str, help: &str) -> Result<Name, Alarm> {
-    match take_name(scanner)? {
-        Some(name) => Ok(name),
-        None => {
-            Err(syntax(ahead(scanner), format!("expected a label after {keyword}")).with_help(help))
-        }
-    }
-}
-
-/// `CASE(expr) OF c1 GOTOF l1 ... DEFAULT GOTOF l`.
-fn case(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<Case, Alarm> {
-    let help = "the form is CASE(expression) OF constant GOTOF label ... DEFAULT GOTOF label";
-    if scanner.at_end() {
-        return Err(syntax(keyword.span, "CASE needs the expression it compares").with_help(help));
-    }
-    let selector = expr::parse(scanner)?;
-    if take_keyword(scanner, "OF")?.is_none() {
-        return Err(
-            syntax(ahead(scanner), "expected OF after the CASE expression").with_help(help),
-        );
-    }
-    let mut branches = Vec::new();
-    let mut default = None;
-    while !scanner.at_end() {
-        if let Some(word) = take_keyword(scanner, "DEFAULT")? {
-            default = Some(case_jump(scanner, word, help)?);
-            break;
-        }
-        let value = expr::parse(scanner)?;
-        let jump = case_jump(scanner, value.span, help)?;
-        branches.push(CaseBranch { value, jump });
-    }
-    if branches.is_empty() && default.is_none() {
-        return Err(syntax(keyword.span, "CASE has no branch").with_help(help));
-    }
-    Ok(Case {
-        selector,
-        branches,
-        default,
-    })
-}
-
-/// The jump after a CASE constant or DEFAULT (at `after`).
-fn case_jump(scanner: &mut Scanner<'_>, after: Span, help: &str) -> Result<Jump, Alarm> {
-    let keyword = take_name(scanner)?;
-    match keyword
-        .as_ref()
-        .and_then(|k| jump_kind(&k.value).map(|kind| (kind, k.span)))
-    {
-        Some((JumpKind::GotoS, span)) => {
-            Err(syntax(span, "a CASE branch needs a jump with a target").with_help(help))
-        }
-        Some((kind, span)) => jump(scanner, kind, span),
-        None => {
-            let at = keyword.map_or_else(|| ahead(scanner), |k| k.span);
-            Err(
-                syntax(at, "expected GOTOF or GOTOB after the CASE constant")
-                    .with_help(help)
-                    .with_label(after, "the constant or DEFAULT"),
-            )
-        }
-    }
-}
-
-/// A jump's target after its keyword (at `keyword`).
-fn jump(scanner: &mut Scanner<'_>, kind: JumpKind, keyword: Span) -> Result<Jump, Alarm> {
-    if kind == JumpKind::GotoS {
-        // PGAsl: GOTOS jumps to the program start and takes no target (manual L13290).
-        if !scanner.at_end() {
-            return Err(syntax(ahead(scanner), "GOTOS takes no target")
-                .with_help("GOTOS jumps back to the program start; GOTOB jumps back to a label"));
-        }
-        return Ok(Jump {
-            kind,
-            target: None,
-            span: keyword,
-        });
-    }
-    if scanner.at_end() {
-        return Err(syntax(keyword, "the jump has no target").with_help(
-            "write the label (GOTOF MARK1), a block number (GOTOB N100) or a STRING variable",
-        ));
-    }
-    let target = target(scanner)?;
-    Ok(Jump {
-        kind,
-        span: keyword.to(target.span()),
-        target: Some(target),
-    })
-}
-
-/// A jump target: a name alone, `N` and a block number, or a string expression.
-fn target(scanner: &mut Scanner<'_>) -> Result<JumpTarget, Alarm> {
-    let mark = scanner.mark();
-    let Some((token, span)) = scanner.next_token()? else {
-        return Err(syntax(ahead(scanner), "the jump has no target"));
-    };
-    let Token::Name(range) = token else {
-        // `"MARK"<<R1`, `("N"<<R1)`: an expression that gives the target.
-        scanner.reset(mark);
-        return expr::parse(scanner).map(JumpTarget::Expression);
-    };
-    let after = scanner.mark();
-    let suffix = matches!(scanner.peek_byte(), Some(b'[' | b'('));
-    scanner.skip_blanks();
-    let chained = scanner.text()[scanner.mark()..].starts_with(b"<<");
-    scanner.reset(after);
-    if suffix || chained {
-        scanner.reset(mark);
-        return expr::parse(scanner).map(JumpTarget::Expression);
-    }
-    let name = expr::upper(&scanner.text()[range]);
-    match block_number(&name) {
-        Some(Some(number)) => Ok(JumpTarget::BlockNumber(Spanned {
-            value: number,
-            span,
-        })),
-        Some(None) => Err(Alarm::error(
-            AlarmCode::BadNumber,
-            span,
-            "the block number of the jump is too large",
-        )
-        .with_help("a block number is at most 4294967295")),
-        None => Ok(JumpTarget::Label(Spanned { value: name, span })),
-    }
-}
-
-/// The number of `N123` (`Some(None)` when it does not fit), `None` for other names.
-fn block_number(name: &str) -> Option<Option<u32>> {
-    let digits = name.strip_prefix('N')?;
-    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        return None;
-    }
-    Some(digits.parse().ok())
-}
-
-/// The next token if it is a name, consumed, in upper case; the position stays otherwise.
-pub(super) fn take_name(scanner: &mut Scanner<'_>) -> Result<Option<Name>, Alarm> {
-    let mark = scanner.mark();
-    match scanner.next_token()? {
-        Some((Token::Name(range), span)) => Ok(Some(Spanned {
-            value: expr::upper(&scanner.text()[range]),
-            span,
-        })),
-        _ => {
-            scanner.reset(mark);
-            Ok(None)
-        }
-    }
-}
-
-/// The keyword `word` (upper case) if it comes next, consumed; its span.
-pub(super) fn take_keyword(scanner: &mut Scanner<'_>, word: &str) -> Result<Option<Span>, Alarm> {
-    let mark = scanner.mark();
-    match take_name(scanner)? {
-        Some(name) if &*name.value == word => Ok(Some(name.span)),
-        _ => {
-            scanner.reset(mark);
-            Ok(None)
-        }
-    }
-}
-
-/// The next token if it is `symbol`, consumed; its span.
-pub(super) fn take_symbol(scanner: &mut Scanner<'_>, symbol: &str) -> Result<Option<Span>, Alarm> {
-    let mark = scanner.mark();
-    match scanner.next_token()? {
-        Some((Token::Symbol(s), span)) if s == symbol => Ok(Some(span)),
-        _ => {
-            scanner.reset(mark);
-            Ok(None)
-        }
-    }
-}
-
-/// The span of the last byte read before the position that is no blank (an empty span at the
-/// start of the line).
-pub(super) fn written_to(scanner: &Scanner<'_>) -> Span {
-    let text = scanner.text();
-    let end = text[..scanner.mark()]
-        .iter()
-        .rposition(|&b| !is_blank(b))
-        .map_or(0, |i| i + 1);
-    scanner.span(end.saturating_sub(1)..end)
-}
-
-/// The span of the next byte that is no blank (empty at the end of the line), for an alarm
-/// about what comes next.
-pub(super) fn ahead(scanner: &mut Scanner<'_>) -> Span {
-    scanner.skip_blanks();
-    scanner.here()
-}
-
-/// The end of the block (or its comment) must follow the statement of `keyword`.
-fn end(scanner: &mut Scanner<'_>, keyword: &str) -> Result<(), Alarm> {
-    if scanner.at_end() {
-        return Ok(());
-    }
-    let from = scanner.mark();
-    let to = scanner.text()[from..]
-        .iter()
-        .position(|&b| b == b';')
-        .map_or(scanner.text().len(), |i| from + i);
-    let rest = scanner.span(from..to);
-    Err(syntax(
-        rest,
-        format!("unexpected text after the {keyword} statement"),
-    )
-    .with_help(format!(
-        "{keyword} stands in a block of its own, with nothing after it but a comment"
-    )))
-}
-
-/// The alarm of a malformed statement.
-pub(super) fn syntax(span: Span, message: impl Into<String>) -> Alarm {
-    Alarm::error(AlarmCode::MacroSyntax, span, message)
 }
