@@ -330,8 +330,8 @@ fn run_sinumerik(text: &str, setup: Setup<'_>) -> Option<Result<common::Run, Str
     for (i, (name, program)) in setup.subprograms.iter().enumerate() {
         library.insert_named(name, FileId(i as u32 + 1), program);
     }
-    let mut front_end = Sinumerik::new(text.as_bytes(), FileId(0), &machine)
-        .with_library(Box::new(library));
+    let mut front_end =
+        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
     for &level in setup.skip_levels {
         front_end = front_end.with_skip_level(level, true);
     }

@@ -6,17 +6,15 @@
 //! understand: an unknown address or name is an alarm naming it.
 
 use super::gcodes::{self, FeedType, FrameOp, Function, OneBlock};
+use super::language::Argument;
+use super::motion::{self, unit};
 use super::{Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::{Kernel, Origin};
 use crate::interp::modal::FeedMode;
 use crate::machine::{WorkOffsetId, AXES};
-use crate::motion::{
-    EndKind, PathMode, SegmentKind, SpindleState, StopKind, ToolGeometry,
-};
+use crate::motion::{EndKind, PathMode, SegmentKind, SpindleState, StopKind, ToolGeometry};
 use crate::source::Span;
-use super::language::Argument;
-use super::motion::{self, unit};
 use crate::syntax::sinumerik::{Block, Expr, ExprKind, Value, Word};
 
 /// The numbers given to tools called by a name the tool table lacks.
@@ -144,7 +142,9 @@ pub(super) fn run(
         _ => None,
     });
     if let Some((radius, span)) = words.rndm {
-        front.contour.set_modal_rounding(radius * unit(front), span)?;
+        front
+            .contour
+            .set_modal_rounding(radius * unit(front), span)?;
         front.rounding_modal = radius != 0.0;
     }
     let mut prepared = if dwell || suppress.is_some() {
@@ -210,11 +210,7 @@ pub(super) fn run(
 }
 
 /// Sorts the block's words; a word vcnc does not run is an alarm naming it.
-fn read<'a>(
-    front: &mut Sinumerik,
-    kernel: &Kernel,
-    block: &'a Block,
-) -> Result<Words<'a>, Alarm> {
+fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<Words<'a>, Alarm> {
     let mut words = Words::default();
     for word in &block.words {
         let address = &*word.address;
@@ -296,8 +292,10 @@ fn read<'a>(
                 words.call = Some((address.to_string(), word.span));
             }
             // An assignment: `R1=5`, `COUNT=COUNT+1`, `$P_UIFR[1,X,TR]=10`, `ARR[2]=7`.
-            _ if matches!(word.value, Value::Expression(_) | Value::Indexed(_, Some(_)))
-                && (address.starts_with('$') || front.is_variable(address)) =>
+            _ if matches!(
+                word.value,
+                Value::Expression(_) | Value::Indexed(_, Some(_))
+            ) && (address.starts_with('$') || front.is_variable(address)) =>
             {
                 let (indices, expr) = match &word.value {
                     Value::Expression(expr) => (&[][..], expr),

@@ -220,7 +220,12 @@ fn repeat(
 }
 
 /// Jumps as `jump` says from `line`.
-fn jump_to(front: &mut Sinumerik, kernel: &Kernel, jump: &Jump, line: usize) -> Result<Step, Alarm> {
+fn jump_to(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    jump: &Jump,
+    line: usize,
+) -> Result<Step, Alarm> {
     let program = front.levels.last().expect("a level").program;
     let label;
     let target = match &jump.target {

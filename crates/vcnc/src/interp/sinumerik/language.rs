@@ -13,9 +13,7 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
 use crate::machine::{ToolEdge, AXES};
 use crate::source::Span;
-use crate::syntax::sinumerik::{
-    DataType, Definition, Expr, ExprKind, Parameter, Procedure, Scope,
-};
+use crate::syntax::sinumerik::{DataType, Definition, Expr, ExprKind, Parameter, Procedure, Scope};
 
 /// The axis letters, by kernel index.
 pub(super) const AXIS_NAMES: [&str; AXES] = ["X", "Y", "Z", "A", "B", "C"];
@@ -192,7 +190,10 @@ impl Sinumerik {
 
     /// The truth of a condition.
     pub(super) fn condition(&mut self, kernel: &Kernel, expr: &Expr) -> Result<bool, Alarm> {
-        match self.evaluate(kernel, expr)?.convert(Type::Bool, expr.span)? {
+        match self
+            .evaluate(kernel, expr)?
+            .convert(Type::Bool, expr.span)?
+        {
             Value::Bool(b) => Ok(b),
             _ => unreachable!("converted to BOOL"),
         }
@@ -275,7 +276,12 @@ impl Sinumerik {
 
     /// Binds the arguments of a call (evaluated in the caller's level, before it is left) to the
     /// parameters of `procedure`, in the new level the call made.
-    pub(super) fn bind(&mut self, arguments: Vec<Argument>, procedure: &Procedure, span: Span) -> Result<(), Alarm> {
+    pub(super) fn bind(
+        &mut self,
+        arguments: Vec<Argument>,
+        procedure: &Procedure,
+        span: Span,
+    ) -> Result<(), Alarm> {
         if arguments.len() > procedure.parameters.len() {
             return Err(Alarm::error(
                 AlarmCode::MacroSyntax,
@@ -289,7 +295,9 @@ impl Sinumerik {
             ));
         }
         for (n, parameter) in procedure.parameters.iter().enumerate() {
-            let Some(name) = &parameter.name else { continue };
+            let Some(name) = &parameter.name else {
+                continue;
+            };
             let ty = value_type(parameter.data_type.value, parameter.data_type.span)?;
             match (arguments.get(n), parameter.by_reference) {
                 (Some(Argument::Place(place)), Some(_)) => {
@@ -301,8 +309,7 @@ impl Sinumerik {
                         .bind_reference(&name.value, &param, place.clone(), span)?;
                 }
                 (Some(Argument::Value(value)), None) => {
-                    self.vars
-                        .bind_value(&name.value, ty, value.clone(), span)?;
+                    self.vars.bind_value(&name.value, ty, value.clone(), span)?;
                 }
                 (Some(Argument::Place(place)), None) => {
                     // A variable passed by value: its value.
@@ -313,7 +320,10 @@ impl Sinumerik {
                     return Err(Alarm::error(
                         AlarmCode::BadVariable,
                         at,
-                        format!("VAR {} needs a variable in the call, not a value", name.value),
+                        format!(
+                            "VAR {} needs a variable in the call, not a value",
+                            name.value
+                        ),
                     ))
                 }
                 // A parameter left out keeps its type's default (PGAsl: omitted parameters).

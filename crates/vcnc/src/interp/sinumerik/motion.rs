@@ -37,6 +37,8 @@ pub(super) struct Tag {
 pub(super) enum Prepared {
     /// Nothing moves.
     None,
+    /// Nothing moves yet: the first block of a two-line ANG= definition waits for the second.
+    Waiting,
     /// Cuts of the contour: the held block's first (`held` of them), then this block's.
     Cuts { cuts: Vec<Cut<Tag>>, held: usize },
     /// A move made directly (no corner to wait for).
@@ -122,10 +124,20 @@ pub(super) fn prepare(
                 origin.span,
                 "a block with AP= or RP= takes no axis of the plane",
             )
-            .with_help("give the end point either by its polar angle and radius or by the plane's axes"));
+            .with_help(
+                "give the end point either by its polar angle and radius or by the plane's axes",
+            ));
         }
-        let start = [front.programmed[0], front.programmed[1], front.programmed[2]];
-        let kind = if arc { PolarMove::Circle } else { PolarMove::Line };
+        let start = [
+            front.programmed[0],
+            front.programmed[1],
+            front.programmed[2],
+        ];
+        let kind = if arc {
+            PolarMove::Circle
+        } else {
+            PolarMove::Line
+        };
         let block = PolarBlock {
             plane,
             start,
@@ -162,7 +174,7 @@ pub(super) fn prepare(
         let lines = match step {
             AngleStep::Held => {
                 advance(front, &target);
-                return Ok(Prepared::None);
+                return Ok(Prepared::Waiting);
             }
             AngleStep::Lines(lines) => lines,
         };
@@ -193,7 +205,8 @@ pub(super) fn prepare(
     let has_arc_data = words.centre.iter().any(Option::is_some)
         || words.radius.is_some()
         || words.opening.is_some();
-    if !moves && !(arc && has_arc_data) && motion != Motion::ThroughPoint {
+    let cip_data = motion == Motion::ThroughPoint && words.via.iter().any(Option::is_some);
+    if !moves && !(arc && has_arc_data) && !cip_data {
         return Ok(Prepared::None);
     }
     // With a rotation in the frame, every geometry axis goes to its programmed value
@@ -529,7 +542,7 @@ impl Prepared {
     /// Moves this block.
     pub(super) fn finish(self, front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> {
         match self {
-            Prepared::None => Ok(()),
+            Prepared::None | Prepared::Waiting => Ok(()),
             Prepared::Cuts { cuts, .. } => {
                 for cut in cuts {
                     execute(front, kernel, cut)?;
