@@ -90,6 +90,9 @@ pub struct ToolEdge {
     /// The edge radius, mm.
     #[serde(default)]
     pub radius: f64,
+    /// The number of teeth ($TC_DPNT), for a feed per tooth (FZ).
+    #[serde(default)]
+    pub teeth: Option<u32>,
 }
 
 fn first_edge() -> u32 {

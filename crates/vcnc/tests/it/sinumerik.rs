@@ -35,6 +35,7 @@ fn shop() -> Machine {
             length2: 0.0,
             length3: 0.0,
             radius: 5.0,
+            teeth: Some(4),
         });
     }
     machine

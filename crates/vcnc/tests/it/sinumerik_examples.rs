@@ -45,7 +45,7 @@ struct Tool {
     length: f64,
     #[serde(default)]
     radius: f64,
-    /// Number of teeth ($TC_DPNT) for FZ: `ToolEdge` has no field for it yet.
+    /// Number of teeth ($TC_DPNT) for FZ.
     teeth: Option<u32>,
 }
 
@@ -230,6 +230,7 @@ impl Example {
                 length2: 0.0,
                 length3: 0.0,
                 radius: tool.radius,
+                teeth: tool.teeth,
             })
             .collect();
         Ok(machine)
@@ -322,9 +323,8 @@ fn run_sinumerik(text: &str, setup: Setup<'_>) -> Option<Result<common::Run, Str
     if let Some(&sd) = setup.machine_data.get("SD42440") {
         settings.frame_change_in_increments = sd != 0.0;
     }
-    if !setup.fixed_points.is_empty() || !setup.teeth.is_empty() {
-        // G75 fixed points and tool teeth are not in the machine file yet: the examples that
-        // need them stop where the front end meets G75 or FZ.
+    if !setup.fixed_points.is_empty() {
+        // G75 fixed points are the machine's reference points 2.. (see reference_points).
     }
     let mut library = MemoryLibrary::new();
     for (i, (name, program)) in setup.subprograms.iter().enumerate() {

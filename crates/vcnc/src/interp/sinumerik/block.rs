@@ -8,12 +8,13 @@
 use super::gcodes::{self, FeedType, FrameOp, Function, OneBlock};
 use super::language::Argument;
 use super::motion::{self, unit};
+use super::spindle;
 use super::{Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::{Kernel, Origin};
 use crate::interp::modal::FeedMode;
 use crate::machine::{WorkOffsetId, AXES};
-use crate::motion::{EndKind, PathMode, SegmentKind, SpindleState, StopKind, ToolGeometry};
+use crate::motion::{EndKind, PathMode, SegmentKind, StopKind, ToolGeometry};
 use crate::source::Span;
 use crate::syntax::sinumerik::{Block, Expr, ExprKind, Value, Word};
 
@@ -60,13 +61,20 @@ pub(super) struct Words<'a> {
     pub(super) chf: Option<(f64, Span)>,
     pub(super) chr: Option<(f64, Span)>,
     pub(super) rndm: Option<(f64, Span)>,
+    /// SVC, LIMS, SPOS (its angle).
+    pub(super) svc: Option<(f64, Span)>,
+    pub(super) lims: Option<(f64, Span)>,
+    pub(super) spos: Option<(f64, Span)>,
+    /// FB (this block's feed), FZ (per tooth).
+    pub(super) fb: Option<(f64, Span)>,
+    pub(super) fz: Option<(f64, Span)>,
     /// RPL: the angle of a rotation in the plane.
     rpl: Option<(f64, Span)>,
-    feed: Option<(f64, Span)>,
-    speed: Option<(f64, Span)>,
-    tool: Option<(u32, Span)>,
-    edge: Option<(u32, Span)>,
-    m: Vec<(u32, Span)>,
+    pub(super) feed: Option<(f64, Span)>,
+    pub(super) speed: Option<(f64, Span)>,
+    pub(super) tool: Option<(u32, Span)>,
+    pub(super) edge: Option<(u32, Span)>,
+    pub(super) m: Vec<(u32, Span)>,
     call: Option<(String, Span)>,
     /// Warnings the words raised, for the stream.
     warnings: Vec<Alarm>,
@@ -136,6 +144,20 @@ pub(super) fn run(
         front.flush_contour(kernel)?;
         return pole(front, &words, reference, origin).map(|()| Step::Next);
     }
+    let speed_limit = words.functions.iter().find_map(|(f, _, w)| match f {
+        Function::SpeedLimit(max) => Some((*max, *w)),
+        _ => None,
+    });
+    if let Some((_, word)) = speed_limit {
+        if words.axes.iter().any(Option::is_some) {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                word.span,
+                format!("{} with axes is not run yet (planned: issue 22, the working area)", word.address),
+            ));
+        }
+    }
+    let speed_limit = speed_limit.map(|(max, _)| max);
     let dwell = one_block.iter().any(|(f, _)| *f == OneBlock::Dwell);
     let suppress = one_block.iter().find_map(|&(f, _)| match f {
         OneBlock::SuppressFrames | OneBlock::SuppressBasic | OneBlock::SuppressAll => Some(f),
@@ -156,13 +178,14 @@ pub(super) fn run(
         front.flush_contour(kernel)?;
     }
     prepared.release_held(front, kernel)?;
-    if let Some((feed, span)) = words.feed {
-        if !dwell {
-            set_feed(front, kernel, feed, span)?;
-        }
-    }
+    let limits = spindle::SpindleWords {
+        g25: speed_limit == Some(false),
+        g26: speed_limit == Some(true),
+    };
+    let mode = feed_mode(front.modal.feed_type);
     if !dwell {
-        spindle(front, kernel, &words, origin);
+        spindle::feed(front, kernel, &words, mode)?;
+        spindle::spindle(front, kernel, &words, &limits, origin)?;
     }
     tool(front, kernel, &words, origin)?;
     for &(code, span) in &words.m {
@@ -182,6 +205,8 @@ pub(super) fn run(
         Some(level) => motion::suppressed_move(front, kernel, &words, level, origin)?,
         None => prepared.finish(front, kernel)?,
     }
+    spindle::constant_rate(front, kernel, origin);
+    spindle::restore_feed(front, kernel, mode);
     for &(code, span) in &words.m {
         if let Some(kind) = stop_kind(code) {
             kernel.event(SegmentKind::Stop { kind }, Origin { span, ..origin });
@@ -236,6 +261,8 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
                 words.centre[i] = Some(axis_value(front, kernel, word)?);
             }
             "CR" => words.radius = Some((number(front, kernel, word)?, word.span)),
+            // H functions go to the machine's PLC; they move nothing (H=QU(..) included).
+            "H" => {}
             "I1" | "J1" | "K1" => {
                 let i = (address.as_bytes()[0] - b'I') as usize;
                 words.via[i] = Some(axis_value(front, kernel, word)?);
@@ -249,6 +276,20 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             "CHF" => words.chf = Some((number(front, kernel, word)?, word.span)),
             "CHR" => words.chr = Some((number(front, kernel, word)?, word.span)),
             "RNDM" => words.rndm = Some((number(front, kernel, word)?, word.span)),
+            "SVC" => words.svc = Some((number(front, kernel, word)?, word.span)),
+            "LIMS" => words.lims = Some((number(front, kernel, word)?, word.span)),
+            "FB" => words.fb = Some((number(front, kernel, word)?, word.span)),
+            "FZ" => words.fz = Some((number(front, kernel, word)?, word.span)),
+            // The master spindle by its number: S1=, M1=3, SPOS / SPOS[1].
+            "S1" => words.speed = Some((number(front, kernel, word)?, word.span)),
+            "M1" => {
+                let code = whole(front, kernel, word)?;
+                words.m.push((code, word.span));
+            }
+            "SPOS" => words.spos = Some((spindle_position(front, kernel, word)?, word.span)),
+            // Overrides and feed groups: the operator's panel and the path's axes; they change
+            // no position (docs/SINUMERIK.md 1, accepted as state).
+            "OVR" | "OVRRAP" | "OVRA" | "ACC" | "FGROUP" | "FGREF" | "FL" | "SETMS" => {}
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
             "S" => words.speed = Some((number(front, kernel, word)?, word.span)),
@@ -474,8 +515,13 @@ pub(super) fn apply_modal(
             kernel.select_work_offset(settable_id(n, front.is_828d()));
         }
         Function::ExactStop => front.modal.exact_stop = true,
+        Function::CuttingRate(constant, feed_type) => {
+            front.spindle.constant_rate = constant.then_some(feed_mode(feed_type));
+            apply_modal(front, kernel, Function::FeedType(feed_type), _span)?;
+        }
         Function::Frame(_)
         | Function::Pole(_)
+        | Function::SpeedLimit(_)
         | Function::State
         | Function::OneBlock(_)
         | Function::Planned
@@ -499,40 +545,6 @@ fn feed_mode(feed_type: FeedType) -> FeedMode {
         FeedType::InverseTime => FeedMode::InverseTime,
         FeedType::PerMinute => FeedMode::PerMinute,
         FeedType::PerRevolution => FeedMode::PerRevolution,
-    }
-}
-
-/// F: converted with the unit under G700/G710 only.
-fn set_feed(front: &Sinumerik, kernel: &mut Kernel, feed: f64, span: Span) -> Result<(), Alarm> {
-    if feed < 0.0 {
-        return Err(Alarm::error(
-            AlarmCode::BadFeedRate,
-            span,
-            "the feed cannot be negative",
-        ));
-    }
-    let factor = if front.modal.inch && front.modal.inch_feeds {
-        25.4
-    } else {
-        1.0
-    };
-    kernel.set_feed_in(feed_mode(front.modal.feed_type), Some(feed * factor));
-    Ok(())
-}
-
-/// S, M3, M4, M5, M19: before the motion (docs/SINUMERIK.md 3.2 step 7).
-fn spindle(front: &Sinumerik, kernel: &mut Kernel, words: &Words<'_>, origin: Origin) {
-    let _ = front;
-    let state = words.m.iter().find_map(|&(code, _)| match code {
-        3 => Some(SpindleState::Clockwise),
-        4 => Some(SpindleState::CounterClockwise),
-        5 => Some(SpindleState::Stopped),
-        19 => Some(SpindleState::Oriented),
-        _ => None,
-    });
-    let speed = words.speed.map(|(s, _)| s);
-    if speed.is_some() || state.is_some() {
-        kernel.spindle(speed, state, origin);
     }
 }
 
@@ -798,6 +810,28 @@ fn whole(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<u32, Ala
         ));
     }
     Ok(value as u32)
+}
+
+/// SPOS=angle or SPOS[1]=angle: the master spindle positioned (an oriented stop in the
+/// stream); other spindles are not on a 3-axis mill.
+fn spindle_position(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<f64, Alarm> {
+    match &word.value {
+        Value::Indexed(indices, Some(value)) => {
+            let spindle = match indices.as_slice() {
+                [index] => front.value(kernel, index)?,
+                _ => 0.0,
+            };
+            if spindle != 1.0 {
+                return Err(Alarm::error(
+                    AlarmCode::NotInProduct,
+                    word.span,
+                    format!("SPOS[{spindle}] addresses a spindle other than the master spindle, which vcnc does not simulate"),
+                ));
+            }
+            front.value(kernel, value)
+        }
+        _ => number(front, kernel, word),
+    }
 }
 
 /// T by number, or `T="name"` from the machine's tool table.

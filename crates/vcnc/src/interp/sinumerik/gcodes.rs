@@ -28,6 +28,11 @@ pub(super) enum Function {
     Frame(FrameOp),
     /// G110, G111, G112: the pole of polar coordinates.
     Pole(Pole),
+    /// G96, G961 (a constant cutting rate, true) or G97, G971, with the feed type each sets.
+    CuttingRate(bool, FeedType),
+    /// G25 (false) or G26 (true): with S, the spindle's speed limits; with axes, the working
+    /// area (issue 22).
+    SpeedLimit(bool),
     /// Kept as state: no geometric effect on a 3-axis mill (or the planner's default already).
     State,
     /// The next SINUMERIK issue adds it.
@@ -208,6 +213,12 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G58" if m828d => Settable(5),
         "G59" if m828d => Settable(6),
         "G60" => ExactStop,
+        "G96" => CuttingRate(true, self::FeedType::PerRevolution),
+        "G961" => CuttingRate(true, self::FeedType::PerMinute),
+        "G97" => CuttingRate(false, self::FeedType::PerRevolution),
+        "G971" => CuttingRate(false, self::FeedType::PerMinute),
+        "G25" => SpeedLimit(false),
+        "G26" => SpeedLimit(true),
         "G110" => Pole(self::Pole::LastPoint),
         "G111" => Pole(self::Pole::WorkZero),
         "G112" => Pole(self::Pole::LastPole),
@@ -231,8 +242,8 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G41" | "G42" | "G451" | "G64" | "G641" | "G642" | "G643" | "G644" | "G645" | "KONT"
         | "KONTT" | "KONTC" | "CUT2DF" | "G140" | "G141" | "G142" | "G143" | "G147" | "G148"
         | "G247" | "G248" | "G347" | "G348" | "G340" | "G341" | "G460" | "G461" | "G462"
-        | "G25" | "G26" | "CUTCONON" | "CUTCONOF" | "FLIN" | "FCUB" | "G33" | "G331" | "G332"
-        | "G63" | "G74" | "G75" | "G96" | "G961" | "G97" | "G971" | "G291" => Planned,
+        | "CUTCONON" | "CUTCONOF" | "FLIN" | "FCUB" | "G33" | "G331" | "G332" | "G63" | "G74"
+        | "G75" | "G291" => Planned,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
         }

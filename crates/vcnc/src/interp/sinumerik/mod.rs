@@ -24,6 +24,7 @@ mod language;
 mod motion;
 mod polar;
 mod program;
+mod spindle;
 mod value;
 mod vars;
 
@@ -62,6 +63,12 @@ pub struct Sinumerik {
     iterations: u64,
     /// The last block's span, for the alarm at the end of the text.
     last_span: Span,
+    /// The spindle's cutting rate and limits.
+    spindle: spindle::Spindle,
+    /// The modal feed to restore after a block with FB.
+    block_feed_restore: Option<Option<f64>>,
+    /// FZ in force: the feed per tooth.
+    tooth_feed: Option<f64>,
     /// The pole and the stored polar angle and radius.
     polar: polar::Polar,
     /// A two-line ANG= definition waiting for its second block.
@@ -156,6 +163,9 @@ impl Sinumerik {
             frame: frame::ProgrammableFrame::default(),
             unknown_tools: std::collections::HashMap::new(),
             polar: polar::Polar::new(),
+            spindle: spindle::Spindle::default(),
+            block_feed_restore: None,
+            tooth_feed: None,
             angle_lines: contour::AngleLines::new(),
             contour: contour::Contour::new(),
             rounding_modal: false,
