@@ -258,6 +258,11 @@ impl Kernel {
         self.state.frames.select(id);
     }
 
+    /// Sets one axis of a work offset register (a program writing its settable frames).
+    pub fn set_work_offset(&mut self, id: WorkOffsetId, axis: usize, value: f64) {
+        self.state.frames.set_work_offset(id, axis, value);
+    }
+
     /// The tool length applied along Z from here on (the next move of Z travels it).
     pub fn set_tool_length(&mut self, length: f64) {
         self.state.frames.set_length_vector(length);

@@ -65,6 +65,8 @@ pub(super) struct Words<'a> {
     pub(super) svc: Option<(f64, Span)>,
     pub(super) lims: Option<(f64, Span)>,
     pub(super) spos: Option<(f64, Span)>,
+    /// OVR: the path override, percent.
+    pub(super) override_percent: Option<f64>,
     /// FB (this block's feed), FZ (per tooth).
     pub(super) fb: Option<(f64, Span)>,
     pub(super) fz: Option<(f64, Span)>,
@@ -105,6 +107,7 @@ pub(super) fn run(
         sequence: block.number,
     };
     let mut words = read(front, kernel, block)?;
+    front.apply_frame_writes(kernel);
     for warning in words.warnings.drain(..) {
         kernel.warn(warning);
     }
@@ -153,7 +156,7 @@ pub(super) fn run(
             return Err(Alarm::error(
                 AlarmCode::NotSupportedYet,
                 word.span,
-                format!("{} with axes is not run yet (planned: issue 22, the working area)", word.address),
+                "G25 and G26 with axes are not run yet (planned: issue 22, the working area)",
             ));
         }
     }
@@ -183,11 +186,13 @@ pub(super) fn run(
         g26: speed_limit == Some(true),
     };
     let mode = feed_mode(front.modal.feed_type);
+    // The tool first: SVC and FZ in its block read the new edge, and the spindle starts with
+    // the new tool in it (docs/SINUMERIK.md 3.2 steps 6-8).
+    tool(front, kernel, &words, origin)?;
     if !dwell {
         spindle::feed(front, kernel, &words, mode)?;
         spindle::spindle(front, kernel, &words, &limits, origin)?;
     }
-    tool(front, kernel, &words, origin)?;
     for &(code, span) in &words.m {
         auxiliary(kernel, code, Origin { span, ..origin });
     }
@@ -239,6 +244,16 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
     let mut words = Words::default();
     for word in &block.words {
         let address = &*word.address;
+        if let Some(what) = gcodes::other_unit(address, &word.value) {
+            return Err(Alarm::error(
+                AlarmCode::NotInProduct,
+                word.span,
+                format!(
+                    "{} belongs to {what}, which vcnc does not simulate",
+                    written(word)
+                ),
+            ));
+        }
         if let Some((function, group)) = gcodes_word(front, word)? {
             words.functions.push((function, group, word));
             continue;
@@ -289,7 +304,19 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             "SPOS" => words.spos = Some((spindle_position(front, kernel, word)?, word.span)),
             // Overrides and feed groups: the operator's panel and the path's axes; they change
             // no position (docs/SINUMERIK.md 1, accepted as state).
-            "OVR" | "OVRRAP" | "OVRA" | "ACC" | "FGROUP" | "FGREF" | "FL" | "SETMS" => {}
+            "OVR" => {
+                let percent = number(front, kernel, word)?;
+                if !(0.0..=200.0).contains(&percent) {
+                    return Err(Alarm::error(
+                        AlarmCode::ValueOutOfRange,
+                        word.span,
+                        format!("OVR={percent}: the path override is 0 to 200 %"),
+                    ));
+                }
+                words.override_percent = Some(percent);
+            }
+            "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" => {}
+            "FGROUP" => feed_group(word)?,
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
             "S" => words.speed = Some((number(front, kernel, word)?, word.span)),
@@ -320,7 +347,7 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             // CYCLE832 sets the tolerance and path mode of high-speed milling: state for the
             // planner of issue 22; CYCLE800 without a rotation resets the swivel vcnc does not
             // have (docs/SINUMERIK.md 1).
-            "CYCLE832" => {}
+            "CYCLE832" | "CPRECON" | "CPRECOF" => {}
             // The blank of ShopMill programs: the simulation's stock (issue 21), no motion.
             "WORKPIECE" => {}
             "CYCLE800" => swivel(front, kernel, word)?,
@@ -408,10 +435,55 @@ fn swivel(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Ala
     Ok(())
 }
 
+/// FGROUP: the axes the path feed is measured along. The geometry axes (the default, or
+/// FGROUP() to reset) change nothing; other groups change the time of every move.
+fn feed_group(word: &Word) -> Result<(), Alarm> {
+    let axes: Vec<&str> = match &word.value {
+        Value::Call(arguments) => arguments
+            .iter()
+            .flatten()
+            .map(|e| match &e.kind {
+                ExprKind::Name(name) => &**name,
+                _ => "?",
+            })
+            .collect(),
+        _ => Vec::new(),
+    };
+    let mut sorted = axes.clone();
+    sorted.sort_unstable();
+    if sorted.is_empty() || sorted == ["X", "Y", "Z"] {
+        return Ok(());
+    }
+    Err(Alarm::error(
+        AlarmCode::NotSupportedYet,
+        word.span,
+        format!(
+            "FGROUP({}) is not run yet: vcnc measures the path feed along X, Y and Z",
+            axes.join(",")
+        ),
+    )
+    .with_help("the feed along other axes comes with the rotary axes' own speeds (5-axis work)"))
+}
+
+/// A word as the program wrote it, for messages: `M2=70`, `SVC[2]`, `POSA`.
+fn written(word: &Word) -> String {
+    match &word.value {
+        Value::Constant(n) => format!("{}{}", word.address, n.value),
+        Value::Expression(Expr {
+            kind: ExprKind::Number(n),
+            ..
+        }) => format!("{}={n}", word.address),
+        Value::Indexed(..) => format!("{}[..]", word.address),
+        _ => word.address.to_string(),
+    }
+}
+
 /// The alarm of a word vcnc does not run: out of the product, planned, or unknown.
 fn unknown_word(word: &Word) -> Alarm {
     let name = &*word.address;
-    if let Some(what) = gcodes::out_of_product(name) {
+    if let Some(what) =
+        gcodes::out_of_product(name).or_else(|| gcodes::other_unit(name, &word.value))
+    {
         return Alarm::error(
             AlarmCode::NotInProduct,
             word.span,
@@ -507,6 +579,7 @@ pub(super) fn apply_modal(
             // A change of feed type leaves no feed in force (docs/SINUMERIK.md 4.1).
             if feed_type != front.modal.feed_type {
                 front.modal.feed_type = feed_type;
+                front.programmed_feed = None;
                 kernel.set_feed_in(feed_mode(feed_type), None);
             }
         }
@@ -761,8 +834,10 @@ fn axis_value(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Axi
         ..
     }) = &word.value
     {
+        // DC, ACP and ACN position a rotary axis absolutely by the shortest way or in a
+        // direction; vcnc's rotary axes do not roll over, so they are absolute (a choice).
         let absolute = match &**name {
-            "AC" => Some(true),
+            "AC" | "DC" | "ACP" | "ACN" => Some(true),
             "IC" => Some(false),
             _ => None,
         };

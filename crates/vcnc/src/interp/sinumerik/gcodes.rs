@@ -281,9 +281,57 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
         "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIEULER" | "ORIRPY" => {
             "orientation transformations"
         }
-        "TRAFOOF" => return None,
+        "SCC" => "turning (the transverse axis of a constant cutting rate)",
+        "GEOAX" | "TOFRAME" | "TOROT" | "TOFRAMEZ" | "TOFRAMEX" | "TOFRAMEY" => {
+            "changing the geometry axes or the tool's orientation"
+        }
+        "SPOSA" | "WAITS" | "FA" | "FPR" | "FPRAON" | "FPRAOF" | "POS" | "POSA" | "WAITP"
+        | "FDA" | "FMA" | "FAD" => "positioning axes and spindles moving on their own",
+        "LFON" | "LFOF" | "LIFTFAST" | "POLF" | "POLFMASK" | "POLFMLIN" | "DITS" | "DITE" => {
+            "fast retraction and thread run-in or run-out of turning"
+        }
+        "VELOLIMA" | "ACCLIMA" | "JERKLIMA" | "EGONSYN" => {
+            "the axes' dynamic limits and electronic gears"
+        }
+        "IDS" | "ID" | "WHEN" | "WHENEVER" | "EVERY" | "FROM" | "DO" => {
+            "synchronized actions (the control's real-time events)"
+        }
+        _ if name.starts_with("$MA_") || name.starts_with("$MC_") || name.starts_with("$MN_") => {
+            "the control's machine data"
+        }
+        _ if name.starts_with("$TC_MPP")
+            || name.starts_with("$AC_")
+            || name.starts_with("$AA_")
+            || name.starts_with("$SA_") =>
+        {
+            "the control's real-time and magazine data"
+        }
         _ => return None,
     })
+}
+
+/// What an address with a number names beyond the master spindle and the path (`S2=`, `M2=`,
+/// `F7=`, `SVC[2]`): units a 3-axis mill with one spindle does not have.
+pub(super) fn other_unit(
+    name: &str,
+    value: &crate::syntax::sinumerik::Value,
+) -> Option<&'static str> {
+    let extended = |letter: &str| {
+        name.strip_prefix(letter)
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) && n != "1")
+    };
+    if extended("S") || extended("M") || extended("SPOS") {
+        return Some("spindles other than the master spindle");
+    }
+    if extended("F") {
+        return Some("feeds of several axes or in synchronized actions (F1 to F7)");
+    }
+    if matches!(name, "SVC" | "LIMS" | "SPOS")
+        && matches!(value, crate::syntax::sinumerik::Value::Indexed(..))
+    {
+        return Some("spindles other than the master spindle");
+    }
+    None
 }
 
 /// Predefined procedures and cycles the next SINUMERIK issue adds.

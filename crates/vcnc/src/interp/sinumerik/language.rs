@@ -25,7 +25,9 @@ pub(super) struct Machine<'a> {
     pub(super) axes: &'a [bool; AXES],
     pub(super) frame: &'a ProgrammableFrame,
     pub(super) tool: &'a ToolState,
-    pub(super) tools: &'a [ToolEdge],
+    pub(super) tools: &'a mut Vec<ToolEdge>,
+    /// Settable frames the program wrote ($P_UIFR), for the kernel after the block's words.
+    pub(super) frame_writes: &'a mut Vec<(u32, usize, f64)>,
     pub(super) modal: &'a Modal,
 }
 
@@ -42,7 +44,8 @@ pub(super) fn split<'a>(
             axes: &front.axes,
             frame: &front.frame,
             tool: &front.tool,
-            tools: &front.tools,
+            tools: &mut front.tools,
+            frame_writes: &mut front.frame_writes,
             modal: &front.modal,
         },
     )
@@ -152,12 +155,112 @@ impl Environment for Machine<'_> {
                 let id = super::block::settable_id(n as u32, false);
                 real(self.kernel.state().frames.work_offset(id)[axis])
             }
+            _ if super::gcodes::out_of_product(name).is_some() => Err(Alarm::error(
+                AlarmCode::NotInProduct,
+                span,
+                format!(
+                    "{name} belongs to {}, which vcnc does not simulate",
+                    super::gcodes::out_of_product(name).unwrap_or_default()
+                ),
+            )),
             _ => Err(Alarm::error(
                 AlarmCode::NotSupportedYet,
                 span,
                 format!("the system variable {name} is not modelled by vcnc"),
             )
             .with_help("vcnc reads $AA_IM, $AA_IW, $P_EP, $P_TOOLNO, $P_TOOL, $P_F, $P_S, $P_GG, $P_PFRAME, $P_UIFR and $TC_DP1..6")),
+        }
+    }
+
+    fn write_system_variable(
+        &mut self,
+        name: &str,
+        indices: &[Value],
+        value: Value,
+        span: Span,
+    ) -> Result<(), Alarm> {
+        let number = |v: &Value| -> Result<f64, Alarm> {
+            v.as_f64().ok_or_else(|| {
+                Alarm::error(AlarmCode::MacroArithmetic, span, "a number is needed here")
+            })
+        };
+        match name {
+            // The tool table's edge data (PGsl 5; $TC_DP1 type, 3-5 lengths, 6 radius).
+            "$TC_DP1" | "$TC_DP3" | "$TC_DP4" | "$TC_DP5" | "$TC_DP6" | "$TC_DPNT" => {
+                let whole = |v: Option<&Value>| v.and_then(Value::as_f64).map(|x| x as u32);
+                let (Some(t), Some(d)) = (whole(indices.first()), whole(indices.get(1))) else {
+                    return Err(Alarm::error(
+                        AlarmCode::BadVariable,
+                        span,
+                        format!("{name} takes the tool and the edge: {name}[1,1]"),
+                    ));
+                };
+                let value = number(&value)?;
+                let edge = match self.tools.iter_mut().position(|e| e.t == t && e.d == d) {
+                    Some(i) => &mut self.tools[i],
+                    None => {
+                        self.tools.push(ToolEdge {
+                            t,
+                            name: None,
+                            d,
+                            tool_type: 120,
+                            length: 0.0,
+                            length2: 0.0,
+                            length3: 0.0,
+                            radius: 0.0,
+                            teeth: None,
+                        });
+                        self.tools.last_mut().expect("just pushed")
+                    }
+                };
+                match name {
+                    "$TC_DP1" => edge.tool_type = value as u32,
+                    "$TC_DP3" => edge.length = value,
+                    "$TC_DP4" => edge.length2 = value,
+                    "$TC_DP5" => edge.length3 = value,
+                    "$TC_DP6" => edge.radius = value,
+                    _ => edge.teeth = Some(value as u32),
+                }
+                Ok(())
+            }
+            // A settable frame's translation: `$P_UIFR[1,X,TR]=10` (or `$P_UIFR[1,X]`).
+            "$P_UIFR" => {
+                let n = indices.first().and_then(Value::as_f64).unwrap_or(-1.0);
+                let axis = self.axis(indices.get(1), span)?;
+                let part = match indices.get(2) {
+                    Some(Value::Str(part) | Value::Axis(part)) => part.as_str(),
+                    _ => "TR",
+                };
+                if part != "TR" || !(0.0..=99.0).contains(&n) || n.fract() != 0.0 {
+                    return Err(Alarm::error(
+                        AlarmCode::NotSupportedYet,
+                        span,
+                        "vcnc's settable frames hold translations: $P_UIFR[n, axis, TR] only",
+                    ));
+                }
+                self.frame_writes.push((n as u32, axis, number(&value)?));
+                Ok(())
+            }
+            _ if name.starts_with("$P_WORKAREA") || name.starts_with("$SA_WORKAREA") => {
+                Err(Alarm::error(
+                    AlarmCode::NotSupportedYet,
+                    span,
+                    format!("{name} is not run yet (planned: issue 22, the working area)"),
+                ))
+            }
+            _ if super::gcodes::out_of_product(name).is_some() => Err(Alarm::error(
+                AlarmCode::NotInProduct,
+                span,
+                format!(
+                    "{name} belongs to {}, which vcnc does not simulate",
+                    super::gcodes::out_of_product(name).unwrap_or_default()
+                ),
+            )),
+            _ => Err(Alarm::error(
+                AlarmCode::BadVariable,
+                span,
+                format!("{name} cannot be written by a program"),
+            )),
         }
     }
 
@@ -242,6 +345,17 @@ impl Sinumerik {
     ) -> Result<(), Alarm> {
         let (vars, mut machine) = split(self, kernel);
         eval::assign_expr(vars, &mut machine, name, indices, expr, span)
+    }
+
+    /// The settable frames the block's assignments wrote, into the kernel's work offsets.
+    pub(super) fn apply_frame_writes(&mut self, kernel: &mut Kernel) {
+        for (n, axis, value) in self.frame_writes.drain(..) {
+            let id = super::block::settable_id(
+                n,
+                self.settings.variant == crate::profile::Variant::M828d,
+            );
+            kernel.set_work_offset(id, axis, value);
+        }
     }
 
     /// True when `name` is an R parameter or a variable visible here.

@@ -63,10 +63,16 @@ pub struct Sinumerik {
     iterations: u64,
     /// The last block's span, for the alarm at the end of the text.
     last_span: Span,
+    /// Settable frames written by the block being read ($P_UIFR).
+    frame_writes: Vec<(u32, usize, f64)>,
     /// The spindle's cutting rate and limits.
     spindle: spindle::Spindle,
     /// The modal feed to restore after a block with FB.
     block_feed_restore: Option<Option<f64>>,
+    /// The path override OVR, as a factor.
+    feed_override: f64,
+    /// The programmed F in force, mm/min or mm/rev (before OVR).
+    programmed_feed: Option<f64>,
     /// FZ in force: the feed per tooth.
     tooth_feed: Option<f64>,
     /// The pole and the stored polar angle and radius.
@@ -164,8 +170,11 @@ impl Sinumerik {
             unknown_tools: std::collections::HashMap::new(),
             polar: polar::Polar::new(),
             spindle: spindle::Spindle::default(),
+            frame_writes: Vec::new(),
             block_feed_restore: None,
             tooth_feed: None,
+            feed_override: 1.0,
+            programmed_feed: None,
             angle_lines: contour::AngleLines::new(),
             contour: contour::Contour::new(),
             rounding_modal: false,

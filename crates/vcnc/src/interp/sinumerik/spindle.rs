@@ -105,7 +105,9 @@ pub(super) fn spindle(
     let max_rpm = kernel.state().setup.machine().spindle.max_rpm;
     let rpm = match speed {
         Some(s) => Some(s),
-        None if front.spindle.from_svc && (words.svc.is_some() || words.tool.is_some() || words.edge.is_some()) => {
+        None if front.spindle.from_svc
+            && (words.svc.is_some() || words.tool.is_some() || words.edge.is_some()) =>
+        {
             // SVC: the speed of the cutting rate at the tool's radius (PGsl 6.2, L1890-1906).
             let radius = front.edge().map_or(0.0, |e| e.radius);
             if radius <= 0.0 {
@@ -178,41 +180,54 @@ pub(super) fn feed(
     } else {
         1.0
     };
+    if let Some(percent) = words.override_percent {
+        front.feed_override = percent / 100.0;
+    }
+    let factor = front.feed_override;
     if let Some((f, span)) = words.feed {
         check_feed(f, span)?;
         front.block_feed_restore = None;
         front.tooth_feed = None;
-        kernel.set_feed_in(mode, Some(f * unit));
+        front.programmed_feed = Some(f * unit);
+    }
+    if words.feed.is_some() || words.override_percent.is_some() {
+        // OVR scales the programmed feed as the panel's override would (PGsl 7.5).
+        if let Some(f) = front.programmed_feed.filter(|_| front.tooth_feed.is_none()) {
+            kernel.set_feed_in(mode, Some(f * factor));
+        }
     }
     if let Some((fz, span)) = words.fz {
         check_feed(fz, span)?;
         front.tooth_feed = Some(fz * unit);
     }
-    if words.fz.is_some() || (front.tooth_feed.is_some() && (words.tool.is_some() || words.edge.is_some())) {
+    if words.fz.is_some()
+        || (front.tooth_feed.is_some() && (words.tool.is_some() || words.edge.is_some()))
+    {
         let fz = front.tooth_feed.unwrap_or(0.0);
         if mode != FeedMode::PerRevolution {
             return Err(Alarm::error(
                 AlarmCode::WordNotAllowed,
-                words.fz.map_or(Span::new(front.last_span.file, front.last_span.line, 0..0), |(_, s)| s),
+                words.fz.map_or(
+                    Span::new(front.last_span.file, front.last_span.line, 0..0),
+                    |(_, s)| s,
+                ),
                 "FZ, the feed per tooth, acts under G95",
             )
             .with_help("program G95 with FZ, or F under G94"));
         }
+        // Without an edge whose teeth are known there is no feed yet: a cut then alarms, as
+        // it would without F.
         let teeth = front.edge().and_then(|e| e.teeth).unwrap_or(0);
         if teeth == 0 {
-            return Err(Alarm::error(
-                AlarmCode::WordNotAllowed,
-                words.fz.map_or(front.last_span, |(_, s)| s),
-                "FZ needs the number of teeth of the active edge ($TC_DPNT)",
-            )
-            .with_help("give the tool's teeth in the machine file ([[tools]] teeth = n)"));
+            kernel.set_feed_in(mode, None);
+            return Ok(());
         }
-        kernel.set_feed_in(mode, Some(fz * f64::from(teeth)));
+        kernel.set_feed_in(mode, Some(fz * f64::from(teeth) * factor));
     }
     if let Some((fb, span)) = words.fb {
         check_feed(fb, span)?;
         front.block_feed_restore = Some(kernel.state().feed);
-        kernel.set_feed_in(mode, Some(fb * unit));
+        kernel.set_feed_in(mode, Some(fb * unit * factor));
     }
     Ok(())
 }
