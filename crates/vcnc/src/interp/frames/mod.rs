@@ -47,6 +47,9 @@ pub(crate) struct Frames {
     local: [f64; AXES],
     /// The tool length offset applied to the Z position now.
     length_vector: f64,
+    /// The tool length along X and Y: SINUMERIK's lengths by plane (G18, G19, TOFF), zero on
+    /// the ISO side.
+    lateral_length: [f64; 2],
     /// The work coordinate system in use (kept equal to the modal state's by the executor).
     active: WorkOffsetId,
     /// Work + external + G92 + G52 of `active`: every block needs it and it changes only when an
@@ -70,6 +73,7 @@ impl Frames {
             g92: [0.0; AXES],
             local: [0.0; AXES],
             length_vector: 0.0,
+            lateral_length: [0.0; 2],
             active: WorkOffsetId::Standard(1),
             shift: [0.0; AXES],
             offset: [0.0; AXES],
@@ -195,6 +199,8 @@ impl Frames {
         let work = self.work_offset(self.active);
         let external = self.work_offset(WorkOffsetId::External);
         self.shift = std::array::from_fn(|i| work[i] + external[i] + self.g92[i] + self.local[i]);
+        self.shift[0] += self.lateral_length[0];
+        self.shift[1] += self.lateral_length[1];
         self.offset = self.shift;
         self.offset[2] += self.length_vector;
     }
@@ -209,6 +215,20 @@ impl Frames {
     pub(crate) fn set_length_vector(&mut self, length: f64) {
         self.length_vector = length;
         self.offset[2] = self.shift[2] + length;
+    }
+
+    /// The tool length along X and Y (SINUMERIK's length by plane); the Z part is
+    /// [`Frames::set_length_vector`]'s.
+    pub(crate) fn set_lateral_length(&mut self, length: [f64; 2]) {
+        if length != self.lateral_length {
+            self.lateral_length = length;
+            self.recompute();
+        }
+    }
+
+    /// The tool length along X and Y.
+    pub(crate) fn lateral_length(&self) -> [f64; 2] {
+        self.lateral_length
     }
 
     /// The value of a work offset register.

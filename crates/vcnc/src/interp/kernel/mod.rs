@@ -268,6 +268,13 @@ impl Kernel {
         self.state.frames.set_length_vector(length);
     }
 
+    /// The tool's offset vector along X, Y and Z from here on (a length by plane: along Y in
+    /// G18); each axis's next move travels its part.
+    pub fn set_tool_vector(&mut self, vector: [f64; 3]) {
+        self.state.frames.set_lateral_length([vector[0], vector[1]]);
+        self.state.frames.set_length_vector(vector[2]);
+    }
+
     /// A rapid to a machine position (a frame-suppressing block: G53, SUPA).
     pub(crate) fn rapid_to_machine(
         &mut self,

@@ -9,12 +9,13 @@ use super::gcodes::{self, FeedType, FrameOp, Function, OneBlock};
 use super::language::Argument;
 use super::motion::{self, unit};
 use super::spindle;
+use super::tools;
 use super::{Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::{Kernel, Origin};
 use crate::interp::modal::FeedMode;
 use crate::machine::{WorkOffsetId, AXES};
-use crate::motion::{EndKind, PathMode, SegmentKind, StopKind, ToolGeometry};
+use crate::motion::{EndKind, PathMode, SegmentKind, StopKind};
 use crate::source::Span;
 use crate::syntax::sinumerik::{Block, Expr, ExprKind, Value, Word};
 
@@ -65,6 +66,8 @@ pub(super) struct Words<'a> {
     pub(super) svc: Option<(f64, Span)>,
     pub(super) lims: Option<(f64, Span)>,
     pub(super) spos: Option<(f64, Span)>,
+    /// TOFFL, TOFF and TOFFR words of the block.
+    pub(super) offsets: Vec<tools::OffsetWord>,
     /// OVR: the path override, percent.
     pub(super) override_percent: Option<f64>,
     /// FB (this block's feed), FZ (per tooth).
@@ -188,7 +191,7 @@ pub(super) fn run(
     let mode = feed_mode(front.modal.feed_type);
     // The tool first: SVC and FZ in its block read the new edge, and the spindle starts with
     // the new tool in it (docs/SINUMERIK.md 3.2 steps 6-8).
-    tool(front, kernel, &words, origin)?;
+    tools::change(front, kernel, &words, origin)?;
     if !dwell {
         spindle::feed(front, kernel, &words, mode)?;
         spindle::spindle(front, kernel, &words, &limits, origin)?;
@@ -300,6 +303,9 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             "M1" => {
                 let code = whole(front, kernel, word)?;
                 words.m.push((code, word.span));
+            }
+            "TOFFL" | "TOFF" | "TOFFR" => {
+                tools::offset_word(front, kernel, word, &mut words.offsets)?
             }
             "SPOS" => words.spos = Some((spindle_position(front, kernel, word)?, word.span)),
             // Overrides and feed groups: the operator's panel and the path's axes; they change
@@ -569,6 +575,8 @@ pub(super) fn apply_modal(
             }
             front.modal.plane = plane;
             kernel.set_plane(plane);
+            // The lengths act along the new plane's axes (PGsl 5.6).
+            tools::apply_length(front, kernel);
         }
         Function::Absolute(absolute) => front.modal.absolute = absolute,
         Function::Units { inch, feeds } => {
@@ -619,53 +627,6 @@ fn feed_mode(feed_type: FeedType) -> FeedMode {
         FeedType::PerMinute => FeedMode::PerMinute,
         FeedType::PerRevolution => FeedMode::PerRevolution,
     }
-}
-
-/// T, M6, D in that order whatever their written order (docs/SINUMERIK.md 3.2 step 8).
-fn tool(
-    front: &mut Sinumerik,
-    kernel: &mut Kernel,
-    words: &Words<'_>,
-    origin: Origin,
-) -> Result<(), Alarm> {
-    let change = words.m.iter().any(|&(code, _)| code == 6);
-    if let Some((t, _)) = words.tool {
-        front.tool.selected = Some(t);
-        kernel.event(SegmentKind::ToolSelect { tool: t }, origin);
-    }
-    let changing = change || (words.tool.is_some() && front.settings.t_changes_tool);
-    if changing {
-        let Some(t) = front.tool.selected else {
-            return Err(Alarm::error(
-                AlarmCode::WordNotAllowed,
-                origin.span,
-                "M6 without a tool selected (T)",
-            )
-            .with_help("select the tool with T before M6"));
-        };
-        front.tool.in_spindle = Some(t);
-        // A change activates the new tool's first edge unless the block says D (MD20270).
-        if words.edge.is_none() {
-            front.tool.edge = 1;
-        }
-        let geometry = front
-            .tools
-            .iter()
-            .find(|e| e.t == t && e.d == 1)
-            .map(|e| ToolGeometry {
-                length: e.length,
-                radius: e.radius,
-            });
-        kernel.event(SegmentKind::ToolChange { tool: t, geometry }, origin);
-    }
-    if let Some((d, _)) = words.edge {
-        front.tool.edge = d;
-    }
-    if changing || words.edge.is_some() {
-        let length = front.edge().map_or(0.0, |e| e.length);
-        kernel.set_tool_length(length);
-    }
-    Ok(())
 }
 
 /// M functions other than the spindle's, the tool change and the ends: coolant and the machine's

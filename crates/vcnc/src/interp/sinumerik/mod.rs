@@ -25,6 +25,7 @@ mod motion;
 mod polar;
 mod program;
 mod spindle;
+mod tools;
 mod value;
 mod vars;
 
@@ -65,6 +66,8 @@ pub struct Sinumerik {
     last_span: Span,
     /// Settable frames written by the block being read ($P_UIFR).
     frame_writes: Vec<(u32, usize, f64)>,
+    /// TOFFL or TOFF in force.
+    tool_offsets: tools::Offsets,
     /// The spindle's cutting rate and limits.
     spindle: spindle::Spindle,
     /// The modal feed to restore after a block with FB.
@@ -170,6 +173,7 @@ impl Sinumerik {
             unknown_tools: std::collections::HashMap::new(),
             polar: polar::Polar::new(),
             spindle: spindle::Spindle::default(),
+            tool_offsets: tools::Offsets::None,
             frame_writes: Vec::new(),
             block_feed_restore: None,
             tooth_feed: None,

@@ -644,14 +644,15 @@ pub(super) fn suppressed_move(
         OneBlock::SuppressAll => [0.0; AXES],
         _ => state.frames.work_offset(WorkOffsetId::External),
     };
-    let length = state.frames.length_vector();
+    let [lx, ly] = state.frames.lateral_length();
+    let tool = [lx, ly, state.frames.length_vector()];
     let here = state.position;
     let unit = unit(front);
     let mut to = here;
     for (i, value) in words.axes.iter().enumerate() {
         let Some(v) = value else { continue };
         let scale = if i < 3 { unit } else { 1.0 };
-        let length = if i == 2 { length } else { 0.0 };
+        let length = tool.get(i).copied().unwrap_or(0.0);
         to[i] = if v.absolute.unwrap_or(front.modal.absolute) {
             v.value * scale + external[i] + length
         } else {
