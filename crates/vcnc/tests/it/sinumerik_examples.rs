@@ -211,6 +211,14 @@ impl Example {
             let id = WorkOffsetId::parse(key).ok_or(format!("bad work offset {key}"))?;
             machine.work_offsets.insert(id, values(offset));
         }
+        // Fixed point n of G75 is the machine's reference point n+1 (reference point 1 is G74's).
+        for (key, point) in &self.fixed_points {
+            let n: usize = key.parse().map_err(|_| format!("fixed point {key}"))?;
+            *machine
+                .reference_points
+                .get_mut(n)
+                .ok_or(format!("fixed point {key}"))? = values(point);
+        }
         for (key, point) in &self.reference_points {
             let n: usize = key.parse().map_err(|_| format!("reference point {key}"))?;
             *machine
@@ -295,10 +303,7 @@ struct Setup<'a> {
     machine: Machine,
     tool_change: Option<&'a str>,
     machine_data: &'a BTreeMap<String, f64>,
-    fixed_points: &'a BTreeMap<String, Point>,
     skip_levels: &'a [u8],
-    /// Teeth of the tool edges that give them, as (t, d, teeth): $TC_DPNT for FZ.
-    teeth: Vec<(u32, u32, u32)>,
     /// Subprograms by name (`L47`, `CONTOUR1`) and their text.
     subprograms: Vec<(String, String)>,
 }
@@ -322,9 +327,6 @@ fn run_sinumerik(text: &str, setup: Setup<'_>) -> Option<Result<common::Run, Str
     settings.t_changes_tool = setup.tool_change == Some("t");
     if let Some(&sd) = setup.machine_data.get("SD42440") {
         settings.frame_change_in_increments = sd != 0.0;
-    }
-    if !setup.fixed_points.is_empty() {
-        // G75 fixed points are the machine's reference points 2.. (see reference_points).
     }
     let mut library = MemoryLibrary::new();
     for (i, (name, program)) in setup.subprograms.iter().enumerate() {
@@ -551,13 +553,7 @@ fn sinumerik_examples_run_as_expected() {
             machine,
             tool_change: example.tool_change.as_deref(),
             machine_data: &example.machine_data,
-            fixed_points: &example.fixed_points,
             skip_levels: &example.skip_levels,
-            teeth: example
-                .tools
-                .iter()
-                .filter_map(|tool| tool.teeth.map(|teeth| (tool.t, tool.d, teeth)))
-                .collect(),
             subprograms,
         };
         let run = match run_sinumerik(&program, setup) {

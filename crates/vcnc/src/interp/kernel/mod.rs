@@ -220,6 +220,12 @@ impl Kernel {
         self.state.feed = value;
     }
 
+    /// How F reads now and its value: what a front end restores around a move of an earlier
+    /// block's.
+    pub fn feed_setting(&self) -> (FeedMode, Option<f64>) {
+        (self.feed_mode, self.state.feed)
+    }
+
     /// How the moves to come are made: path mode, and an exact stop at their end.
     pub fn set_path_mode(&mut self, path_mode: PathMode, exact_stop: bool) {
         self.modes.path_mode = path_mode;
@@ -300,6 +306,37 @@ impl Kernel {
     /// The kernel's machine state, for a front end's reads (frames, tools, spindle).
     pub(crate) fn state(&self) -> &KernelState {
         &self.state
+    }
+
+    /// A thread (or a rigid tap) to `target` (program coordinates): a line whose feed is
+    /// `lead` mm per spindle revolution along the path, cut at 100 % override and ending at
+    /// rest, as the tapping path mode says.
+    ///
+    /// # Errors
+    /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range.
+    pub fn thread_to(
+        &mut self,
+        target: [Option<f64>; AXES],
+        lead: f64,
+        origin: Origin,
+    ) -> Result<(), Alarm> {
+        let to = self.machine_target(target);
+        if same_place(&to, &self.state.position) {
+            return Ok(());
+        }
+        let speed = self.state.spindle.speed();
+        let feed = crate::motion::Feed::PerRevolution {
+            per_revolution: lead,
+            rpm: (speed > 0.0).then_some(speed),
+        };
+        let modes = MoveModes {
+            path_mode: PathMode::Tapping,
+            exact_stop: true,
+            smoothing: None,
+        };
+        let motion = self.state.move_to(to, &origin, modes)?;
+        self.out.push(&origin, SegmentKind::Line { motion, feed });
+        Ok(())
     }
 
     /// A dwell of `seconds`.

@@ -62,6 +62,13 @@ pub(super) struct Words<'a> {
     pub(super) chf: Option<(f64, Span)>,
     pub(super) chr: Option<(f64, Span)>,
     pub(super) rndm: Option<(f64, Span)>,
+    /// Machine axes named X1 .. C1 (G74, G75).
+    pub(super) machine_axes: [Option<f64>; AXES],
+    /// FP=n: G75's fixed point.
+    pub(super) fixed_point: Option<(u32, Span)>,
+    /// FRC, FRCM: the feed of chamfers and roundings.
+    pub(super) frc: Option<(f64, Span)>,
+    pub(super) frcm: Option<(f64, Span)>,
     /// SVC, LIMS, SPOS (its angle).
     pub(super) svc: Option<(f64, Span)>,
     pub(super) lims: Option<(f64, Span)>,
@@ -114,6 +121,8 @@ pub(super) fn run(
     for warning in words.warnings.drain(..) {
         kernel.warn(warning);
     }
+    // A block held for its corner moves with the feed it was read with.
+    let feed_before = kernel.feed_setting();
     // G functions take their new members before any value of the block is read.
     let mut one_block = Vec::new();
     let mut groups = [None::<Span>; 64];
@@ -139,6 +148,7 @@ pub(super) fn run(
         .iter()
         .find(|(f, _, _)| matches!(f, Function::Frame(_)))
     {
+        front.flush_contour(kernel)?;
         frame_instruction(front, kernel, &words, op, word)?;
         return Ok(Step::Next);
     }
@@ -166,24 +176,52 @@ pub(super) fn run(
     let speed_limit = speed_limit.map(|(max, _)| max);
     let dwell = one_block.iter().any(|(f, _)| *f == OneBlock::Dwell);
     let suppress = one_block.iter().find_map(|&(f, _)| match f {
-        OneBlock::SuppressFrames | OneBlock::SuppressBasic | OneBlock::SuppressAll => Some(f),
+        OneBlock::SuppressFrames
+        | OneBlock::SuppressBasic
+        | OneBlock::SuppressAll
+        | OneBlock::Reference
+        | OneBlock::FixedPoint => Some(f),
         _ => None,
     });
+    // G63 cuts a G1 line in tapping mode, whatever group 1 says.
+    let floating_tap = one_block.iter().any(|(f, _)| *f == OneBlock::FloatingTap);
+    let modal_motion = front.modal.motion;
+    if floating_tap {
+        front.modal.motion = gcodes::Motion::Line;
+    }
     if let Some((radius, span)) = words.rndm {
         front
             .contour
             .set_modal_rounding(radius * unit(front), span)?;
         front.rounding_modal = radius != 0.0;
     }
-    let mut prepared = if dwell || suppress.is_some() {
-        motion::Prepared::None
+    let prepared = if dwell || suppress.is_some() {
+        Ok(motion::Prepared::None)
     } else {
-        motion::prepare(front, kernel, &words, origin)?
+        motion::prepare(front, kernel, &words, origin)
     };
+    front.modal.motion = modal_motion;
+    let mut prepared = prepared?;
+    // A corner waits over a few blocks without motion (PGsl 9.15, L6797-6803; five is vcnc's
+    // choice of the machine data's number); a dwell, a tool change, a call or the end do not.
+    let breaks = dwell
+        || suppress.is_some()
+        || words.tool.is_some()
+        || words.m.iter().any(|&(m, _)| m == 6)
+        || words.call.is_some()
+        || words.ends.is_some();
     if matches!(prepared, motion::Prepared::None) {
-        front.flush_contour(kernel)?;
+        front.idle_blocks += 1;
+        if breaks || front.idle_blocks > 5 {
+            front.flush_contour(kernel)?;
+        }
+    } else {
+        front.idle_blocks = 0;
     }
+    let feed_now = kernel.feed_setting();
+    kernel.set_feed_in(feed_before.0, feed_before.1);
     prepared.release_held(front, kernel)?;
+    kernel.set_feed_in(feed_now.0, feed_now.1);
     let limits = spindle::SpindleWords {
         g25: speed_limit == Some(false),
         g26: speed_limit == Some(true),
@@ -203,13 +241,24 @@ pub(super) fn run(
         return dwell_block(front, kernel, &words, origin).map(|()| Step::Next);
     }
     let exact_stop = one_block.iter().any(|(f, _)| *f == OneBlock::ExactStop);
-    let path_mode = if front.modal.exact_stop {
+    let path_mode = if floating_tap {
+        PathMode::Tapping
+    } else if front.modal.exact_stop {
         PathMode::ExactStop
     } else {
         PathMode::Continuous
     };
     kernel.set_path_mode(path_mode, exact_stop);
     match suppress {
+        Some(OneBlock::Reference | OneBlock::FixedPoint) => {
+            motion::reference_move(
+                front,
+                kernel,
+                &words,
+                suppress == Some(OneBlock::Reference),
+                origin,
+            )?;
+        }
         Some(level) => motion::suppressed_move(front, kernel, &words, level, origin)?,
         None => prepared.finish(front, kernel)?,
     }
@@ -281,6 +330,26 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             "CR" => words.radius = Some((number(front, kernel, word)?, word.span)),
             // H functions go to the machine's PLC; they move nothing (H=QU(..) included).
             "H" => {}
+            // Machine axes by their own names (G74, G75): X1, Y1, Z1, A1, B1, C1.
+            _ if address.len() == 2
+                && address.ends_with('1')
+                && AXIS_NAMES.contains(&&address[..1])
+                && !front.is_variable(address) =>
+            {
+                let axis = AXIS_NAMES
+                    .iter()
+                    .position(|a| *a == &address[..1])
+                    .unwrap_or(0);
+                if !front.axes[axis] {
+                    return Err(Alarm::error(
+                        AlarmCode::AxisNotOnMachine,
+                        word.span,
+                        format!("the machine has no axis {address}"),
+                    ));
+                }
+                words.machine_axes[axis] = Some(number(front, kernel, word)?);
+            }
+            "FP" => words.fixed_point = Some((whole(front, kernel, word)?, word.span)),
             "I1" | "J1" | "K1" => {
                 let i = (address.as_bytes()[0] - b'I') as usize;
                 words.via[i] = Some(axis_value(front, kernel, word)?);
@@ -294,6 +363,8 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             "CHF" => words.chf = Some((number(front, kernel, word)?, word.span)),
             "CHR" => words.chr = Some((number(front, kernel, word)?, word.span)),
             "RNDM" => words.rndm = Some((number(front, kernel, word)?, word.span)),
+            "FRC" => words.frc = Some((number(front, kernel, word)?, word.span)),
+            "FRCM" => words.frcm = Some((number(front, kernel, word)?, word.span)),
             "SVC" => words.svc = Some((number(front, kernel, word)?, word.span)),
             "LIMS" => words.lims = Some((number(front, kernel, word)?, word.span)),
             "FB" => words.fb = Some((number(front, kernel, word)?, word.span)),
@@ -321,7 +392,8 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
                 }
                 words.override_percent = Some(percent);
             }
-            "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" => {}
+            // SF: a thread's start angle, which changes neither path nor time.
+            "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" | "SF" => {}
             "FGROUP" => feed_group(word)?,
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
@@ -754,7 +826,7 @@ fn pole(
             front.programmed[2],
         ]),
         gcodes::Pole::WorkZero => PoleReference::WorkZero,
-        gcodes::Pole::LastPole => PoleReference::LastPole,
+        gcodes::Pole::Previous => PoleReference::LastPole,
     };
     let definition = match (words.ap, words.rp) {
         (None, None) => PoleDefinition::Cartesian(std::array::from_fn(|i| {

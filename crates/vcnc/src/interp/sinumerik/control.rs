@@ -117,15 +117,14 @@ pub(super) fn run(
             )?;
             let last = match end {
                 Some(end) => {
-                    let at = front.structure.label(
+                    front.structure.label(
                         &front.programs,
                         program,
                         first,
                         &end.value,
                         true,
                         end.span,
-                    )?;
-                    at
+                    )?
                 }
                 // One label: to an ENDLABEL between it and this block, or to the block before
                 // this one.

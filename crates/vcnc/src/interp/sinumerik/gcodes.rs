@@ -56,6 +56,10 @@ pub(super) enum Motion {
     ThroughPoint,
     /// CT: tangential circle.
     Tangential,
+    /// G33: a thread of constant lead, the axes tied to the spindle.
+    Thread,
+    /// G331: tapping with the spindle in position control; G332: its retraction.
+    Tap { retract: bool },
 }
 
 /// The one-block functions vcnc runs.
@@ -71,6 +75,12 @@ pub(super) enum OneBlock {
     SuppressBasic,
     /// SUPA: also without the external offsets.
     SuppressAll,
+    /// G63: tapping with a compensating chuck (no override, no blending).
+    FloatingTap,
+    /// G74: the reference point of the named axes.
+    Reference,
+    /// G75: a fixed point (FP=n) of the named axes.
+    FixedPoint,
 }
 
 /// What the pole is measured from.
@@ -81,7 +91,7 @@ pub(super) enum Pole {
     /// G111: the work zero.
     WorkZero,
     /// G112: the last pole.
-    LastPole,
+    Previous,
 }
 
 /// The frame instructions (docs/SINUMERIK.md 5.3, 5.4).
@@ -176,6 +186,12 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G3" => Motion(self::Motion::CounterClockwise),
         "CIP" => Motion(self::Motion::ThroughPoint),
         "CT" => Motion(self::Motion::Tangential),
+        "G33" => Motion(self::Motion::Thread),
+        "G331" => Motion(self::Motion::Tap { retract: false }),
+        "G332" => Motion(self::Motion::Tap { retract: true }),
+        "G63" => OneBlock(self::OneBlock::FloatingTap),
+        "G74" => OneBlock(self::OneBlock::Reference),
+        "G75" => OneBlock(self::OneBlock::FixedPoint),
         "G4" => OneBlock(self::OneBlock::Dwell),
         "G9" => OneBlock(self::OneBlock::ExactStop),
         "G53" => OneBlock(self::OneBlock::SuppressFrames),
@@ -221,7 +237,7 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G26" => SpeedLimit(true),
         "G110" => Pole(self::Pole::LastPoint),
         "G111" => Pole(self::Pole::WorkZero),
-        "G112" => Pole(self::Pole::LastPole),
+        "G112" => Pole(self::Pole::Previous),
         "TRANS" => Frame(FrameOp::Trans),
         "ATRANS" => Frame(FrameOp::Atrans),
         "ROT" => Frame(FrameOp::Rot),
@@ -242,8 +258,7 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G41" | "G42" | "G451" | "G64" | "G641" | "G642" | "G643" | "G644" | "G645" | "KONT"
         | "KONTT" | "KONTC" | "CUT2DF" | "G140" | "G141" | "G142" | "G143" | "G147" | "G148"
         | "G247" | "G248" | "G347" | "G348" | "G340" | "G341" | "G460" | "G461" | "G462"
-        | "CUTCONON" | "CUTCONOF" | "FLIN" | "FCUB" | "G33" | "G331" | "G332" | "G63" | "G74"
-        | "G75" | "G291" => Planned,
+        | "CUTCONON" | "CUTCONOF" | "FLIN" | "FCUB" | "G291" => Planned,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
         }
@@ -355,6 +370,9 @@ pub(super) fn member(modal: &super::Modal, group: u32) -> i32 {
             Motion::CounterClockwise => 4,
             Motion::ThroughPoint => 5,
             Motion::Tangential => 15,
+            Motion::Thread => 10,
+            Motion::Tap { retract: false } => 11,
+            Motion::Tap { retract: true } => 12,
         },
         6 => match modal.plane {
             Plane::Xy => 1,

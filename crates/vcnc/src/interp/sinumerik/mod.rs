@@ -84,6 +84,12 @@ pub struct Sinumerik {
     angle_lines: contour::AngleLines<motion::Tag>,
     /// The block held for the chamfer or rounding at its end.
     contour: contour::Contour<motion::Tag>,
+    /// Blocks without motion since the last move (a corner waits over a few).
+    idle_blocks: u32,
+    /// FRCM in force: the modal feed of chamfers and roundings.
+    corner_feed_modal: Option<f64>,
+    /// The feed of the corner being cut (FRC or FRCM of the block after it).
+    corner_feed: Option<f64>,
     /// RNDM in force.
     rounding_modal: bool,
     /// The block the corner being cut follows, for its segments' origin.
@@ -182,6 +188,9 @@ impl Sinumerik {
             angle_lines: contour::AngleLines::new(),
             contour: contour::Contour::new(),
             rounding_modal: false,
+            idle_blocks: 0,
+            corner_feed_modal: None,
+            corner_feed: None,
             corner_origin: None,
             tangent: None,
             arc_tolerance: machine.profile.arc_radius_tolerance,

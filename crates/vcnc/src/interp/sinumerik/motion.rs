@@ -21,7 +21,7 @@ use crate::interp::comp::geometry::{Element, V2};
 use crate::interp::kernel::{Kernel, Origin};
 use crate::interp::modal::DistanceMode;
 use crate::machine::{WorkOffsetId, AXES};
-use crate::motion::{ArcDirection, Plane};
+use crate::motion::{ArcDirection, Plane, SpindleState};
 
 /// What the contour state machine keeps of a block: where it goes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,6 +45,9 @@ pub(super) enum Prepared {
     Direct(Tag, Option<Arc>),
     /// A circle in no plane of G17/G18/G19 (CIP): straight pieces along it.
     Chords(Tag, Vec<[f64; 3]>),
+    /// A thread (G33, G331, G332): a line at `lead` mm per spindle revolution along the path,
+    /// the spindle turning as `spindle` says first.
+    Thread(Tag, f64, Option<SpindleState>),
 }
 
 /// The arc of a direct move: centre (plane coordinates) and direction, in `plane`.
@@ -113,6 +116,16 @@ pub(super) fn prepare(
     let plane = front.modal.plane;
     let (a, b, _) = plane.axes();
     let unit = unit(front);
+    // The corner before this block is cut at this block's FRC, or the FRCM in force (the
+    // technology of the block after the corner: PGsl 9.15, ex. B-45).
+    if let Some((frcm, _)) = words.frcm {
+        front.corner_feed_modal = (frcm > 0.0).then_some(frcm * unit);
+    }
+    front.corner_feed = words
+        .frc
+        .map(|(f, _)| f * unit)
+        .filter(|f| *f > 0.0)
+        .or(front.corner_feed_modal);
     let mut target = end_point(front, words);
     let motion = front.modal.motion;
     let arc = matches!(motion, Motion::Clockwise | Motion::CounterClockwise);
@@ -206,7 +219,7 @@ pub(super) fn prepare(
         || words.radius.is_some()
         || words.opening.is_some();
     let cip_data = motion == Motion::ThroughPoint && words.via.iter().any(Option::is_some);
-    if !moves && !(arc && has_arc_data) && !cip_data {
+    if !(moves || cip_data || arc && has_arc_data) {
         return Ok(Prepared::None);
     }
     // With a rotation in the frame, every geometry axis goes to its programmed value
@@ -280,6 +293,9 @@ pub(super) fn prepare(
         }
         Motion::ThroughPoint => {
             return through_point(front, kernel, words, target, origin);
+        }
+        Motion::Thread | Motion::Tap { .. } => {
+            return thread(front, kernel, words, target, origin);
         }
     }
     let element = element.expect("every motion above makes an element");
@@ -522,6 +538,67 @@ fn through_point(
     Ok(Prepared::Chords(tag, points))
 }
 
+/// G33, G331, G332: the lead from I (X), J (Y) or K (Z), the one of the axis that moves most
+/// (PGsl 10.1-10.3); the feed per revolution along the path is that lead scaled to the path.
+/// G331 turns the spindle by the lead's sign (negative: counter-clockwise), G332 the other way.
+fn thread(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    words: &Words<'_>,
+    mut target: [Option<f64>; AXES],
+    origin: Origin,
+) -> Result<Prepared, Alarm> {
+    let p = front.programmed;
+    if front.frame.has_rotation() {
+        for (t, p) in target.iter_mut().zip(p).take(3) {
+            t.get_or_insert(p);
+        }
+    }
+    let end: [f64; 3] = std::array::from_fn(|i| target[i].unwrap_or(p[i]));
+    let travel: [f64; 3] = std::array::from_fn(|i| (end[i] - p[i]).abs());
+    let dominant = (0..3)
+        .max_by(|&i, &j| travel[i].total_cmp(&travel[j]))
+        .unwrap_or(2);
+    let path = travel.iter().map(|t| t * t).sum::<f64>().sqrt();
+    let lead_word =
+        words.centre[dominant].or_else(|| words.centre.iter().flatten().next().copied());
+    let Some(lead) = lead_word else {
+        return Err(Alarm::error(
+            AlarmCode::NoFeedRate,
+            origin.span,
+            "a thread needs its lead: I for X, J for Y, K for Z",
+        )
+        .with_help(
+            "give the lead (mm per revolution) with the axis that moves most: G33 Z-50 K1.5",
+        ));
+    };
+    let value = lead.value * unit(front);
+    if value == 0.0 {
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            origin.span,
+            "the thread's lead is 0",
+        ));
+    }
+    let spindle = match front.modal.motion {
+        Motion::Tap { retract } => Some(if (value < 0.0) != retract {
+            SpindleState::CounterClockwise
+        } else {
+            SpindleState::Clockwise
+        }),
+        _ => None,
+    };
+    let _ = kernel;
+    let per_revolution = if travel[dominant] > 0.0 {
+        value.abs() * path / travel[dominant]
+    } else {
+        value.abs()
+    };
+    let tag = tag(front, target, origin, false, 0);
+    advance(front, &target);
+    Ok(Prepared::Thread(tag, per_revolution, spindle))
+}
+
 impl Prepared {
     /// Moves the held block (and the corner after it): what comes before this block's events.
     pub(super) fn release_held(
@@ -550,6 +627,12 @@ impl Prepared {
                 Ok(())
             }
             Prepared::Direct(tag, arc) => direct(kernel, &tag, arc),
+            Prepared::Thread(tag, lead, spindle) => {
+                if spindle.is_some() {
+                    kernel.spindle(None, spindle, tag.origin);
+                }
+                kernel.thread_to(tag.target, lead, tag.origin)
+            }
             Prepared::Chords(tag, points) => {
                 for point in points {
                     let mut target = tag.target;
@@ -583,6 +666,7 @@ fn direct(kernel: &mut Kernel, tag: &Tag, arc: Option<Arc>) -> Result<(), Alarm>
 fn execute(front: &mut Sinumerik, kernel: &mut Kernel, cut: Cut<Tag>) -> Result<(), Alarm> {
     let plane = front.modal.plane;
     let (a, b, _) = plane.axes();
+    let is_corner = matches!(cut, Cut::Corner { .. });
     let (element, tag) = match cut {
         Cut::Block { element, tag } => (element, tag),
         Cut::Corner {
@@ -609,7 +693,18 @@ fn execute(front: &mut Sinumerik, kernel: &mut Kernel, cut: Cut<Tag>) -> Result<
     target[a] = Some(element.end().x);
     target[b] = Some(element.end().y);
     let tag = Tag { target, ..tag };
-    match element {
+    let corner_feed = front.corner_feed.filter(|_| is_corner);
+    let mode = if front.modal.feed_type == super::gcodes::FeedType::PerRevolution {
+        crate::interp::modal::FeedMode::PerRevolution
+    } else {
+        crate::interp::modal::FeedMode::PerMinute
+    };
+    let saved = corner_feed.map(|f| {
+        let saved = kernel.state().feed;
+        kernel.set_feed_in(mode, Some(f));
+        saved
+    });
+    let result = match element {
         Element::Line { .. } => direct(kernel, &tag, None),
         Element::Arc { center, ccw, .. } => direct(
             kernel,
@@ -624,7 +719,74 @@ fn execute(front: &mut Sinumerik, kernel: &mut Kernel, cut: Cut<Tag>) -> Result<
                 plane,
             }),
         ),
+    };
+    if let Some(saved) = saved {
+        kernel.set_feed_in(mode, saved);
     }
+    result
+}
+
+/// G74 (the reference point) or G75 FP=n (fixed point n, the machine's reference point n+1):
+/// the named axes, geometry or machine names, go there at rapid in machine coordinates
+/// (PGsl 14.4, 14.5; docs/SINUMERIK.md 1 for the fixed points' place in the machine file).
+pub(super) fn reference_move(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    words: &Words<'_>,
+    reference: bool,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    let n = if reference {
+        1
+    } else {
+        let Some((n, span)) = words.fixed_point else {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                origin.span,
+                "G75 needs the fixed point's number: FP=1",
+            ));
+        };
+        if n == 0 {
+            return Err(Alarm::error(
+                AlarmCode::ValueOutOfRange,
+                span,
+                "FP=0 is no fixed point",
+            ));
+        }
+        n + 1
+    };
+    let points = &kernel.state().setup.machine().reference_points;
+    let Some(&point) = points.get(n as usize - 1) else {
+        return Err(Alarm::error(
+            AlarmCode::ReferencePointOutOfRange,
+            words.fixed_point.map_or(origin.span, |(_, s)| s),
+            format!("the machine file has no fixed point {}", n - 1),
+        )
+        .with_help("add it to the machine file's [reference_points] (fixed point n is reference point n+1)"));
+    };
+    let mut to = kernel.state().position;
+    let mut any = false;
+    for i in 0..AXES {
+        if words.axes[i].is_some() || words.machine_axes[i].is_some() {
+            to[i] = point[i];
+            any = true;
+        }
+    }
+    if !any {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            origin.span,
+            "G74 and G75 name the axes to move: X1=0 Z1=0 (the values do not count)",
+        ));
+    }
+    kernel.rapid_to_machine(to, origin)?;
+    let now = kernel.program_position();
+    for (i, (p, now)) in front.programmed.iter_mut().zip(now).enumerate() {
+        if words.axes[i].is_some() || words.machine_axes[i].is_some() {
+            *p = now;
+        }
+    }
+    Ok(())
 }
 
 /// A move of a block with G53, G153 or SUPA: the programmed axes go to machine positions
