@@ -425,7 +425,8 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             // CYCLE832 sets the tolerance and path mode of high-speed milling: state for the
             // planner of issue 22; CYCLE800 without a rotation resets the swivel vcnc does not
             // have (docs/SINUMERIK.md 1).
-            "CYCLE832" | "CPRECON" | "CPRECOF" => {}
+            // WRTPR writes to the control's printer; nothing moves.
+            "CYCLE832" | "CPRECON" | "CPRECOF" | "WRTPR" => {}
             // The blank of ShopMill programs: the simulation's stock (issue 21), no motion.
             "WORKPIECE" => {}
             "CYCLE800" => swivel(front, kernel, word)?,
@@ -615,6 +616,12 @@ fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<(Function, Optio
             word.span,
             format!("{name} is not run yet (planned: issue 22, SINUMERIK path control, compensation and working area)"),
         )),
+        Some(Function::IsoMode) => Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            word.span,
+            "G291 (ISO dialect mode) is not run yet by vcnc's SINUMERIK front end (issue 20, its ISO mode part)",
+        )
+        .with_help("run the ISO part of the program as a program of its own with an ISO profile")),
         Some(Function::OutOfProduct(what)) => Err(Alarm::error(
             AlarmCode::NotInProduct,
             word.span,
@@ -668,6 +675,7 @@ pub(super) fn apply_modal(
             kernel.select_work_offset(settable_id(n, front.is_828d()));
         }
         Function::ExactStop => front.modal.exact_stop = true,
+        Function::ContinuousPath => front.modal.exact_stop = false,
         Function::CuttingRate(constant, feed_type) => {
             front.spindle.constant_rate = constant.then_some(feed_mode(feed_type));
             apply_modal(front, kernel, Function::FeedType(feed_type), _span)?;
@@ -675,6 +683,7 @@ pub(super) fn apply_modal(
         Function::Frame(_)
         | Function::Pole(_)
         | Function::SpeedLimit(_)
+        | Function::IsoMode
         | Function::State
         | Function::OneBlock(_)
         | Function::Planned

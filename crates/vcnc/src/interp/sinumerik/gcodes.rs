@@ -24,6 +24,8 @@ pub(super) enum Function {
     Settable(u32),
     /// G60 exact stop.
     ExactStop,
+    /// G64 continuous path.
+    ContinuousPath,
     /// A frame instruction of group 3 (a block of its own; its axis words are the frame's).
     Frame(FrameOp),
     /// G110, G111, G112: the pole of polar coordinates.
@@ -37,6 +39,8 @@ pub(super) enum Function {
     State,
     /// The next SINUMERIK issue adds it.
     Planned,
+    /// G291: the blocks after it are ISO dialect (not run yet).
+    IsoMode,
     /// Outside the product: the name says what it belongs to.
     OutOfProduct(&'static str),
 }
@@ -229,6 +233,9 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G58" if m828d => Settable(5),
         "G59" if m828d => Settable(6),
         "G60" => ExactStop,
+        // G64 is the continuous path of vcnc's planner (its corner blending); the tolerances of
+        // G641-G645 come with issue 22.
+        "G64" => ContinuousPath,
         "G96" => CuttingRate(true, self::FeedType::PerRevolution),
         "G961" => CuttingRate(true, self::FeedType::PerMinute),
         "G97" => CuttingRate(false, self::FeedType::PerRevolution),
@@ -255,10 +262,11 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         | "COMPOF" | "COMPON" | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF"
         | "DYNNORM" | "DYNPOS" | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF"
         | "CDON" | "CDOF2" | "TRAFOOF" => State,
-        "G41" | "G42" | "G451" | "G64" | "G641" | "G642" | "G643" | "G644" | "G645" | "KONT"
-        | "KONTT" | "KONTC" | "CUT2DF" | "G140" | "G141" | "G142" | "G143" | "G147" | "G148"
-        | "G247" | "G248" | "G347" | "G348" | "G340" | "G341" | "G460" | "G461" | "G462"
-        | "CUTCONON" | "CUTCONOF" | "FLIN" | "FCUB" | "G291" => Planned,
+        "G41" | "G42" | "G451" | "G641" | "G642" | "G643" | "G644" | "G645" | "KONT" | "KONTT"
+        | "KONTC" | "CUT2DF" | "G140" | "G141" | "G142" | "G143" | "G147" | "G148" | "G247"
+        | "G248" | "G347" | "G348" | "G340" | "G341" | "G460" | "G461" | "G462" | "CUTCONON"
+        | "CUTCONOF" | "FLIN" | "FCUB" => Planned,
+        "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
         }

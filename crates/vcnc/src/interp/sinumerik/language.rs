@@ -264,6 +264,24 @@ impl Environment for Machine<'_> {
         }
     }
 
+    fn call(
+        &mut self,
+        name: &str,
+        arguments: &[Option<Value>],
+        span: Span,
+    ) -> Option<Result<Value, Alarm>> {
+        match (name, arguments) {
+            // QU(n): the auxiliary function n output without waiting (PGsl 13.3); its value is n.
+            ("QU", [Some(value)]) => Some(Ok(value.clone())),
+            ("QU", _) => Some(Err(Alarm::error(
+                AlarmCode::MacroSyntax,
+                span,
+                "QU takes the function's value: M=QU(7)",
+            ))),
+            _ => None,
+        }
+    }
+
     fn is_axis(&self, name: &str) -> bool {
         AXIS_NAMES
             .iter()
