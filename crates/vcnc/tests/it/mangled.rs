@@ -79,7 +79,7 @@ fn check_span(span: Span, len: u32, what: &str) -> Result<(), String> {
     }
 }
 
-fn check_alarm(alarm: &Alarm, len: u32) -> Result<(), String> {
+pub(crate) fn check_alarm(alarm: &Alarm, len: u32) -> Result<(), String> {
     // In-memory ISO text can neither fail to read nor be SINUMERIK: every alarm has a place.
     let span = alarm
         .span
@@ -98,7 +98,7 @@ fn check_alarm(alarm: &Alarm, len: u32) -> Result<(), String> {
     Ok(())
 }
 
-fn check_segment(segment: &Segment, len: u32) -> Result<(), String> {
+pub(crate) fn check_segment(segment: &Segment, len: u32) -> Result<(), String> {
     check_span(segment.span, len, "segment")?;
     let finite = match &segment.kind {
         SegmentKind::Rapid { motion, .. } => move_is_finite(motion),
@@ -156,7 +156,7 @@ fn machines() -> Vec<(ProfileName, Machine)> {
 }
 
 /// The input as people can read it in a failure message: escaped, and shortened when long.
-fn shown(text: &[u8]) -> String {
+pub(crate) fn shown(text: &[u8]) -> String {
     let escaped = text.escape_ascii().to_string();
     if escaped.len() <= 400 {
         escaped
@@ -593,10 +593,10 @@ fn a_lone_address_or_stray_character_is_an_error_that_ends_the_run() {
 const MUTANTS_PER_FILE: usize = 24;
 
 /// Marsaglia's xorshift64: small, deterministic, and good enough to choose mutations.
-struct XorShift(u64);
+pub(crate) struct XorShift(pub(crate) u64);
 
 impl XorShift {
-    fn next(&mut self) -> u64 {
+    pub(crate) fn next(&mut self) -> u64 {
         let mut x = self.0;
         x ^= x << 13;
         x ^= x >> 7;
@@ -606,12 +606,12 @@ impl XorShift {
     }
 
     /// A number in `0..n` (`n` > 0).
-    fn below(&mut self, n: usize) -> usize {
+    pub(crate) fn below(&mut self, n: usize) -> usize {
         (self.next() % n as u64) as usize
     }
 
     /// A range inside `0..len`, at most `max` long.
-    fn range(&mut self, len: usize, max: usize) -> std::ops::Range<usize> {
+    pub(crate) fn range(&mut self, len: usize, max: usize) -> std::ops::Range<usize> {
         let start = self.below(len + 1);
         let end = start + self.below(max.min(len - start) + 1);
         start..end
@@ -622,7 +622,7 @@ impl XorShift {
 const INTERESTING: &[u8] = b"0123456789.-+ ;%()/:#[]=\n\r\t\0XYZGMFNOIJKRPLHDSTABCxgn\xff\xe4\x80";
 
 /// Applies one to four random edits to `text`; `other` is the file splices come from.
-fn mutate(text: &[u8], other: &[u8], rng: &mut XorShift) -> Vec<u8> {
+pub(crate) fn mutate(text: &[u8], other: &[u8], rng: &mut XorShift) -> Vec<u8> {
     let mut out = text.to_vec();
     for _ in 0..1 + rng.below(4) {
         match rng.below(8) {
