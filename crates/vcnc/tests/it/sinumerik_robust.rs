@@ -60,11 +60,27 @@ impl ProgramLibrary for Itself {
     }
 }
 
-/// The help line of `alarm` is there and one line.
+/// Words of a help line that belong to ISO programs only: an alarm of the SINUMERIK front end
+/// whose help names one of them fell back to its code's ISO help.
+const ISO_ONLY: &[&str] = &[
+    "#3000",
+    "( ) comment",
+    "MACROS.md",
+    "G01",
+    "M99",
+    "--max-jumps",
+    "DOn",
+    "(R)",
+];
+
+/// The help line of `alarm` is there, one line, and in SINUMERIK's terms.
 fn check_help(alarm: &Alarm) -> Result<(), String> {
     let help = alarm.help_line();
     if help.trim().is_empty() || help.contains('\n') {
         return Err(format!("alarm without a one-line help line: {alarm:?}"));
+    }
+    if let Some(word) = ISO_ONLY.iter().find(|w| help.contains(*w)) {
+        return Err(format!("help line naming ISO syntax ({word}): {alarm:?}"));
     }
     Ok(())
 }
@@ -645,5 +661,29 @@ proptest! {
         if let Err(e) = check_everywhere(&text) {
             prop_assert!(false, "{}", e);
         }
+    }
+}
+
+/// Alarms whose code's own help names ISO syntax get one in SINUMERIK's terms.
+#[test]
+fn alarms_whose_code_helps_in_iso_terms_get_a_sinumerik_help_line() {
+    let deep = format!("R1={}1\n", "(".repeat(100));
+    let cases = [
+        ("G0 X1 * \n", "`;`"),
+        ("SETAL(65000)\n", "SETAL"),
+        (deep.as_str(), "docs/SINUMERIK.md"),
+        ("G2 X10 Y0 CR=1 F100\n", "CR="),
+        ("G1 X10\n", "G1/G2/G3"),
+        ("LOOP\nENDLOOP\n", "iteration_limit"),
+    ];
+    for (text, expected) in cases {
+        let alarms = check_stops(text);
+        let error = alarms.iter().find(|a| a.is_error()).unwrap();
+        assert!(
+            error.help_line().contains(expected),
+            "`{}`: help `{}` names {expected}",
+            text.escape_debug(),
+            error.help_line()
+        );
     }
 }

@@ -417,8 +417,9 @@ impl Sinumerik {
     }
 }
 
-impl FrontEnd for Sinumerik {
-    fn step(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
+impl Sinumerik {
+    /// The next block's step (see [`FrontEnd::step`]).
+    fn next_step(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
         if self.iterations == 0 {
             self.power_on(kernel)?;
         }
@@ -470,6 +471,41 @@ impl FrontEnd for Sinumerik {
             };
         }
     }
+}
+
+impl FrontEnd for Sinumerik {
+    fn step(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
+        self.next_step(kernel).map_err(with_sinumerik_help)
+    }
+}
+
+/// `alarm` with a help line in SINUMERIK's terms where it has none of its own and its code's
+/// help names ISO syntax (the codes are shared with the ISO front end: `#3000`, `( )` comments,
+/// `G01`, `M99` mean nothing in a SINUMERIK program).
+fn with_sinumerik_help(alarm: Alarm) -> Alarm {
+    use AlarmCode::*;
+    // The kernel's own help for a missing feed names the FANUC alarm: replaced too.
+    if alarm.help.is_some() && alarm.code != NoFeedRate {
+        return alarm;
+    }
+    let help = match alarm.code {
+        UnexpectedCharacter => "remove the character, or put it in a comment after `;`",
+        MacroSyntax => {
+            "check the brackets, keywords and operators of the statement: the language is in docs/SINUMERIK.md"
+        }
+        BadVariable => "define the variable with DEF first; the system variables vcnc has are in docs/SINUMERIK.md",
+        LoopStructure => "close every IF, WHILE, FOR, REPEAT and LOOP with its ENDIF, ENDWHILE, ENDFOR, UNTIL or ENDLOOP",
+        UserAlarm => "the program raised this alarm itself with SETAL: see its message and the cycle that set it",
+        MacroLimit => "a loop or jump never ends; the limit is iteration_limit in the profile's [sinumerik] table",
+        ArcRadiusTooSmall => "make CR= at least half the distance between the start and the end point, or check I, J, K",
+        ArcWithoutCenter => "give the arc its centre (I, J, K), its radius (CR=) or its opening angle (AR=)",
+        NoFeedRate => "program an F word before or in the first G1/G2/G3 block",
+        MissingProgramEnd => "end the main program with M30, and a subprogram with M17 or RET",
+        SequenceNotFound => "add the label or N block the jump names, or change the jump's target",
+        ProgramNotFound => "put the program's .SPF in the program's directory or in a directory given with --lib",
+        _ => return alarm,
+    };
+    alarm.with_help(help)
 }
 
 /// A SINUMERIK program held in memory, as file 0, on `machine`.
