@@ -35,6 +35,7 @@ mod scaling;
 mod seed_examples;
 mod sinumerik;
 mod sinumerik_examples;
+mod sinumerik_language;
 mod sinumerik_syntax;
 mod skip;
 mod smoothing;
