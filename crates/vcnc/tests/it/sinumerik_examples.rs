@@ -432,7 +432,9 @@ fn examples_table_is_complete() {
             _ => {}
         }
         if let Some(alarm) = &example.alarm {
-            if !matches!(alarm.code.as_str(), "V020" | "V022") {
+            // V031: an example the control would stop at too (b/84's N50, a modal G3 with no
+            // circle data); its note says why.
+            if !matches!(alarm.code.as_str(), "V020" | "V022" | "V031") {
                 problems.push(format!("{name}: alarm code {}", alarm.code));
             }
             if alarm.names.all().iter().any(|n| n.trim().is_empty()) || alarm.names.all().is_empty()
