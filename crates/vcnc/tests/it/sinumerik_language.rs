@@ -1369,7 +1369,8 @@ fn p_gg_reads_the_active_member_of_a_group() {
 
 // ---------------------------------------------------------------------------------------------
 // The frame property (docs/SINUMERIK.md 5.3): a random sequence of frame blocks, then a G0 to
-// a random point, lands where the components T + Tf + R S M p computed here put it.
+// a random point, lands where the components T + Tf + R S M p computed here put it. The
+// blocks: TRANS/ATRANS, ROT/AROT RPL, SCALE/ASCALE, MIRROR/AMIRROR and G58/G59 (5.3, 5.4).
 
 /// One frame instruction as the test writes it and applies it.
 #[derive(Clone, Debug)]
@@ -1382,6 +1383,9 @@ enum FrameBlock {
     Ascale([f64; 3]),
     Mirror([bool; 3]),
     Amirror([bool; 3]),
+    /// G58 / G59 (840D, 5.4): replace the coarse / fine translation, along the SZS axes.
+    Coarse([f64; 3]),
+    Fine([f64; 3]),
 }
 
 /// A value with three decimals, as written in the program text (so the model uses the same).
@@ -1405,6 +1409,8 @@ fn frame_block() -> impl Strategy<Value = FrameBlock> {
         factors().prop_map(FrameBlock::Ascale),
         flags().prop_map(FrameBlock::Mirror),
         flags().prop_map(FrameBlock::Amirror),
+        vector().prop_map(FrameBlock::Coarse),
+        vector().prop_map(FrameBlock::Fine),
     ]
 }
 
@@ -1430,6 +1436,8 @@ impl FrameBlock {
             FrameBlock::Ascale(v) => values("ASCALE", v),
             FrameBlock::Mirror(f) => axes("MIRROR", f),
             FrameBlock::Amirror(f) => axes("AMIRROR", f),
+            FrameBlock::Coarse(v) => values("G58", v),
+            FrameBlock::Fine(v) => values("G59", v),
         }
     }
 }
@@ -1561,6 +1569,8 @@ impl Components {
                     *mirror ^= flag;
                 }
             }
+            FrameBlock::Coarse(t) => self.coarse = *t,
+            FrameBlock::Fine(t) => self.fine = *t,
         }
     }
 }
