@@ -1,21 +1,21 @@
 //! Every real SINUMERIK program of ../shared/corpus/sinumerik runs on the SINUMERIK front end to
 //! its end, or stops only where issue 20 says it may (acceptance 3): at a function the next
 //! SINUMERIK issue adds (V020 naming issue 22), at one outside the product (V022), or at a
-//! subprogram the corpus does not contain (V084 naming it). Each program runs on a machine that
-//! fits it (said below, program by program), with the corpus's subprograms in its library under
-//! their own names; a subprogram file with PROC parameters runs through a small call written
+//! subprogram the corpus does not contain (V084 naming it). Each program runs on the machine of
+//! its author (tests/it/common/sinumerik_machines.rs says why each fits), with the corpus's
+//! subprograms in its library under their own names; a subprogram file with PROC parameters runs through a small call written
 //! here, with the arguments its author's main program would pass.
 //!
 //! The table (program, outcome, moves, cutting extents, alarm) is printed:
 //! `cargo test -p vcnc --test it sinumerik_corpus:: -- --nocapture`.
 
 use crate::common;
+use crate::common::sinumerik_machines::machine_for;
 use vcnc::checks::TravelLimits;
 use vcnc::interp::sinumerik::Sinumerik;
 use vcnc::interp::{Kernel, MemoryLibrary, Run};
-use vcnc::machine::{AxisConfig, ToolEdge, WorkOffsetId};
 use vcnc::summary::{LengthUnit, Summary};
-use vcnc::{Alarm, AlarmCode, Axis, FileId, Machine, ProfileName, SegmentKind};
+use vcnc::{Alarm, AlarmCode, FileId, Machine, ProfileName, SegmentKind};
 
 /// How a program must end.
 #[derive(Clone, Copy, Debug)]
@@ -30,10 +30,10 @@ enum Expect {
     Missing { line: u32, name: &'static str },
 }
 
-/// One corpus program: its file, the machine it runs on, how it is called, how it ends.
+/// One corpus program: its file, how it is called, how it ends. It runs on the machine of its
+/// author (`common::sinumerik_machines::machine_for`).
 struct Case {
     file: &'static str,
-    machine: fn() -> Machine,
     /// For a subprogram with PROC parameters: the main program that calls it.
     call: Option<&'static str>,
     expect: Expect,
@@ -50,7 +50,6 @@ struct Case {
 const CASES: &[Case] = &[
     Case {
         file: "alloyx_DAILY.MPF",
-        machine: syil_x7,
         call: None,
         expect: Expect::End,
         // Two calls of 600 / 15 = 40 passes of 13 moves: 1040; the four SUPA moves home start
@@ -60,7 +59,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "alloyx_WARMUP_CYCLE.SPF",
-        machine: syil_x7,
         // As DAILY.MPF calls it (inch, absolute, XY; 3600 rpm), for 15 seconds instead of 600:
         // `CYCLES = _DURATION / 15` gives one pass of its 13 moves, which the test counts.
         call: Some("G70 G90 G17\nG700\nWARMUP_CYCLE(3600, 15)\nM5\nM30\n"),
@@ -71,7 +69,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "dangarpt_test.MPF",
-        machine: dangarpt_mill,
         call: None,
         expect: Expect::Planned {
             line: 25,
@@ -82,7 +79,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "dubovikov_123.MPF",
-        machine: dubovikov_boring_mill,
         call: None,
         expect: Expect::Missing {
             line: 13,
@@ -93,7 +89,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "dubovikov_CHAMFER.SPF",
-        machine: dubovikov_boring_mill,
         // A 45-degree chamfer 2 mm wide round a bore of radius 20 (rStart 20, rEnd 22), 5
         // degrees a step, 0.5 mm a turn along the cone, a cutter of radius 5 with an insert
         // radius of 0.4: the values its comments name (UGOL DELENIA, SHAG, NAKLON KONUSA,
@@ -111,7 +106,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "dubovikov_CYCLE_KONUS.SPF",
-        machine: dubovikov_boring_mill,
         // Retract plane 100, a cone from radius 30 in to radius 10, 5 degrees a step, 0.5 mm a
         // turn, 45 degrees, cutter radius 5, insert radius 0.4, starting at Z0, centred on
         // X0 Y0: its parameters in their order (OTVOD, NACHALNII_RADIUS, ... CPA, CPO).
@@ -125,7 +119,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "dubovikov_KANAVKA_SFERA.SPF",
-        machine: dubovikov_boring_mill,
         // A spherical recess of radius 25 opened from radius 20 at Z0, 10 degrees a step round
         // Z and a pitch of at most 5 degrees of latitude, a cutter of radius 4: its parameters
         // in their order (angDivXY, angDivZ, radius, rStart, rMill). The cut then ends at the
@@ -141,7 +134,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "dubovikov_KONUS.SPF",
-        machine: dubovikov_boring_mill,
         // The values its own comments give: start radius 36, 0.2 degrees a step, 0.5 mm a
         // turn, 37.5 degrees, end radius 6.5, cutter radius 6.
         call: Some("KONUS(36, 0.2, 0.5, 37.5, 6.5, 6)\nM30\n"),
@@ -154,7 +146,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "dubovikov_case_test.MPF",
-        machine: dubovikov_boring_mill,
         call: None,
         expect: Expect::End,
         hand: None,
@@ -162,7 +153,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "dubovikov_kanavka_vint_sector.MPF",
-        machine: dubovikov_boring_mill,
         call: None,
         expect: Expect::End,
         hand: None,
@@ -170,7 +160,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "elmoe_Bottle_opener.MPF",
-        machine: dmg_five_axis,
         call: None,
         expect: Expect::End,
         hand: None,
@@ -180,7 +169,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "elmoe_Coordinate_system_Achskreuz.MPF",
-        machine: dmg_five_axis,
         call: None,
         expect: Expect::OutOfProduct {
             line: 1031,
@@ -193,7 +181,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "elmoe_Keychain.MPF",
-        machine: dmg_five_axis,
         call: None,
         expect: Expect::Planned {
             line: 632,
@@ -204,7 +191,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "gcodeworkshop_SINUMERIK840D.MPF",
-        machine: b_table_mill,
         call: None,
         expect: Expect::Missing {
             line: 24,
@@ -215,7 +201,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "jennings_CYCLE189.SPF",
-        machine: grob_g550,
         // Exactly as CYCLE189_TEST.MPF calls it (N14-N35): tool "52" in the spindle, inch with
         // inch feeds (G700), G54, at the clearance plane over the bore, then the call.
         call: Some(
@@ -233,7 +218,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "jennings_CYCLE189_TEST.MPF",
-        machine: grob_g550,
         call: None,
         expect: Expect::Missing {
             line: 21,
@@ -244,7 +228,6 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "ncplot7py_user_siemens_program.MPF",
-        machine: shopmill_mill,
         call: None,
         expect: Expect::Planned {
             line: 8,
@@ -255,256 +238,12 @@ const CASES: &[Case] = &[
     },
     Case {
         file: "philip_CAM_TEST.MPF",
-        machine: philip_ac_mill,
         call: None,
         expect: Expect::End,
         hand: None,
         rapids_below_cuts: &[],
     },
 ];
-
-/// A linear axis from `min` to `max` (machine coordinates, mm).
-fn linear(min: f64, max: f64) -> AxisConfig {
-    AxisConfig {
-        min,
-        max,
-        rapid: 30000.0,
-        max_feed: 10000.0,
-        acceleration: 2000.0,
-        jerk: 50000.0,
-    }
-}
-
-/// An 840D (or 828D) with the given travel of X, Y and Z, and the rotary axes `rotary`.
-fn sinumerik(
-    profile: ProfileName,
-    x: (f64, f64),
-    y: (f64, f64),
-    z: (f64, f64),
-    rotary: &[Axis],
-) -> Machine {
-    let mut machine = Machine::default().with_profile(profile).unwrap();
-    machine.axes[Axis::X.index()] = Some(linear(x.0, x.1));
-    machine.axes[Axis::Y.index()] = Some(linear(y.0, y.1));
-    machine.axes[Axis::Z.index()] = Some(linear(z.0, z.1));
-    for axis in rotary {
-        machine.axes[axis.index()] = Some(common::rotary_axis());
-    }
-    machine
-}
-
-/// Tools 1, 2, ... by name: (name, diameter, drill).
-fn named_tools(machine: &mut Machine, tools: &[(&str, f64, bool)]) {
-    for (i, &(name, diameter, drill)) in tools.iter().enumerate() {
-        machine
-            .tools
-            .push(tool(i as u32 + 1, Some(name), diameter, drill));
-    }
-}
-
-/// Edge D1 of tool `t`: an end mill (type 120) or a drill (200) of `diameter`, length 0 (the
-/// work offsets' Z is taken as touched off with the tool tip, so program Z is machine Z).
-fn tool(t: u32, name: Option<&str>, diameter: f64, drill: bool) -> ToolEdge {
-    ToolEdge {
-        t,
-        name: name.map(str::to_string),
-        d: 1,
-        tool_type: if drill { 200 } else { 120 },
-        length: 0.0,
-        length2: 0.0,
-        length3: 0.0,
-        radius: diameter / 2.0,
-        teeth: Some(if drill { 2 } else { 4 }),
-    }
-}
-
-/// AlloyX's Syil X7 with an 828D: 500 x 300 x 400 mm travel from a machine zero at the top
-/// corner (the warm-up moves to SUPA X-5 Y-5 Z-4 inch, -127 mm, from there).
-fn syil_x7() -> Machine {
-    sinumerik(
-        ProfileName::Sinumerik828d,
-        (-500.0, 0.0),
-        (-300.0, 0.0),
-        (-400.0, 0.0),
-        &[],
-    )
-}
-
-/// DangaRPT's mill: a VMC with an A axis (`A0.0` on line 5), tool 1 an 8 mm end mill with edge
-/// D1 (`G41 ... D01`). Its first move is a G1 at the height the tool change left, so the tool
-/// starts 200 above the work zero (G54 zero is machine zero).
-fn dangarpt_mill() -> Machine {
-    let mut machine = sinumerik(
-        ProfileName::Sinumerik,
-        (-300.0, 300.0),
-        (-200.0, 200.0),
-        (-100.0, 400.0),
-        &[Axis::A],
-    );
-    machine.tools.push(tool(1, None, 8.0, false));
-    machine.start[Axis::Z.index()] = 200.0;
-    machine
-}
-
-/// PDubovikov's shop: a large boring and milling machine (`FREZA D160`, X to +-1415, Z to
-/// 1700), tools 1 to 5 with edge D1 (`T1D1M6` ... `T5 D1M6`): 160, 25, 25, 25 and 25 mm
-/// cutters as the comments of dubovikov_123.MPF name them. R parameters to R99 suffice.
-fn dubovikov_boring_mill() -> Machine {
-    let mut machine = sinumerik(
-        ProfileName::Sinumerik,
-        (-2500.0, 2500.0),
-        (-1000.0, 1500.0),
-        (-500.0, 2000.0),
-        &[],
-    );
-    machine.tools.push(tool(1, None, 160.0, false));
-    for t in 2..=5 {
-        machine.tools.push(tool(t, None, 25.0, false));
-    }
-    machine
-}
-
-/// ElMoe's DMG 5-axis mill (B head or table and C table, Siemens NX posts): home at SUPA X-365
-/// Y224 Z610, so X -400..400, Y -300..300, Z 0..650; G54 at Z 200 puts the part's top (program
-/// Z0) under the home height. The tools by the names the programs call.
-fn dmg_five_axis() -> Machine {
-    let mut machine = sinumerik(
-        ProfileName::Sinumerik,
-        (-400.0, 400.0),
-        (-300.0, 300.0),
-        (0.0, 650.0),
-        &[Axis::B, Axis::C],
-    );
-    machine
-        .work_offsets
-        .insert(WorkOffsetId::Standard(1), [0.0, 0.0, 200.0, 0.0, 0.0, 0.0]);
-    named_tools(
-        &mut machine,
-        &[
-            ("SCHAFT_D8_N_AP20", 8.0, false),
-            ("SCHAFT_D4_N_AP20", 4.0, false),
-            ("ENTFRAESER_D8_90GRAD", 8.0, false),
-            ("PLAN_D50_N_AP4", 50.0, false),
-            ("SCHAFT_D12_N_AP30", 12.0, false),
-            ("SCHAFT_D6_N_AP15", 6.0, false),
-            ("ENTFRAESER_D8_N_90GRAD", 8.0, false),
-            ("BOHRER_D3.3_VHM", 3.3, true),
-        ],
-    );
-    machine
-}
-
-/// The GCodeWorkShop example's mill: a B rotary table (`B45.` ... `B315`), Z to 210 (Z =
-/// WYSSKRZ+60), tools by number with the sizes their comments give (T1 an 80 mm mill, drills,
-/// taps), R parameters to R199: the program reads R102 and R104 (N60), so the control has
-/// more than the 100 of the default.
-fn b_table_mill() -> Machine {
-    let mut machine = sinumerik(
-        ProfileName::Sinumerik,
-        (-500.0, 500.0),
-        (-300.0, 500.0),
-        (-100.0, 500.0),
-        &[Axis::B],
-    );
-    let numbered = [
-        (1, 80.0, false),
-        (9, 10.2, true),
-        (7, 6.8, true),
-        (22, 3.2, true),
-        (20, 4.2, true),
-        (5, 5.0, true),
-        (32, 6.0, true),
-        (33, 6.0, true),
-        (10, 12.0, true),
-        (18, 8.0, true),
-        (21, 5.0, true),
-        (6, 6.0, true),
-    ];
-    for (t, diameter, drill) in numbered {
-        machine.tools.push(tool(t, None, diameter, drill));
-    }
-    machine.profile.sinumerik.as_mut().unwrap().r_parameters = 200;
-    machine
-}
-
-/// David Jennings' GROB G550 (5 axes: A and B), inch programs on a metric control: the tool
-/// named "52" a .250 in end mill (the program's tool list); R parameters to R199, since
-/// CYCLE189 writes R103 to R109 (the control's MD28050 is larger than the 100 default).
-fn grob_g550() -> Machine {
-    let mut machine = sinumerik(
-        ProfileName::Sinumerik,
-        (-800.0, 800.0),
-        (-1000.0, 1000.0),
-        (-500.0, 1000.0),
-        &[Axis::A, Axis::B],
-    );
-    machine.tools.push(tool(52, Some("52"), 0.25 * 25.4, false));
-    machine.profile.sinumerik.as_mut().unwrap().r_parameters = 200;
-    machine
-}
-
-/// The ShopMill program of ncplot7py: a mill with a swivel head (TC1: B and C), the tools by
-/// name.
-fn shopmill_mill() -> Machine {
-    let mut machine = sinumerik(
-        ProfileName::Sinumerik,
-        (-500.0, 500.0),
-        (-400.0, 400.0),
-        (-200.0, 500.0),
-        &[Axis::B, Axis::C],
-    );
-    named_tools(
-        &mut machine,
-        &[
-            ("FACEMILL 63", 63.0, false),
-            ("CUTTER 16", 16.0, false),
-            ("CUTTER 8", 8.0, false),
-            ("DRILL 8.5", 8.5, true),
-        ],
-    );
-    machine
-}
-
-/// 121philip's 840D sl with A and C axes (`SUPA X=_X_HOME ... A=_A_HOME C=_C_HOME`): home
-/// SUPA Z-10 under a machine zero at the top of Z, so Z -600..0 and G54 at Z-400 (the
-/// program's Z60 clearance is then machine Z-340); tool "DRILL 8.5".
-fn philip_ac_mill() -> Machine {
-    let mut machine = sinumerik(
-        ProfileName::Sinumerik,
-        (-100.0, 600.0),
-        (-100.0, 500.0),
-        (-600.0, 0.0),
-        &[Axis::A, Axis::C],
-    );
-    machine
-        .work_offsets
-        .insert(WorkOffsetId::Standard(1), [0.0, 0.0, -400.0, 0.0, 0.0, 0.0]);
-    named_tools(&mut machine, &[("DRILL 8.5", 8.5, true)]);
-    machine
-}
-
-/// The name a corpus file's program is called by: the file name without its author prefix
-/// and extension (`alloyx_WARMUP_CYCLE.SPF` is WARMUP_CYCLE).
-fn program_name(file: &str) -> &str {
-    let stem = file.rsplit_once('.').map_or(file, |(stem, _)| stem);
-    stem.split_once('_').map_or(stem, |(_, name)| name)
-}
-
-/// Every subprogram (.SPF) of the corpus folder, under its own name.
-fn corpus_library(folder: &std::path::Path) -> MemoryLibrary {
-    let mut library = MemoryLibrary::new();
-    for (i, case) in CASES.iter().enumerate() {
-        if case.file.ends_with(".SPF") {
-            let text = std::fs::read(folder.join(case.file)).unwrap();
-            library.insert_named(
-                program_name(case.file),
-                FileId(i as u32 + 1),
-                &String::from_utf8_lossy(&text),
-            );
-        }
-    }
-    library
-}
 
 /// What one run gave.
 struct Outcome {
@@ -530,14 +269,14 @@ fn run(case: &Case, folder: &std::path::Path) -> Outcome {
 
 /// [`run`] with `stand_ins` (name, text) added to the library.
 fn run_with(case: &Case, folder: &std::path::Path, stand_ins: &[(&str, &str)]) -> Outcome {
-    let machine = (case.machine)();
+    let machine = machine_for(case.file);
     let text = match case.call {
         Some(call) => call.to_string(),
         None => {
             String::from_utf8_lossy(&std::fs::read(folder.join(case.file)).unwrap()).into_owned()
         }
     };
-    let mut library = corpus_library(folder);
+    let mut library = common::sinumerik_machines::library(folder);
     for (i, (name, text)) in stand_ins.iter().enumerate() {
         library.insert_named(name, FileId(100 + i as u32), text);
     }
