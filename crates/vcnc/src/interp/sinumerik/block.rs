@@ -90,6 +90,8 @@ pub(super) struct Words<'a> {
     call: Option<(String, Span)>,
     /// Warnings the words raised, for the stream.
     warnings: Vec<Alarm>,
+    /// MCALL: the block's call becomes modal (or, without one, the modal call ends).
+    mcall: Option<Span>,
     /// The arguments of a call with parentheses, evaluated where the call stands.
     arguments: Option<Vec<Argument>>,
     passes: Option<(u32, Span)>,
@@ -202,6 +204,8 @@ pub(super) fn run(
     };
     front.modal.motion = modal_motion;
     let mut prepared = prepared?;
+    let moved = suppress.is_some()
+        || !matches!(prepared, motion::Prepared::None | motion::Prepared::Waiting);
     // A corner waits over a few blocks without motion (PGsl 9.15, L6797-6803; five is vcnc's
     // choice of the machine data's number); a dwell, a tool change, a call or the end do not.
     let breaks = dwell
@@ -269,9 +273,32 @@ pub(super) fn run(
             kernel.event(SegmentKind::Stop { kind }, Origin { span, ..origin });
         }
     }
-    if let Some((name, span)) = &words.call {
-        let passes = words.passes.map_or(1, |(p, _)| p);
-        front.call(name, passes, *span, words.arguments.clone())?;
+    match (words.mcall, &words.call) {
+        (Some(_), Some((name, span))) => {
+            front.modal_call = Some(super::ModalCall {
+                name: name.clone(),
+                arguments: words.arguments.clone(),
+                span: *span,
+                depth: front.levels.len(),
+            });
+        }
+        (Some(_), None) => front.modal_call = None,
+        (None, Some((name, span))) => {
+            let passes = words.passes.map_or(1, |(p, _)| p);
+            front.call(name, passes, *span, words.arguments.clone())?;
+        }
+        // After every block with motion of the program that made it modal (not inside the
+        // called program itself).
+        (None, None) if moved => {
+            if let Some(call) = front
+                .modal_call
+                .clone()
+                .filter(|c| c.depth == front.levels.len())
+            {
+                front.call(&call.name, 1, call.span, call.arguments)?;
+            }
+        }
+        (None, None) => {}
     }
     match words.ends {
         Some((End::Program(kind), span)) if front.levels.len() == 1 => {
@@ -279,7 +306,7 @@ pub(super) fn run(
             Ok(Step::End)
         }
         Some(_) if front.levels.len() > 1 => {
-            front.return_from_subprogram();
+            front.return_from_subprogram(kernel);
             Ok(Step::Next)
         }
         // M17 or RET in the main program ends it, as M30 would (docs/SINUMERIK.md 8.3).
@@ -421,6 +448,8 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             // The message only shows on the control's screen; STOPRE only waits for the
             // block preparation (vcnc prepares block by block).
             "STOPRE" | "MSG" => {}
+            // MCALL with a call makes it modal; alone, it ends the modal call (PGAsl MCALL).
+            "MCALL" if matches!(word.value, Value::Bare) => words.mcall = Some(word.span),
             "SETAL" => return Err(user_alarm(front, kernel, word)?),
             // CYCLE832 sets the tolerance and path mode of high-speed milling: state for the
             // planner of issue 22; CYCLE800 without a rotation resets the swivel vcnc does not

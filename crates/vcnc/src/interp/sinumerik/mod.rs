@@ -100,6 +100,8 @@ pub struct Sinumerik {
     arc_tolerance: f64,
     /// Tools called by names the tool table lacks, and the numbers they run under.
     unknown_tools: std::collections::HashMap<String, u32>,
+    /// The modal call (MCALL) in force.
+    modal_call: Option<ModalCall>,
     /// The programmable frame ($P_PFRAME).
     frame: frame::ProgrammableFrame,
     /// Structure partners, labels and block numbers found so far.
@@ -120,6 +122,26 @@ struct Level {
     sections: Vec<Section>,
     /// The arguments of the call, until its PROC takes them.
     arguments: Option<Vec<language::Argument>>,
+    /// What a PROC with SAVE gives back on return.
+    saved: Option<Saved>,
+}
+
+/// The modal state a PROC with SAVE restores.
+#[derive(Clone, Copy)]
+struct Saved {
+    modal: Modal,
+    frame: frame::ProgrammableFrame,
+}
+
+/// A modal subprogram call (MCALL): called after every block with motion of the level that
+/// made it.
+#[derive(Clone, Debug)]
+struct ModalCall {
+    name: String,
+    arguments: Option<Vec<language::Argument>>,
+    span: Span,
+    /// The call stack's depth where MCALL stood.
+    depth: usize,
 }
 
 /// A part repetition running: lines `first..=last`, then on at `back`.
@@ -173,9 +195,11 @@ impl Sinumerik {
                 passes_left: 0,
                 sections: Vec::new(),
                 arguments: None,
+                saved: None,
             }],
             structure: flow::Structure::default(),
             frame: frame::ProgrammableFrame::default(),
+            modal_call: None,
             unknown_tools: std::collections::HashMap::new(),
             polar: polar::Polar::new(),
             spindle: spindle::Spindle::default(),
@@ -287,6 +311,13 @@ impl Sinumerik {
             StatementKind::Procedure(procedure) => {
                 let arguments = self.level().arguments.take().unwrap_or_default();
                 self.bind(arguments, procedure, span)?;
+                if procedure.attributes.iter().any(|a| &*a.value == "SAVE") {
+                    let saved = Saved {
+                        modal: self.modal,
+                        frame: self.frame,
+                    };
+                    self.level().saved = Some(saved);
+                }
             }
             StatementKind::Definition(definition) => self.define(kernel, definition)?,
             _ => {
@@ -328,7 +359,7 @@ impl Sinumerik {
     /// The text of the current level ran out: a subprogram returns, the main program ends.
     fn end_of_text(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
         if self.levels.len() > 1 {
-            self.return_from_subprogram();
+            self.return_from_subprogram(kernel);
             return Ok(Step::Next);
         }
         kernel.warn(
@@ -343,16 +374,40 @@ impl Sinumerik {
         Ok(Step::End)
     }
 
-    /// M17, RET or the end of a subprogram's text: the next pass, or back to the caller.
-    fn return_from_subprogram(&mut self) {
+    /// M17, RET or the end of a subprogram's text: the next pass, or back to the caller; a
+    /// PROC with SAVE gives back the modal state it was called with.
+    fn return_from_subprogram(&mut self, kernel: &mut Kernel) {
         let level = self.level();
         if level.passes_left > 0 {
             level.passes_left -= 1;
             level.next = 0;
             return;
         }
-        self.levels.pop();
+        let saved = self.levels.pop().and_then(|level| level.saved);
         self.vars.pop_level();
+        // A modal call made in the subprogram ends with it.
+        if self
+            .modal_call
+            .as_ref()
+            .is_some_and(|c| c.depth > self.levels.len())
+        {
+            self.modal_call = None;
+        }
+        if let Some(saved) = saved {
+            self.restore(kernel, saved);
+        }
+    }
+
+    /// The modal state a PROC with SAVE restores on return (PGAsl SAVE): the G functions, the
+    /// settable and the programmable frame.
+    fn restore(&mut self, kernel: &mut Kernel, saved: Saved) {
+        let settable = saved.modal.settable;
+        self.modal = saved.modal;
+        kernel.set_plane(self.modal.plane);
+        kernel.select_work_offset(block::settable_id(settable, self.is_828d()));
+        self.frame = saved.frame;
+        kernel.set_programmable(self.frame.to_affine());
+        tools::apply_length(self, kernel);
     }
 
     /// Calls subprogram `name` for `passes` passes from the block at `span`, with the
@@ -389,6 +444,7 @@ impl Sinumerik {
             passes_left: passes - 1,
             sections: Vec::new(),
             arguments,
+            saved: None,
         });
         Ok(())
     }
