@@ -334,6 +334,9 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             ));
         }
         if let Some((function, group)) = gcodes_word(front, word)? {
+            if function == Function::State {
+                note_state(front, word, &mut words.warnings);
+            }
             words.functions.push((function, group, word));
             continue;
         }
@@ -420,7 +423,10 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
                 words.override_percent = Some(percent);
             }
             // SF: a thread's start angle, which changes neither path nor time.
-            "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" | "SF" => {}
+            "SF" => {}
+            "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" => {
+                note_state(front, word, &mut words.warnings);
+            }
             "FGROUP" => feed_group(word)?,
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
@@ -455,7 +461,8 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             // planner of issue 22; CYCLE800 without a rotation resets the swivel vcnc does not
             // have (docs/SINUMERIK.md 1).
             // WRTPR writes to the control's printer; nothing moves.
-            "CYCLE832" | "CPRECON" | "CPRECOF" | "WRTPR" => {}
+            "WRTPR" => {}
+            "CYCLE832" | "CPRECON" | "CPRECOF" => note_state(front, word, &mut words.warnings),
             // The blank of ShopMill programs: the simulation's stock (issue 21), no motion.
             "WORKPIECE" => {}
             "CYCLE800" => swivel(front, kernel, word)?,
@@ -541,6 +548,26 @@ fn swivel(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Ala
         }
     }
     Ok(())
+}
+
+/// The G functions a machine has at power-on that change nothing vcnc models: no note.
+const QUIET_STATE: [&str; 17] = [
+    "BRISK", "FFWOF", "COMPOF", "CFC", "NORM", "G450", "G601", "WALIMON", "DIAMOF", "FNORM",
+    "RTLION", "DYNNORM", "CUT2D", "G40", "G290", "CDOF", "TRAFOOF",
+];
+
+/// A note, once per command, that vcnc keeps a command as state without its effect on the
+/// control's timing (docs/SINUMERIK.md 1, issue 20's "accepted as state").
+fn note_state(front: &mut Sinumerik, word: &Word, warnings: &mut Vec<Alarm>) {
+    let name = &*word.address;
+    if QUIET_STATE.contains(&name) || !front.noted.insert(name.to_string()) {
+        return;
+    }
+    warnings.push(Alarm::warning(
+        AlarmCode::KeptAsState,
+        word.span,
+        format!("{name} is kept as state: vcnc moves as programmed without modelling its effect on the control's path or timing"),
+    ));
 }
 
 /// FGROUP: the axes the path feed is measured along. The geometry axes (the default, or

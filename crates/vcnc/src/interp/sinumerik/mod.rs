@@ -100,6 +100,8 @@ pub struct Sinumerik {
     arc_tolerance: f64,
     /// Tools called by names the tool table lacks, and the numbers they run under.
     unknown_tools: std::collections::HashMap<String, u32>,
+    /// The commands kept as state that a note was given for.
+    noted: std::collections::HashSet<String>,
     /// The modal call (MCALL) in force.
     modal_call: Option<ModalCall>,
     /// The programmable frame ($P_PFRAME).
@@ -200,6 +202,7 @@ impl Sinumerik {
             structure: flow::Structure::default(),
             frame: frame::ProgrammableFrame::default(),
             modal_call: None,
+            noted: std::collections::HashSet::new(),
             unknown_tools: std::collections::HashMap::new(),
             polar: polar::Polar::new(),
             spindle: spindle::Spindle::default(),
