@@ -275,6 +275,7 @@ pub(super) fn run(
     }
     match (words.mcall, &words.call) {
         (Some(_), Some((name, span))) => {
+            front.preload(name, *span)?;
             front.modal_call = Some(super::ModalCall {
                 name: name.clone(),
                 arguments: words.arguments.clone(),
@@ -468,10 +469,7 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             "CYCLE800" => swivel(front, kernel, word)?,
             // A name alone that is no keyword calls the subprogram of that name (`L140`,
             // `CHAMFER`).
-            _ if matches!(word.value, Value::Bare)
-                && gcodes::out_of_product(address).is_none()
-                && !gcodes::planned_call(address) =>
-            {
+            _ if matches!(word.value, Value::Bare) && gcodes::out_of_product(address).is_none() => {
                 words.call = Some((address.to_string(), word.span));
             }
             // An assignment: `R1=5`, `COUNT=COUNT+1`, `$P_UIFR[1,X,TR]=10`, `ARR[2]=7`.
@@ -490,7 +488,6 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             // A call with arguments: a procedure (`L140(2)`, `CHAMFER(5)`).
             _ if matches!(word.value, Value::Call(_))
                 && gcodes::out_of_product(address).is_none()
-                && !gcodes::planned_call(address)
                 && !PREDEFINED.contains(&address) =>
             {
                 let Value::Call(arguments) = &word.value else {

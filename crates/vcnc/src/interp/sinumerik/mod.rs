@@ -452,6 +452,15 @@ impl Sinumerik {
         Ok(())
     }
 
+    /// The program `name` loaded, from the library if it is not yet: a modal call checks its
+    /// target where MCALL stands.
+    fn preload(&mut self, name: &str, span: Span) -> Result<(), Alarm> {
+        if !self.programs.iter().any(|p| *p.name == *name) {
+            self.load(name, span)?;
+        }
+        Ok(())
+    }
+
     /// Loads subprogram `name` from the library.
     fn load(&mut self, name: &str, span: Span) -> Result<usize, Alarm> {
         let found = match self.library.as_mut() {
@@ -461,14 +470,7 @@ impl Sinumerik {
             None => None,
         };
         let Some(found) = found else {
-            return Err(Alarm::error(
-                AlarmCode::ProgramNotFound,
-                span,
-                format!("subprogram {name} not found"),
-            )
-            .with_help(format!(
-                "put {name}.SPF in the program's directory or in a directory given with --lib"
-            )));
+            return Err(gcodes::missing_program(name, span));
         };
         self.programs
             .push(Program::new(found.file, name, found.text));
