@@ -877,3 +877,32 @@ fn procs_take_values_and_var_references() {
         "{got:?}"
     );
 }
+
+#[test]
+fn g291_runs_iso_blocks_on_the_same_machine_state_until_g290() {
+    // PGsl 16.4 group 47: the ISO blocks see the SINUMERIK frame (G54) and position, and the
+    // SINUMERIK blocks after G290 go on from where the ISO ones ended (X15 Y15, then the ISO
+    // R arc to X25 Y25 about X25 Y15; X=IC(1) from there).
+    let text = "G54 G0 X10 Y10\nG291\nG91 G01 X5. Y5. F300\nG90 G02 X25. Y25. R10.\nG290\nG1 X=IC(1)\nM30\n";
+    let (segments, alarms) = stream(text, &g54());
+    assert!(alarms.is_empty(), "{alarms:?}");
+    let got = ends(&segments);
+    let wanted = [
+        [110.0, 60.0, 0.0],
+        [115.0, 65.0, 0.0],
+        [125.0, 75.0, 0.0],
+        [126.0, 75.0, 0.0],
+    ];
+    assert!(
+        got.iter().zip(wanted).all(|(g, w)| close(*g, w)) && got.len() == 4,
+        "{got:?}"
+    );
+    assert_eq!(segments[1].span.line, 3, "the ISO blocks keep their lines");
+}
+
+#[test]
+fn an_iso_error_in_a_g291_section_stops_the_program_at_its_line() {
+    let alarm = error("G291\nG01 X1.\nG290\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::NoFeedRate);
+    assert_eq!(alarm.span.unwrap().line, 2);
+}

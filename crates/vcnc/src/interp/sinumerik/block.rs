@@ -301,6 +301,16 @@ pub(super) fn run(
         }
         (None, None) => {}
     }
+    if words
+        .functions
+        .iter()
+        .any(|(f, _, _)| *f == Function::IsoMode)
+    {
+        front.flush_contour(kernel)?;
+        let first = front.level().next;
+        let back = super::iso_mode::run(front, kernel, first)?;
+        front.level().next = back;
+    }
     match words.ends {
         Some((End::Program(kind), span)) if front.levels.len() == 1 => {
             kernel.end(kind, Origin { span, ..origin });
@@ -336,7 +346,11 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
         }
         if let Some((function, group)) = gcodes_word(front, word)? {
             if function == Function::State {
-                note_state(front, word, &mut words.warnings);
+                let name = match &word.value {
+                    Value::Constant(n) => format!("G{}", n.value),
+                    _ => word.address.to_string(),
+                };
+                note_state(front, &name, word, &mut words.warnings);
             }
             words.functions.push((function, group, word));
             continue;
@@ -426,7 +440,7 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             // SF: a thread's start angle, which changes neither path nor time.
             "SF" => {}
             "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" => {
-                note_state(front, word, &mut words.warnings);
+                note_state(front, address, word, &mut words.warnings);
             }
             "FGROUP" => feed_group(word)?,
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
@@ -463,7 +477,9 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             // have (docs/SINUMERIK.md 1).
             // WRTPR writes to the control's printer; nothing moves.
             "WRTPR" => {}
-            "CYCLE832" | "CPRECON" | "CPRECOF" => note_state(front, word, &mut words.warnings),
+            "CYCLE832" | "CPRECON" | "CPRECOF" => {
+                note_state(front, address, word, &mut words.warnings);
+            }
             // The blank of ShopMill programs: the simulation's stock (issue 21), no motion.
             "WORKPIECE" => {}
             "CYCLE800" => swivel(front, kernel, word)?,
@@ -555,8 +571,7 @@ const QUIET_STATE: [&str; 17] = [
 
 /// A note, once per command, that vcnc keeps a command as state without its effect on the
 /// control's timing (docs/SINUMERIK.md 1, issue 20's "accepted as state").
-fn note_state(front: &mut Sinumerik, word: &Word, warnings: &mut Vec<Alarm>) {
-    let name = &*word.address;
+fn note_state(front: &mut Sinumerik, name: &str, word: &Word, warnings: &mut Vec<Alarm>) {
     if QUIET_STATE.contains(&name) || !front.noted.insert(name.to_string()) {
         return;
     }
@@ -669,12 +684,7 @@ fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<(Function, Optio
             word.span,
             format!("{name} is not run yet (planned: issue 22, SINUMERIK path control, compensation and working area)"),
         )),
-        Some(Function::IsoMode) => Err(Alarm::error(
-            AlarmCode::NotSupportedYet,
-            word.span,
-            "G291 (ISO dialect mode) is not run yet by vcnc's SINUMERIK front end (issue 20, its ISO mode part)",
-        )
-        .with_help("run the ISO part of the program as a program of its own with an ISO profile")),
+        Some(Function::IsoMode) => Ok(Some((Function::IsoMode, gcodes::group(&name)))),
         Some(Function::OutOfProduct(what)) => Err(Alarm::error(
             AlarmCode::NotInProduct,
             word.span,

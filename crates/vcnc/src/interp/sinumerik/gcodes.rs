@@ -39,7 +39,7 @@ pub(super) enum Function {
     State,
     /// The next SINUMERIK issue adds it.
     Planned,
-    /// G291: the blocks after it are ISO dialect (not run yet).
+    /// G291: the blocks after it, to the next G290, are ISO dialect.
     IsoMode,
     /// Outside the product: the name says what it belongs to.
     OutOfProduct(&'static str),

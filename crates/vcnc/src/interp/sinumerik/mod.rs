@@ -20,6 +20,7 @@ mod eval;
 mod flow;
 mod frame;
 mod gcodes;
+mod iso_mode;
 mod language;
 mod motion;
 mod polar;
