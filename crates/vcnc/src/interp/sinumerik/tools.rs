@@ -167,7 +167,10 @@ pub(super) fn change(
     if let Some((d, span)) = words.edge {
         front.tool.edge = d;
         // An edge of no tool gives no offset; said once (docs/SINUMERIK.md 9).
-        if d != 0 && front.tool.in_spindle.is_none() && front.noted.insert("D without a tool".into()) {
+        if d != 0
+            && front.tool.in_spindle.is_none()
+            && front.noted.insert("D without a tool".into())
+        {
             kernel.warn(
                 Alarm::warning(
                     AlarmCode::OffsetNumberOutOfRange,
