@@ -55,7 +55,8 @@ pub enum AlarmCode {
     /// A code or construct the controller accepts but vcnc does not implement yet. The message
     /// names it; the issue that will add it is in the help text.
     NotSupportedYet,
-    /// A program in a dialect vcnc does not run yet (e.g. SINUMERIK).
+    /// A program given to an interpreter of another dialect (SINUMERIK text to the ISO
+    /// interpreter).
     DialectNotSupported,
     /// A command of the control that vcnc keeps as state without modelling its effect (a
     /// compressor, an acceleration profile, high-speed settings): a note, once per command.
@@ -303,7 +304,7 @@ impl AlarmCode {
             UnknownGCode => "check the G code against the control's manual, or choose the profile the program was written for (--profile)",
             SameGroupGCodes => "keep one G code of the group in the block",
             NotSupportedYet => "vcnc cannot run this yet: see docs/DEVIATIONS.md and the issue the message names, if any",
-            DialectNotSupported => "vcnc runs FANUC-family ISO programs; SINUMERIK comes later",
+            DialectNotSupported => "this interpreter runs another dialect: vcnc::Pipeline picks the front end a program needs",
             NotInProduct => "vcnc simulates 3-axis milling on one channel: run this part of the program on the control",
             KeptAsState => "the path and its positions are as programmed; the control's own timing of this command may differ",
             NoFeedRate => "program an F word before or in the first G01/G02/G03 block",
