@@ -223,10 +223,13 @@ fn sinumerik_programs_run_and_name_the_commands_still_planned() {
         .unwrap()
         .contains("CYCLE81 is not run yet (planned: issue 22"));
     // What is outside the product counts as not supported too, not as the program's fault.
-    let program = temp_program("TURN.MPF", "DIAMON
+    let program = temp_program(
+        "TURN.MPF",
+        "DIAMON
 G0 X10
 M30
-");
+",
+    );
     let out = vcnc(&["check", &program]);
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert!(stdout.contains("1 not supported"), "{stdout}");

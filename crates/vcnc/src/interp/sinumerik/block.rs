@@ -5,9 +5,11 @@
 //! Never: let the written order of the words change what a block does, or run a word it does not
 //! understand: an unknown address or name is an alarm naming it.
 
-use super::gcodes::{self, FeedType, FrameOp, Function, OneBlock};
+use super::gcodes::{self, FeedType, Function, OneBlock};
+use super::instructions::{frame_instruction, pole};
 use super::language::Argument;
 use super::motion::{self, unit};
+use super::predefined::{feed_group, note_state, swivel, unknown_word, user_alarm, written};
 use super::spindle;
 use super::tools;
 use super::{Sinumerik, Step};
@@ -40,7 +42,7 @@ pub(super) struct AxisValue {
 #[derive(Default)]
 pub(super) struct Words<'a> {
     /// The G functions, with their groups.
-    functions: Vec<(Function, Option<u8>, &'a Word)>,
+    pub(super) functions: Vec<(Function, Option<u8>, &'a Word)>,
     pub(super) axes: [Option<AxisValue>; AXES],
     /// I J K.
     pub(super) centre: [Option<AxisValue>; 3],
@@ -81,7 +83,7 @@ pub(super) struct Words<'a> {
     pub(super) fb: Option<(f64, Span)>,
     pub(super) fz: Option<(f64, Span)>,
     /// RPL: the angle of a rotation in the plane.
-    rpl: Option<(f64, Span)>,
+    pub(super) rpl: Option<(f64, Span)>,
     pub(super) feed: Option<(f64, Span)>,
     pub(super) speed: Option<(f64, Span)>,
     pub(super) tool: Option<(u32, Span)>,
@@ -518,148 +520,6 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
     Ok(words)
 }
 
-/// SETAL(number[, text]): the program raises an alarm of its own (cycle alarms 60000-67999
-/// stop it).
-fn user_alarm(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Alarm, Alarm> {
-    let Value::Call(arguments) = &word.value else {
-        return Err(Alarm::error(
-            AlarmCode::MacroSyntax,
-            word.span,
-            "SETAL takes the alarm number in parentheses: SETAL(61000)",
-        ));
-    };
-    let number = match arguments.first() {
-        Some(Some(expr)) => front.value(kernel, expr)?,
-        _ => 0.0,
-    };
-    let text = match arguments.get(1) {
-        Some(Some(expr)) => format!(": {}", front.text(kernel, expr)?),
-        _ => String::new(),
-    };
-    Ok(Alarm::error(
-        AlarmCode::UserAlarm,
-        word.span,
-        format!("alarm {number}{text} (set by the program with SETAL)"),
-    ))
-}
-
-/// CYCLE800: the swivel cycle. Without a rotation (all angles 0, or no parameters) it resets
-/// the swivel, which vcnc's 3-axis model never has; a rotation is issue 22's.
-fn swivel(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Alarm> {
-    let arguments = match &word.value {
-        Value::Call(arguments) => arguments.as_slice(),
-        _ => &[],
-    };
-    // _A, _B, _C are the 8th to 10th parameters.
-    for argument in arguments.iter().skip(7).take(3).flatten() {
-        if front.value(kernel, argument)? != 0.0 {
-            return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
-                word.span,
-                "CYCLE800 with a rotation is not run yet (planned: issue 22, SINUMERIK cycles and swivel data records)",
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// The G functions a machine has at power-on that change nothing vcnc models: no note.
-const QUIET_STATE: [&str; 17] = [
-    "BRISK", "FFWOF", "COMPOF", "CFC", "NORM", "G450", "G601", "WALIMON", "DIAMOF", "FNORM",
-    "RTLION", "DYNNORM", "CUT2D", "G40", "G290", "CDOF", "TRAFOOF",
-];
-
-/// A note, once per command, that vcnc keeps a command as state without its effect on the
-/// control's timing (docs/SINUMERIK.md 1, issue 20's "accepted as state").
-fn note_state(front: &mut Sinumerik, name: &str, word: &Word, warnings: &mut Vec<Alarm>) {
-    if QUIET_STATE.contains(&name) || !front.noted.insert(name.to_string()) {
-        return;
-    }
-    warnings.push(Alarm::warning(
-        AlarmCode::KeptAsState,
-        word.span,
-        format!("{name} is kept as state: vcnc moves as programmed without modelling its effect on the control's path or timing"),
-    ));
-}
-
-/// FGROUP: the axes the path feed is measured along. The geometry axes (the default, or
-/// FGROUP() to reset) change nothing; other groups change the time of every move.
-fn feed_group(word: &Word) -> Result<(), Alarm> {
-    let axes: Vec<&str> = match &word.value {
-        Value::Call(arguments) => arguments
-            .iter()
-            .flatten()
-            .map(|e| match &e.kind {
-                ExprKind::Name(name) => &**name,
-                _ => "?",
-            })
-            .collect(),
-        _ => Vec::new(),
-    };
-    let mut sorted = axes.clone();
-    sorted.sort_unstable();
-    if sorted.is_empty() || sorted == ["X", "Y", "Z"] {
-        return Ok(());
-    }
-    Err(Alarm::error(
-        AlarmCode::NotSupportedYet,
-        word.span,
-        format!(
-            "FGROUP({}) is not run yet: vcnc measures the path feed along X, Y and Z",
-            axes.join(",")
-        ),
-    )
-    .with_help("the feed along other axes comes with the rotary axes' own speeds (5-axis work)"))
-}
-
-/// A word as the program wrote it, for messages: `M2=70`, `SVC[2]`, `POSA`.
-fn written(word: &Word) -> String {
-    match &word.value {
-        Value::Constant(n) => format!("{}{}", word.address, n.value),
-        Value::Expression(Expr {
-            kind: ExprKind::Number(n),
-            ..
-        }) => format!("{}={n}", word.address),
-        Value::Indexed(..) => format!("{}[..]", word.address),
-        _ => word.address.to_string(),
-    }
-}
-
-/// The alarm of a word vcnc does not run: out of the product, planned, or unknown.
-fn unknown_word(word: &Word) -> Alarm {
-    let name = &*word.address;
-    if let Some(what) =
-        gcodes::out_of_product(name).or_else(|| gcodes::other_unit(name, &word.value))
-    {
-        return Alarm::error(
-            AlarmCode::NotInProduct,
-            word.span,
-            format!("{name} belongs to {what}, which vcnc does not simulate"),
-        );
-    }
-    if gcodes::planned_call(name) {
-        return Alarm::error(
-            AlarmCode::NotSupportedYet,
-            word.span,
-            format!("{name} is not run yet (planned: issue 22, SINUMERIK cycles and compensation)"),
-        );
-    }
-    if matches!(word.value, Value::Bare | Value::Call(_)) {
-        return Alarm::error(
-            AlarmCode::NotSupportedYet,
-            word.span,
-            format!("{name} is not run yet by vcnc's SINUMERIK front end"),
-        )
-        .with_help("see docs/SINUMERIK.md for what runs today");
-    }
-    Alarm::error(
-        AlarmCode::WordNotAllowed,
-        word.span,
-        format!("the address {name} is not run yet by vcnc's SINUMERIK front end"),
-    )
-    .with_help("see docs/SINUMERIK.md for what runs today")
-}
-
 /// The G function a word is (`G1`, or a named one: `CIP`, `SOFT`) and its group; None for
 /// other words.
 fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<(Function, Option<u8>)>, Alarm> {
@@ -823,113 +683,6 @@ fn dwell_block(
         }
     };
     kernel.dwell(seconds, origin)
-}
-
-/// A frame instruction: the programmable frame changes, nothing moves (docs/SINUMERIK.md 5.3).
-fn frame_instruction(
-    front: &mut Sinumerik,
-    kernel: &mut Kernel,
-    words: &Words<'_>,
-    op: FrameOp,
-    word: &Word,
-) -> Result<(), Alarm> {
-    if let Some(&(_, _, other)) = words
-        .functions
-        .iter()
-        .find(|(f, _, w)| !std::ptr::eq(*w, word) && !matches!(f, Function::Plane(_)))
-    {
-        return Err(own_block(word, other.span));
-    }
-    if words.feed.is_some() || words.speed.is_some() || words.tool.is_some() || !words.m.is_empty()
-    {
-        return Err(own_block(word, word.span));
-    }
-    let unit = unit(front);
-    let lengths: [Option<f64>; AXES] = std::array::from_fn(|i| {
-        let scale = if i < 3 { unit } else { 1.0 };
-        words.axes[i].map(|v| v.value * scale)
-    });
-    let plain: [Option<f64>; 3] = std::array::from_fn(|i| words.axes[i].map(|v| v.value));
-    let frame = &mut front.frame;
-    let plane = front.modal.plane;
-    let result = match op {
-        FrameOp::Trans => frame.trans(lengths),
-        FrameOp::Atrans => frame.atrans(lengths),
-        FrameOp::G58 => frame.g58(lengths),
-        FrameOp::G59 => frame.g59(lengths),
-        FrameOp::Rot | FrameOp::Rots | FrameOp::Arot | FrameOp::Arots => match (words.rpl, op) {
-            (Some((angle, _)), FrameOp::Rot | FrameOp::Rots) => frame.rot_rpl(plane, angle),
-            (Some((angle, _)), _) => frame.arot_rpl(plane, angle),
-            (None, FrameOp::Rot) => frame.rot(plain),
-            (None, FrameOp::Rots) => frame.rots(plain),
-            (None, FrameOp::Arot) => frame.arot(plain),
-            (None, _) => frame.arots(plain),
-        },
-        FrameOp::Scale => frame.scale(plain),
-        FrameOp::Ascale => frame.ascale(plain),
-        FrameOp::Mirror => {
-            frame.mirror(plain.map(|v| v.is_some()));
-            Ok(())
-        }
-        FrameOp::Amirror => {
-            frame.amirror(plain.map(|v| v.is_some()));
-            Ok(())
-        }
-    };
-    result.map_err(|error| Alarm::error(AlarmCode::ValueOutOfRange, word.span, error.message()))?;
-    kernel.set_programmable(front.frame.to_affine());
-    Ok(())
-}
-
-/// G110, G111, G112: a new pole, from the words of its block (docs/SINUMERIK.md 6.5).
-fn pole(
-    front: &mut Sinumerik,
-    words: &Words<'_>,
-    reference: gcodes::Pole,
-    origin: Origin,
-) -> Result<(), Alarm> {
-    use super::polar::{PoleDefinition, PoleReference};
-    let plane = front.modal.plane;
-    let unit = unit(front);
-    let reference = match reference {
-        gcodes::Pole::LastPoint => PoleReference::LastPoint([
-            front.programmed[0],
-            front.programmed[1],
-            front.programmed[2],
-        ]),
-        gcodes::Pole::WorkZero => PoleReference::WorkZero,
-        gcodes::Pole::Previous => PoleReference::LastPole,
-    };
-    let definition = match (words.ap, words.rp) {
-        (None, None) => PoleDefinition::Cartesian(std::array::from_fn(|i| {
-            words.axes[i].map(|v| v.value * unit)
-        })),
-        (ap, rp) => {
-            if words.axes.iter().take(3).any(Option::is_some) {
-                return Err(Alarm::error(
-                    AlarmCode::WordNotAllowed,
-                    origin.span,
-                    "a pole takes either axis values or AP= and RP=",
-                ));
-            }
-            PoleDefinition::Polar {
-                angle: ap.map_or(0.0, |v| v.value),
-                radius: rp.map_or(0.0, |v| v.value * unit),
-            }
-        }
-    };
-    front.polar.set_pole(reference, definition, plane);
-    Ok(())
-}
-
-/// The alarm of an instruction that must stand in a block of its own (docs/SINUMERIK.md 3.1).
-fn own_block(word: &Word, at: Span) -> Alarm {
-    Alarm::error(
-        AlarmCode::WordNotAllowed,
-        at,
-        format!("{} must be programmed in a block of its own", word.address),
-    )
-    .with_help("put the frame instruction in its own block, with its axis values only")
 }
 
 /// An axis or centre word's value, with `AC(..)` or `IC(..)` when written so.
