@@ -63,7 +63,7 @@ pub struct Sinumerik {
     /// R parameters and user variables.
     vars: vars::Variables,
     tool: ToolState,
-    /// Blocks run and jumps made, against the settings' limit.
+    /// Steps run (0 before the first: the power-on state is set then).
     iterations: u64,
     /// The last block's span, for the alarm at the end of the text.
     last_span: Span,
@@ -346,6 +346,24 @@ impl Sinumerik {
         flushed.finish(self, kernel)
     }
 
+    /// A jump back (a loop's end, GOTOB, GOTO): counted against the limit that ends a program
+    /// that would run for ever (a straight program of any length never reaches it).
+    fn count_jump(&mut self, span: Span) -> Result<(), Alarm> {
+        self.jumps += 1;
+        if self.jumps > self.settings.iteration_limit {
+            return Err(Alarm::error(
+                AlarmCode::MacroLimit,
+                span,
+                format!(
+                    "the program jumped back {} times without ending",
+                    self.settings.iteration_limit
+                ),
+            )
+            .with_help("a loop or jump never ends; the limit is iteration_limit in the profile's [sinumerik] table"));
+        }
+        Ok(())
+    }
+
     /// The current level.
     fn level(&mut self) -> &mut Level {
         self.levels
@@ -486,19 +504,8 @@ impl FrontEnd for Sinumerik {
         if self.iterations == 0 {
             self.power_on(kernel)?;
         }
+        self.iterations += 1;
         loop {
-            self.iterations += 1;
-            if self.iterations > self.settings.iteration_limit {
-                return Err(Alarm::error(
-                    AlarmCode::MacroLimit,
-                    self.last_span,
-                    format!(
-                        "the program ran {} blocks without ending",
-                        self.settings.iteration_limit
-                    ),
-                )
-                .with_help("a loop or jump never ends; the limit is iteration_limit in the profile's [sinumerik] table"));
-            }
             let (program, index) = self.next_line();
             let text = &self.programs[program];
             let Some(line) = text.line(index) else {
