@@ -32,6 +32,9 @@ mod tools;
 mod value;
 mod vars;
 
+/// The G functions by group with their support, for README.md's table (profile::codes).
+pub(crate) use gcodes::{listing as g_function_listing, Support as GFunctionSupport};
+
 use super::front_end::{FrontEnd, Run, Step};
 use super::kernel::{Kernel, Origin};
 use super::macros::programs::ProgramLibrary;
