@@ -245,6 +245,66 @@ const CASES: &[Case] = &[
     },
 ];
 
+/// The warnings the corpus runs give, each the program's own doing: (file, warning, line,
+/// why). Every other run is warning-free.
+const EXPECTED_WARNINGS: &[(&str, AlarmCode, u32, &str)] = &[
+    (
+        "dubovikov_CHAMFER.SPF",
+        AlarmCode::CuttingWithSpindleStopped,
+        26,
+        "N20 `G1 X=R1+10` and N21 `Z2` feed to the start before N22 `S1900 M3`, in the air",
+    ),
+    (
+        "dubovikov_case_test.MPF",
+        AlarmCode::MissingProgramEnd,
+        6,
+        "a test of its author's interpreter, without M30",
+    ),
+    (
+        "elmoe_Bottle_opener.MPF",
+        AlarmCode::OffsetNumberOutOfRange,
+        19,
+        "the NX post writes D1 on the move home before the first tool change",
+    ),
+    (
+        "elmoe_Bottle_opener.MPF",
+        AlarmCode::KeptAsState,
+        29,
+        "CYCLE832 (high-speed settings)",
+    ),
+    (
+        "elmoe_Coordinate_system_Achskreuz.MPF",
+        AlarmCode::OffsetNumberOutOfRange,
+        20,
+        "D1 before the first tool change",
+    ),
+    (
+        "elmoe_Coordinate_system_Achskreuz.MPF",
+        AlarmCode::KeptAsState,
+        30,
+        "CYCLE832",
+    ),
+    (
+        "elmoe_Keychain.MPF",
+        AlarmCode::OffsetNumberOutOfRange,
+        19,
+        "D1 before the first tool change",
+    ),
+    ("elmoe_Keychain.MPF", AlarmCode::KeptAsState, 29, "CYCLE832"),
+    (
+        "philip_CAM_TEST.MPF",
+        AlarmCode::OffsetNumberOutOfRange,
+        9,
+        "D1 on the move home before `T=\"DRILL 8.5\" M6`",
+    ),
+    (
+        "philip_CAM_TEST.MPF",
+        AlarmCode::KeptAsState,
+        17,
+        "SETMS(1) (the master spindle)",
+    ),
+];
+
 /// What one run gave.
 struct Outcome {
     ended: bool,
@@ -420,6 +480,23 @@ fn every_corpus_program_ends_or_stops_where_issue_20_allows() {
         ));
         if let Err(why) = result {
             failures.push(format!("{}: {why}", case.file));
+        }
+        let mut warned: Vec<(AlarmCode, u32)> = outcome
+            .warnings
+            .iter()
+            .map(|w| (w.code, w.span.map_or(0, |s| s.line)))
+            .collect();
+        warned.dedup();
+        let expected: Vec<(AlarmCode, u32)> = EXPECTED_WARNINGS
+            .iter()
+            .filter(|w| w.0 == case.file)
+            .map(|w| (w.1, w.2))
+            .collect();
+        if warned != expected {
+            failures.push(format!(
+                "{}: warnings {warned:?}, expected {expected:?}",
+                case.file
+            ));
         }
         if outcome.rapids_below_cuts != case.rapids_below_cuts {
             failures.push(format!(
