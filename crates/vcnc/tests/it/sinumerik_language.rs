@@ -589,7 +589,6 @@ fn without_save_a_subprograms_g91_stays_in_force() {
 }
 
 #[test]
-#[ignore = "SAVE: parsed but not run by the front end yet (issue 20)"]
 fn save_restores_the_g_functions_at_the_return() {
     // PROC SUB SAVE: G90 comes back at the RET, so `G0 X5` goes to X5.
     let text = "G90 G0 X2\nSUB\nG0 X5\nM30\n";
@@ -602,7 +601,6 @@ fn save_restores_the_g_functions_at_the_return() {
 }
 
 #[test]
-#[ignore = "SAVE: parsed but not run by the front end yet (issue 20)"]
 fn save_restores_the_programmable_frame_at_the_return() {
     // sinumerik-part-b.md (frames, L2042): with SAVE the caller's frame comes back. SUB adds
     // ATRANS X10 and moves to its X0 (X10); after the return `G0 X0` is X0 again.
@@ -616,7 +614,6 @@ fn save_restores_the_programmable_frame_at_the_return() {
 }
 
 #[test]
-#[ignore = "MCALL: not run by the front end yet (issue 20, the lead implements it)"]
 fn mcall_calls_its_subprogram_after_every_block_with_motion() {
     // PGAsl, modal subprogram call: after `MCALL HOLE` each block that moves an axis is followed
     // by HOLE (down Z-5, back Z0); `R1=1` moves nothing and calls nothing; `MCALL` alone ends it.
@@ -638,7 +635,6 @@ fn mcall_calls_its_subprogram_after_every_block_with_motion() {
 }
 
 #[test]
-#[ignore = "MCALL: not run by the front end yet (issue 20, the lead implements it)"]
 fn mcall_passes_its_arguments_each_time() {
     // MCALL DRILL(3): after each move DRILL goes to Z-3 and back.
     let text = "MCALL DRILL(3)\nG0 X10\nG0 X20\nMCALL\nM30\n";
@@ -664,7 +660,6 @@ fn mcall_passes_its_arguments_each_time() {
 }
 
 #[test]
-#[ignore = "MCALL: not run by the front end yet (issue 20, the lead implements it)"]
 fn a_new_mcall_replaces_the_old_one() {
     // MCALL A then MCALL B: after `G0 X10` only B runs (Y1).
     let text = "MCALL PA\nMCALL PB\nG0 X10\nMCALL\nM30\n";
