@@ -1363,6 +1363,86 @@ fn p_gg_reads_the_active_member_of_a_group() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// More of each: functions, strings, polar after a frame, CR > 180 degrees, $P_GG of group 8.
+
+#[test]
+fn rounding_and_min_max_functions() {
+    // ROUND(2.5) = 3; ROUNDUP(2.1) = 3; MINVAL(4,7) + MAXVAL(4,7) = 4 + 7 = 11.
+    assert_moves(
+        "G0 X=ROUND(2.5) Y=ROUNDUP(2.1) Z=MINVAL(4,7)+MAXVAL(4,7)\nM30\n",
+        &[[3.0, 3.0, 11.0]],
+    );
+}
+
+#[test]
+fn strings_compare_in_a_condition() {
+    // "AB" << "C" == "ABC" is true (X1); "AB" == "ab" is false (case counts).
+    let text = "DEF STRING[8] TXT=\"AB\"\nIF TXT<<\"C\"==\"ABC\"\nG0 X1\nENDIF\n\
+                IF TXT==\"ab\"\nG0 X9\nENDIF\nM30\n";
+    assert_eq!(xs(text), [1.0]);
+}
+
+#[test]
+fn a_pole_keeps_its_numbers_when_the_frame_changes() {
+    // 6.5 (choice): G111 X10 Y0 is stored as WCS numbers; after TRANS X5 the pole is WCS
+    // (10, 0) of the new frame: AP=0 RP=5 -> WCS (15, 0) -> + TRANS 5 + G54 (100, 50): X120 Y50.
+    assert_last("G111 X10 Y0\nTRANS X5\nG0 AP=0 RP=5", [120.0, 50.0, 0.0]);
+}
+
+#[test]
+fn rp_ic_adds_to_the_stored_radius() {
+    // Pole (0,0); AP=0 RP=10 -> (10, 0); RP=IC(5) -> RP 15 at AP 0 -> (15, 0).
+    assert_moves(
+        "G111 X0 Y0\nG0 AP=0 RP=10\nRP=IC(5)\nM30\n",
+        &[[10.0, 0.0, 0.0], [15.0, 0.0, 0.0]],
+    );
+}
+
+#[test]
+fn a_negative_cr_with_g3_takes_the_long_way() {
+    // G3 from (0,0) to (10,0) with CR=-10: more than 180 degrees, so the centre is on the
+    // right of the way (G3 with CR < 0, part-b 1.6.3): y = -sqrt(100 - 25) = -8.660.
+    let a = arcs_of("G0 X0 Y0\nG3 X10 Y0 CR=-10 F100\nM30\n", &machine());
+    assert!(close(a[0].1, [5.0, -8.660254, 0.0], 1e-6), "{a:?}");
+    assert_eq!(a[0].2, ArcDirection::CounterClockwise);
+}
+
+#[test]
+fn p_gg_of_group_8_counts_the_settable_frames() {
+    // $P_GG[8]: G500 is 1, G54 is 2, G55 is 3: X=2 then X=3 (no offsets on the plain machine).
+    assert_moves(
+        "G54\nR1=$P_GG[8]\nG55\nR2=$P_GG[8]\nG0 X=R1 Y=R2\nM30\n",
+        &[[2.0, 3.0, 0.0]],
+    );
+}
+
+#[test]
+fn mcall_is_not_called_by_the_blocks_of_its_own_subprogram() {
+    // The moves of HOLE do not call HOLE again (no nesting of the modal call): one pass per
+    // move of the main program: X10, Z-1, Z0, X20, Z-1, Z0.
+    let text = "MCALL HOLE\nG0 X10\nX20\nMCALL\nM30\n";
+    let run = run_with(text, &[("HOLE", "G91 G0 Z-1\nZ1\nG90\nM17\n")]);
+    assert_points(
+        &ends_of(&run, text),
+        &[
+            [10.0, 0.0, 0.0],
+            [10.0, 0.0, -1.0],
+            [10.0, 0.0, 0.0],
+            [20.0, 0.0, 0.0],
+            [20.0, 0.0, -1.0],
+            [20.0, 0.0, 0.0],
+        ],
+        text,
+    );
+}
+
+#[test]
+fn atrans_after_a_mirror_runs_along_the_mirrored_axis() {
+    // 5.3 rule 1 with M: MIRROR X0 / ATRANS X10: Tf = M (10, 0) = (-10, 0); G0 X0 Y0 -> X90.
+    assert_last("MIRROR X0\nATRANS X10\nG0 X0 Y0", [90.0, 50.0, 0.0]);
+}
+
+// ---------------------------------------------------------------------------------------------
 // The frame property (docs/SINUMERIK.md 5.3): a random sequence of frame blocks, then a G0 to
 // a random point, lands where the components T + Tf + R S M p computed here put it. The
 // blocks: TRANS/ATRANS, ROT/AROT RPL, SCALE/ASCALE, MIRROR/AMIRROR and G58/G59 (5.3, 5.4).
