@@ -1442,6 +1442,66 @@ fn atrans_after_a_mirror_runs_along_the_mirrored_axis() {
     assert_last("MIRROR X0\nATRANS X10\nG0 X0 Y0", [90.0, 50.0, 0.0]);
 }
 
+#[test]
+fn a_jump_out_of_a_for_loop_leaves_it_and_a_second_loop_runs() {
+    // PGAsl: a jump may leave a control structure. II = 1, 2 then out; then II = 7, 8.
+    let text = "DEF INT II\nFOR II=1 TO 5\nG0 X=II\nIF II==2 GOTOF OUT\nENDFOR\n\
+                OUT: FOR II=7 TO 8\nG0 X=II\nENDFOR\nM30\n";
+    assert_eq!(xs(text), [1.0, 2.0, 7.0, 8.0]);
+}
+
+#[test]
+fn leaving_a_while_by_a_jump_fifty_times_leaves_nothing_open() {
+    // Each pass enters the WHILE and jumps out of it; the abandoned structures must not count
+    // against the nesting limit: 50 passes, then X50.
+    let text = "R1=0\nTOP: WHILE 1\nR1=R1+1\nGOTOF OUT\nENDWHILE\nOUT: IF R1<50 GOTOB TOP\n\
+                G0 X=R1\nM30\n";
+    assert_eq!(xs(text), [50.0]);
+}
+
+#[test]
+fn ret_from_inside_a_loop_of_a_subprogram() {
+    // SUB returns from inside its FOR at KK = 2 (X1, X2); the caller's FOR goes on: SUB runs
+    // for JJ = 1, 2: X1, X2, X1, X2, then Y5.
+    let text = "DEF INT JJ\nFOR JJ=1 TO 2\nSUB\nENDFOR\nG0 Y5\nM30\n";
+    let run = run_with(
+        text,
+        &[(
+            "SUB",
+            "PROC SUB\nDEF INT KK\nFOR KK=1 TO 5\nG0 X=KK\nIF KK==2\nRET\nENDIF\nENDFOR\nRET\n",
+        )],
+    );
+    let got: Vec<f64> = ends_of(&run, text).iter().map(|p| p[0]).collect();
+    assert_eq!(got, [1.0, 2.0, 1.0, 2.0, 2.0]);
+}
+
+#[test]
+fn a_subprogram_defines_its_locals_again_on_each_call() {
+    // DEF INT NUM=3 in SUB on each of two calls: no "defined twice"; X3 then (G91) X6.
+    let text = "G91\nSUB\nSUB\nM30\n";
+    let run = run_with(text, &[("SUB", "PROC SUB\nDEF INT NUM=3\nG0 X=NUM\nRET\n")]);
+    assert_points(
+        &ends_of(&run, text),
+        &[[3.0, 0.0, 0.0], [6.0, 0.0, 0.0]],
+        text,
+    );
+}
+
+#[test]
+fn case_without_a_match_or_default_goes_on_after_it() {
+    // R1 = 5 matches no branch and there is no DEFAULT: the next block runs (X7).
+    assert_eq!(
+        xs("R1=5\nCASE(R1) OF 1 GOTOF ONE\nG0 X7\nONE: G0 X8\nM30\n"),
+        [7.0, 8.0]
+    );
+}
+
+#[test]
+fn rpl_in_g19_turns_about_x_from_y_towards_z() {
+    // G19: RPL turns about X, from Y towards Z: (Y10) by 90 -> Z10.
+    assert_last("G19\nROT RPL=90\nG0 X0 Y10 Z0", [100.0, 50.0, 10.0]);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The frame property (docs/SINUMERIK.md 5.3): a random sequence of frame blocks, then a G0 to
 // a random point, lands where the components T + Tf + R S M p computed here put it. The
