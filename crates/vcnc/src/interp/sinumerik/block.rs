@@ -490,11 +490,14 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             _ if matches!(word.value, Value::Bare) && gcodes::out_of_product(address).is_none() => {
                 words.call = Some((address.to_string(), word.span));
             }
-            // An assignment: `R1=5`, `COUNT=COUNT+1`, `$P_UIFR[1,X,TR]=10`, `ARR[2]=7`.
+            // An assignment: `R1=5`, `COUNT=COUNT+1`, `$P_UIFR[1,X,TR]=10`, `ARR[2]=7`, and
+            // `R[R1+1]=8`, an R parameter by its number as an expression (PGAsl R parameters).
             _ if matches!(
                 word.value,
                 Value::Expression(_) | Value::Indexed(_, Some(_))
-            ) && (address.starts_with('$') || front.is_variable(address)) =>
+            ) && (address.starts_with('$')
+                || front.is_variable(address)
+                || address == "R" && matches!(word.value, Value::Indexed(..))) =>
             {
                 let (indices, expr) = match &word.value {
                     Value::Expression(expr) => (&[][..], expr),
