@@ -1502,6 +1502,81 @@ fn rpl_in_g19_turns_about_x_from_y_towards_z() {
     assert_last("G19\nROT RPL=90\nG0 X0 Y10 Z0", [100.0, 50.0, 10.0]);
 }
 
+#[test]
+fn constants_in_hex_binary_and_ex_notation() {
+    // 'H10' = 16; 'B101' = 5; 1.5EX2 = 150.
+    assert_moves("G0 X='H10' Y='B101' Z=1.5EX2\nM30\n", &[[16.0, 5.0, 150.0]]);
+}
+
+#[test]
+fn an_r_parameter_indexed_by_an_expression() {
+    // R1 = 3: R[R1+1] is R4 = 8.
+    assert_moves("R1=3\nR[R1+1]=8\nG0 X=R4\nM30\n", &[[8.0, 0.0, 0.0]]);
+}
+
+#[test]
+fn a_two_dimensional_array_is_indexed_row_then_column() {
+    // TAB[1,2] = 5, TAB[0,1] = 2: X = 5 + 2 = 7; an unset element is 0: Y = TAB[1,0] = 0 -> Y0.
+    assert_moves(
+        "DEF REAL TAB[2,3]\nTAB[1,2]=5\nTAB[0,1]=2\nG0 X=TAB[1,2]+TAB[0,1] Y=TAB[1,0]+1\nM30\n",
+        &[[7.0, 1.0, 0.0]],
+    );
+}
+
+#[test]
+fn after_g53_an_increment_starts_where_the_tool_stands() {
+    // 6.4 rule 7: G54 (X100): G0 X10 -> X110; G53 G0 X0 -> X0; G91 G0 X1: p = -100 + 1 =
+    // -99 in the WCS -> machine X1.
+    assert_shop(
+        "G54 G0 X10 Y0\nG53 G0 X0\nG91 G0 X1\nM30\n",
+        &[[110.0, 50.0, 0.0], [0.0, 50.0, 0.0], [1.0, 50.0, 0.0]],
+    );
+}
+
+#[test]
+fn a_length_change_then_g91_travels_the_change_too() {
+    // 6.4 rule 4 for the tool (SD42442 = 1): T1 D1 (L 100); G0 Z0 -> Z100; D2 (L 50);
+    // G91 G0 Z1: p = 1 -> Z51.
+    assert_shop(
+        "T1 M6 D1\nG0 Z0\nD2\nG91 G0 Z1\nM30\n",
+        &[[0.0, 0.0, 100.0], [0.0, 0.0, 51.0]],
+    );
+}
+
+#[test]
+fn a_rounding_under_a_rotation_is_turned_with_the_contour() {
+    // ROT RPL=90: the WCS corners of the RND=5 test, (x, y) -> (-y, x): (0,-10) -> (10,0),
+    // (0,0), (15,0) -> (0,15), (20,5) -> (-5,20), (20,20) -> (-20,20); plus G54 (100, 50).
+    let text = "G0 X0 Y-10\nG1 Y0 F100\nX20 RND=5\nY20";
+    let program = format!("G54\nROT RPL=90\n{text}\nM30\n");
+    let got = ends_of(&run_on(&program, &shop()), &program);
+    let wanted: Vec<[f64; 3]> = CUT_CORNER_AT_20_0
+        .iter()
+        .map(|p| [100.0 - p[1], 50.0 + p[0], 0.0])
+        .collect();
+    assert_points(&got, &wanted, &program);
+}
+
+#[test]
+fn atrans_in_inches_is_converted_and_scale_is_not() {
+    // 6.2: G70 converts TRANS/ATRANS values; scale factors never: ATRANS X1 (25.4 mm),
+    // ASCALE X2: G0 X1 -> 25.4 + 2 * 25.4 = 76.2 mm.
+    assert_moves(
+        "G70\nATRANS X1\nASCALE X2\nG0 X1\nM30\n",
+        &[[76.2, 0.0, 0.0]],
+    );
+}
+
+#[test]
+fn g110_after_a_polar_move_takes_its_end_as_the_last_point() {
+    // Pole (0,0); AP=90 RP=10 -> (0,10); G110 X0 Y0: the pole is that end point; AP=0 RP=5
+    // -> (5, 10).
+    assert_moves(
+        "G111 X0 Y0\nG0 AP=90 RP=10\nG110 X0 Y0\nG0 AP=0 RP=5\nM30\n",
+        &[[0.0, 10.0, 0.0], [5.0, 10.0, 0.0]],
+    );
+}
+
 // ---------------------------------------------------------------------------------------------
 // The frame property (docs/SINUMERIK.md 5.3): a random sequence of frame blocks, then a G0 to
 // a random point, lands where the components T + Tf + R S M p computed here put it. The
