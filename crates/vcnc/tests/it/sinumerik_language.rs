@@ -1577,6 +1577,52 @@ fn g110_after_a_polar_move_takes_its_end_as_the_last_point() {
     );
 }
 
+#[test]
+fn a_uniform_scale_scales_the_radius_of_a_cr_arc() {
+    // 6.3: SCALE X2 Y2, G2 from (0,0) to (20,0) CR=10: machine chord 40, radius 20, centre
+    // (20, 0) of the WCS scaled -> machine X120 Y50 with G54.
+    let text = "G54\nSCALE X2 Y2\nG0 X0 Y0\nG2 X20 Y0 CR=10 F100\nM30\n";
+    let a = arcs_of(text, &shop());
+    assert!(close(a[0].0, [140.0, 50.0, 0.0], 1e-6), "{a:?}");
+    assert!(close(a[0].1, [120.0, 50.0, 0.0], 1e-6), "{a:?}");
+}
+
+#[test]
+fn a_negative_scale_factor_mirrors_the_axis() {
+    // 5.3 rule 7 (choice): SCALE X-2: X5 -> -10 -> X90 with G54.
+    assert_last("SCALE X-2\nG0 X5 Y0", [90.0, 50.0, 0.0]);
+}
+
+#[test]
+fn trans_gives_zero_to_the_axes_it_does_not_name() {
+    // Rule 1: TRANS X10 Y10 then TRANS X5: Y's translation is 0 again: X105 Y50.
+    assert_last("TRANS X10 Y10\nTRANS X5\nG0 X0 Y0", [105.0, 50.0, 0.0]);
+}
+
+#[test]
+fn a_frame_block_under_mcall_calls_nothing() {
+    // Only blocks with motion call the modal subprogram: TRANS X5 moves nothing; the next
+    // move (X0 + 5) calls it once: X5, then Z-1 and back.
+    let text = "MCALL HOLE\nTRANS X5\nG0 X0\nMCALL\nM30\n";
+    let run = run_with(text, &[("HOLE", "G91 G0 Z-1\nZ1\nG90\nM17\n")]);
+    assert_points(
+        &ends_of(&run, text),
+        &[[5.0, 0.0, 0.0], [5.0, 0.0, -1.0], [5.0, 0.0, 0.0]],
+        text,
+    );
+}
+
+#[test]
+fn a_helix_clockwise_with_turn_ends_below() {
+    // G2 from (10,0) about (0,0) to (0,-10): a clockwise quarter, Z-4, TURN=1: one extra turn.
+    let a = arcs_of(
+        "G0 X10 Y0 Z0\nG2 X0 Y-10 Z-4 I-10 J0 TURN=1 F100\nM30\n",
+        &machine(),
+    );
+    assert!(close(a[0].0, [0.0, -10.0, -4.0], 1e-6), "{a:?}");
+    assert_eq!((a[0].2, a[0].3), (ArcDirection::Clockwise, 1));
+}
+
 // ---------------------------------------------------------------------------------------------
 // The frame property (docs/SINUMERIK.md 5.3): a random sequence of frame blocks, then a G0 to
 // a random point, lands where the components T + Tf + R S M p computed here put it. The
