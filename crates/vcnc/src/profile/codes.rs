@@ -633,8 +633,9 @@ pub fn classify_m(code: u32, profile: &Profile) -> MLookup {
     })
 }
 
-/// The table of codes and their support on each built-in profile, as Markdown (README.md
-/// embeds it; a test keeps the two equal, so the table cannot drift from the code).
+/// The table of codes and their support on each built-in ISO profile, then the table of the
+/// SINUMERIK profiles' G functions, as Markdown (README.md embeds them; a test keeps the two
+/// equal, so the tables cannot drift from the code).
 pub fn supported_codes_markdown() -> String {
     use super::ProfileName;
     let profiles: Vec<Profile> = ProfileName::ALL
@@ -705,6 +706,34 @@ pub fn supported_codes_markdown() -> String {
             });
         }
         out.push('\n');
+    }
+    out.push_str(&sinumerik_codes_markdown());
+    out
+}
+
+/// The SINUMERIK table: every G function and named modal function of the 840D sl and the 828D,
+/// by group, with what vcnc does with it (the front end's own table, interp/sinumerik/gcodes.rs).
+fn sinumerik_codes_markdown() -> String {
+    use crate::interp::sinumerik::GFunctionSupport as Support;
+    let cell = |support: Support| match support {
+        Support::Runs => "yes".to_string(),
+        Support::State => "state".to_string(),
+        Support::Planned => "planned (#22)".to_string(),
+        Support::OutOfProduct(what) => format!("out of product: {what}"),
+        Support::Unknown => "-".to_string(),
+    };
+    let mut out = String::from(
+        "\n| SINUMERIK function | group | meaning | sinumerik | sinumerik828d |\n|---|---|---|---|---|\n",
+    );
+    for row in crate::interp::sinumerik::g_function_listing() {
+        out.push_str(&format!(
+            "| {} | {} | {} | {} | {} |\n",
+            row.name,
+            row.group.map_or("-".to_string(), |g| g.to_string()),
+            row.meaning,
+            cell(row.on_840d),
+            cell(row.on_828d)
+        ));
     }
     out
 }

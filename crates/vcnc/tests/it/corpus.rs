@@ -1,7 +1,8 @@
 //! Every real program of ../shared/corpus runs to its end, stops with the alarm the real control
 //! raises (the table in tests/it/common/corpus.rs, with the reason for each), or stops with an
-//! alarm that names what vcnc does not support yet; SINUMERIK programs get one clear "not
-//! supported yet" alarm. Never a panic, never a hang. The counts are printed
+//! alarm that names what vcnc does not support yet (V020) or what is outside the product
+//! (V022). SINUMERIK programs run on the SINUMERIK front end (tests/it/sinumerik_corpus.rs
+//! checks each one's outcome). Never a panic, never a hang. The counts are printed
 //! (`cargo test -p vcnc --test it corpus::every_corpus_program -- --nocapture`).
 
 use crate::common;
@@ -17,7 +18,7 @@ struct Counts {
     ran_to_end: usize,
     expected_alarms: usize,
     not_supported_yet: BTreeMap<String, usize>,
-    dialect: usize,
+    out_of_product: BTreeMap<String, usize>,
 }
 
 #[test]
@@ -39,8 +40,8 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
             ..Options::default()
         };
         // Called programs: the same author's programs, as in that control's memory.
-        let library = common::corpus::library_for(&name, &corpus.join(folder));
-        let run = common::run_with_library(&text, &machine, options.clone(), Box::new(library));
+        let stream = common::corpus::stream(&path, &text, &machine, options.clone());
+        let run = common::collect(stream);
         let ended = run
             .segments
             .iter()
@@ -55,11 +56,11 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
                 counts.expected_alarms += 1;
             }
             None => failures.push(format!("{folder}/{name}: no end and no alarm")),
-            Some(alarm) if alarm.code == AlarmCode::DialectNotSupported => {
-                if folder != "sinumerik" {
-                    failures.push(format!("{folder}/{name}: taken for SINUMERIK"));
-                }
-                counts.dialect += 1;
+            Some(alarm) if alarm.code == AlarmCode::NotInProduct => {
+                *counts
+                    .out_of_product
+                    .entry(alarm.message.clone())
+                    .or_default() += 1;
             }
             Some(alarm) if alarm.code == AlarmCode::NotSupportedYet => {
                 *counts
@@ -82,9 +83,11 @@ fn every_corpus_program_runs_or_names_what_is_missing() {
         "  stopped where the control stops (tests/it/common/corpus.rs): {}",
         counts.expected_alarms
     );
-    println!("  SINUMERIK, not supported yet: {}", counts.dialect);
     for (message, n) in &counts.not_supported_yet {
         println!("  stopped, {message}: {n}");
+    }
+    for (message, n) in &counts.out_of_product {
+        println!("  stopped, out of the product: {message}: {n}");
     }
     assert!(
         failures.is_empty(),

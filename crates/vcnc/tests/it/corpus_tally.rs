@@ -9,7 +9,7 @@
 //! (program, profile, result, cutting moves, cutting extents, warnings, reason) as markdown.
 
 use crate::common;
-use crate::common::corpus::{expected_alarm, library_for, machine_for, EXPECTED_ALARMS};
+use crate::common::corpus::{expected_alarm, machine_for, EXPECTED_ALARMS};
 use std::fmt::Write as _;
 use vcnc::checks::TravelLimits;
 use vcnc::motion::{EndKind, SegmentKind};
@@ -61,7 +61,7 @@ fn text_cuts(text: &[u8]) -> bool {
     })
 }
 
-fn run_one(folder: &str, path: &std::path::Path, corpus: &std::path::Path) -> Row {
+fn run_one(folder: &str, path: &std::path::Path) -> Row {
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
     let text = std::fs::read(path).unwrap();
     let machine: Machine = machine_for(&name);
@@ -75,9 +75,7 @@ fn run_one(folder: &str, path: &std::path::Path, corpus: &std::path::Path) -> Ro
     } else {
         Vec::new()
     };
-    let library = library_for(&name, &corpus.join(folder));
-    let stream =
-        vcnc::interpret_bytes(&text, &machine, options.clone()).with_library(Box::new(library));
+    let stream = common::corpus::stream(path, &text, &machine, options.clone());
     let mut summary = Summary::new(&machine);
     let mut end = None;
     let mut error = None;
@@ -153,7 +151,7 @@ fn run_one(folder: &str, path: &std::path::Path, corpus: &std::path::Path) -> Ro
     }
 }
 
-/// Why a program ends as it does: the expected alarm's reason, SINUMERIK, or the alarm.
+/// Why a program ends as it does: the expected alarm's reason, or the alarm.
 fn reason_for(name: &str, error: Option<&vcnc::Alarm>) -> String {
     if let Some((_, _, why)) = WARNED_AS_THE_CONTROL_RUNS_IT
         .iter()
@@ -166,9 +164,6 @@ fn reason_for(name: &str, error: Option<&vcnc::Alarm>) -> String {
     }
     match error {
         None => "runs to its end".to_string(),
-        Some(alarm) if alarm.code == AlarmCode::DialectNotSupported => {
-            "SINUMERIK: not supported yet (issue 20)".to_string()
-        }
         Some(alarm) => alarm.message.replace('|', "\\|"),
     }
 }
@@ -181,7 +176,7 @@ fn every_corpus_run_that_ends_ok_has_a_plausible_result() {
     let corpus = shared.join("corpus");
     let mut rows = Vec::new();
     for (folder, path) in common::corpus::programs(&corpus) {
-        rows.push(run_one(folder, &path, &corpus));
+        rows.push(run_one(folder, &path));
     }
     let mut table = String::from(
         "| program | profile | result | cutting moves | cutting extents (program, mm) | warnings | reason |\n|---|---|---|---:|---|---|---|\n",

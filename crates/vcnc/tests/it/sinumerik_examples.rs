@@ -432,7 +432,9 @@ fn examples_table_is_complete() {
             _ => {}
         }
         if let Some(alarm) = &example.alarm {
-            if !matches!(alarm.code.as_str(), "V020" | "V022") {
+            // V031: an example the control would stop at too (b/84's N50, a modal G3 with no
+            // circle data); its note says why.
+            if !matches!(alarm.code.as_str(), "V020" | "V022" | "V031") {
                 problems.push(format!("{name}: alarm code {}", alarm.code));
             }
             if alarm.names.all().iter().any(|n| n.trim().is_empty()) || alarm.names.all().is_empty()
@@ -506,10 +508,11 @@ fn print_tally(tally: &Tally) {
 }
 
 /// Acceptance 2 of issue 20: at least 110 of the 169 examples have positions or paths asserted.
-/// The table asserts 87 (every other example stops at a command out of the product, of issue 22,
-/// or of no issue yet: the notes say which); ignored until the lead decides how to close the gap.
+/// The table asserts 92 (every other example stops at a command out of the product or of issue
+/// 22: the notes say which, docs/sinumerik-examples.md lists them); ignored until more of the
+/// manual's examples can run (issue 22's compensation adds most of the rest).
 #[test]
-#[ignore = "acceptance 2 of issue 20: the table asserts 87 of the 110 examples asked for"]
+#[ignore = "acceptance 2 of issue 20: the table asserts 92 of the 110 examples asked for"]
 fn at_least_110_examples_asserted() {
     let tally = tally(&table());
     print_tally(&tally);
@@ -518,6 +521,13 @@ fn at_least_110_examples_asserted() {
         "issue 20 asks for at least {ASSERTED_REQUIRED} examples with positions asserted; the table asserts {}",
         tally.asserted
     );
+}
+
+/// The examples asserted today stay asserted: an entry turned into an alarm is a regression.
+#[test]
+fn the_asserted_examples_do_not_fall_below_today() {
+    let tally = tally(&table());
+    assert!(tally.asserted >= 92, "{} examples asserted", tally.asserted);
 }
 
 /// Every example runs as its entry says: to the expected positions, or to the named alarm.

@@ -39,7 +39,7 @@ pub(super) enum Function {
     State,
     /// The next SINUMERIK issue adds it.
     Planned,
-    /// G291: the blocks after it are ISO dialect (not run yet).
+    /// G291: the blocks after it, to the next G290, are ISO dialect.
     IsoMode,
     /// Outside the product: the name says what it belongs to.
     OutOfProduct(&'static str),
@@ -167,7 +167,8 @@ pub(super) fn group(name: &str) -> Option<u8> {
         "G140" | "G141" | "G142" | "G143" => g(43),
         "G340" | "G341" => g(44),
         "G460" | "G461" | "G462" => g(48),
-        "CDOF" | "CDON" | "CDOF2" => g(40),
+        "CDOF" | "CDON" | "CDOF2" => g(23),
+        "CUTCONON" | "CUTCONOF" => g(40),
         "G500" | "G54" | "G55" | "G56" | "G57" => g(8),
         _ => settable_number(name).map(|_| 8),
     }
@@ -357,13 +358,60 @@ pub(super) fn other_unit(
     None
 }
 
-/// Predefined procedures and cycles the next SINUMERIK issue adds.
+/// Predefined procedures and the standard cycles the next SINUMERIK issue adds: the cycles'
+/// own names only (a machine's own cycle, such as CYCLE189 of a manufacturer, is a subprogram
+/// like any other and is found in the library first).
 pub(super) fn planned_call(name: &str) -> bool {
-    name.starts_with("CYCLE") && name != "CYCLE800" && name != "CYCLE832"
-        || name.starts_with("POCKET")
-        || name.starts_with("SLOT")
-        || name.starts_with("HOLES")
-        || matches!(name, "LONGHOLE" | "WALCS1" | "DISC" | "OFFN")
+    let standard_cycle = name
+        .strip_prefix("CYCLE")
+        .and_then(|n| n.parse::<u32>().ok())
+        .is_some_and(|n| {
+            matches!(n, 60..=99 | 801 | 802 | 830..=899 | 4071..=4079 | 952) && n != 832
+        });
+    standard_cycle
+        || matches!(
+            name,
+            "POCKET1"
+                | "POCKET2"
+                | "POCKET3"
+                | "POCKET4"
+                | "SLOT1"
+                | "SLOT2"
+                | "LONGHOLE"
+                | "HOLES1"
+                | "HOLES2"
+                | "WALCS1"
+                | "DISC"
+                | "OFFN"
+        )
+}
+
+/// The alarm of a call whose program the library does not have: a standard cycle not run yet
+/// (V020, issue 22), a procedure outside the product (V022), or a subprogram not found.
+pub(super) fn missing_program(name: &str, span: crate::source::Span) -> crate::alarm::Alarm {
+    use crate::alarm::{Alarm, AlarmCode};
+    if planned_call(name) {
+        return Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            format!("{name} is not run yet (planned: issue 22, SINUMERIK cycles and compensation)"),
+        );
+    }
+    if let Some(what) = out_of_product(name) {
+        return Alarm::error(
+            AlarmCode::NotInProduct,
+            span,
+            format!("{name} belongs to {what}, which vcnc does not simulate"),
+        );
+    }
+    Alarm::error(
+        AlarmCode::ProgramNotFound,
+        span,
+        format!("subprogram {name} not found"),
+    )
+    .with_help(format!(
+        "put {name}.SPF in the program's directory or in a directory given with --lib"
+    ))
 }
 
 /// The number of the member of `group` in force, as `$P_GG[group]` reads it (the tables'
@@ -424,5 +472,277 @@ mod tests {
         assert_eq!(function("G505", true), None);
         assert_eq!(function("G58", true), Some(Function::Settable(5)));
         assert_eq!(function("G5", false), None);
+    }
+}
+
+// The table of G functions for README.md (`crate::profile::supported_codes_markdown`).
+
+/// What vcnc does with a G function or named modal function, as README.md's table says it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Support {
+    /// Runs: it moves, or changes what the following blocks do.
+    Runs,
+    /// Kept as state, with no geometric effect on a 3-axis mill.
+    State,
+    /// The next SINUMERIK issue (22) adds it: alarm V020 naming it.
+    Planned,
+    /// Outside the product: alarm V022 naming it and what it belongs to.
+    OutOfProduct(&'static str),
+    /// Not a G function of this control (the 828D has no G505 ... G599).
+    Unknown,
+}
+
+/// One row of the table: the function (`G505 … G599` stands for the range), its group, what
+/// the manual calls it (sinumerik-tables.md 4.2), and its support on the 840D sl and the 828D.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Listed {
+    pub(crate) name: &'static str,
+    pub(crate) group: Option<u8>,
+    pub(crate) meaning: &'static str,
+    pub(crate) on_840d: Support,
+    pub(crate) on_828d: Support,
+}
+
+/// Every G function and named modal function [`function`] knows, by group, with what the
+/// manual calls it.
+const LISTED: &[(&str, &str)] = &[
+    ("G0", "Rapid traverse"),
+    ("G1", "Linear interpolation"),
+    ("G2", "Circular interpolation clockwise"),
+    ("G3", "Circular interpolation counter-clockwise"),
+    ("CIP", "Circular interpolation through intermediate point"),
+    ("CT", "Circle with tangential transition"),
+    ("G33", "Thread cutting with constant lead"),
+    ("G34", "Thread cutting with linearly increasing lead"),
+    ("G35", "Thread cutting with linearly decreasing lead"),
+    ("G331", "Tapping"),
+    ("G332", "Retraction (tapping)"),
+    ("ASPLINE", "Akima spline"),
+    ("BSPLINE", "B-spline"),
+    ("CSPLINE", "Cubic spline"),
+    ("POLY", "Polynomial interpolation"),
+    ("INVCW", "Involute interpolation clockwise"),
+    ("INVCCW", "Involute interpolation counter-clockwise"),
+    ("OEMIPO1", "Reserved"),
+    ("OEMIPO2", "Reserved"),
+    ("G4", "Preset dwell time"),
+    ("G63", "Tapping without synchronization"),
+    ("G74", "Reference point approach with synchronization"),
+    ("G75", "Fixed point approach"),
+    ("G147", "Approach contour with straight line"),
+    ("G148", "Leave contour with straight line"),
+    ("G247", "Approach contour with quarter circle"),
+    ("G248", "Leave contour with quarter circle"),
+    ("G347", "Approach contour with semicircle"),
+    ("G348", "Leave contour with semicircle"),
+    ("TRANS", "TRANSLATION: programmable offset"),
+    ("ATRANS", "Additive TRANSLATION: additive programmable offset"),
+    ("ROT", "ROTATION: programmable rotation"),
+    ("AROT", "Additive ROTATION: programmable rotation"),
+    ("ROTS", "Rotation with solid angles"),
+    ("AROTS", "Additive rotation with solid angles"),
+    ("SCALE", "SCALE: programmable scaling"),
+    ("ASCALE", "Additive SCALE: programmable scaling"),
+    ("MIRROR", "MIRROR: programmable mirroring"),
+    ("AMIRROR", "Additive MIRROR: programmable mirroring"),
+    ("G58", "Axial programmable offset, coarse (840D); the 5th settable zero offset on the 828D"),
+    ("G59", "Axial programmable offset, fine (840D); the 6th settable zero offset on the 828D"),
+    ("G25", "Minimum working-area limitation / spindle speed limitation"),
+    ("G26", "Maximum working-area limitation / spindle speed limitation"),
+    ("G110", "Pole relative to the last programmed position"),
+    ("G111", "Pole programming relative to the origin of the current WCS"),
+    ("G112", "Pole programming relative to the last valid pole"),
+    ("G17", "Plane selection 1st – 2nd geometry axis (X/Y)"),
+    ("G18", "Plane selection 3rd – 1st geometry axis (Z/X)"),
+    ("G19", "Plane selection 2nd – 3rd geometry axis (Y/Z)"),
+    ("G40", "No tool radius compensation"),
+    ("G41", "Tool radius compensation left of contour"),
+    ("G42", "Tool radius compensation right of contour"),
+    ("G500", "Deactivation of settable zero offsets (G54 … G57, G505 … G599)"),
+    ("G54", "1st settable zero offset"),
+    ("G55", "2nd settable zero offset"),
+    ("G56", "3rd settable zero offset"),
+    ("G57", "4th settable zero offset"),
+    ("G505 … G599", "5th to 99th settable zero offset"),
+    ("G53", "Suppression of the programmable and settable frames (one block)"),
+    ("G153", "As G53, plus suppression of the basic frames"),
+    ("SUPA", "As G153, plus suppression of the system frames, DRF and external offset"),
+    ("G60", "Exact stop"),
+    ("G64", "Continuous-path mode"),
+    ("G641", "Continuous-path mode, smoothing by distance"),
+    ("G642", "Continuous-path mode with smoothing within defined tolerances"),
+    ("G643", "Continuous-path mode with smoothing within defined tolerances (block-internal)"),
+    ("G644", "Continuous-path mode with smoothing with maximum possible dynamic response"),
+    ("G645", "Continuous-path mode, smoothing with tangential transitions"),
+    ("G9", "Exact stop"),
+    ("G601", "Block change at exact stop fine"),
+    ("G602", "Block change at exact stop coarse"),
+    ("G603", "Block change at IPO end of block"),
+    ("G70", "Inch input system (lengths)"),
+    ("G71", "Metric input system, mm (lengths)"),
+    ("G700", "Inch input system, lengths and feeds"),
+    ("G710", "Metric input system, lengths and feeds"),
+    ("G90", "Absolute dimensioning"),
+    ("G91", "Incremental dimensioning input"),
+    ("G93", "Inverse-time feedrate 1/min"),
+    ("G94", "Linear feedrate in mm/min, inch/min"),
+    ("G95", "Revolutional feedrate in mm/rev, inch/rev"),
+    ("G96", "Constant cutting rate and feed type as for G95 ON"),
+    ("G97", "Constant cutting rate and feed type as for G95 OFF"),
+    ("G931", "Feed specified by traversing time, deactivate constant path velocity"),
+    ("G961", "Constant cutting rate and feed type as for G94 ON"),
+    ("G971", "Constant cutting rate and feed type as for G94 OFF"),
+    ("G942", "Freeze linear feedrate and constant cutting rate or spindle speed"),
+    ("G952", "Freeze revolutional feedrate and constant cutting rate or spindle speed"),
+    ("G962", "Linear or revolutional feedrate and constant cutting rate"),
+    ("G972", "Freeze linear or revolutional feedrate and constant spindle speed"),
+    ("G973", "Revolutional feedrate without spindle speed limitation (ISO mode)"),
+    ("CFC", "Constant feedrate at contour, effective on inside and outside radii"),
+    ("CFTCP", "Constant feedrate at tool centre point (centre-point path)"),
+    ("CFIN", "Constant feedrate on inside radius only, acceleration on outside radius"),
+    ("NORM", "Normal position at start and end point"),
+    ("KONT", "Travel around contour at start and end point"),
+    ("KONTT", "Approach/retract with constant tangent"),
+    ("KONTC", "Approach/retract with constant curvature"),
+    ("G450", "Transition circle at outer corners"),
+    ("G451", "Intersection of equidistant paths at outer corners"),
+    ("BRISK", "Fast, non-smoothed path acceleration"),
+    ("SOFT", "Soft, smoothed (jerk-limited) path acceleration"),
+    ("DRIVE", "Velocity-dependent path acceleration"),
+    ("CUT2D", "2½D tool offset determined by G17–G19"),
+    ("CUT2DF", "2½D tool offset relative to the current frame"),
+    ("CUT3DC", "3D tool offset, circumferential milling"),
+    ("CUT3DF", "3D tool offset, face milling with non-constant tool orientation"),
+    ("CUT3DFS", "3D tool offset, face milling with constant tool orientation independent of the active frame"),
+    ("CUT3DFF", "3D tool offset, face milling with constant tool orientation dependent on the active frame"),
+    ("CUT3DCC", "3D tool offset, circumferential milling with limit surfaces"),
+    ("CUT3DCCD", "3D tool offset, circumferential milling, limit surfaces, differential tool"),
+    ("FFWOF", "Feedforward control OFF"),
+    ("FFWON", "Feedforward control ON"),
+    ("WALIMON", "Working-area limitation ON"),
+    ("WALIMOF", "Working-area limitation OFF"),
+    ("DIAMOF", "Channel-specific diameter programming OFF"),
+    ("DIAMON", "Channel-specific diameter programming ON"),
+    ("DIAM90", "Diameter programming for G90, radius for G91"),
+    ("DIAMONA", "Axis-specific diameter programming ON"),
+    ("DIAM90A", "Axis-specific diameter programming for G90, radius for G91"),
+    ("DIAMCHANA", "Axis takes the channel's diameter programming status"),
+    ("DIAMCHAN", "All axes take the channel's diameter programming status"),
+    ("DIAMCYCOF", "Diameter programming OFF during cycles"),
+    ("COMPOF", "NC block compression OFF"),
+    ("COMPON", "Compressor function COMPON ON"),
+    ("COMPCURV", "Compressor function COMPCURV ON"),
+    ("COMPCAD", "Compressor function COMPCAD ON"),
+    ("FNORM", "Feed normal according to DIN 66025"),
+    ("FLIN", "Feed linear variable"),
+    ("FCUB", "Feed variable according to cubic spline"),
+    ("FPO", "Feed characteristic as a polynomial"),
+    ("CDOF", "Collision detection OFF"),
+    ("CDON", "Collision detection ON"),
+    ("CDOF2", "Collision detection OFF (currently only for CUT3DC)"),
+    ("G140", "SAR approach direction defined by G41/G42"),
+    ("G141", "SAR approach direction to the left of the contour"),
+    ("G142", "SAR approach direction to the right of the contour"),
+    ("G143", "SAR approach direction dependent on tangent"),
+    ("G340", "Spatial approach block (infeed and approach in one block)"),
+    ("G341", "Infeed in the perpendicular axis, then approach in the plane"),
+    ("G290", "Activate SINUMERIK language mode"),
+    ("G291", "Activate ISO language mode"),
+    ("G460", "Collision detection for approach and retraction block ON"),
+    ("G461", "If no intersection in the TRC block, extend the border block with an arc"),
+    ("G462", "If no intersection in the TRC block, extend the border block with a straight line"),
+    ("RTLION", "Rapid traverse motion with linear interpolation ON"),
+    ("RTLIOF", "Rapid traverse with single-axis interpolation"),
+    ("DYNNORM", "Standard dynamic response, as previously"),
+    ("DYNPOS", "Positioning mode, tapping"),
+    ("DYNROUGH", "Roughing"),
+    ("DYNSEMIFIN", "Finishing (semi-finishing)"),
+    ("DYNFINISH", "Smooth finishing"),
+    ("TRAFOOF", "Transformation OFF"),
+    ("CUTCONON", "Constant tool radius compensation ON"),
+    ("CUTCONOF", "Constant tool radius compensation OFF"),
+];
+
+/// The G functions and named modal functions, by group (those without one last), each with
+/// its support on the 840D sl and the 828D.
+pub(crate) fn listing() -> Vec<Listed> {
+    let support = |name: &str, m828d: bool| match function(name, m828d) {
+        None => Support::Unknown,
+        Some(Function::State) => Support::State,
+        Some(Function::Planned) => Support::Planned,
+        Some(Function::OutOfProduct(what)) => Support::OutOfProduct(what),
+        Some(_) => Support::Runs,
+    };
+    let mut rows: Vec<Listed> = LISTED
+        .iter()
+        .map(|&(name, meaning)| {
+            // The range is listed once; its first member speaks for it.
+            let probe = if name.contains('…') { "G505" } else { name };
+            Listed {
+                name,
+                group: group(probe),
+                meaning,
+                on_840d: support(probe, false),
+                on_828d: support(probe, true),
+            }
+        })
+        .collect();
+    // Stable: within a group, the order of LISTED.
+    rows.sort_by_key(|row| row.group.unwrap_or(u8::MAX));
+    rows
+}
+
+#[cfg(test)]
+mod listing_tests {
+    use super::*;
+
+    #[test]
+    fn the_listing_holds_every_function_and_every_name_in_it_is_one() {
+        let listed = listing();
+        for row in &listed {
+            assert!(
+                row.on_840d != Support::Unknown || row.on_828d != Support::Unknown,
+                "{}",
+                row.name
+            );
+        }
+        // Every G number a control could write: listed, or in the range G505 ... G599.
+        for n in 0..1000 {
+            let name = format!("G{n}");
+            let known = function(&name, false).is_some() || group(&name).is_some();
+            let listed_here = listed.iter().any(|row| row.name == name) || (505..=599).contains(&n);
+            assert_eq!(known, listed_here, "{name}");
+        }
+        let mut names: Vec<&str> = listed.iter().map(|row| row.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), listed.len(), "a name listed twice");
+    }
+
+    #[test]
+    fn the_listing_says_what_each_variant_does() {
+        let row = |name: &str| listing().into_iter().find(|row| row.name == name).unwrap();
+        assert_eq!(row("G1").on_840d, Support::Runs);
+        assert_eq!(row("SOFT").on_828d, Support::State);
+        assert_eq!(row("G41").on_840d, Support::Planned);
+        assert!(matches!(row("DIAMON").on_840d, Support::OutOfProduct(_)));
+        let range = row("G505 … G599");
+        assert_eq!(
+            (range.on_840d, range.on_828d),
+            (Support::Runs, Support::Unknown)
+        );
+        assert_eq!(range.group, Some(8));
+    }
+
+    /// sinumerik-tables.md 4.2: CDON, CDOF, CDOF2 are group 23 (collision monitoring at inside
+    /// contours), CUTCONON and CUTCONOF group 40 (constant tool radius compensation).
+    #[test]
+    fn collision_monitoring_and_constant_compensation_have_their_groups() {
+        for name in ["CDON", "CDOF", "CDOF2"] {
+            assert_eq!(group(name), Some(23), "{name}");
+        }
+        for name in ["CUTCONON", "CUTCONOF"] {
+            assert_eq!(group(name), Some(40), "{name}");
+        }
     }
 }

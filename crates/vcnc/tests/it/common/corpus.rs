@@ -18,9 +18,19 @@ pub fn profile_for(name: &str) -> ProfileName {
     }
 }
 
+/// True for a program of corpus/sinumerik (`.MPF` main programs, `.SPF` subprograms).
+pub fn is_sinumerik(name: &str) -> bool {
+    let upper = name.to_ascii_uppercase();
+    upper.ends_with(".MPF") || upper.ends_with(".SPF")
+}
+
 /// The machine each program runs on: the default machine with the program's profile, and the
-/// parameter settings its author's control evidently had.
+/// parameter settings its author's control evidently had; a SINUMERIK program's is its
+/// author's machine (tests/it/common/sinumerik_machines.rs).
 pub fn machine_for(name: &str) -> Machine {
+    if is_sinumerik(name) {
+        return super::sinumerik_machines::machine_for(name);
+    }
     let mut machine = Machine::default().with_profile(profile_for(name)).unwrap();
     if name.starts_with("ledfloor_") {
         // A Fusion 360 generic post writes `Y35` and `Z10` meaning millimetres: the control it was
@@ -66,13 +76,8 @@ pub fn machine_for(name: &str) -> Machine {
 pub fn library_for(name: &str, folder: &std::path::Path) -> vcnc::interp::MemoryLibrary {
     let author = name.split('_').next().unwrap_or(name);
     let mut library = vcnc::interp::MemoryLibrary::new();
-    let mut files: Vec<_> = std::fs::read_dir(folder)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    files.sort();
     let mut file_id = 1;
-    for path in files {
+    for path in sorted_files(folder) {
         let file_name = path.file_name().unwrap().to_string_lossy().into_owned();
         if file_name == name || file_name.split('_').next() != Some(author) {
             continue;
@@ -93,6 +98,31 @@ pub fn library_for(name: &str, folder: &std::path::Path) -> vcnc::interp::Memory
         file_id += 1;
     }
     library
+}
+
+/// The motion stream of the corpus program at `path` (`text`) on `machine`: an ISO program
+/// through the interpreter with `options` and its author's programs to call; a SINUMERIK
+/// program (of corpus/sinumerik) through the SINUMERIK front end with the corpus's
+/// subprograms under their names.
+pub fn stream<'a>(
+    path: &std::path::Path,
+    text: &'a [u8],
+    machine: &Machine,
+    options: vcnc::Options,
+) -> Box<dyn Iterator<Item = Result<vcnc::Segment, vcnc::Alarm>> + 'a> {
+    let dir = path.parent().expect("a corpus program is in a folder");
+    let name = path.file_name().unwrap().to_string_lossy();
+    if dir.ends_with("sinumerik") {
+        let front_end = vcnc::interp::sinumerik::Sinumerik::new(text, vcnc::FileId(0), machine)
+            .with_library(Box::new(super::sinumerik_machines::library(dir)));
+        Box::new(vcnc::interp::Run::new(
+            front_end,
+            vcnc::interp::Kernel::new(machine),
+        ))
+    } else {
+        let library = library_for(&name, dir);
+        Box::new(vcnc::interpret_bytes(text, machine, options).with_library(Box::new(library)))
+    }
 }
 
 /// The corpus programs that stop with an alarm, as the real control would stop them: (file,
@@ -147,6 +177,54 @@ pub const EXPECTED_ALARMS: &[(&str, AlarmCode, u32, &str)] = &[
         23,
         "run alone: its arguments are vacant, and the helical arc has radius 0",
     ),
+    (
+        "dubovikov_123.MPF",
+        AlarmCode::ProgramNotFound,
+        13,
+        "calls L140 (the machine's angle-head set-up), which is not in the corpus",
+    ),
+    (
+        "dubovikov_CHAMFER.SPF",
+        AlarmCode::MacroArithmetic,
+        19,
+        "run alone: its PROC parameters are 0, and `R11=(R10*360/R4)` divides by the pitch 0",
+    ),
+    (
+        "dubovikov_CYCLE_KONUS.SPF",
+        AlarmCode::MacroArithmetic,
+        42,
+        "run alone: its PROC parameters are 0, and `SHETCIK_6=(KONECHN_RADIUS*360/SHAG_PO_Z)` divides by the pitch 0",
+    ),
+    (
+        "dubovikov_KANAVKA_SFERA.SPF",
+        AlarmCode::MacroArithmetic,
+        8,
+        "run alone: its PROC parameters are 0, and `R21=ACOS(R10/R5)` divides by the radius 0",
+    ),
+    (
+        "dubovikov_KONUS.SPF",
+        AlarmCode::MacroArithmetic,
+        14,
+        "run alone: its PROC parameters are 0, and `R11=(R10*360/R4)` divides by the pitch 0",
+    ),
+    (
+        "gcodeworkshop_SINUMERIK840D.MPF",
+        AlarmCode::ProgramNotFound,
+        24,
+        "calls L54 and L55 (the shop's offset routines), which are not in the corpus",
+    ),
+    (
+        "jennings_CYCLE189.SPF",
+        AlarmCode::MacroArithmetic,
+        15,
+        "run alone: its PROC parameters are 0, and `ROUNDUP (R103/(R17*(-1)))` divides by the step 0",
+    ),
+    (
+        "jennings_CYCLE189_TEST.MPF",
+        AlarmCode::ProgramNotFound,
+        21,
+        "calls the GROB routine G_ZP_WRITE, which is not in the corpus",
+    ),
 ];
 
 /// The alarm and line a corpus program is expected to stop with, if any.
@@ -162,12 +240,18 @@ pub fn expected_alarm(name: &str) -> Option<(AlarmCode, u32)> {
 pub fn programs(corpus: &std::path::Path) -> Vec<(&'static str, std::path::PathBuf)> {
     let mut programs = Vec::new();
     for folder in ["fanuc", "large", "sinumerik"] {
-        let mut files: Vec<_> = std::fs::read_dir(corpus.join(folder))
-            .unwrap_or_else(|e| panic!("{folder}: {e}"))
-            .map(|e| e.expect("a folder entry").path())
-            .collect();
-        files.sort();
+        let files = sorted_files(&corpus.join(folder));
         programs.extend(files.into_iter().map(|path| (folder, path)));
     }
     programs
+}
+
+/// The files of `folder`, in name order.
+pub fn sorted_files(folder: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut files: Vec<_> = std::fs::read_dir(folder)
+        .unwrap_or_else(|e| panic!("{}: {e}", folder.display()))
+        .map(|e| e.expect("a folder entry").path())
+        .collect();
+    files.sort();
+    files
 }

@@ -8,6 +8,7 @@ pub mod lcnc_canon;
 pub mod plan;
 pub mod plane;
 pub mod shared;
+pub mod sinumerik_machines;
 pub mod variables;
 
 pub(crate) use shared::shared_dir;
@@ -19,15 +20,20 @@ pub fn with_c_axis(profile: vcnc::ProfileName) -> Machine {
     let mut machine = Machine::default()
         .with_profile(profile)
         .expect("every built-in profile fits the default machine");
-    machine.axes[vcnc::Axis::C.index()] = Some(vcnc::machine::AxisConfig {
+    machine.axes[vcnc::Axis::C.index()] = Some(rotary_axis());
+    machine
+}
+
+/// A rotary axis without travel limits, 36000 deg/min.
+pub fn rotary_axis() -> vcnc::machine::AxisConfig {
+    vcnc::machine::AxisConfig {
         min: -1.0e6,
         max: 1.0e6,
         rapid: 36000.0,
         max_feed: 36000.0,
         acceleration: 2000.0,
         jerk: f64::INFINITY,
-    });
-    machine
+    }
 }
 
 /// Everything a run produced, split into segments and alarms.
