@@ -193,13 +193,24 @@ impl Opened {
                 .with_profile(ProfileName::Sinumerik)
                 .unwrap_or_else(|_| machine.clone())
         };
-        let mut text = Vec::with_capacity(self.length as usize);
-        // A read error mid-way runs what was read: the front end's end-of-text alarm says the
-        // program ends without M30.
-        let _ = self.reader.read_to_end(&mut text);
+        // A program in a file streams (its file is read again if it jumps); a text given whole
+        // or read from a reader, which cannot be read again, is held whole.
+        let streams = matches!(self.main, MainText::File(_));
+        let mut text = Vec::new();
+        if !streams {
+            text.reserve(self.length as usize);
+            // A read error mid-way runs what was read: the front end's end-of-text alarm says
+            // the program ends without M30.
+            let _ = self.reader.read_to_end(&mut text);
+        }
         let (library, loaded) = library(self.main, directories);
         let files = ProgramFiles::new(self.name, loaded);
-        let mut front_end = Sinumerik::new(text, FileId(0), &machine).with_library(library);
+        let front_end = if streams {
+            Sinumerik::streamed(self.reader, FileId(0), &machine)
+        } else {
+            Sinumerik::new(text, FileId(0), &machine)
+        };
+        let mut front_end = front_end.with_library(library);
         for (switch, &on) in options.block_skip.iter().enumerate() {
             // Switch 1 is `/` and `/0` as well as `/1` (the ISO panel has switches 1 to 9).
             if switch == 0 {
