@@ -270,9 +270,12 @@ fn block_number(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alar
         scanner.reset(start);
         return Ok(());
     }
-    let number = std::str::from_utf8(digits)
-        .ok()
-        .and_then(|d| d.parse::<u32>().ok())
+    // Every block has its number: worked out here, without a string in between.
+    let number = digits
+        .iter()
+        .try_fold(0u32, |n, &d| {
+            n.checked_mul(10)?.checked_add(u32::from(d - b'0'))
+        })
         .ok_or_else(|| {
             Alarm::error(
                 AlarmCode::BadNumber,
