@@ -12,7 +12,7 @@ pub(crate) struct MachineChoice {
     /// Machine file (TOML; `vcnc machine` prints the default to start from).
     #[arg(long, value_name = "FILE")]
     pub(crate) machine: Option<PathBuf>,
-    /// Controller profile: fanuc, syntec, fanuc0m, mitsubishi or haas (default: the machine file's, else fanuc).
+    /// Controller profile: fanuc, syntec, fanuc0m, mitsubishi, haas, sinumerik or sinumerik828d (default: the machine file's, else fanuc; SINUMERIK programs run on sinumerik).
     #[arg(long, value_name = "NAME")]
     pub(crate) profile: Option<ProfileName>,
 }

@@ -55,8 +55,12 @@ pub enum AlarmCode {
     /// A code or construct the controller accepts but vcnc does not implement yet. The message
     /// names it; the issue that will add it is in the help text.
     NotSupportedYet,
-    /// A program in a dialect vcnc does not run yet (e.g. SINUMERIK).
+    /// A program given to an interpreter of another dialect (SINUMERIK text to the ISO
+    /// interpreter).
     DialectNotSupported,
+    /// A command of the control that vcnc keeps as state without modelling its effect (a
+    /// compressor, an acceleration profile, high-speed settings): a note, once per command.
+    KeptAsState,
     /// A command of the control that is outside what vcnc models (turning, grinding, couplings,
     /// several channels, orientation transformations). The message names it and says why.
     NotInProduct,
@@ -187,6 +191,7 @@ impl AlarmCode {
             NotSupportedYet => "not_supported_yet",
             DialectNotSupported => "dialect_not_supported",
             NotInProduct => "not_in_product",
+            KeptAsState => "kept_as_state",
             NoFeedRate => "no_feed_rate",
             ArcWithoutCenter => "arc_without_center",
             ArcEndNotOnCircle => "arc_end_not_on_circle",
@@ -243,6 +248,7 @@ impl AlarmCode {
             NotSupportedYet => "V020",
             DialectNotSupported => "V021",
             NotInProduct => "V022",
+            KeptAsState => "V023",
             NoFeedRate => "V030",
             ArcWithoutCenter => "V031",
             ArcEndNotOnCircle => "V032",
@@ -298,8 +304,9 @@ impl AlarmCode {
             UnknownGCode => "check the G code against the control's manual, or choose the profile the program was written for (--profile)",
             SameGroupGCodes => "keep one G code of the group in the block",
             NotSupportedYet => "vcnc cannot run this yet: see docs/DEVIATIONS.md and the issue the message names, if any",
-            DialectNotSupported => "vcnc runs FANUC-family ISO programs; SINUMERIK comes later",
+            DialectNotSupported => "this interpreter runs another dialect: vcnc::Pipeline picks the front end a program needs",
             NotInProduct => "vcnc simulates 3-axis milling on one channel: run this part of the program on the control",
+            KeptAsState => "the path and its positions are as programmed; the control's own timing of this command may differ",
             NoFeedRate => "program an F word before or in the first G01/G02/G03 block",
             ArcWithoutCenter => "give the arc its radius (R) or its centre (I, J, K)",
             ArcEndNotOnCircle => "check the end point and the centre (I, J, K): they must describe one circle",
@@ -354,6 +361,7 @@ impl AlarmCode {
         AlarmCode::NotSupportedYet,
         AlarmCode::DialectNotSupported,
         AlarmCode::NotInProduct,
+        AlarmCode::KeptAsState,
         AlarmCode::NoFeedRate,
         AlarmCode::ArcWithoutCenter,
         AlarmCode::ArcEndNotOnCircle,

@@ -65,7 +65,9 @@ impl Verdict {
             Some(a)
                 if matches!(
                     a.code,
-                    AlarmCode::NotSupportedYet | AlarmCode::DialectNotSupported
+                    AlarmCode::NotSupportedYet
+                        | AlarmCode::DialectNotSupported
+                        | AlarmCode::NotInProduct
                 ) =>
             {
                 Verdict::NotSupported

@@ -222,6 +222,66 @@ fn sinumerik_programs_run_and_name_the_commands_still_planned() {
     assert!(String::from_utf8(out.stdout)
         .unwrap()
         .contains("CYCLE81 is not run yet (planned: issue 22"));
+    // What is outside the product counts as not supported too, not as the program's fault.
+    let program = temp_program(
+        "TURN.MPF",
+        "DIAMON
+G0 X10
+M30
+",
+    );
+    let out = vcnc(&["check", &program]);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.contains("1 not supported"), "{stdout}");
+}
+
+#[test]
+fn sinumerik_subprograms_come_from_the_program_directory_and_lib_by_name() {
+    let dir = std::env::temp_dir().join(format!("vcnc-cli-spf-{}", std::process::id()));
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    // Beside the main program: POCKET_A.SPF (any case); in --lib: l20.spf, called as L20.
+    std::fs::write(
+        dir.join("pocket_a.SPF"),
+        "PROC POCKET_A(REAL DEPTH)
+G1 Z=-DEPTH F100
+M17
+",
+    )
+    .unwrap();
+    std::fs::write(
+        lib.join("l20.spf"),
+        "G91 G0 X1
+RET
+",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("MAIN.MPF"),
+        "G0 X0 Y0 Z5
+POCKET_A(2.5)
+L20 P2
+M30
+",
+    )
+    .unwrap();
+    let main = dir.join("MAIN.MPF").display().to_string();
+    let out = vcnc(&["trace", "--lib", &lib.display().to_string(), &main]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let cut = stdout
+        .lines()
+        .find(|l| l.contains("\"z\":-2.5"))
+        .expect("the PROC cuts to its parameter's depth");
+    assert!(cut.contains("pocket_a.SPF\""), "{cut}");
+    assert!(stdout.contains("\"x\":2,"), "{stdout}");
+    let out = vcnc(&["check", &dir.join("MAIN.MPF").display().to_string()]);
+    assert_eq!(out.status.code(), Some(1), "L20 is only in --lib");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("subprogram L20 not found"));
 }
 
 #[test]

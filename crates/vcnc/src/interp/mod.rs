@@ -66,7 +66,8 @@ pub use modal::ModalState;
 pub struct Options {
     /// Block skip switches 1 to 9: a block starting with `/n` is skipped when switch n is on.
     pub block_skip: [bool; 9],
-    /// The dialect of the program; SINUMERIK programs get one alarm saying it is not supported yet.
+    /// The dialect of the program: the ISO interpreter gives a SINUMERIK program one alarm that
+    /// says which front end runs it (the pipeline picks it by itself).
     pub dialect: Dialect,
     /// Limits on macro programs (loop passes, repeats of a main program ending in M99).
     pub limits: Limits,
@@ -229,10 +230,10 @@ impl<B: BlockSource> Interpreter<B> {
                 Alarm {
                     code: AlarmCode::DialectNotSupported,
                     severity: crate::alarm::Severity::Error,
-                    message: "SINUMERIK programs are not supported yet".to_string(),
+                    message: "the ISO interpreter does not run SINUMERIK programs".to_string(),
                     span: None,
                     labels: Vec::new(),
-                    help: Some("vcnc runs FANUC-family ISO programs today; SINUMERIK 840D/828D support is planned".into()),
+                    help: Some("run them with vcnc::Pipeline, which starts the SINUMERIK front end for them, or vcnc::interp::sinumerik::run_str".into()),
                 },
             );
             core.done = true;

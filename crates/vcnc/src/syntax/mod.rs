@@ -203,10 +203,15 @@ pub fn detect_dialect(file_name: &str, head: &[u8]) -> Dialect {
     for line in text.split(['\n', '\r']).take(40) {
         let line = line.trim_start();
         let upper = line.to_ascii_uppercase();
+        // After a block number: `N20 DEF INT I`.
+        let code = without_block_number(&upper);
+        let code = code.split(';').next().unwrap_or_default();
+        let code = &without_paren_comments(code);
         sinumerik |= upper.starts_with("%_N_")
-            || upper.starts_with("PROC ")
-            || upper.starts_with("DEF ")
-            || upper.starts_with("EXTERN ");
+            || code.starts_with("PROC ")
+            || code.starts_with("DEF ")
+            || code.starts_with("EXTERN ")
+            || sinumerik_words(code);
         message |= upper.contains("MSG(") || upper.contains("MSG (\"");
         iso_macro |= upper.starts_with("%@MACRO")
             || upper.starts_with("//")
@@ -222,6 +227,60 @@ pub fn detect_dialect(file_name: &str, head: &[u8]) -> Dialect {
     Dialect::Iso
 }
 
+/// `line` without ISO comments: a `(` at the start or after a blank opens one, to its `)` (a
+/// SINUMERIK expression's parenthesis follows a name or an operator: `X=IC(5)`, `X=(1+2)`).
+fn without_paren_comments(line: &str) -> String {
+    let mut out = String::with_capacity(line.len());
+    let mut depth = 0u32;
+    let mut previous = ' ';
+    for c in line.chars() {
+        match c {
+            '(' if depth > 0 || previous.is_whitespace() => depth += 1,
+            ')' if depth > 0 => depth -= 1,
+            _ if depth > 0 => {}
+            c => out.push(c),
+        }
+        previous = c;
+    }
+    out
+}
+
+/// `line` without a leading block number (`N20 `, `:20 `).
+fn without_block_number(line: &str) -> &str {
+    let rest = line
+        .strip_prefix('N')
+        .or_else(|| line.strip_prefix(':'))
+        .filter(|rest| rest.starts_with(|c: char| c.is_ascii_digit()));
+    match rest {
+        Some(rest) => rest
+            .trim_start_matches(|c: char| c.is_ascii_digit())
+            .trim_start(),
+        None => line,
+    }
+}
+
+/// True when a block (upper case, no comment) holds words only SINUMERIK writes: `CR=`, `X=IC(`,
+/// `RND=`, `R1=`, the frame instructions and control structures with their own keywords.
+fn sinumerik_words(code: &str) -> bool {
+    const MARKS: [&str; 12] = [
+        "CR=", "=IC(", "=AC(", "RND=", "CHF=", "AP=", "RP=", "TURN=", "GOTOF ", "GOTOB ", "ENDIF",
+        "MCALL",
+    ];
+    let starts = [
+        "TRANS ", "ATRANS ", "AROT ", "ROT ", "SUPA ", "ENDWHILE", "ENDFOR",
+    ];
+    MARKS.iter().any(|m| code.contains(m))
+        || starts.iter().any(|s| code.starts_with(s))
+        || code.as_bytes().windows(3).enumerate().any(|(i, w)| {
+            w[0] == b'R'
+                && (i == 0 || !code.as_bytes()[i - 1].is_ascii_alphanumeric())
+                && w[1].is_ascii_digit()
+                && code[i + 1..]
+                    .trim_start_matches(|c: char| c.is_ascii_digit())
+                    .starts_with('=')
+        })
+}
+
 /// True when `line` holds a `#` followed by a digit or `[` (`#1`, `#[#2+1]`): a FANUC-family
 /// macro variable, which SINUMERIK does not write.
 fn has_numbered_variable(line: &str) -> bool {
@@ -233,6 +292,36 @@ fn has_numbered_variable(line: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sinumerik_words_tell_a_program_without_a_header() {
+        for text in [
+            "N20 DEF INT VAR1=5\nG0 X1",
+            "G0 X0 Y0\nG2 X10 Y0 CR=5",
+            "G1 X=IC(5) F100",
+            "R1=10 ; depth\nG0 Z=R1",
+            "N10 TRANS X10\nG0 X0",
+            "G1 X10 RND=2",
+        ] {
+            assert_eq!(
+                detect_dialect("part.nc", text.as_bytes()),
+                Dialect::Sinumerik,
+                "{text}"
+            );
+        }
+        for text in [
+            "G0 X1 R5.\nG2 X10 R5.",
+            "#1=5\nG0 X#1",
+            "O1234\nG81 R2. Z-5. F100",
+            "(T1  D=2.65 CR=0 - ZMIN=-13.3 - flat end mill)\nG0 X1",
+        ] {
+            assert_eq!(
+                detect_dialect("part.nc", text.as_bytes()),
+                Dialect::Iso,
+                "{text}"
+            );
+        }
+    }
 
     #[test]
     fn g_code_numbers_are_read_in_tenths() {

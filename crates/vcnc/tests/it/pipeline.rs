@@ -342,3 +342,23 @@ fn a_fifo_by_its_path_runs_whole_even_when_it_jumps() {
     assert!(expected.moves > 3800, "{} moves", expected.moves);
     assert!(tally == expected, "another stream");
 }
+
+#[test]
+fn a_sinumerik_program_runs_on_its_front_end_through_the_pipeline() {
+    let machine = Machine::default();
+    let text =
+        "%_N_PART_MPF\nDEF REAL DEPTH=2\nG0 X10 Y0\nG1 Z=-DEPTH F100\nG2 X0 Y10 CR=10\nM30\n";
+    let expected: Vec<Item> = vcnc::interp::sinumerik::run_str(
+        text,
+        &machine
+            .clone()
+            .with_profile(vcnc::ProfileName::Sinumerik)
+            .unwrap(),
+    )
+    .collect();
+    assert!(expected.iter().all(Result::is_ok), "{expected:?}");
+    let (got, _) = consume(Pipeline::new(&machine).open_text(text, "part.nc"));
+    let got: Vec<&Item> = got.items.iter().map(|(item, _)| item).collect();
+    assert_eq!(got.len(), expected.len());
+    assert!(got.iter().zip(&expected).all(|(a, b)| *a == b));
+}

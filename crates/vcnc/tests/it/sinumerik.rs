@@ -806,3 +806,103 @@ fn an_arc_in_a_tilted_plane_alarms() {
     );
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
 }
+
+#[test]
+fn mcall_calls_after_every_block_with_motion_until_mcall_alone() {
+    // PGAsl MCALL: the subprogram (here a drill to Z-5 and back) runs after each positioning
+    // block; not after the MCALL block itself, and not after MCALL alone ended it.
+    let mut library = MemoryLibrary::new();
+    library.insert_named("DRILL", FileId(1), "G91 G1 Z-5 F100\nG0 Z5\nG90\nM17\n");
+    let text = "G0 X0 Y0 Z5\nMCALL DRILL\nX10\nX20\nMCALL\nX30\nM30\n";
+    let machine = machine();
+    let front_end =
+        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
+    let (segments, alarms) = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert!(alarms.is_empty(), "{alarms:?}");
+    let got = ends(&segments);
+    let wanted = [
+        [0.0, 0.0, 5.0],
+        [10.0, 0.0, 5.0],
+        [10.0, 0.0, 0.0],
+        [10.0, 0.0, 5.0],
+        [20.0, 0.0, 5.0],
+        [20.0, 0.0, 0.0],
+        [20.0, 0.0, 5.0],
+        [30.0, 0.0, 5.0],
+    ];
+    assert!(
+        got.len() == wanted.len() && got.iter().zip(wanted).all(|(g, w)| close(*g, w)),
+        "{got:?}"
+    );
+}
+
+#[test]
+fn a_proc_with_save_gives_back_the_modal_state_it_was_called_with() {
+    // PGAsl SAVE: G91 and a TRANS made in the PROC end with it.
+    let mut library = MemoryLibrary::new();
+    library.insert_named(
+        "SHIFTED",
+        FileId(1),
+        "PROC SHIFTED SAVE\nTRANS X100\nG91 G0 X1\nM17\n",
+    );
+    let text = "G90 G0 X0\nSHIFTED\nX5\nM30\n";
+    let machine = machine();
+    let front_end =
+        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
+    let (segments, alarms) = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert!(alarms.is_empty(), "{alarms:?}");
+    let xs: Vec<f64> = ends(&segments).iter().map(|p| p[0]).collect();
+    // In the PROC: p was 0, +1 through TRANS 100 -> machine 101; back: G90 and no frame, X5.
+    assert_eq!(xs, [101.0, 5.0]);
+}
+
+#[test]
+fn procs_take_values_and_var_references() {
+    let mut library = MemoryLibrary::new();
+    library.insert_named(
+        "TWICE",
+        FileId(1),
+        "PROC TWICE(REAL SIZE, VAR REAL OUT)\nOUT=SIZE*2\nSIZE=0\nG0 X=OUT\nM17\n",
+    );
+    let text = "DEF REAL VALA=3, VALB\nTWICE(VALA, VALB)\nG0 Y=VALA Z=VALB\nM30\n";
+    let machine = machine();
+    let front_end =
+        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
+    let (segments, alarms) = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert!(alarms.is_empty(), "{alarms:?}");
+    // VALB comes back as 6 (by reference); VALA stays 3 (the PROC changed its own copy).
+    let got = ends(&segments);
+    assert!(
+        close(got[0], [6.0, 0.0, 0.0]) && close(got[1], [6.0, 3.0, 6.0]),
+        "{got:?}"
+    );
+}
+
+#[test]
+fn g291_runs_iso_blocks_on_the_same_machine_state_until_g290() {
+    // PGsl 16.4 group 47: the ISO blocks see the SINUMERIK frame (G54) and position, and the
+    // SINUMERIK blocks after G290 go on from where the ISO ones ended (X15 Y15, then the ISO
+    // R arc to X25 Y25 about X25 Y15; X=IC(1) from there).
+    let text = "G54 G0 X10 Y10\nG291\nG91 G01 X5. Y5. F300\nG90 G02 X25. Y25. R10.\nG290\nG1 X=IC(1)\nM30\n";
+    let (segments, alarms) = stream(text, &g54());
+    assert!(alarms.is_empty(), "{alarms:?}");
+    let got = ends(&segments);
+    let wanted = [
+        [110.0, 60.0, 0.0],
+        [115.0, 65.0, 0.0],
+        [125.0, 75.0, 0.0],
+        [126.0, 75.0, 0.0],
+    ];
+    assert!(
+        got.iter().zip(wanted).all(|(g, w)| close(*g, w)) && got.len() == 4,
+        "{got:?}"
+    );
+    assert_eq!(segments[1].span.line, 3, "the ISO blocks keep their lines");
+}
+
+#[test]
+fn an_iso_error_in_a_g291_section_stops_the_program_at_its_line() {
+    let alarm = error("G291\nG01 X1.\nG290\nM30\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::NoFeedRate);
+    assert_eq!(alarm.span.unwrap().line, 2);
+}

@@ -308,6 +308,17 @@ impl Kernel {
         &self.state
     }
 
+    /// The kernel's machine state, lent to another interpreter that runs blocks on it (the ISO
+    /// blocks of a SINUMERIK program's G291 section).
+    pub(crate) fn state_mut(&mut self) -> &mut KernelState {
+        &mut self.state
+    }
+
+    /// A segment another interpreter made on this kernel's state, into the stream.
+    pub(crate) fn push_segment(&mut self, segment: Segment) {
+        self.out.items.push(Ok(segment));
+    }
+
     /// A thread (or a rigid tap) to `target` (program coordinates): a line whose feed is
     /// `lead` mm per spindle revolution along the path, cut at 100 % override and ending at
     /// rest, as the tapping path mode says.

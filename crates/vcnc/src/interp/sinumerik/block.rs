@@ -5,9 +5,11 @@
 //! Never: let the written order of the words change what a block does, or run a word it does not
 //! understand: an unknown address or name is an alarm naming it.
 
-use super::gcodes::{self, FeedType, FrameOp, Function, OneBlock};
+use super::gcodes::{self, FeedType, Function, OneBlock};
+use super::instructions::{frame_instruction, pole};
 use super::language::Argument;
 use super::motion::{self, unit};
+use super::predefined::{feed_group, note_state, swivel, unknown_word, user_alarm, written};
 use super::spindle;
 use super::tools;
 use super::{Sinumerik, Step};
@@ -40,7 +42,7 @@ pub(super) struct AxisValue {
 #[derive(Default)]
 pub(super) struct Words<'a> {
     /// The G functions, with their groups.
-    functions: Vec<(Function, Option<u8>, &'a Word)>,
+    pub(super) functions: Vec<(Function, Option<u8>, &'a Word)>,
     pub(super) axes: [Option<AxisValue>; AXES],
     /// I J K.
     pub(super) centre: [Option<AxisValue>; 3],
@@ -81,7 +83,7 @@ pub(super) struct Words<'a> {
     pub(super) fb: Option<(f64, Span)>,
     pub(super) fz: Option<(f64, Span)>,
     /// RPL: the angle of a rotation in the plane.
-    rpl: Option<(f64, Span)>,
+    pub(super) rpl: Option<(f64, Span)>,
     pub(super) feed: Option<(f64, Span)>,
     pub(super) speed: Option<(f64, Span)>,
     pub(super) tool: Option<(u32, Span)>,
@@ -90,6 +92,8 @@ pub(super) struct Words<'a> {
     call: Option<(String, Span)>,
     /// Warnings the words raised, for the stream.
     warnings: Vec<Alarm>,
+    /// MCALL: the block's call becomes modal (or, without one, the modal call ends).
+    mcall: Option<Span>,
     /// The arguments of a call with parentheses, evaluated where the call stands.
     arguments: Option<Vec<Argument>>,
     passes: Option<(u32, Span)>,
@@ -204,6 +208,8 @@ pub(super) fn run(
     };
     front.modal.motion = modal_motion;
     let mut prepared = prepared?;
+    let moved = suppress.is_some()
+        || !matches!(prepared, motion::Prepared::None | motion::Prepared::Waiting);
     // A corner waits over a few blocks without motion (PGsl 9.15, L6797-6803; five is vcnc's
     // choice of the machine data's number); a dwell, a tool change, a call or the end do not.
     let breaks = dwell
@@ -271,9 +277,43 @@ pub(super) fn run(
             kernel.event(SegmentKind::Stop { kind }, Origin { span, ..origin });
         }
     }
-    if let Some((name, span)) = &words.call {
-        let passes = words.passes.map_or(1, |(p, _)| p);
-        front.call(name, passes, *span, words.arguments.clone())?;
+    match (words.mcall, &words.call) {
+        (Some(_), Some((name, span))) => {
+            front.preload(name, *span)?;
+            front.modal_call = Some(super::ModalCall {
+                name: name.clone(),
+                arguments: words.arguments.clone(),
+                span: *span,
+                depth: front.levels.len(),
+            });
+        }
+        (Some(_), None) => front.modal_call = None,
+        (None, Some((name, span))) => {
+            let passes = words.passes.map_or(1, |(p, _)| p);
+            front.call(name, passes, *span, words.arguments.clone())?;
+        }
+        // After every block with motion of the program that made it modal (not inside the
+        // called program itself).
+        (None, None) if moved => {
+            if let Some(call) = front
+                .modal_call
+                .clone()
+                .filter(|c| c.depth == front.levels.len())
+            {
+                front.call(&call.name, 1, call.span, call.arguments)?;
+            }
+        }
+        (None, None) => {}
+    }
+    if words
+        .functions
+        .iter()
+        .any(|(f, _, _)| *f == Function::IsoMode)
+    {
+        front.flush_contour(kernel)?;
+        let first = front.level().next;
+        let back = super::iso_mode::run(front, kernel, first)?;
+        front.level().next = back;
     }
     match words.ends {
         Some((End::Program(kind), span)) if front.levels.len() == 1 => {
@@ -281,7 +321,7 @@ pub(super) fn run(
             Ok(Step::End)
         }
         Some(_) if front.levels.len() > 1 => {
-            front.return_from_subprogram();
+            front.return_from_subprogram(kernel);
             Ok(Step::Next)
         }
         // M17 or RET in the main program ends it, as M30 would (docs/SINUMERIK.md 8.3).
@@ -313,6 +353,13 @@ fn read<'a>(
             ));
         }
         if let Some((function, group)) = gcodes_word(front, word)? {
+            if function == Function::State {
+                let name = match &word.value {
+                    Value::Constant(n) => format!("G{}", n.value),
+                    _ => word.address.to_string(),
+                };
+                note_state(front, &name, word, &mut words.warnings);
+            }
             words.functions.push((function, group, word));
             continue;
         }
@@ -399,7 +446,10 @@ fn read<'a>(
                 words.override_percent = Some(percent);
             }
             // SF: a thread's start angle, which changes neither path nor time.
-            "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" | "SF" => {}
+            "SF" => {}
+            "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" => {
+                note_state(front, address, word, &mut words.warnings);
+            }
             "FGROUP" => feed_group(word)?,
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
@@ -427,21 +477,23 @@ fn read<'a>(
             // The message only shows on the control's screen; STOPRE only waits for the
             // block preparation (vcnc prepares block by block).
             "STOPRE" | "MSG" => {}
+            // MCALL with a call makes it modal; alone, it ends the modal call (PGAsl MCALL).
+            "MCALL" if matches!(word.value, Value::Bare) => words.mcall = Some(word.span),
             "SETAL" => return Err(user_alarm(front, kernel, word)?),
             // CYCLE832 sets the tolerance and path mode of high-speed milling: state for the
             // planner of issue 22; CYCLE800 without a rotation resets the swivel vcnc does not
             // have (docs/SINUMERIK.md 1).
             // WRTPR writes to the control's printer; nothing moves.
-            "CYCLE832" | "CPRECON" | "CPRECOF" | "WRTPR" => {}
+            "WRTPR" => {}
+            "CYCLE832" | "CPRECON" | "CPRECOF" => {
+                note_state(front, address, word, &mut words.warnings);
+            }
             // The blank of ShopMill programs: the simulation's stock (issue 21), no motion.
             "WORKPIECE" => {}
             "CYCLE800" => swivel(front, kernel, word)?,
             // A name alone that is no keyword calls the subprogram of that name (`L140`,
             // `CHAMFER`).
-            _ if matches!(word.value, Value::Bare)
-                && gcodes::out_of_product(address).is_none()
-                && !gcodes::planned_call(address) =>
-            {
+            _ if matches!(word.value, Value::Bare) && gcodes::out_of_product(address).is_none() => {
                 words.call = Some((address.to_string(), word.span));
             }
             // An assignment: `R1=5`, `COUNT=COUNT+1`, `$P_UIFR[1,X,TR]=10`, `ARR[2]=7`.
@@ -460,7 +512,6 @@ fn read<'a>(
             // A call with arguments: a procedure (`L140(2)`, `CHAMFER(5)`).
             _ if matches!(word.value, Value::Call(_))
                 && gcodes::out_of_product(address).is_none()
-                && !gcodes::planned_call(address)
                 && !PREDEFINED.contains(&address) =>
             {
                 let Value::Call(arguments) = &word.value else {
@@ -473,129 +524,6 @@ fn read<'a>(
         }
     }
     Ok(())
-}
-
-/// SETAL(number[, text]): the program raises an alarm of its own (cycle alarms 60000-67999
-/// stop it).
-fn user_alarm(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Alarm, Alarm> {
-    let Value::Call(arguments) = &word.value else {
-        return Err(Alarm::error(
-            AlarmCode::MacroSyntax,
-            word.span,
-            "SETAL takes the alarm number in parentheses: SETAL(61000)",
-        ));
-    };
-    let number = match arguments.first() {
-        Some(Some(expr)) => front.value(kernel, expr)?,
-        _ => 0.0,
-    };
-    let text = match arguments.get(1) {
-        Some(Some(expr)) => format!(": {}", front.text(kernel, expr)?),
-        _ => String::new(),
-    };
-    Ok(Alarm::error(
-        AlarmCode::UserAlarm,
-        word.span,
-        format!("alarm {number}{text} (set by the program with SETAL)"),
-    ))
-}
-
-/// CYCLE800: the swivel cycle. Without a rotation (all angles 0, or no parameters) it resets
-/// the swivel, which vcnc's 3-axis model never has; a rotation is issue 22's.
-fn swivel(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Alarm> {
-    let arguments = match &word.value {
-        Value::Call(arguments) => arguments.as_slice(),
-        _ => &[],
-    };
-    // _A, _B, _C are the 8th to 10th parameters.
-    for argument in arguments.iter().skip(7).take(3).flatten() {
-        if front.value(kernel, argument)? != 0.0 {
-            return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
-                word.span,
-                "CYCLE800 with a rotation is not run yet (planned: issue 22, SINUMERIK cycles and swivel data records)",
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// FGROUP: the axes the path feed is measured along. The geometry axes (the default, or
-/// FGROUP() to reset) change nothing; other groups change the time of every move.
-fn feed_group(word: &Word) -> Result<(), Alarm> {
-    let axes: Vec<&str> = match &word.value {
-        Value::Call(arguments) => arguments
-            .iter()
-            .flatten()
-            .map(|e| match &e.kind {
-                ExprKind::Name(name) => &**name,
-                _ => "?",
-            })
-            .collect(),
-        _ => Vec::new(),
-    };
-    let mut sorted = axes.clone();
-    sorted.sort_unstable();
-    if sorted.is_empty() || sorted == ["X", "Y", "Z"] {
-        return Ok(());
-    }
-    Err(Alarm::error(
-        AlarmCode::NotSupportedYet,
-        word.span,
-        format!(
-            "FGROUP({}) is not run yet: vcnc measures the path feed along X, Y and Z",
-            axes.join(",")
-        ),
-    )
-    .with_help("the feed along other axes comes with the rotary axes' own speeds (5-axis work)"))
-}
-
-/// A word as the program wrote it, for messages: `M2=70`, `SVC[2]`, `POSA`.
-fn written(word: &Word) -> String {
-    match &word.value {
-        Value::Constant(n) => format!("{}{}", word.address, n.value),
-        Value::Expression(Expr {
-            kind: ExprKind::Number(n),
-            ..
-        }) => format!("{}={n}", word.address),
-        Value::Indexed(..) => format!("{}[..]", word.address),
-        _ => word.address.to_string(),
-    }
-}
-
-/// The alarm of a word vcnc does not run: out of the product, planned, or unknown.
-fn unknown_word(word: &Word) -> Alarm {
-    let name = &*word.address;
-    if let Some(what) =
-        gcodes::out_of_product(name).or_else(|| gcodes::other_unit(name, &word.value))
-    {
-        return Alarm::error(
-            AlarmCode::NotInProduct,
-            word.span,
-            format!("{name} belongs to {what}, which vcnc does not simulate"),
-        );
-    }
-    if gcodes::planned_call(name) {
-        return Alarm::error(
-            AlarmCode::NotSupportedYet,
-            word.span,
-            format!("{name} is not run yet (planned: issue 22, SINUMERIK cycles and compensation)"),
-        );
-    }
-    if matches!(word.value, Value::Bare | Value::Call(_)) {
-        return Alarm::error(
-            AlarmCode::NotSupportedYet,
-            word.span,
-            format!("{name} is not run yet by vcnc's SINUMERIK front end"),
-        )
-        .with_help("see docs/SINUMERIK.md for what runs today");
-    }
-    Alarm::error(
-        AlarmCode::WordNotAllowed,
-        word.span,
-        format!("the address {name} is not run yet by vcnc's SINUMERIK front end"),
-    )
-    .with_help("see docs/SINUMERIK.md for what runs today")
 }
 
 /// The G function a word is (`G1`, or a named one: `CIP`, `SOFT`) and its group; None for
@@ -622,12 +550,7 @@ fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<(Function, Optio
             word.span,
             format!("{name} is not run yet (planned: issue 22, SINUMERIK path control, compensation and working area)"),
         )),
-        Some(Function::IsoMode) => Err(Alarm::error(
-            AlarmCode::NotSupportedYet,
-            word.span,
-            "G291 (ISO dialect mode) is not run yet by vcnc's SINUMERIK front end (issue 20, its ISO mode part)",
-        )
-        .with_help("run the ISO part of the program as a program of its own with an ISO profile")),
+        Some(Function::IsoMode) => Ok(Some((Function::IsoMode, gcodes::group(&name)))),
         Some(Function::OutOfProduct(what)) => Err(Alarm::error(
             AlarmCode::NotInProduct,
             word.span,
@@ -766,113 +689,6 @@ fn dwell_block(
         }
     };
     kernel.dwell(seconds, origin)
-}
-
-/// A frame instruction: the programmable frame changes, nothing moves (docs/SINUMERIK.md 5.3).
-fn frame_instruction(
-    front: &mut Sinumerik,
-    kernel: &mut Kernel,
-    words: &Words<'_>,
-    op: FrameOp,
-    word: &Word,
-) -> Result<(), Alarm> {
-    if let Some(&(_, _, other)) = words
-        .functions
-        .iter()
-        .find(|(f, _, w)| !std::ptr::eq(*w, word) && !matches!(f, Function::Plane(_)))
-    {
-        return Err(own_block(word, other.span));
-    }
-    if words.feed.is_some() || words.speed.is_some() || words.tool.is_some() || !words.m.is_empty()
-    {
-        return Err(own_block(word, word.span));
-    }
-    let unit = unit(front);
-    let lengths: [Option<f64>; AXES] = std::array::from_fn(|i| {
-        let scale = if i < 3 { unit } else { 1.0 };
-        words.axes[i].map(|v| v.value * scale)
-    });
-    let plain: [Option<f64>; 3] = std::array::from_fn(|i| words.axes[i].map(|v| v.value));
-    let frame = &mut front.frame;
-    let plane = front.modal.plane;
-    let result = match op {
-        FrameOp::Trans => frame.trans(lengths),
-        FrameOp::Atrans => frame.atrans(lengths),
-        FrameOp::G58 => frame.g58(lengths),
-        FrameOp::G59 => frame.g59(lengths),
-        FrameOp::Rot | FrameOp::Rots | FrameOp::Arot | FrameOp::Arots => match (words.rpl, op) {
-            (Some((angle, _)), FrameOp::Rot | FrameOp::Rots) => frame.rot_rpl(plane, angle),
-            (Some((angle, _)), _) => frame.arot_rpl(plane, angle),
-            (None, FrameOp::Rot) => frame.rot(plain),
-            (None, FrameOp::Rots) => frame.rots(plain),
-            (None, FrameOp::Arot) => frame.arot(plain),
-            (None, _) => frame.arots(plain),
-        },
-        FrameOp::Scale => frame.scale(plain),
-        FrameOp::Ascale => frame.ascale(plain),
-        FrameOp::Mirror => {
-            frame.mirror(plain.map(|v| v.is_some()));
-            Ok(())
-        }
-        FrameOp::Amirror => {
-            frame.amirror(plain.map(|v| v.is_some()));
-            Ok(())
-        }
-    };
-    result.map_err(|error| Alarm::error(AlarmCode::ValueOutOfRange, word.span, error.message()))?;
-    kernel.set_programmable(front.frame.to_affine());
-    Ok(())
-}
-
-/// G110, G111, G112: a new pole, from the words of its block (docs/SINUMERIK.md 6.5).
-fn pole(
-    front: &mut Sinumerik,
-    words: &Words<'_>,
-    reference: gcodes::Pole,
-    origin: Origin,
-) -> Result<(), Alarm> {
-    use super::polar::{PoleDefinition, PoleReference};
-    let plane = front.modal.plane;
-    let unit = unit(front);
-    let reference = match reference {
-        gcodes::Pole::LastPoint => PoleReference::LastPoint([
-            front.programmed[0],
-            front.programmed[1],
-            front.programmed[2],
-        ]),
-        gcodes::Pole::WorkZero => PoleReference::WorkZero,
-        gcodes::Pole::Previous => PoleReference::LastPole,
-    };
-    let definition = match (words.ap, words.rp) {
-        (None, None) => PoleDefinition::Cartesian(std::array::from_fn(|i| {
-            words.axes[i].map(|v| v.value * unit)
-        })),
-        (ap, rp) => {
-            if words.axes.iter().take(3).any(Option::is_some) {
-                return Err(Alarm::error(
-                    AlarmCode::WordNotAllowed,
-                    origin.span,
-                    "a pole takes either axis values or AP= and RP=",
-                ));
-            }
-            PoleDefinition::Polar {
-                angle: ap.map_or(0.0, |v| v.value),
-                radius: rp.map_or(0.0, |v| v.value * unit),
-            }
-        }
-    };
-    front.polar.set_pole(reference, definition, plane);
-    Ok(())
-}
-
-/// The alarm of an instruction that must stand in a block of its own (docs/SINUMERIK.md 3.1).
-fn own_block(word: &Word, at: Span) -> Alarm {
-    Alarm::error(
-        AlarmCode::WordNotAllowed,
-        at,
-        format!("{} must be programmed in a block of its own", word.address),
-    )
-    .with_help("put the frame instruction in its own block, with its axis values only")
 }
 
 /// An axis or centre word's value, with `AC(..)` or `IC(..)` when written so.

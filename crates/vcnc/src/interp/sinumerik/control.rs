@@ -167,6 +167,9 @@ pub(super) fn run(
         }
     };
     if let Some(next) = next {
+        if next <= line {
+            front.count_jump(span)?;
+        }
         front.level().next = next;
     }
     Ok(Step::Next)
@@ -239,11 +242,13 @@ fn jump_to(
             }
         }
     };
-    front.jumps += 1;
     if let Some(next) = front
         .structure
         .jump(&front.programs, program, line, jump, target)?
     {
+        if next <= line {
+            front.count_jump(jump.span)?;
+        }
         // A jump leaves the part repetitions it jumps out of.
         let level = front.level();
         level

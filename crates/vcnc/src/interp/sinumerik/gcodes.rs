@@ -39,7 +39,7 @@ pub(super) enum Function {
     State,
     /// The next SINUMERIK issue adds it.
     Planned,
-    /// G291: the blocks after it are ISO dialect (not run yet).
+    /// G291: the blocks after it, to the next G290, are ISO dialect.
     IsoMode,
     /// Outside the product: the name says what it belongs to.
     OutOfProduct(&'static str),
@@ -357,13 +357,60 @@ pub(super) fn other_unit(
     None
 }
 
-/// Predefined procedures and cycles the next SINUMERIK issue adds.
+/// Predefined procedures and the standard cycles the next SINUMERIK issue adds: the cycles'
+/// own names only (a machine's own cycle, such as CYCLE189 of a manufacturer, is a subprogram
+/// like any other and is found in the library first).
 pub(super) fn planned_call(name: &str) -> bool {
-    name.starts_with("CYCLE") && name != "CYCLE800" && name != "CYCLE832"
-        || name.starts_with("POCKET")
-        || name.starts_with("SLOT")
-        || name.starts_with("HOLES")
-        || matches!(name, "LONGHOLE" | "WALCS1" | "DISC" | "OFFN")
+    let standard_cycle = name
+        .strip_prefix("CYCLE")
+        .and_then(|n| n.parse::<u32>().ok())
+        .is_some_and(|n| {
+            matches!(n, 60..=99 | 801 | 802 | 830..=899 | 4071..=4079 | 952) && n != 832
+        });
+    standard_cycle
+        || matches!(
+            name,
+            "POCKET1"
+                | "POCKET2"
+                | "POCKET3"
+                | "POCKET4"
+                | "SLOT1"
+                | "SLOT2"
+                | "LONGHOLE"
+                | "HOLES1"
+                | "HOLES2"
+                | "WALCS1"
+                | "DISC"
+                | "OFFN"
+        )
+}
+
+/// The alarm of a call whose program the library does not have: a standard cycle not run yet
+/// (V020, issue 22), a procedure outside the product (V022), or a subprogram not found.
+pub(super) fn missing_program(name: &str, span: crate::source::Span) -> crate::alarm::Alarm {
+    use crate::alarm::{Alarm, AlarmCode};
+    if planned_call(name) {
+        return Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            format!("{name} is not run yet (planned: issue 22, SINUMERIK cycles and compensation)"),
+        );
+    }
+    if let Some(what) = out_of_product(name) {
+        return Alarm::error(
+            AlarmCode::NotInProduct,
+            span,
+            format!("{name} belongs to {what}, which vcnc does not simulate"),
+        );
+    }
+    Alarm::error(
+        AlarmCode::ProgramNotFound,
+        span,
+        format!("subprogram {name} not found"),
+    )
+    .with_help(format!(
+        "put {name}.SPF in the program's directory or in a directory given with --lib"
+    ))
 }
 
 /// The number of the member of `group` in force, as `$P_GG[group]` reads it (the tables'

@@ -20,9 +20,12 @@ mod eval;
 mod flow;
 mod frame;
 mod gcodes;
+mod instructions;
+mod iso_mode;
 mod language;
 mod motion;
 mod polar;
+mod predefined;
 mod program;
 mod spindle;
 mod tools;
@@ -61,7 +64,7 @@ pub struct Sinumerik {
     /// R parameters and user variables.
     vars: vars::Variables,
     tool: ToolState,
-    /// Blocks run and jumps made, against the settings' limit.
+    /// Steps run (0 before the first: the power-on state is set then).
     iterations: u64,
     /// The last block's span, for the alarm at the end of the text.
     last_span: Span,
@@ -101,6 +104,10 @@ pub struct Sinumerik {
     arc_tolerance: f64,
     /// Tools called by names the tool table lacks, and the numbers they run under.
     unknown_tools: std::collections::HashMap<String, u32>,
+    /// The commands kept as state that a note was given for.
+    noted: std::collections::HashSet<String>,
+    /// The modal call (MCALL) in force.
+    modal_call: Option<ModalCall>,
     /// The programmable frame ($P_PFRAME).
     frame: frame::ProgrammableFrame,
     /// Structure partners, labels and block numbers found so far.
@@ -121,6 +128,26 @@ struct Level {
     sections: Vec<Section>,
     /// The arguments of the call, until its PROC takes them.
     arguments: Option<Vec<language::Argument>>,
+    /// What a PROC with SAVE gives back on return.
+    saved: Option<Saved>,
+}
+
+/// The modal state a PROC with SAVE restores.
+#[derive(Clone, Copy)]
+struct Saved {
+    modal: Modal,
+    frame: frame::ProgrammableFrame,
+}
+
+/// A modal subprogram call (MCALL): called after every block with motion of the level that
+/// made it.
+#[derive(Clone, Debug)]
+struct ModalCall {
+    name: String,
+    arguments: Option<Vec<language::Argument>>,
+    span: Span,
+    /// The call stack's depth where MCALL stood.
+    depth: usize,
 }
 
 /// A part repetition running: lines `first..=last`, then on at `back`.
@@ -174,9 +201,12 @@ impl Sinumerik {
                 passes_left: 0,
                 sections: Vec::new(),
                 arguments: None,
+                saved: None,
             }],
             structure: flow::Structure::default(),
             frame: frame::ProgrammableFrame::default(),
+            modal_call: None,
+            noted: std::collections::HashSet::new(),
             unknown_tools: std::collections::HashMap::new(),
             polar: polar::Polar::new(),
             spindle: spindle::Spindle::default(),
@@ -332,6 +362,13 @@ impl Sinumerik {
             StatementKind::Procedure(procedure) => {
                 let arguments = self.level().arguments.take().unwrap_or_default();
                 self.bind(arguments, procedure, span)?;
+                if procedure.attributes.iter().any(|a| &*a.value == "SAVE") {
+                    let saved = Saved {
+                        modal: self.modal,
+                        frame: self.frame,
+                    };
+                    self.level().saved = Some(saved);
+                }
             }
             StatementKind::Definition(definition) => self.define(kernel, definition)?,
             _ => {
@@ -354,6 +391,24 @@ impl Sinumerik {
         flushed.finish(self, kernel)
     }
 
+    /// A jump back (a loop's end, GOTOB, GOTO): counted against the limit that ends a program
+    /// that would run for ever (a straight program of any length never reaches it).
+    fn count_jump(&mut self, span: Span) -> Result<(), Alarm> {
+        self.jumps += 1;
+        if self.jumps > self.settings.iteration_limit {
+            return Err(Alarm::error(
+                AlarmCode::MacroLimit,
+                span,
+                format!(
+                    "the program jumped back {} times without ending",
+                    self.settings.iteration_limit
+                ),
+            )
+            .with_help("a loop or jump never ends; the limit is iteration_limit in the profile's [sinumerik] table"));
+        }
+        Ok(())
+    }
+
     /// The current level.
     fn level(&mut self) -> &mut Level {
         self.levels
@@ -373,7 +428,7 @@ impl Sinumerik {
     /// The text of the current level ran out: a subprogram returns, the main program ends.
     fn end_of_text(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
         if self.levels.len() > 1 {
-            self.return_from_subprogram();
+            self.return_from_subprogram(kernel);
             return Ok(Step::Next);
         }
         kernel.warn(
@@ -388,16 +443,40 @@ impl Sinumerik {
         Ok(Step::End)
     }
 
-    /// M17, RET or the end of a subprogram's text: the next pass, or back to the caller.
-    fn return_from_subprogram(&mut self) {
+    /// M17, RET or the end of a subprogram's text: the next pass, or back to the caller; a
+    /// PROC with SAVE gives back the modal state it was called with.
+    fn return_from_subprogram(&mut self, kernel: &mut Kernel) {
         let level = self.level();
         if level.passes_left > 0 {
             level.passes_left -= 1;
             level.next = 0;
             return;
         }
-        self.levels.pop();
+        let saved = self.levels.pop().and_then(|level| level.saved);
         self.vars.pop_level();
+        // A modal call made in the subprogram ends with it.
+        if self
+            .modal_call
+            .as_ref()
+            .is_some_and(|c| c.depth > self.levels.len())
+        {
+            self.modal_call = None;
+        }
+        if let Some(saved) = saved {
+            self.restore(kernel, saved);
+        }
+    }
+
+    /// The modal state a PROC with SAVE restores on return (PGAsl SAVE): the G functions, the
+    /// settable and the programmable frame.
+    fn restore(&mut self, kernel: &mut Kernel, saved: Saved) {
+        let settable = saved.modal.settable;
+        self.modal = saved.modal;
+        kernel.set_plane(self.modal.plane);
+        kernel.select_work_offset(block::settable_id(settable, self.is_828d()));
+        self.frame = saved.frame;
+        kernel.set_programmable(self.frame.to_affine());
+        tools::apply_length(self, kernel);
     }
 
     /// Calls subprogram `name` for `passes` passes from the block at `span`, with the
@@ -434,7 +513,17 @@ impl Sinumerik {
             passes_left: passes - 1,
             sections: Vec::new(),
             arguments,
+            saved: None,
         });
+        Ok(())
+    }
+
+    /// The program `name` loaded, from the library if it is not yet: a modal call checks its
+    /// target where MCALL stands.
+    fn preload(&mut self, name: &str, span: Span) -> Result<(), Alarm> {
+        if !self.programs.iter().any(|p| *p.name == *name) {
+            self.load(name, span)?;
+        }
         Ok(())
     }
 
@@ -447,14 +536,7 @@ impl Sinumerik {
             None => None,
         };
         let Some(found) = found else {
-            return Err(Alarm::error(
-                AlarmCode::ProgramNotFound,
-                span,
-                format!("subprogram {name} not found"),
-            )
-            .with_help(format!(
-                "put {name}.SPF in the program's directory or in a directory given with --lib"
-            )));
+            return Err(gcodes::missing_program(name, span));
         };
         self.programs
             .push(Program::new(found.file, name, found.text));
@@ -467,19 +549,8 @@ impl FrontEnd for Sinumerik {
         if self.iterations == 0 {
             self.power_on(kernel)?;
         }
+        self.iterations += 1;
         loop {
-            self.iterations += 1;
-            if self.iterations > self.settings.iteration_limit {
-                return Err(Alarm::error(
-                    AlarmCode::MacroLimit,
-                    self.last_span,
-                    format!(
-                        "the program ran {} blocks without ending",
-                        self.settings.iteration_limit
-                    ),
-                )
-                .with_help("a loop or jump never ends; the limit is iteration_limit in the profile's [sinumerik] table"));
-            }
             let (program, index) = self.next_line();
             self.fetch(program, index)?;
             let text = &self.programs[program];

@@ -164,8 +164,22 @@ pub(super) fn change(
             });
         kernel.event(SegmentKind::ToolChange { tool: t, geometry }, origin);
     }
-    if let Some((d, _)) = words.edge {
+    if let Some((d, span)) = words.edge {
         front.tool.edge = d;
+        // An edge of no tool gives no offset; said once (docs/SINUMERIK.md 9).
+        if d != 0
+            && front.tool.in_spindle.is_none()
+            && front.noted.insert("D without a tool".into())
+        {
+            kernel.warn(
+                Alarm::warning(
+                    AlarmCode::OffsetNumberOutOfRange,
+                    span,
+                    format!("D{d} with no tool in the spindle: no length or radius applies"),
+                )
+                .with_help("change the tool in (T and M6) before activating its edge"),
+            );
+        }
     }
     for offset in &words.offsets {
         let mut values = match (front.tool_offsets, offset.along_length) {
