@@ -229,12 +229,19 @@ fn read(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
             Some(b) => return Err(unexpected(scanner.here(), b)),
             None => break,
         }
-        if let Some(keyword) = statement_keyword(scanner, block.words.is_empty())? {
-            let statement = control::read(scanner, keyword)?;
-            block.statement = Some(statement);
-            return Ok(());
+        // A single letter (`X12`, `G1`, `F=..`) is no keyword: keywords have two letters or more.
+        let single = !scanner
+            .text()
+            .get(start + 1)
+            .is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_');
+        if !single {
+            if let Some(keyword) = statement_keyword(scanner, block.words.is_empty())? {
+                let statement = control::read(scanner, keyword)?;
+                block.statement = Some(statement);
+                return Ok(());
+            }
+            scanner.reset(start);
         }
-        scanner.reset(start);
         let word = word(scanner)?;
         if scanner.mark() == start {
             // Nothing read: a guard, so that no line can loop here.
