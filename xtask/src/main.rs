@@ -44,5 +44,6 @@ tasks:
   ci              what CI runs: check rustc against rust-version, then fmt, clippy, docs and the tests
   record-lcnc     run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output
   readme          regenerate the supported-codes table in README.md
-  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout
+  bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout;
+                  --sinumerik writes the same path as a SINUMERIK program
   bench-jumps     write three variants of a bench-program file that jump or call (WHILE, M98, G65)";

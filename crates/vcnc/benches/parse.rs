@@ -6,6 +6,9 @@
 //!   thread, as `vcnc::syntax::blocks::ParsedLines` does for the interpreter (and the parser
 //!   thread of `vcnc trace` does for each batch). No interpreting: this is the front end's cost
 //!   alone, the part of the pipeline that runs on the parser thread.
+//! - `parse_sinumerik/N`: the same path written the SINUMERIK way
+//!   (`cam_program::Style::Sinumerik`), each line read by `vcnc::syntax::sinumerik::parse_block`
+//!   as the SINUMERIK front end reads it where it runs (it has no parser thread).
 //!
 //! Seconds are noisy on a shared machine: to compare two versions of the reader, instructions per
 //! line under callgrind (`vcnc trace` on `cargo xtask bench-program 40000`, the inclusive count of
@@ -15,7 +18,8 @@ use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criteri
 use std::time::Duration;
 use vcnc::syntax::blocks::{BlockSource, ParsedLines};
 use vcnc::syntax::iso::SyntaxOptions;
-use vcnc::syntax::lines::TextLines;
+use vcnc::syntax::lines::{LineSource, TextLines};
+use vcnc::syntax::sinumerik::parse_block;
 use vcnc::FileId;
 
 #[path = "support/cam_program.rs"]
@@ -31,13 +35,47 @@ fn parse(c: &mut Criterion) {
         .warm_up_time(Duration::from_secs(2))
         .measurement_time(Duration::from_secs(6));
     for blocks in SIZES {
-        let text = cam_program::program(blocks);
+        let text = cam_program::program_in(blocks, cam_program::Style::Iso);
         group.throughput(Throughput::Bytes(text.len() as u64));
         group.bench_with_input(BenchmarkId::from_parameter(blocks), &text, |b, text| {
             b.iter(|| count_words(text));
         });
     }
     group.finish();
+}
+
+fn parse_sinumerik(c: &mut Criterion) {
+    let mut group = c.benchmark_group("parse_sinumerik");
+    group
+        .sample_size(20)
+        .warm_up_time(Duration::from_secs(2))
+        .measurement_time(Duration::from_secs(6));
+    for blocks in SIZES {
+        let text = cam_program::program_in(blocks, cam_program::Style::Sinumerik);
+        group.throughput(Throughput::Bytes(text.len() as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(blocks), &text, |b, text| {
+            b.iter(|| count_sinumerik_words(text));
+        });
+    }
+    group.finish();
+}
+
+/// Reads every line of the SINUMERIK program into its block and counts the words.
+fn count_sinumerik_words(text: &str) -> usize {
+    let mut lines = TextLines::new(text.as_bytes());
+    let mut words = 0;
+    while let Some(line) = lines
+        .next_line()
+        .expect("text in memory cannot fail to read")
+    {
+        let block = parse_block(line.text, FileId(0), line.number, line.offset);
+        assert!(
+            block.alarm.is_none(),
+            "the benchmark program reads without alarms"
+        );
+        words += black_box(block).words.len();
+    }
+    words
 }
 
 /// Reads every line of the program and counts its words; an alarm would make the figure
@@ -61,5 +99,5 @@ fn count_words(text: &str) -> usize {
     words
 }
 
-criterion_group!(benches, parse);
+criterion_group!(benches, parse, parse_sinumerik);
 criterion_main!(benches);

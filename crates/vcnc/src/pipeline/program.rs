@@ -193,13 +193,24 @@ impl Opened {
                 .with_profile(ProfileName::Sinumerik)
                 .unwrap_or_else(|_| machine.clone())
         };
-        let mut text = Vec::with_capacity(self.length as usize);
-        // A read error mid-way runs what was read: the front end's end-of-text alarm says the
-        // program ends without M30.
-        let _ = self.reader.read_to_end(&mut text);
+        // A program in a file streams (its file is read again if it jumps); a text given whole
+        // or read from a reader, which cannot be read again, is held whole.
+        let streams = matches!(self.main, MainText::File(_));
+        let mut text = Vec::new();
+        if !streams {
+            text.reserve(self.length as usize);
+            // A read error mid-way runs what was read: the front end's end-of-text alarm says
+            // the program ends without M30.
+            let _ = self.reader.read_to_end(&mut text);
+        }
         let (library, loaded) = library(self.main, directories);
         let files = ProgramFiles::new(self.name, loaded);
-        let mut front_end = Sinumerik::new(text, FileId(0), &machine).with_library(library);
+        let front_end = if streams {
+            Sinumerik::streamed(self.reader, FileId(0), &machine)
+        } else {
+            Sinumerik::new(text, FileId(0), &machine)
+        };
+        let mut front_end = front_end.with_library(library);
         for (switch, &on) in options.block_skip.iter().enumerate() {
             // Switch 1 is `/` and `/0` as well as `/1` (the ISO panel has switches 1 to 9).
             if switch == 0 {
@@ -332,6 +343,44 @@ pub(crate) fn dialect(name: &Path, head: &[u8]) -> Dialect {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The end points of a run's moves, or its alarm codes.
+    fn moves(stream: super::super::Stream) -> Vec<String> {
+        stream
+            .map(|item| match item {
+                Ok(segment) => segment
+                    .motion()
+                    .map_or_else(String::new, |m| format!("{:?}", m.to)),
+                Err(alarm) => format!("{:?}", alarm.code),
+            })
+            .filter(|s| !s.is_empty())
+            .collect()
+    }
+
+    #[test]
+    fn a_sinumerik_file_that_jumps_runs_as_its_text_held_whole() {
+        // The file streams until the WHILE: from there the front end reads the file whole
+        // again. The moves (X0 Y0 is where the run starts: no move): X1, X2, X3 in the loop (R1 = 1, 2, 3); X10 then X11 by the
+        // GOTOB back to LOOP2 (R2 = 0, 1); Y5 and two repetitions of it, incremental (Y10,
+        // Y15); X20.
+        let text = "DEF REAL FEED=500\nN10 G1 X0 Y0 F=FEED\nR1=0\nWHILE R1<3\nR1=R1+1\nG1 X=R1\nENDWHILE\n\
+                    R2=0\nLOOP2: G1 X=10+R2\nR2=R2+1\nIF R2<2 GOTOB LOOP2\nMARK: G91 Y5\nREPEATB MARK P=2\nG90 X20\nM30\n";
+        let dir = std::env::temp_dir().join(format!("vcnc-stream-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("JUMPS.MPF");
+        std::fs::write(&path, text).unwrap();
+        let machine = Machine::default();
+        let from_file = moves(crate::Pipeline::new(&machine).open_path(&path).unwrap());
+        let whole = moves(crate::Pipeline::new(&machine).open_text(text, "JUMPS.MPF"));
+        std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(from_file, whole);
+        // 3 (the loop) + 2 (X10, X11) + 3 (Y5, Y10, Y15) + 1 (X20).
+        assert_eq!(from_file.len(), 9, "{from_file:?}");
+        assert!(
+            from_file[8].starts_with("MachinePos([20.0, 15.0,"),
+            "{from_file:?}"
+        );
+    }
 
     #[test]
     fn a_reader_gives_its_head_back_in_front_of_the_rest() {

@@ -120,7 +120,9 @@ pub(super) fn run(
         span,
         sequence: block.number,
     };
-    let mut words = read(front, kernel, block)?;
+    // Filled in place: a Words is large, and returned through a Result it was copied twice.
+    let mut words = Words::default();
+    read(front, kernel, block, &mut words)?;
     front.apply_frame_writes(kernel);
     for warning in words.warnings.drain(..) {
         kernel.warn(warning);
@@ -332,8 +334,12 @@ pub(super) fn run(
 }
 
 /// Sorts the block's words; a word vcnc does not run is an alarm naming it.
-fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<Words<'a>, Alarm> {
-    let mut words = Words::default();
+fn read<'a>(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    block: &'a Block,
+    words: &mut Words<'a>,
+) -> Result<(), Alarm> {
     for word in &block.words {
         let address = &*word.address;
         if let Some(what) = gcodes::other_unit(address, &word.value) {
@@ -520,7 +526,7 @@ fn read<'a>(front: &mut Sinumerik, kernel: &Kernel, block: &'a Block) -> Result<
             _ => return Err(unknown_word(word)),
         }
     }
-    Ok(words)
+    Ok(())
 }
 
 /// The G function a word is (`G1`, or a named one: `CIP`, `SOFT`) and its group; None for

@@ -45,7 +45,8 @@ use crate::profile::{SinumerikSettings, Variant};
 use crate::source::{FileId, Span};
 use crate::syntax::sinumerik::parse_block;
 use gcodes::{FeedType, Motion};
-use program::Program;
+use program::{Fetched, Program};
+use std::io::Read;
 use std::sync::Arc;
 
 /// A SINUMERIK program running on the kernel: the [`FrontEnd`] of [`Run`].
@@ -253,6 +254,16 @@ impl Sinumerik {
         front_end
     }
 
+    /// The main program of `file`, read from `reader` as it runs, on `machine` (as
+    /// [`Sinumerik::new`]): it runs in the same memory however long it is. A program that jumps
+    /// or loops needs its whole text then, which the library gives
+    /// ([`ProgramLibrary::main_text`]: read again from its file).
+    pub fn streamed(reader: Box<dyn Read + Send>, file: FileId, machine: &Machine) -> Sinumerik {
+        let mut front_end = Sinumerik::new(Vec::new(), file, machine);
+        front_end.programs[0] = Program::streamed(file, reader);
+        front_end
+    }
+
     /// Where called programs come from.
     pub fn with_library(mut self, library: Box<dyn ProgramLibrary>) -> Sinumerik {
         self.library = Some(library);
@@ -306,6 +317,40 @@ impl Sinumerik {
             level.sections.pop();
         }
         (level.program, level.next)
+    }
+
+    /// Makes line `index` of `program` at hand: the next line of a streamed main program is
+    /// read, any other line needs its whole text.
+    fn fetch(&mut self, program: usize, index: usize) -> Result<(), Alarm> {
+        let fetched = self.programs[program].fetch(index).map_err(|error| {
+            Alarm::error(
+                AlarmCode::ReadError,
+                self.last_span,
+                format!("cannot read the program: {error}"),
+            )
+        })?;
+        match fetched {
+            Fetched::Ready => Ok(()),
+            Fetched::NeedsWhole => self.make_whole(program),
+        }
+    }
+
+    /// Holds `program` whole, so that any of its lines can be had (jumps, loops, structures).
+    fn make_whole(&mut self, program: usize) -> Result<(), Alarm> {
+        if self.programs[program].is_whole() {
+            return Ok(());
+        }
+        let text = self.library.as_mut().and_then(|l| l.main_text());
+        let Some(text) = text else {
+            return Err(Alarm::error(
+                AlarmCode::ReadError,
+                self.last_span,
+                "the program jumps or loops, and its text, read from a stream, cannot be read again",
+            )
+            .with_help("run the program from a file, or give its text whole"));
+        };
+        self.programs[program].make_whole(text);
+        Ok(())
     }
 
     /// DEF, PROC and DEFINE.
@@ -511,6 +556,7 @@ impl Sinumerik {
         self.iterations += 1;
         loop {
             let (program, index) = self.next_line();
+            self.fetch(program, index)?;
             let text = &self.programs[program];
             let Some(line) = text.line(index) else {
                 return self.end_of_text(kernel);
@@ -540,7 +586,18 @@ impl Sinumerik {
                 block::run(self, kernel, &block, span)?
             };
             return match (&block.statement, step) {
-                (Some(statement), Step::Next) => control::run(self, kernel, statement, index, span),
+                (Some(statement), Step::Next) => {
+                    use crate::syntax::sinumerik::StatementKind;
+                    // Declarations run where they stand; every other statement may look at
+                    // other lines (its partner, a label), which a streamed text has not at hand.
+                    if !matches!(
+                        statement.kind,
+                        StatementKind::Definition(_) | StatementKind::Procedure(_)
+                    ) {
+                        self.make_whole(program)?;
+                    }
+                    control::run(self, kernel, statement, index, span)
+                }
                 _ => Ok(step),
             };
         }

@@ -1,10 +1,18 @@
-//! The texts a SINUMERIK run reads: the main program and the subprograms it calls, each held
-//! whole with the start of every line, so that a jump, a loop or a part repetition can go to any
-//! block. Lines are found once, when a text is loaded; blocks are read where they run.
+//! The texts a SINUMERIK run reads: the main program and the subprograms it calls.
 //!
-//! Never: read a program's file twice, or load a subprogram before it is called.
+//! A main program read from its file streams: its lines are read from the file as they run and
+//! forgotten, so a program of any length runs in the same memory. Only a program that goes
+//! anywhere but to its next line (a jump, a loop, a control structure, a part repetition) needs
+//! its lines again: the front end then asks for its whole text (read again from the file, as
+//! the ISO front end does for its jumps) and the program is held whole from there on, with the
+//! start of every line. Subprograms and texts given in memory are held whole from the start.
+//!
+//! Never: read a program's file twice unless it jumps, or load a subprogram before it is
+//! called.
 
 use crate::source::{FileId, Span};
+use crate::syntax::lines::{LineSource, ReaderLines};
+use std::io::{self, Read};
 use std::sync::Arc;
 
 /// One program's text and its lines.
@@ -14,9 +22,26 @@ pub(super) struct Program {
     /// The program's name, upper case, without its extension (`L100`, `CHAMFER`; the main
     /// program's name is empty).
     pub(super) name: Box<str>,
-    text: Arc<[u8]>,
-    /// The byte offset of every line's start, and one past the text's end.
-    starts: Vec<u32>,
+    text: Text,
+}
+
+/// Where a program's lines are.
+enum Text {
+    /// The whole text, and the byte offset of every line's start and one past the text's end.
+    Whole { text: Arc<[u8]>, starts: Vec<u32> },
+    /// Read line by line; only the line read last is at hand.
+    Streamed(Box<Streamed>),
+}
+
+/// A text read line by line.
+struct Streamed {
+    lines: ReaderLines<Box<dyn Read + Send>>,
+    /// The line read last (0-based; `None` before the first), its start and its bytes.
+    index: Option<usize>,
+    base: u32,
+    bytes: Vec<u8>,
+    /// The reader came to its end after line `index`.
+    ended: bool,
 }
 
 /// One line of a program: where it is, and its bytes (without the line end).
@@ -29,38 +54,103 @@ pub(super) struct Line<'a> {
     pub(super) bytes: &'a [u8],
 }
 
+/// What [`Program::fetch`] found.
+#[derive(Debug, PartialEq, Eq)]
+pub(super) enum Fetched {
+    /// The line is at hand for [`Program::line`] (or the text ends before it).
+    Ready,
+    /// The line is not the next one of a streamed text: the whole text is needed.
+    NeedsWhole,
+}
+
 impl Program {
     /// The program `text` of `file`, named `name`.
     pub(super) fn new(file: FileId, name: &str, text: Arc<[u8]>) -> Program {
-        let mut starts = Vec::with_capacity(text.len() / 24 + 2);
-        starts.push(0);
-        starts.extend(
-            text.iter()
-                .enumerate()
-                .filter(|&(_, &b)| b == b'\n')
-                .map(|(i, _)| i as u32 + 1),
-        );
-        if starts.last() != Some(&(text.len() as u32)) {
-            starts.push(text.len() as u32);
-        }
         Program {
             file,
             name: name.to_ascii_uppercase().into(),
-            text,
-            starts,
+            text: whole(text),
         }
     }
 
-    /// The number of lines.
-    pub(super) fn lines(&self) -> usize {
-        self.starts.len() - 1
+    /// The main program of `file`, read from `reader` line by line as it runs.
+    pub(super) fn streamed(file: FileId, reader: Box<dyn Read + Send>) -> Program {
+        Program {
+            file,
+            name: "".into(),
+            text: Text::Streamed(Box::new(Streamed {
+                lines: ReaderLines::new(reader),
+                index: None,
+                base: 0,
+                bytes: Vec::new(),
+                ended: false,
+            })),
+        }
     }
 
-    /// Line `index` (0-based), without its line end; None past the last.
+    /// True when the whole text is at hand (any line can be had).
+    pub(super) fn is_whole(&self) -> bool {
+        matches!(self.text, Text::Whole { .. })
+    }
+
+    /// The whole `text` of a streamed program, from now on.
+    pub(super) fn make_whole(&mut self, text: Arc<[u8]>) {
+        self.text = whole(text);
+    }
+
+    /// Makes line `index` (0-based) at hand: a streamed text reads its next line; any other line
+    /// of a streamed text needs the whole text.
+    ///
+    /// # Errors
+    /// The reader's.
+    pub(super) fn fetch(&mut self, index: usize) -> io::Result<Fetched> {
+        let Text::Streamed(stream) = &mut self.text else {
+            return Ok(Fetched::Ready);
+        };
+        let next = stream.index.map_or(0, |i| i + 1);
+        if stream.index == Some(index) || (stream.ended && index == next) {
+            return Ok(Fetched::Ready);
+        }
+        if index != next {
+            return Ok(Fetched::NeedsWhole);
+        }
+        match stream.lines.next_line()? {
+            Some(line) => {
+                stream.bytes.clear();
+                stream.bytes.extend_from_slice(line.text);
+                stream.base = line.offset;
+                stream.index = Some(index);
+            }
+            None => stream.ended = true,
+        }
+        Ok(Fetched::Ready)
+    }
+
+    /// The number of lines (of a streamed text: the lines read so far).
+    pub(super) fn lines(&self) -> usize {
+        match &self.text {
+            Text::Whole { starts, .. } => starts.len() - 1,
+            Text::Streamed(stream) => stream.index.map_or(0, |i| i + 1),
+        }
+    }
+
+    /// Line `index` (0-based), without its line end; None past the last (and, for a streamed
+    /// text, for any line but the one [`Program::fetch`] read last).
     pub(super) fn line(&self, index: usize) -> Option<Line<'_>> {
-        let start = *self.starts.get(index)? as usize;
-        let end = *self.starts.get(index + 1)? as usize;
-        let mut bytes = &self.text[start..end];
+        let (text, starts) = match &self.text {
+            Text::Whole { text, starts } => (text, starts),
+            Text::Streamed(stream) if stream.index == Some(index) => {
+                return Some(Line {
+                    number: index as u32 + 1,
+                    base: stream.base,
+                    bytes: &stream.bytes,
+                });
+            }
+            Text::Streamed(_) => return None,
+        };
+        let start = *starts.get(index)? as usize;
+        let end = *starts.get(index + 1)? as usize;
+        let mut bytes = &text[start..end];
         while let [rest @ .., b'\n' | b'\r'] = bytes {
             bytes = rest;
         }
@@ -84,6 +174,22 @@ impl Program {
     }
 }
 
+/// `text` held whole, with its lines found.
+fn whole(text: Arc<[u8]>) -> Text {
+    let mut starts = Vec::with_capacity(text.len() / 24 + 2);
+    starts.push(0);
+    starts.extend(
+        text.iter()
+            .enumerate()
+            .filter(|&(_, &b)| b == b'\n')
+            .map(|(i, _)| i as u32 + 1),
+    );
+    if starts.last() != Some(&(text.len() as u32)) {
+        starts.push(text.len() as u32);
+    }
+    Text::Whole { text, starts }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -97,5 +203,38 @@ mod tests {
         let last = program.line(2).unwrap();
         assert_eq!((last.number, last.base, last.bytes), (3, 8, &b"G1 X2"[..]));
         assert!(program.line(3).is_none());
+    }
+
+    #[test]
+    fn a_streamed_text_reads_its_lines_in_order_with_their_offsets() {
+        let text = b"G0 X1\r\n\nG1 X2";
+        let mut program = Program::streamed(FileId(0), Box::new(io::Cursor::new(&text[..])));
+        assert!(!program.is_whole());
+        let mut seen = Vec::new();
+        for index in 0.. {
+            assert_eq!(program.fetch(index).unwrap(), Fetched::Ready);
+            let Some(line) = program.line(index) else {
+                break;
+            };
+            seen.push((line.number, line.base, line.bytes.to_vec()));
+            // The same line again is still at hand; a line before it is not.
+            assert_eq!(program.fetch(index).unwrap(), Fetched::Ready);
+            if index > 0 {
+                assert_eq!(program.fetch(index - 1).unwrap(), Fetched::NeedsWhole);
+            }
+        }
+        // The same lines and offsets as the text held whole (line 3 starts at byte 8).
+        let whole = Program::new(FileId(0), "", Arc::from(&text[..]));
+        let expected: Vec<_> = (0..whole.lines())
+            .map(|i| whole.line(i).unwrap())
+            .map(|l| (l.number, l.base, l.bytes.to_vec()))
+            .collect();
+        assert_eq!(seen, expected);
+        assert_eq!(program.line_span(2), whole.line_span(2));
+        // Past the end: a line two ahead is not the next one.
+        assert_eq!(program.fetch(5).unwrap(), Fetched::NeedsWhole);
+        program.make_whole(Arc::from(&text[..]));
+        assert!(program.is_whole());
+        assert_eq!(program.line(0).unwrap().bytes, b"G0 X1");
     }
 }

@@ -39,11 +39,134 @@ pub struct Block {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Word {
     /// The address or name, upper case, with its numeric extension (`X`, `X1`, `CR`, `R10`).
-    pub address: Box<str>,
+    pub address: Address,
     /// What it is given.
     pub value: Value,
     /// Where the word was written.
     pub span: Span,
+}
+
+/// A word's address or name, upper case, read as a `str`. An address letter is a static
+/// string, and a name up to [`Address::INLINE`] bytes is held in the word itself: reading a
+/// word allocates nothing for its address (a CAM program's blocks are mostly such words).
+#[derive(Clone, PartialEq, Eq)]
+pub struct Address(Repr);
+
+#[derive(Clone, PartialEq, Eq)]
+enum Repr {
+    /// A single letter.
+    Letter(&'static str),
+    /// The length and the bytes, zero after the length (so that equal names compare equal).
+    Inline(u8, [u8; Address::INLINE]),
+    Heap(Box<str>),
+}
+
+impl Address {
+    /// The longest name held in the word itself.
+    pub const INLINE: usize = 22;
+
+    /// The address `name` as it is.
+    pub fn new(name: &str) -> Address {
+        if let Some(letter) = letter(name.as_bytes()) {
+            return letter;
+        }
+        match name.len() {
+            len @ 0..=Address::INLINE => {
+                let mut bytes = [0; Address::INLINE];
+                bytes[..len].copy_from_slice(name.as_bytes());
+                Address(Repr::Inline(len as u8, bytes))
+            }
+            _ => Address(Repr::Heap(name.into())),
+        }
+    }
+
+    /// The name written `bytes`, upper case (bytes that are not UTF-8 as U+FFFD).
+    pub(super) fn upper(bytes: &[u8]) -> Address {
+        if let [b] = bytes {
+            if let Some(letter) = letter(&[b.to_ascii_uppercase()]) {
+                return letter;
+            }
+        }
+        if bytes.len() <= Address::INLINE && bytes.is_ascii() {
+            let mut inline = [0; Address::INLINE];
+            inline[..bytes.len()].copy_from_slice(bytes);
+            inline.make_ascii_uppercase();
+            return Address(Repr::Inline(bytes.len() as u8, inline));
+        }
+        Address(Repr::Heap(expr::upper(bytes)))
+    }
+
+    /// The address as text.
+    pub fn as_str(&self) -> &str {
+        match &self.0 {
+            Repr::Letter(letter) => letter,
+            Repr::Inline(len, bytes) => std::str::from_utf8(&bytes[..*len as usize])
+                .expect("only ASCII or whole names are held inline"),
+            Repr::Heap(name) => name,
+        }
+    }
+}
+
+/// The address of the upper-case letter `name`, if it is one.
+fn letter(name: &[u8]) -> Option<Address> {
+    const LETTERS: [&str; 26] = [
+        "A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "N", "O", "P", "Q", "R",
+        "S", "T", "U", "V", "W", "X", "Y", "Z",
+    ];
+    match name {
+        [b @ b'A'..=b'Z'] => Some(Address(Repr::Letter(LETTERS[usize::from(b - b'A')]))),
+        _ => None,
+    }
+}
+
+impl std::ops::Deref for Address {
+    type Target = str;
+
+    fn deref(&self) -> &str {
+        self.as_str()
+    }
+}
+
+impl AsRef<str> for Address {
+    fn as_ref(&self) -> &str {
+        self.as_str()
+    }
+}
+
+impl std::borrow::Borrow<str> for Address {
+    fn borrow(&self) -> &str {
+        self.as_str()
+    }
+}
+
+impl From<&str> for Address {
+    fn from(name: &str) -> Address {
+        Address::new(name)
+    }
+}
+
+impl PartialEq<str> for Address {
+    fn eq(&self, other: &str) -> bool {
+        self.as_str() == other
+    }
+}
+
+impl PartialEq<&str> for Address {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
+impl std::fmt::Display for Address {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::fmt::Debug for Address {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        std::fmt::Debug::fmt(self.as_str(), f)
+    }
 }
 
 /// The value of a word.
@@ -64,7 +187,11 @@ pub enum Value {
 /// Reads the block on `text`, line `line` of `file` at byte `base`.
 pub fn parse_block(text: &[u8], file: FileId, line: u32, base: u32) -> Block {
     let mut scanner = Scanner::new(text, file, line, base);
-    let mut block = Block::default();
+    let mut block = Block {
+        // A CAM block has a few words: one allocation, never grown.
+        words: Vec::with_capacity(4),
+        ..Block::default()
+    };
     if let Err(alarm) = read(&mut scanner, &mut block) {
         block.alarm = Some(alarm);
     }
@@ -102,12 +229,19 @@ fn read(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
             Some(b) => return Err(unexpected(scanner.here(), b)),
             None => break,
         }
-        if let Some(keyword) = statement_keyword(scanner, block.words.is_empty())? {
-            let statement = control::read(scanner, keyword)?;
-            block.statement = Some(statement);
-            return Ok(());
+        // A single letter (`X12`, `G1`, `F=..`) is no keyword: keywords have two letters or more.
+        let single = !scanner
+            .text()
+            .get(start + 1)
+            .is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_');
+        if !single {
+            if let Some(keyword) = statement_keyword(scanner, block.words.is_empty())? {
+                let statement = control::read(scanner, keyword)?;
+                block.statement = Some(statement);
+                return Ok(());
+            }
+            scanner.reset(start);
         }
-        scanner.reset(start);
         let word = word(scanner)?;
         if scanner.mark() == start {
             // Nothing read: a guard, so that no line can loop here.
@@ -143,9 +277,12 @@ fn block_number(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alar
         scanner.reset(start);
         return Ok(());
     }
-    let number = std::str::from_utf8(digits)
-        .ok()
-        .and_then(|d| d.parse::<u32>().ok())
+    // Every block has its number: worked out here, without a string in between.
+    let number = digits
+        .iter()
+        .try_fold(0u32, |n, &d| {
+            n.checked_mul(10)?.checked_add(u32::from(d - b'0'))
+        })
         .ok_or_else(|| {
             Alarm::error(
                 AlarmCode::BadNumber,
@@ -185,12 +322,19 @@ fn label(scanner: &mut Scanner<'_>, block: &mut Block) -> Option<Span> {
 fn statement_keyword(scanner: &mut Scanner<'_>, first: bool) -> Result<Option<Name>, Alarm> {
     let start = scanner.mark();
     scanner.name_rest();
-    let name = expr::upper(&scanner.text()[start..scanner.mark()]);
-    let span = scanner.span(start..scanner.mark());
     // `DEF` and `IF` are keywords only as written; `DEFX=1` is not a declaration.
     if matches!(scanner.peek_byte(), Some(b'=' | b'[')) {
         return Ok(None);
     }
+    let written = &scanner.text()[start..scanner.mark()];
+    // Most words are no keyword (an address letter and its digits, `CR`): their name is not
+    // made (nor allocated) for the look-up. Keywords are two to eight letters.
+    let could_be = (2..=8).contains(&written.len()) && written.iter().all(u8::is_ascii_alphabetic);
+    if !could_be || control::place_of(written).is_none() {
+        return Ok(None);
+    }
+    let name = expr::upper(written);
+    let span = scanner.span(start..scanner.mark());
     match control::place(&name) {
         Some(Place::AfterWords) => {}
         Some(Place::First) if first => {}
@@ -224,7 +368,7 @@ fn word(scanner: &mut Scanner<'_>) -> Result<Word, Alarm> {
     }
     scanner.name_rest();
     let name_end = scanner.mark();
-    let address = expr::upper(&scanner.text()[start..name_end]);
+    let address = Address::upper(&scanner.text()[start..name_end]);
     named_word(scanner, address, start)
 }
 
@@ -274,7 +418,7 @@ fn din_word(scanner: &mut Scanner<'_>, start: usize) -> Result<Option<Word>, Ala
     }
     let span = scanner.span(start..scanner.mark());
     Ok(Some(Word {
-        address: (letter as char).to_string().into(),
+        address: Address::upper(&[letter]),
         value: Value::Constant(Number {
             value: if negative { -value } else { value },
             decimal_point,
@@ -285,7 +429,7 @@ fn din_word(scanner: &mut Scanner<'_>, start: usize) -> Result<Option<Word>, Ala
 }
 
 /// A name with what follows it: `=` and an expression, indices and `=`, arguments, or nothing.
-fn named_word(scanner: &mut Scanner<'_>, address: Box<str>, start: usize) -> Result<Word, Alarm> {
+fn named_word(scanner: &mut Scanner<'_>, address: Address, start: usize) -> Result<Word, Alarm> {
     // `MSG ("text")`, `SETMS (2)`: a blank may stand before the arguments.
     let name_end = scanner.mark();
     scanner.skip_blanks();

@@ -61,6 +61,14 @@ const KEYWORDS: [(&str, Place); 29] = [
     ("DO", Place::AfterWords),
 ];
 
+/// Where the statement keyword written `name` (in any case) may stand, if it is one.
+pub(super) fn place_of(name: &[u8]) -> Option<Place> {
+    KEYWORDS
+        .iter()
+        .find(|(keyword, _)| keyword.as_bytes().eq_ignore_ascii_case(name))
+        .map(|(_, place)| *place)
+}
+
 /// Where the statement keyword `name` (upper case) may stand, if it is one.
 pub(super) fn place(name: &str) -> Option<Place> {
     KEYWORDS

@@ -12,7 +12,7 @@ mod expr;
 mod scan;
 mod statement;
 
-pub use block::{parse_block, Block, Value, Word};
+pub use block::{parse_block, Address, Block, Value, Word};
 pub use expr::{BinaryOp, Expr, ExprKind, UnaryOp};
 pub use statement::{
     Case, CaseBranch, DataType, Definition, External, Initializer, Jump, JumpKind, JumpTarget,
