@@ -541,7 +541,11 @@ fn gcodes_word(front: &Sinumerik, word: &Word) -> Result<Option<(Function, Optio
                     format!("G{} is not a G function", n.value),
                 ));
             }
-            format!("G{}", n.value as u32).into()
+            let number = n.value as u32;
+            if let Some((function, group)) = gcodes::common(number) {
+                return Ok(Some((function, Some(group))));
+            }
+            format!("G{number}").into()
         }
         (name, Value::Bare) => name.into(),
         _ => return Ok(None),

@@ -180,6 +180,25 @@ fn settable_number(name: &str) -> Option<u32> {
     (name.len() == 4 && (5..=99).contains(&n)).then_some(n)
 }
 
+/// The G functions CAM programs write in nearly every block, by number, with their groups: the
+/// look-up by name would build the name first.
+pub(super) fn common(number: u32) -> Option<(Function, u8)> {
+    Some(match number {
+        0 => (Function::Motion(Motion::Rapid), 1),
+        1 => (Function::Motion(Motion::Line), 1),
+        2 => (Function::Motion(Motion::Clockwise), 1),
+        3 => (Function::Motion(Motion::CounterClockwise), 1),
+        17 => (Function::Plane(crate::motion::Plane::Xy), 6),
+        18 => (Function::Plane(crate::motion::Plane::Zx), 6),
+        19 => (Function::Plane(crate::motion::Plane::Yz), 6),
+        90 => (Function::Absolute(true), 14),
+        91 => (Function::Absolute(false), 14),
+        94 => (Function::FeedType(FeedType::PerMinute), 15),
+        95 => (Function::FeedType(FeedType::PerRevolution), 15),
+        _ => return None,
+    })
+}
+
 /// What `name` does, on the 828D when `m828d`; None for a name that is not a G function or a
 /// named modal function.
 pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
@@ -459,6 +478,17 @@ pub(super) fn member(modal: &super::Modal, group: u32) -> i32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_common_g_functions_are_the_named_ones() {
+        for n in 0..1000 {
+            if let Some((function, group)) = common(n) {
+                let name = format!("G{n}");
+                assert_eq!(Some(function), super::function(&name, false), "{name}");
+                assert_eq!(Some(group), super::group(&name), "{name}");
+            }
+        }
+    }
 
     #[test]
     fn every_function_has_a_group() {
