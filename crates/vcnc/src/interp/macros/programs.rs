@@ -205,6 +205,29 @@ impl DirectoryLibrary {
         Arc::clone(&self.loaded)
     }
 
+    /// The program in the file at `path`, with the next file id, recorded as loaded; `unreadable`
+    /// says what a read error is.
+    fn read(
+        &mut self,
+        path: PathBuf,
+        unreadable: impl FnOnce(PathBuf, String) -> LookupError,
+    ) -> Result<ProgramText, LookupError> {
+        let mut text = match std::fs::read(&path) {
+            Ok(text) => text,
+            Err(error) => return Err(unreadable(path, error.to_string())),
+        };
+        normalize(&mut text, true);
+        let file = FileId(self.next_file);
+        self.next_file += 1;
+        if let Ok(mut loaded) = self.loaded.lock() {
+            loaded.push((file, path));
+        }
+        Ok(ProgramText {
+            file,
+            text: Arc::from(text),
+        })
+    }
+
     fn index(&mut self) -> &HashMap<u32, Vec<PathBuf>> {
         self.index.get_or_insert_with(|| {
             let mut index: HashMap<u32, Vec<PathBuf>> = HashMap::new();
@@ -293,21 +316,12 @@ impl ProgramLibrary for DirectoryLibrary {
                 })
             }
         };
-        let mut text = std::fs::read(&path).map_err(|error| LookupError::Unreadable {
+        self.read(path, |path, error| LookupError::Unreadable {
             number,
-            path: path.clone(),
-            error: error.to_string(),
-        })?;
-        normalize(&mut text, true);
-        let file = FileId(self.next_file);
-        self.next_file += 1;
-        if let Ok(mut loaded) = self.loaded.lock() {
-            loaded.push((file, path));
-        }
-        Ok(Some(ProgramText {
-            file,
-            text: Arc::from(text),
-        }))
+            path,
+            error,
+        })
+        .map(Some)
     }
 
     fn find_named(&mut self, name: &str) -> Result<Option<ProgramText>, LookupError> {
@@ -340,21 +354,12 @@ impl ProgramLibrary for DirectoryLibrary {
         let Some(path) = found else {
             return Ok(None);
         };
-        let mut text = std::fs::read(&path).map_err(|error| LookupError::NamedUnreadable {
-            name: wanted.clone(),
-            path: path.clone(),
-            error: error.to_string(),
-        })?;
-        normalize(&mut text, true);
-        let file = FileId(self.next_file);
-        self.next_file += 1;
-        if let Ok(mut loaded) = self.loaded.lock() {
-            loaded.push((file, path));
-        }
-        Ok(Some(ProgramText {
-            file,
-            text: Arc::from(text),
-        }))
+        self.read(path, |path, error| LookupError::NamedUnreadable {
+            name: wanted,
+            path,
+            error,
+        })
+        .map(Some)
     }
 
     fn main_text(&mut self) -> Option<Arc<[u8]>> {
