@@ -3,15 +3,11 @@
 
 use vcnc::interp::sinumerik::{run_str, Sinumerik};
 use vcnc::interp::{Kernel, MemoryLibrary, Run};
-use vcnc::machine::{ToolEdge, WorkOffsetId};
+use vcnc::machine::WorkOffsetId;
 use vcnc::motion::{ArcDirection, EndKind, SpindleState};
 use vcnc::{Alarm, AlarmCode, FileId, Machine, ProfileName, Segment, SegmentKind};
 
-fn machine() -> Machine {
-    Machine::default()
-        .with_profile(ProfileName::Sinumerik)
-        .unwrap()
-}
+use crate::common::sinumerik::{machine, mill};
 
 /// G54 at X100 Y50, G55 at X200; tool 1 "MILL10" with D1 length 100 and D2 length 50.
 fn shop() -> Machine {
@@ -26,17 +22,7 @@ fn shop() -> Machine {
         .work_offsets
         .insert(WorkOffsetId::External, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
     for (d, length) in [(1, 100.0), (2, 50.0)] {
-        machine.tools.push(ToolEdge {
-            t: 1,
-            name: Some("MILL10".into()),
-            d,
-            tool_type: 120,
-            length,
-            length2: 0.0,
-            length3: 0.0,
-            radius: 5.0,
-            teeth: Some(4),
-        });
+        machine.tools.push(mill(1, "MILL10", d, length, 5.0));
     }
     machine
 }

@@ -12,15 +12,11 @@ use proptest::prelude::*;
 use std::f64::consts::PI;
 use vcnc::interp::sinumerik::{run_str, Sinumerik};
 use vcnc::interp::{Kernel, MemoryLibrary};
-use vcnc::machine::{ToolEdge, WorkOffsetId};
+use vcnc::machine::WorkOffsetId;
 use vcnc::motion::{ArcDirection, SpindleState};
-use vcnc::{AlarmCode, FileId, Machine, ProfileName, Segment, SegmentKind};
+use vcnc::{AlarmCode, FileId, Machine, Segment, SegmentKind};
 
-fn machine() -> Machine {
-    Machine::default()
-        .with_profile(ProfileName::Sinumerik)
-        .expect("the default machine fits the SINUMERIK profile")
-}
+use crate::common::sinumerik::{machine, mill};
 
 /// G54 = X100 Y50 Z0 (the numbers of docs/SINUMERIK.md 5.3), G55 = X200; tool 1 "MILL10"
 /// (type 120, radius 5) with D1 L1 = 100 and D2 L1 = 50, tool 2 "DRILL8" (radius 4) D1 L1 = 80.
@@ -37,17 +33,7 @@ fn shop() -> Machine {
         (1, "MILL10", 2, 50.0, 5.0),
         (2, "DRILL8", 1, 80.0, 4.0),
     ] {
-        machine.tools.push(ToolEdge {
-            t,
-            name: Some(name.into()),
-            d,
-            tool_type: 120,
-            length,
-            length2: 0.0,
-            length3: 0.0,
-            radius,
-            teeth: Some(4),
-        });
+        machine.tools.push(mill(t, name, d, length, radius));
     }
     machine
 }

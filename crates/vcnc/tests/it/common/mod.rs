@@ -8,6 +8,7 @@ pub mod lcnc_canon;
 pub mod plan;
 pub mod plane;
 pub mod shared;
+pub mod sinumerik;
 pub mod sinumerik_machines;
 pub mod variables;
 
