@@ -892,3 +892,15 @@ fn an_iso_error_in_a_g291_section_stops_the_program_at_its_line() {
     assert_eq!(alarm.code, AlarmCode::NoFeedRate);
     assert_eq!(alarm.span.unwrap().line, 2);
 }
+
+#[test]
+fn the_828d_has_skip_levels_0_to_7_only() {
+    let m828d = Machine::default()
+        .with_profile(ProfileName::Sinumerik828d)
+        .unwrap();
+    assert_eq!(moves("/7 G0 X1\nM30\n", &m828d).len(), 1);
+    let alarm = error("G0 X1\n/8 G0 X2\nM30\n", &m828d);
+    assert_eq!(alarm.code, AlarmCode::WordNotAllowed);
+    assert_eq!(alarm.span.unwrap().line, 2);
+    assert_eq!(moves("/8 G0 X1\nM30\n", &machine()).len(), 1);
+}

@@ -572,10 +572,19 @@ impl Sinumerik {
             if block.words.is_empty() && block.statement.is_none() && block.alarm.is_none() {
                 continue;
             }
+            let span = self.programs[program].line_span(index);
+            // The 828D has the skip levels /0 to /7 only (docs/SINUMERIK.md 9).
+            if let Some(level @ 8..) = block.skip.filter(|_| self.is_828d()) {
+                return Err(Alarm::error(
+                    AlarmCode::WordNotAllowed,
+                    Span::new(span.file, span.line, span.start..span.start + 2),
+                    format!("the 828D has no skip level /{level}: its levels are /0 to /7"),
+                )
+                .with_help("use a skip level from /0 to /7, or the 840D profile"));
+            }
             if block.skip.is_some_and(|level| self.skip[level as usize]) {
                 continue;
             }
-            let span = self.programs[program].line_span(index);
             self.last_span = span;
             if let Some(alarm) = block.alarm {
                 return Err(alarm);
