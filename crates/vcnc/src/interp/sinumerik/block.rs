@@ -246,7 +246,7 @@ pub(super) fn run(
         auxiliary(kernel, code, Origin { span, ..origin });
     }
     if dwell {
-        return dwell_block(front, kernel, &words, origin).map(|()| Step::Next);
+        return dwell_block(kernel, &words, origin).map(|()| Step::Next);
     }
     let exact_stop = one_block.iter().any(|(f, _)| *f == OneBlock::ExactStop);
     let path_mode = if floating_tap {
@@ -638,7 +638,7 @@ pub(super) fn settable_id(n: u32, m828d: bool) -> WorkOffsetId {
     }
 }
 
-fn feed_mode(feed_type: FeedType) -> FeedMode {
+pub(super) fn feed_mode(feed_type: FeedType) -> FeedMode {
     match feed_type {
         FeedType::InverseTime => FeedMode::InverseTime,
         FeedType::PerMinute => FeedMode::PerMinute,
@@ -667,13 +667,7 @@ fn stop_kind(code: u32) -> Option<StopKind> {
 }
 
 /// G4: F seconds or S spindle revolutions.
-fn dwell_block(
-    front: &Sinumerik,
-    kernel: &mut Kernel,
-    words: &Words<'_>,
-    origin: Origin,
-) -> Result<(), Alarm> {
-    let _ = front;
+fn dwell_block(kernel: &mut Kernel, words: &Words<'_>, origin: Origin) -> Result<(), Alarm> {
     let seconds = match (words.feed, words.speed) {
         (Some((f, _)), None) => f,
         (None, Some((s, span))) => {

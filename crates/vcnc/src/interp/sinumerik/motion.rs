@@ -58,6 +58,28 @@ pub(super) struct Arc {
     plane: Plane,
 }
 
+impl Arc {
+    /// The arc from `start` to `end`, and the contour's element of it.
+    fn with_element(self, start: V2, end: V2) -> (Arc, Element) {
+        let element = Element::Arc {
+            start,
+            end,
+            center: self.centre,
+            ccw: self.direction == ArcDirection::CounterClockwise,
+        };
+        (self, element)
+    }
+}
+
+/// The direction of an element's arc.
+fn direction(ccw: bool) -> ArcDirection {
+    if ccw {
+        ArcDirection::CounterClockwise
+    } else {
+        ArcDirection::Clockwise
+    }
+}
+
 /// The factor of lengths: 25.4 under G70/G700.
 pub(super) fn unit(front: &Sinumerik) -> f64 {
     if front.modal.inch {
@@ -175,7 +197,7 @@ pub(super) fn prepare(
                 "ANG= defines straight lines: it takes G0 or G1",
             ));
         }
-        let tag = tag(front, target, origin, motion == Motion::Rapid, 0);
+        let tag = tag(target, origin, motion == Motion::Rapid, 0);
         let step = front.angle_lines.block(LineBlock {
             start,
             written: (target[a], target[b]),
@@ -258,17 +280,14 @@ pub(super) fn prepare(
             let (centre, end) = arc_geometry(front, words, &target, direction, origin)?;
             target[a] = Some(end.x);
             target[b] = Some(end.y);
-            element = Some(Element::Arc {
-                start,
-                end,
-                center: centre,
-                ccw: direction == ArcDirection::CounterClockwise,
-            });
-            direct_arc = Some(Arc {
+            let (arc, arc_element) = Arc {
                 centre,
                 direction,
                 plane,
-            });
+            }
+            .with_element(start, end);
+            element = Some(arc_element);
+            direct_arc = Some(arc);
         }
         Motion::Tangential => {
             check_arc_plane(kernel, plane, origin)?;
@@ -277,17 +296,14 @@ pub(super) fn prepare(
             match arcs::tangential_arc(start, end, tangent, origin.span)? {
                 Tangential::Line => element = Some(Element::Line { start, end }),
                 Tangential::Arc { centre, direction } => {
-                    element = Some(Element::Arc {
-                        start,
-                        end,
-                        center: centre,
-                        ccw: direction == ArcDirection::CounterClockwise,
-                    });
-                    direct_arc = Some(Arc {
+                    let (arc, arc_element) = Arc {
                         centre,
                         direction,
                         plane,
-                    });
+                    }
+                    .with_element(start, end);
+                    element = Some(arc_element);
+                    direct_arc = Some(arc);
                 }
             }
         }
@@ -295,11 +311,11 @@ pub(super) fn prepare(
             return through_point(front, kernel, words, target, origin);
         }
         Motion::Thread | Motion::Tap { .. } => {
-            return thread(front, kernel, words, target, origin);
+            return thread(front, words, target, origin);
         }
     }
     let element = element.expect("every motion above makes an element");
-    let tag = tag(front, target, origin, rapid, turns);
+    let tag = tag(target, origin, rapid, turns);
     update_tangent(front, &element, &target, plane);
     advance(front, &target);
     if corner.is_none() && !front.contour.is_holding() && !front.rounding_modal {
@@ -320,14 +336,7 @@ fn is_of(cut: &Cut<Tag>, origin: Origin) -> bool {
     matches!(cut, Cut::Block { tag, .. } if tag.origin == origin)
 }
 
-fn tag(
-    front: &Sinumerik,
-    target: [Option<f64>; AXES],
-    origin: Origin,
-    rapid: bool,
-    turns: u32,
-) -> Tag {
-    let _ = front;
+fn tag(target: [Option<f64>; AXES], origin: Origin, rapid: bool, turns: u32) -> Tag {
     Tag {
         origin,
         target,
@@ -484,7 +493,7 @@ fn through_point(
     for (i, t) in full.iter_mut().enumerate().take(3) {
         *t = Some(end[i]);
     }
-    let tag = tag(front, full, origin, false, 0);
+    let tag = tag(full, origin, false, 0);
     advance(front, &full);
     if let Some((plane, direction)) = circle.machine_plane() {
         let (a, b, _) = plane.axes();
@@ -494,24 +503,16 @@ fn through_point(
             .programmable()
             .is_none_or(|f| f.keeps_plane((a, b)))
         {
-            let centre = V2::new(circle.centre[a], circle.centre[b]);
-            let element = Element::Arc {
-                start: V2::new(start[a], start[b]),
-                end: V2::new(end[a], end[b]),
-                center: centre,
-                ccw: direction == ArcDirection::CounterClockwise,
-            };
+            let (arc, element) = Arc {
+                centre: V2::new(circle.centre[a], circle.centre[b]),
+                direction,
+                plane,
+            }
+            .with_element(V2::new(start[a], start[b]), V2::new(end[a], end[b]));
             if plane == front.modal.plane {
                 update_tangent(front, &element, &full, plane);
             }
-            return Ok(Prepared::Direct(
-                tag,
-                Some(Arc {
-                    centre,
-                    direction,
-                    plane,
-                }),
-            ));
+            return Ok(Prepared::Direct(tag, Some(arc)));
         }
     }
     // Chords of at most 1 µm from the circle: 2 r (1 - cos(step / 2)) <= tolerance.
@@ -543,7 +544,6 @@ fn through_point(
 /// G331 turns the spindle by the lead's sign (negative: counter-clockwise), G332 the other way.
 fn thread(
     front: &mut Sinumerik,
-    kernel: &Kernel,
     words: &Words<'_>,
     mut target: [Option<f64>; AXES],
     origin: Origin,
@@ -588,13 +588,12 @@ fn thread(
         }),
         _ => None,
     };
-    let _ = kernel;
     let per_revolution = if travel[dominant] > 0.0 {
         value.abs() * path / travel[dominant]
     } else {
         value.abs()
     };
-    let tag = tag(front, target, origin, false, 0);
+    let tag = tag(target, origin, false, 0);
     advance(front, &target);
     Ok(Prepared::Thread(tag, per_revolution, spindle))
 }
@@ -694,11 +693,7 @@ fn execute(front: &mut Sinumerik, kernel: &mut Kernel, cut: Cut<Tag>) -> Result<
     target[b] = Some(element.end().y);
     let tag = Tag { target, ..tag };
     let corner_feed = front.corner_feed.filter(|_| is_corner);
-    let mode = if front.modal.feed_type == super::gcodes::FeedType::PerRevolution {
-        crate::interp::modal::FeedMode::PerRevolution
-    } else {
-        crate::interp::modal::FeedMode::PerMinute
-    };
+    let mode = super::block::feed_mode(front.modal.feed_type);
     let saved = corner_feed.map(|f| {
         let saved = kernel.state().feed;
         kernel.set_feed_in(mode, Some(f));
@@ -711,11 +706,7 @@ fn execute(front: &mut Sinumerik, kernel: &mut Kernel, cut: Cut<Tag>) -> Result<
             &tag,
             Some(Arc {
                 centre: center,
-                direction: if ccw {
-                    ArcDirection::CounterClockwise
-                } else {
-                    ArcDirection::Clockwise
-                },
+                direction: direction(ccw),
                 plane,
             }),
         ),
