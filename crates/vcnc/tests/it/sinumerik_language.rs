@@ -1846,3 +1846,72 @@ proptest! {
         prop_assert!(close(last, wanted, 1e-6), "{}\ngot {:?}\nwanted {:?}", text, last, wanted);
     }
 }
+
+#[test]
+fn call_runs_the_program_a_string_variable_names() {
+    // PGAsl, indirect call: PROG holds "SUB1"; SUB1 moves X10 then Y5 and returns to G0 X0.
+    let text = "DEF STRING[20] PROG\nPROG=\"SUB1\"\nCALL PROG\nG0 X0\nM30\n";
+    let run = run_with(text, &[("SUB1", "G0 X10\nY5\nRET\n")]);
+    assert_points(
+        &ends_of(&run, text),
+        &[[10.0, 0.0, 0.0], [10.0, 5.0, 0.0], [0.0, 5.0, 0.0]],
+        text,
+    );
+}
+
+#[test]
+fn call_takes_a_path_of_the_controls_file_system() {
+    // The name is the path's last part without `_N_` and `_SPF`: SUB1.
+    let text = "CALL \"/_N_WKS_DIR/_N_PART_WPD/_N_SUB1_SPF\"\nM30\n";
+    let run = run_with(text, &[("SUB1", "G0 X7\nRET\n")]);
+    assert_points(&ends_of(&run, text), &[[7.0, 0.0, 0.0]], text);
+}
+
+#[test]
+fn call_block_runs_the_part_between_two_labels_of_the_called_program_once() {
+    // SUB1's lines FROM: (Y1) and UPTO: (Y2) run; X1 before and X3 after them do not, and the
+    // call returns after UPTO to the main program's G0 Z9.
+    let text = "CALL \"SUB1\" BLOCK FROM TO UPTO\nG0 Z9\nM30\n";
+    let run = run_with(
+        text,
+        &[("SUB1", "G0 X1\nFROM: G0 Y1\nUPTO: G0 Y2\nG0 X3\nRET\n")],
+    );
+    assert_points(
+        &ends_of(&run, text),
+        &[[0.0, 1.0, 0.0], [0.0, 2.0, 0.0], [0.0, 2.0, 9.0]],
+        text,
+    );
+}
+
+#[test]
+fn call_block_without_a_program_repeats_a_part_of_this_one() {
+    // A: X1 and B: X2 run, then CALL BLOCK A TO B runs them once more after X5 (X1, X2), and the
+    // program goes on after the CALL with X6.
+    let text = "A: G0 X1\nB: G0 X2\nG0 X5\nCALL BLOCK A TO B\nG0 X6\nM30\n";
+    assert_eq!(xs(text), vec![1.0, 2.0, 5.0, 1.0, 2.0, 6.0]);
+}
+
+#[test]
+fn call_of_an_empty_name_or_a_missing_program_is_an_alarm() {
+    assert_eq!(
+        error_code("DEF STRING[8] PN\nCALL PN\nM30\n"),
+        AlarmCode::ValueOutOfRange
+    );
+    assert_eq!(
+        error_code("CALL \"NOWHERE\"\nM30\n"),
+        AlarmCode::ProgramNotFound
+    );
+}
+
+#[test]
+fn a_call_without_its_program_or_with_half_a_block_part_is_a_syntax_alarm() {
+    assert_eq!(error_code("CALL\nM30\n"), AlarmCode::MacroSyntax);
+    assert_eq!(
+        error_code("CALL \"SUB1\" BLOCK A\nM30\n"),
+        AlarmCode::MacroSyntax
+    );
+    assert_eq!(
+        error_code("CALL \"SUB1\" X10\nM30\n"),
+        AlarmCode::MacroSyntax
+    );
+}

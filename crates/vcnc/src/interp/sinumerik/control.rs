@@ -9,7 +9,7 @@ use super::{Section, Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
 use crate::source::Span;
-use crate::syntax::sinumerik::{Expr, Jump, JumpTarget, Statement, StatementKind};
+use crate::syntax::sinumerik::{Expr, Jump, JumpKind, JumpTarget, Name, Statement, StatementKind};
 
 /// Runs `statement` of line `line` of the current level's program.
 pub(super) fn run(
@@ -146,6 +146,9 @@ pub(super) fn run(
             repeat(front, at, at, line, passes)
         }
         StatementKind::Jump(jump) => return jump_to(front, kernel, jump, line),
+        StatementKind::Call { program, section } => {
+            return call(front, kernel, program.as_ref(), section.as_ref(), line, span)
+        }
         StatementKind::EndIf
         | StatementKind::Repeat
         | StatementKind::Loop
@@ -199,6 +202,104 @@ fn passes_of(front: &mut Sinumerik, kernel: &Kernel, passes: Option<&Expr>) -> R
         ));
     }
     Ok(value as u32)
+}
+
+/// `CALL`: the program a string names, whole or between two of its labels; `CALL BLOCK` alone
+/// runs a part of the current program once (PGAsl, indirect call).
+fn call(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    program: Option<&Expr>,
+    section: Option<&(Name, Name)>,
+    line: usize,
+    span: Span,
+) -> Result<Step, Alarm> {
+    let Some(program) = program else {
+        let (start, end) = section.expect("the reader gives CALL a program or a BLOCK part");
+        let current = front.levels.last().expect("a level").program;
+        let (first, last) = section_lines(front, current, 0, start, end)?;
+        if let Some(next) = repeat(front, first, last, line, 1) {
+            front.level().next = next;
+        }
+        return Ok(Step::Next);
+    };
+    let name = front.text(kernel, program)?;
+    let name = program_name(&name);
+    if name.is_empty() {
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            program.span,
+            "CALL names no program: the string is empty",
+        )
+        .with_help("give CALL the program's name, as in CALL \"CONTOUR1\""));
+    }
+    front.call(&name, 1, span, None)?;
+    if let Some((start, end)) = section {
+        let called = front.levels.last().expect("the call's level").program;
+        let (first, last) = section_lines(front, called, 0, start, end)?;
+        let level = front.level();
+        level.next = first;
+        // After its part the called program returns: its section goes on past the text's end.
+        level.sections.push(Section {
+            first,
+            last,
+            back: usize::MAX,
+            passes_left: 0,
+        });
+    }
+    Ok(Step::Next)
+}
+
+/// The lines of labels `start` and `end` of `program`: the start searched from `from` forwards,
+/// then backwards (as GOTO does), the end from the start on.
+fn section_lines(
+    front: &mut Sinumerik,
+    program: usize,
+    from: usize,
+    start: &Name,
+    end: &Name,
+) -> Result<(usize, usize), Alarm> {
+    let mut find = |line: usize, label: &Name| {
+        let jump = Jump {
+            kind: JumpKind::Goto,
+            target: None,
+            span: label.span,
+        };
+        front
+            .structure
+            .jump(
+                &front.programs,
+                program,
+                line,
+                &jump,
+                Target::Label(&label.value),
+            )?
+            .ok_or_else(|| Alarm::error(AlarmCode::SequenceNotFound, label.span, "label not found"))
+    };
+    let first = find(from, start)?;
+    let last = find(first.saturating_sub(1), end)?;
+    if last < first {
+        return Err(Alarm::error(
+            AlarmCode::SequenceNotFound,
+            end.span,
+            format!("label {} comes before label {}", end.value, start.value),
+        )
+        .with_help("CALL .. BLOCK runs from its first label down to its second"));
+    }
+    Ok((first, last))
+}
+
+/// The program's name in a CALL string: `"CONTOUR1"`, or a path of the control's file system
+/// (`"/_N_WKS_DIR/_N_PART_WPD/_N_CONTOUR1_SPF"`) reduced to the name.
+fn program_name(written: &str) -> String {
+    let last = written.rsplit('/').next().unwrap_or(written).trim();
+    let upper = last.to_ascii_uppercase();
+    let bare = upper.strip_prefix("_N_").unwrap_or(&upper);
+    let bare = [".SPF", ".MPF", "_SPF", "_MPF"]
+        .iter()
+        .find_map(|suffix| bare.strip_suffix(suffix))
+        .unwrap_or(bare);
+    bare.to_string()
 }
 
 /// Runs lines `first..=last` `passes` times, then goes on after line `back`.

@@ -601,7 +601,9 @@ impl Sinumerik {
                     // other lines (its partner, a label), which a streamed text has not at hand.
                     if !matches!(
                         statement.kind,
-                        StatementKind::Definition(_) | StatementKind::Procedure(_)
+                        StatementKind::Definition(_)
+                            | StatementKind::Procedure(_)
+                            | StatementKind::Call { section: None, .. }
                     ) {
                         self.make_whole(program)?;
                     }

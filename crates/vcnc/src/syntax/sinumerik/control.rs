@@ -27,7 +27,7 @@ pub(super) enum Place {
 }
 
 /// The keywords that make the rest of a block a statement, and where each may stand.
-const KEYWORDS: [(&str, Place); 29] = [
+const KEYWORDS: [(&str, Place); 30] = [
     ("IF", Place::First),
     ("ELSE", Place::First),
     ("ENDIF", Place::First),
@@ -47,6 +47,7 @@ const KEYWORDS: [(&str, Place); 29] = [
     ("DEFINE", Place::First),
     ("SAVE", Place::First),
     ("ENDLABEL", Place::First),
+    ("CALL", Place::First),
     ("GOTO", Place::AfterWords),
     ("GOTOF", Place::AfterWords),
     ("GOTOB", Place::AfterWords),
@@ -107,6 +108,7 @@ pub(super) fn read(scanner: &mut Scanner<'_>, keyword: Name) -> Result<Statement
         "DEFINE" => StatementKind::Macro(declare::macro_definition(scanner, &keyword)?),
         "SAVE" => StatementKind::Save,
         "ENDLABEL" => StatementKind::EndLabel,
+        "CALL" => call(scanner, &keyword)?,
         other => match jump_kind(other) {
             Some(kind) => StatementKind::Jump(jump(scanner, kind, keyword.span)?),
             None => {
@@ -247,6 +249,30 @@ fn repeat_block(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<StatementKi
         label,
         passes: passes(scanner)?,
     })
+}
+
+/// `CALL program`, `CALL program BLOCK start TO end` or `CALL BLOCK start TO end` (PGAsl,
+/// indirect call and indirect part repetition).
+fn call(scanner: &mut Scanner<'_>, keyword: &Name) -> Result<StatementKind, Alarm> {
+    let help = "the forms are CALL \"NAME\", CALL variable, and CALL \"NAME\" BLOCK start TO end";
+    if scanner.at_end() {
+        return Err(syntax(keyword.span, "CALL needs the program to call").with_help(help));
+    }
+    let program = match take_keyword(scanner, "BLOCK")? {
+        Some(_) => None,
+        None => Some(expr::parse(scanner)?),
+    };
+    let block = program.is_none() || take_keyword(scanner, "BLOCK")?.is_some();
+    let section = if block {
+        let start = label(scanner, "CALL .. BLOCK", help)?;
+        if take_keyword(scanner, "TO")?.is_none() {
+            return Err(syntax(ahead(scanner), "expected TO after the first label").with_help(help));
+        }
+        Some((start, label(scanner, "CALL .. BLOCK .. TO", help)?))
+    } else {
+        None
+    };
+    Ok(StatementKind::Call { program, section })
 }
 
 /// `P=n` after the labels of REPEAT and REPEATB, if it comes.

@@ -98,6 +98,15 @@ pub enum StatementKind {
     Macro(Macro),
     /// `SAVE` alone.
     Save,
+    /// `CALL program [BLOCK start TO end]`: an indirect call, the program named by a string
+    /// expression; with BLOCK, only the part between two labels (of the current program when no
+    /// program is written).
+    Call {
+        /// The program's name (a string expression); `None` in `CALL BLOCK .. TO ..`.
+        program: Option<Expr>,
+        /// The first and the last label of the part to run.
+        section: Option<(Name, Name)>,
+    },
     /// A synchronized action (`WHEN`, `WHENEVER`, `EVERY`, `FROM` ... `DO` ..., or `DO` ...
     /// alone), not read yet: its keyword and the rest of the block after it.
     Action {
@@ -236,6 +245,7 @@ impl StatementKind {
             StatementKind::External(_) => "EXTERN",
             StatementKind::Macro(_) => "DEFINE",
             StatementKind::Save => "SAVE",
+            StatementKind::Call { .. } => "CALL",
             StatementKind::Action { keyword, .. } => &keyword.value,
         }
     }
@@ -272,6 +282,7 @@ impl Statement {
             StatementKind::RepeatSection { passes, .. }
             | StatementKind::RepeatBlock { passes, .. } => all.extend(passes),
             StatementKind::Jump(j) => all.extend(jump(j)),
+            StatementKind::Call { program, .. } => all.extend(program),
             StatementKind::Definition(definition) => definition.expressions(&mut all),
             StatementKind::Procedure(procedure) => {
                 for parameter in &procedure.parameters {
