@@ -785,12 +785,44 @@ fn arcs_turn_with_the_frame_and_mirroring_reverses_them() {
 }
 
 #[test]
-fn an_arc_in_a_tilted_plane_alarms() {
+fn an_arc_in_a_tilted_plane_is_cut_in_pieces_on_the_tilted_circle() {
+    // ROT Y30 tilts the X/Y plane. G2 from (10,0) to (0,10) with CR=10 turns clockwise about
+    // (10,10) through a quarter. The rapid to X10 Y0 gives the frame's image of the X axis
+    // (u = its end / 10); the Y axis stays (0,1,0); the circle's plane has the normal
+    // n = u x (0,1,0), its centre is 10 u + (0,10,0). Every piece ends at distance 10 from that
+    // centre and in that plane, the last at the image of (0,10,0): (0,10,0) itself.
+    let text = "ROT Y30\nG0 X10 Y0\nG2 X0 Y10 CR=10 F100\nM30\n";
+    let points = moves(text, &machine());
+    let u = points[0].map(|v| v / 10.0);
+    assert!((u[0] - 30f64.to_radians().cos()).abs() < 1e-9, "{u:?}");
+    let n = [-u[2], 0.0, u[0]];
+    let centre = [10.0 * u[0], 10.0, 10.0 * u[2]];
+    let pieces = &points[1..];
+    assert!(pieces.len() > 20, "{} pieces", pieces.len());
+    for p in pieces {
+        let d: Vec<f64> = (0..3).map(|i| p[i] - centre[i]).collect();
+        let radius = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+        assert!((radius - 10.0).abs() < 1e-6, "{p:?}");
+        let off_plane: f64 = (0..3).map(|i| d[i] * n[i]).sum();
+        assert!(off_plane.abs() < 1e-9, "{p:?}");
+    }
+    let last = pieces[pieces.len() - 1];
+    assert!(
+        last.iter()
+            .zip([0.0, 10.0, 0.0])
+            .all(|(a, b)| (a - b).abs() < 1e-9),
+        "{last:?}"
+    );
+}
+
+#[test]
+fn an_arc_whose_end_is_off_its_circle_in_a_tilted_plane_alarms() {
+    // About I-10 (centre (0,0)) the start (10,0) is at radius 10, the end (0,12) at 12.
     let alarm = error(
-        "ROT Y30\nG0 X10 Y0\nG2 X0 Y10 CR=10 F100\nM30\n",
+        "ROT Y30\nG0 X10 Y0\nG3 X0 Y12 I-10 J0 F100\nM30\n",
         &machine(),
     );
-    assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
+    assert_eq!(alarm.code, AlarmCode::ArcEndNotOnCircle);
 }
 
 #[test]

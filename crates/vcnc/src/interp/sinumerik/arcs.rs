@@ -387,6 +387,55 @@ fn norm(p: Point3) -> f64 {
     p[0].hypot(p[1]).hypot(p[2])
 }
 
+/// The points of an arc (or helix) in its own plane's coordinates, for a frame that tilts that
+/// plane out of G17/G18/G19: straight pieces whose chords stay within `tolerance` of the
+/// circle. The radius runs linearly from the start's to the end's (the end is reached exactly)
+/// and the third axis linearly from `height.0` to `height.1`; `turns` full turns come beyond
+/// the first, an end on the start is a full circle.
+pub(crate) fn helix_points(
+    start: V2,
+    centre: V2,
+    end: V2,
+    height: (f64, f64),
+    direction: ArcDirection,
+    turns: u32,
+    tolerance: f64,
+) -> Vec<(V2, f64)> {
+    let (r0, r1) = ((start - centre).length(), (end - centre).length());
+    let a0 = (start.y - centre.y).atan2(start.x - centre.x);
+    let a1 = (end.y - centre.y).atan2(end.x - centre.x);
+    let tau = std::f64::consts::TAU;
+    let mut sweep = match direction {
+        ArcDirection::CounterClockwise => (a1 - a0).rem_euclid(tau),
+        ArcDirection::Clockwise => -(a0 - a1).rem_euclid(tau),
+    };
+    if (end - start).length() <= EPSILON * r0.max(1.0) {
+        sweep = if direction == ArcDirection::Clockwise {
+            -tau
+        } else {
+            tau
+        };
+    }
+    sweep += f64::from(turns) * tau * sweep.signum();
+    let radius = r0.max(r1).max(EPSILON);
+    // Chords of at most `tolerance` from the circle: 2 r (1 - cos(step / 2)) <= tolerance.
+    let step = 2.0 * (1.0 - tolerance / radius).clamp(-1.0, 1.0).acos();
+    // At most a million pieces: a tolerance far below the radius's precision must not hang.
+    let pieces = ((sweep.abs() / step.max(1e-6)).ceil() as usize).clamp(1, 1_000_000);
+    (1..=pieces)
+        .map(|k| {
+            if k == pieces {
+                return (end, height.1);
+            }
+            let t = k as f64 / pieces as f64;
+            let (sin, cos) = (a0 + sweep * t).sin_cos();
+            let r = r0 + (r1 - r0) * t;
+            let point = V2::new(centre.x + r * cos, centre.y + r * sin);
+            (point, height.0 + (height.1 - height.0) * t)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 pub(super) mod tests {
     //! Also the helpers of the polar and contour tests.
@@ -719,5 +768,53 @@ pub(super) mod tests {
             proptest::prop_assert!((circle.sweep - (a[2] - a[0])).abs() < 1e-6);
             proptest::prop_assert!(dot(circle.normal, cross(u, w)) > 0.999_999);
         }
+    }
+
+    #[test]
+    fn a_quarter_helix_in_pieces_stays_on_its_circle_and_climbs_evenly() {
+        // Quarter circle of radius 10 about the origin, (10,0) to (0,10) counter-clockwise,
+        // climbing 0 to 5: every point at radius 10, the height proportional to the angle,
+        // the last point exactly the end, chords within 1 µm.
+        let points = helix_points(
+            V2::new(10.0, 0.0),
+            V2::new(0.0, 0.0),
+            V2::new(0.0, 10.0),
+            (0.0, 5.0),
+            ArcDirection::CounterClockwise,
+            0,
+            0.001,
+        );
+        let step = 2.0 * (1.0f64 - 0.001 / 10.0).acos();
+        assert_eq!(
+            points.len(),
+            (std::f64::consts::FRAC_PI_2 / step).ceil() as usize
+        );
+        for &(p, h) in &points {
+            assert!((p.length() - 10.0).abs() < 1e-9, "{p:?}");
+            let angle = p.y.atan2(p.x);
+            assert!((h - 5.0 * angle / std::f64::consts::FRAC_PI_2).abs() < 1e-9);
+        }
+        assert_eq!(points.last().copied(), Some((V2::new(0.0, 10.0), 5.0)));
+    }
+
+    #[test]
+    fn a_clockwise_full_circle_with_a_turn_goes_round_twice_the_other_way() {
+        // End on the start, G2, TURN=1: two turns clockwise, so the first piece goes to negative
+        // y from (10,0), and the points pass (0,-10) twice.
+        let points = helix_points(
+            V2::new(10.0, 0.0),
+            V2::new(0.0, 0.0),
+            V2::new(10.0, 0.0),
+            (0.0, 0.0),
+            ArcDirection::Clockwise,
+            1,
+            0.01,
+        );
+        assert!(points[0].0.y < 0.0);
+        let near_bottom = points
+            .windows(2)
+            .filter(|w| w[0].0.x > 0.0 && w[1].0.x <= 0.0 && w[1].0.y < 0.0)
+            .count();
+        assert_eq!(near_bottom, 2);
     }
 }

@@ -276,7 +276,6 @@ pub(super) fn prepare(
             } else {
                 ArcDirection::CounterClockwise
             };
-            check_arc_plane(kernel, plane, origin)?;
             let (centre, end) = arc_geometry(front, words, &target, direction, origin)?;
             target[a] = Some(end.x);
             target[b] = Some(end.y);
@@ -290,7 +289,6 @@ pub(super) fn prepare(
             direct_arc = Some(arc);
         }
         Motion::Tangential => {
-            check_arc_plane(kernel, plane, origin)?;
             let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
             let tangent = front.tangent.unwrap_or_default();
             match arcs::tangential_arc(start, end, tangent, origin.span)? {
@@ -392,22 +390,6 @@ fn corner_spec(words: &Words<'_>) -> Result<Option<CornerSpec>, Alarm> {
         }
     }
     Ok(found)
-}
-
-/// An arc of the plane in force must stay an arc of a machine plane through the frame.
-fn check_arc_plane(kernel: &Kernel, plane: Plane, origin: Origin) -> Result<(), Alarm> {
-    let (a, b, _) = plane.axes();
-    if let Some(frame) = kernel.state().frames.programmable() {
-        if !frame.keeps_plane((a, b)) {
-            return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
-                origin.span,
-                "an arc in a plane the frame tilts or scales unevenly is not run yet",
-            )
-            .with_help("vcnc cuts arcs in a machine plane: turn the frame about the plane's normal only, and scale the plane's two axes alike"));
-        }
-    }
-    Ok(())
 }
 
 /// The centre and end (plane coordinates) of G2/G3: with I J K (incremental from the start
@@ -650,6 +632,7 @@ fn direct(kernel: &mut Kernel, tag: &Tag, arc: Option<Arc>) -> Result<(), Alarm>
     match arc {
         None if tag.rapid => kernel.rapid_to(tag.target, tag.origin),
         None => kernel.feed_to(tag.target, tag.origin),
+        Some(arc) if !keeps_plane(kernel, arc.plane) => tilted_arc(kernel, tag, arc),
         Some(arc) => kernel.arc_in(
             arc.plane,
             tag.target,
@@ -659,6 +642,55 @@ fn direct(kernel: &mut Kernel, tag: &Tag, arc: Option<Arc>) -> Result<(), Alarm>
             tag.origin,
         ),
     }
+}
+
+/// True when the frame maps the arc's plane onto a machine plane as a circle (the stream's arcs
+/// lie in G17/G18/G19 planes).
+fn keeps_plane(kernel: &Kernel, plane: Plane) -> bool {
+    let (a, b, _) = plane.axes();
+    kernel
+        .state()
+        .frames
+        .programmable()
+        .is_none_or(|frame| frame.keeps_plane((a, b)))
+}
+
+/// An arc whose plane the frame tilts (or scales unevenly): straight pieces within 1 µm of the
+/// circle in program coordinates, each mapped through the frame (docs/SINUMERIK.md 9).
+fn tilted_arc(kernel: &mut Kernel, tag: &Tag, arc: Arc) -> Result<(), Alarm> {
+    let (a, b, n) = arc.plane.axes();
+    let p = kernel.program_position();
+    let start = V2::new(p[a], p[b]);
+    let end = V2::new(tag.target[a].unwrap_or(p[a]), tag.target[b].unwrap_or(p[b]));
+    let (r0, r1) = ((start - arc.centre).length(), (end - arc.centre).length());
+    let tolerance = kernel.state().setup.profile().arc_radius_tolerance;
+    if (r0 - r1).abs() > tolerance.max(1e-9 * r0) {
+        return Err(Alarm::error(
+            AlarmCode::ArcEndNotOnCircle,
+            tag.origin.span,
+            format!("the arc's end is {:.4} mm off its circle (radius {r0:.4} at the start, {r1:.4} at the end)", (r0 - r1).abs()),
+        )
+        .with_help("check the end point and the centre (I J K are incremental unless =AC(..))"));
+    }
+    let height = (p[n], tag.target[n].unwrap_or(p[n]));
+    let points = arcs::helix_points(
+        start,
+        arc.centre,
+        end,
+        height,
+        arc.direction,
+        tag.turns,
+        0.001,
+    );
+    let last = points.len() - 1;
+    for (k, (point, h)) in points.into_iter().enumerate() {
+        let mut target = if k == last { tag.target } else { [None; AXES] };
+        target[a] = Some(point.x);
+        target[b] = Some(point.y);
+        target[n] = Some(h);
+        kernel.feed_to(target, tag.origin)?;
+    }
+    Ok(())
 }
 
 /// One cut of the contour.
