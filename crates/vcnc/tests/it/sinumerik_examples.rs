@@ -507,6 +507,86 @@ fn print_tally(tally: &Tally) {
     }
 }
 
+/// The lists of docs/sinumerik-examples.md, made from the table: the asserted examples by
+/// directory, then each alarm code's examples by the command they stop at.
+fn examples_doc_lists(table: &Table) -> String {
+    let short = |file: &str| {
+        let (dir, rest) = file.split_once('/').unwrap_or(("", file));
+        let number = rest.split('-').next().unwrap_or(rest);
+        format!("{}/{number}", dir.trim_start_matches("sinumerik-"))
+    };
+    let mut by_file: BTreeMap<&str, Vec<&Example>> = BTreeMap::new();
+    for example in &table.example {
+        by_file.entry(&example.file).or_default().push(example);
+    }
+    let mut asserted: BTreeMap<&str, Vec<String>> = BTreeMap::new();
+    let mut alarms: BTreeMap<String, BTreeMap<String, Vec<String>>> = BTreeMap::new();
+    for (file, entries) in &by_file {
+        let dir = file.split('/').next().unwrap_or("");
+        if entries.iter().all(|e| e.expected.asserts()) {
+            asserted.entry(dir).or_default().push(short(file));
+        } else if let Some(alarm) = entries.iter().find_map(|e| e.alarm.as_ref()) {
+            alarms
+                .entry(alarm.code.clone())
+                .or_default()
+                .entry(alarm.names.all()[0].to_string())
+                .or_default()
+                .push(short(file));
+        }
+    }
+    let total: usize = asserted.values().map(Vec::len).sum();
+    let mut out = format!(
+        "## Asserted: {total}\n\nTheir end positions or paths (and feeds, dwells, spindle speeds where the header gives them) are\nasserted:\n\n"
+    );
+    for (dir, files) in &asserted {
+        out += &format!("- {dir} ({}): {}\n", files.len(), files.join(", "));
+    }
+    for (code, commands) in &alarms {
+        let count: usize = commands.values().map(Vec::len).sum();
+        let heading = match code.as_str() {
+            "V020" => "not supported yet (issue 22: radius compensation, path control, cycles, working area)",
+            "V022" => "outside the product (turning, grinding, synchronized actions, couplings, hardware data)",
+            "V031" => "an error of the example itself (the control stops there too)",
+            _ => "stops with this alarm",
+        };
+        out += &format!(
+            "\n## {code}, {heading}: {count}\n\n| command | count | examples |\n|---|---|---|\n"
+        );
+        let mut rows: Vec<_> = commands.iter().collect();
+        // Most examples first, then by name.
+        rows.sort_by(|a, b| b.1.len().cmp(&a.1.len()).then(a.0.cmp(b.0)));
+        for (command, files) in rows {
+            out += &format!("| `{command}` | {} | {} |\n", files.len(), files.join(", "));
+        }
+    }
+    out
+}
+
+const DOC_BEGIN: &str = "<!-- generated from the table: VCNC_BLESS=1 rewrites it -->\n";
+const DOC_END: &str = "<!-- end of the generated lists -->\n";
+
+/// docs/sinumerik-examples.md lists what the table says; `VCNC_BLESS=1` rewrites its lists.
+#[test]
+fn the_examples_doc_lists_what_the_table_says() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/sinumerik-examples.md");
+    let doc = std::fs::read_to_string(&path).expect("docs/sinumerik-examples.md");
+    let (Some(begin), Some(end)) = (doc.find(DOC_BEGIN), doc.find(DOC_END)) else {
+        panic!("docs/sinumerik-examples.md lacks its generated-lists markers");
+    };
+    let lists = examples_doc_lists(&table());
+    let current = &doc[begin + DOC_BEGIN.len()..end];
+    if current == lists {
+        return;
+    }
+    if std::env::var_os("VCNC_BLESS").is_some() {
+        let rewritten = format!("{}{DOC_BEGIN}{lists}{}", &doc[..begin], &doc[end..]);
+        std::fs::write(&path, rewritten).expect("write docs/sinumerik-examples.md");
+        return;
+    }
+    panic!("docs/sinumerik-examples.md is stale: run `VCNC_BLESS=1 cargo test -p vcnc --test it sinumerik_examples::the_examples_doc`");
+}
+
 /// Acceptance 2 of issue 20: at least 110 of the 169 examples have positions or paths asserted.
 /// The table asserts 92 (every other example stops at a command out of the product or of issue
 /// 22: the notes say which, docs/sinumerik-examples.md lists them); ignored until more of the
