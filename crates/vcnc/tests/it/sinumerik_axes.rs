@@ -2,7 +2,7 @@
 //! the feed group (FGROUP, FGREF, FL, F of rotary axes under G700; PGsl 7.1, L2433-2740),
 //! positioning axes (POS, POSA, FA, WAITP; PGsl 7.2) and spindles by number (S2=, M2=3,
 //! SPOS[n], LIMS[n], G26 S2=; PGsl 6.1, 6.5, 7.4) on the spindles the machine file declares.
-//! docs/SINUMERIK.md 11 is the model.
+//! docs/SINUMERIK.md 10 is the model.
 
 use vcnc::interp::sinumerik::run_str;
 use vcnc::machine::DEFAULT_MACHINE_TOML;
@@ -327,4 +327,18 @@ fn a_spindle_in_axis_mode_is_outside_the_product() {
     let alarm = error("M2=70\n", &five_axis(2));
     assert_eq!(alarm.code, AlarmCode::NotInProduct);
     assert!(alarm.message.contains("M2=70"), "{}", alarm.message);
+}
+
+/// S0= is the master spindle's speed (PGsl 6.1): 600 rpm, M3 clockwise; a machine file may
+/// declare up to five spindles (L1845), not six.
+#[test]
+fn s0_addresses_the_master_and_a_machine_has_at_most_five_spindles() {
+    let segments = run("S0=600 M3\nM30\n", &machine());
+    assert_eq!(
+        spindle_events(&segments),
+        [(600.0, SpindleState::Clockwise)]
+    );
+    assert!(Machine::from_toml(&DEFAULT_MACHINE_TOML.replace("count = 1", "count = 5")).is_ok());
+    let refused = Machine::from_toml(&DEFAULT_MACHINE_TOML.replace("count = 1", "count = 6"));
+    assert!(refused.unwrap_err().to_string().contains("spindle.count"));
 }

@@ -1,4 +1,4 @@
-//! Axes beyond the path's geometry (PGsl 7.1, 7.2; docs/SINUMERIK.md 11): the feed group that
+//! Axes beyond the path's geometry (PGsl 7.1, 7.2; docs/SINUMERIK.md 10): the feed group that
 //! decides which axes make the path feed (FGROUP, FGREF, FL, and F of rotary axes under G700),
 //! and positioning axes that move at their own feed (POS, POSA, FA, WAITP).
 //!
@@ -168,7 +168,7 @@ fn axis_value(front: &mut Sinumerik, kernel: &Kernel, expr: &Expr) -> Result<Axi
 /// POS and POSA: the positioning axes go to their positions in one move of their own, before
 /// the block's path, each at its FA (without FA at its rapid rate); the move takes as long as
 /// the slowest axis needs. The block waits for it (POS) and so does POSA's (vcnc has one path:
-/// the control would overlap POSA with the blocks up to WAITP; docs/SINUMERIK.md 11.2).
+/// the control would overlap POSA with the blocks up to WAITP; docs/SINUMERIK.md 10.2).
 pub(super) fn position(
     front: &mut Sinumerik,
     kernel: &mut Kernel,

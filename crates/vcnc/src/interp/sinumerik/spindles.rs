@@ -1,4 +1,4 @@
-//! Spindles by number (PGsl 6.1, 7.4; docs/SINUMERIK.md 11.3): `S2=`, `M2=3`, `SPOS[n]=`,
+//! Spindles by number (PGsl 6.1, 7.4; docs/SINUMERIK.md 10.3): `S2=`, `M2=3`, `SPOS[n]=`,
 //! `SPOSA[n]=`, `SPOS=IC(..)`, `WAITS`, `LIMS[n]=`, `SVC[n]=`, `G26 S2=`, `FA[S2]=`, on the
 //! spindles the machine file declares (`[spindle] count`; spindle 1 is the master spindle).
 //!
@@ -151,6 +151,10 @@ pub(super) fn read_word(
                 1 => front.spindles.master_positioning_speed = Some(speed),
                 n => front.spindles.other(n).positioning_speed = Some(speed),
             }
+        }
+        // S0= is the master spindle's speed, as S1= is (PGsl 6.1).
+        _ if number_after("S") == Some(0) => {
+            words.speed = Some((block::number(front, kernel, word)?, word.span));
         }
         _ if number_after("S").is_some_and(|n| n >= 2) => {
             let n = front
