@@ -321,12 +321,21 @@ fn master_spindle_positions_are_oriented_stops() {
     assert_eq!(oriented, 4);
 }
 
-/// M2=70 puts spindle 2 into axis mode: a spindle as a rotary axis, outside the product.
+/// M2=70 puts spindle 2 into axis mode: a note (vcnc does not tie a spindle to an axis), and
+/// the program's C words move the machine file's C (sinumerik-a/46): X50 C180 at F500.
 #[test]
-fn a_spindle_in_axis_mode_is_outside_the_product() {
-    let alarm = error("M2=70\n", &five_axis(2));
-    assert_eq!(alarm.code, AlarmCode::NotInProduct);
-    assert!(alarm.message.contains("M2=70"), "{}", alarm.message);
+fn a_spindle_in_axis_mode_is_a_note_and_its_axis_moves_by_name() {
+    let run = collect(run_str("M2=70\nG1 X50 C180 F500\nM30\n", &five_axis(2)));
+    assert!(run.error().is_none(), "{:#?}", run.alarms);
+    assert!(
+        run.alarms
+            .iter()
+            .any(|a| a.code == AlarmCode::KeptAsState && a.message.contains("M2=70")),
+        "{:#?}",
+        run.alarms
+    );
+    let end = ends(&run.segments)[0];
+    assert_eq!([end[0], end[5]], [50.0, 180.0]);
 }
 
 /// S0= is the master spindle's speed (PGsl 6.1): 600 rpm, M3 clockwise; a machine file may

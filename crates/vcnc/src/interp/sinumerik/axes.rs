@@ -83,6 +83,12 @@ pub(super) fn read_word(
                     front.axis_feeds.reference_radius[axis] = Some(radius);
                 }
                 // In the unit of F: G700 makes it inch/min (L2592-2608).
+                // Assigning the machine data's limit deselects FL (L2566-2569): the axis is
+                // then limited by its own speed, as before any FL.
+                "FL" if matches!(&expr.kind, ExprKind::Index(name, _) if &**name == "$MA_AX_VELO_LIMIT") =>
+                {
+                    front.axis_feeds.limit[axis] = None;
+                }
                 "FL" => {
                     let limit = positive(front.value(kernel, expr)?, word)? * feeds;
                     front.axis_feeds.limit[axis] = Some(limit);

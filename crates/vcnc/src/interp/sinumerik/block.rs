@@ -94,7 +94,7 @@ pub(super) struct Words<'a> {
     pub(super) positioning: axes::Positioning,
     call: Option<(String, Span)>,
     /// Warnings the words raised, for the stream.
-    warnings: Vec<Alarm>,
+    pub(super) warnings: Vec<Alarm>,
     /// MCALL: the block's call becomes modal (or, without one, the modal call ends).
     mcall: Option<Span>,
     /// The arguments of a call with parentheses, evaluated where the call stands.

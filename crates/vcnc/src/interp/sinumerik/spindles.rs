@@ -192,13 +192,18 @@ pub(super) fn read_word(
                 4 => SpindleState::CounterClockwise,
                 5 => SpindleState::Stopped,
                 19 => SpindleState::Oriented,
+                // Axis mode (PGsl 7.4): the spindle then moves by its axis name, which vcnc
+                // moves as the machine file's rotary axis of that name; vcnc does not tie the
+                // two, so the switch itself is a note.
                 70 => {
-                    return Err(Alarm::error(
-                        AlarmCode::NotInProduct,
-                        word.span,
-                        format!("M{n}=70 switches spindle {n} to axis mode (a spindle as a rotary axis), which vcnc does not simulate"),
-                    )
-                    .with_help("a rotary axis of its own is an axis of the machine file ([axes.c])"))
+                    if front.noted.insert(format!("M{n}=70")) {
+                        words.warnings.push(Alarm::warning(
+                            AlarmCode::KeptAsState,
+                            word.span,
+                            format!("M{n}=70 switches spindle {n} to axis mode: vcnc does not tie a spindle to an axis; the program's rotary axis words move the machine file's axis of that name"),
+                        ));
+                    }
+                    return Ok(true);
                 }
                 code => {
                     return Err(Alarm::error(
