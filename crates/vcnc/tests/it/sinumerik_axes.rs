@@ -351,3 +351,31 @@ fn s0_addresses_the_master_and_a_machine_has_at_most_five_spindles() {
     let refused = Machine::from_toml(&DEFAULT_MACHINE_TOML.replace("count = 1", "count = 6"));
     assert!(refused.unwrap_err().to_string().contains("spindle.count"));
 }
+
+/// A block held for the rounding at its end moves before a positioning axis of a later block:
+/// G1 X10 RND=2 waits for its next path block, but POS[Z]=5 ends the contour, so X10 comes
+/// first (without its rounding), then Z5, then Y10.
+#[test]
+fn a_positioning_axis_ends_a_held_contour_first() {
+    let program = "G1 X10 F100 RND=2\nPOS[Z]=5\nY10\nM30\n";
+    let ends: Vec<[f64; 3]> = ends(&run(program, &machine()))
+        .iter()
+        .map(|p| [p[0], p[1], p[2]])
+        .collect();
+    assert_eq!(
+        ends,
+        [[10.0, 0.0, 0.0], [10.0, 0.0, 5.0], [10.0, 10.0, 5.0]]
+    );
+}
+
+/// FA names a spindle as S2 or SPI(2) (PGsl 7.5); on a machine with one spindle both alarm
+/// naming spindle 2, and FA[S1] is the master's.
+#[test]
+fn fa_names_spindles_as_s_n_or_spi() {
+    run("FA[S2]=100 FA[SPI(2)]=200 FA[S1]=50\nM30\n", &five_axis(2));
+    for word in ["FA[S2]=100", "FA[SPI(2)]=100"] {
+        let alarm = error(&format!("{word}\n"), &machine());
+        assert_eq!(alarm.code, AlarmCode::AxisNotOnMachine, "{word}");
+        assert!(alarm.message.contains("no spindle 2"), "{}", alarm.message);
+    }
+}

@@ -53,6 +53,8 @@ pub(super) fn read_word(
         return Ok(false);
     }
     match (address, &word.value) {
+        // FGROUP alone, as FGROUP(), brings back the geometry axes.
+        ("FGROUP", Value::Bare) => front.axis_feeds.group = None,
         ("FGROUP", Value::Call(arguments)) => {
             let mut group = [false; AXES];
             for argument in arguments.iter().flatten() {
@@ -184,6 +186,8 @@ pub(super) fn position(
     if positioning.is_empty() {
         return Ok(());
     }
+    // A block held for its corner moves first: the positioning word ends the contour.
+    front.flush_contour(kernel)?;
     let start = kernel.program_position();
     let mut target = [None; AXES];
     let mut minutes = 0.0_f64;

@@ -249,6 +249,7 @@ pub(super) fn run(
         auxiliary(kernel, code, Origin { span, ..origin });
     }
     if dwell {
+        axes::position(front, kernel, &words.positioning, origin)?;
         return dwell_block(kernel, &words, origin).map(|()| Step::Next);
     }
     let exact_stop = one_block.iter().any(|(f, _)| *f == OneBlock::ExactStop);

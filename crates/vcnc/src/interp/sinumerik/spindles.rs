@@ -132,16 +132,12 @@ pub(super) fn read_word(
                 (n, _) => front.spindles.other(n).rate = Some(value),
             }
         }
-        ("FA", Value::Indexed(indices, Some(expr))) if matches!(indices.as_slice(), [Expr { kind: ExprKind::Name(name), .. }] if name.starts_with('S') && name.len() > 1) =>
-        {
-            let [Expr {
-                kind: ExprKind::Name(name),
-                ..
-            }] = indices.as_slice()
-            else {
-                unreachable!("matched above")
+        ("FA", Value::Indexed(indices, Some(expr))) if named_spindle(indices).is_some() => {
+            let n = match named_spindle(indices) {
+                Some(NamedSpindle::Number(n)) => n,
+                Some(NamedSpindle::Expression(e)) => front.value(kernel, e)?,
+                None => unreachable!("matched above"),
             };
-            let n = name[1..].parse::<f64>().unwrap_or(0.0);
             let n = front.spindles.check(n, word)?;
             let speed = front.value(kernel, expr)?;
             if speed < 0.0 {
@@ -260,6 +256,33 @@ fn position(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(u32,
     };
     *angle = if incremental { *angle + value } else { value }.rem_euclid(360.0);
     Ok((n, *angle))
+}
+
+/// A spindle where an axis may stand (`FA[S2]`, `FA[SPI(2)]`; PGsl 7.5).
+enum NamedSpindle<'e> {
+    Number(f64),
+    Expression(&'e Expr),
+}
+
+fn named_spindle(indices: &[Expr]) -> Option<NamedSpindle<'_>> {
+    match indices {
+        [Expr {
+            kind: ExprKind::Name(name),
+            ..
+        }] => name
+            .strip_prefix('S')
+            .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+            .and_then(|n| n.parse().ok())
+            .map(NamedSpindle::Number),
+        [Expr {
+            kind: ExprKind::Call(name, arguments),
+            ..
+        }] if &**name == "SPI" => match arguments.as_slice() {
+            [Some(n)] => Some(NamedSpindle::Expression(n)),
+            _ => None,
+        },
+        _ => None,
+    }
 }
 
 /// The spindle number of `[n]`, checked against the machine.
