@@ -215,11 +215,11 @@ fn positioning_axes_take_as_long_as_the_slowest() {
     assert_close(&ends(&segments)[0][..3], &[100.0, 50.0, 0.0], 1e-9);
 }
 
-/// A block with a positioning axis and a path: the positioning move first (X10 at rapid, no
-/// FA), then the path (Y20 at F100: 12 s); POSA=IC(5) then goes from the programmed X10 to
+/// A block with a positioning axis and a path: the path first (Y20 at F100: 12 s), then the
+/// positioning move (X10 at rapid, no FA); POSA=IC(5) then goes from the programmed X10 to
 /// X15, and G91 X1 moves on from there: X16.
 #[test]
-fn positioning_axes_move_before_the_path_and_update_the_position() {
+fn positioning_axes_move_after_the_path_and_update_the_position() {
     let program = "G1 Y20 F100 POS[X]=10\nPOSA[X]=IC(5)\nWAITP(X)\nG91 X1\nM30\n";
     let segments = run(program, &machine());
     let kinds: Vec<bool> = segments
@@ -227,10 +227,23 @@ fn positioning_axes_move_before_the_path_and_update_the_position() {
         .filter(|s| s.motion().is_some())
         .map(|s| matches!(s.kind, SegmentKind::Rapid { .. }))
         .collect();
-    assert_eq!(kinds, [true, false, true, false]);
+    assert_eq!(kinds, [false, true, true, false]);
     let xs: Vec<[f64; 2]> = ends(&segments).iter().map(|p| [p[0], p[1]]).collect();
-    assert_eq!(xs, [[10.0, 0.0], [10.0, 20.0], [15.0, 20.0], [16.0, 20.0]]);
+    assert_eq!(xs, [[0.0, 20.0], [10.0, 20.0], [15.0, 20.0], [16.0, 20.0]]);
     assert_close(&feed_seconds(&segments), &[12.0, 0.6], 1e-6);
+}
+
+/// An axis is a path axis or a positioning axis of a block, not both; under a rotation the
+/// path's X (filled in by rule 6.4.3) would otherwise undo the positioning.
+#[test]
+fn an_axis_is_not_both_path_and_positioning_axis_in_a_block() {
+    let alarm = error("G1 X10 F100 POS[X]=20\n", &machine());
+    assert_eq!(alarm.code, AlarmCode::WordNotAllowed);
+    assert!(
+        alarm.message.contains("X is a path axis"),
+        "{}",
+        alarm.message
+    );
 }
 
 #[test]

@@ -5,7 +5,7 @@
 //! The kernel's planner measures a move along X Y Z (a rotary-only move in degrees). When the
 //! control measures it otherwise, [`scale_feed`] gives the kernel the feed that takes the
 //! control's time over the planner's length; positioning axes make a move of their own
-//! ([`position`]), in sequence with the path (the stream has one path).
+//! ([`position`]), after the block's path (the stream has one path).
 //!
 //! Never: change the feed of a move the default group measures as the planner does, or let
 //! a positioning word move an axis the machine file does not declare.
@@ -173,18 +173,34 @@ fn axis_value(front: &mut Sinumerik, kernel: &Kernel, expr: &Expr) -> Result<Axi
     })
 }
 
-/// POS and POSA: the positioning axes go to their positions in one move of their own, before
+/// POS and POSA: the positioning axes go to their positions in one move of their own, after
 /// the block's path, each at its FA (without FA at its rapid rate); the move takes as long as
 /// the slowest axis needs. The block waits for it (POS) and so does POSA's (vcnc has one path:
 /// the control would overlap POSA with the blocks up to WAITP; docs/SINUMERIK.md 10.2).
 pub(super) fn position(
     front: &mut Sinumerik,
     kernel: &mut Kernel,
-    positioning: &Positioning,
+    words: &Words<'_>,
     origin: Origin,
 ) -> Result<(), Alarm> {
+    let positioning = &words.positioning;
     if positioning.is_empty() {
         return Ok(());
+    }
+    // An axis is either a path axis or a positioning axis of a block (PGsl 7.2).
+    if let Some(&(axis, _)) = positioning
+        .iter()
+        .find(|(axis, _)| words.axes[*axis].is_some())
+    {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            origin.span,
+            format!(
+                "{} is a path axis and a positioning axis (POS, POSA) in one block",
+                AXIS_NAMES[axis]
+            ),
+        )
+        .with_help("move the axis either on the path or with POS/POSA"));
     }
     // A block held for its corner moves first: the positioning word ends the contour.
     front.flush_contour(kernel)?;
@@ -296,7 +312,8 @@ pub(super) fn scale_feed(
 ) -> Option<(FeedMode, Option<f64>)> {
     let feeds = &front.axis_feeds;
     let inch_feeds = front.modal.inch && front.modal.inch_feeds;
-    if feeds.group.is_none() && feeds.limit.iter().all(Option::is_none) && !inch_feeds {
+    let default_group = feeds.group.is_none() && feeds.limit.iter().all(Option::is_none);
+    if default_group && !inch_feeds {
         return None;
     }
     let (mode, Some(feed)) = kernel.feed_setting() else {
@@ -307,6 +324,11 @@ pub(super) fn scale_feed(
     }
     let start = kernel.program_position();
     let (delta, in_plane) = travels(&start, target, arc);
+    // Under G700 the default group differs from the planner's measure only for rotary axes
+    // alone.
+    if default_group && (in_plane.is_some() || delta[..3].iter().any(|d| d.abs() > 1e-12)) {
+        return None;
+    }
     let plane_axes = arc.map(|arc| {
         let (a, b, _) = arc.plane.axes();
         (a, b)

@@ -249,7 +249,7 @@ pub(super) fn run(
         auxiliary(kernel, code, Origin { span, ..origin });
     }
     if dwell {
-        axes::position(front, kernel, &words.positioning, origin)?;
+        axes::position(front, kernel, &words, origin)?;
         return dwell_block(kernel, &words, origin).map(|()| Step::Next);
     }
     let exact_stop = one_block.iter().any(|(f, _)| *f == OneBlock::ExactStop);
@@ -261,7 +261,6 @@ pub(super) fn run(
         PathMode::Continuous
     };
     kernel.set_path_mode(path_mode, exact_stop);
-    axes::position(front, kernel, &words.positioning, origin)?;
     match suppress {
         Some(OneBlock::Reference | OneBlock::FixedPoint) => {
             motion::reference_move(
@@ -275,6 +274,7 @@ pub(super) fn run(
         Some(level) => motion::suppressed_move(front, kernel, &words, level, origin)?,
         None => prepared.finish(front, kernel)?,
     }
+    axes::position(front, kernel, &words, origin)?;
     spindle::constant_rate(front, kernel, origin);
     spindle::restore_feed(front, kernel, mode);
     for &(code, span) in &words.m {
