@@ -140,6 +140,14 @@ impl AxisValues {
 pub struct SpindleConfig {
     /// Highest speed, rpm.
     pub max_rpm: f64,
+    /// How many spindles the machine has (1 to 5), numbered from 1 (the master spindle, which
+    /// S and M3 address); SINUMERIK programs address the others as `S2=`, `M2=3`, `SPOS[2]=`.
+    #[serde(default = "one_spindle")]
+    pub count: u32,
+}
+
+fn one_spindle() -> u32 {
+    1
 }
 
 /// The machine file as written.
@@ -408,7 +416,14 @@ impl MachineFile {
             position(&key("radius"), tool.radius)?;
             position(&key("radius_wear"), tool.radius_wear)?;
         }
-        check_range("spindle.max_rpm", self.spindle.max_rpm, Above(0.0), 1e6)
+        check_range("spindle.max_rpm", self.spindle.max_rpm, Above(0.0), 1e6)?;
+        // A channel has at most five spindles (PGsl 6.1, L1845).
+        check_range(
+            "spindle.count",
+            f64::from(self.spindle.count),
+            AtLeast(1.0),
+            5.0,
+        )
     }
 }
 

@@ -91,6 +91,7 @@ const KEYS: &[&str] = &[
     "profile",
     "start",
     "rotary_axes",
+    "spindles",
     "tool_change",
     "tools",
     "work_offsets",
@@ -132,6 +133,8 @@ struct Example {
     /// Rotary axes the machine has besides X Y Z: "a", "c".
     #[serde(default)]
     rotary_axes: Vec<String>,
+    /// Spindles the machine has (the machine file's `[spindle] count`; 1 when not given).
+    spindles: Option<u32>,
     /// "m6" (T preselects, M6 changes: the milling default) or "t" (T changes at once).
     tool_change: Option<String>,
     #[serde(default)]
@@ -196,6 +199,9 @@ impl Example {
                 other => return Err(format!("rotary_axes: unknown axis {other}")),
             };
             machine.axes[axis.index()] = rotary.clone();
+        }
+        if let Some(count) = self.spindles {
+            machine.spindle.count = count;
         }
         let values = |point: &Point| {
             let mut values = [0.0; 6];
@@ -327,6 +333,10 @@ fn run_sinumerik(text: &str, setup: Setup<'_>) -> Option<Result<common::Run, Str
     settings.t_changes_tool = setup.tool_change == Some("t");
     if let Some(&sd) = setup.machine_data.get("SD42440") {
         settings.frame_change_in_increments = sd != 0.0;
+    }
+    // MD28050 MM_NUM_R_PARAM: how many R parameters the control has.
+    if let Some(&md) = setup.machine_data.get("MD28050") {
+        settings.r_parameters = md as u32;
     }
     let mut library = MemoryLibrary::new();
     for (i, (name, program)) in setup.subprograms.iter().enumerate() {

@@ -9,9 +9,10 @@ use super::gcodes::{self, FeedType, Function, OneBlock};
 use super::instructions::{frame_instruction, pole};
 use super::language::Argument;
 use super::motion::{self, unit};
-use super::predefined::{feed_group, note_state, swivel, unknown_word, user_alarm, written};
+use super::predefined::{note_state, swivel, unknown_word, user_alarm, written};
 use super::spindle;
 use super::tools;
+use super::{axes, spindles};
 use super::{Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::{Kernel, Origin};
@@ -89,9 +90,11 @@ pub(super) struct Words<'a> {
     pub(super) tool: Option<(u32, Span)>,
     pub(super) edge: Option<(u32, Span)>,
     pub(super) m: Vec<(u32, Span)>,
+    /// POS and POSA: positioning axes.
+    pub(super) positioning: axes::Positioning,
     call: Option<(String, Span)>,
     /// Warnings the words raised, for the stream.
-    warnings: Vec<Alarm>,
+    pub(super) warnings: Vec<Alarm>,
     /// MCALL: the block's call becomes modal (or, without one, the modal call ends).
     mcall: Option<Span>,
     /// The arguments of a call with parentheses, evaluated where the call stands.
@@ -246,6 +249,7 @@ pub(super) fn run(
         auxiliary(kernel, code, Origin { span, ..origin });
     }
     if dwell {
+        axes::position(front, kernel, &words, origin)?;
         return dwell_block(kernel, &words, origin).map(|()| Step::Next);
     }
     let exact_stop = one_block.iter().any(|(f, _)| *f == OneBlock::ExactStop);
@@ -270,6 +274,7 @@ pub(super) fn run(
         Some(level) => motion::suppressed_move(front, kernel, &words, level, origin)?,
         None => prepared.finish(front, kernel)?,
     }
+    axes::position(front, kernel, &words, origin)?;
     spindle::constant_rate(front, kernel, origin);
     spindle::restore_feed(front, kernel, mode);
     for &(code, span) in &words.m {
@@ -342,6 +347,17 @@ fn read<'a>(
 ) -> Result<(), Alarm> {
     for word in &block.words {
         let address = &*word.address;
+        // Spindles by number, the feed group and positioning axes: names of two letters or more.
+        if address.len() > 1
+            && matches!(
+                address.as_bytes()[0],
+                b'S' | b'M' | b'W' | b'L' | b'F' | b'P'
+            )
+            && (spindles::read_word(front, kernel, block, word, words)?
+                || axes::read_word(front, kernel, word, words)?)
+        {
+            continue;
+        }
         if let Some(what) = gcodes::other_unit(address, &word.value) {
             return Err(Alarm::error(
                 AlarmCode::NotInProduct,
@@ -431,7 +447,6 @@ fn read<'a>(
             "TOFFL" | "TOFF" | "TOFFR" => {
                 tools::offset_word(front, kernel, word, &mut words.offsets)?
             }
-            "SPOS" => words.spos = Some((spindle_position(front, kernel, word)?, word.span)),
             // Overrides and feed groups: the operator's panel and the path's axes; they change
             // no position (docs/SINUMERIK.md 1, accepted as state).
             "OVR" => {
@@ -447,10 +462,9 @@ fn read<'a>(
             }
             // SF: a thread's start angle, which changes neither path nor time.
             "SF" => {}
-            "OVRRAP" | "OVRA" | "ACC" | "FGREF" | "FL" | "SETMS" => {
+            "OVRRAP" | "OVRA" | "ACC" | "SETMS" => {
                 note_state(front, address, word, &mut words.warnings);
             }
-            "FGROUP" => feed_group(word)?,
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
             "S" => words.speed = Some((number(front, kernel, word)?, word.span)),
@@ -727,7 +741,7 @@ fn axis_value(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Axi
 }
 
 /// A word's value as a number.
-fn number(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<f64, Alarm> {
+pub(super) fn number(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<f64, Alarm> {
     match &word.value {
         Value::Constant(n) => Ok(n.value),
         Value::Expression(expr) => front.value(kernel, expr),
@@ -740,7 +754,7 @@ fn number(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<f64, Al
 }
 
 /// A word's value as a whole number (M, D, P, L).
-fn whole(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<u32, Alarm> {
+pub(super) fn whole(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<u32, Alarm> {
     let value = number(front, kernel, word)?;
     if value.fract() != 0.0 || !(0.0..=f64::from(u32::MAX)).contains(&value) {
         return Err(Alarm::error(
@@ -750,28 +764,6 @@ fn whole(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<u32, Ala
         ));
     }
     Ok(value as u32)
-}
-
-/// SPOS=angle or SPOS[1]=angle: the master spindle positioned (an oriented stop in the
-/// stream); other spindles are not on a 3-axis mill.
-fn spindle_position(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<f64, Alarm> {
-    match &word.value {
-        Value::Indexed(indices, Some(value)) => {
-            let spindle = match indices.as_slice() {
-                [index] => front.value(kernel, index)?,
-                _ => 0.0,
-            };
-            if spindle != 1.0 {
-                return Err(Alarm::error(
-                    AlarmCode::NotInProduct,
-                    word.span,
-                    format!("SPOS[{spindle}] addresses a spindle other than the master spindle, which vcnc does not simulate"),
-                ));
-            }
-            front.value(kernel, value)
-        }
-        _ => number(front, kernel, word),
-    }
 }
 
 /// T by number, or `T="name"` from the machine's tool table.

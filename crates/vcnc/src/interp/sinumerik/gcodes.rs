@@ -328,8 +328,9 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
         "GEOAX" | "TOFRAME" | "TOROT" | "TOFRAMEZ" | "TOFRAMEX" | "TOFRAMEY" => {
             "changing the geometry axes or the tool's orientation"
         }
-        "SPOSA" | "WAITS" | "FA" | "FPR" | "FPRAON" | "FPRAOF" | "POS" | "POSA" | "WAITP"
-        | "FDA" | "FMA" | "FAD" => "positioning axes and spindles moving on their own",
+        "FPR" | "FPRAON" | "FPRAOF" | "FDA" | "FMA" | "FAD" => {
+            "feeds derived from another axis or spindle, the handwheel, synchronized actions or soft approach"
+        }
         "LFON" | "LFOF" | "LIFTFAST" | "POLF" | "POLFMASK" | "POLFMLIN" | "DITS" | "DITE" => {
             "fast retraction and thread run-in or run-out of turning"
         }

@@ -13,6 +13,7 @@
 //! `polar.rs`, `contour.rs`).
 
 mod arcs;
+mod axes;
 mod block;
 mod contour;
 mod control;
@@ -28,6 +29,7 @@ mod polar;
 mod predefined;
 mod program;
 mod spindle;
+mod spindles;
 mod tools;
 mod value;
 mod vars;
@@ -77,6 +79,10 @@ pub struct Sinumerik {
     tool_offsets: tools::Offsets,
     /// The spindle's cutting rate and limits.
     spindle: spindle::Spindle,
+    /// The spindles by number (S2=, SPOS[n]) and the master spindle's angle.
+    spindles: spindles::Spindles,
+    /// FGROUP, FGREF, FL and the positioning axes' FA.
+    axis_feeds: axes::AxisFeeds,
     /// The modal feed to restore after a block with FB.
     block_feed_restore: Option<Option<f64>>,
     /// The path override OVR, as a factor.
@@ -244,6 +250,8 @@ impl Sinumerik {
             },
             programmed: [0.0; AXES],
             axes: std::array::from_fn(|i| machine.axes[i].is_some()),
+            spindles: spindles::Spindles::new(machine.spindle.count),
+            axis_feeds: axes::AxisFeeds::default(),
             skip: [false; 10],
             tool: ToolState::default(),
             iterations: 0,

@@ -607,7 +607,7 @@ impl Prepared {
                 }
                 Ok(())
             }
-            Prepared::Direct(tag, arc) => direct(kernel, &tag, arc),
+            Prepared::Direct(tag, arc) => direct(front, kernel, &tag, arc),
             Prepared::Thread(tag, lead, spindle) => {
                 if spindle.is_some() {
                     kernel.spindle(None, spindle, tag.origin);
@@ -628,8 +628,23 @@ impl Prepared {
     }
 }
 
-fn direct(kernel: &mut Kernel, tag: &Tag, arc: Option<Arc>) -> Result<(), Alarm> {
-    match arc {
+fn direct(
+    front: &Sinumerik,
+    kernel: &mut Kernel,
+    tag: &Tag,
+    arc: Option<Arc>,
+) -> Result<(), Alarm> {
+    // The feed group's measure of the path (FGROUP, FGREF, FL: axes.rs).
+    let shape = arc.map(|arc| super::axes::ArcShape {
+        plane: arc.plane,
+        centre: (arc.centre.x, arc.centre.y),
+        direction: arc.direction,
+        turns: tag.turns,
+    });
+    let saved = (!tag.rapid)
+        .then(|| super::axes::scale_feed(front, kernel, &tag.target, shape))
+        .flatten();
+    let moved = match arc {
         None if tag.rapid => kernel.rapid_to(tag.target, tag.origin),
         None => kernel.feed_to(tag.target, tag.origin),
         Some(arc) if !keeps_plane(kernel, arc.plane) => tilted_arc(kernel, tag, arc),
@@ -641,7 +656,11 @@ fn direct(kernel: &mut Kernel, tag: &Tag, arc: Option<Arc>) -> Result<(), Alarm>
             tag.turns,
             tag.origin,
         ),
+    };
+    if let Some((mode, feed)) = saved {
+        kernel.set_feed_in(mode, feed);
     }
+    moved
 }
 
 /// True when the frame maps the arc's plane onto a machine plane as a circle (the stream's arcs
@@ -732,8 +751,9 @@ fn execute(front: &mut Sinumerik, kernel: &mut Kernel, cut: Cut<Tag>) -> Result<
         saved
     });
     let result = match element {
-        Element::Line { .. } => direct(kernel, &tag, None),
+        Element::Line { .. } => direct(front, kernel, &tag, None),
         Element::Arc { center, ccw, .. } => direct(
+            front,
             kernel,
             &tag,
             Some(Arc {

@@ -1,5 +1,5 @@
 //! Predefined procedures and what the front end says of words it does not run: SETAL,
-//! CYCLE800, FGROUP, the notes of commands kept as state, and the alarms of words outside the
+//! CYCLE800, the notes of commands kept as state, and the alarms of words outside the
 //! product, planned for issue 22, or unknown.
 //!
 //! Never: pass over a word silently; each one here runs, is noted once, or alarms naming it.
@@ -81,36 +81,6 @@ pub(super) fn note_state(
         word.span,
         format!("{name} is kept as state: vcnc moves as programmed without modelling its effect on the control's path or timing"),
     ));
-}
-
-/// FGROUP: the axes the path feed is measured along. The geometry axes (the default, or
-/// FGROUP() to reset) change nothing; other groups change the time of every move.
-pub(super) fn feed_group(word: &Word) -> Result<(), Alarm> {
-    let axes: Vec<&str> = match &word.value {
-        Value::Call(arguments) => arguments
-            .iter()
-            .flatten()
-            .map(|e| match &e.kind {
-                ExprKind::Name(name) => &**name,
-                _ => "?",
-            })
-            .collect(),
-        _ => Vec::new(),
-    };
-    let mut sorted = axes.clone();
-    sorted.sort_unstable();
-    if sorted.is_empty() || sorted == ["X", "Y", "Z"] {
-        return Ok(());
-    }
-    Err(Alarm::error(
-        AlarmCode::NotSupportedYet,
-        word.span,
-        format!(
-            "FGROUP({}) is not run yet: vcnc measures the path feed along X, Y and Z",
-            axes.join(",")
-        ),
-    )
-    .with_help("the feed along other axes comes with the rotary axes' own speeds (5-axis work)"))
 }
 
 /// A word as the program wrote it, for messages: `M2=70`, `SVC[2]`, `POSA`.
