@@ -128,11 +128,11 @@ fn axis_of(front: &Sinumerik, expr: &Expr, word: &Word) -> Result<usize, Alarm> 
             word.span,
             format!("{}: the machine has no axis {name}", written(word)),
         )),
-        // U, V, W and a machine's own names: auxiliary axes (a pallet's, a loader's).
+        // U, V, W and a machine's own names wait for axes named by the machine file.
         None => Err(Alarm::error(
-            AlarmCode::NotInProduct,
+            AlarmCode::NotSupportedYet,
             word.span,
-            format!("{}: {name} is no axis of vcnc's machines, which have X Y Z and the rotary axes A B C; auxiliary axes are outside the product", written(word)),
+            format!("{}: {name} is no axis of vcnc's machines yet, which have X Y Z and the rotary axes A B C (planned: issue 18, axes named by the machine file)", written(word)),
         )
         .with_help("vcnc's machine files declare the axes x y z a b c")),
     }
