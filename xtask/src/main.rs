@@ -7,6 +7,7 @@
 mod bench_jumps;
 mod bench_program;
 mod ci;
+mod gen_plan;
 mod readme;
 mod record_lcnc;
 
@@ -24,6 +25,7 @@ fn main() -> ExitCode {
         "bench-program" => bench_program::run(&args[1..]),
         "bench-jumps" => bench_jumps::run(&args[1..]),
         "readme" => readme::run(&args[1..]),
+        "gen-plan-programs" => gen_plan::run(&args[1..]),
         _ => {
             eprintln!("unknown task `{task}`\n{USAGE}");
             return ExitCode::from(2);
@@ -43,6 +45,9 @@ const USAGE: &str = "usage: cargo xtask <task>
 tasks:
   ci              what CI runs: check rustc against rust-version, then fmt, clippy, docs and the tests
   record-lcnc     run LinuxCNC's `rs274 -g` on crates/vcnc/tests/data/lcnc/*.ngc and store its canonical output
+  gen-plan-programs
+                  write the random planner reference programs (20 of each kind) to
+                  crates/vcnc/tests/data/plan/lcnc/random/ (tools/record-lcnc-time.sh times them)
   readme          regenerate the supported-codes table in README.md
   bench-program   write the CAM-style benchmark program (N blocks, an arc every tenth) to stdout;
                   --sinumerik writes the same path as a SINUMERIK program

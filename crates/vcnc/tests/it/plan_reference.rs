@@ -36,8 +36,8 @@ fn json_number(text: &str, key: &str) -> Option<f64> {
     rest[..end].trim().parse().ok()
 }
 
-/// The `--vel V --acc A` of the program's first line.
-fn limits_line(program: &str) -> (f64, f64) {
+/// The `--vel V --acc A [--blend-tol T]` of the program's first line.
+fn limits_line(program: &str) -> (f64, f64, Option<f64>) {
     let first = program.lines().next().unwrap_or("");
     let words: Vec<&str> = first
         .trim_start_matches("(limits:")
@@ -51,7 +51,11 @@ fn limits_line(program: &str) -> (f64, f64) {
             .and_then(|w| w[1].parse().ok())
             .unwrap_or_else(|| panic!("{flag} missing in `{first}`"))
     };
-    (value("--vel"), value("--acc"))
+    let tolerance = words
+        .windows(2)
+        .find(|w| w[0] == "--blend-tol")
+        .and_then(|w| w[1].parse().ok());
+    (value("--vel"), value("--acc"), tolerance)
 }
 
 struct Comparison {
@@ -65,8 +69,17 @@ struct Comparison {
 }
 
 fn compare_all() -> Vec<Comparison> {
-    let mut programs: Vec<PathBuf> = std::fs::read_dir(data_dir())
-        .expect("tests/data/plan/lcnc exists")
+    compare_dir(&data_dir())
+}
+
+/// The random programs of `cargo xtask gen-plan-programs` (issue 24), by name.
+fn compare_random() -> Vec<Comparison> {
+    compare_dir(&data_dir().join("random"))
+}
+
+fn compare_dir(dir: &Path) -> Vec<Comparison> {
+    let mut programs: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("the folder of reference programs exists")
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|e| e == "ngc"))
         .collect();
@@ -83,12 +96,17 @@ fn compare_all() -> Vec<Comparison> {
             let json = std::fs::read_to_string(path.with_extension("json"))
                 .unwrap_or_else(|_| panic!("{stem}.json missing: run tools/record-lcnc-time.sh"));
             let linuxcnc = json_number(&json, "seconds").expect("seconds in the JSON");
-            let (speed, acceleration) = limits_line(&program);
+            let (speed, acceleration, tolerance) = limits_line(&program);
+            // lcnc-time's --vel is also [TRAJ]MAX_LINEAR_VELOCITY, the path speed cap; its
+            // --blend-tol is G64 P, the planner's corner tolerance.
+            let mut planner = format!("habits = \"linuxcnc\"\nmax_path_rate = {:?}", speed * 60.0);
+            if let Some(tolerance) = tolerance {
+                planner += &format!("\ncorner_tolerance = {tolerance:?}");
+            }
             let machine = plan::machine(&plan::Limits {
                 speed,
                 acceleration,
-                // lcnc-time's --vel is also [TRAJ]MAX_LINEAR_VELOCITY, the path speed cap.
-                planner: &format!("habits = \"linuxcnc\"\nmax_path_rate = {:?}", speed * 60.0),
+                planner: &planner,
                 // LinuxCNC's G4 P is seconds; its programs write every coordinate with a point.
                 profile_overrides: "dwell_p = \"seconds_with_point\"",
                 ..plan::Limits::default()
@@ -191,5 +209,144 @@ fn the_readme_table_of_reference_times_is_up_to_date() {
     assert!(
         readme[start..stop] == expected,
         "README.md's reference table is stale; replace it with:\n{expected}"
+    );
+}
+
+/// One kind of random program: how far vcnc is from LinuxCNC over its programs.
+struct KindSummary {
+    kind: String,
+    count: usize,
+    /// The largest error, signed, and the program it is in.
+    worst: (f64, String),
+    /// The median of the absolute errors.
+    median: f64,
+}
+
+/// The random programs' errors by kind (the part of the name before `_`).
+fn random_by_kind(comparisons: &[Comparison]) -> Vec<KindSummary> {
+    let mut kinds: Vec<KindSummary> = Vec::new();
+    let mut errors: std::collections::BTreeMap<String, Vec<(f64, String)>> =
+        std::collections::BTreeMap::new();
+    for c in comparisons {
+        let kind = c.stem.split('_').next().unwrap_or(&c.stem).to_string();
+        let error = (c.vcnc - c.linuxcnc) / c.linuxcnc;
+        errors
+            .entry(kind)
+            .or_default()
+            .push((error, c.stem.clone()));
+    }
+    for (kind, mut list) in errors {
+        let worst = list
+            .iter()
+            .max_by(|a, b| a.0.abs().total_cmp(&b.0.abs()))
+            .cloned()
+            .expect("a kind has programs");
+        list.sort_by(|a, b| a.0.abs().total_cmp(&b.0.abs()));
+        let middle = list.len() / 2;
+        let median = if list.len() % 2 == 1 {
+            list[middle].0.abs()
+        } else {
+            (list[middle - 1].0.abs() + list[middle].0.abs()) / 2.0
+        };
+        kinds.push(KindSummary {
+            kind,
+            count: list.len(),
+            worst,
+            median,
+        });
+    }
+    kinds
+}
+
+/// The worst error of each kind as recorded on 2026-11-28 (issue 24 is to bring every program
+/// within 2 %): a change that makes a kind's worst program worse fails; one that makes it better
+/// lowers its line here. Drilling is within 2 % already. The largest: 0.5 mm chords of a circle
+/// at F4800 with 500 mm/s^2 (`chords_20`), where vcnc takes 4.3 times LinuxCNC's time; 3D rapid
+/// tours, where vcnc is up to 18 % faster (issue 24 names both).
+const RANDOM_WORST_TODAY: &[(&str, f64)] = &[
+    ("arcs", 0.0351),
+    ("chords", 3.3439),
+    ("pocket", 0.4350),
+    ("rapids", 0.1773),
+    ("zigzag", 0.1039),
+];
+
+#[test]
+fn the_random_programs_of_each_kind_get_no_worse() {
+    let comparisons = compare_random();
+    assert!(
+        comparisons.len() >= 120,
+        "only {} random programs recorded",
+        comparisons.len()
+    );
+    let kinds = random_by_kind(&comparisons);
+    let report = readme_random_table(&kinds);
+    println!("{report}");
+    for k in &kinds {
+        let today = RANDOM_WORST_TODAY
+            .iter()
+            .find(|(kind, _)| *kind == k.kind)
+            .map_or(TOLERANCE, |(_, worst)| worst.max(TOLERANCE));
+        assert!(
+            k.worst.0.abs() <= today + 0.002,
+            "{}: {} is {:+.2} % off LinuxCNC, more than today's worst {:.2} %\n{report}",
+            k.kind,
+            k.worst.1,
+            100.0 * k.worst.0,
+            100.0 * today
+        );
+    }
+}
+
+/// Issue 24, acceptance 1: every random program within 2 % of LinuxCNC.
+#[test]
+#[ignore = "issue 24: the planner misses LinuxCNC by more than 2 % on some random programs (RANDOM_WORST_TODAY)"]
+fn every_random_program_is_timed_within_two_percent_of_linuxcnc() {
+    let comparisons = compare_random();
+    let off: Vec<String> = comparisons
+        .iter()
+        .filter(|c| ((c.vcnc - c.linuxcnc) / c.linuxcnc).abs() > TOLERANCE)
+        .map(|c| {
+            format!(
+                "{}: linuxcnc {:.3} s, vcnc {:.3} s",
+                c.stem, c.linuxcnc, c.vcnc
+            )
+        })
+        .collect();
+    assert!(off.is_empty(), "{} off:\n{}", off.len(), off.join("\n"));
+}
+
+/// The README's table of the random programs by kind.
+fn readme_random_table(kinds: &[KindSummary]) -> String {
+    let mut table = String::from(
+        "| kind | programs | worst vcnc - LinuxCNC | median abs error |\n|---|---:|---:|---:|\n",
+    );
+    for k in kinds {
+        table += &format!(
+            "| `{}` | {} | {:+.2} % (`{}`) | {:.2} % |\n",
+            k.kind,
+            k.count,
+            100.0 * k.worst.0,
+            k.worst.1,
+            100.0 * k.median
+        );
+    }
+    table
+}
+
+#[test]
+fn the_readme_table_of_random_programs_is_up_to_date() {
+    let readme_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md");
+    let readme = std::fs::read_to_string(&readme_path).expect("README.md");
+    let (begin, end) = ("<!-- plan-random:begin -->\n", "<!-- plan-random:end -->");
+    let start = readme
+        .find(begin)
+        .expect("README has the plan-random markers")
+        + begin.len();
+    let stop = readme[start..].find(end).expect("end marker") + start;
+    let expected = readme_random_table(&random_by_kind(&compare_random()));
+    assert!(
+        readme[start..stop] == expected,
+        "README.md's table of random programs is stale; replace it with:\n{expected}"
     );
 }
