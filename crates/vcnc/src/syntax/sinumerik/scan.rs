@@ -110,6 +110,21 @@ impl<'a> Scanner<'a> {
         false
     }
 
+    /// Moves over a `-` or `+` if one comes; true for `-`.
+    pub(super) fn take_sign(&mut self) -> bool {
+        match self.peek_byte() {
+            Some(b'-') => {
+                self.bump();
+                true
+            }
+            Some(b'+') => {
+                self.bump();
+                false
+            }
+            _ => false,
+        }
+    }
+
     /// True at the end of the line or at its comment.
     pub(super) fn at_end(&mut self) -> bool {
         self.skip_blanks();
@@ -249,9 +264,22 @@ impl<'a> Scanner<'a> {
             }
             let exponent = parse_f64(&self.text[from..self.pos]);
             let exponent = if negative { -exponent } else { exponent };
-            return finite(mantissa * 10f64.powf(exponent), self.span(start..self.pos));
+            return self.finite(mantissa * 10f64.powf(exponent), start);
         }
-        finite(mantissa, self.span(start..self.pos))
+        self.finite(mantissa, start)
+    }
+
+    /// `value`, or the alarm of a number (from `start` to here) beyond f64: the span is made
+    /// only then.
+    fn finite(&self, value: f64, start: usize) -> Result<f64, Alarm> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(bad_number(
+                self.span(start..self.pos),
+                "the number is beyond the control's range",
+            ))
+        }
     }
 
     /// `'H1F'` or `'B1011'`.
@@ -348,14 +376,6 @@ fn short_decimal(text: &[u8]) -> Option<f64> {
 const POWERS_OF_TEN: [f64; 16] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
 ];
-
-fn finite(value: f64, span: Span) -> Result<f64, Alarm> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(bad_number(span, "the number is beyond the control's range"))
-    }
-}
 
 fn bad_number(span: Span, message: &str) -> Alarm {
     Alarm::error(AlarmCode::BadNumber, span, message)
