@@ -42,7 +42,7 @@ pub(super) struct AxisValue {
 #[derive(Default)]
 pub(super) struct Words<'a> {
     /// The G functions, with their groups.
-    pub(super) functions: Vec<(Function, Option<u8>, &'a Word)>,
+    pub(super) functions: Functions<'a>,
     pub(super) axes: [Option<AxisValue>; AXES],
     /// I J K.
     pub(super) centre: [Option<AxisValue>; 3],
@@ -100,6 +100,34 @@ pub(super) struct Words<'a> {
     ends: Option<(End, Span)>,
 }
 
+/// A G function of a block: what it does, its group, its word.
+pub(super) type FunctionWord<'a> = (Function, Option<u8>, &'a Word);
+
+/// The G functions of a block in their order: a block has one or two, held in place (a
+/// vector allocated and freed a block cost about as much as sorting the block's words).
+#[derive(Default)]
+pub(super) struct Functions<'a> {
+    first: [Option<FunctionWord<'a>>; 4],
+    more: Vec<FunctionWord<'a>>,
+}
+
+impl<'a> Functions<'a> {
+    fn push(&mut self, function: FunctionWord<'a>) {
+        match self.first.iter_mut().find(|slot| slot.is_none()) {
+            Some(slot) => *slot = Some(function),
+            None => self.more.push(function),
+        }
+    }
+
+    /// The functions in the order of their words.
+    pub(super) fn iter(&self) -> impl Iterator<Item = &FunctionWord<'a>> {
+        self.first
+            .iter()
+            .map_while(Option::as_ref)
+            .chain(&self.more)
+    }
+}
+
 /// How a block ends the program or the subprogram.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum End {
@@ -134,7 +162,7 @@ pub(super) fn run(
     // The groups seen so far, a bit each: the first word of a group is looked up again only
     // for the alarm.
     let mut groups = 0u64;
-    for &(function, group, word) in &words.functions {
+    for &(function, group, word) in words.functions.iter() {
         if let Some(group) = group {
             let bit = 1u64 << (group % 64);
             if groups & bit != 0 {
@@ -306,8 +334,9 @@ pub(super) fn run(
         (None, None) if moved => {
             if let Some(call) = front
                 .modal_call
-                .clone()
+                .as_ref()
                 .filter(|c| c.depth == front.levels.len())
+                .cloned()
             {
                 front.call(&call.name, 1, call.span, call.arguments)?;
             }
@@ -789,7 +818,7 @@ fn axis_value(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Axi
 fn number(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<f64, Alarm> {
     match &word.value {
         Value::Constant(n) => Ok(n.value),
-        Value::Expression(expr) => match literal(expr) {
+        Value::Expression(expr) => match literal(expr).or_else(|| variable(front, expr)) {
             Some(value) => Ok(value),
             None => front.value(kernel, expr),
         },
@@ -813,6 +842,19 @@ fn literal(expr: &Expr) -> Option<f64> {
         _ => return None,
     };
     value.is_finite().then_some(value)
+}
+
+/// The value of an expression that is the name of a number variable the program defined
+/// (`F=FEED1`), as the evaluator gives it, with one look-up; None for anything else (the
+/// evaluator's constants TRUE, FALSE and `$` names first).
+fn variable(front: &Sinumerik, expr: &Expr) -> Option<f64> {
+    let ExprKind::Name(name) = &expr.kind else {
+        return None;
+    };
+    if matches!(&**name, "TRUE" | "FALSE") || name.starts_with('$') {
+        return None;
+    }
+    front.vars.scalar(name)?.as_f64()
 }
 
 /// A word's value as a whole number (M, D, P, L).

@@ -117,8 +117,9 @@ pub struct Sinumerik {
     structure: flow::Structure,
     /// Jumps made (GOTO, CASE, loops back).
     jumps: u64,
-    /// A block to read the next line into, with the room of the last one's words.
-    spare: Block,
+    /// A block to read the next line into, with the room of the last one's words (boxed:
+    /// swapped with a line's block parsed ahead, it moves as a pointer).
+    spare: Option<Box<Block>>,
 }
 
 /// One program level of the call stack.
@@ -231,7 +232,7 @@ impl Sinumerik {
             tangent: None,
             arc_tolerance: machine.profile.arc_radius_tolerance,
             jumps: 0,
-            spare: Block::default(),
+            spare: None,
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
@@ -583,7 +584,7 @@ impl Sinumerik {
                 continue;
             }
             let (file, number, base) = (text.file, line.number, line.base);
-            let mut block = std::mem::take(&mut self.spare);
+            let mut block = self.spare.take().unwrap_or_default();
             if !text.take_block(index, &mut block) {
                 let bytes = text.line(index).map_or(&b""[..], |l| l.bytes);
                 parse_block_into(bytes, file, number, base, &mut block);
@@ -591,7 +592,7 @@ impl Sinumerik {
             self.level().next = index + 1;
             let step = self.run_line(kernel, &block, program, index);
             // The block's room goes to the next line.
-            self.spare = block;
+            self.spare = Some(block);
             if let Some(step) = step? {
                 return Ok(step);
             }

@@ -183,7 +183,7 @@ impl Program {
 
     /// Swaps the block of line `index`, read with the line, into `block`, when the line came so
     /// (the current line of a streamed text); false when it must be parsed from the line's text.
-    pub(super) fn take_block(&mut self, index: usize, block: &mut Block) -> bool {
+    pub(super) fn take_block(&mut self, index: usize, block: &mut Box<Block>) -> bool {
         let Text::Streamed(stream) = &mut self.text else {
             return false;
         };
@@ -314,7 +314,7 @@ mod tests {
 
     /// Every line of `program` as its place, its text and its block (taken where the line
     /// came with one, parsed from its text where not).
-    fn read_all(mut program: Program) -> Vec<(u32, u32, Vec<u8>, Block)> {
+    fn read_all(mut program: Program) -> Vec<(u32, u32, Vec<u8>, Box<Block>)> {
         let mut lines = Vec::new();
         for index in 0.. {
             assert_eq!(program.fetch(index).unwrap(), Fetched::Ready);
@@ -322,11 +322,11 @@ mod tests {
                 break;
             };
             let (number, base, bytes) = (line.number, line.base, line.bytes.to_vec());
-            let mut block = Block::default();
+            let mut block = Box::<Block>::default();
             if crate::syntax::sinumerik::is_header(&bytes) {
                 // A header is no block: nothing to compare.
             } else if !program.take_block(index, &mut block) {
-                block = crate::syntax::sinumerik::parse_block(&bytes, FileId(0), number, base);
+                *block = crate::syntax::sinumerik::parse_block(&bytes, FileId(0), number, base);
             }
             lines.push((number, base, bytes, block));
         }

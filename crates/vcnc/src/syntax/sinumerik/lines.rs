@@ -21,8 +21,9 @@ pub struct ParsedLine {
     pub base: u32,
     /// Its text, without the line end.
     pub text: Vec<u8>,
-    /// Its block; empty for a `%_N_..._MPF` header line, which is no block.
-    pub block: Block,
+    /// Its block; empty for a `%_N_..._MPF` header line, which is no block. Boxed, so that
+    /// handing it over moves a pointer, not the block.
+    pub block: Box<Block>,
 }
 
 /// Reads the lines of a SINUMERIK program file into [`ParsedLine`]s.
@@ -52,10 +53,10 @@ impl LineParser for SinumerikParser {
     fn empty_line(&self) -> ParsedLine {
         ParsedLine {
             text: Vec::with_capacity(48),
-            block: Block {
+            block: Box::new(Block {
                 words: Vec::with_capacity(4),
                 ..Block::default()
-            },
+            }),
             ..ParsedLine::default()
         }
     }
