@@ -81,6 +81,11 @@ impl Address {
         }
     }
 
+    /// The address of the upper-case letter `letter` (any other byte as a name).
+    pub(super) fn of_letter(letter: u8) -> Address {
+        self::letter(&[letter]).unwrap_or_else(|| Address::upper(&[letter]))
+    }
+
     /// The name written `bytes`, upper case (bytes that are not UTF-8 as U+FFFD).
     pub(super) fn upper(bytes: &[u8]) -> Address {
         if let [b] = bytes {

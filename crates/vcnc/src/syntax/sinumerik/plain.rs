@@ -99,6 +99,13 @@ fn ends_word(scanner: &mut Scanner<'_>) -> bool {
     match text.get(at) {
         None | Some(b';') => true,
         Some(b) if b.is_ascii_alphabetic() => {
+            // Most next words are axes and feeds: no operator starts with their letter.
+            if !matches!(
+                b.to_ascii_uppercase(),
+                b'O' | b'X' | b'A' | b'B' | b'D' | b'M' | b'N'
+            ) {
+                return true;
+            }
             let end = at
                 + text[at..]
                     .iter()
@@ -128,7 +135,7 @@ fn letter_constant(scanner: &mut Scanner<'_>, start: usize) -> Option<Word> {
     let value = number(scanner)?;
     let decimal_point = scanner.text()[number_start..scanner.mark()].contains(&b'.');
     Some(Word {
-        address: Address::upper(&[letter]),
+        address: Address::of_letter(letter),
         value: Value::Constant(Number {
             value: if negative { -value } else { value },
             decimal_point,

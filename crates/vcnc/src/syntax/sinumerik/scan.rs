@@ -221,23 +221,20 @@ impl<'a> Scanner<'a> {
         let start = self.pos;
         // Digits, a point and digits, read in one pass; the value of a short number is made on
         // the way (see `short_decimal`), a long one is left to the standard parser.
-        let (mut whole, mut digits, mut decimals) = (0u64, 0usize, None::<usize>);
-        while let Some(&b) = self.text.get(self.pos) {
-            match b {
-                b'0'..=b'9' => {
-                    whole = whole.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
-                    digits += 1;
-                    if let Some(d) = decimals.as_mut() {
-                        *d += 1;
-                    }
-                }
-                b'.' if decimals.is_none() => decimals = Some(0),
-                _ => break,
-            }
-            self.pos += 1;
+        let text = self.text;
+        let mut whole = 0u64;
+        let mut at = digits_onto(text, start, &mut whole);
+        let (mut decimals, point) = (0, text.get(at) == Some(&b'.'));
+        if point {
+            at += 1;
+            let from = at;
+            at = digits_onto(text, at, &mut whole);
+            decimals = at - from;
         }
+        let digits = at - start - usize::from(point);
+        self.pos = at;
         let mantissa = match digits {
-            1..=15 => whole as f64 / POWERS_OF_TEN[decimals.unwrap_or(0)],
+            1..=15 => whole as f64 / POWERS_OF_TEN[decimals],
             _ => parse_f64(&self.text[start..self.pos]),
         };
         let ex = self.text[self.pos..].get(..2);
@@ -324,6 +321,20 @@ impl<'a> Scanner<'a> {
             self.pos += 1;
         }
     }
+}
+
+/// Reads the digits of `text` from `at` on into `whole` (wrapping: a long number is read again
+/// by the standard parser); the position after them.
+fn digits_onto(text: &[u8], mut at: usize, whole: &mut u64) -> usize {
+    while let Some(digit) = text
+        .get(at)
+        .map(|b| b.wrapping_sub(b'0'))
+        .filter(|d| *d < 10)
+    {
+        *whole = whole.wrapping_mul(10).wrapping_add(u64::from(digit));
+        at += 1;
+    }
+    at
 }
 
 /// Separators: blank, tab, `&`, and characters that do not print (manual 3.2).
