@@ -101,6 +101,9 @@ pub trait LineParser: Send + 'static {
     /// One line, read and parsed; reused line after line, so that reading need not allocate.
     type Line: Send + 'static;
 
+    /// Lines per batch handed from the parser thread (four batches go round).
+    const BATCH: usize = 1024;
+
     /// An empty line with room for what most lines hold (made up front for the pools).
     fn empty_line(&self) -> Self::Line;
 
@@ -143,9 +146,6 @@ impl LineParser for IsoParser {
         read_next_line(lines, self.file, &self.syntax, out)
     }
 }
-
-/// Lines per batch handed from the parser thread.
-const BATCH: usize = 1024;
 
 /// Batches in circulation between the parser thread and the interpreter.
 const POOL: usize = 4;
@@ -205,9 +205,9 @@ impl<P: LineParser> BackgroundParser<P> {
         // Lines are rarely shorter than 16 bytes in a program worth reading ahead.
         let mut made_now = usize::try_from(expected_bytes / 16).unwrap_or(usize::MAX);
         for _ in 0..POOL {
-            let lines = made_now.min(BATCH);
+            let lines = made_now.min(P::BATCH);
             made_now -= lines;
-            let mut batch = Vec::with_capacity(BATCH);
+            let mut batch = Vec::with_capacity(P::BATCH);
             batch.extend((0..lines).map(|_| parser.empty_line()));
             let _ = recycle.try_send(batch);
         }
@@ -215,7 +215,7 @@ impl<P: LineParser> BackgroundParser<P> {
             let mut lines = ReaderLines::new(reader);
             while let Ok(mut batch) = recycled.recv() {
                 let mut filled = 0;
-                while filled < BATCH {
+                while filled < P::BATCH {
                     if batch.len() <= filled {
                         batch.push(parser.empty_line());
                     }
@@ -229,7 +229,7 @@ impl<P: LineParser> BackgroundParser<P> {
                     }
                 }
                 batch.truncate(filled);
-                let last = filled < BATCH;
+                let last = filled < P::BATCH;
                 if (filled > 0 && send_batch.send(Ok(batch)).is_err()) || last {
                     return;
                 }
