@@ -79,6 +79,11 @@ pub enum Parsing {
     Ahead,
     /// Parsed on the interpreter's thread as it reads.
     InLine,
+    /// Parsed ahead when the front end's reading is heavy, in line otherwise. The SINUMERIK
+    /// front end reads a block in about as many instructions as it runs it, five times the
+    /// consumer's work: a parser thread takes half of that to the consumer's core. The ISO
+    /// front end's reading is light, and a third thread only takes turns with the other two.
+    AheadWhenHeavy,
 }
 
 /// Where the interpreter's thread stops when the travel check stops the program. The stream is
@@ -110,13 +115,14 @@ pub struct Layout {
 
 impl Layout {
     /// For a consumer that keeps a core busy itself (planning, writing a trace), on this
-    /// machine: the program is parsed in line unless there are three cores or more.
+    /// machine: the program is parsed ahead on three cores or more, on two when its reading
+    /// is heavy ([`Parsing::AheadWhenHeavy`]), in line on one.
     pub fn for_busy_consumer() -> Layout {
         Layout {
-            parsing: if cores() < 3 {
-                Parsing::InLine
-            } else {
-                Parsing::Ahead
+            parsing: match cores() {
+                ..=1 => Parsing::InLine,
+                2 => Parsing::AheadWhenHeavy,
+                _ => Parsing::Ahead,
             },
             waiting: Waiting::Adaptive,
             stopping: Stopping::AfterTheBatch,
@@ -262,8 +268,12 @@ impl Pipeline {
     /// Builds the interpreter over the opened text and starts its thread.
     fn start(self, opened: Opened) -> Stream {
         if opened.is_sinumerik(&self.machine) {
-            let (front_end, machine, files) =
-                opened.sinumerik(&self.machine, &self.options, &self.library_directories);
+            let (front_end, machine, files) = opened.sinumerik(
+                &self.machine,
+                &self.options,
+                self.layout.parsing,
+                &self.library_directories,
+            );
             let run = crate::interp::Run::new(front_end, Kernel::new(&machine));
             let started = threads::Started {
                 source: run,
@@ -323,9 +333,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_busy_consumer_on_two_cores_parses_in_line() {
+    fn a_busy_consumer_on_two_cores_parses_ahead_only_heavy_reading() {
         let layout = Layout::for_busy_consumer();
-        assert_eq!(layout.parsing == Parsing::InLine, cores() < 3);
+        assert_eq!(layout.parsing == Parsing::AheadWhenHeavy, cores() == 2);
+        assert_eq!(layout.parsing == Parsing::Ahead, cores() > 2);
         assert_eq!(layout.waiting, Waiting::Adaptive);
         assert_eq!(Layout::for_idle_consumer().waiting, Waiting::Sleep);
     }

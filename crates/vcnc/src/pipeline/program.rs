@@ -65,7 +65,7 @@ impl ProgramBlocks {
                 syntax,
                 length,
             )),
-            Parsing::InLine => ProgramBlocks::InLine(ParsedLines::new(
+            Parsing::InLine | Parsing::AheadWhenHeavy => ProgramBlocks::InLine(ParsedLines::new(
                 ReaderLines::new(reader),
                 FileId(0),
                 syntax,
@@ -183,6 +183,7 @@ impl Opened {
         mut self,
         machine: &Machine,
         options: &Options,
+        parsing: Parsing,
         directories: &[PathBuf],
     ) -> (Sinumerik, Machine, ProgramFiles) {
         let machine = if machine.profile.name.is_sinumerik() {
@@ -205,10 +206,12 @@ impl Opened {
         }
         let (library, loaded) = library(self.main, directories);
         let files = ProgramFiles::new(self.name, loaded);
-        let front_end = if streams {
+        let front_end = if !streams {
+            Sinumerik::new(text, FileId(0), &machine)
+        } else if parsing == Parsing::InLine {
             Sinumerik::streamed(self.reader, FileId(0), &machine)
         } else {
-            Sinumerik::new(text, FileId(0), &machine)
+            Sinumerik::streamed_ahead(self.reader, self.length, FileId(0), &machine)
         };
         let mut front_end = front_end.with_library(library);
         for (switch, &on) in options.block_skip.iter().enumerate() {

@@ -2,7 +2,9 @@
 //!
 //! [`ParsedLines`] reads and parses on demand, on the caller's thread. [`BackgroundParser`] reads
 //! and parses on a thread of its own, a few hundred lines ahead, so that a consumer with a second
-//! core spends its time interpreting; both give the same blocks (checked by the tests).
+//! core spends its time interpreting; both give the same blocks (checked by the tests). What a
+//! line parses into is the front end's: a [`LineParser`] says it (the ISO front end's blocks by
+//! default; the SINUMERIK front end has its own, in `syntax::sinumerik`).
 
 use super::iso::{parse_line, parse_plain_line_in, LineBlocks, SyntaxOptions};
 use super::lines::{LineSource, ReaderLines};
@@ -93,26 +95,77 @@ fn read_next_line<L: LineSource>(
     }
 }
 
-/// Lines per batch handed from the parser thread.
-const BATCH: usize = 1024;
+/// How a front end reads a program line by line: what one line is once read, and how the next
+/// one is read from a [`LineSource`]. [`BackgroundParser`] runs it on a thread of its own.
+pub trait LineParser: Send + 'static {
+    /// One line, read and parsed; reused line after line, so that reading need not allocate.
+    type Line: Send + 'static;
+
+    /// Lines per batch handed from the parser thread (four batches go round).
+    const BATCH: usize = 1024;
+
+    /// An empty line with room for what most lines hold (made up front for the pools).
+    fn empty_line(&self) -> Self::Line;
+
+    /// Reads the next line of `lines` into `out`; false at the end of the text (`out` then
+    /// holds what the parser says: no blocks for the ISO one, the last line for SINUMERIK's).
+    ///
+    /// # Errors
+    /// Whatever reading the text reports.
+    fn read_line<L: LineSource>(&mut self, lines: &mut L, out: &mut Self::Line)
+        -> io::Result<bool>;
+}
+
+/// The ISO front end's lines: the blocks of each line.
+#[derive(Clone, Copy, Debug)]
+pub struct IsoParser {
+    file: FileId,
+    syntax: SyntaxOptions,
+}
+
+impl IsoParser {
+    /// The lines of file `file`, read with the character rules `syntax`.
+    pub fn new(file: FileId, syntax: SyntaxOptions) -> IsoParser {
+        IsoParser { file, syntax }
+    }
+}
+
+impl LineParser for IsoParser {
+    type Line = LineBlocks;
+
+    fn empty_line(&self) -> LineBlocks {
+        LineBlocks::with_room(8)
+    }
+
+    #[inline(always)]
+    fn read_line<L: LineSource>(
+        &mut self,
+        lines: &mut L,
+        out: &mut LineBlocks,
+    ) -> io::Result<bool> {
+        read_next_line(lines, self.file, &self.syntax, out)
+    }
+}
 
 /// Batches in circulation between the parser thread and the interpreter.
 const POOL: usize = 4;
 
 /// What the parser thread sends: a batch of parsed lines, or the error that stopped it.
-type Batch = io::Result<Vec<LineBlocks>>;
+type Batch<T> = io::Result<Vec<T>>;
 
-/// Lines read and parsed on a background thread.
-#[derive(Debug)]
-pub struct BackgroundParser {
-    batches: Receiver<Batch>,
-    recycle: SyncSender<Vec<LineBlocks>>,
-    batch: Vec<LineBlocks>,
+/// Lines read and parsed on a background thread, by the ISO front end's parser unless `P` says
+/// another.
+pub struct BackgroundParser<P: LineParser = IsoParser> {
+    batches: Receiver<Batch<P::Line>>,
+    recycle: SyncSender<Vec<P::Line>>,
+    batch: Vec<P::Line>,
     index: usize,
+    /// The parser thread came to the end of the text.
+    ended: bool,
     thread: Option<JoinHandle<()>>,
 }
 
-impl BackgroundParser {
+impl BackgroundParser<IsoParser> {
     /// Starts reading `reader` (file `file`) on a new thread.
     pub fn spawn<R: Read + Send + 'static>(
         reader: R,
@@ -123,38 +176,50 @@ impl BackgroundParser {
     }
 
     /// Starts reading `reader` (file `file`), which holds about `expected_bytes` bytes, on a new
-    /// thread. For a long program the buffers of the parsed lines are made at once, here on the
-    /// caller's thread: made line by line on the parser's thread, they grew that thread's heap
-    /// one page at a time (hundreds of system calls on a 400,000-line program). A short program
-    /// gets only what it needs.
+    /// thread (see [`BackgroundParser::start`]).
     pub fn spawn_expecting<R: Read + Send + 'static>(
         reader: R,
         file: FileId,
         syntax: SyntaxOptions,
         expected_bytes: u64,
     ) -> BackgroundParser {
+        BackgroundParser::start(reader, IsoParser::new(file, syntax), expected_bytes)
+    }
+}
+
+impl<P: LineParser> BackgroundParser<P> {
+    /// Starts reading `reader`, which holds about `expected_bytes` bytes, with `parser` on a new
+    /// thread. For a long program the buffers of the parsed lines are made at once, here on the
+    /// caller's thread: made line by line on the parser's thread, they grew that thread's heap
+    /// one page at a time (hundreds of system calls on a 400,000-line program). A short program
+    /// gets only what it needs.
+    pub fn start<R: Read + Send + 'static>(
+        reader: R,
+        mut parser: P,
+        expected_bytes: u64,
+    ) -> BackgroundParser<P> {
         // A fixed pool of batches goes round between the two threads: the parser waits for an
-        // empty one, so memory stays bounded and the parsed blocks' buffers are reused.
-        let (send_batch, batches) = sync_channel::<Batch>(POOL);
-        let (recycle, recycled) = sync_channel::<Vec<LineBlocks>>(POOL);
+        // empty one, so memory stays bounded and the parsed lines' buffers are reused.
+        let (send_batch, batches) = sync_channel::<Batch<P::Line>>(POOL);
+        let (recycle, recycled) = sync_channel::<Vec<P::Line>>(POOL);
         // Lines are rarely shorter than 16 bytes in a program worth reading ahead.
         let mut made_now = usize::try_from(expected_bytes / 16).unwrap_or(usize::MAX);
         for _ in 0..POOL {
-            let lines = made_now.min(BATCH);
+            let lines = made_now.min(P::BATCH);
             made_now -= lines;
-            let mut batch = Vec::with_capacity(BATCH);
-            batch.extend((0..lines).map(|_| LineBlocks::with_room(8)));
+            let mut batch = Vec::with_capacity(P::BATCH);
+            batch.extend((0..lines).map(|_| parser.empty_line()));
             let _ = recycle.try_send(batch);
         }
         let thread = std::thread::spawn(move || {
             let mut lines = ReaderLines::new(reader);
             while let Ok(mut batch) = recycled.recv() {
                 let mut filled = 0;
-                while filled < BATCH {
+                while filled < P::BATCH {
                     if batch.len() <= filled {
-                        batch.push(LineBlocks::new());
+                        batch.push(parser.empty_line());
                     }
-                    match read_next_line(&mut lines, file, &syntax, &mut batch[filled]) {
+                    match parser.read_line(&mut lines, &mut batch[filled]) {
                         Ok(true) => filled += 1,
                         Ok(false) => break,
                         Err(error) => {
@@ -164,7 +229,7 @@ impl BackgroundParser {
                     }
                 }
                 batch.truncate(filled);
-                let last = filled < BATCH;
+                let last = filled < P::BATCH;
                 if (filled > 0 && send_batch.send(Ok(batch)).is_err()) || last {
                     return;
                 }
@@ -175,41 +240,78 @@ impl BackgroundParser {
             recycle,
             batch: Vec::new(),
             index: 0,
+            ended: false,
             thread: Some(thread),
         }
     }
-}
 
-impl BlockSource for BackgroundParser {
-    fn advance(&mut self) -> io::Result<bool> {
-        self.index += 1;
-        if self.index < self.batch.len() {
+    /// Moves to the next line; false at the end of the text.
+    ///
+    /// # Errors
+    /// Whatever reading the text reported on the parser's thread.
+    pub fn next_line(&mut self) -> io::Result<bool> {
+        if self.ended {
+            return Ok(false);
+        }
+        if self.index + 1 < self.batch.len() {
+            self.index += 1;
             return Ok(true);
         }
-        let done = std::mem::take(&mut self.batch);
-        if done.capacity() > 0 {
-            let _ = self.recycle.try_send(done);
-        }
+        // The batch read last is kept until the next one comes: at the end of the text its
+        // last line stays at hand.
         match self.batches.recv() {
             Ok(Ok(batch)) => {
-                self.batch = batch;
+                let done = std::mem::replace(&mut self.batch, batch);
+                if done.capacity() > 0 {
+                    let _ = self.recycle.try_send(done);
+                }
                 self.index = 0;
                 Ok(!self.batch.is_empty())
             }
             Ok(Err(error)) => Err(error),
-            Err(_) => Ok(false),
+            Err(_) => {
+                self.ended = true;
+                Ok(false)
+            }
         }
     }
 
+    /// The current line: None before the first [`BackgroundParser::next_line`]; after the
+    /// end of the text, still the last line.
+    pub fn line(&self) -> Option<&P::Line> {
+        self.batch.get(self.index)
+    }
+
+    /// The current line, to take parts of it: it goes back to the parser thread with its batch,
+    /// to be read into again.
+    pub fn line_mut(&mut self) -> Option<&mut P::Line> {
+        self.batch.get_mut(self.index)
+    }
+}
+
+impl BlockSource for BackgroundParser<IsoParser> {
+    fn advance(&mut self) -> io::Result<bool> {
+        self.next_line()
+    }
+
     fn blocks(&self) -> &[Block] {
-        match self.batch.get(self.index) {
-            Some(line) => line.as_slice(),
-            None => &[],
+        match self.line() {
+            Some(line) if !self.ended => line.as_slice(),
+            _ => &[],
         }
     }
 }
 
-impl Drop for BackgroundParser {
+impl<P: LineParser> std::fmt::Debug for BackgroundParser<P> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BackgroundParser")
+            .field("lines_at_hand", &self.batch.len())
+            .field("index", &self.index)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<P: LineParser> Drop for BackgroundParser<P> {
     fn drop(&mut self) {
         // Dropping both ends makes the parser thread's next send or receive fail, so it ends.
         let (_, receiver) = sync_channel(0);

@@ -20,7 +20,7 @@ use crate::interp::modal::FeedMode;
 use crate::machine::{WorkOffsetId, AXES};
 use crate::motion::{EndKind, PathMode, SegmentKind, StopKind};
 use crate::source::Span;
-use crate::syntax::sinumerik::{Block, Expr, ExprKind, Value, Word};
+use crate::syntax::sinumerik::{Block, Expr, ExprKind, UnaryOp, Value, Word};
 
 /// The numbers given to tools called by a name the tool table lacks.
 const UNLISTED_TOOLS: u32 = 1_000_000;
@@ -43,7 +43,7 @@ pub(super) struct AxisValue {
 #[derive(Default)]
 pub(super) struct Words<'a> {
     /// The G functions, with their groups.
-    pub(super) functions: Vec<(Function, Option<u8>, &'a Word)>,
+    pub(super) functions: Functions<'a>,
     pub(super) axes: [Option<AxisValue>; AXES],
     /// I J K.
     pub(super) centre: [Option<AxisValue>; 3],
@@ -103,6 +103,34 @@ pub(super) struct Words<'a> {
     ends: Option<(End, Span)>,
 }
 
+/// A G function of a block: what it does, its group, its word.
+pub(super) type FunctionWord<'a> = (Function, Option<u8>, &'a Word);
+
+/// The G functions of a block in their order: a block has one or two, held in place (a
+/// vector allocated and freed a block cost about as much as sorting the block's words).
+#[derive(Default)]
+pub(super) struct Functions<'a> {
+    first: [Option<FunctionWord<'a>>; 4],
+    more: Vec<FunctionWord<'a>>,
+}
+
+impl<'a> Functions<'a> {
+    fn push(&mut self, function: FunctionWord<'a>) {
+        match self.first.iter_mut().find(|slot| slot.is_none()) {
+            Some(slot) => *slot = Some(function),
+            None => self.more.push(function),
+        }
+    }
+
+    /// The functions in the order of their words.
+    pub(super) fn iter(&self) -> impl Iterator<Item = &FunctionWord<'a>> {
+        self.first
+            .iter()
+            .map_while(Option::as_ref)
+            .chain(&self.more)
+    }
+}
+
 /// How a block ends the program or the subprogram.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum End {
@@ -134,10 +162,18 @@ pub(super) fn run(
     let feed_before = kernel.feed_setting();
     // G functions take their new members before any value of the block is read.
     let mut one_block = Vec::new();
-    let mut groups = [None::<Span>; 64];
-    for &(function, group, word) in &words.functions {
+    // The groups seen so far, a bit each: the first word of a group is looked up again only
+    // for the alarm.
+    let mut groups = 0u64;
+    for &(function, group, word) in words.functions.iter() {
         if let Some(group) = group {
-            if let Some(first) = groups[group as usize].replace(word.span) {
+            let bit = 1u64 << (group % 64);
+            if groups & bit != 0 {
+                let first = words
+                    .functions
+                    .iter()
+                    .find(|(_, g, _)| *g == Some(group))
+                    .map_or(word.span, |(_, _, w)| w.span);
                 return Err(Alarm::error(
                     AlarmCode::SameGroupGCodes,
                     word.span,
@@ -146,6 +182,7 @@ pub(super) fn run(
                 .with_label(first, "the first one")
                 .with_help("keep one G function of each group in a block"));
             }
+            groups |= bit;
         }
         match function {
             Function::OneBlock(f) => one_block.push((f, word.span)),
@@ -302,8 +339,9 @@ pub(super) fn run(
         (None, None) if moved => {
             if let Some(call) = front
                 .modal_call
-                .clone()
+                .as_ref()
                 .filter(|c| c.depth == front.levels.len())
+                .cloned()
             {
                 front.call(&call.name, 1, call.span, call.arguments)?;
             }
@@ -346,6 +384,11 @@ fn read<'a>(
     words: &mut Words<'a>,
 ) -> Result<(), Alarm> {
     for word in &block.words {
+        if let (Some(letter), Value::Constant(n)) = (word.address.letter(), &word.value) {
+            if letter_constant(front, words, letter, n.value, word) {
+                continue;
+            }
+        }
         let address = &*word.address;
         // Spindles by number, the feed group and positioning axes: names of two letters or more.
         if address.len() > 1
@@ -541,6 +584,51 @@ fn read<'a>(
         }
     }
     Ok(())
+}
+
+/// The common words of a CAM block, a letter and a constant (`X12.5`, `G1`, `F1500`), sorted
+/// as [`read`] sorts them, without looking their address up by name; false for any other
+/// (and for what raises an alarm: an axis the machine lacks), which `read` then takes.
+fn letter_constant<'a>(
+    front: &Sinumerik,
+    words: &mut Words<'a>,
+    letter: u8,
+    value: f64,
+    word: &'a Word,
+) -> bool {
+    let plain = AxisValue {
+        value,
+        absolute: None,
+    };
+    match letter {
+        b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' => {
+            let axis = match letter {
+                b'X' => 0,
+                b'Y' => 1,
+                b'Z' => 2,
+                b'A' => 3,
+                b'B' => 4,
+                _ => 5,
+            };
+            if !front.axes[axis] {
+                return false;
+            }
+            words.axes[axis] = Some(plain);
+        }
+        b'I' | b'J' | b'K' => words.centre[usize::from(letter - b'I')] = Some(plain),
+        b'F' => words.feed = Some((value, word.span)),
+        b'G' => {
+            let common = (value.fract() == 0.0 && (0.0..100.0).contains(&value))
+                .then(|| gcodes::common(value as u32))
+                .flatten();
+            let Some((function, group)) = common else {
+                return false;
+            };
+            words.functions.push((function, Some(group), word));
+        }
+        _ => return false,
+    }
+    true
 }
 
 /// The G function a word is (`G1`, or a named one: `CIP`, `SOFT`) and its group; None for
@@ -744,13 +832,43 @@ fn axis_value(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Axi
 pub(super) fn number(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<f64, Alarm> {
     match &word.value {
         Value::Constant(n) => Ok(n.value),
-        Value::Expression(expr) => front.value(kernel, expr),
+        Value::Expression(expr) => match literal(expr).or_else(|| variable(front, expr)) {
+            Some(value) => Ok(value),
+            None => front.value(kernel, expr),
+        },
         _ => Err(Alarm::error(
             AlarmCode::MissingValue,
             word.span,
             format!("{} needs a value", word.address),
         )),
     }
+}
+
+/// The value of an expression that is a number or a negated number (`CR=5`, `CR=-11.7`), as
+/// the evaluator gives it, without the evaluator: a whole number is an INT there, so -0 is 0.
+fn literal(expr: &Expr) -> Option<f64> {
+    let value = match &expr.kind {
+        ExprKind::Number(x) => *x + 0.0,
+        ExprKind::Unary(UnaryOp::Minus, operand) => match operand.kind {
+            ExprKind::Number(x) => 0.0 - x,
+            _ => return None,
+        },
+        _ => return None,
+    };
+    value.is_finite().then_some(value)
+}
+
+/// The value of an expression that is the name of a number variable the program defined
+/// (`F=FEED1`), as the evaluator gives it, with one look-up; None for anything else (the
+/// evaluator's constants TRUE, FALSE and `$` names first).
+fn variable(front: &Sinumerik, expr: &Expr) -> Option<f64> {
+    let ExprKind::Name(name) = &expr.kind else {
+        return None;
+    };
+    if matches!(&**name, "TRUE" | "FALSE") || name.starts_with('$') {
+        return None;
+    }
+    front.vars.scalar(name)?.as_f64()
 }
 
 /// A word's value as a whole number (M, D, P, L).

@@ -45,7 +45,7 @@ use crate::machine::{Machine, ToolEdge, AXES};
 use crate::motion::{EndKind, Plane};
 use crate::profile::{SinumerikSettings, Variant};
 use crate::source::{FileId, Span};
-use crate::syntax::sinumerik::parse_block;
+use crate::syntax::sinumerik::{is_header, parse_block_into, Block};
 use gcodes::{FeedType, Motion};
 use program::{Fetched, Program};
 use std::io::Read;
@@ -123,6 +123,9 @@ pub struct Sinumerik {
     structure: flow::Structure,
     /// Jumps made (GOTO, CASE, loops back).
     jumps: u64,
+    /// A block to read the next line into, with the room of the last one's words (boxed:
+    /// swapped with a line's block parsed ahead, it moves as a pointer).
+    spare: Option<Box<Block>>,
 }
 
 /// One program level of the call stack.
@@ -235,6 +238,7 @@ impl Sinumerik {
             tangent: None,
             arc_tolerance: machine.profile.arc_radius_tolerance,
             jumps: 0,
+            spare: None,
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
@@ -268,7 +272,21 @@ impl Sinumerik {
     /// ([`ProgramLibrary::main_text`]: read again from its file).
     pub fn streamed(reader: Box<dyn Read + Send>, file: FileId, machine: &Machine) -> Sinumerik {
         let mut front_end = Sinumerik::new(Vec::new(), file, machine);
-        front_end.programs[0] = Program::streamed(file, reader);
+        front_end.programs[0] = Program::streamed(file, reader, None);
+        front_end
+    }
+
+    /// As [`Sinumerik::streamed`], with the program's lines read and parsed on a thread of their
+    /// own, a few hundred lines ahead (`expected_bytes`: about the program's length, 0 when
+    /// unknown): for a machine with a core to spare.
+    pub fn streamed_ahead(
+        reader: Box<dyn Read + Send>,
+        expected_bytes: u64,
+        file: FileId,
+        machine: &Machine,
+    ) -> Sinumerik {
+        let mut front_end = Sinumerik::new(Vec::new(), file, machine);
+        front_end.programs[0] = Program::streamed(file, reader, Some(expected_bytes));
         front_end
     }
 
@@ -565,61 +583,82 @@ impl Sinumerik {
         loop {
             let (program, index) = self.next_line();
             self.fetch(program, index)?;
-            let text = &self.programs[program];
+            let text = &mut self.programs[program];
             let Some(line) = text.line(index) else {
                 return self.end_of_text(kernel);
             };
-            // `%_N_PART_MPF` (or `%` alone) names the file for the control's file system: a
-            // header, not a block (docs/SINUMERIK.md 2.1).
-            if line.bytes.trim_ascii_start().starts_with(b"%") {
+            if is_header(line.bytes) {
                 self.level().next = index + 1;
                 continue;
             }
-            let block = parse_block(line.bytes, text.file, line.number, line.base);
+            let (file, number, base) = (text.file, line.number, line.base);
+            let mut block = self.spare.take().unwrap_or_default();
+            if !text.take_block(index, &mut block) {
+                let bytes = text.line(index).map_or(&b""[..], |l| l.bytes);
+                parse_block_into(bytes, file, number, base, &mut block);
+            }
             self.level().next = index + 1;
-            if block.words.is_empty() && block.statement.is_none() && block.alarm.is_none() {
-                continue;
+            let step = self.run_line(kernel, &block, program, index);
+            // The block's room goes to the next line.
+            self.spare = Some(block);
+            if let Some(step) = step? {
+                return Ok(step);
             }
-            let span = self.programs[program].line_span(index);
-            // The 828D has the skip levels /0 to /7 only (docs/SINUMERIK.md 9).
-            if let Some(level @ 8..) = block.skip.filter(|_| self.is_828d()) {
-                return Err(Alarm::error(
-                    AlarmCode::WordNotAllowed,
-                    Span::new(span.file, span.line, span.start..span.start + 2),
-                    format!("the 828D has no skip level /{level}: its levels are /0 to /7"),
-                )
-                .with_help("use a skip level from /0 to /7, or the 840D profile"));
-            }
-            if block.skip.is_some_and(|level| self.skip[level as usize]) {
-                continue;
-            }
-            self.last_span = span;
-            if let Some(alarm) = block.alarm {
-                return Err(alarm);
-            }
-            let step = if block.words.is_empty() {
-                Step::Next
-            } else {
-                block::run(self, kernel, &block, span)?
-            };
-            return match (&block.statement, step) {
-                (Some(statement), Step::Next) => {
-                    use crate::syntax::sinumerik::StatementKind;
-                    // Declarations run where they stand; every other statement may look at
-                    // other lines (its partner, a label), which a streamed text has not at hand.
-                    if !matches!(
-                        statement.kind,
-                        StatementKind::Definition(_)
-                            | StatementKind::Procedure(_)
-                            | StatementKind::Call { section: None, .. }
-                    ) {
-                        self.make_whole(program)?;
-                    }
-                    control::run(self, kernel, statement, index, span)
-                }
-                _ => Ok(step),
-            };
         }
+    }
+
+    /// Runs the block of line `index` of `program`; None when it is skipped or has nothing to
+    /// run.
+    fn run_line(
+        &mut self,
+        kernel: &mut Kernel,
+        block: &Block,
+        program: usize,
+        index: usize,
+    ) -> Result<Option<Step>, Alarm> {
+        if block.words.is_empty() && block.statement.is_none() && block.alarm.is_none() {
+            return Ok(None);
+        }
+        let span = self.programs[program].line_span(index);
+        // The 828D has the skip levels /0 to /7 only (docs/SINUMERIK.md 9).
+        if let Some(level @ 8..) = block.skip.filter(|_| self.is_828d()) {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                Span::new(span.file, span.line, span.start..span.start + 2),
+                format!("the 828D has no skip level /{level}: its levels are /0 to /7"),
+            )
+            .with_help("use a skip level from /0 to /7, or the 840D profile"));
+        }
+        if block.skip.is_some_and(|level| self.skip[level as usize]) {
+            return Ok(None);
+        }
+        self.last_span = span;
+        if let Some(alarm) = &block.alarm {
+            return Err(alarm.clone());
+        }
+        let step = if block.words.is_empty() {
+            Step::Next
+        } else {
+            block::run(self, kernel, block, span)?
+        };
+        let step = match (&block.statement, step) {
+            (Some(statement), Step::Next) => {
+                use crate::syntax::sinumerik::StatementKind;
+                // Declarations run where they stand; every other statement may look at other
+                // lines (its partner, a label), which a streamed text has not at hand.
+                if !matches!(
+                    statement.kind,
+                    StatementKind::Definition(_)
+                        | StatementKind::Procedure(_)
+                        | StatementKind::Call { section: None, .. }
+                ) {
+                    self.make_whole(program)?;
+                }
+                control::run(self, kernel, statement, index, span)?
+            }
+            (_, step) => step,
+        };
+        Ok(Some(step))
     }
 }
 

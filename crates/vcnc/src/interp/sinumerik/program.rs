@@ -7,11 +7,17 @@
 //! the ISO front end does for its jumps) and the program is held whole from there on, with the
 //! start of every line. Subprograms and texts given in memory are held whole from the start.
 //!
+//! A streamed main program is read and parsed on the interpreter's thread as it runs, or on a
+//! thread of its own a few hundred lines ahead ([`BackgroundParser`]): each line then comes
+//! with its block, which [`Program::take_block`] hands over.
+//!
 //! Never: read a program's file twice unless it jumps, or load a subprogram before it is
 //! called.
 
 use crate::source::{FileId, Span};
-use crate::syntax::lines::{LineSource, ReaderLines};
+use crate::syntax::blocks::{BackgroundParser, LineParser};
+use crate::syntax::lines::ReaderLines;
+use crate::syntax::sinumerik::{Block, ParsedLine, SinumerikParser};
 use std::io::{self, Read};
 use std::sync::Arc;
 
@@ -35,13 +41,54 @@ enum Text {
 
 /// A text read line by line.
 struct Streamed {
-    lines: ReaderLines<Box<dyn Read + Send>>,
-    /// The line read last (0-based; `None` before the first), its start and its bytes.
+    lines: StreamedLines,
+    /// The line read last (0-based; `None` before the first).
     index: Option<usize>,
-    base: u32,
-    bytes: Vec<u8>,
     /// The reader came to its end after line `index`.
     ended: bool,
+}
+
+/// Where a streamed text's lines are read and parsed.
+// Made once per run and held in a box with the rest of `Streamed`: the sizes do not matter.
+#[allow(clippy::large_enum_variant)]
+enum StreamedLines {
+    /// Here, as they are asked for; the line read last.
+    InLine {
+        lines: ReaderLines<Box<dyn Read + Send>>,
+        parser: SinumerikParser,
+        line: ParsedLine,
+    },
+    /// On a thread of its own.
+    Ahead(BackgroundParser<SinumerikParser>),
+}
+
+impl StreamedLines {
+    /// Moves to the next line; false at the end of the text.
+    fn advance(&mut self) -> io::Result<bool> {
+        match self {
+            StreamedLines::InLine {
+                lines,
+                parser,
+                line,
+            } => parser.read_line(lines, line),
+            StreamedLines::Ahead(parser) => parser.next_line(),
+        }
+    }
+
+    /// The line read last.
+    fn line(&self) -> Option<&ParsedLine> {
+        match self {
+            StreamedLines::InLine { line, .. } => Some(line),
+            StreamedLines::Ahead(parser) => parser.line(),
+        }
+    }
+
+    fn line_mut(&mut self) -> Option<&mut ParsedLine> {
+        match self {
+            StreamedLines::InLine { line, .. } => Some(line),
+            StreamedLines::Ahead(parser) => parser.line_mut(),
+        }
+    }
 }
 
 /// One line of a program: where it is, and its bytes (without the line end).
@@ -73,16 +120,29 @@ impl Program {
         }
     }
 
-    /// The main program of `file`, read from `reader` line by line as it runs.
-    pub(super) fn streamed(file: FileId, reader: Box<dyn Read + Send>) -> Program {
+    /// The main program of `file`, read from `reader` line by line as it runs; parsed on a
+    /// thread of its own, ahead of the interpreter, when `ahead` says how many bytes it holds
+    /// (about; 0 when unknown).
+    pub(super) fn streamed(
+        file: FileId,
+        reader: Box<dyn Read + Send>,
+        ahead: Option<u64>,
+    ) -> Program {
+        let parser = SinumerikParser::new(file);
+        let lines = match ahead {
+            Some(bytes) => StreamedLines::Ahead(BackgroundParser::start(reader, parser, bytes)),
+            None => StreamedLines::InLine {
+                lines: ReaderLines::new(reader),
+                line: parser.empty_line(),
+                parser,
+            },
+        };
         Program {
             file,
             name: "".into(),
             text: Text::Streamed(Box::new(Streamed {
-                lines: ReaderLines::new(reader),
+                lines,
                 index: None,
-                base: 0,
-                bytes: Vec::new(),
                 ended: false,
             })),
         }
@@ -114,16 +174,29 @@ impl Program {
         if index != next {
             return Ok(Fetched::NeedsWhole);
         }
-        match stream.lines.next_line()? {
-            Some(line) => {
-                stream.bytes.clear();
-                stream.bytes.extend_from_slice(line.text);
-                stream.base = line.offset;
-                stream.index = Some(index);
-            }
-            None => stream.ended = true,
+        match stream.lines.advance()? {
+            true => stream.index = Some(index),
+            false => stream.ended = true,
         }
         Ok(Fetched::Ready)
+    }
+
+    /// Swaps the block of line `index`, read with the line, into `block`, when the line came so
+    /// (the current line of a streamed text); false when it must be parsed from the line's text.
+    pub(super) fn take_block(&mut self, index: usize, block: &mut Box<Block>) -> bool {
+        let Text::Streamed(stream) = &mut self.text else {
+            return false;
+        };
+        if stream.index != Some(index) {
+            return false;
+        }
+        match stream.lines.line_mut() {
+            Some(line) => {
+                std::mem::swap(&mut line.block, block);
+                true
+            }
+            None => false,
+        }
     }
 
     /// The number of lines (of a streamed text: the lines read so far).
@@ -140,10 +213,11 @@ impl Program {
         let (text, starts) = match &self.text {
             Text::Whole { text, starts } => (text, starts),
             Text::Streamed(stream) if stream.index == Some(index) => {
+                let line = stream.lines.line()?;
                 return Some(Line {
                     number: index as u32 + 1,
-                    base: stream.base,
-                    bytes: &stream.bytes,
+                    base: line.base,
+                    bytes: &line.text,
                 });
             }
             Text::Streamed(_) => return None,
@@ -208,7 +282,7 @@ mod tests {
     #[test]
     fn a_streamed_text_reads_its_lines_in_order_with_their_offsets() {
         let text = b"G0 X1\r\n\nG1 X2";
-        let mut program = Program::streamed(FileId(0), Box::new(io::Cursor::new(&text[..])));
+        let mut program = Program::streamed(FileId(0), Box::new(io::Cursor::new(&text[..])), None);
         assert!(!program.is_whole());
         let mut seen = Vec::new();
         for index in 0.. {
@@ -236,5 +310,43 @@ mod tests {
         program.make_whole(Arc::from(&text[..]));
         assert!(program.is_whole());
         assert_eq!(program.line(0).unwrap().bytes, b"G0 X1");
+    }
+
+    /// Every line of `program` as its place, its text and its block (taken where the line
+    /// came with one, parsed from its text where not).
+    fn read_all(mut program: Program) -> Vec<(u32, u32, Vec<u8>, Box<Block>)> {
+        let mut lines = Vec::new();
+        for index in 0.. {
+            assert_eq!(program.fetch(index).unwrap(), Fetched::Ready);
+            let Some(line) = program.line(index) else {
+                break;
+            };
+            let (number, base, bytes) = (line.number, line.base, line.bytes.to_vec());
+            let mut block = Box::<Block>::default();
+            if crate::syntax::sinumerik::is_header(&bytes) {
+                // A header is no block: nothing to compare.
+            } else if !program.take_block(index, &mut block) {
+                *block = crate::syntax::sinumerik::parse_block(&bytes, FileId(0), number, base);
+            }
+            lines.push((number, base, bytes, block));
+        }
+        lines
+    }
+
+    #[test]
+    fn lines_parsed_ahead_are_the_lines_read_in_line_and_held_whole() {
+        let mut text = String::from("%_N_PART_MPF\r\nDEF REAL F1=2\n\n");
+        for i in 0..3000 {
+            text.push_str(&format!("N{i} G1 X{i}.5 Y-{i} CR=-1.5 F=F1 ; c\r\n"));
+        }
+        text.push_str("/1 X1 Y\nIF R1==1 GOTOF A\nM30");
+        let bytes = text.into_bytes();
+        let reader = || -> Box<dyn Read + Send> { Box::new(io::Cursor::new(bytes.clone())) };
+        let whole = read_all(Program::new(FileId(0), "", Arc::from(&bytes[..])));
+        assert_eq!(whole.len(), 3006);
+        for ahead in [None, Some(0), Some(bytes.len() as u64), Some(1 << 30)] {
+            let streamed = read_all(Program::streamed(FileId(0), reader(), ahead));
+            assert!(streamed == whole, "parsed ahead: {ahead:?}");
+        }
     }
 }

@@ -20,6 +20,30 @@ use super::value::{int_of, kind_name, Type, Value};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::Span;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// Variables by name. A block reads its variables by name (`F=FEED1`): SipHash cost about a
+/// hundred instructions a name; the names are short, and a multiply-and-rotate hash (as the
+/// Rust compiler's own maps use) costs a few a byte. A program that chose colliding names
+/// only slows its own look-ups, bounded by the number of variables it may define.
+type Names = HashMap<Box<str>, Place, BuildHasherDefault<NameHasher>>;
+
+/// The hasher of [`Names`].
+#[derive(Default)]
+struct NameHasher(u64);
+
+impl Hasher for NameHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &byte in bytes {
+            self.0 =
+                (self.0.rotate_left(5) ^ u64::from(byte)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+        }
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
 
 /// The number of R parameters without a machine file's word: R0 to R99 (PGsl 15.4, L11254-11258,
 /// "standard 0 to 99"; MD28050 MM_NUM_R_PARAM sets it on the control).
@@ -111,7 +135,7 @@ pub(crate) struct ParamType {
 /// The names of one program level and where its cells start.
 #[derive(Debug, Default)]
 struct Level {
-    names: HashMap<Box<str>, Place>,
+    names: Names,
     start: usize,
 }
 
@@ -120,7 +144,7 @@ struct Level {
 pub(crate) struct Variables {
     r_count: usize,
     global_cells: Vec<Value>,
-    globals: HashMap<Box<str>, Place>,
+    globals: Names,
     local_cells: Vec<Value>,
     /// Never empty: level 0 is the main program.
     levels: Vec<Level>,
@@ -140,7 +164,7 @@ impl Variables {
         Variables {
             r_count,
             global_cells: vec![Value::Real(0.0); r_count],
-            globals: HashMap::new(),
+            globals: Names::default(),
             local_cells: Vec::new(),
             levels: vec![Level::default()],
         }
@@ -170,7 +194,7 @@ impl Variables {
             .with_help("a subprogram calls itself without end: check its return condition"));
         }
         self.levels.push(Level {
-            names: HashMap::new(),
+            names: Names::default(),
             start: self.local_cells.len(),
         });
         Ok(())
@@ -402,6 +426,20 @@ impl Variables {
             .get(place.base)
             .cloned()
             .ok_or_else(|| gone(span))
+    }
+
+    /// The value of `name` when it names a scalar variable the program defined, as
+    /// [`Variables::read`] gives it without indices; None for any other name (an R parameter,
+    /// an array, an unknown name), which `read` then takes. One look-up: a block's `F=FEED1`.
+    pub(crate) fn scalar(&self, name: &str) -> Option<&Value> {
+        if self.r_number(name).is_some() {
+            return None;
+        }
+        let place = self.binding(name)?;
+        if !place.dims.is_empty() {
+            return None;
+        }
+        self.cells(place.store).get(place.base)
     }
 
     /// Reads `name` with `indices` ([`Variables::place`], then [`Variables::get`]).

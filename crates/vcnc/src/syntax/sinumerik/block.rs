@@ -11,6 +11,7 @@
 
 use super::control::{self, Place};
 use super::expr::{self, Expr};
+use super::plain;
 use super::scan::{unexpected, Scanner};
 use super::statement::{Name, Spanned, Statement};
 use crate::alarm::{Alarm, AlarmCode};
@@ -80,6 +81,11 @@ impl Address {
         }
     }
 
+    /// The address of the upper-case letter `letter` (any other byte as a name).
+    pub(super) fn of_letter(letter: u8) -> Address {
+        self::letter(&[letter]).unwrap_or_else(|| Address::upper(&[letter]))
+    }
+
     /// The name written `bytes`, upper case (bytes that are not UTF-8 as U+FFFD).
     pub(super) fn upper(bytes: &[u8]) -> Address {
         if let [b] = bytes {
@@ -94,6 +100,14 @@ impl Address {
             return Address(Repr::Inline(bytes.len() as u8, inline));
         }
         Address(Repr::Heap(expr::upper(bytes)))
+    }
+
+    /// The letter of a single-letter address (`X`, `G`), upper case; None for a name.
+    pub fn letter(&self) -> Option<u8> {
+        match &self.0 {
+            Repr::Letter(letter) => letter.as_bytes().first().copied(),
+            _ => None,
+        }
     }
 
     /// The address as text.
@@ -186,16 +200,40 @@ pub enum Value {
 
 /// Reads the block on `text`, line `line` of `file` at byte `base`.
 pub fn parse_block(text: &[u8], file: FileId, line: u32, base: u32) -> Block {
-    let mut scanner = Scanner::new(text, file, line, base);
     let mut block = Block {
         // A CAM block has a few words: one allocation, never grown.
         words: Vec::with_capacity(4),
         ..Block::default()
     };
-    if let Err(alarm) = read(&mut scanner, &mut block) {
+    parse_block_into(text, file, line, base, &mut block);
+    block
+}
+
+/// Reads the block on `text` (as [`parse_block`]) into `block`, whatever it held: its words'
+/// room is kept, so that a block read into line after line does not allocate for them.
+pub fn parse_block_into(text: &[u8], file: FileId, line: u32, base: u32, block: &mut Block) {
+    block.skip = None;
+    block.number = None;
+    block.label = None;
+    block.words.clear();
+    block.statement = None;
+    block.alarm = None;
+    // Most lines of a long program are plain ones (plain.rs); any other is read the general
+    // way from its start.
+    if plain::read_plain(&mut Scanner::new(text, file, line, base), block) {
+        return;
+    }
+    block.number = None;
+    block.words.clear();
+    read_general(text, file, line, base, block);
+}
+
+/// Reads the block on `text` into the empty `block` the general way.
+fn read_general(text: &[u8], file: FileId, line: u32, base: u32, block: &mut Block) {
+    let mut scanner = Scanner::new(text, file, line, base);
+    if let Err(alarm) = read(&mut scanner, block) {
         block.alarm = Some(alarm);
     }
-    block
 }
 
 fn read(scanner: &mut Scanner<'_>, block: &mut Block) -> Result<(), Alarm> {
@@ -378,17 +416,7 @@ fn din_word(scanner: &mut Scanner<'_>, start: usize) -> Result<Option<Word>, Ala
     let letter = scanner.text()[start].to_ascii_uppercase();
     let after_letter = scanner.mark();
     scanner.skip_blanks();
-    let negative = match scanner.peek_byte() {
-        Some(b'-') => {
-            scanner.bump();
-            true
-        }
-        Some(b'+') => {
-            scanner.bump();
-            false
-        }
-        _ => false,
-    };
+    let negative = scanner.take_sign();
     let number_start = scanner.mark();
     let starts_number = match scanner.peek_byte() {
         Some(b) if b.is_ascii_digit() => true,
@@ -500,4 +528,74 @@ fn lenient_word(scanner: &mut Scanner<'_>, address: &str, start: usize) -> Resul
         }),
         span: scanner.span(start..scanner.mark()),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `text` read by the short path where it takes the line, and the general way.
+    fn both_ways(text: &[u8]) -> (Block, Block) {
+        let mut general = Block::default();
+        read_general(text, FileId(3), 7, 100, &mut general);
+        // Read into a block that held another line, as the front end reads.
+        let mut fast = parse_block(b"N1 G0 X1 CR=2 F=A", FileId(3), 7, 100);
+        parse_block_into(text, FileId(3), 7, 100, &mut fast);
+        (general, fast)
+    }
+
+    #[test]
+    fn the_short_path_reads_cam_lines_as_the_general_way_does() {
+        for line in [
+            &b"N170 G1 X54.808 Y30.491 Z-1.288 F=FEED1"[..],
+            b"N160 G2 X51.438 Y26.151 CR=-11.700 F=FEED2 ; arc",
+            b"n10g1x.5y+2.Z-0 cr=5",
+            b"G3 X1 Y2 I-0.5 J=AC(3)",
+            b"",
+            b"   ; comment only",
+        ] {
+            let (general, fast) = both_ways(line);
+            assert_eq!(
+                format!("{general:?}"),
+                format!("{fast:?}"),
+                "{}",
+                line.escape_ascii()
+            );
+        }
+        let mut block = Block::default();
+        assert!(plain::read_plain(
+            &mut Scanner::new(b"N170 G1 X54.808 Y30.491 Z-1.288 F=FEED1", FileId(0), 1, 0),
+            &mut block,
+        ));
+        assert_eq!(block.words.len(), 5);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_line_reads_the_same_by_the_short_path_and_the_general_way(
+            pieces in proptest::collection::vec(
+                proptest::sample::select(vec![
+                    "N10", "N", "n5", ":5", "N4294967296", "N1=", "G1", "g2", "G", "X12.5",
+                    "X-1.2", "Y+.5", "Z-0", "X1=5", "X1", "R10=2", "X1(", "X1[", "CR=11.7",
+                    "CR=-3", "cr=-.5", "CR==1", "CR=", "CR=-", "CR=--1", "F=FEED1", "F=R1",
+                    "F=R1X", "f=feed2", "F=A[2]", "F=SIN(1)", "F=A (1)", "F = 3", "F =3", "F= 3",
+                    "CR=5 DIV 2", "AND", "OR", "B_OR", "NOT", "X", "IF", "GOTOF L1", "L1:",
+                    "/", "/1", ";c", " ", "  ", "&", "	", "=", "-", "+", ".", "1", "A", "_",
+                    "$P", "$P=1", "(", "[", "1EX3", "X1EX3", "X1EX", "X1.5EX-2", "EX",
+                    "X99999999999999999999", "'H1F'", "\"s\"", "F='H1F'", "F=\"s\"", "X.", "X.5.",
+                    "_A=1", "A_=1", "AB1=2", "ENDLABEL:", "X1e5", "\u{e9}", "F=$A", "F=_A",
+                ]),
+                0..8,
+            ),
+            glue in proptest::collection::vec(proptest::sample::select(vec!["", " ", "\t"]), 8),
+        ) {
+            let mut line = String::new();
+            for (piece, glue) in pieces.iter().zip(&glue) {
+                line.push_str(piece);
+                line.push_str(glue);
+            }
+            let (general, fast) = both_ways(line.as_bytes());
+            proptest::prop_assert_eq!(format!("{:?}", general), format!("{:?}", fast), "{}", line);
+        }
+    }
 }

@@ -361,7 +361,15 @@ fn expect(scanner: &mut Scanner<'_>, symbol: &str, what: &str) -> Result<Span, A
 
 /// A name in upper case (the control does not tell cases apart).
 pub(super) fn upper(name: &[u8]) -> Box<str> {
-    String::from_utf8_lossy(name).to_ascii_uppercase().into()
+    // A name is ASCII but for a stray byte: made in one allocation.
+    match std::str::from_utf8(name) {
+        Ok(name) => {
+            let mut upper = Box::<str>::from(name);
+            upper.make_ascii_uppercase();
+            upper
+        }
+        Err(_) => String::from_utf8_lossy(name).to_ascii_uppercase().into(),
+    }
 }
 
 fn missing_operand(span: Span) -> Alarm {

@@ -9,11 +9,14 @@ mod block;
 mod control;
 mod declare;
 mod expr;
+mod lines;
+mod plain;
 mod scan;
 mod statement;
 
-pub use block::{parse_block, Address, Block, Value, Word};
+pub use block::{parse_block, parse_block_into, Address, Block, Value, Word};
 pub use expr::{BinaryOp, Expr, ExprKind, UnaryOp};
+pub use lines::{is_header, ParsedLine, SinumerikParser};
 pub use statement::{
     Case, CaseBranch, DataType, Definition, External, Initializer, Jump, JumpKind, JumpTarget,
     Macro, Name, Parameter, Procedure, Scope, Spanned, Statement, StatementKind, Variable,

@@ -110,6 +110,21 @@ impl<'a> Scanner<'a> {
         false
     }
 
+    /// Moves over a `-` or `+` if one comes; true for `-`.
+    pub(super) fn take_sign(&mut self) -> bool {
+        match self.peek_byte() {
+            Some(b'-') => {
+                self.bump();
+                true
+            }
+            Some(b'+') => {
+                self.bump();
+                false
+            }
+            _ => false,
+        }
+    }
+
     /// True at the end of the line or at its comment.
     pub(super) fn at_end(&mut self) -> bool {
         self.skip_blanks();
@@ -206,23 +221,20 @@ impl<'a> Scanner<'a> {
         let start = self.pos;
         // Digits, a point and digits, read in one pass; the value of a short number is made on
         // the way (see `short_decimal`), a long one is left to the standard parser.
-        let (mut whole, mut digits, mut decimals) = (0u64, 0usize, None::<usize>);
-        while let Some(&b) = self.text.get(self.pos) {
-            match b {
-                b'0'..=b'9' => {
-                    whole = whole.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
-                    digits += 1;
-                    if let Some(d) = decimals.as_mut() {
-                        *d += 1;
-                    }
-                }
-                b'.' if decimals.is_none() => decimals = Some(0),
-                _ => break,
-            }
-            self.pos += 1;
+        let text = self.text;
+        let mut whole = 0u64;
+        let mut at = digits_onto(text, start, &mut whole);
+        let (mut decimals, point) = (0, text.get(at) == Some(&b'.'));
+        if point {
+            at += 1;
+            let from = at;
+            at = digits_onto(text, at, &mut whole);
+            decimals = at - from;
         }
+        let digits = at - start - usize::from(point);
+        self.pos = at;
         let mantissa = match digits {
-            1..=15 => whole as f64 / POWERS_OF_TEN[decimals.unwrap_or(0)],
+            1..=15 => whole as f64 / POWERS_OF_TEN[decimals],
             _ => parse_f64(&self.text[start..self.pos]),
         };
         let ex = self.text[self.pos..].get(..2);
@@ -249,9 +261,22 @@ impl<'a> Scanner<'a> {
             }
             let exponent = parse_f64(&self.text[from..self.pos]);
             let exponent = if negative { -exponent } else { exponent };
-            return finite(mantissa * 10f64.powf(exponent), self.span(start..self.pos));
+            return self.finite(mantissa * 10f64.powf(exponent), start);
         }
-        finite(mantissa, self.span(start..self.pos))
+        self.finite(mantissa, start)
+    }
+
+    /// `value`, or the alarm of a number (from `start` to here) beyond f64: the span is made
+    /// only then.
+    fn finite(&self, value: f64, start: usize) -> Result<f64, Alarm> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(bad_number(
+                self.span(start..self.pos),
+                "the number is beyond the control's range",
+            ))
+        }
     }
 
     /// `'H1F'` or `'B1011'`.
@@ -296,6 +321,20 @@ impl<'a> Scanner<'a> {
             self.pos += 1;
         }
     }
+}
+
+/// Reads the digits of `text` from `at` on into `whole` (wrapping: a long number is read again
+/// by the standard parser); the position after them.
+fn digits_onto(text: &[u8], mut at: usize, whole: &mut u64) -> usize {
+    while let Some(digit) = text
+        .get(at)
+        .map(|b| b.wrapping_sub(b'0'))
+        .filter(|d| *d < 10)
+    {
+        *whole = whole.wrapping_mul(10).wrapping_add(u64::from(digit));
+        at += 1;
+    }
+    at
 }
 
 /// Separators: blank, tab, `&`, and characters that do not print (manual 3.2).
@@ -348,14 +387,6 @@ fn short_decimal(text: &[u8]) -> Option<f64> {
 const POWERS_OF_TEN: [f64; 16] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
 ];
-
-fn finite(value: f64, span: Span) -> Result<f64, Alarm> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(bad_number(span, "the number is beyond the control's range"))
-    }
-}
 
 fn bad_number(span: Span, message: &str) -> Alarm {
     Alarm::error(AlarmCode::BadNumber, span, message)
