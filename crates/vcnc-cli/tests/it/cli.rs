@@ -236,6 +236,29 @@ M30
 }
 
 #[test]
+fn an_iso_section_of_a_sinumerik_program_read_from_its_file_runs_as_iso() {
+    // G291 ... G290 in a main program streamed from its file: `R10.` is the ISO arc's radius
+    // (the SINUMERIK front end has no address R), so the arc ends at X10 Y10 and the program
+    // goes on in SINUMERIK after G290.
+    let program = temp_program(
+        "ISOPART.MPF",
+        "G0 X0 Y0\nG291\nG02 X10. Y10. R10. F100\nG290\nG1 X=0 Y=0\nM30\n",
+    );
+    let out = vcnc(&[
+        "trace",
+        "--profile",
+        "sinumerik",
+        "--format",
+        "csv",
+        &program,
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.lines().any(|l| l.contains("arc")), "{stdout}");
+}
+
+#[test]
 fn sinumerik_subprograms_come_from_the_program_directory_and_lib_by_name() {
     let dir = std::env::temp_dir().join(format!("vcnc-cli-spf-{}", std::process::id()));
     let lib = dir.join("lib");

@@ -354,6 +354,10 @@ pub(super) fn run(
         .any(|(f, _, _)| *f == Function::IsoMode)
     {
         front.flush_contour(kernel)?;
+        // The ISO section reads the lines after this one: a streamed main program is read
+        // whole first.
+        let program = front.level().program;
+        front.make_whole(program)?;
         let first = front.level().next;
         let back = super::iso_mode::run(front, kernel, first)?;
         front.level().next = back;
