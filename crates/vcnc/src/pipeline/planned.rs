@@ -10,6 +10,7 @@
 
 use super::threads::POOL;
 use super::Item;
+use crate::motion::Item as Emitted;
 use crate::plan::{Timeline, Timing};
 
 /// A stream handed over a batch at a time, in buffers that go back to it.
@@ -50,6 +51,7 @@ pub(crate) fn for_each_timed<S: BatchSource>(
         let Some(items) = stream.next_batch() else {
             timeline.finish();
             deal(&mut timeline, &mut held, &mut filling);
+            deal_last_frames(&mut held);
             break;
         };
         let keep_all = held.len() + 1 < POOL;
@@ -94,17 +96,50 @@ pub(crate) fn for_each_timed<S: BatchSource>(
     }
 }
 
-/// Gives the timings the timeline has made final to the held batches, in order.
+/// Gives the timings the timeline has made final to the held batches, in order. A frame has
+/// none of its own (the timeline skips it): it takes the start of the item after it, with no
+/// duration.
 // Inlined: it runs for every item pushed.
 #[inline(always)]
 fn deal(timeline: &mut Timeline, held: &mut [Held], filling: &mut usize) {
     while let Some(timing) = timeline.next_timing() {
-        while held.get(*filling).is_some_and(Held::is_complete) {
-            *filling += 1;
+        loop {
+            while held.get(*filling).is_some_and(Held::is_complete) {
+                *filling += 1;
+            }
+            // Every timing belongs to an item pushed, and every item pushed is held.
+            let Some(batch) = held.get_mut(*filling) else {
+                break;
+            };
+            let next = batch.items.get(batch.timings.len());
+            let is_frame = matches!(next, Some(Ok(Emitted::Frame(_))));
+            if !is_frame {
+                batch.timings.push(timing);
+                break;
+            }
+            batch.timings.push(Timing {
+                dt: 0.0,
+                feed_unknown: false,
+                ..timing
+            });
         }
-        // Every timing belongs to an item pushed, and every item pushed is held.
-        if let Some(batch) = held.get_mut(*filling) {
-            batch.timings.push(timing);
+    }
+}
+
+/// The stream has ended: a frame no timed item followed (none does: a frame comes before a
+/// move) gets the last item's end.
+fn deal_last_frames(held: &mut [Held]) {
+    let mut end = 0.0;
+    for batch in held {
+        if let Some(last) = batch.timings.last() {
+            end = last.t + last.dt;
+        }
+        while !batch.is_complete() {
+            batch.timings.push(Timing {
+                t: end,
+                dt: 0.0,
+                feed_unknown: false,
+            });
         }
     }
 }
@@ -172,7 +207,10 @@ mod tests {
             PlanOptions::default(),
         )
         .map(|item| match item {
-            Ok(timed) => (Ok(timed.segment), timed.timing()),
+            Ok(timed) => {
+                let (item, timing) = timed.into_parts();
+                (Ok(item), timing)
+            }
             Err(alarm) => (Err(alarm), Timing::default()),
         })
         .collect();
