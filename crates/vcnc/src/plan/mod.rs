@@ -14,7 +14,8 @@
 //!
 //! Invariants: the look-ahead window is the only buffer, so memory is constant on any program
 //! length; items come out in the order they came in; the same input gives the same times; no
-//! input makes it panic. Alarms pass through untouched and take no time.
+//! input makes it panic. Alarms pass through untouched and take no time; frames are not planned
+//! at all (a slot in the window would shorten the look-ahead of every motion after it).
 //!
 //! ```
 //! use vcnc::plan::{PlanOptions, Planner};
@@ -25,8 +26,10 @@
 //! let stream = interpret_str(program, &machine, Options::default());
 //! let mut total = 0.0;
 //! for item in Planner::new(stream, &machine, PlanOptions::default()) {
-//!     let timed = item.expect("no alarm");
-//!     total = timed.t + timed.dt;
+//!     // Frames and warnings take no time; the segments come with theirs.
+//!     if let Some(timed) = item.expect("no alarm").segment() {
+//!         total = timed.t + timed.dt;
+//!     }
 //! }
 //! // 100 mm at 50 mm/s, plus the ramps: more than length / feed.
 //! assert!(total > 2.0);
@@ -166,7 +169,8 @@ impl TimedSegment {
 /// }
 /// timeline.finish();
 /// let timings: Vec<_> = std::iter::from_fn(|| timeline.next_timing()).collect();
-/// assert_eq!(timings.len(), items.len());
+/// // Every item has its timing but the frame of the first move, which is not planned.
+/// assert_eq!(timings.len(), items.len() - 1);
 /// ```
 pub struct Timeline {
     window: Window,
