@@ -6,7 +6,7 @@ use super::exec::Executor;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::AXES;
-use crate::motion::{ArcDirection, Feed, MachinePos, Plane, SegmentKind};
+use crate::motion::{ArcDirection, Feed, MachinePos, Plane, Segment, SegmentKind};
 
 /// Moves along an arc from the current position to `target` (machine coordinates).
 ///
@@ -180,14 +180,20 @@ pub(crate) fn plain_arc(
         return arc(exec, cmd, direction, target, out);
     }
     let motion = exec.move_to(target, cmd, out)?;
-    out.push_with(cmd, || SegmentKind::Arc {
-        motion,
-        center: MachinePos(center),
-        direction,
-        plane: Plane::Xy,
-        extra_turns: 0,
-        feed,
-    });
+    if let Some(items) = out.direct() {
+        items.push(Ok(crate::motion::Item::Segment(Segment {
+            kind: SegmentKind::Arc {
+                motion,
+                center: MachinePos(center),
+                direction,
+                plane: Plane::Xy,
+                extra_turns: 0,
+                feed,
+            },
+            span: cmd.span,
+            sequence: cmd.sequence(),
+        })));
+    }
     Ok(())
 }
 

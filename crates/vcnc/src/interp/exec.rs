@@ -113,7 +113,14 @@ impl Executor {
         }
         let feed = self.cutting_feed(cmd)?;
         let motion = self.move_to(to, cmd, out)?;
-        out.push(cmd, SegmentKind::Line { motion, feed });
+        // Pushed as a whole segment: through `Output::push` the kind was copied once more.
+        if let Some(items) = out.direct() {
+            items.push(Ok(crate::motion::Item::Segment(crate::motion::Segment {
+                kind: SegmentKind::Line { motion, feed },
+                span: cmd.span,
+                sequence: cmd.sequence(),
+            })));
+        }
         Ok(())
     }
 
