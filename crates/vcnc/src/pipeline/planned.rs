@@ -183,6 +183,10 @@ mod tests {
             if i % 300 == 299 {
                 text.push_str("G4 P100\n");
             }
+            // A new frame in the middle of the motion, twice.
+            if i % 400 == 399 {
+                text.push_str("G92 X0\n");
+            }
         }
         text + "M30\n"
     }
@@ -201,7 +205,7 @@ mod tests {
     fn batches_of_any_size_get_the_planners_timings_and_keep_a_buffer_free() {
         let machine = Machine::default();
         let text = program();
-        let expected: Vec<(Item, Timing)> = Planner::new(
+        let mut expected: Vec<(Item, Timing)> = Planner::new(
             interpret_str(&text, &machine, Options::default()),
             &machine,
             PlanOptions::default(),
@@ -214,6 +218,19 @@ mod tests {
             Err(alarm) => (Err(alarm), Timing::default()),
         })
         .collect();
+        // A frame takes no time and starts with the item after it (the planner gives it none).
+        let mut frames = 0;
+        for at in (0..expected.len() - 1).rev() {
+            if matches!(expected[at].0, Ok(crate::motion::Item::Frame(_))) {
+                expected[at].1 = Timing {
+                    dt: 0.0,
+                    feed_unknown: false,
+                    ..expected[at + 1].1
+                };
+                frames += 1;
+            }
+        }
+        assert_eq!(frames, 3, "the first move's, and one after each G92");
         // One item a batch (a macro loop that rarely moves) up to batches longer than the
         // look-ahead window.
         for size in [1, 2, 7, 100, 256, 5000] {
