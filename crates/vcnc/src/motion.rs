@@ -75,7 +75,7 @@ impl From<Segment> for Item {
 
 /// The stream item of an alarm: a warning goes on as [`Item::Warning`], an error is the `Err`
 /// that stops the run.
-pub fn alarm_item(alarm: Alarm) -> StreamItem {
+pub(crate) fn alarm_item(alarm: Alarm) -> StreamItem {
     if alarm.is_error() {
         Err(alarm)
     } else {

@@ -19,6 +19,11 @@
 //! modal G43/G44 value only when a block moves Z or changes the compensation, and a reference
 //! return on Z clears it (FANUC, spec A.26).
 //!
+//! The consumers of the stream see the whole map (`motion::WorkTransform`, [`Frames::new_frame`]):
+//! every change that moves something marks the map new, and the next move tells the stream of
+//! it first (`KernelState::move_to`), so the map is multiplied out once per change, never per
+//! move.
+//!
 //! The codes that set the frames live beside this file: `scaling.rs` (G51, G51.1, G50, G50.1),
 //! `rotation.rs` (G68, G69) and `coords.rs` (G92, G92.1, G52, G53).
 
@@ -227,8 +232,7 @@ impl Frames {
     /// Applies a tool length offset to the Z position.
     #[inline(always)]
     pub(crate) fn set_length_vector(&mut self, length: f64) {
-        // Not `!=`: a NaN never gets here (positions are checked), and this way -0 and 0 are
-        // one frame.
+        // Compared by value, so -0 and 0 are one frame (no NaN gets here: positions are checked).
         self.changed |= length != self.length_vector;
         self.length_vector = length;
         self.offset[2] = self.shift[2] + length;
@@ -317,8 +321,8 @@ impl Frames {
             // Exactly the offset every move records: program = machine - offset.
             return WorkTransform::translation(self.offset);
         }
-        // The chain is affine (each frame is), so it is its image of the origin plus its
-        // images of the unit vectors less that.
+        // The chain is affine (each frame is): the origin's image is the translation, and the
+        // unit vectors' images less it are the columns of the linear part.
         let origin = self.to_machine(&[0.0; AXES], self.length_vector);
         let image = |axis: usize| {
             let mut unit = [0.0; AXES];
