@@ -22,7 +22,9 @@ use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
 use vcnc::interp::InterruptAt;
 use vcnc::motion::{Feed, Move};
-use vcnc::{interpret_bytes, Alarm, Machine, Options, ProfileName, Segment, SegmentKind, Span};
+use vcnc::{
+    interpret_bytes, Alarm, Item, Machine, Options, ProfileName, Segment, SegmentKind, Span,
+};
 
 /// Items one block may yield: a cycle block's 100,000 moves, each with at most a spindle event
 /// or a dwell beside it, and a few more.
@@ -78,8 +80,13 @@ fuzz_target!(|data: &[u8]| {
         // moves); past this many items a run has shown what it can, and the next input waits.
         for item in interpret_bytes(data, machine, options).take(MAX_ITEMS) {
             let start = match &item {
-                Ok(segment) => segment.span.start,
-                Err(alarm) => alarm.span.map_or(0, |s| s.start),
+                Ok(Item::Segment(segment)) => segment.span.start,
+                // A frame names no block; it counts with the move it comes before.
+                Ok(Item::Frame(_)) => {
+                    assert!(error.is_none(), "a frame came after the error {error:?}");
+                    continue;
+                }
+                Ok(Item::Warning(alarm)) | Err(alarm) => alarm.span.map_or(0, |s| s.start),
             };
             let count = per_block.entry(start).or_default();
             *count += 1;
@@ -94,12 +101,12 @@ fuzz_target!(|data: &[u8]| {
                 profile.as_str()
             );
             match item {
-                Ok(segment) => check_segment(&segment, len, setup.allow_nonfinite),
+                Ok(Item::Segment(segment)) => check_segment(&segment, len, setup.allow_nonfinite),
+                Ok(Item::Frame(_)) => {}
+                Ok(Item::Warning(alarm)) => check_alarm(&alarm, len),
                 Err(alarm) => {
                     check_alarm(&alarm, len);
-                    if alarm.is_error() {
-                        error = Some(alarm);
-                    }
+                    error = Some(alarm);
                 }
             }
         }

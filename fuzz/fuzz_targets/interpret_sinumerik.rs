@@ -24,7 +24,7 @@ use vcnc::interp::sinumerik::Sinumerik;
 use vcnc::interp::{Kernel, LookupError, ProgramLibrary, ProgramText, Run};
 use vcnc::machine::AxisConfig;
 use vcnc::motion::{Feed, Move};
-use vcnc::{Alarm, Axis, FileId, Machine, ProfileName, Segment, SegmentKind, Span};
+use vcnc::{Alarm, Axis, FileId, Item, Machine, ProfileName, Segment, SegmentKind, Span};
 
 /// Lines a run may read (loop passes and jumps included) before it stops with the limit alarm.
 const ITERATIONS: u64 = 20_000;
@@ -102,12 +102,12 @@ fuzz_target!(|data: &[u8]| {
                 profile.as_str()
             );
             match item {
-                Ok(segment) => check_segment(&segment, len),
+                Ok(Item::Segment(segment)) => check_segment(&segment, len),
+                Ok(Item::Frame(_)) => {}
+                Ok(Item::Warning(alarm)) => check_alarm(&alarm, len),
                 Err(alarm) => {
                     check_alarm(&alarm, len);
-                    if alarm.is_error() {
-                        error = Some(alarm);
-                    }
+                    error = Some(alarm);
                 }
             }
         }

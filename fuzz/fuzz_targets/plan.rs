@@ -14,7 +14,7 @@
 use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
 use vcnc::checks::TravelLimits;
-use vcnc::plan::{PlanOptions, Planner, PlannerConfig, PlannerHabits};
+use vcnc::plan::{PlanOptions, Planner, PlannerConfig, PlannerHabits, TimedItem};
 use vcnc::{interpret_bytes, Machine, Options, ProfileName};
 
 /// Items of one run checked before the run is left: a legitimate program can be long.
@@ -47,7 +47,9 @@ fuzz_target!(|data: &[u8]| {
         let stream = TravelLimits::new(interpret_bytes(data, machine, options), machine);
         let mut clock = 0.0_f64;
         for item in Planner::new(stream, machine, PlanOptions::default()).take(MAX_ITEMS) {
-            let Ok(timed) = item else { continue };
+            let Ok(TimedItem::Segment(timed)) = item else {
+                continue;
+            };
             assert!(
                 timed.dt.is_finite() && timed.dt >= 0.0,
                 "duration {} of {:?}",

@@ -47,7 +47,11 @@ mod tests {
         Pipeline::new(&Machine::default())
             .open_text(text, name)
             .filter_map(|item| {
-                let segment = item.unwrap_or_else(|alarm| panic!("{name}: {alarm:?}"));
+                let segment = match item {
+                    Ok(vcnc::Item::Segment(segment)) => segment,
+                    Ok(vcnc::Item::Frame(_)) => return None,
+                    Ok(vcnc::Item::Warning(alarm)) | Err(alarm) => panic!("{name}: {alarm:?}"),
+                };
                 let motion = segment.motion()?;
                 let centre = match segment.kind {
                     SegmentKind::Arc { center, .. } => format!(" around {center:?}"),

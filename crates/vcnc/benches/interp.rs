@@ -25,7 +25,7 @@ use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criteri
 use std::time::Duration;
 use vcnc::interp::sinumerik;
 use vcnc::motion::Feed;
-use vcnc::{interpret_str, Alarm, Machine, Options, Segment, SegmentKind};
+use vcnc::{interpret_str, Item, Machine, Options, Segment, SegmentKind, StreamItem};
 
 #[path = "support/cam_program.rs"]
 mod cam_program;
@@ -138,9 +138,7 @@ fn trace_bytes(text: &str, machine: &Machine) -> usize {
 
 /// Takes batches from `next_batch` (it fills the batch with at least that many items and says
 /// whether more come) and writes their JSON-lines trace; returns the bytes written.
-fn write_batches(
-    mut next_batch: impl FnMut(&mut Vec<Result<Segment, Alarm>>, usize) -> bool,
-) -> usize {
+fn write_batches(mut next_batch: impl FnMut(&mut Vec<StreamItem>, usize) -> bool) -> usize {
     let mut out = numbers::OutBuffer::new(1 << 16);
     let mut memory = [numbers::Remembered::default(); 4];
     let mut batch = Vec::with_capacity(BATCH + 16);
@@ -148,11 +146,11 @@ fn write_batches(
     loop {
         let more = next_batch(&mut batch, BATCH);
         for item in batch.drain(..) {
-            jsonl(
-                &mut out,
-                &mut memory,
-                &item.expect("the benchmark program runs without alarms"),
-            );
+            // A frame is not a record of the trace.
+            let item = item.expect("the benchmark program runs without alarms");
+            if let Item::Segment(segment) = item {
+                jsonl(&mut out, &mut memory, &segment);
+            }
         }
         if out.is_full() || !more {
             written += black_box(out.as_bytes()).len();

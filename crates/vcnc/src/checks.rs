@@ -15,7 +15,8 @@
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, AXES};
 use crate::motion::{
-    arc_sweep, for_arc_extreme_points, ArcDirection, MachinePos, Move, Plane, Segment, SegmentKind,
+    arc_sweep, for_arc_extreme_points, ArcDirection, Item, MachinePos, Move, Plane, Segment,
+    SegmentKind, StreamItem,
 };
 
 /// Slack for rounding, mm: a move ending on its limit is inside.
@@ -60,15 +61,15 @@ impl<I> TravelLimits<I> {
     }
 }
 
-impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for TravelLimits<I> {
-    type Item = Result<Segment, Alarm>;
+impl<I: Iterator<Item = StreamItem>> Iterator for TravelLimits<I> {
+    type Item = StreamItem;
 
     fn next(&mut self) -> Option<Self::Item> {
         if self.check.stopped {
             return None;
         }
         let item = self.source.next()?;
-        if let Ok(segment) = &item {
+        if let Ok(Item::Segment(segment)) = &item {
             let limits = &self.check.limits;
             let alarm = if self.check.xyz_only {
                 limits.check::<3>(segment)
@@ -108,7 +109,7 @@ impl TravelCheck {
     /// Checks the next batch of the stream in place: the first segment that leaves the
     /// travel is replaced by its alarm and the rest of the batch dropped. Returns false once
     /// the stream has stopped (and empties every later batch).
-    pub fn check_batch(&mut self, batch: &mut Vec<Result<Segment, Alarm>>) -> bool {
+    pub fn check_batch(&mut self, batch: &mut Vec<StreamItem>) -> bool {
         let all = 0..batch.len();
         if self.xyz_only {
             self.check_items::<3>(batch, all)
@@ -124,7 +125,7 @@ impl TravelCheck {
     #[inline(always)]
     fn check_items<const N: usize>(
         &mut self,
-        items: &mut Vec<Result<Segment, Alarm>>,
+        items: &mut Vec<StreamItem>,
         range: std::ops::Range<usize>,
     ) -> bool {
         if self.stopped {
@@ -137,18 +138,20 @@ impl TravelCheck {
             // A line inside the travel, most of a stream, is recognised by its own tag, the
             // whole item's: matched through the result and then the kind, every segment paid
             // for decoding the kind's tag from the niche of the result's.
-            if let Ok(Segment {
+            if let Ok(Item::Segment(Segment {
                 kind: SegmentKind::Line { motion, .. },
                 ..
-            }) = item
+            })) = item
             {
                 if limits.inside::<N>(&motion.to.0) {
                     return None;
                 }
             }
             match item {
-                Ok(segment) => limits.check::<N>(segment).map(|alarm| (start + i, alarm)),
-                Err(_) => None,
+                Ok(Item::Segment(segment)) => {
+                    limits.check::<N>(segment).map(|alarm| (start + i, alarm))
+                }
+                Ok(Item::Frame(_) | Item::Warning(_)) | Err(_) => None,
             }
         });
         if let Some((at, alarm)) = failed {
@@ -170,7 +173,7 @@ pub trait ReleasedCheck {
     /// program at one of them, cuts `items` there, adds its alarm and returns false.
     fn check_released(
         &mut self,
-        items: &mut Vec<Result<Segment, Alarm>>,
+        items: &mut Vec<StreamItem>,
         released: std::ops::Range<usize>,
     ) -> bool;
 }
@@ -180,7 +183,7 @@ impl ReleasedCheck for TravelCheck {
     #[inline(always)]
     fn check_released(
         &mut self,
-        items: &mut Vec<Result<Segment, Alarm>>,
+        items: &mut Vec<StreamItem>,
         released: std::ops::Range<usize>,
     ) -> bool {
         if self.xyz_only {
@@ -320,7 +323,7 @@ mod tests {
     use super::*;
     use crate::{interpret_str, Options};
 
-    fn checked(program: &str) -> Vec<Result<Segment, Alarm>> {
+    fn checked(program: &str) -> Vec<StreamItem> {
         let machine = Machine::default();
         TravelLimits::new(
             interpret_str(program, &machine, Options::default()),
@@ -333,9 +336,11 @@ mod tests {
     fn a_move_beyond_the_travel_stops_the_stream_at_its_block() {
         // The default machine: X Y Z from -1000 to 1000.
         let items = checked("G90 G00 X900.\nG01 X1000. F1000.\nX1000.5\nX0\nM30\n");
-        assert_eq!(items.len(), 3, "{items:?}");
-        assert!(items[1].is_ok(), "a move that ends on the limit is inside");
-        let alarm = items[2].as_ref().unwrap_err();
+        // The frame of the first move, the two moves, the alarm.
+        assert_eq!(items.len(), 4, "{items:?}");
+        assert!(matches!(items[0], Ok(Item::Frame(_))));
+        assert!(items[2].is_ok(), "a move that ends on the limit is inside");
+        let alarm = items[3].as_ref().unwrap_err();
         assert_eq!(alarm.code, AlarmCode::Overtravel);
         assert_eq!(alarm.span.unwrap().line, 3);
         assert!(
@@ -419,8 +424,8 @@ mod tests {
         let mut batch: Vec<_> =
             interpret_str("G90 G00 A5.\nG00 A20.\nM30\n", &machine, Options::default()).collect();
         assert!(!check.check_batch(&mut batch));
-        assert_eq!(batch.len(), 2, "{batch:?}");
-        let alarm = batch[1].as_ref().unwrap_err();
+        assert_eq!(batch.len(), 3, "the frame, the move, the alarm: {batch:?}");
+        let alarm = batch[2].as_ref().unwrap_err();
         assert_eq!(alarm.code, AlarmCode::Overtravel);
         assert!(alarm.message.contains('A'), "{}", alarm.message);
     }
@@ -436,14 +441,14 @@ mod tests {
         .collect();
         let mut check = TravelCheck::new(&machine);
         assert!(!check.check_batch(&mut batch));
-        assert_eq!(batch.len(), 2);
-        assert!(batch[0].is_ok());
-        assert!(batch[1]
+        assert_eq!(batch.len(), 3, "the frame, the move, the alarm: {batch:?}");
+        assert!(batch[1].is_ok());
+        assert!(batch[2]
             .as_ref()
             .unwrap_err()
             .message
             .starts_with("-Z overtravel"));
-        let mut more = vec![Ok(batch[0].clone().unwrap())];
+        let mut more = vec![Ok(batch[1].clone().unwrap())];
         assert!(!check.check_batch(&mut more));
         assert!(more.is_empty(), "nothing after the stop");
     }

@@ -4,25 +4,32 @@
 //! ([`syntax`]), interprets every block with the modal state, coordinate systems and offsets of
 //! the control ([`interp`]), and yields the canonical motion stream ([`motion`]) in machine
 //! coordinates, each segment tagged with the span of the block it came from. Problems are
-//! [`Alarm`]s with a code and a span, never panics.
+//! [`Alarm`]s with a code and a span, never panics: a warning is an item of the stream
+//! ([`motion::Item::Warning`]), the alarm that stops the run its `Err`, the last item.
 //!
 //! ```
-//! use vcnc::{interpret_str, Machine, Options, SegmentKind};
+//! use vcnc::motion::Item;
+//! use vcnc::{interpret_str, AlarmCode, Machine, Options, SegmentKind};
 //!
 //! let machine = Machine::default();
 //! // Two motion codes in one block: the last wins with a warning, and the run goes on.
 //! let program = "G90 G21 G17\nG0 X10. Y5.\nG0 G1 Z-1. F200.\nG2 X20. Y5. R5.\nM30\n";
-//! let (mut arcs, mut warnings) = (0, 0);
-//! for item in interpret_str(program, &machine, Options::default()) {
-//!     match item {
-//!         Ok(segment) if matches!(segment.kind, SegmentKind::Arc { .. }) => arcs += 1,
-//!         Ok(_) => {}
-//!         // A warning is an item like any other; an error is the stream's last item.
-//!         Err(alarm) if alarm.is_error() => panic!("the program stopped: {alarm:?}"),
-//!         Err(_warning) => warnings += 1,
-//!     }
-//! }
+//! // A warning is an `Ok` item: `collect` (or `?`) stops only at the alarm that stops the run.
+//! let items: Vec<Item> =
+//!     interpret_str(program, &machine, Options::default()).collect::<Result<_, _>>()?;
+//! let arcs = items
+//!     .iter()
+//!     .filter_map(Item::segment)
+//!     .filter(|segment| matches!(segment.kind, SegmentKind::Arc { .. }))
+//!     .count();
+//! let warnings = items.iter().filter_map(Item::warning).count();
 //! assert_eq!((arcs, warnings), (1, 1));
+//!
+//! // A cut before any feed is programmed stops the control (FANUC alarm 011): the `Err` item.
+//! let stopped = interpret_str("G1 X10.\nM30\n", &machine, Options::default())
+//!     .collect::<Result<Vec<_>, _>>();
+//! assert_eq!(stopped.unwrap_err().code, AlarmCode::NoFeedRate);
+//! # Ok::<(), vcnc::Alarm>(())
 //! ```
 //!
 //! The pipeline streams: the interpreter pulls one line at a time from a
@@ -50,7 +57,7 @@ pub mod syntax;
 pub use alarm::{Alarm, AlarmCode, Severity};
 pub use interp::{Interpreter, Options};
 pub use machine::{Axis, Machine};
-pub use motion::{Segment, SegmentKind};
+pub use motion::{Item, Segment, SegmentKind, StreamItem};
 pub use pipeline::Pipeline;
 pub use profile::{Profile, ProfileName};
 pub use source::{FileId, Span};

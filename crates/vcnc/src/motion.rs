@@ -1,11 +1,96 @@
 //! The canonical motion stream: what the interpreter yields.
 //!
-//! Every [`Segment`] is in machine coordinates (mm, degrees) and carries the [`Span`] of the block
-//! it comes from. Consumers (trace output, planner, checks, simulation) need nothing else: no
-//! segment refers back to syntax, modal state or the profile.
+//! The stream is a sequence of [`StreamItem`]s: `Ok` a [`Segment`] or a warning ([`Item`]),
+//! `Err` the alarm that stops the run, always the last item. Every [`Segment`] is in machine
+//! coordinates (mm, degrees) and carries the [`Span`] of the block it comes from. Consumers
+//! (trace output, planner, checks, simulation, a viewer) need nothing else: no segment refers
+//! back to syntax, modal state or the profile.
+//!
+//! Work coordinates: every move names the frame it was made in ([`Move::frame`]), and an
+//! [`Item::Frame`], carrying the whole map from program to machine coordinates
+//! ([`WorkTransform`]), comes before the first move made in a new frame. A consumer that shows
+//! work coordinates keeps the last frame; one that keeps moves keeps the frames by id.
 
+use crate::alarm::Alarm;
 use crate::axis::AXES;
 use crate::source::Span;
+
+/// One item of the stream as a consumer takes it: `Ok` a segment or a warning, `Err` the alarm
+/// that stops the run (always the last item). So `?`, or `collect::<Result<Vec<_>, _>>()`,
+/// stops at the error and nowhere else.
+pub type StreamItem = Result<Item, Alarm>;
+
+/// What the stream carries before its end: a segment, a new frame, or a warning the run goes
+/// on after.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Item {
+    /// A motion or an event.
+    Segment(Segment),
+    /// The map from program to machine coordinates changes: a work offset selected or
+    /// written (G54..., G10 L2/L20, system variables, SINUMERIK's settable frames), G92, G52,
+    /// G68, G51, G51.1, SINUMERIK's programmable frame, or the tool length vector (G43/G44/G49
+    /// with another H or a register written while it is in force, a reference return that
+    /// clears it, SINUMERIK's lengths as its front end applies them). It comes before the first move made in the new frame, and only then: a change
+    /// no move follows is not in the stream. It takes no time. Cutter radius (D) is not part of
+    /// it: the moves are the tool centre's path already.
+    Frame(WorkFrame),
+    /// A warning: the control would run on, the program probably does not do what was meant.
+    Warning(Alarm),
+}
+
+impl Item {
+    /// The segment, if this is one.
+    #[inline(always)]
+    pub fn segment(&self) -> Option<&Segment> {
+        match self {
+            Item::Segment(segment) => Some(segment),
+            Item::Frame(_) | Item::Warning(_) => None,
+        }
+    }
+
+    /// The warning, if this is one.
+    pub fn warning(&self) -> Option<&Alarm> {
+        match self {
+            Item::Warning(alarm) => Some(alarm),
+            Item::Segment(_) | Item::Frame(_) => None,
+        }
+    }
+
+    /// The segment, if this is one, by value.
+    #[inline(always)]
+    pub fn into_segment(self) -> Option<Segment> {
+        match self {
+            Item::Segment(segment) => Some(segment),
+            Item::Frame(_) | Item::Warning(_) => None,
+        }
+    }
+}
+
+impl From<Segment> for Item {
+    #[inline(always)]
+    fn from(segment: Segment) -> Item {
+        Item::Segment(segment)
+    }
+}
+
+/// The stream item of an alarm: a warning goes on as [`Item::Warning`], an error is the `Err`
+/// that stops the run.
+pub(crate) fn alarm_item(alarm: Alarm) -> StreamItem {
+    if alarm.is_error() {
+        Err(alarm)
+    } else {
+        Ok(Item::Warning(alarm))
+    }
+}
+
+/// The segment of a stream item, if it is one.
+#[inline(always)]
+pub fn segment_of(item: &StreamItem) -> Option<&Segment> {
+    match item {
+        Ok(Item::Segment(segment)) => Some(segment),
+        _ => None,
+    }
+}
 
 /// A position in machine coordinates: X Y Z in mm, A B C in degrees.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -161,16 +246,187 @@ pub struct Move {
     pub exact_stop: bool,
     /// The high-speed or smoothing mode in force, if any (never in G61 or G63, which suspend it).
     pub smoothing: Option<Smoothing>,
+    /// The frame the move was made in: the last [`Item::Frame`] before it, which has this id,
+    /// carries the whole map from program to machine coordinates.
+    pub frame: FrameId,
     /// Machine minus program coordinates at the end of the move (work offset, G92, G52 and tool
-    /// length together): `to - offset` is the end point in the program's coordinates.
+    /// length together): `to - offset` is the end point in the program's coordinates. It holds
+    /// at the end point only: under a rotation or scaling the start, an arc's centre or a point
+    /// moved by cutter compensation need the frame's [`WorkTransform`].
     pub offset: [f64; AXES],
 }
 
 impl Move {
-    /// The end point in program (work) coordinates.
+    /// The end point in program (work) coordinates, from [`Move::offset`].
     pub fn work_to(&self) -> [f64; AXES] {
         std::array::from_fn(|i| self.to.0[i] - self.offset[i])
     }
+}
+
+/// Names a frame: the map from program to machine coordinates that a run had in force for a
+/// stretch of moves. Ids count up from 0 in the order the frames came into force; a frame that
+/// comes back (G69 after G68) gets a new id.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct FrameId(pub u32);
+
+/// The whole map from program (work) coordinates to machine coordinates: `machine = linear ·
+/// program + translation` on X Y Z, and `machine = factor · program + translation` on A B C.
+/// It is the coordinate chain multiplied out (SINUMERIK's frames, G51/G51.1, G68, Syntec's
+/// rotated G92.1), then the translations (G52, G92, the work offset, the external offset) and
+/// the tool length vector.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorkTransform {
+    /// X Y Z, row by row: `linear[i][j]` is how much program axis `j` moves machine axis `i`
+    /// (the identity when nothing turns, scales or mirrors).
+    pub linear: [[f64; 3]; 3],
+    /// The factor of A B C (1, or G51's factor for the axis; -1 mirrors it).
+    pub rotary: [f64; 3],
+    /// Where the program's zero is on the machine, every axis.
+    pub translation: [f64; AXES],
+}
+
+/// The identity of X Y Z.
+const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+impl WorkTransform {
+    /// A translation only: machine = program + `translation`.
+    pub fn translation(translation: [f64; AXES]) -> WorkTransform {
+        WorkTransform {
+            linear: IDENTITY,
+            rotary: [1.0; 3],
+            translation,
+        }
+    }
+
+    /// True when the map only translates (no frame turns, scales or mirrors).
+    pub fn is_translation(&self) -> bool {
+        self.linear == IDENTITY && self.rotary == [1.0; 3]
+    }
+
+    /// The machine coordinates of a point in program coordinates.
+    pub fn to_machine(&self, program: &[f64; AXES]) -> [f64; AXES] {
+        let mut machine = [0.0; AXES];
+        for (i, row) in self.linear.iter().enumerate() {
+            let turned = row[0] * program[0] + row[1] * program[1] + row[2] * program[2];
+            machine[i] = turned + self.translation[i];
+        }
+        for (i, factor) in self.rotary.iter().enumerate() {
+            machine[3 + i] = factor * program[3 + i] + self.translation[3 + i];
+        }
+        machine
+    }
+
+    /// The map back, from machine to program coordinates; `None` when the map cannot be undone
+    /// (the interpreter never makes one: a scale factor of zero is refused).
+    pub fn inverse(&self) -> Option<WorkTransform> {
+        let linear = invert(&self.linear)?;
+        let rotary = self.rotary.map(|f| 1.0 / f);
+        if rotary.iter().any(|f| !f.is_finite()) {
+            return None;
+        }
+        // program = L⁻¹ (machine - t) = L⁻¹ machine - L⁻¹ t.
+        let back = WorkTransform {
+            linear,
+            rotary,
+            translation: [0.0; AXES],
+        };
+        let moved = back.to_machine(&self.translation);
+        Some(WorkTransform {
+            translation: moved.map(|v| -v),
+            ..back
+        })
+    }
+}
+
+/// A frame's map back from machine to program coordinates on X Y Z, made once for the many
+/// points a consumer converts: a plain subtraction when the frame only translates (the same
+/// arithmetic as [`Move::work_to`]), the inverse map otherwise.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProgramMap {
+    /// `machine - shift` on a translation.
+    shift: [f64; 3],
+    /// The inverse map, when the frame turns, scales or mirrors.
+    back: Option<WorkTransform>,
+}
+
+impl ProgramMap {
+    /// The map back of a frame that only translates by `offset` (a move's [`Move::offset`]).
+    pub fn shift(offset: &[f64; AXES]) -> ProgramMap {
+        ProgramMap {
+            shift: [offset[0], offset[1], offset[2]],
+            back: None,
+        }
+    }
+
+    /// Program X Y Z of the machine point `machine`.
+    #[inline]
+    pub fn to_program(&self, machine: [f64; 3]) -> [f64; 3] {
+        match &self.back {
+            None => std::array::from_fn(|i| machine[i] - self.shift[i]),
+            Some(back) => {
+                let l = &back.linear;
+                let t = &back.translation;
+                std::array::from_fn(|i| {
+                    l[i][0] * machine[0] + l[i][1] * machine[1] + l[i][2] * machine[2] + t[i]
+                })
+            }
+        }
+    }
+}
+
+impl WorkTransform {
+    /// The map back from machine to program coordinates, for converting many points.
+    pub fn program_map(&self) -> ProgramMap {
+        let back = if self.is_translation() {
+            None
+        } else {
+            self.inverse()
+        };
+        ProgramMap {
+            shift: [
+                self.translation[0],
+                self.translation[1],
+                self.translation[2],
+            ],
+            back,
+        }
+    }
+}
+
+/// The inverse of a 3x3 matrix (given row by row) by its adjugate, `None` when it is singular or
+/// not finite.
+pub(crate) fn invert(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    // cofactor(i, j) of the transpose: the adjugate's entry (i, j).
+    let cofactor = |i: usize, j: usize| {
+        let (r0, r1) = ((j + 1) % 3, (j + 2) % 3);
+        let (c0, c1) = ((i + 1) % 3, (i + 2) % 3);
+        m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
+    };
+    let adjugate: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| cofactor(i, j)));
+    let determinant =
+        m[0][0] * adjugate[0][0] + m[0][1] * adjugate[1][0] + m[0][2] * adjugate[2][0];
+    if determinant == 0.0 || !determinant.is_finite() {
+        return None;
+    }
+    let inverse = adjugate.map(|row| row.map(|v| v / determinant));
+    inverse
+        .iter()
+        .flatten()
+        .all(|v| v.is_finite())
+        .then_some(inverse)
+}
+
+/// A frame coming into force: the moves that name its id are made in it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorkFrame {
+    /// The frame's id, as the moves made in it carry it.
+    pub id: FrameId,
+    /// Program to machine coordinates, the tool length vector included.
+    pub transform: WorkTransform,
+    /// The tool length vector applied, machine X Y Z (Z on the ISO side; SINUMERIK's lengths
+    /// by plane move X and Y too): already in `transform`'s translation; a consumer that follows
+    /// the tool's tip rather than the programmed point subtracts it.
+    pub tool_length: [f64; 3],
 }
 
 /// Why the program stopped.
@@ -223,6 +479,33 @@ pub struct ToolGeometry {
     pub radius: f64,
 }
 
+/// The shape of a tool's cutting part, as a machine file's tool table describes it. No
+/// machine file has shapes yet (issue 21 adds them): every [`SegmentKind::ToolChange`] carries
+/// `None`, which a consumer reads as a flat end mill of the tool's radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ToolShape {
+    /// A flat end mill.
+    Flat,
+    /// A ball nose end mill.
+    Ball,
+    /// A bull nose end mill with this corner radius, mm.
+    BullNose {
+        /// The corner radius, mm.
+        corner_radius: f64,
+    },
+    /// A drill with this point angle, degrees.
+    Drill {
+        /// The included angle of the point, degrees.
+        point_angle: f64,
+    },
+    /// A chamfer or engraving tool with this included angle, degrees.
+    Cone {
+        /// The included angle, degrees.
+        angle: f64,
+    },
+}
+
 /// What happened: a motion or an event.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -271,8 +554,13 @@ pub enum SegmentKind {
         /// The tool put in the spindle (the last T selected).
         tool: u32,
         /// Its offsets as the change found them in the register numbered like the tool (the
-        /// usual setup, H and D equal to T); None when that register was never set.
+        /// usual setup, H and D equal to T; SINUMERIK: the tool's active edge); None when that
+        /// register was never set. The length the moves are made with is the frame's
+        /// ([`WorkFrame::tool_length`]): it follows G43 H, not T.
         geometry: Option<ToolGeometry>,
+        /// The shape of its cutting part, from the machine file's tool table; always None until
+        /// machine files have shapes ([`ToolShape`]).
+        shape: Option<ToolShape>,
     },
     /// M03/M04/M05/M19 and S changes.
     Spindle {
@@ -303,7 +591,7 @@ pub enum SegmentKind {
     },
 }
 
-/// One item of the motion stream.
+/// A motion or an event of the stream.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {
     /// What happened.
@@ -435,5 +723,46 @@ pub(crate) fn for_arc_extreme_points(
             p[b] = center[b] + radius * sin;
             visit(p);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_translation_is_taken_back_by_the_same_subtraction_as_the_moves_offset() {
+        let offset = [0.1, -0.2, 100.3, 0.0, 0.0, 0.0];
+        let map = WorkTransform::translation(offset);
+        assert!(map.is_translation());
+        let machine = [10.7, 3.3, 80.05];
+        let motion_to = [machine[0], machine[1], machine[2], 0.0, 0.0, 0.0];
+        let expected: [f64; 3] = std::array::from_fn(|i| motion_to[i] - offset[i]);
+        assert_eq!(map.program_map().to_program(machine), expected);
+        assert_eq!(ProgramMap::shift(&offset).to_program(machine), expected);
+    }
+
+    #[test]
+    fn a_map_and_its_inverse_undo_each_other() {
+        // A quarter turn about Z, X doubled, A mirrored, moved by (1, 2, 3) and A by 5:
+        // program (1, 1, 1, A 1) goes to (-1 + 1, 2 + 2, 1 + 3, -1 + 5).
+        let map = WorkTransform {
+            linear: [[0.0, -1.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+            rotary: [-1.0, 1.0, 1.0],
+            translation: [1.0, 2.0, 3.0, 5.0, 0.0, 0.0],
+        };
+        let machine = map.to_machine(&[1.0, 1.0, 1.0, 1.0, 0.0, 0.0]);
+        assert_eq!(machine, [0.0, 4.0, 4.0, 4.0, 0.0, 0.0]);
+        let back = map.inverse().expect("a regular map");
+        assert_eq!(back.to_machine(&machine), [1.0, 1.0, 1.0, 1.0, 0.0, 0.0]);
+        assert_eq!(
+            map.program_map().to_program([0.0, 4.0, 4.0]),
+            [1.0, 1.0, 1.0]
+        );
+        let flat = WorkTransform {
+            linear: [[1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+            ..map
+        };
+        assert_eq!(flat.inverse(), None);
     }
 }

@@ -7,8 +7,8 @@
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Machine, AXES};
 use crate::motion::{
-    arc_sweep, helix_length, ArcDirection, MachinePos, Move, Plane, Segment, SegmentKind,
-    SpindleState,
+    arc_sweep, helix_length, ArcDirection, Item, MachinePos, Move, Plane, ProgramMap, Segment,
+    SegmentKind, SpindleState, WorkFrame,
 };
 use crate::source::Span;
 use std::collections::BTreeSet;
@@ -138,10 +138,13 @@ pub struct Summary {
     pub untimed_moves: u64,
     /// Extents of all motion, machine coordinates.
     pub machine_extents: Extents,
-    /// Extents of all motion, program coordinates: X and Y from the zero in force at the first
+    /// Extents of all motion, program coordinates: X and Y in the frame in force at the first
     /// move, so that a pattern repeated under G52, G92 or G68 (a thread milled at four places,
     /// holes on a bolt circle) is measured where it is cut, not stacked on its local zero; Z
-    /// from each move's own zero and tool length.
+    /// in each move's own frame (its zero, tool length and rotation). Points are taken back
+    /// through the whole frame ([`Item::Frame`]) when the stream's frames are added
+    /// ([`Summary::add_item`]); a consumer that adds segments alone gets each move's
+    /// translation ([`Move::offset`]), which is right for lines and arcs that nothing turns.
     pub work_extents: Extents,
     /// Extents of cutting motion only, program coordinates as [`Summary::work_extents`].
     pub cutting_extents: Extents,
@@ -150,8 +153,11 @@ pub struct Summary {
     /// Tool changes.
     pub tool_changes: u64,
     rapid_rates: [f64; AXES],
-    /// Machine minus program X and Y at the first move: the zero the program extents keep.
-    first_zero: Option<[f64; 2]>,
+    /// The map back of the frame in force at the first move: the X and Y the program extents
+    /// keep.
+    first_frame: Option<ProgramMap>,
+    /// The map back of the frame in force, when the stream told it.
+    frame: Option<ProgramMap>,
     /// Where the last move ended, its offset and whether it cut.
     last_end: Option<(MachinePos, [f64; AXES], bool)>,
     spindle: Spindle,
@@ -180,7 +186,8 @@ impl Summary {
             tools: BTreeSet::new(),
             tool_changes: 0,
             rapid_rates,
-            first_zero: None,
+            first_frame: None,
+            frame: None,
             last_end: None,
             spindle: Spindle::Stopped,
             max_rpm: machine.spindle.max_rpm,
@@ -238,6 +245,21 @@ impl Summary {
     /// Length / feed, rapid and dwell time together, seconds.
     pub fn estimated_seconds(&self) -> f64 {
         self.rapid_seconds + self.feed_seconds + self.dwell_seconds
+    }
+
+    /// Adds one item of the stream: a segment, a frame (for the program extents), a warning
+    /// (nothing).
+    pub fn add_item(&mut self, item: &Item) {
+        match item {
+            Item::Segment(segment) => self.add(segment),
+            Item::Frame(frame) => self.add_frame(frame),
+            Item::Warning(_) => {}
+        }
+    }
+
+    /// A new frame: the moves after it are made in it.
+    pub fn add_frame(&mut self, frame: &WorkFrame) {
+        self.frame = Some(frame.transform.program_map());
     }
 
     /// Adds one segment.
@@ -344,12 +366,14 @@ impl Summary {
     #[inline]
     fn extend_point(&mut self, motion: &Move, p: [f64; 3], cutting: bool) {
         self.machine_extents.add(p);
-        // In X and Y the machine point less a fixed zero: exact for every point of a move,
-        // turned or not (a move's own offset holds at its end point only under G68).
-        let zero = *self
-            .first_zero
-            .get_or_insert([motion.offset[0], motion.offset[1]]);
-        let work = [p[0] - zero[0], p[1] - zero[1], p[2] - motion.offset[2]];
+        // Without the stream's frames, the move's own translation (it holds at its end point
+        // only under a rotation).
+        let here = self
+            .frame
+            .unwrap_or_else(|| ProgramMap::shift(&motion.offset));
+        let first = *self.first_frame.get_or_insert(here);
+        let (planar, depth) = (first.to_program(p), here.to_program(p));
+        let work = [planar[0], planar[1], depth[2]];
         self.work_extents.add(work);
         if cutting {
             self.cutting_extents.add(work);
@@ -366,7 +390,7 @@ mod tests {
         let machine = Machine::default();
         let mut summary = Summary::new(&machine);
         for item in interpret_str(program, &machine, Options::default()) {
-            summary.add(&item.expect("no alarm"));
+            summary.add_item(&item.expect("no alarm"));
         }
         summary
     }

@@ -14,7 +14,7 @@ use clap::{Args as ClapArgs, ValueEnum};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use vcnc::pipeline::Layout;
-use vcnc::{Alarm, AlarmCode};
+use vcnc::{Alarm, AlarmCode, Item};
 
 /// Output format of the diagnostics.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -159,11 +159,12 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
             let mut alarms: Vec<Alarm> = stream
                 .by_ref()
                 .filter_map(|item| match item {
-                    Ok(segment) => {
+                    Ok(Item::Segment(segment)) => {
                         progress.segment(segment.span.line);
                         None
                     }
-                    Err(alarm) => Some(alarm),
+                    Ok(Item::Frame(_)) => None,
+                    Ok(Item::Warning(alarm)) | Err(alarm) => Some(alarm),
                 })
                 .collect();
             progress.finish();

@@ -12,7 +12,7 @@ use vcnc::motion::EndKind;
 use vcnc::plan::{TimeKind, TimeReport};
 use vcnc::program_scan::{power_on_unit, ProgramScan};
 use vcnc::summary::{Extents, LengthUnit, Summary};
-use vcnc::{Alarm, SegmentKind};
+use vcnc::{Alarm, Item, SegmentKind};
 
 /// Output format of the summary.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -99,7 +99,7 @@ fn run_one(args: &Args, path: &Path) -> Result<Outcome, SetupError> {
     stream.for_each_timed(plan_options, |items, timings| {
         for (item, timing) in items.iter().zip(timings) {
             match item {
-                Ok(segment) => {
+                Ok(Item::Segment(segment)) => {
                     progress.segment(segment.span.line);
                     if let SegmentKind::End { kind } = segment.kind {
                         end = Some(kind);
@@ -107,7 +107,8 @@ fn run_one(args: &Args, path: &Path) -> Result<Outcome, SetupError> {
                     summary.add(segment);
                     report.add(segment, timing);
                 }
-                Err(alarm) => alarms.push(alarm.clone()),
+                Ok(Item::Frame(frame)) => summary.add_frame(frame),
+                Ok(Item::Warning(alarm)) | Err(alarm) => alarms.push(alarm.clone()),
             }
         }
         true

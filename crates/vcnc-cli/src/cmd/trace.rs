@@ -17,7 +17,10 @@ use crate::setup::MachineArgs;
 use clap::{Args as ClapArgs, ValueEnum};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
-use vcnc::motion::{ArcDirection, EndKind, Feed, Move, Plane, SpindleState, StopKind};
+use vcnc::motion::{
+    segment_of, ArcDirection, EndKind, Feed, Item as Emitted, Move, Plane, ProgramMap,
+    SpindleState, StopKind,
+};
 use vcnc::pipeline::{Item, ProgramFiles};
 use vcnc::plan::Timing;
 use vcnc::{Alarm, Axis, FileId, Segment, SegmentKind};
@@ -82,7 +85,7 @@ fn write_trace(args: &Args, output: &mut impl Write) -> Result<Traced, SetupErro
     let name = source.name().display().to_string();
     let mut progress = Progress::on_stderr(&name, !std::io::stdout().is_terminal());
     stream.for_each_timed(plan_options, |items, timings| {
-        if let Some(Ok(last)) = items.last() {
+        if let Some(last) = items.iter().rev().find_map(segment_of) {
             progress.batch(last.span.line, items.len());
         }
         writer.batch(items, timings, args.format, &mut alarms);
@@ -142,6 +145,9 @@ struct Writer {
     file_csv: PaddedText,
     rotary: Vec<Axis>,
     work: bool,
+    /// The map back to program coordinates of the frame in force (`--work`); None before the
+    /// stream's first frame.
+    frame: Option<ProgramMap>,
     arc_words: [[ArcWords; 3]; 2],
 }
 
@@ -278,6 +284,7 @@ impl Writer {
                 .filter(|a| machine.has_axis(*a))
                 .collect(),
             work,
+            frame: None,
             arc_words: arc_words(),
             plain_end: false,
         };
@@ -312,8 +319,12 @@ impl Writer {
     ) {
         for (item, timing) in items.iter().zip(timings) {
             let segment = match item {
-                Ok(segment) => segment,
-                Err(alarm) => {
+                Ok(Emitted::Segment(segment)) => segment,
+                Ok(Emitted::Frame(frame)) => {
+                    self.frame = Some(frame.transform.program_map());
+                    continue;
+                }
+                Ok(Emitted::Warning(alarm)) | Err(alarm) => {
                     alarms.push(alarm.clone());
                     continue;
                 }
@@ -422,7 +433,7 @@ impl Writer {
                     &mut text,
                     [z_memory, feed_memory],
                     &self.arc_words,
-                    self.work,
+                    self.work.then_some(self.frame.as_ref()),
                     &record,
                 );
             } else {
@@ -439,7 +450,7 @@ impl Writer {
                     &mut text,
                     [z_memory, feed_memory],
                     &self.arc_words,
-                    self.work,
+                    self.work.then_some(self.frame.as_ref()),
                     &record,
                 );
             }
@@ -509,8 +520,8 @@ impl Writer {
         if self.work {
             match record.motion {
                 Some(motion) => {
-                    for w in &motion.work_to()[..3] {
-                        text.decimal(COMMA, *w);
+                    for w in work_point(self.frame.as_ref(), motion) {
+                        text.decimal(COMMA, w);
                     }
                 }
                 None => text.put(b",,,"),
@@ -531,7 +542,7 @@ fn jsonl_end(
     text: &mut RecordText<'_>,
     [z_memory, feed_memory]: [&mut Remembered; 2],
     arc_words: &[[ArcWords; 3]; 2],
-    work: bool,
+    work: Option<Option<&ProgramMap>>,
     record: &Record<'_>,
 ) {
     if let Some(f) = record.feed {
@@ -545,13 +556,26 @@ fn jsonl_end(
         let (by_direction, by_plane) = arc_index(direction, plane);
         text.fixed(&arc_words[by_direction][by_plane].json);
     }
-    if let (true, Some(motion)) = (work, record.motion) {
-        let work = motion.work_to();
+    if let (Some(frame), Some(motion)) = (work, record.motion) {
+        let work = work_point(frame, motion);
         text.decimal(key!("wx"), work[0]);
         text.decimal(key!("wy"), work[1]);
         text.decimal(key!("wz"), work[2]);
     }
     text.put(b"}\n");
+}
+
+/// The end point of `motion` in program coordinates: through the whole frame it was made in
+/// (right under rotation, scaling and cutter compensation), or from its own translation before
+/// the stream named a frame.
+fn work_point(frame: Option<&ProgramMap>, motion: &Move) -> [f64; 3] {
+    match frame {
+        Some(frame) => frame.to_program(motion.to.xyz()),
+        None => {
+            let work = motion.work_to();
+            [work[0], work[1], work[2]]
+        }
+    }
 }
 
 /// Writes `key` and `value` as a JSON string (`value` needs no escapes).
@@ -724,7 +748,10 @@ mod tests {
             let mut none = Vec::new();
             for item in Planner::new(stream, &machine, PlanOptions::default()) {
                 let (item, timing) = match item {
-                    Ok(timed) => (Ok(timed.segment), timed.timing()),
+                    Ok(timed) => {
+                        let (item, timing) = timed.into_parts();
+                        (Ok(item), timing)
+                    }
                     Err(alarm) => (Err(alarm), Timing::default()),
                 };
                 let (item, timing) = (std::slice::from_ref(&item), std::slice::from_ref(&timing));

@@ -136,6 +136,29 @@ fn trace_csv_has_a_header_and_a_row_per_segment() {
 }
 
 #[test]
+fn trace_work_coordinates_follow_rotation_and_cutter_compensation() {
+    // A cut along program X at Y0, turned by 90 degrees, the tool (radius 5) on its left: the
+    // centre runs along program Y5 and the cut ends at program (20, 5), machine (-5, 20). Taken
+    // back through the move's offset at the programmed end (20, 0), it read (15, 0).
+    let program = temp_program(
+        "turned.nc",
+        "G90 G17 G54 G0 X0 Y-10. Z0\nG10 L12 P1 R5.\nG68 X0 Y0 R90.\n\
+         G41 D1 G1 X0 Y0 F100.\nX20.\nG40 X30. Y-10.\nG69\nM30\n",
+    );
+    let out = vcnc(&["trace", "--format", "csv", "--work", &program]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let cut = text
+        .lines()
+        .find(|line| line.starts_with("feed,5,"))
+        .unwrap_or_else(|| panic!("no cut on line 5: {text}"));
+    let fields: Vec<&str> = cut.split(',').collect();
+    // x y z, then wx wy wz before the value.
+    assert_eq!(&fields[6..8], ["-5", "20"], "{cut}");
+    let work = &fields[fields.len() - 4..fields.len() - 1];
+    assert_eq!(work, ["20", "5", "0"], "{cut}");
+}
+
+#[test]
 fn trace_times_follow_one_another() {
     let program = temp_program(
         "timed.nc",

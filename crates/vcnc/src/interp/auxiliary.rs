@@ -96,6 +96,7 @@ pub(crate) fn before_motion(
                     SegmentKind::ToolChange {
                         tool,
                         geometry: exec.kernel.tools.geometry(tool, diameters),
+                        shape: None,
                     }
                 }
                 MCode::CoolantOn => SegmentKind::Coolant { on: true },

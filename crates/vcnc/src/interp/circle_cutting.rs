@@ -57,7 +57,7 @@ pub(crate) fn run(
     for (to, about) in steps {
         let to = exec.machine_target(&to, false);
         let about = exec.machine_target(&about, false);
-        let motion = exec.move_to(to, cmd)?;
+        let motion = exec.move_to(to, cmd, out)?;
         out.push(
             cmd,
             SegmentKind::Arc {

@@ -89,7 +89,7 @@ pub(crate) fn arc(
                 "an R arc that ends on its start point does not move (use I J K for a full circle)",
             ));
             if target != exec.kernel.position {
-                let motion = exec.move_to(target, cmd)?;
+                let motion = exec.move_to(target, cmd, out)?;
                 out.push(cmd, SegmentKind::Line { motion, feed });
             }
             return Ok(());
@@ -176,22 +176,24 @@ pub(crate) fn plain_arc(
     (center[0], center[1]) = (x, y);
     let feed = exec.cutting_feed(cmd)?;
     super::kernel::check_position(&center, cmd)?;
-    let Some(items) = out.direct() else {
+    if out.direct().is_none() {
         return arc(exec, cmd, direction, target, out);
-    };
-    let motion = exec.move_to(target, cmd)?;
-    items.push(Ok(Segment {
-        kind: SegmentKind::Arc {
-            motion,
-            center: MachinePos(center),
-            direction,
-            plane: Plane::Xy,
-            extra_turns: 0,
-            feed,
-        },
-        span: cmd.span,
-        sequence: cmd.sequence(),
-    }));
+    }
+    let motion = exec.move_to(target, cmd, out)?;
+    if let Some(items) = out.direct() {
+        items.push(Ok(crate::motion::Item::Segment(Segment {
+            kind: SegmentKind::Arc {
+                motion,
+                center: MachinePos(center),
+                direction,
+                plane: Plane::Xy,
+                extra_turns: 0,
+                feed,
+            },
+            span: cmd.span,
+            sequence: cmd.sequence(),
+        })));
+    }
     Ok(())
 }
 

@@ -194,6 +194,7 @@ pub(crate) fn after_motion(
         path_mode: exec.modal.path_mode,
         exact_stop: exec.modal.exact_stop_once(cmd),
         smoothing: exec.modal.smoothing_for_motion(),
+        frame: exec.kernel.frame_in_force(out),
         offset: exec.kernel.frames.offset_at(&exec.kernel.position),
     };
     let kind = match exec.modal.motion {

@@ -773,7 +773,7 @@ impl Hole<'_> {
             return Ok(());
         }
         let feed = self.exec.cutting_feed(self.cmd)?;
-        let motion = self.exec.move_to(to, self.cmd)?;
+        let motion = self.exec.move_to(to, self.cmd, self.out)?;
         self.out.push(self.cmd, SegmentKind::Line { motion, feed });
         Ok(())
     }

@@ -105,19 +105,22 @@ impl Executor {
     #[inline(always)]
     fn plain_line(&mut self, cmd: &Command, out: &mut Output) -> Result<(), Alarm> {
         let to = self.block_target(cmd, false, out)?;
-        let Some(items) = out.direct() else {
+        if out.direct().is_none() {
             return self.feed_to(to, cmd, false, out);
-        };
+        }
         if same_place(&to, &self.kernel.position) {
             return Ok(());
         }
         let feed = self.cutting_feed(cmd)?;
-        let motion = self.move_to(to, cmd)?;
-        items.push(Ok(crate::motion::Segment {
-            kind: SegmentKind::Line { motion, feed },
-            span: cmd.span,
-            sequence: cmd.sequence(),
-        }));
+        let motion = self.move_to(to, cmd, out)?;
+        // Pushed as a whole segment: through `Output::push` the kind was copied once more.
+        if let Some(items) = out.direct() {
+            items.push(Ok(crate::motion::Item::Segment(crate::motion::Segment {
+                kind: SegmentKind::Line { motion, feed },
+                span: cmd.span,
+                sequence: cmd.sequence(),
+            })));
+        }
         Ok(())
     }
 
@@ -560,9 +563,14 @@ impl Executor {
     /// # Errors
     /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range.
     #[inline(always)]
-    pub(crate) fn move_to(&mut self, to: [f64; AXES], cmd: &Command) -> Result<Move, Alarm> {
+    pub(crate) fn move_to(
+        &mut self,
+        to: [f64; AXES],
+        cmd: &Command,
+        out: &mut Output,
+    ) -> Result<Move, Alarm> {
         let modes = self.modal.move_modes(cmd);
-        self.kernel.move_to(to, cmd, modes)
+        self.kernel.move_to(to, cmd, modes, out)
     }
 
     /// The feed of a cutting move in the mode in force.

@@ -2,7 +2,7 @@
 //! [`Kernel`], and [`Run`] turns that into the motion stream every consumer takes.
 //!
 //! [`Run`] gives the same contract as the ISO [`Interpreter`](super::Interpreter): an iterator of
-//! `Result<Segment, Alarm>` that ends after the end item or after the first error, and
+//! [`StreamItem`]s that ends after the end item or after the first error (the `Err` item), and
 //! [`Run::next_batch`] for consumers that take a batch at a time. A front end owns its text, its
 //! blocks, its modal state and its language; it never builds a segment itself.
 
@@ -10,7 +10,7 @@ use super::kernel::Kernel;
 use super::NoCheck;
 use crate::alarm::Alarm;
 use crate::checks::ReleasedCheck;
-use crate::motion::Segment;
+use crate::motion::StreamItem;
 use std::collections::VecDeque;
 
 /// What one step of a front end did to the flow of the program.
@@ -35,7 +35,7 @@ pub trait FrontEnd {
 pub struct Run<F> {
     front_end: F,
     kernel: Kernel,
-    ready: VecDeque<Result<Segment, Alarm>>,
+    ready: VecDeque<StreamItem>,
     done: bool,
     /// Steps that ran a block (the last one, the end or an error, included).
     blocks: u64,
@@ -76,7 +76,7 @@ impl<F: FrontEnd> Run<F> {
     /// Appends the next items of the stream to `out` until it holds at least `at_least` items
     /// or the program is over; false when nothing more will come (what came is in `out`). The
     /// same items as [`Iterator::next`] gives.
-    pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
+    pub fn next_batch(&mut self, out: &mut Vec<StreamItem>, at_least: usize) -> bool {
         self.next_batch_checked(out, at_least, &mut NoCheck)
     }
 
@@ -84,7 +84,7 @@ impl<F: FrontEnd> Run<F> {
     /// cuts the stream at an item, no block after it runs.
     pub fn next_batch_checked(
         &mut self,
-        out: &mut Vec<Result<Segment, Alarm>>,
+        out: &mut Vec<StreamItem>,
         at_least: usize,
         check: &mut impl ReleasedCheck,
     ) -> bool {
@@ -118,7 +118,7 @@ impl<F: FrontEnd> Run<F> {
 }
 
 impl<F: FrontEnd> Iterator for Run<F> {
-    type Item = Result<Segment, Alarm>;
+    type Item = StreamItem;
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {

@@ -45,7 +45,7 @@ pub(crate) fn move_to_new_vector(
     match (exec.modal.motion, exec.kernel.feed) {
         (MotionMode::Linear | MotionMode::Arc(_), Some(_)) => {
             let feed = exec.cutting_feed(cmd)?;
-            let motion = exec.move_to(target, cmd)?;
+            let motion = exec.move_to(target, cmd, out)?;
             out.push(cmd, SegmentKind::Line { motion, feed });
         }
         _ => exec.rapid_to(target, cmd, out)?,
@@ -61,7 +61,7 @@ mod tests {
     fn z_ends(program: &str) -> Vec<f64> {
         interpret_str(program, &Machine::default(), Options::default())
             .map(|item| item.expect("the program runs without an alarm"))
-            .filter_map(|segment| segment.motion().map(|motion| motion.to.0[2]))
+            .filter_map(|item| item.segment()?.motion().map(|motion| motion.to.0[2]))
             .collect()
     }
 

@@ -1,9 +1,10 @@
 //! The interpreter: pulls blocks from a program's text and yields the motion stream.
 //!
-//! [`Interpreter`] is an iterator of `Result<Segment, Alarm>`. It reads one line at a time,
-//! decodes each block (`decode`), and executes it (`exec`) in the control's order; the segments
-//! of a block go into a small queue that the iterator drains. Warnings come out as `Err` items and
-//! the run goes on; the first error is the last item. Memory does not grow with the program.
+//! [`Interpreter`] is an iterator of [`StreamItem`]s. It reads one line at a time, decodes each
+//! block (`decode`), and executes it (`exec`) in the control's order; the segments of a block go
+//! into a small queue that the iterator drains. Warnings come out as [`Item::Warning`] and the
+//! run goes on; the first error is the `Err` item, the last. Memory does not grow with the
+//! program.
 //!
 //! The modules below follow the pipeline: decode, modal state, the coordinate chain (frames),
 //! the executor and the parts it calls (motion, tool length, coordinate codes, reference
@@ -42,7 +43,7 @@ mod tools;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::checks::ReleasedCheck;
 use crate::machine::Machine;
-use crate::motion::{EndKind, MachinePos, Segment, SegmentKind};
+use crate::motion::{EndKind, Item, MachinePos, Segment, SegmentKind, StreamItem};
 use crate::source::{FileId, Span};
 use crate::syntax::blocks::{BlockSource, ParsedLines};
 use crate::syntax::lines::LineSource;
@@ -93,11 +94,7 @@ pub(crate) struct NoCheck;
 
 impl ReleasedCheck for NoCheck {
     #[inline(always)]
-    fn check_released(
-        &mut self,
-        _: &mut Vec<Result<Segment, Alarm>>,
-        _: std::ops::Range<usize>,
-    ) -> bool {
+    fn check_released(&mut self, _: &mut Vec<StreamItem>, _: std::ops::Range<usize>) -> bool {
         true
     }
 }
@@ -112,7 +109,7 @@ pub struct Interpreter<B> {
     /// Items released to [`Iterator::next`] and not yet taken, in order. Taken from the front of
     /// the queue one at a time, a block with many moves (a canned cycle of thousands of pecks)
     /// cost a shift of the whole queue per item: quadratic.
-    ready: std::collections::VecDeque<Result<Segment, Alarm>>,
+    ready: std::collections::VecDeque<StreamItem>,
 }
 
 /// Where the next block comes from.
@@ -309,7 +306,7 @@ impl<B: BlockSource> Interpreter<B> {
     /// or the program is over (or a long stretch of blocks produced nothing: the batch may then
     /// be empty); returns false when nothing more will come. The same items as
     /// [`Iterator::next`] gives, with fewer moves: consumers of long streams use this.
-    pub fn next_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>, at_least: usize) -> bool {
+    pub fn next_batch(&mut self, out: &mut Vec<StreamItem>, at_least: usize) -> bool {
         self.next_batch_checked(out, at_least, &mut NoCheck)
     }
 
@@ -319,7 +316,7 @@ impl<B: BlockSource> Interpreter<B> {
     /// run, so they neither count as executed nor write macro variables.
     pub fn next_batch_checked(
         &mut self,
-        out: &mut Vec<Result<Segment, Alarm>>,
+        out: &mut Vec<StreamItem>,
         at_least: usize,
         check: &mut impl ReleasedCheck,
     ) -> bool {
@@ -365,7 +362,7 @@ impl<B: BlockSource> Interpreter<B> {
     /// Hands the items of a batch over in `out` (what compensation holds stays); false when
     /// nothing more will come.
     #[inline(always)]
-    fn return_batch(&mut self, out: &mut Vec<Result<Segment, Alarm>>) -> bool {
+    fn return_batch(&mut self, out: &mut Vec<StreamItem>) -> bool {
         std::mem::swap(&mut self.core.out.items, out);
         if let Some(held) = self.core.out.held {
             // What waits for compensation stays here.
@@ -495,11 +492,11 @@ impl Core {
 
     /// The run is over: the end item, and nothing more.
     fn end(&mut self, kind: EndKind, span: Span) {
-        self.out.push_item(Ok(Segment {
+        self.out.push_item(Ok(Item::Segment(Segment {
             kind: SegmentKind::End { kind },
             span,
             sequence: None,
-        }));
+        })));
         self.done = true;
     }
 
@@ -664,7 +661,7 @@ impl Core {
 }
 
 impl<B: BlockSource> Iterator for Interpreter<B> {
-    type Item = Result<Segment, Alarm>;
+    type Item = StreamItem;
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {

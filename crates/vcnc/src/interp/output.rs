@@ -14,10 +14,12 @@ use super::kernel::BlockOrigin;
 use super::polar_interpolation::PolarStage;
 use crate::alarm::Alarm;
 use crate::machine::AXES;
-use crate::motion::{Plane, Segment, SegmentKind};
+use crate::motion::{
+    alarm_item, Item as Emitted, Plane, Segment, SegmentKind, StreamItem, WorkFrame,
+};
 
 /// An item of the stream.
-type Item = Result<Segment, Alarm>;
+type Item = StreamItem;
 
 /// A stage between the executor and the output queue.
 #[derive(Debug)]
@@ -47,11 +49,11 @@ impl Output {
     pub(crate) fn push(&mut self, block: &impl BlockOrigin, kind: SegmentKind) {
         if self.stages.is_empty() {
             // Built where it goes: a segment is a few hundred bytes, and this runs per move.
-            self.items.push(Ok(Segment {
+            self.items.push(Ok(Emitted::Segment(Segment {
                 kind,
                 span: block.span(),
                 sequence: block.sequence(),
-            }));
+            })));
         } else {
             self.push_staged(block, kind);
         }
@@ -74,11 +76,11 @@ impl Output {
         kind: impl FnOnce() -> SegmentKind,
     ) {
         match self.direct() {
-            Some(items) => items.push(Ok(Segment {
+            Some(items) => items.push(Ok(Emitted::Segment(Segment {
                 kind: kind(),
                 span: block.span(),
                 sequence: block.sequence(),
-            })),
+            }))),
             None => self.push_staged(block, kind()),
         }
     }
@@ -174,7 +176,7 @@ impl Output {
                     self.failed.get_or_insert(alarm);
                 }
             }
-            None => items.push(Ok(segment)),
+            None => items.push(Ok(Emitted::Segment(segment))),
         }
         self.settle();
     }
@@ -271,9 +273,14 @@ impl Output {
         ended
     }
 
+    /// Tells the stream of a new frame, before the move made in it.
+    pub(crate) fn push_frame(&mut self, frame: WorkFrame) {
+        self.push_item(Ok(Emitted::Frame(frame)));
+    }
+
     /// Records an alarm (a warning, or the error that ends the run).
     pub(crate) fn push_warning(&mut self, alarm: Alarm) {
-        self.push_item(Err(alarm));
+        self.push_item(alarm_item(alarm));
     }
 
     /// Queues an item behind everything queued before it.
@@ -290,7 +297,10 @@ impl Output {
         let (comp, items, held) = self.entry();
         if let Some(held) = held.take() {
             let tail = items.split_off(held);
-            items.extend(tail.into_iter().filter(Result::is_err));
+            items.extend(
+                tail.into_iter()
+                    .filter(|item| matches!(item, Ok(Emitted::Warning(_)) | Err(_))),
+            );
         }
         if let Some(comp) = comp {
             comp.abandon();

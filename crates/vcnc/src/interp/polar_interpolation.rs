@@ -39,7 +39,8 @@ use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
 use crate::motion::{
-    arc_sweep, ArcDirection, Feed, MachinePos, Move, PathMode, Plane, Segment, SegmentKind,
+    arc_sweep, ArcDirection, Feed, Item, MachinePos, Move, PathMode, Plane, Segment, SegmentKind,
+    StreamItem,
 };
 use crate::profile::{GCode, Group};
 
@@ -260,7 +261,7 @@ fn cancel(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<(), Al
 #[derive(Clone, Debug)]
 pub(crate) struct PolarStage {
     /// Cartesian items, as the executor and compensation queue them.
-    pub(crate) staged: Vec<Result<Segment, Alarm>>,
+    pub(crate) staged: Vec<StreamItem>,
     /// Items from this index on wait for compensation to know where a move ends.
     pub(crate) held: Option<usize>,
     /// The plane before G12.1.
@@ -270,14 +271,14 @@ pub(crate) struct PolarStage {
 
 impl PolarStage {
     /// Converts the items compensation has released and appends them to `items`.
-    pub(crate) fn settle(&mut self, items: &mut Vec<Result<Segment, Alarm>>) {
+    pub(crate) fn settle(&mut self, items: &mut Vec<StreamItem>) {
         let ready = self.held.unwrap_or(self.staged.len());
         if ready == 0 {
             return;
         }
         for item in self.staged.drain(..ready) {
             match item {
-                Ok(segment) if segment.motion().is_some() => {
+                Ok(Item::Segment(segment)) if segment.motion().is_some() => {
                     self.converter.convert(&segment, items);
                 }
                 other => items.push(other),
@@ -290,7 +291,7 @@ impl PolarStage {
 
     /// The mode ends: everything staged is converted. Returns the plane before G12.1 and the
     /// machine position where the last piece ended.
-    pub(crate) fn flush(mut self, items: &mut Vec<Result<Segment, Alarm>>) -> (Plane, [f64; AXES]) {
+    pub(crate) fn flush(mut self, items: &mut Vec<StreamItem>) -> (Plane, [f64; AXES]) {
         self.held = None;
         self.settle(items);
         (self.plane, self.converter.last)
@@ -418,9 +419,9 @@ struct PieceEnd {
 
 impl Converter {
     /// Appends the pieces of the Cartesian `segment` to `items`.
-    fn convert(&mut self, segment: &Segment, items: &mut Vec<Result<Segment, Alarm>>) {
+    fn convert(&mut self, segment: &Segment, items: &mut Vec<StreamItem>) {
         let (Some(path), Some(motion)) = (Path::of(segment), segment.motion()) else {
-            items.push(Ok(*segment));
+            items.push(Ok((*segment).into()));
             return;
         };
         let motion = *motion;
@@ -464,7 +465,7 @@ impl Converter {
                 }
                 other => other,
             };
-            items.push(Ok(Segment { kind, ..*segment }));
+            items.push(Ok(Segment { kind, ..*segment }.into()));
             from = (end.t, end.machine);
         }
         self.last = from.1;

@@ -156,7 +156,7 @@ pub(crate) fn run(
         if super::kernel::same_place(&to, &exec.kernel.position) {
             continue;
         }
-        let motion = exec.move_to(to, cmd)?;
+        let motion = exec.move_to(to, cmd, out)?;
         out.push(cmd, SegmentKind::Line { motion, feed });
     }
     Ok(())

@@ -61,7 +61,7 @@ pub(crate) fn g33(
         per_revolution: lead,
         rpm: (exec.kernel.spindle.speed() > 0.0).then_some(exec.kernel.spindle.speed()),
     };
-    let mut motion = exec.move_to(target, cmd)?;
+    let mut motion = exec.move_to(target, cmd, out)?;
     motion.path_mode = PathMode::Tapping;
     motion.smoothing = None;
     out.push(cmd, SegmentKind::Line { motion, feed });

@@ -22,6 +22,7 @@
 //! what goes wrong while it runs (a failed save) is handed back by [`Stream::finish`].
 //!
 //! ```
+//! use vcnc::motion::Item;
 //! use vcnc::pipeline::Pipeline;
 //! use vcnc::plan::PlanOptions;
 //! use vcnc::Machine;
@@ -32,8 +33,8 @@
 //! let (mut moves, mut seconds) = (0, 0.0);
 //! stream.for_each_timed(PlanOptions::default(), |items, timings| {
 //!     for (item, timing) in items.iter().zip(timings) {
-//!         // Warnings and the alarm that stops the program are items too.
-//!         if let Ok(segment) = item {
+//!         // Frames, warnings and the alarm that stops the program are items too.
+//!         if let Ok(Item::Segment(segment)) = item {
 //!             moves += usize::from(segment.motion().is_some());
 //!         }
 //!         seconds += timing.dt;
@@ -57,16 +58,15 @@ pub use store::PersistentStore;
 pub use threads::{BatchSource, Finished, Stream};
 pub use waiting::Waiting;
 
-use crate::alarm::Alarm;
 use crate::interp::{FrontEnd, Kernel, Options, PersistentVariables};
 use crate::machine::Machine;
-use crate::motion::Segment;
 use program::{MainText, Opened};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-/// An item of the stream: a segment, or an alarm (a warning, or the error that ends it).
-pub type Item = Result<Segment, Alarm>;
+/// An item of the stream: `Ok` a segment, a new frame or a warning, `Err` the error that ends
+/// it ([`StreamItem`](crate::motion::StreamItem)).
+pub type Item = crate::motion::StreamItem;
 
 /// Where the interpreter's thread gets the program's blocks.
 ///

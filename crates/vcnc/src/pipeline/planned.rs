@@ -10,6 +10,7 @@
 
 use super::threads::POOL;
 use super::Item;
+use crate::motion::Item as Emitted;
 use crate::plan::{Timeline, Timing};
 
 /// A stream handed over a batch at a time, in buffers that go back to it.
@@ -50,6 +51,7 @@ pub(crate) fn for_each_timed<S: BatchSource>(
         let Some(items) = stream.next_batch() else {
             timeline.finish();
             deal(&mut timeline, &mut held, &mut filling);
+            deal_last_frames(&mut held);
             break;
         };
         let keep_all = held.len() + 1 < POOL;
@@ -94,17 +96,50 @@ pub(crate) fn for_each_timed<S: BatchSource>(
     }
 }
 
-/// Gives the timings the timeline has made final to the held batches, in order.
+/// Gives the timings the timeline has made final to the held batches, in order. A frame has
+/// none of its own (the timeline skips it): it takes the start of the item after it, with no
+/// duration.
 // Inlined: it runs for every item pushed.
 #[inline(always)]
 fn deal(timeline: &mut Timeline, held: &mut [Held], filling: &mut usize) {
     while let Some(timing) = timeline.next_timing() {
-        while held.get(*filling).is_some_and(Held::is_complete) {
-            *filling += 1;
+        loop {
+            while held.get(*filling).is_some_and(Held::is_complete) {
+                *filling += 1;
+            }
+            // Every timing belongs to an item pushed, and every item pushed is held.
+            let Some(batch) = held.get_mut(*filling) else {
+                break;
+            };
+            let next = batch.items.get(batch.timings.len());
+            let is_frame = matches!(next, Some(Ok(Emitted::Frame(_))));
+            if !is_frame {
+                batch.timings.push(timing);
+                break;
+            }
+            batch.timings.push(Timing {
+                dt: 0.0,
+                feed_unknown: false,
+                ..timing
+            });
         }
-        // Every timing belongs to an item pushed, and every item pushed is held.
-        if let Some(batch) = held.get_mut(*filling) {
-            batch.timings.push(timing);
+    }
+}
+
+/// The stream has ended: a frame no timed item followed (none does: a frame comes before a
+/// move) gets the last item's end.
+fn deal_last_frames(held: &mut [Held]) {
+    let mut end = 0.0;
+    for batch in held {
+        if let Some(last) = batch.timings.last() {
+            end = last.t + last.dt;
+        }
+        while !batch.is_complete() {
+            batch.timings.push(Timing {
+                t: end,
+                dt: 0.0,
+                feed_unknown: false,
+            });
         }
     }
 }
@@ -148,6 +183,10 @@ mod tests {
             if i % 300 == 299 {
                 text.push_str("G4 P100\n");
             }
+            // A new frame in the middle of the motion, twice.
+            if i % 400 == 399 {
+                text.push_str("G92 X0\n");
+            }
         }
         text + "M30\n"
     }
@@ -166,16 +205,32 @@ mod tests {
     fn batches_of_any_size_get_the_planners_timings_and_keep_a_buffer_free() {
         let machine = Machine::default();
         let text = program();
-        let expected: Vec<(Item, Timing)> = Planner::new(
+        let mut expected: Vec<(Item, Timing)> = Planner::new(
             interpret_str(&text, &machine, Options::default()),
             &machine,
             PlanOptions::default(),
         )
         .map(|item| match item {
-            Ok(timed) => (Ok(timed.segment), timed.timing()),
+            Ok(timed) => {
+                let (item, timing) = timed.into_parts();
+                (Ok(item), timing)
+            }
             Err(alarm) => (Err(alarm), Timing::default()),
         })
         .collect();
+        // A frame takes no time and starts with the item after it (the planner gives it none).
+        let mut frames = 0;
+        for at in (0..expected.len() - 1).rev() {
+            if matches!(expected[at].0, Ok(crate::motion::Item::Frame(_))) {
+                expected[at].1 = Timing {
+                    dt: 0.0,
+                    feed_unknown: false,
+                    ..expected[at + 1].1
+                };
+                frames += 1;
+            }
+        }
+        assert_eq!(frames, 3, "the first move's, and one after each G92");
         // One item a batch (a macro loop that rarely moves) up to batches longer than the
         // look-ahead window.
         for size in [1, 2, 7, 100, 256, 5000] {

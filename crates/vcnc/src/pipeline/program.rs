@@ -346,15 +346,17 @@ pub(crate) fn dialect(name: &Path, head: &[u8]) -> Dialect {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::motion::Item;
 
     /// The end points of a run's moves, or its alarm codes.
     fn moves(stream: super::super::Stream) -> Vec<String> {
         stream
             .map(|item| match item {
-                Ok(segment) => segment
+                Ok(Item::Segment(segment)) => segment
                     .motion()
                     .map_or_else(String::new, |m| format!("{:?}", m.to)),
-                Err(alarm) => format!("{:?}", alarm.code),
+                Ok(Item::Frame(_)) => String::new(),
+                Ok(Item::Warning(alarm)) | Err(alarm) => format!("{:?}", alarm.code),
             })
             .filter(|s| !s.is_empty())
             .collect()

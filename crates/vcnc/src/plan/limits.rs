@@ -622,6 +622,7 @@ mod tests {
             path_mode: PathMode::Continuous,
             exact_stop: false,
             smoothing: None,
+            frame: crate::motion::FrameId(0),
             offset: [0.0; AXES],
         };
         let (limits, _) = line(&motion, None, &axes, &config, 1.0);
@@ -723,6 +724,7 @@ mod tests {
                 path_mode: PathMode::Continuous,
                 exact_stop: false,
                 smoothing: None,
+                frame: crate::motion::FrameId(0),
                 offset: [0.0; AXES],
             };
             let (length, caps, direction) = straight(&motion, &axes, rapid);

@@ -1,6 +1,6 @@
 //! The planner: times the motion stream the way the machine moves it.
 //!
-//! [`Planner`] wraps the interpreter's stream (`Result<Segment, Alarm>`) and yields every item
+//! [`Planner`] wraps the interpreter's stream (`StreamItem`) and yields every item
 //! again, each segment with its start time `t` and duration `dt`. Motions get jerk-limited (or,
 //! with infinite jerk, trapezoidal) speed profiles under the per-axis limits of the machine file,
 //! slowed at corners in continuous mode (G64), stopped at exact stops (G61, G09, G63) and before
@@ -14,7 +14,8 @@
 //!
 //! Invariants: the look-ahead window is the only buffer, so memory is constant on any program
 //! length; items come out in the order they came in; the same input gives the same times; no
-//! input makes it panic. Alarms pass through untouched and take no time.
+//! input makes it panic. Alarms pass through untouched and take no time; frames are not planned
+//! at all (a slot in the window would shorten the look-ahead of every motion after it).
 //!
 //! ```
 //! use vcnc::plan::{PlanOptions, Planner};
@@ -25,8 +26,10 @@
 //! let stream = interpret_str(program, &machine, Options::default());
 //! let mut total = 0.0;
 //! for item in Planner::new(stream, &machine, PlanOptions::default()) {
-//!     let timed = item.expect("no alarm");
-//!     total = timed.t + timed.dt;
+//!     // Frames and warnings take no time; the segments come with theirs.
+//!     if let Some(timed) = item.expect("no alarm").segment() {
+//!         total = timed.t + timed.dt;
+//!     }
 //! }
 //! // 100 mm at 50 mm/s, plus the ramps: more than length / feed.
 //! assert!(total > 2.0);
@@ -47,7 +50,7 @@ pub use speed_profile::{PathLimits, SpeedProfile};
 
 use crate::alarm::Alarm;
 use crate::machine::Machine;
-use crate::motion::{PathMode, Segment, SegmentKind};
+use crate::motion::{Item, PathMode, Segment, SegmentKind, StreamItem, WorkFrame};
 use corner::{Handover, MotionClass};
 use events::EventClock;
 use limits::{arc, line, per_axis_rapid_seconds, ArcPath, AxisLimits, FeedSpeeds};
@@ -166,7 +169,8 @@ impl TimedSegment {
 /// }
 /// timeline.finish();
 /// let timings: Vec<_> = std::iter::from_fn(|| timeline.next_timing()).collect();
-/// assert_eq!(timings.len(), items.len());
+/// // Every item has its timing but the frame of the first move, which is not planned.
+/// assert_eq!(timings.len(), items.len() - 1);
 /// ```
 pub struct Timeline {
     window: Window,
@@ -200,10 +204,15 @@ impl Timeline {
 
     /// The next item of the stream: a segment, or an alarm.
     #[inline(always)]
-    pub fn push_item(&mut self, item: &Result<Segment, Alarm>) {
+    /// A frame ([`Item::Frame`]) gets no timing: [`Timeline::next_timing`] skips it.
+    pub fn push_item(&mut self, item: &StreamItem) {
         match item {
-            Ok(segment) => self.push(segment),
-            Err(_) => self.push_alarm(),
+            Ok(Item::Segment(segment)) => self.push(segment),
+            // A warning, the error: no time, no break in the motion.
+            Ok(Item::Warning(_)) | Err(_) => self.push_alarm(),
+            // A frame is not planned at all (it would take a place in the look-ahead window):
+            // it gets no timing, and starts when the item after it does.
+            Ok(Item::Frame(_)) => {}
         }
     }
 
@@ -319,10 +328,10 @@ pub struct Planner<I> {
     source_done: bool,
     timeline: Timeline,
     /// The items given to the timeline whose timings are not final yet, oldest first.
-    waiting: VecDeque<Result<Segment, Alarm>>,
+    waiting: VecDeque<StreamItem>,
 }
 
-impl<I: Iterator<Item = Result<Segment, Alarm>>> Planner<I> {
+impl<I: Iterator<Item = StreamItem>> Planner<I> {
     /// A planner for `machine` over `source`.
     pub fn new(source: I, machine: &Machine, options: PlanOptions) -> Planner<I> {
         let timeline = Timeline::new(machine, options);
@@ -345,14 +354,57 @@ impl<I: Iterator<Item = Result<Segment, Alarm>>> Planner<I> {
     }
 }
 
-impl<I: Iterator<Item = Result<Segment, Alarm>>> Iterator for Planner<I> {
-    type Item = Result<TimedSegment, Alarm>;
+/// An item of the planned stream: the stream's item, a segment with its timing.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TimedItem {
+    /// A motion or an event, timed.
+    Segment(TimedSegment),
+    /// A new frame (it takes no time).
+    Frame(WorkFrame),
+    /// A warning (it takes no time).
+    Warning(Alarm),
+}
+
+impl TimedItem {
+    /// The stream's item again, with the segment's timing (the default for a frame or a
+    /// warning, which take no time).
+    pub fn into_parts(self) -> (Item, Timing) {
+        match self {
+            TimedItem::Segment(timed) => (Item::Segment(timed.segment), timed.timing()),
+            TimedItem::Frame(frame) => (Item::Frame(frame), Timing::default()),
+            TimedItem::Warning(alarm) => (Item::Warning(alarm), Timing::default()),
+        }
+    }
+
+    /// The timed segment, if this is one.
+    pub fn segment(&self) -> Option<&TimedSegment> {
+        match self {
+            TimedItem::Segment(timed) => Some(timed),
+            TimedItem::Frame(_) | TimedItem::Warning(_) => None,
+        }
+    }
+}
+
+impl<I: Iterator<Item = StreamItem>> Iterator for Planner<I> {
+    type Item = Result<TimedItem, Alarm>;
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
+            // A frame has no timing of its own: it goes as soon as it is first.
+            if let Some(Ok(Item::Frame(frame))) = self.waiting.front() {
+                let frame = *frame;
+                self.waiting.pop_front();
+                return Some(Ok(TimedItem::Frame(frame)));
+            }
             if let Some((timing, profile)) = self.timeline.next_timing_and_profile() {
                 let item = self.waiting.pop_front()?;
-                return Some(item.map(|segment| TimedSegment::new(segment, timing, profile)));
+                return Some(item.map(|item| match item {
+                    Item::Segment(segment) => {
+                        TimedItem::Segment(TimedSegment::new(segment, timing, profile))
+                    }
+                    Item::Frame(frame) => TimedItem::Frame(frame),
+                    Item::Warning(alarm) => TimedItem::Warning(alarm),
+                }));
             }
             if self.source_done {
                 return None;

@@ -135,8 +135,9 @@ fn nothing_comes_after_an_error() {
         Options::default(),
     )
     .collect();
-    assert_eq!(items.len(), 2);
-    assert!(items[1].is_err());
+    // The frame of the first move, the move, the alarm of the line without a feed.
+    assert_eq!(items.len(), 3, "{items:?}");
+    assert!(items[2].is_err());
 }
 
 #[test]

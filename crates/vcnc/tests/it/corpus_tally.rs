@@ -81,14 +81,15 @@ fn run_one(folder: &str, path: &std::path::Path) -> Row {
     let mut error = None;
     for item in TravelLimits::new(stream, &machine) {
         match item {
-            Ok(segment) => {
+            Ok(vcnc::Item::Segment(segment)) => {
                 if let SegmentKind::End { kind } = segment.kind {
                     end = Some(kind);
                 }
                 summary.add(&segment);
             }
-            Err(alarm) if alarm.is_error() => error = Some(alarm),
-            Err(alarm) => warnings.push(alarm),
+            Ok(vcnc::Item::Frame(frame)) => summary.add_frame(&frame),
+            Ok(vcnc::Item::Warning(alarm)) => warnings.push(alarm),
+            Err(alarm) => error = Some(alarm),
         }
     }
     warnings.extend(summary.warnings());

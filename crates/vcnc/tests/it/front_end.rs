@@ -8,7 +8,7 @@
 use vcnc::interp::{FrontEnd, Kernel, Origin, Run, Step};
 use vcnc::motion::{ArcDirection, EndKind};
 use vcnc::plan::{PlanOptions, Planner};
-use vcnc::{Alarm, AlarmCode, FileId, Machine, Segment, SegmentKind, Span};
+use vcnc::{Alarm, AlarmCode, FileId, Item, Machine, Segment, SegmentKind, Span};
 
 /// The toy dialect's block sequencer: its text and the next line to read.
 struct Toy {
@@ -117,11 +117,12 @@ G0 Z5.\n\
 M30\n";
 
 /// The stream's items without their spans (the two programs' texts differ): kinds and alarms.
-fn kinds(items: impl Iterator<Item = Result<Segment, Alarm>>) -> Vec<String> {
+fn kinds(items: impl Iterator<Item = vcnc::StreamItem>) -> Vec<String> {
     items
         .map(|item| match item {
-            Ok(segment) => format!("{:?}", segment.kind),
-            Err(alarm) => format!("{:?}: {}", alarm.code, alarm.message),
+            Ok(Item::Segment(segment)) => format!("{:?}", segment.kind),
+            Ok(Item::Frame(frame)) => format!("{frame:?}"),
+            Ok(Item::Warning(alarm)) | Err(alarm) => format!("{:?}: {}", alarm.code, alarm.message),
         })
         .collect()
 }
@@ -132,17 +133,19 @@ fn a_toy_dialect_gives_the_stream_of_the_iso_program_that_says_the_same() {
     let toy = kinds(Run::new(Toy::new(TOY), Kernel::new(&machine)));
     let iso = kinds(vcnc::interpret_str(ISO, &machine, vcnc::Options::default()));
     assert_eq!(toy, iso);
-    assert_eq!(toy.len(), 8, "{toy:#?}");
+    // The frame the first move is made in, then the items of the program.
+    assert_eq!(toy.len(), 9, "{toy:#?}");
 }
 
 #[test]
 fn the_planner_times_a_toy_program_as_the_iso_one() {
     let machine = Machine::default();
-    let times = |items: Vec<Result<Segment, Alarm>>| -> Vec<(String, f64, f64)> {
+    let times = |items: Vec<vcnc::StreamItem>| -> Vec<(String, f64, f64)> {
         Planner::new(items.into_iter(), &machine, PlanOptions::default())
-            .map(|timed| {
+            .filter_map(|timed| {
                 let timed = timed.expect("no alarm");
-                (format!("{:?}", timed.segment.kind), timed.t, timed.dt)
+                let timed = timed.segment()?;
+                Some((format!("{:?}", timed.segment.kind), timed.t, timed.dt))
             })
             .collect()
     };
@@ -175,13 +178,18 @@ fn a_kernel_alarm_stops_the_toy_program_at_its_line() {
     let alarm = items.last().unwrap().as_ref().unwrap_err();
     assert_eq!(alarm.code, AlarmCode::NoFeedRate);
     assert_eq!(alarm.span.map(|s| s.line), Some(2));
-    assert_eq!(items.len(), 2, "the rapid, then the alarm: {items:?}");
+    assert_eq!(
+        items.len(),
+        3,
+        "the frame, the rapid, then the alarm: {items:?}"
+    );
+    assert!(matches!(items[0], Ok(Item::Frame(_))));
     assert!(matches!(
-        items[0],
-        Ok(Segment {
+        items[1],
+        Ok(Item::Segment(Segment {
             kind: SegmentKind::Rapid { .. },
             ..
-        })
+        }))
     ));
 }
 
@@ -202,8 +210,9 @@ fn timed_through_the_pipeline(stream: &mut vcnc::pipeline::Stream) -> Vec<(Strin
     stream.for_each_timed(PlanOptions::default(), |items, timings| {
         for (item, timing) in items.iter().zip(timings) {
             let what = match item {
-                Ok(segment) => format!("{:?}", segment.kind),
-                Err(alarm) => format!("{:?}", alarm.code),
+                Ok(Item::Segment(segment)) => format!("{:?}", segment.kind),
+                Ok(Item::Frame(frame)) => format!("{frame:?}"),
+                Ok(Item::Warning(alarm)) | Err(alarm) => format!("{:?}", alarm.code),
             };
             timed.push((what, timing.t, timing.dt));
         }
@@ -220,7 +229,8 @@ fn the_library_pipeline_runs_a_toy_program_like_the_iso_one() {
     let mut iso = pipeline().open_text(ISO, "iso.nc");
     let toy_timed = timed_through_the_pipeline(&mut toy);
     assert_eq!(toy_timed, timed_through_the_pipeline(&mut iso));
-    assert_eq!(toy_timed.len(), 8);
+    // The frame of the first move, then the program's items.
+    assert_eq!(toy_timed.len(), 9);
     assert_eq!(toy.finish().blocks_executed, 10, "one step a line");
 }
 
@@ -236,7 +246,7 @@ fn the_pipeline_stops_a_toy_program_at_an_overtravel() {
             .layout(layout)
             .open_front_end(Toy::new(program), "toy.txt");
         let items: Vec<_> = stream.collect();
-        assert_eq!(items.len(), 2, "{items:?}");
-        assert_eq!(items[1].as_ref().unwrap_err().code, AlarmCode::Overtravel);
+        assert_eq!(items.len(), 3, "the frame, the rapid, the alarm: {items:?}");
+        assert_eq!(items[2].as_ref().unwrap_err().code, AlarmCode::Overtravel);
     }
 }

@@ -38,11 +38,12 @@ fn outline(items: impl IntoIterator<Item = Item>) -> Vec<String> {
     items
         .into_iter()
         .filter_map(|item| match item {
-            Ok(segment) => segment.motion().map(|motion| {
+            Ok(vcnc::Item::Frame(_)) => None,
+            Ok(vcnc::Item::Segment(segment)) => segment.motion().map(|motion| {
                 let [x, y, z] = motion.to.xyz();
                 format!("line {}: {x:.3} {y:.3} {z:.3}", segment.span.line)
             }),
-            Err(alarm) => Some(format!(
+            Ok(vcnc::Item::Warning(alarm)) | Err(alarm) => Some(format!(
                 "{} line {}: {}",
                 alarm.code.code(),
                 alarm.span.map_or(0, |s| s.line),

@@ -20,8 +20,9 @@ fn run_with(
     let mut alarms = Vec::new();
     for item in interpreter.by_ref() {
         match item {
-            Ok(s) => segments.push(s),
-            Err(a) => alarms.push(a),
+            Ok(vcnc::Item::Segment(s)) => segments.push(s),
+            Ok(vcnc::Item::Frame(_)) => {}
+            Ok(vcnc::Item::Warning(a)) | Err(a) => alarms.push(a),
         }
     }
     let values = (0..1000).map(|n| interpreter.variable(n)).collect();
@@ -638,7 +639,7 @@ fn m99_in_a_main_program_ends_the_run_with_a_warning_after_its_passes() {
     let mut options = Options::default();
     options.limits.main_program_passes = 3;
     let moves = interpret_str("G91 G0 X1.\nM99\n", &Machine::default(), options)
-        .filter_map(Result::ok)
+        .filter_map(|item| item.ok()?.into_segment())
         .filter(|s| matches!(s.kind, SegmentKind::Rapid { .. }))
         .count();
     assert_eq!(moves, 3);

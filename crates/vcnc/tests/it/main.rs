@@ -43,6 +43,7 @@ mod sinumerik_syntax;
 mod skip;
 mod smoothing;
 mod spiral;
+mod stream;
 mod streaming;
 mod syntec_macro;
 mod thread;

@@ -56,8 +56,9 @@ fn check_run(text: &[u8], machine: &Machine) -> Result<Stats, String> {
             return Err(format!("{item:?} came after the error alarm {error:?}"));
         }
         match item {
-            Ok(segment) => check_segment(&segment, len)?,
-            Err(alarm) => {
+            Ok(vcnc::Item::Segment(segment)) => check_segment(&segment, len)?,
+            Ok(vcnc::Item::Frame(frame)) => check_frame(&frame)?,
+            Ok(vcnc::Item::Warning(alarm)) | Err(alarm) => {
                 check_alarm(&alarm, len)?;
                 if alarm.is_error() {
                     stats.errors += 1;
@@ -118,6 +119,23 @@ pub(crate) fn check_segment(segment: &Segment, len: u32) -> Result<(), String> {
     } else {
         Err(format!(
             "segment with a number that is not finite: {segment:?}"
+        ))
+    }
+}
+
+/// A frame's map and tool length are finite numbers, and the map can be undone.
+fn check_frame(frame: &vcnc::motion::WorkFrame) -> Result<(), String> {
+    let map = &frame.transform;
+    let finite = map.linear.iter().all(|row| all_finite(row))
+        && all_finite(&map.rotary)
+        && all_finite(&map.translation)
+        && all_finite(&frame.tool_length)
+        && map.inverse().is_some();
+    if finite {
+        Ok(())
+    } else {
+        Err(format!(
+            "frame that is not finite or cannot be undone: {frame:?}"
         ))
     }
 }

@@ -388,8 +388,16 @@ fn a_tool_change_carries_the_offsets_of_the_register_numbered_like_the_tool() {
     );
     let changes = |machine: &Machine, program: &str| -> Vec<(u32, Option<ToolGeometry>)> {
         vcnc::interpret_str(program, machine, Options::default())
-            .filter_map(|item| match item.ok()?.kind {
-                SegmentKind::ToolChange { tool, geometry } => Some((tool, geometry)),
+            .filter_map(|item| match item.ok()?.into_segment()?.kind {
+                SegmentKind::ToolChange {
+                    tool,
+                    geometry,
+                    shape,
+                } => {
+                    // No machine file has tool shapes yet.
+                    assert_eq!(shape, None);
+                    Some((tool, geometry))
+                }
                 _ => None,
             })
             .collect()

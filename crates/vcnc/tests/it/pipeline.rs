@@ -26,12 +26,12 @@ struct Tally {
 impl Tally {
     fn add(&mut self, item: &Item, timing: Timing) {
         match item {
-            Ok(segment) => {
+            Ok(vcnc::Item::Segment(segment)) => {
                 self.moves += usize::from(segment.motion().is_some());
                 self.seconds += timing.dt;
                 self.items.push((item.clone(), Some(timing)));
             }
-            Err(_) => self.items.push((item.clone(), None)),
+            Ok(_) | Err(_) => self.items.push((item.clone(), None)),
         }
     }
 }
@@ -76,7 +76,10 @@ fn single_threaded<B: BlockSource>(interpreter: Interpreter<B>, machine: &Machin
     let mut planner = Planner::new(checked, machine, PlanOptions::default());
     for item in planner.by_ref() {
         match item {
-            Ok(timed) => tally.add(&Ok(timed.segment), timed.timing()),
+            Ok(timed) => {
+                let (item, timing) = timed.into_parts();
+                tally.add(&Ok(item), timing);
+            }
             Err(alarm) => tally.add(&Err(alarm), Timing::default()),
         }
     }
@@ -177,7 +180,7 @@ fn warnings_pass_as_items_and_take_no_time() {
     let warnings: Vec<_> = expected
         .items
         .iter()
-        .filter_map(|(item, _)| item.as_ref().err())
+        .filter_map(|(item, _)| item.as_ref().ok()?.warning())
         .collect();
     assert_eq!(warnings.len(), 5, "{warnings:?}");
     assert!(warnings.iter().all(|w| !w.is_error()));

@@ -114,8 +114,8 @@ fn compare_dir(dir: &Path) -> Vec<Comparison> {
             // lcnc-time counts from the first motion to the end of the last one.
             let vcnc = plan::total_seconds(&program, &machine);
             let mut summary = Summary::new(&machine);
-            for segment in interpret_str(&program, &machine, Options::default()).flatten() {
-                summary.add(&segment);
+            for item in interpret_str(&program, &machine, Options::default()).flatten() {
+                summary.add_item(&item);
             }
             let what = program
                 .lines()

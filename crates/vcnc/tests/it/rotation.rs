@@ -109,7 +109,9 @@ fn the_reported_position_is_the_programmed_one() {
         Options::default(),
     );
     for item in interpreter.by_ref() {
-        let segment = item.unwrap();
+        let Some(segment) = item.unwrap().into_segment() else {
+            continue;
+        };
         if let SegmentKind::Line { motion, .. } = segment.kind {
             assert!((motion.to.0[0] + 5.0).abs() < 1e-12);
             assert!((motion.to.0[1] - 10.0).abs() < 1e-12);

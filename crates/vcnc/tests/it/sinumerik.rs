@@ -37,8 +37,9 @@ fn collect(run: Run<Sinumerik>) -> (Vec<Segment>, Vec<Alarm>) {
     let mut alarms = Vec::new();
     for item in run {
         match item {
-            Ok(segment) => segments.push(segment),
-            Err(alarm) => alarms.push(alarm),
+            Ok(vcnc::Item::Segment(segment)) => segments.push(segment),
+            Ok(vcnc::Item::Frame(_)) => {}
+            Ok(vcnc::Item::Warning(alarm)) | Err(alarm) => alarms.push(alarm),
         }
     }
     (segments, alarms)

@@ -358,7 +358,8 @@ fn run_with(case: &Case, folder: &std::path::Path, stand_ins: &[(&str, &str)]) -
     let mut deepest_cut = f64::INFINITY;
     for item in TravelLimits::new(stream, &machine) {
         match item {
-            Ok(segment) => {
+            Ok(vcnc::Item::Frame(frame)) => summary.add_frame(&frame),
+            Ok(vcnc::Item::Segment(segment)) => {
                 summary.add(&segment);
                 if let Some(motion) = segment.motion() {
                     outcome.moves += 1;
@@ -381,10 +382,10 @@ fn run_with(case: &Case, folder: &std::path::Path, stand_ins: &[(&str, &str)]) -
                     outcome.ended = true;
                 }
             }
-            Err(alarm) if alarm.is_error() => {
+            Err(alarm) => {
                 outcome.error.get_or_insert(alarm);
             }
-            Err(alarm) => outcome.warnings.push(alarm),
+            Ok(vcnc::Item::Warning(alarm)) => outcome.warnings.push(alarm),
         }
     }
     outcome.warnings.extend(summary.warnings());
@@ -556,9 +557,9 @@ fn a_user_cycle_named_cycle_is_called_from_the_library() {
     let mut error = None;
     for item in Run::new(front_end, Kernel::new(&machine)) {
         match item {
-            Ok(segment) => ends.extend(segment.motion().map(|m| m.to.0[0])),
-            Err(alarm) if alarm.is_error() => error = Some(alarm),
-            Err(_) => {}
+            Ok(vcnc::Item::Segment(segment)) => ends.extend(segment.motion().map(|m| m.to.0[0])),
+            Ok(_) => {}
+            Err(alarm) => error = Some(alarm),
         }
     }
     // CYCLE189 moves X to 5 (its argument); CYCLE81, not in the library, is planned.
@@ -673,15 +674,14 @@ fn with_stand_ins_for_missing_subprograms_the_programs_run_on() {
 /// lands at Z-90 (machine Z 0 less the end's offset 90): found by this corpus run (with stand-ins,
 /// dubovikov_123.MPF reads Z 1323 .. 1590 where it cuts at Z 1589 .. 1590).
 #[test]
-#[ignore = "summary extents under ROT about X or Y: reported to the lead (issue 20)"]
 fn cutting_extents_under_a_rotation_about_y_stay_in_the_program_plane() {
     let machine = Machine::default()
         .with_profile(ProfileName::Sinumerik)
         .unwrap();
     let mut summary = Summary::new(&machine);
     let text = "ROT Y-90\nG0 X0 Y0 Z10\nG1 X100 F100\nM30\n";
-    for segment in vcnc::interp::sinumerik::run_str(text, &machine).flatten() {
-        summary.add(&segment);
+    for item in vcnc::interp::sinumerik::run_str(text, &machine).flatten() {
+        summary.add_item(&item);
     }
     let extents = &summary.cutting_extents;
     assert_eq!((extents.min[2], extents.max[2]), (10.0, 10.0));

@@ -99,8 +99,9 @@ fn check_run(front_end: Sinumerik, machine: &Machine, len: u32) -> Result<Vec<Al
             return Err(format!("{item:?} came after the error alarm {error:?}"));
         }
         match item {
-            Ok(segment) => check_segment(&segment, len)?,
-            Err(alarm) => {
+            Ok(vcnc::Item::Segment(segment)) => check_segment(&segment, len)?,
+            Ok(vcnc::Item::Frame(_)) => {}
+            Ok(vcnc::Item::Warning(alarm)) | Err(alarm) => {
                 check_alarm(&alarm, len)?;
                 check_help(&alarm)?;
                 if alarm.is_error() {

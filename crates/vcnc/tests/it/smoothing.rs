@@ -155,7 +155,7 @@ fn seconds(machine: &Machine, program: &str) -> f64 {
     let stream = interpret_str(program, machine, Options::default());
     Planner::new(stream, machine, PlanOptions::default())
         .map(|item| item.expect("no alarm"))
-        .map(|timed| timed.dt)
+        .filter_map(|timed| timed.segment().map(|timed| timed.dt))
         .sum()
 }
 

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use vcnc::interp::DirectoryLibrary;
 use vcnc::syntax::blocks::BackgroundParser;
 use vcnc::syntax::lines::ReaderLines;
-use vcnc::{interpret_str, Alarm, FileId, Interpreter, Machine, Options, Segment};
+use vcnc::{interpret_str, FileId, Interpreter, Machine, Options};
 
 /// A file of the test's own under the temporary directory, removed when dropped.
 struct TempProgram(PathBuf);
@@ -33,7 +33,7 @@ impl Drop for TempProgram {
 }
 
 /// Every item of a stream as text (`{:?}` tells -0 from 0 and shows every span).
-fn describe(items: impl Iterator<Item = Result<Segment, Alarm>>) -> Vec<String> {
+fn describe(items: impl Iterator<Item = vcnc::StreamItem>) -> Vec<String> {
     items.map(|item| format!("{item:?}")).collect()
 }
 

@@ -98,7 +98,7 @@ fn the_feed_override_does_not_touch_a_thread() {
         let program = "G21 G90 S400 M03\nG00 Z10.\nG33 Z-45. F1.5\nM30\n";
         let stream = vcnc::interpret_str(program, &machine, Options::default());
         Planner::new(stream, &machine, PlanOptions { feed_override })
-            .filter_map(Result::ok)
+            .filter_map(|item| item.ok()?.segment().copied())
             .filter(|t| t.segment.span.line == 3)
             .map(|t| t.dt)
             .sum()

@@ -23,7 +23,7 @@ pub(crate) mod geometry;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::AXES;
-use crate::motion::{ArcDirection, MachinePos, Segment, SegmentKind};
+use crate::motion::{ArcDirection, Item, MachinePos, Segment, SegmentKind, StreamItem};
 use geometry::{Element, GeometryError, Side, V2};
 
 /// Cutter compensation in force: turns the programmed motion of the executor (machine
@@ -139,11 +139,11 @@ impl Compensator {
     pub(crate) fn push(
         &mut self,
         segment: Segment,
-        items: &mut Vec<Result<Segment, Alarm>>,
+        items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
         if segment.motion().is_none() {
-            items.push(Ok(segment));
+            items.push(Ok(segment.into()));
             return Ok(());
         }
         if self.suspended {
@@ -153,7 +153,7 @@ impl Compensator {
                 set_plane(&mut motion.from.0, self.axes, self.tool);
                 self.tool = plane_point(&motion.to.0, self.axes);
             }
-            items.push(Ok(segment));
+            items.push(Ok(segment.into()));
             return Ok(());
         }
         let Some(element) = self.element(&segment) else {
@@ -163,7 +163,7 @@ impl Compensator {
                 set_plane(&mut motion.from.0, self.axes, here);
                 set_plane(&mut motion.to.0, self.axes, here);
             }
-            items.push(Ok(segment));
+            items.push(Ok(segment.into()));
             return Ok(());
         };
         if let SegmentKind::Arc { plane, .. } = segment.kind {
@@ -186,7 +186,7 @@ impl Compensator {
                 set_plane(&mut motion.from.0, self.axes, self.tool);
             }
             self.tool = element.end();
-            items.push(Ok(segment));
+            items.push(Ok(segment.into()));
             return Ok(());
         }
         // The side and radius for this element: a change in offset mode applies from here.
@@ -279,7 +279,7 @@ impl Compensator {
         &mut self,
         pending: Pending,
         end: V2,
-        items: &mut Vec<Result<Segment, Alarm>>,
+        items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
         if !pending.start_up && geometry::interferes(&pending.element, pending.start, end) {
@@ -294,8 +294,8 @@ impl Compensator {
             set_plane(&mut motion.from.0, self.axes, pending.start);
             set_plane(&mut motion.to.0, self.axes, end);
         }
-        for later in items[at..].iter_mut().flatten() {
-            if let Some(motion) = motion_mut(later) {
+        for later in items[at..].iter_mut() {
+            if let Some(motion) = segment_mut(later).and_then(motion_mut) {
                 for point in [&mut motion.from.0, &mut motion.to.0] {
                     if plane_point(point, self.axes) == pending.provisional {
                         set_plane(point, self.axes, end);
@@ -303,19 +303,13 @@ impl Compensator {
                 }
             }
         }
-        items.insert(at, Ok(segment));
+        items.insert(at, Ok(segment.into()));
         self.tool = end;
         Ok(())
     }
 
     /// The straight moves of an outer corner, as moves of the block that turns the corner.
-    fn links(
-        &mut self,
-        from: V2,
-        links: &[V2],
-        segment: &Segment,
-        items: &mut Vec<Result<Segment, Alarm>>,
-    ) {
+    fn links(&mut self, from: V2, links: &[V2], segment: &Segment, items: &mut Vec<StreamItem>) {
         let mut here = from;
         for &point in links {
             if point.distance(here) < geometry::EPSILON {
@@ -340,7 +334,7 @@ impl Compensator {
                 },
                 _ => link,
             };
-            items.push(Ok(link));
+            items.push(Ok(link.into()));
             here = point;
         }
         self.tool = here;
@@ -353,7 +347,7 @@ impl Compensator {
     /// Interference at that end.
     pub(crate) fn end_block(
         &mut self,
-        items: &mut Vec<Result<Segment, Alarm>>,
+        items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
         if std::mem::take(&mut self.suspended) {
@@ -377,7 +371,7 @@ impl Compensator {
     /// Interference at the pending element's end.
     pub(crate) fn finish(
         &mut self,
-        items: &mut Vec<Result<Segment, Alarm>>,
+        items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
         match self.pending.take() {
@@ -396,7 +390,7 @@ impl Compensator {
     /// Interference at the pending element's end.
     pub(crate) fn suspend(
         &mut self,
-        items: &mut Vec<Result<Segment, Alarm>>,
+        items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
         self.finish(items, held)?;
@@ -448,6 +442,14 @@ impl Compensator {
     /// True while a G40 block is being executed.
     pub(crate) fn is_cancelling(&self) -> bool {
         self.cancelling
+    }
+}
+
+/// The segment of a queued item, if it is one.
+fn segment_mut(item: &mut StreamItem) -> Option<&mut Segment> {
+    match item {
+        Ok(Item::Segment(segment)) => Some(segment),
+        _ => None,
     }
 }
 

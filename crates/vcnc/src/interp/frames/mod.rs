@@ -19,6 +19,11 @@
 //! modal G43/G44 value only when a block moves Z or changes the compensation, and a reference
 //! return on Z clears it (FANUC, spec A.26).
 //!
+//! The consumers of the stream see the whole map (`motion::WorkTransform`, [`Frames::new_frame`]):
+//! every change that moves something marks the map new, and the next move tells the stream of
+//! it first (`KernelState::move_to`), so the map is multiplied out once per change, never per
+//! move.
+//!
 //! The codes that set the frames live beside this file: `scaling.rs` (G51, G51.1, G50, G50.1),
 //! `rotation.rs` (G68, G69) and `coords.rs` (G92, G92.1, G52, G53).
 
@@ -32,7 +37,7 @@ pub(crate) use transform::{
 };
 
 use crate::machine::{Machine, WorkOffsetId, AXES};
-use crate::motion::ArcDirection;
+use crate::motion::{ArcDirection, FrameId, WorkFrame, WorkTransform};
 use std::collections::BTreeMap;
 
 /// The coordinate chain and the offsets that move the program's zero.
@@ -57,6 +62,13 @@ pub(crate) struct Frames {
     shift: [f64; AXES],
     /// `shift` plus the length vector on Z: every move records it.
     offset: [f64; AXES],
+    /// The id of the frame moves are made in (the last one the stream was told of).
+    id: FrameId,
+    /// The map has changed since the stream was last told of it (true at power-on: the first
+    /// move tells it).
+    changed: bool,
+    /// The id the next frame gets.
+    next_id: u32,
 }
 
 impl Frames {
@@ -78,6 +90,9 @@ impl Frames {
             shift: [0.0; AXES],
             offset: [0.0; AXES],
             chain: Vec::new(),
+            id: FrameId(0),
+            changed: true,
+            next_id: 0,
         };
         frames.recompute();
         frames
@@ -100,6 +115,7 @@ impl Frames {
 
     /// Sets the frame in `slot`, or clears it (`None`); the chain stays in slot order.
     pub(crate) fn set_frame(&mut self, slot: FrameSlot, transform: Option<Transform>) {
+        self.changed = true;
         self.chain.retain(|frame| frame.slot != slot);
         if let Some(transform) = transform {
             let at = self.chain.partition_point(|frame| frame.slot < slot);
@@ -198,11 +214,14 @@ impl Frames {
     fn recompute(&mut self) {
         let work = self.work_offset(self.active);
         let external = self.work_offset(WorkOffsetId::External);
+        let before = self.offset;
         self.shift = std::array::from_fn(|i| work[i] + external[i] + self.g92[i] + self.local[i]);
         self.shift[0] += self.lateral_length[0];
         self.shift[1] += self.lateral_length[1];
         self.offset = self.shift;
         self.offset[2] += self.length_vector;
+        // A write to a register not in use (G10 L2 P2 under G54) moves nothing.
+        self.changed |= self.offset != before;
     }
 
     /// The tool length offset applied to the Z position now.
@@ -213,6 +232,8 @@ impl Frames {
     /// Applies a tool length offset to the Z position.
     #[inline(always)]
     pub(crate) fn set_length_vector(&mut self, length: f64) {
+        // Compared by value, so -0 and 0 are one frame (no NaN gets here: positions are checked).
+        self.changed |= length != self.length_vector;
         self.length_vector = length;
         self.offset[2] = self.shift[2] + length;
     }
@@ -262,6 +283,59 @@ impl Frames {
     pub(crate) fn set_local(&mut self, axis: usize, value: f64) {
         self.local[axis] = value;
         self.recompute();
+    }
+
+    /// The id of the frame moves are made in.
+    #[inline(always)]
+    pub(crate) fn id(&self) -> FrameId {
+        self.id
+    }
+
+    /// True when the map changed since the stream was last told of it: the next move is made
+    /// in a new frame, whose event ([`Frames::new_frame`]) goes first.
+    #[inline(always)]
+    pub(crate) fn is_new(&self) -> bool {
+        self.changed
+    }
+
+    /// The map now as a new frame with the next id, for the stream's event.
+    pub(crate) fn new_frame(&mut self) -> WorkFrame {
+        self.id = FrameId(self.next_id);
+        self.next_id = self.next_id.wrapping_add(1);
+        self.changed = false;
+        WorkFrame {
+            id: self.id,
+            transform: self.work_transform(),
+            tool_length: [
+                self.lateral_length[0],
+                self.lateral_length[1],
+                self.length_vector,
+            ],
+        }
+    }
+
+    /// The whole map from program to machine coordinates now: the chain multiplied out, then
+    /// the shift and the tool length vector.
+    pub(crate) fn work_transform(&self) -> WorkTransform {
+        if self.chain.is_empty() {
+            // Exactly the offset every move records: program = machine - offset.
+            return WorkTransform::translation(self.offset);
+        }
+        // The chain is affine (each frame is): the origin's image is the translation, and the
+        // unit vectors' images less it are the columns of the linear part.
+        let origin = self.to_machine(&[0.0; AXES], self.length_vector);
+        let image = |axis: usize| {
+            let mut unit = [0.0; AXES];
+            unit[axis] = 1.0;
+            let moved = self.to_machine(&unit, self.length_vector);
+            std::array::from_fn::<f64, AXES, _>(|i| moved[i] - origin[i])
+        };
+        let columns: [[f64; AXES]; 3] = std::array::from_fn(image);
+        WorkTransform {
+            linear: std::array::from_fn(|i| std::array::from_fn(|j| columns[j][i])),
+            rotary: std::array::from_fn(|i| image(3 + i)[3 + i]),
+            translation: origin,
+        }
     }
 
     /// Machine minus program coordinates now: the shift and the applied tool length vector.
@@ -489,7 +563,75 @@ mod tests {
         assert!((turned.plane_factor(xy) - big).abs() < 1e-6);
     }
 
+    #[test]
+    fn a_new_frame_is_told_once_and_only_when_the_map_changed() {
+        let mut chain = frames();
+        // Power-on: the first move tells frame 0.
+        assert!(chain.is_new());
+        assert_eq!(chain.new_frame().id, FrameId(0));
+        assert!(!chain.is_new());
+        // A register not in use, the length vector it already has: nothing moved.
+        chain.set_work_offset(WorkOffsetId::Standard(2), 0, 100.0);
+        chain.set_length_vector(0.0);
+        assert!(!chain.is_new());
+        chain.set_length_vector(25.0);
+        assert!(chain.is_new());
+        let frame = chain.new_frame();
+        assert_eq!(
+            (frame.id, frame.tool_length),
+            (FrameId(1), [0.0, 0.0, 25.0])
+        );
+        assert_eq!(frame.transform.translation[2], 25.0);
+        chain.set_rotation(Some(Rotation::new((0, 1), (0.0, 0.0), 90.0)));
+        assert_eq!(chain.new_frame().id, FrameId(2));
+    }
+
+    /// True for a map whose determinant is far from zero: a nearly singular map loses a
+    /// point's digits on the way back.
+    fn well_conditioned(map: Option<&Affine>) -> bool {
+        map.is_some_and(|m| {
+            let l = m.linear();
+            let determinant = l[0][0] * (l[1][1] * l[2][2] - l[1][2] * l[2][1])
+                - l[0][1] * (l[1][0] * l[2][2] - l[1][2] * l[2][0])
+                + l[0][2] * (l[1][0] * l[2][1] - l[1][1] * l[2][0]);
+            determinant.abs() > 0.1
+        })
+    }
+
     proptest! {
+        #[test]
+        fn the_whole_map_of_a_frame_is_the_chain_multiplied_out(
+            point in prop::array::uniform6(-500.0f64..500.0),
+            linear in prop::array::uniform3(prop::array::uniform3(-3.0f64..3.0)),
+            factor in prop::array::uniform6(prop_oneof![0.1f64..4.0, -4.0f64..-0.1]),
+            degrees in -720.0f64..720.0,
+            plane in 0usize..3,
+            shift in prop::array::uniform6(-100.0f64..100.0),
+            length in -50.0f64..50.0,
+        ) {
+            let map = Affine::new(linear, shift);
+            prop_assume!(well_conditioned(map.as_ref()));
+            let mut chain = frames();
+            chain.set_programmable(map);
+            chain.set_scaling(Some(scaling(factor)));
+            let axes = [(0, 1), (2, 0), (1, 2)][plane];
+            chain.set_rotation(Some(Rotation::new(axes, (10.0, -20.0), degrees)));
+            chain.set_g92(0, shift[0]);
+            chain.set_length_vector(length);
+            let whole = chain.new_frame().transform;
+            let machine = chain.to_machine(&point, length);
+            let through = whole.to_machine(&point);
+            for (m, t) in machine.iter().zip(through) {
+                prop_assert!((m - t).abs() < 1e-7, "{machine:?} {through:?}");
+            }
+            // And back: the consumer's map of machine coordinates to the program's.
+            let program = chain.to_program(&machine);
+            let back = whole.program_map().to_program([machine[0], machine[1], machine[2]]);
+            for (p, b) in program.iter().zip(back) {
+                prop_assert!((p - b).abs() < 1e-6, "{program:?} {back:?}");
+            }
+        }
+
         #[test]
         fn a_point_through_a_chain_with_an_affine_map_and_back_is_where_it_started(
             point in prop::array::uniform6(-500.0f64..500.0),
@@ -500,14 +642,7 @@ mod tests {
             length in -50.0f64..50.0,
         ) {
             let map = Affine::new(linear, translation);
-            let determinant = map.map(|m| {
-                let l = m.linear();
-                l[0][0] * (l[1][1] * l[2][2] - l[1][2] * l[2][1])
-                    - l[0][1] * (l[1][0] * l[2][2] - l[1][2] * l[2][0])
-                    + l[0][2] * (l[1][0] * l[2][1] - l[1][1] * l[2][0])
-            });
-            // A nearly singular map loses the point's digits on the way back.
-            prop_assume!(determinant.is_some_and(|d| d.abs() > 0.1));
+            prop_assume!(well_conditioned(map.as_ref()));
             let mut chain = frames();
             chain.set_programmable(map);
             chain.set_scaling(Some(scaling(factor)));

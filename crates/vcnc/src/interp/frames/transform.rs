@@ -11,6 +11,7 @@
 //! components whose product is a matrix, so a matrix is their form.
 
 use crate::machine::AXES;
+use crate::motion::invert;
 
 /// Where a frame sits in the chain; the chain applies its frames in this order, from the
 /// program's coordinates towards the machine's.
@@ -183,28 +184,6 @@ impl Affine {
 /// `matrix · vector`, a 3x3 matrix given row by row.
 pub(crate) fn multiply(matrix: &[[f64; 3]; 3], vector: [f64; 3]) -> [f64; 3] {
     matrix.map(|row| row[0] * vector[0] + row[1] * vector[1] + row[2] * vector[2])
-}
-
-/// The inverse of `m` by its adjugate, `None` when `m` is singular or not finite.
-fn invert(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
-    // cofactor(i, j) of the transpose: the adjugate's entry (i, j).
-    let cofactor = |i: usize, j: usize| {
-        let (r0, r1) = ((j + 1) % 3, (j + 2) % 3);
-        let (c0, c1) = ((i + 1) % 3, (i + 2) % 3);
-        m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
-    };
-    let adjugate: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| cofactor(i, j)));
-    let determinant =
-        m[0][0] * adjugate[0][0] + m[0][1] * adjugate[1][0] + m[0][2] * adjugate[2][0];
-    if determinant == 0.0 || !determinant.is_finite() {
-        return None;
-    }
-    let inverse = adjugate.map(|row| row.map(|v| v / determinant));
-    inverse
-        .iter()
-        .flatten()
-        .all(|v| v.is_finite())
-        .then_some(inverse)
 }
 
 /// G51 scaling or G51.1 mirror: each axis' programmed coordinate is stretched about a centre,

@@ -22,7 +22,7 @@ use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Machine, WorkOffsetId, AXES};
 use crate::motion::{
-    ArcDirection, EndKind, MachinePos, PathMode, Plane, Segment, SegmentKind, SpindleState,
+    ArcDirection, EndKind, MachinePos, PathMode, Plane, SegmentKind, SpindleState,
 };
 use crate::source::Span;
 
@@ -314,9 +314,9 @@ impl Kernel {
         &mut self.state
     }
 
-    /// A segment another interpreter made on this kernel's state, into the stream.
-    pub(crate) fn push_segment(&mut self, segment: Segment) {
-        self.out.items.push(Ok(segment));
+    /// A segment (or frame) another interpreter made on this kernel's state, into the stream.
+    pub(crate) fn push_item(&mut self, item: crate::motion::Item) {
+        self.out.items.push(Ok(item));
     }
 
     /// A thread (or a rigid tap) to `target` (program coordinates): a line whose feed is
@@ -345,7 +345,7 @@ impl Kernel {
             exact_stop: true,
             smoothing: None,
         };
-        let motion = self.state.move_to(to, &origin, modes)?;
+        let motion = self.state.move_to(to, &origin, modes, &mut self.out)?;
         self.out.push(&origin, SegmentKind::Line { motion, feed });
         Ok(())
     }
@@ -382,7 +382,7 @@ impl Kernel {
     }
 
     /// Moves the items that can be handed out to the end of `into`.
-    pub(super) fn release(&mut self, into: &mut impl Extend<Result<Segment, Alarm>>) {
+    pub(super) fn release(&mut self, into: &mut impl Extend<crate::motion::StreamItem>) {
         let released = self.out.releasable();
         into.extend(self.out.items.drain(..released));
         if let Some(held) = self.out.held.as_mut() {

@@ -16,7 +16,7 @@ use super::super::Output;
 use super::BlockOrigin;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Machine, AXES};
-use crate::motion::{Feed, MachinePos, Move, PathMode, Plane, SegmentKind, Smoothing};
+use crate::motion::{Feed, FrameId, MachinePos, Move, PathMode, Plane, SegmentKind, Smoothing};
 use crate::source::Span;
 
 /// The machine state every dialect shares.
@@ -100,7 +100,7 @@ impl KernelState {
             return Ok(());
         }
         let feed = self.cutting_feed(feed_mode, block)?;
-        let motion = self.move_to(to, block, modes)?;
+        let motion = self.move_to(to, block, modes, out)?;
         out.push(block, SegmentKind::Line { motion, feed });
         Ok(())
     }
@@ -120,7 +120,7 @@ impl KernelState {
             return Ok(());
         }
         let per_axis = self.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis;
-        let motion = self.move_to(to, block, modes)?;
+        let motion = self.move_to(to, block, modes, out)?;
         out.push(block, SegmentKind::Rapid { motion, per_axis });
         Ok(())
     }
@@ -142,7 +142,7 @@ impl KernelState {
         let mut center = self.position;
         (center[a], center[b]) = arc.center;
         check_position(&center, block)?;
-        let motion = self.move_to(arc.target, block, modes)?;
+        let motion = self.move_to(arc.target, block, modes, out)?;
         out.push_with(block, || SegmentKind::Arc {
             motion,
             center: MachinePos(center),
@@ -154,7 +154,10 @@ impl KernelState {
         Ok(())
     }
 
-    /// A [`Move`] from the current position to `to`; the position becomes `to`.
+    /// A [`Move`] from the current position to `to`; the position becomes `to`. When the map
+    /// from program to machine coordinates changed since the last move, its
+    /// [`Item::Frame`](crate::motion::Item::Frame) goes into `out` first: the caller queues the
+    /// move next.
     ///
     /// # Errors
     /// [`AlarmCode::ValueOutOfRange`] for a position beyond the control's range (incremental
@@ -167,8 +170,10 @@ impl KernelState {
         to: [f64; AXES],
         block: &impl BlockOrigin,
         modes: MoveModes,
+        out: &mut Output,
     ) -> Result<Move, Alarm> {
         check_position(&to, block)?;
+        let frame = self.frame_in_force(out);
         let from = MachinePos(self.position);
         self.position = to;
         Ok(Move {
@@ -177,8 +182,26 @@ impl KernelState {
             path_mode: modes.path_mode,
             exact_stop: modes.exact_stop,
             smoothing: modes.smoothing,
+            frame,
             offset: self.frames.offset_at(&to),
         })
+    }
+
+    /// The frame a move made now is in; its event goes into `out` first when it is new.
+    #[inline(always)]
+    pub(crate) fn frame_in_force(&mut self, out: &mut Output) -> FrameId {
+        if self.frames.is_new() {
+            self.queue_frame(out);
+        }
+        self.frames.id()
+    }
+
+    /// Tells the stream of a new frame.
+    #[cold]
+    #[inline(never)]
+    fn queue_frame(&mut self, out: &mut Output) {
+        let frame = self.frames.new_frame();
+        out.push_frame(frame);
     }
 
     /// The feed of a cutting move in `mode`.

@@ -582,7 +582,7 @@ mod tests {
         let path = std::env::temp_dir().join(format!("vcnc-indexed-{}.nc", std::process::id()));
         std::fs::write(&path, &text).unwrap();
         let machine = Machine::default();
-        let describe = |items: &mut dyn Iterator<Item = Result<crate::Segment, crate::Alarm>>| {
+        let describe = |items: &mut dyn Iterator<Item = crate::StreamItem>| {
             items.map(|item| format!("{item:?}")).collect::<Vec<_>>()
         };
         let whole = describe(&mut crate::interpret_str(

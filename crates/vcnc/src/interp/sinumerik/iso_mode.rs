@@ -13,7 +13,7 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
 use crate::interp::modal::{DistanceMode, MotionMode, Units};
 use crate::interp::{Interpreter, Options};
-use crate::motion::{ArcDirection, SegmentKind};
+use crate::motion::{ArcDirection, Item, SegmentKind};
 use crate::syntax::lines::TextLines;
 
 /// True when the line holds the word G290 (not G2900, not in a comment).
@@ -91,14 +91,14 @@ pub(super) fn run(
     let mut result = Ok(());
     for item in iso.by_ref() {
         match item {
-            Ok(segment) if matches!(segment.kind, SegmentKind::End { .. }) => break,
-            Ok(segment) => kernel.push_segment(segment),
-            Err(alarm) if alarm.code == AlarmCode::MissingProgramEnd => {}
-            Err(alarm) if alarm.is_error() => {
+            Ok(Item::Segment(segment)) if matches!(segment.kind, SegmentKind::End { .. }) => break,
+            Ok(Item::Warning(alarm)) if alarm.code == AlarmCode::MissingProgramEnd => {}
+            Ok(Item::Warning(warning)) => kernel.warn(warning),
+            Ok(item) => kernel.push_item(item),
+            Err(alarm) => {
                 result = Err(alarm);
                 break;
             }
-            Err(warning) => kernel.warn(warning),
         }
     }
     std::mem::swap(&mut iso.core.exec.kernel, kernel.state_mut());

@@ -162,7 +162,15 @@ pub(super) fn change(
                 length: e.length,
                 radius: e.radius,
             });
-        kernel.event(SegmentKind::ToolChange { tool: t, geometry }, origin);
+        let shape = None;
+        kernel.event(
+            SegmentKind::ToolChange {
+                tool: t,
+                geometry,
+                shape,
+            },
+            origin,
+        );
     }
     if let Some((d, span)) = words.edge {
         front.tool.edge = d;

@@ -109,7 +109,7 @@ pub fn stream<'a>(
     text: &'a [u8],
     machine: &Machine,
     options: vcnc::Options,
-) -> Box<dyn Iterator<Item = Result<vcnc::Segment, vcnc::Alarm>> + 'a> {
+) -> Box<dyn Iterator<Item = vcnc::StreamItem> + 'a> {
     let dir = path.parent().expect("a corpus program is in a folder");
     let name = path.file_name().unwrap().to_string_lossy();
     if dir.ends_with("sinumerik") {

@@ -66,17 +66,27 @@ pub fn run_with_library(
     collect(interpret_bytes(text, machine, options).with_library(library))
 }
 
-/// Everything `items` yields, split into segments and alarms.
-pub fn collect(items: impl Iterator<Item = Result<Segment, Alarm>>) -> Run {
+/// Everything `items` yields, split into segments and alarms (warnings and the error); the
+/// frames are left out.
+pub fn collect(items: impl Iterator<Item = vcnc::StreamItem>) -> Run {
     let mut segments = Vec::new();
     let mut alarms = Vec::new();
     for item in items {
         match item {
-            Ok(segment) => segments.push(segment),
-            Err(alarm) => alarms.push(alarm),
+            Ok(vcnc::Item::Segment(segment)) => segments.push(segment),
+            Ok(vcnc::Item::Frame(_)) => {}
+            Ok(vcnc::Item::Warning(alarm)) | Err(alarm) => alarms.push(alarm),
         }
     }
     Run { segments, alarms }
+}
+
+/// The segments of a stream that runs without any alarm (a warning included); panics on one.
+#[allow(dead_code)]
+pub fn segments(items: impl Iterator<Item = vcnc::StreamItem>) -> Vec<Segment> {
+    let run = collect(items);
+    assert!(run.alarms.is_empty(), "{:?}", run.alarms);
+    run.segments
 }
 
 /// The motion stream as text, one segment per line, machine coordinates rounded to 1e-4:

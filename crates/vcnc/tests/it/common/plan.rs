@@ -47,7 +47,13 @@ pub fn machine(limits: &Limits) -> Machine {
 pub fn timed(program: &str, machine: &Machine, options: PlanOptions) -> Vec<TimedSegment> {
     let stream = interpret_str(program, machine, Options::default());
     Planner::new(stream, machine, options)
-        .map(|item| item.unwrap_or_else(|alarm| panic!("alarm: {alarm:?}\n{program}")))
+        .filter_map(|item| match item {
+            Ok(vcnc::plan::TimedItem::Segment(timed)) => Some(timed),
+            Ok(vcnc::plan::TimedItem::Frame(_)) => None,
+            Ok(vcnc::plan::TimedItem::Warning(alarm)) | Err(alarm) => {
+                panic!("alarm: {alarm:?}\n{program}")
+            }
+        })
         .collect()
 }
 
