@@ -24,7 +24,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
 /// on how the profile reads `X10`.
 fn annotated(text: &str, machine: &vcnc::Machine) -> String {
     let profile = machine.profile.name.as_str();
-    let (setting, reads, other, other_reads) = match machine.profile.decimal_less {
+    let (setting, reads, other, other_reads) = match machine.profile.units.decimal_less {
         DecimalLess::Increments => (
             "increments",
             "0.010 mm (0.0010 inch)",
