@@ -90,7 +90,7 @@ fn compare_all() -> Vec<Comparison> {
                 // lcnc-time's --vel is also [TRAJ]MAX_LINEAR_VELOCITY, the path speed cap.
                 planner: &format!("habits = \"linuxcnc\"\nmax_path_rate = {:?}", speed * 60.0),
                 // LinuxCNC's G4 P is seconds; its programs write every coordinate with a point.
-                profile_overrides: "dwell_p = \"seconds_with_point\"",
+                profile_overrides: "dwell.dwell_p = \"seconds_with_point\"",
                 ..plan::Limits::default()
             });
             // lcnc-time counts from the first motion to the end of the last one.
