@@ -234,7 +234,7 @@ impl ProgramScan {
                 ),
             )
             .with_help(format!(
-                "if it is, set `decimal_less = \"whole_units\"` under [profile_overrides] in the machine file (FANUC parameter DPI = 1); if not, write the decimal point (`{}.`)",
+                "if it is, set `decimal_less = \"whole_units\"` under [profile_overrides.units] in the machine file (FANUC parameter DPI = 1); if not, write the decimal point (`{}.`)",
                 place.text
             )),
         )
