@@ -160,7 +160,7 @@ pub enum AlarmCode {
     WrittenForAnotherProfile,
     /// A warning: lengths written without a decimal point come out under a millimetre read in
     /// least increments (`G0 X10 Y10` goes to 0.010 mm): a program meant in whole units. Fix:
-    /// `decimal_less = "whole_units"` under `[profile_overrides]` in the machine file, or the
+    /// `decimal_less = "whole_units"` under `[profile_overrides.units]` in the machine file, or the
     /// decimal points.
     DecimalLessScale,
     /// A warning: a cutting move while the spindle is stopped (before M03/M04, after M05).
@@ -340,7 +340,7 @@ impl AlarmCode {
             UserAlarm => "the program raised this alarm itself (#3000): see its message",
             InterruptIgnored => "name a block where M96 is in force and no excluding mode (G41/G42, G16 ...) is on",
             WrittenForAnotherProfile => "run it with the profile the warning names (--profile), or set that profile in the machine file",
-            DecimalLessScale => "write the lengths with a decimal point, or set decimal_less = \"whole_units\" in the machine file's [profile_overrides]",
+            DecimalLessScale => "write the lengths with a decimal point, or set decimal_less = \"whole_units\" in the machine file's [profile_overrides.units]",
             CuttingWithSpindleStopped => "start the spindle (M03 or M04 with S) before the first cut",
             SpindleSpeedAboveMaximum => "program S within the machine file's spindle.max_rpm",
             UnitNotSelected => "add G20 (inch) or G21 (mm) at the program's start",

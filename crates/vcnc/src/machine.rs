@@ -2,7 +2,8 @@
 //!
 //! [`Machine::default`] is the embedded generic 3-axis vertical machining centre
 //! (`default_machine.toml`), so every command works with no file at all. A machine file names
-//! its controller profile and may override any profile field.
+//! its controller profile and may override any profile field, in the profile's own tables
+//! (`[profile_overrides.motion]`, ...: see [`Profile::with_overrides`]).
 
 pub use crate::axis::{Axis, AXES};
 use crate::plan::{PlannerConfig, PlannerFile};
@@ -294,7 +295,7 @@ impl Machine {
             }
             axes[axis.index()] = Some(config);
         }
-        let count = profile.reference_points.max(1) as usize;
+        let count = profile.coordinates.reference_points.max(1) as usize;
         let mut reference_points = vec![[0.0; AXES]; count];
         for (key, values) in &file.reference_points {
             let n: usize = key
@@ -409,7 +410,7 @@ impl MachineFile {
         for tool in &self.tool_offsets {
             let number = tool.number;
             let key = |name: &str| format!("tool_offsets (number {number}).{name}");
-            let most = f64::from(profile.max_offset_number);
+            let most = f64::from(profile.compensation.max_offset_number);
             check_range(&key("number"), f64::from(number), AtLeast(1.0), most)?;
             position(&key("length"), tool.length)?;
             position(&key("length_wear"), tool.length_wear)?;
@@ -539,10 +540,39 @@ mod tests {
             let error = Machine::from_toml(&text).unwrap_err().to_string();
             assert_eq!(error, format!("machine file: {expected}"));
         }
-        let text = format!("{DEFAULT_MACHINE_TOML}\n[profile_overrides]\nmax_offset_number = 0\n");
+        let text = format!(
+            "{DEFAULT_MACHINE_TOML}\n[profile_overrides.compensation]\nmax_offset_number = 0\n"
+        );
         let error = Machine::from_toml(&text).unwrap_err().to_string();
         assert!(
-            error.contains("profile_overrides.max_offset_number = 0"),
+            error.contains("profile_overrides.compensation.max_offset_number = 0"),
+            "{error}"
+        );
+    }
+
+    #[test]
+    fn profile_overrides_go_in_the_profiles_tables() {
+        let text = format!(
+            "{DEFAULT_MACHINE_TOML}\n[profile_overrides.motion]\nrapid_path = \"per_axis\"\n"
+        );
+        let machine = Machine::from_toml(&text).unwrap();
+        assert_eq!(
+            machine.profile.motion.rapid_path,
+            crate::profile::RapidPath::PerAxis
+        );
+        // The machine keeps its overrides under another profile.
+        let machine = machine.with_profile(ProfileName::Syntec).unwrap();
+        assert_eq!(
+            machine.profile.motion.rapid_path,
+            crate::profile::RapidPath::PerAxis
+        );
+        assert_eq!(machine.profile.motion.default_feed, Some(1000.0));
+        // The flat form of older machine files is refused with the table to write it in.
+        let text =
+            format!("{DEFAULT_MACHINE_TOML}\n[profile_overrides]\nrapid_path = \"per_axis\"\n");
+        let error = Machine::from_toml(&text).unwrap_err().to_string();
+        assert!(
+            error.contains("write `rapid_path = ...` under [profile_overrides.motion]"),
             "{error}"
         );
     }

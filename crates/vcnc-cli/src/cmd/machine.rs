@@ -24,7 +24,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
 /// on how the profile reads `X10`.
 fn annotated(text: &str, machine: &vcnc::Machine) -> String {
     let profile = machine.profile.name.as_str();
-    let (setting, reads, other, other_reads) = match machine.profile.decimal_less {
+    let (setting, reads, other, other_reads) = match machine.profile.units.decimal_less {
         DecimalLess::Increments => (
             "increments",
             "0.010 mm (0.0010 inch)",
@@ -35,14 +35,14 @@ fn annotated(text: &str, machine: &vcnc::Machine) -> String {
     };
     let note = format!(
         "# Numbers without a decimal point: decimal_less = \"{setting}\" on this profile, X10 is\n\
-         # {reads}; decimal_less = \"{other}\" under [profile_overrides] reads X10 as {other_reads}.\n"
+         # {reads}; decimal_less = \"{other}\" under [profile_overrides.units] reads X10 as {other_reads}.\n"
     );
     let mut out = String::with_capacity(text.len() + note.len() + 32);
     let mut named = false;
     for line in text.lines() {
         // The note of an earlier `vcnc machine` is made again below.
         if line.starts_with("# Numbers without a decimal point:")
-            || line.contains("under [profile_overrides] reads X10 as")
+            || (line.contains("under [profile_overrides") && line.contains("reads X10 as"))
         {
             continue;
         }

@@ -75,7 +75,7 @@ fn whole_units_without_decimal_points_are_warned_once_with_the_fix() {
     let machine = temp_program(
         "whole_units.toml",
         &format!(
-            "{}\n[profile_overrides]\ndecimal_less = \"whole_units\"\n",
+            "{}\n[profile_overrides.units]\ndecimal_less = \"whole_units\"\n",
             String::from_utf8(vcnc(&["machine"]).stdout).unwrap()
         ),
     );

@@ -92,7 +92,12 @@ pub(crate) fn before_motion(
                 MCode::SpindleOrientation => exec.kernel.spindle.turn(SpindleState::Oriented),
                 MCode::ToolChange => {
                     let tool = exec.kernel.tools.change();
-                    let diameters = exec.kernel.setup.profile().radius_offsets_are_diameters;
+                    let diameters = exec
+                        .kernel
+                        .setup
+                        .profile()
+                        .compensation
+                        .radius_offsets_are_diameters;
                     SegmentKind::ToolChange {
                         tool,
                         geometry: exec.kernel.tools.geometry(tool, diameters),
@@ -143,18 +148,23 @@ pub(crate) fn dwell(
     out: &mut Output,
 ) -> Result<(), Alarm> {
     let seconds = if let Some(p) = cmd.p() {
-        p_seconds(exec.kernel.setup.profile().dwell_p, p)?
+        p_seconds(exec.kernel.setup.profile().dwell.dwell_p, p)?
     } else if let Some(x) = cmd.axis(Axis::X.index()) {
         let n = x.number;
-        if exec.kernel.setup.profile().dwell_x_before_g04_is_increments
+        if exec
+            .kernel
+            .setup
+            .profile()
+            .dwell
+            .dwell_x_before_g04_is_increments
             && x.order < g04_order
             && n.decimal_point
         {
             // FANUC 0M (spec A.8): the X word was converted as a distance before G04 was read, so
             // its count of least increments becomes milliseconds.
             let increment = match exec.modal.units {
-                Units::Millimetres => exec.kernel.setup.profile().increment_mm,
-                Units::Inches => exec.kernel.setup.profile().increment_inch,
+                Units::Millimetres => exec.kernel.setup.profile().units.increment_mm,
+                Units::Inches => exec.kernel.setup.profile().units.increment_inch,
             };
             (n.value / increment).round() / 1000.0
         } else if n.decimal_point {

@@ -74,7 +74,7 @@ pub(crate) fn arc(
         ArcSpec::Center { offset, span }
     };
     let feed = exec.cutting_feed(cmd)?;
-    if let (Some(turns), true) = (cmd.l(), exec.kernel.setup.profile().arc_l_is_spiral) {
+    if let (Some(turns), true) = (cmd.l(), exec.kernel.setup.profile().motion.arc_l_is_spiral) {
         return spiral(exec, cmd, spec, turns, direction, target, feed, out);
     }
     let start = in_plane(plane, &exec.kernel.position);
@@ -100,7 +100,7 @@ pub(crate) fn arc(
         end,
         spec,
         direction,
-        exec.kernel.setup.profile().arc_radius_tolerance,
+        exec.kernel.setup.profile().motion.arc_radius_tolerance,
     )?;
     if let Some(factor) = position_offset {
         super::position_offset::check_quarter(factor, start, end, center_plane)?;
@@ -168,7 +168,7 @@ pub(crate) fn plain_arc(
     };
     let start = (exec.kernel.position[0], exec.kernel.position[1]);
     let end = (target[0], target[1]);
-    let tolerance = exec.kernel.setup.profile().arc_radius_tolerance;
+    let tolerance = exec.kernel.setup.profile().motion.arc_radius_tolerance;
     let Some((x, y)) = clean_arc_center(start, end, spec, direction, tolerance) else {
         return arc(exec, cmd, direction, target, out);
     };

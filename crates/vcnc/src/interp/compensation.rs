@@ -99,7 +99,11 @@ pub(crate) fn before_motion(
                         (a, b),
                         &exec.kernel.position,
                         left,
-                        exec.kernel.setup.profile().cutter_comp_look_ahead,
+                        exec.kernel
+                            .setup
+                            .profile()
+                            .compensation
+                            .cutter_comp_look_ahead,
                     );
                     comp.set_reversed(reversed(&exec.kernel.frames, exec.modal.plane));
                     out.start_compensation(comp);
@@ -120,7 +124,7 @@ pub(crate) fn before_motion(
 /// True when the block's H word is the radius offset number (`G42 H19`, the old FANUC 0M
 /// form) rather than a length offset number.
 pub(crate) fn h_names_radius_offset(profile: &Profile, cmd: &Command) -> bool {
-    profile.radius_offset_by_h
+    profile.compensation.radius_offset_by_h
         && cmd.word(b'D').is_none()
         && cmd
             .group(Group::CutterComp)
@@ -145,7 +149,13 @@ fn reversed(frames: &Frames, plane: Plane) -> bool {
 /// and a mirrored plane axis (spec 1.29) each swap the side.
 fn setting(exec: &Executor, left: bool) -> (Side, f64) {
     let offset = exec.kernel.tools.radius_offset();
-    let offset = if exec.kernel.setup.profile().radius_offsets_are_diameters {
+    let offset = if exec
+        .kernel
+        .setup
+        .profile()
+        .compensation
+        .radius_offsets_are_diameters
+    {
         offset / 2.0
     } else {
         offset
@@ -200,7 +210,8 @@ pub(crate) fn after_motion(
     let kind = match exec.modal.motion {
         MotionMode::Rapid => SegmentKind::Rapid {
             motion,
-            per_axis: exec.kernel.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis,
+            per_axis: exec.kernel.setup.profile().motion.rapid_path
+                == crate::profile::RapidPath::PerAxis,
         },
         _ => {
             let feed = exec.cutting_feed(cmd)?;

@@ -74,7 +74,7 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
     let Some(g) = cmd.group(Group::Cycle) else {
         if let Some(cycle) = &exec.cycle {
             if exec.modal.plane != cycle.plane
-                && exec.kernel.setup.profile().cycle_plane_follows_g17
+                && exec.kernel.setup.profile().cycles.cycle_plane_follows_g17
             {
                 return Err(Alarm::error(
                     AlarmCode::CycleData,
@@ -91,7 +91,7 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
         GCode::Cycle(kind) => match exec.cycle.as_mut() {
             Some(cycle) => cycle.kind = kind,
             None => {
-                let (a, b, d) = if exec.kernel.setup.profile().cycle_plane_follows_g17 {
+                let (a, b, d) = if exec.kernel.setup.profile().cycles.cycle_plane_follows_g17 {
                     exec.modal.plane.axes()
                 } else {
                     Plane::Xy.axes()
@@ -520,8 +520,9 @@ fn store(exec: &Executor, cycle: &mut Cycle, cmd: &Command) -> Result<(), Alarm>
             .kernel
             .setup
             .profile()
+            .dwell
             .cycle_dwell_p
-            .unwrap_or(exec.kernel.setup.profile().dwell_p);
+            .unwrap_or(exec.kernel.setup.profile().dwell.dwell_p);
         cycle.p = super::auxiliary::p_seconds(rule, p)?;
     }
     if let Some(f2) = cmd.retract_feed() {
@@ -706,7 +707,7 @@ impl Hole<'_> {
                 // G83: back into the hole, stopping the clearance short of the last depth.
                 self.rapid_to(self.short_of(
                     depth,
-                    self.exec.kernel.setup.profile().peck_clearance,
+                    self.exec.kernel.setup.profile().cycles.peck_clearance,
                     down,
                 ))?;
             }
@@ -719,7 +720,7 @@ impl Hole<'_> {
                 CycleKind::Peck => self.rapid_to(self.r_level)?,
                 _ => self.rapid_to(self.short_of(
                     depth,
-                    self.exec.kernel.setup.profile().peck_retract,
+                    self.exec.kernel.setup.profile().cycles.peck_retract,
                     down,
                 ))?,
             }
@@ -811,7 +812,7 @@ fn rapid(
 /// G76's shift at the bottom: Q along the profile's direction, in the positioning plane.
 fn shift(profile: &Profile, cycle: &Cycle) -> (f64, f64) {
     let q = cycle.q.unwrap_or(0.0);
-    match profile.boring_shift {
+    match profile.cycles.boring_shift {
         ShiftDirection::PlusFirst => (q, 0.0),
         ShiftDirection::MinusFirst => (-q, 0.0),
         ShiftDirection::PlusSecond => (0.0, q),

@@ -22,12 +22,14 @@ pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     let l = cmd.l().and_then(|l| l.number.whole());
     let profile = exec.kernel.setup.profile();
     if let Some(l) = l {
-        if l == i64::from(profile.g10_work_l) {
+        if l == i64::from(profile.coordinates.g10_work_l) {
             let id = standard_offset(exec, cmd)?;
             set_work_offset(exec, cmd, id);
             return Ok(true);
         }
-        if profile.g10_extended_work_l != 0 && l == i64::from(profile.g10_extended_work_l) {
+        if profile.coordinates.g10_extended_work_l != 0
+            && l == i64::from(profile.coordinates.g10_extended_work_l)
+        {
             let id = extended_offset(exec, cmd, g10_span)?;
             set_work_offset(exec, cmd, id);
             return Ok(true);
@@ -35,11 +37,12 @@ pub(crate) fn g10(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     }
     let field = match l {
         Some(l) => profile
+            .compensation
             .g10_tool_l
             .iter()
             .find(|t| i64::from(t.l) == l)
             .map(|t| t.field),
-        None => profile.g10_tool_default,
+        None => profile.compensation.g10_tool_default,
     };
     let Some(field) = field else {
         let span = cmd.l().map_or(g10_span, |v| v.span);
@@ -61,7 +64,7 @@ fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm
         return Ok(exec.modal.work_offset);
     };
     let n = p.number.whole().unwrap_or(-1);
-    let highest = if exec.kernel.setup.profile().g59_x_offsets {
+    let highest = if exec.kernel.setup.profile().coordinates.g59_x_offsets {
         15
     } else {
         6
@@ -74,7 +77,7 @@ fn standard_offset(exec: &Executor, cmd: &Command) -> Result<WorkOffsetId, Alarm
             p.span,
             format!(
                 "G10 L{} P{n}: work offsets are P0 (external) to P{highest}",
-                exec.kernel.setup.profile().g10_work_l
+                exec.kernel.setup.profile().coordinates.g10_work_l
             ),
         )),
     }
@@ -122,13 +125,13 @@ fn set_tool_offset(
     )?;
     let r = required(cmd.r(), span, "G10 for a tool offset needs R (the value)")?;
     let n = p.number.whole().unwrap_or(-1);
-    if n < 1 || n > i64::from(exec.kernel.setup.profile().max_offset_number) {
+    if n < 1 || n > i64::from(exec.kernel.setup.profile().compensation.max_offset_number) {
         return Err(Alarm::error(
             AlarmCode::OffsetNumberOutOfRange,
             p.span,
             format!(
                 "offset number {n} is out of range 1 to {}",
-                exec.kernel.setup.profile().max_offset_number
+                exec.kernel.setup.profile().compensation.max_offset_number
             ),
         ));
     }

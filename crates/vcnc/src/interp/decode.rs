@@ -450,7 +450,7 @@ fn word_out_of_range(word: &Word, profile: &Profile) -> Alarm {
         word.span,
         format!(
             "{} is out of range: the control reads values up to {}",
-            word.letter as char, profile.max_word_value
+            word.letter as char, profile.reading.max_word_value
         ),
     )
 }
@@ -617,7 +617,7 @@ pub(crate) fn decode(
 ) -> Result<(), Alarm> {
     out.reset(block.span);
     for (order, word) in block.words.iter().enumerate() {
-        if word.number.value.abs() > profile.max_word_value {
+        if word.number.value.abs() > profile.reading.max_word_value {
             return Err(word_out_of_range(word, profile));
         }
         // Axis words are most of every program: one mask test records them (and the other
@@ -682,7 +682,7 @@ fn decode_other(
                     return Ok(());
                 }
             }
-            if out.m.len() >= profile.m_codes_per_block as usize && !out.m.is_empty() {
+            if out.m.len() >= profile.reading.m_codes_per_block as usize && !out.m.is_empty() {
                 let dropped = out.m.remove(0);
                 out.warn(
                     Alarm::warning(
@@ -690,7 +690,7 @@ fn decode_other(
                         dropped.span,
                         format!(
                             "this control runs {} M code(s) per block: this one is ignored",
-                            profile.m_codes_per_block
+                            profile.reading.m_codes_per_block
                         ),
                     )
                     .with_label(word.span, "the later M code that runs"),
@@ -836,7 +836,7 @@ fn same_group(
     profile: &Profile,
     out: &mut Command,
 ) -> Result<(), Alarm> {
-    match profile.same_group {
+    match profile.reading.same_group {
         SameGroupRule::LastWins if group != Group::NonModal => {
             // The word was classified, so its value is a code in tenths.
             let name = word

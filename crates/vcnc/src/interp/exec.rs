@@ -265,7 +265,7 @@ impl Executor {
 
     /// E is read by tapping cycles, the smoothing modes and (on some profiles) threading only.
     fn refuse_stray_e(&self, cmd: &Command, smoothing: Option<GWord>) -> Result<(), Alarm> {
-        let thread_e = self.kernel.setup.profile().thread_e_per_inch
+        let thread_e = self.kernel.setup.profile().motion.thread_e_per_inch
             && self.modal.motion == MotionMode::Thread;
         match (cmd.word(b'E'), &self.cycle, smoothing, thread_e) {
             (Some(e), None, None, false) => Err(Alarm::not_supported(
@@ -340,7 +340,7 @@ impl Executor {
                     if self.modal.feed_mode != before {
                         // F means something else in the new mode; FANUC clears it.
                         self.kernel.feed = match self.modal.feed_mode {
-                            FeedMode::PerMinute => self.kernel.setup.profile().default_feed,
+                            FeedMode::PerMinute => self.kernel.setup.profile().motion.default_feed,
                             _ => None,
                         };
                     }

@@ -592,7 +592,15 @@ impl Core {
             return;
         }
         self.blocks_executed += 1;
-        if self.macros.in_call() && self.exec.kernel.setup.profile().end_in_subprogram_returns {
+        if self.macros.in_call()
+            && self
+                .exec
+                .kernel
+                .setup
+                .profile()
+                .subprograms
+                .end_in_subprogram_returns
+        {
             // Syntec: M02/M30 in a subprogram return to the caller.
             if let Some(end) = self.command.take_program_end() {
                 self.command

@@ -199,7 +199,12 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
             eccentricity,
             machine_y: machine[HYPOTHETICAL],
             last: machine,
-            tolerance: exec.kernel.setup.profile().polar_interpolation_tolerance,
+            tolerance: exec
+                .kernel
+                .setup
+                .profile()
+                .motion
+                .polar_interpolation_tolerance,
         },
     });
     Ok(())

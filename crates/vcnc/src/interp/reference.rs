@@ -59,7 +59,13 @@ fn reference_return(
         .copied()
         .unwrap_or([0.0; AXES]);
     if !cmd.has_axis_words() {
-        if exec.kernel.setup.profile().g28_without_axes_homes_all {
+        if exec
+            .kernel
+            .setup
+            .profile()
+            .coordinates
+            .g28_without_axes_homes_all
+        {
             let mut target = exec.kernel.position;
             for axis in Axis::ALL
                 .into_iter()

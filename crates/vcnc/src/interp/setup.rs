@@ -61,7 +61,7 @@ impl Setup {
     /// [`AlarmCode::OffsetNumberOutOfRange`] for a number the control does not have.
     pub(crate) fn offset_number(&self, word: Value, letter: char) -> Result<u32, Alarm> {
         let n = word.number.whole().unwrap_or(-1);
-        let max = self.profile.max_offset_number;
+        let max = self.profile.compensation.max_offset_number;
         if n < 0 || n > i64::from(max) {
             return Err(Alarm::error(
                 AlarmCode::OffsetNumberOutOfRange,
@@ -78,7 +78,7 @@ impl Setup {
     /// [`AlarmCode::WorkOffsetOutOfRange`] for a number the control does not have.
     pub(crate) fn extended_offset(&self, p: &Value) -> Result<WorkOffsetId, Alarm> {
         let n = p.number.whole().unwrap_or(-1);
-        let count = self.profile.g54_1_count;
+        let count = self.profile.coordinates.g54_1_count;
         if n < 1 || n > i64::from(count) {
             return Err(Alarm::error(
                 AlarmCode::WorkOffsetOutOfRange,
@@ -93,10 +93,11 @@ impl Setup {
     /// for numbers without a decimal point.
     pub(crate) fn length(&self, units: Units, value: &Value) -> f64 {
         let n = value.number;
-        let raw = if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
+        let raw = if !n.decimal_point && self.profile.units.decimal_less == DecimalLess::Increments
+        {
             match units {
-                Units::Millimetres => n.value * self.profile.increment_mm,
-                Units::Inches => n.value * self.profile.increment_inch,
+                Units::Millimetres => n.value * self.profile.units.increment_mm,
+                Units::Inches => n.value * self.profile.units.increment_inch,
             }
         } else {
             n.value
@@ -108,8 +109,8 @@ impl Setup {
     /// increments when written without a decimal point on profiles that read numbers so.
     pub(crate) fn angle(&self, value: &Value) -> f64 {
         let n = value.number;
-        if !n.decimal_point && self.profile.decimal_less == DecimalLess::Increments {
-            n.value * self.profile.increment_deg
+        if !n.decimal_point && self.profile.units.decimal_less == DecimalLess::Increments {
+            n.value * self.profile.units.increment_deg
         } else {
             n.value
         }

@@ -34,7 +34,7 @@ const HIGH_SPEED_ON: f64 = 10000.0;
 /// G63, and for high-speed mode with inverse time feed.
 pub(crate) fn switch(exec: &mut Executor, cmd: &Command, g: GWord) -> Result<(), Alarm> {
     let default = Smoothing::from_mm(exec.kernel.setup.machine().planner.smoothing_tolerance);
-    match (g.code, exec.kernel.setup.profile().smoothing_codes) {
+    match (g.code, exec.kernel.setup.profile().motion.smoothing_codes) {
         (GCode::HighSpeedMode, _) => {
             let e = cmd.word(b'E');
             // P defaults to 10000 when E is given, to 0 when neither is (spec 1.8).

@@ -33,7 +33,7 @@ pub(crate) fn g33(
     }
     let lead = match cmd
         .word(b'E')
-        .filter(|_| exec.kernel.setup.profile().thread_e_per_inch)
+        .filter(|_| exec.kernel.setup.profile().motion.thread_e_per_inch)
     {
         Some(e) if e.number.value > 0.0 => 25.4 / e.number.value,
         Some(e) => {

@@ -389,10 +389,12 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         40 => Dwell,
         90 => ExactStopOnce,
         100 => DataInput,
-        120 if profile.g12_g13_circle_cutting => CircleCutting(ArcDirection::Clockwise),
-        130 if profile.g12_g13_circle_cutting => CircleCutting(ArcDirection::CounterClockwise),
-        121 if profile.polar_interpolation => PolarInterpolation,
-        131 if profile.polar_interpolation => PolarInterpolationCancel,
+        120 if profile.motion.g12_g13_circle_cutting => CircleCutting(ArcDirection::Clockwise),
+        130 if profile.motion.g12_g13_circle_cutting => {
+            CircleCutting(ArcDirection::CounterClockwise)
+        }
+        121 if profile.motion.polar_interpolation => PolarInterpolation,
+        131 if profile.motion.polar_interpolation => PolarInterpolationCancel,
         150 => PolarCancel,
         160 => Polar,
         170 => PlaneXy,
@@ -400,8 +402,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         190 => PlaneYz,
         200 => Inch,
         210 => Metric,
-        700 if profile.g70_g71_units => Inch,
-        710 if profile.g70_g71_units => Metric,
+        700 if profile.units.g70_g71_units => Inch,
+        710 if profile.units.g70_g71_units => Metric,
         280 => ReferenceReturn,
         290 => ReturnFromReference,
         300 => NthReferenceReturn,
@@ -412,10 +414,10 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         420 => CutterCompRight,
         430 => LengthCompPlus,
         440 => LengthCompMinus,
-        450 if profile.tool_position_offset => PositionOffset(1),
-        460 if profile.tool_position_offset => PositionOffset(-1),
-        470 if profile.tool_position_offset => PositionOffset(2),
-        480 if profile.tool_position_offset => PositionOffset(-2),
+        450 if profile.compensation.tool_position_offset => PositionOffset(1),
+        460 if profile.compensation.tool_position_offset => PositionOffset(-1),
+        470 if profile.compensation.tool_position_offset => PositionOffset(2),
+        480 if profile.compensation.tool_position_offset => PositionOffset(-2),
         490 => LengthCompCancel,
         500 => ScalingCancel,
         501 => MirrorCancel,
@@ -424,9 +426,9 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         520 => LocalCoordinates,
         530 => MachineCoordinates,
         540..=590 if tenths % 10 == 0 => WorkOffset(((tenths - 530) / 10) as u8),
-        541 if profile.g54_1_count > 0 => ExtendedWorkOffset,
-        1540 if profile.g154_extended_offsets => ExtendedWorkOffset,
-        591..=599 if profile.g59_x_offsets => WorkOffset((tenths - 591 + 7) as u8),
+        541 if profile.coordinates.g54_1_count > 0 => ExtendedWorkOffset,
+        1540 if profile.coordinates.g154_extended_offsets => ExtendedWorkOffset,
+        591..=599 if profile.coordinates.g59_x_offsets => WorkOffset((tenths - 591 + 7) as u8),
         610 => ExactStopMode,
         620 => AutomaticCornerOverride,
         630 => TappingMode,
@@ -459,14 +461,14 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         960 => ConstantSurfaceSpeed,
         970 => ConstantSpindleSpeed,
         980 => ReturnToInitialLevel,
-        1340 if profile.hole_patterns => Pattern(PatternKind::BoltCircle),
-        1350 if profile.hole_patterns => Pattern(PatternKind::Line),
-        1360 if profile.hole_patterns => Pattern(PatternKind::Arc),
-        1371 if profile.hole_patterns => Pattern(PatternKind::Grid),
+        1340 if profile.cycles.hole_patterns => Pattern(PatternKind::BoltCircle),
+        1350 if profile.cycles.hole_patterns => Pattern(PatternKind::Line),
+        1360 if profile.cycles.hole_patterns => Pattern(PatternKind::Arc),
+        1371 if profile.cycles.hole_patterns => Pattern(PatternKind::Grid),
         990 => ReturnToRLevel,
-        50 if profile.smoothing_codes != SmoothingCodes::None => HighSpeedMode,
-        51 if profile.smoothing_codes != SmoothingCodes::None => PathSmoothing,
-        80 if profile.smoothing_codes == SmoothingCodes::Fanuc => LookAhead,
+        50 if profile.motion.smoothing_codes != SmoothingCodes::None => HighSpeedMode,
+        51 if profile.motion.smoothing_codes != SmoothingCodes::None => PathSmoothing,
+        80 if profile.motion.smoothing_codes == SmoothingCodes::Fanuc => LookAhead,
         _ => return not_yet(tenths, profile),
     };
     Known(known)
@@ -496,7 +498,7 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
 /// Codes that exist only where a profile says so: (code, the profile's switch, issue, meaning).
 fn not_yet_on(tenths: i32, profile: &Profile) -> Option<(Option<u32>, &'static str)> {
     match tenths {
-        470 if !profile.tool_position_offset => Some((None, "text engraving")),
+        470 if !profile.compensation.tool_position_offset => Some((None, "text engraving")),
         _ => NOT_YET
             .iter()
             .find(|(code, _, _)| *code == tenths)
@@ -606,12 +608,14 @@ pub enum MLookup {
 
 /// What M code `code` means on `profile`.
 pub fn classify_m(code: u32, profile: &Profile) -> MLookup {
-    if profile.subprogram_m_codes.contains(&code) {
+    if profile.subprograms.subprogram_m_codes.contains(&code) {
         return match code {
             98 => MLookup::Known(MCode::SubprogramCall),
             99 => MLookup::Known(MCode::SubprogramReturn),
             198 => MLookup::Known(MCode::ExternalSubprogramCall),
-            97 if profile.m97_local_subprogram => MLookup::Known(MCode::LocalSubprogramCall),
+            97 if profile.subprograms.m97_local_subprogram => {
+                MLookup::Known(MCode::LocalSubprogramCall)
+            }
             96 => MLookup::Known(MCode::InterruptOn),
             97 => MLookup::Known(MCode::InterruptOff),
             _ => MLookup::NotSupported(Some(3)),

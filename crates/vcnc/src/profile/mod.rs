@@ -3,20 +3,45 @@
 //! A [`Profile`] holds the parameters and rules in which the FANUC-family controls differ:
 //! how numbers without a decimal point are read, which extended work offsets exist, what G10's
 //! L numbers mean, the dwell rules, the power-on modal state. Code asks the profile a question;
-//! it never asks which controller it is. The five built-in profiles are TOML files embedded in
-//! the library (`profile/*.toml`); a machine file can override any field.
+//! it never asks which controller it is. The rules are grouped by concern, one type and one
+//! file each: [`ReadingRules`] (`reading.rs`), [`UnitRules`] (`units.rs`), [`CoordinateRules`]
+//! (`coordinates.rs`), [`CompensationRules`] (`compensation.rs`), [`DwellRules`] (`dwell.rs`),
+//! [`CycleRules`] (`cycles.rs`), [`MotionRules`] (`motion.rs`), [`SubprogramRules`]
+//! (`subprograms.rs`), [`MacroRules`] (`macros.rs`), then [`PowerOn`] and the SINUMERIK machine
+//! data ([`SinumerikSettings`], `sinumerik.rs`). The built-in profiles are TOML files embedded
+//! in the library (`profile/*.toml`), one table per group; a machine file can override any
+//! field under `[profile_overrides.<group>]`.
 
 mod codes;
+mod compensation;
+mod coordinates;
+mod cycles;
+mod dwell;
+mod macros;
+mod motion;
+mod reading;
 mod sinumerik;
+mod subprograms;
+mod units;
 
 pub use codes::{
     classify_g, classify_m, g_name, not_supported_description, supported_codes_markdown, CycleKind,
     GCode, GLookup, Group, MCode, MLookup, PatternKind,
 };
 
+pub use compensation::{CompensationRules, ToolOffsetField, ToolOffsetL};
+pub use coordinates::CoordinateRules;
+pub use cycles::{CycleRules, ShiftDirection};
+pub use dwell::{DwellP, DwellRules};
+pub use macros::{MacroArguments, MacroRules, ToolOffsetVariables};
+pub use motion::{MotionRules, RapidPath, SmoothingCodes};
+pub use reading::{ReadingRules, SameGroupRule};
+pub use sinumerik::{SinumerikSettings, Variant};
+pub use subprograms::SubprogramRules;
+pub use units::{DecimalLess, UnitRules};
+
 use crate::syntax::iso::SyntaxOptions;
 use serde::{Deserialize, Serialize};
-pub use sinumerik::{SinumerikSettings, Variant};
 use std::fmt;
 use std::str::FromStr;
 
@@ -104,125 +129,6 @@ impl FromStr for ProfileName {
     }
 }
 
-/// How a value without a decimal point is read for length and angle words.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum DecimalLess {
-    /// In least input increments: `X20` is 0.020 mm (FANUC with parameter DPI = 0).
-    Increments,
-    /// In whole units: `X20` is 20 mm (FANUC with DPI = 1, pocket calculator input).
-    WholeUnits,
-}
-
-/// How the argument letters of G65/G66 become local variables.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MacroArguments {
-    /// FANUC argument specification I (A #1, B #2, C #3, I #4, J #5, K #6, D #7, E #8, F #9,
-    /// H #11, M #13, Q #17, R #18, S #19, T #20, U #21, V #22, W #23, X #24, Y #25, Z #26) and
-    /// II (I, J, K repeated: the n-th I is #(3n+1), J #(3n+2), K #(3n+3)).
-    #[default]
-    Fanuc,
-}
-
-/// The high-speed and smoothing codes of a control.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SmoothingCodes {
-    /// None that vcnc runs.
-    #[default]
-    None,
-    /// Syntec (spec iso-syntec-milling.md 1.8, 1.9): G05 P10000 (E optional) high-speed high-precision
-    /// mode and G05.1 Q1/Q2 E path smoothing, off with G05 P0 and G05.1 Q0.
-    Syntec,
-    /// FANUC: G05 P10000 (high-precision contour control), G05.1 Q1 (AI contour control) and
-    /// G08 P1 (look-ahead control), off with P0, Q0 and P0; none takes a tolerance.
-    Fanuc,
-}
-
-/// Where the tool offsets are among the system variables.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ToolOffsetVariables {
-    /// FANUC tool offset memory C: #2001 H wear, #2201 H geometry, #2401 D wear, #2601 D
-    /// geometry (200 each; #10001/#11001/#12001/#13001 for 400).
-    #[default]
-    FanucC,
-    /// Haas: #2001 length geometry, #2201 length wear, #2401 diameter geometry, #2601
-    /// diameter wear.
-    Haas,
-}
-
-/// How `P` of G04 is read.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum DwellP {
-    /// Milliseconds; a decimal point is an alarm (FANUC).
-    MillisecondsStrict,
-    /// Milliseconds; a fraction is dropped (`P2.5` is 2 ms, Syntec manual L512).
-    MillisecondsTruncated,
-    /// Milliseconds without a decimal point, seconds with one (Haas, Mitsubishi).
-    SecondsWithPoint,
-}
-
-/// Where G76 shifts the tool at the hole bottom: along the plane's first or second axis.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ShiftDirection {
-    /// +X in G17 (the plane's first axis, plus).
-    #[default]
-    PlusFirst,
-    /// -X in G17.
-    MinusFirst,
-    /// +Y in G17.
-    PlusSecond,
-    /// -Y in G17.
-    MinusSecond,
-}
-
-/// How G00 moves the axes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum RapidPath {
-    /// All axes arrive together on a straight line (Syntec Pr411 = 0).
-    Linear,
-    /// Each axis at its own rapid rate: a dog-leg path (FANUC's classic positioning).
-    PerAxis,
-}
-
-/// What two G codes of one modal group in one block do.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SameGroupRule {
-    /// The last one written is effective (FANUC); vcnc warns.
-    LastWins,
-    /// An alarm.
-    Alarm,
-}
-
-/// What a G10 L number sets, for tool offsets.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ToolOffsetField {
-    /// Tool length, geometry.
-    LengthGeometry,
-    /// Tool length, wear.
-    LengthWear,
-    /// Cutter radius (or diameter, per `radius_offsets_are_diameters`), geometry.
-    RadiusGeometry,
-    /// Cutter radius, wear.
-    RadiusWear,
-}
-
-/// One G10 L number for tool offsets.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct ToolOffsetL {
-    /// The L number.
-    pub l: u32,
-    /// What it sets.
-    pub field: ToolOffsetField,
-}
-
 /// The modal state at power-on and reset, as G codes in tenths (G17 is 170).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -245,7 +151,9 @@ pub struct PowerOn {
     pub cycle_return: u32,
 }
 
-/// Everything about a controller that the interpreter asks.
+/// Everything about a controller that the interpreter asks, grouped by concern: each group is a
+/// table of the profile's TOML (`[reading]`, `[units]`, ...) and a type with its own docs, and
+/// each field lives in exactly one group (docs/PROFILES.md lists them).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Profile {
@@ -253,169 +161,24 @@ pub struct Profile {
     pub name: ProfileName,
     /// One line for people.
     pub description: String,
-    /// `;` ends a block (true) or starts a comment (false).
-    pub semicolon_ends_block: bool,
-    /// `//` starts a comment to the end of the line.
-    pub slash_slash_comments: bool,
-    /// `:1234` is a program number.
-    pub colon_program_number: bool,
-    /// How lengths and angles without a decimal point are read.
-    pub decimal_less: DecimalLess,
-    /// Least input increment in millimetre mode, mm.
-    pub increment_mm: f64,
-    /// Least input increment in inch mode, inch.
-    pub increment_inch: f64,
-    /// Least input increment of rotary axes, degrees.
-    pub increment_deg: f64,
-    /// How G04 P is read.
-    pub dwell_p: DwellP,
-    /// FANUC 0M quirk (manual 001 L190-202): an X word written before G04 in the same block was
-    /// already converted as a distance, and that count of increments becomes milliseconds.
-    pub dwell_x_before_g04_is_increments: bool,
-    /// Syntec's G70/G71 select inch/metric (besides G20/G21).
-    pub g70_g71_units: bool,
-    /// Number of G54.1 Pn work offsets (0: G54.1 does not exist).
-    pub g54_1_count: u32,
-    /// Syntec's G59.1 ... G59.9 work offsets 7 to 15.
-    pub g59_x_offsets: bool,
-    /// Haas's G154 Pn selects the extended work offsets like G54.1 Pn.
-    #[serde(default)]
-    pub g154_extended_offsets: bool,
-    /// L in a G02/G03 block is the number of turns of a spiral (Syntec, spec 1.6).
-    #[serde(default)]
-    pub arc_l_is_spiral: bool,
-    /// E in a G33 block gives threads per inch (Mitsubishi, spec B.10); elsewhere E in G33 is
-    /// refused like any E outside a tapping cycle.
-    #[serde(default)]
-    pub thread_e_per_inch: bool,
-    /// Mitsubishi's G12/G13 circle cutting exists.
-    #[serde(default)]
-    pub g12_g13_circle_cutting: bool,
-    /// The G10 L number that sets work offsets G54..G59 (P1..P6, P0 = external).
-    pub g10_work_l: u32,
-    /// The G10 L number that sets G54.1 work offsets (0: none).
-    pub g10_extended_work_l: u32,
-    /// The G10 L numbers that set tool offsets.
-    pub g10_tool_l: Vec<ToolOffsetL>,
-    /// A G10 tool offset block without L (`G10 P_ R_`) sets this field (FANUC 0M memory A).
-    #[serde(default)]
-    pub g10_tool_default: Option<ToolOffsetField>,
-    /// Cutter compensation values are diameters (Haas), not radii.
-    pub radius_offsets_are_diameters: bool,
-    /// A G41/G42 block with H and no D takes H as its radius offset number, not as a length
-    /// offset (the old FANUC 0M form, `G42 H19`, seen in the corpus).
-    #[serde(default)]
-    pub radius_offset_by_h: bool,
-    /// Blocks in a row without motion in the compensation plane after which the last element
-    /// ends perpendicular to itself (cutter compensation's look-ahead; FANUC: 2).
-    #[serde(default = "default_cutter_comp_look_ahead")]
-    pub cutter_comp_look_ahead: u32,
-    /// G45-G48 are tool position offsets (FANUC family, Syntec, Mitsubishi); Haas has no such
-    /// codes (its G47 engraves text).
-    #[serde(default = "default_true")]
-    pub tool_position_offset: bool,
-    /// Canned cycles drill along the axis normal to the plane (G17 Z, G18 Y, G19 X); when false,
-    /// always along Z (FANUC 0M, spec A.32).
-    #[serde(default = "default_true")]
-    pub cycle_plane_follows_g17: bool,
-    /// G73: how far the tool backs off after each peck, mm (FANUC parameter 5114, 0M 0531,
-    /// Syntec Pr4002).
-    #[serde(default = "default_peck_distance")]
-    pub peck_retract: f64,
-    /// G83: how far above the last depth the rapid back into the hole stops, mm (FANUC 5115,
-    /// Syntec Pr4002).
-    #[serde(default = "default_peck_distance")]
-    pub peck_clearance: f64,
-    /// G76: the direction of the shift off the wall at the hole bottom (Syntec Pr4020, FANUC
-    /// RD1/RD2), in the positioning plane.
-    #[serde(default)]
-    pub boring_shift: ShiftDirection,
-    /// How a canned cycle's P is read; when absent, as G04's P.
-    #[serde(default)]
-    pub cycle_dwell_p: Option<DwellP>,
-    /// Syntec's hole patterns G134, G135, G136, G137.1.
-    #[serde(default)]
-    pub hole_patterns: bool,
-    /// Syntec's G92.1 X Y K R: a preset of the program origin with a rotation (spec 1.55);
-    /// elsewhere G92.1 is FANUC's work coordinate system preset.
-    #[serde(default)]
-    pub g92_1_rotation: bool,
-    /// M codes a block may hold; when a block has more, only the last ones run (FANUC 0M: one,
-    /// spec A.15 and example fanuc0m/06).
-    #[serde(default = "default_m_codes_per_block")]
-    pub m_codes_per_block: u32,
-    /// Largest magnitude of any value as written (`X99999999` ...): the control's digit limit.
-    #[serde(default = "default_max_word_value")]
-    pub max_word_value: f64,
-    /// Highest H/D offset number.
-    pub max_offset_number: u32,
-    /// G00 path shape.
-    pub rapid_path: RapidPath,
-    /// Two G codes of one group in a block.
-    pub same_group: SameGroupRule,
-    /// Feed used when G01/G02/G03 run before any F (None: alarm, as FANUC alarm 011).
-    #[serde(default)]
-    pub default_feed: Option<f64>,
-    /// Largest difference between start and end radius of an arc, mm (FANUC parameter 3410).
-    pub arc_radius_tolerance: f64,
-    /// G28 (and G30) without axis words sends every axis home (Haas); otherwise nothing moves.
-    #[serde(default)]
-    pub g28_without_axes_homes_all: bool,
-    /// Number of reference points (G28 is 1, G30 P2..Pn).
-    pub reference_points: u32,
-    /// M codes that are subprogram calls and returns on this control: 98 call, 99 return,
-    /// 198 external call (Syntec), 96/97 interrupt on/off (Syntec) or 97 local call (Haas, see
-    /// `m97_local_subprogram`).
-    pub subprogram_m_codes: Vec<u32>,
-    /// M97 P calls sequence number P of the running program (Haas); otherwise M97 turns the
-    /// interrupt program off (Syntec).
-    #[serde(default)]
-    pub m97_local_subprogram: bool,
-    /// M02 and M30 in a subprogram return to the caller (Syntec, spec section 2 item 12);
-    /// otherwise they end the program (FANUC).
-    #[serde(default)]
-    pub end_in_subprogram_returns: bool,
-    /// How G65/G66 argument letters map to local variables.
-    #[serde(default)]
-    pub macro_arguments: MacroArguments,
-    /// Which system variable numbers hold the tool offsets.
-    #[serde(default)]
-    pub tool_offset_variables: ToolOffsetVariables,
-    /// Syntec's #1000 modal variables, #1901-#1916 G92 offsets and #1930 rotation.
-    #[serde(default)]
-    pub syntec_system_variables: bool,
-    /// Haas's #3020-#3027 timers and spindle data, #4201+ modal data, #5401+ tool life.
-    #[serde(default)]
-    pub haas_system_variables: bool,
-    /// Extra common variables kept between runs (Haas: #10000-#10999), first and last.
-    #[serde(default)]
-    pub extended_common_variables: Option<(u32, u32)>,
-    /// Macro calls (G65, G66) nested at most this deep (FANUC: 4; PS0077 beyond).
-    #[serde(default = "default_macro_call_depth")]
-    pub macro_call_depth: u32,
-    /// Subprogram and macro calls together nested at most this deep (FANUC 0i: 10).
-    #[serde(default = "default_call_depth")]
-    pub call_depth: u32,
-    /// The loop numbers DO and END take: 1 to this (FANUC: 3).
-    #[serde(default = "default_loop_numbers")]
-    pub loop_numbers: u32,
-    /// `M98 P50001` without L calls O0001 five times: the digits before the last four count
-    /// the repeats (FANUC).
-    #[serde(default)]
-    pub m98_p_holds_repeats: bool,
-    /// G12.1/G13.1 polar coordinate interpolation exists (FANUC family, Syntec spec 1.13,
-    /// Mitsubishi); it turns the machine's C axis with X as the radius.
-    #[serde(default)]
-    pub polar_interpolation: bool,
-    /// Largest distance, mm, between the programmed path in G12.1 and the path the straight X-C
-    /// pieces that replace it trace on the part (vcnc's choice: FANUC and Syntec interpolate in
-    /// their servo cycle and give no such number).
-    #[serde(default = "default_polar_interpolation_tolerance")]
-    pub polar_interpolation_tolerance: f64,
-    /// Which high-speed and smoothing codes the control has (they change the timing, within a
-    /// tolerance the path).
-    #[serde(default)]
-    pub smoothing_codes: SmoothingCodes,
+    /// How the text becomes blocks and words.
+    pub reading: ReadingRules,
+    /// How numbers become lengths and angles.
+    pub units: UnitRules,
+    /// Work offsets, G10 for them, G92.1, and the reference points.
+    pub coordinates: CoordinateRules,
+    /// Tool offsets and the compensations that read them.
+    pub compensation: CompensationRules,
+    /// How dwell times are written (G04, and the P of canned cycles).
+    pub dwell: DwellRules,
+    /// The canned cycles' parameters.
+    pub cycles: CycleRules,
+    /// The path of each kind of move.
+    pub motion: MotionRules,
+    /// Subprogram calls and returns.
+    pub subprograms: SubprogramRules,
+    /// Macro calls, loops and system variables.
+    pub macros: MacroRules,
     /// Power-on modal state.
     pub power_on: PowerOn,
     /// What a SINUMERIK machine's data decide (the SINUMERIK profiles only).
@@ -423,41 +186,22 @@ pub struct Profile {
     pub sinumerik: Option<SinumerikSettings>,
 }
 
-fn default_macro_call_depth() -> u32 {
-    4
-}
+/// The tables of [`Profile`] that group its ISO rules, as the TOML names them: the tables a
+/// machine file's `[profile_overrides]` once held as flat keys.
+const GROUPS: [&str; 9] = [
+    "reading",
+    "units",
+    "coordinates",
+    "compensation",
+    "dwell",
+    "cycles",
+    "motion",
+    "subprograms",
+    "macros",
+];
 
-fn default_call_depth() -> u32 {
-    10
-}
-
-fn default_loop_numbers() -> u32 {
-    3
-}
-
-fn default_peck_distance() -> f64 {
-    1.0
-}
-
-fn default_polar_interpolation_tolerance() -> f64 {
-    0.001
-}
-
-fn default_true() -> bool {
+pub(crate) fn default_true() -> bool {
     true
-}
-
-fn default_cutter_comp_look_ahead() -> u32 {
-    2
-}
-
-fn default_m_codes_per_block() -> u32 {
-    3
-}
-
-fn default_max_word_value() -> f64 {
-    // Nine digits before the point: FANUC's widest input format.
-    999_999_999.0
 }
 
 impl Profile {
@@ -468,10 +212,14 @@ impl Profile {
             .expect("embedded profile TOML is valid (checked by the profile tests)")
     }
 
-    /// A built-in profile with fields replaced by those in `overrides` (a TOML table).
+    /// A built-in profile with fields replaced by those in `overrides` (a TOML table of the
+    /// profile's tables: `[profile_overrides.motion]` in a machine file gives `motion`'s fields).
+    /// Tables merge field by field; any other value replaces the profile's.
     ///
     /// # Errors
-    /// When `overrides` names a field the profile does not have, or gives it a value of the wrong type.
+    /// When `overrides` names a field the profile does not have, gives it a value of the wrong
+    /// type, or names a field of a group outside its table (the flat form of machine files
+    /// before the profile was grouped: the error names the table it belongs in).
     pub fn with_overrides(
         name: ProfileName,
         overrides: &toml::Table,
@@ -484,7 +232,13 @@ impl Profile {
         let mut base: toml::Table = toml::from_str(name.toml())
             .expect("embedded profile TOML is valid (checked by the profile tests)");
         for (key, value) in overrides {
-            base.insert(key.clone(), value.clone());
+            if let Some(group) = group_of_flat_key(key) {
+                return Err(serde::de::Error::custom(format!(
+                    "profile_overrides.{key}: the profile's fields are grouped by concern; \
+                     write `{key} = ...` under [profile_overrides.{group}]"
+                )));
+            }
+            merge(&mut base, key, value);
         }
         toml::Value::Table(base).try_into()
     }
@@ -498,46 +252,107 @@ impl Profile {
         use Lower::{Above, AtLeast};
         let key = |name: &str| format!("profile_overrides.{name}");
         for (name, value, lower, upper) in [
-            ("increment_mm", self.increment_mm, Above(0.0), 1.0),
-            ("increment_inch", self.increment_inch, Above(0.0), 0.1),
-            ("increment_deg", self.increment_deg, Above(0.0), 1.0),
-            ("peck_retract", self.peck_retract, AtLeast(0.0), 1000.0),
-            ("peck_clearance", self.peck_clearance, AtLeast(0.0), 1000.0),
-            ("max_word_value", self.max_word_value, AtLeast(1.0), 1e15),
             (
-                "arc_radius_tolerance",
-                self.arc_radius_tolerance,
+                "units.increment_mm",
+                self.units.increment_mm,
+                Above(0.0),
+                1.0,
+            ),
+            (
+                "units.increment_inch",
+                self.units.increment_inch,
+                Above(0.0),
+                0.1,
+            ),
+            (
+                "units.increment_deg",
+                self.units.increment_deg,
+                Above(0.0),
+                1.0,
+            ),
+            (
+                "cycles.peck_retract",
+                self.cycles.peck_retract,
+                AtLeast(0.0),
+                1000.0,
+            ),
+            (
+                "cycles.peck_clearance",
+                self.cycles.peck_clearance,
+                AtLeast(0.0),
+                1000.0,
+            ),
+            (
+                "reading.max_word_value",
+                self.reading.max_word_value,
+                AtLeast(1.0),
+                1e15,
+            ),
+            (
+                "motion.arc_radius_tolerance",
+                self.motion.arc_radius_tolerance,
                 Above(0.0),
                 100.0,
             ),
             (
-                "polar_interpolation_tolerance",
-                self.polar_interpolation_tolerance,
+                "motion.polar_interpolation_tolerance",
+                self.motion.polar_interpolation_tolerance,
                 Above(0.0),
                 10.0,
             ),
         ] {
             check_range(&key(name), value, lower, upper)?;
         }
-        if let Some(feed) = self.default_feed {
-            check_range(&key("default_feed"), feed, Above(0.0), 1e6)?;
+        if let Some(feed) = self.motion.default_feed {
+            check_range(&key("motion.default_feed"), feed, Above(0.0), 1e6)?;
         }
+        let coordinates = &self.coordinates;
         for (name, value, low, high) in [
-            ("g54_1_count", self.g54_1_count, 0, 300),
-            ("g10_work_l", self.g10_work_l, 0, 99),
-            ("g10_extended_work_l", self.g10_extended_work_l, 0, 99),
+            ("coordinates.g54_1_count", coordinates.g54_1_count, 0, 300),
+            ("coordinates.g10_work_l", coordinates.g10_work_l, 0, 99),
             (
-                "cutter_comp_look_ahead",
-                self.cutter_comp_look_ahead,
+                "coordinates.g10_extended_work_l",
+                coordinates.g10_extended_work_l,
+                0,
+                99,
+            ),
+            (
+                "coordinates.reference_points",
+                coordinates.reference_points,
+                1,
+                10,
+            ),
+            (
+                "compensation.cutter_comp_look_ahead",
+                self.compensation.cutter_comp_look_ahead,
                 1,
                 100,
             ),
-            ("m_codes_per_block", self.m_codes_per_block, 1, 16),
-            ("max_offset_number", self.max_offset_number, 1, 9999),
-            ("reference_points", self.reference_points, 1, 10),
-            ("macro_call_depth", self.macro_call_depth, 1, 100),
-            ("call_depth", self.call_depth, 1, 100),
-            ("loop_numbers", self.loop_numbers, 1, 999),
+            (
+                "compensation.max_offset_number",
+                self.compensation.max_offset_number,
+                1,
+                9999,
+            ),
+            (
+                "reading.m_codes_per_block",
+                self.reading.m_codes_per_block,
+                1,
+                16,
+            ),
+            (
+                "macros.macro_call_depth",
+                self.macros.macro_call_depth,
+                1,
+                100,
+            ),
+            (
+                "subprograms.call_depth",
+                self.subprograms.call_depth,
+                1,
+                100,
+            ),
+            ("macros.loop_numbers", self.macros.loop_numbers, 1, 999),
         ] {
             check_range(
                 &key(name),
@@ -546,19 +361,19 @@ impl Profile {
                 f64::from(high),
             )?;
         }
-        for &code in &self.subprogram_m_codes {
+        for &code in &self.subprograms.subprogram_m_codes {
             check_range(
-                &key("subprogram_m_codes"),
+                &key("subprograms.subprogram_m_codes"),
                 f64::from(code),
                 AtLeast(0.0),
                 9999.0,
             )?;
         }
-        if let Some((low, high)) = self.extended_common_variables {
+        if let Some((low, high)) = self.macros.extended_common_variables {
             if low > high {
                 return Err(format!(
                     "{} = [{low}, {high}]: expected the first number at most the second",
-                    key("extended_common_variables")
+                    key("macros.extended_common_variables")
                 ));
             }
         }
@@ -567,12 +382,42 @@ impl Profile {
 
     /// The character-level options of the ISO front end.
     pub fn syntax(&self) -> SyntaxOptions {
-        SyntaxOptions {
-            semicolon_ends_block: self.semicolon_ends_block,
-            slash_slash_comments: self.slash_slash_comments,
-            colon_program_number: self.colon_program_number,
+        self.reading.syntax()
+    }
+}
+
+/// Puts `value` at `key` of `table`: into the table there field by field when both are tables,
+/// in its place otherwise.
+fn merge(table: &mut toml::Table, key: &str, value: &toml::Value) {
+    match (table.get_mut(key), value) {
+        (Some(toml::Value::Table(base)), toml::Value::Table(fields)) => {
+            for (field, value) in fields {
+                merge(base, field, value);
+            }
+        }
+        _ => {
+            table.insert(key.to_string(), value.clone());
         }
     }
+}
+
+/// The group whose field `key` is, when `key` is not a key of the profile itself: a flat key
+/// of a machine file written before the profile was grouped. Every built-in profile is looked
+/// at as a whole (defaults filled in), so that a field one leaves unset (`None`) is found in
+/// another.
+fn group_of_flat_key(key: &str) -> Option<&'static str> {
+    if GROUPS.contains(&key) {
+        return None;
+    }
+    ProfileName::ALL.into_iter().find_map(|name| {
+        let table = toml::Table::try_from(Profile::builtin(name)).ok()?;
+        GROUPS.into_iter().find(|group| {
+            table
+                .get(*group)
+                .and_then(toml::Value::as_table)
+                .is_some_and(|fields| fields.contains_key(key))
+        })
+    })
 }
 
 /// The lower end of an allowed range.
@@ -619,48 +464,120 @@ impl Default for Profile {
 mod tests {
     use super::*;
 
+    fn every_builtin() -> impl Iterator<Item = ProfileName> {
+        ProfileName::ALL.into_iter().chain(ProfileName::SINUMERIK)
+    }
+
     #[test]
     fn every_builtin_profile_parses_and_names_itself() {
-        for name in ProfileName::ALL {
+        for name in every_builtin() {
             let profile = Profile::builtin(name);
             assert_eq!(profile.name, name);
         }
     }
 
     #[test]
-    fn overrides_replace_single_fields() {
-        let overrides: toml::Table = toml::from_str("rapid_path = \"per_axis\"").unwrap();
+    fn overrides_replace_single_fields_of_a_table() {
+        let overrides: toml::Table =
+            toml::from_str("[motion]\nrapid_path = \"per_axis\"\n[power_on]\nunits = 200").unwrap();
         let profile = Profile::with_overrides(ProfileName::Syntec, &overrides).unwrap();
-        assert_eq!(profile.rapid_path, RapidPath::PerAxis);
-        assert!(profile.slash_slash_comments);
+        assert_eq!(profile.motion.rapid_path, RapidPath::PerAxis);
+        // The other fields of the tables named stay the profile's.
+        assert_eq!(profile.motion.default_feed, Some(1000.0));
+        assert_eq!(profile.power_on.units, 200);
+        assert_eq!(profile.power_on.plane, 170);
+        assert!(profile.reading.slash_slash_comments);
+    }
+
+    #[test]
+    fn a_flat_key_of_a_group_is_refused_with_the_table_it_belongs_in() {
+        // Every group field, including those left at their defaults or unset in some profiles.
+        for (key, group) in [
+            ("rapid_path", "motion"),
+            ("decimal_less", "units"),
+            ("boring_shift", "cycles"),
+            ("loop_numbers", "macros"),
+            ("extended_common_variables", "macros"),
+            ("g10_tool_default", "compensation"),
+            ("cycle_dwell_p", "dwell"),
+            ("max_word_value", "reading"),
+            ("call_depth", "subprograms"),
+            ("g54_1_count", "coordinates"),
+        ] {
+            let overrides: toml::Table = toml::from_str(&format!("{key} = 1")).unwrap();
+            let error = Profile::with_overrides(ProfileName::Fanuc, &overrides)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                error.contains(&format!("under [profile_overrides.{group}]")),
+                "{key}: {error}"
+            );
+        }
+    }
+
+    #[test]
+    fn every_field_lives_in_one_group() {
+        let mut seen = std::collections::BTreeMap::new();
+        for name in every_builtin() {
+            let table = toml::Table::try_from(Profile::builtin(name)).unwrap();
+            for group in GROUPS {
+                for key in table[group].as_table().unwrap().keys() {
+                    let first = seen.entry(key.clone()).or_insert(group);
+                    assert_eq!(*first, group, "{key}");
+                }
+            }
+        }
+        // Every field but name, description, power_on and sinumerik: each is set or has a
+        // default in some profile, so the flat-key error finds them all.
+        assert_eq!(seen.len(), 55);
+    }
+
+    #[test]
+    fn docs_profiles_names_every_field_in_its_table() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/PROFILES.md");
+        let docs = std::fs::read_to_string(path).unwrap();
+        let table = toml::Table::try_from(Profile::builtin(ProfileName::Haas)).unwrap();
+        for group in GROUPS {
+            let start = docs.find(&format!("\n`[{group}]` —")).expect(group);
+            let section = &docs[start + 1..];
+            let section = &section[..section.find("\n`[").unwrap_or(section.len())];
+            for key in table[group].as_table().unwrap().keys() {
+                assert!(section.contains(&format!("`{key}`")), "{group}.{key}");
+            }
+        }
     }
 
     #[test]
     fn every_builtin_profile_is_in_range() {
-        for name in ProfileName::ALL {
+        for name in every_builtin() {
             assert_eq!(Profile::builtin(name).check_ranges(), Ok(()), "{name}");
         }
     }
 
     #[test]
     fn an_override_out_of_range_names_the_key_the_value_and_the_range() {
-        let overrides: toml::Table = toml::from_str("increment_mm = -0.001").unwrap();
+        let overrides: toml::Table = toml::from_str("units.increment_mm = -0.001").unwrap();
         let profile = Profile::with_overrides(ProfileName::Fanuc, &overrides).unwrap();
         assert_eq!(
             profile.check_ranges(),
-            Err("profile_overrides.increment_mm = -0.001: expected more than 0, up to 1".into())
+            Err(
+                "profile_overrides.units.increment_mm = -0.001: expected more than 0, up to 1"
+                    .into()
+            )
         );
-        let overrides: toml::Table = toml::from_str("loop_numbers = 0").unwrap();
+        let overrides: toml::Table = toml::from_str("macros.loop_numbers = 0").unwrap();
         let profile = Profile::with_overrides(ProfileName::Fanuc, &overrides).unwrap();
         assert_eq!(
             profile.check_ranges(),
-            Err("profile_overrides.loop_numbers = 0: expected 1 or more, up to 999".into())
+            Err("profile_overrides.macros.loop_numbers = 0: expected 1 or more, up to 999".into())
         );
     }
 
     #[test]
     fn unknown_override_fields_are_rejected() {
-        let overrides: toml::Table = toml::from_str("no_such_field = 1").unwrap();
-        assert!(Profile::with_overrides(ProfileName::Fanuc, &overrides).is_err());
+        for text in ["no_such_field = 1", "[motion]\nno_such_field = 1"] {
+            let overrides: toml::Table = toml::from_str(text).unwrap();
+            assert!(Profile::with_overrides(ProfileName::Fanuc, &overrides).is_err());
+        }
     }
 }

@@ -109,7 +109,7 @@ fn whole_unit_lengths_without_a_decimal_point_are_found() {
     assert!(check("G0 X0 Y0.\nG04 X2500\nM30\n", ProfileName::Fanuc).is_empty());
     // The setting that reads them in whole units is the fix.
     let mut machine = Machine::default();
-    machine.profile.decimal_less = DecimalLess::WholeUnits;
+    machine.profile.units.decimal_less = DecimalLess::WholeUnits;
     assert!(ProgramScan::of_text(tiny.as_bytes())
         .warnings(&machine)
         .is_empty());

@@ -25,15 +25,15 @@ impl ProgramScan {
         let mut clues = Vec::new();
         let local_calls: Vec<ProfileName> = ProfileName::ALL
             .into_iter()
-            .filter(|&n| Profile::builtin(n).m97_local_subprogram)
+            .filter(|&n| Profile::builtin(n).subprograms.m97_local_subprogram)
             .collect();
-        if !profile.m97_local_subprogram {
+        if !profile.subprograms.m97_local_subprogram {
             let called = self
                 .m97_targets
                 .iter()
                 .find(|(n, _)| self.has_sequence(**n));
             if let Some((n, place)) = called {
-                let instead = if profile.subprogram_m_codes.contains(&97) {
+                let instead = if profile.subprograms.subprogram_m_codes.contains(&97) {
                     "turns the interrupt program off with M97"
                 } else {
                     "passes M97 to the machine as an M code"
@@ -50,10 +50,10 @@ impl ProgramScan {
                 });
             }
         }
-        if let (Some(place), false) = (&self.radius_by_h, profile.radius_offset_by_h) {
+        if let (Some(place), false) = (&self.radius_by_h, profile.compensation.radius_offset_by_h) {
             let fits: Vec<ProfileName> = ProfileName::ALL
                 .into_iter()
-                .filter(|&n| Profile::builtin(n).radius_offset_by_h)
+                .filter(|&n| Profile::builtin(n).compensation.radius_offset_by_h)
                 .collect();
             clues.push(Clue {
                 says: format!(
@@ -153,16 +153,16 @@ impl ProgramScan {
     /// millimetre: all of them in a program that never writes a decimal point, any of them in
     /// one that also does (a post that drops `.0`, a forgotten point).
     pub(super) fn decimal_less_warning(&self, profile: &Profile) -> Option<Alarm> {
-        if profile.decimal_less != DecimalLess::Increments {
+        if profile.units.decimal_less != DecimalLess::Increments {
             return None;
         }
         let power_on_inch = power_on_unit(profile) == LengthUnit::Inch;
         let increment_mm = |units: usize| {
             let inch = units == Units::Inch as usize || (units == 0 && power_on_inch);
             if inch {
-                profile.increment_inch * 25.4
+                profile.units.increment_inch * 25.4
             } else {
-                profile.increment_mm
+                profile.units.increment_mm
             }
         };
         let buckets = self
@@ -198,7 +198,7 @@ impl ProgramScan {
                     .find(|(u, s)| small(*u, s))
             })?;
         let read_mm = *value as f64 * increment_mm(units);
-        let read = if increment_mm(units) == profile.increment_mm {
+        let read = if increment_mm(units) == profile.units.increment_mm {
             format!("{read_mm:.4} mm")
         } else {
             format!("{:.4} inch ({read_mm:.4} mm)", read_mm / 25.4)
@@ -234,7 +234,7 @@ impl ProgramScan {
                 ),
             )
             .with_help(format!(
-                "if it is, set `decimal_less = \"whole_units\"` under [profile_overrides] in the machine file (FANUC parameter DPI = 1); if not, write the decimal point (`{}.`)",
+                "if it is, set `decimal_less = \"whole_units\"` under [profile_overrides.units] in the machine file (FANUC parameter DPI = 1); if not, write the decimal point (`{}.`)",
                 place.text
             )),
         )
@@ -245,7 +245,7 @@ impl ProgramScan {
     /// (Haas setting 9) writes no G20, and the part would come out 25.4 times too small.
     pub(super) fn unit_warning(&self, profile: &Profile) -> Option<Alarm> {
         let selected =
-            self.units.first.is_some() || (self.units.g70_or_g71 && profile.g70_g71_units);
+            self.units.first.is_some() || (self.units.g70_or_g71 && profile.units.g70_g71_units);
         if selected || power_on_unit(profile) != LengthUnit::Millimetre {
             return None;
         }

@@ -335,7 +335,7 @@ fn haas_offsets_are_diameters() {
 #[test]
 fn the_look_ahead_is_a_profile_setting() {
     let mut machine = machine_with_radius(1, 5.0);
-    machine.profile.cutter_comp_look_ahead = 1;
+    machine.profile.compensation.cutter_comp_look_ahead = 1;
     check_on(
         &machine,
         "G0 X-10. Y-10.

@@ -45,12 +45,12 @@ const TOLERANCE: f64 = 0.005;
 /// `machine` with every offset number holding `radius` (a diameter where the profile keeps
 /// diameters).
 fn with_radius(mut machine: Machine, radius: f64) -> Machine {
-    let value = if machine.profile.radius_offsets_are_diameters {
+    let value = if machine.profile.compensation.radius_offsets_are_diameters {
         2.0 * radius
     } else {
         radius
     };
-    for number in 0..=machine.profile.max_offset_number.min(200) {
+    for number in 0..=machine.profile.compensation.max_offset_number.min(200) {
         let offset = machine
             .tool_offsets
             .entry(number)

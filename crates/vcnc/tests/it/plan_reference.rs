@@ -108,7 +108,7 @@ fn compare_dir(dir: &Path) -> Vec<Comparison> {
                 acceleration,
                 planner: &planner,
                 // LinuxCNC's G4 P is seconds; its programs write every coordinate with a point.
-                profile_overrides: "dwell_p = \"seconds_with_point\"",
+                profile_overrides: "dwell.dwell_p = \"seconds_with_point\"",
                 ..plan::Limits::default()
             });
             // lcnc-time counts from the first motion to the end of the last one.

@@ -204,7 +204,7 @@ fn dwell_and_tool_change_take_their_time_and_stop_the_motion() {
 #[test]
 fn a_per_axis_rapid_lasts_as_long_as_its_slowest_axis() {
     let m = machine(&Limits {
-        profile_overrides: "rapid_path = \"per_axis\"",
+        profile_overrides: "motion.rapid_path = \"per_axis\"",
         ..Limits::default()
     });
     // X 100 mm and Y 50 mm, each on its own at 100 mm/s and 1000 mm/s^2: X rules.

@@ -108,7 +108,7 @@ pub(crate) fn g53(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
 /// system is already shifted by G92, G52 or turned.
 fn preset_with_rotation(exec: &mut Executor, cmd: &Command) -> Result<bool, Alarm> {
     let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
-    if !exec.kernel.setup.profile().g92_1_rotation {
+    if !exec.kernel.setup.profile().coordinates.g92_1_rotation {
         return Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             span,

@@ -115,7 +115,7 @@ fn refuse_both(frames: &Frames, cmd: &Command, mirror: bool) -> Result<(), Alarm
 /// A scale factor as written: with a decimal point as is; without one in thousandths where the
 /// profile reads numbers in least increments (FANUC's 0.001 unit), else as is.
 fn factor(profile: &Profile, n: crate::syntax::Number) -> f64 {
-    if !n.decimal_point && profile.decimal_less == DecimalLess::Increments {
+    if !n.decimal_point && profile.units.decimal_less == DecimalLess::Increments {
         n.value * 0.001
     } else {
         n.value

@@ -194,7 +194,7 @@ impl Kernel {
             offset: (center_machine[a] - start.0, center_machine[b] - start.1),
             span: origin.span,
         };
-        let tolerance = self.state.setup.profile().arc_radius_tolerance;
+        let tolerance = self.state.setup.profile().motion.arc_radius_tolerance;
         let center = arc_center(start, in_plane(plane, &to), spec, direction, tolerance)?;
         let arc = ArcTo {
             target: to,

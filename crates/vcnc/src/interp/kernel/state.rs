@@ -69,7 +69,7 @@ impl KernelState {
         KernelState {
             frames: Frames::new(setup.machine()),
             position: setup.machine().start,
-            feed: setup.profile().default_feed,
+            feed: setup.profile().motion.default_feed,
             spindle: Spindle::new(),
             tools: ToolMemory::new(tool_offsets),
             setup,
@@ -119,7 +119,7 @@ impl KernelState {
         if same_place(&to, &self.position) {
             return Ok(());
         }
-        let per_axis = self.setup.profile().rapid_path == crate::profile::RapidPath::PerAxis;
+        let per_axis = self.setup.profile().motion.rapid_path == crate::profile::RapidPath::PerAxis;
         let motion = self.move_to(to, block, modes, out)?;
         out.push(block, SegmentKind::Rapid { motion, per_axis });
         Ok(())

@@ -201,7 +201,12 @@ impl Core {
     pub(crate) fn read_variable(&self, number: u32, span: Span) -> Result<MacroValue, Alarm> {
         let kind = Variables::kind(
             number,
-            self.exec.kernel.setup.profile().extended_common_variables,
+            self.exec
+                .kernel
+                .setup
+                .profile()
+                .macros
+                .extended_common_variables,
         );
         match kind {
             Kind::System => {
@@ -225,7 +230,12 @@ impl Core {
     ) -> Result<(), Alarm> {
         let kind = Variables::kind(
             number,
-            self.exec.kernel.setup.profile().extended_common_variables,
+            self.exec
+                .kernel
+                .setup
+                .profile()
+                .macros
+                .extended_common_variables,
         );
         match kind {
             Kind::Vacant => Err(alarm(AlarmCode::BadVariable, span, "#0 cannot be written")),
@@ -349,11 +359,11 @@ impl Core {
         let increment = match letter {
             b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'I' | b'J' | b'K' | b'R' | b'Q' => {
                 match self.exec.modal.units {
-                    super::modal::Units::Millimetres => profile.increment_mm,
-                    super::modal::Units::Inches => profile.increment_inch,
+                    super::modal::Units::Millimetres => profile.units.increment_mm,
+                    super::modal::Units::Inches => profile.units.increment_inch,
                 }
             }
-            b'A' | b'B' | b'C' => profile.increment_deg,
+            b'A' | b'B' | b'C' => profile.units.increment_deg,
             _ => 0.0,
         };
         let rounded = if increment > 0.0 && value.abs() < 1e12 {
@@ -793,7 +803,7 @@ impl Core {
     }
 
     fn check_loop_number(&self, label: u32, span: Span) -> Result<(), Alarm> {
-        let most = self.exec.kernel.setup.profile().loop_numbers;
+        let most = self.exec.kernel.setup.profile().macros.loop_numbers;
         if label == 0 || label > most {
             return Err(alarm(
                 AlarmCode::LoopStructure,
@@ -992,7 +1002,13 @@ impl Core {
             ));
         };
         let mut number = Core::whole_number(p, "P (program number)")?;
-        if self.exec.kernel.setup.profile().m98_p_holds_repeats
+        if self
+            .exec
+            .kernel
+            .setup
+            .profile()
+            .subprograms
+            .m98_p_holds_repeats
             && self.command.l().is_none()
             && number > 9999
         {
@@ -1066,13 +1082,13 @@ impl Core {
             return Ok(());
         }
         let depth = self.macros.calls.len() as u32;
-        if depth >= self.exec.kernel.setup.profile().call_depth {
+        if depth >= self.exec.kernel.setup.profile().subprograms.call_depth {
             return Err(alarm(
                 AlarmCode::MacroLimit,
                 span,
                 format!(
                     "calls nested deeper than {} levels (FANUC alarm PS0077)",
-                    self.exec.kernel.setup.profile().call_depth
+                    self.exec.kernel.setup.profile().subprograms.call_depth
                 ),
             ));
         }
@@ -1083,13 +1099,13 @@ impl Core {
                 .iter()
                 .filter(|c| c.arguments.is_some())
                 .count() as u32;
-            if macros >= self.exec.kernel.setup.profile().macro_call_depth {
+            if macros >= self.exec.kernel.setup.profile().macros.macro_call_depth {
                 return Err(alarm(
                     AlarmCode::MacroLimit,
                     span,
                     format!(
                         "macro calls (G65, G66) nested deeper than {} levels (FANUC alarm PS0077)",
-                        self.exec.kernel.setup.profile().macro_call_depth
+                        self.exec.kernel.setup.profile().macros.macro_call_depth
                     ),
                 ));
             }
@@ -1268,7 +1284,7 @@ impl Core {
         // does (the Syntec manual's G65 example passes X and Y the same way): one arm today, and
         // a profile with another mapping must add its own here.
         let crate::profile::MacroArguments::Fanuc =
-            self.exec.kernel.setup.profile().macro_arguments;
+            self.exec.kernel.setup.profile().macros.macro_arguments;
         let mut locals: Locals = [None; 33];
         let mut program = None;
         let mut repeats = 1;
@@ -1341,17 +1357,17 @@ impl Core {
     /// the control reads addresses so (FANUC: "the units of the address").
     fn argument_value(&self, letter: u8, number: Number, value: f64) -> f64 {
         let profile = self.exec.kernel.setup.profile();
-        if number.decimal_point || profile.decimal_less != DecimalLess::Increments {
+        if number.decimal_point || profile.units.decimal_less != DecimalLess::Increments {
             return value;
         }
         match letter {
             b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'I' | b'J' | b'K' | b'R' | b'Q' => {
                 match self.exec.modal.units {
-                    super::modal::Units::Millimetres => value * profile.increment_mm,
-                    super::modal::Units::Inches => value * profile.increment_inch,
+                    super::modal::Units::Millimetres => value * profile.units.increment_mm,
+                    super::modal::Units::Inches => value * profile.units.increment_inch,
                 }
             }
-            b'A' | b'B' | b'C' => value * profile.increment_deg,
+            b'A' | b'B' | b'C' => value * profile.units.increment_deg,
             _ => value,
         }
     }

@@ -134,7 +134,7 @@ pub(crate) fn read(
     let profile = exec.kernel.setup.profile();
     let to_units = 1.0 / exec.modal.units.to_mm();
     let length = |mm: f64| Some(mm * to_units);
-    if let Some((n, field)) = tool_field_of(number, profile.tool_offset_variables) {
+    if let Some((n, field)) = tool_field_of(number, profile.macros.tool_offset_variables) {
         let offset = exec.kernel.tools.get(n).cloned().unwrap_or_default();
         let mm = match field {
             ToolField::Length => offset.length,
@@ -144,10 +144,10 @@ pub(crate) fn read(
         };
         return Ok(length(mm));
     }
-    if let Some((id, axis)) = work_offset_of(number, profile.g54_1_count) {
+    if let Some((id, axis)) = work_offset_of(number, profile.coordinates.g54_1_count) {
         return Ok(length(exec.kernel.frames.work_offset(id)[axis]));
     }
-    if profile.syntec_system_variables {
+    if profile.macros.syntec_system_variables {
         match number {
             1000 => return Ok(Some(motion_code(exec.modal.motion) / 10.0)),
             1004 => return Ok(Some(distance_code(exec.modal.distance) / 10.0)),
@@ -167,7 +167,7 @@ pub(crate) fn read(
             _ => {}
         }
     }
-    if profile.haas_system_variables {
+    if profile.macros.haas_system_variables {
         match number {
             // Power-on, cycle-start, feed, part timers (seconds): the simulation has no clock.
             3020..=3025 => return Ok(Some(0.0)),
@@ -203,14 +203,16 @@ pub(crate) fn read(
             Some(v) => v,
             None => return Err(unknown(number, span)),
         },
-        4201..=4222 if profile.haas_system_variables => match modal(number - 4200) {
+        4201..=4222 if profile.macros.haas_system_variables => match modal(number - 4200) {
             Some(v) => v,
             None => return Err(unknown(number, span)),
         },
-        4302..=4330 if profile.haas_system_variables => match letter_value(exec, number - 4300) {
-            Some(v) => v,
-            None => return Err(unknown(number, span)),
-        },
+        4302..=4330 if profile.macros.haas_system_variables => {
+            match letter_value(exec, number - 4300) {
+                Some(v) => v,
+                None => return Err(unknown(number, span)),
+            }
+        }
         5001..=5006 => {
             let program = exec.kernel.program_position();
             axis_of(number, 5001).and_then(|a| length(program[a]))
@@ -247,9 +249,10 @@ pub(crate) fn write(
     span: Span,
 ) -> Result<WriteEffect, Alarm> {
     let mm = value.unwrap_or(0.0) * exec.modal.units.to_mm();
-    if let Some((n, field)) =
-        tool_field_of(number, exec.kernel.setup.profile().tool_offset_variables)
-    {
+    if let Some((n, field)) = tool_field_of(
+        number,
+        exec.kernel.setup.profile().macros.tool_offset_variables,
+    ) {
         exec.kernel.tools.write(n, |offset| match field {
             ToolField::Length => offset.length = mm,
             ToolField::LengthWear => offset.length_wear = mm,
@@ -258,7 +261,9 @@ pub(crate) fn write(
         });
         return Ok(WriteEffect::None);
     }
-    if let Some((id, axis)) = work_offset_of(number, exec.kernel.setup.profile().g54_1_count) {
+    if let Some((id, axis)) =
+        work_offset_of(number, exec.kernel.setup.profile().coordinates.g54_1_count)
+    {
         exec.kernel.frames.set_work_offset(id, axis, mm);
         return Ok(WriteEffect::None);
     }
@@ -392,7 +397,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
         }
         // FANUC's group 21 is G12.1/G13.1 (polar coordinate interpolation), G13.1 at power-on;
         // a control without the function has nothing in it.
-        21 if exec.kernel.setup.profile().polar_interpolation => {
+        21 if exec.kernel.setup.profile().motion.polar_interpolation => {
             if out.polar_interpolating() {
                 121.0
             } else {

@@ -236,7 +236,7 @@ impl Sinumerik {
             corner_feed: None,
             corner_origin: None,
             tangent: None,
-            arc_tolerance: machine.profile.arc_radius_tolerance,
+            arc_tolerance: machine.profile.motion.arc_radius_tolerance,
             jumps: 0,
             spare: None,
             library: None,

@@ -682,7 +682,7 @@ fn tilted_arc(kernel: &mut Kernel, tag: &Tag, arc: Arc) -> Result<(), Alarm> {
     let start = V2::new(p[a], p[b]);
     let end = V2::new(tag.target[a].unwrap_or(p[a]), tag.target[b].unwrap_or(p[b]));
     let (r0, r1) = ((start - arc.centre).length(), (end - arc.centre).length());
-    let tolerance = kernel.state().setup.profile().arc_radius_tolerance;
+    let tolerance = kernel.state().setup.profile().motion.arc_radius_tolerance;
     if (r0 - r1).abs() > tolerance.max(1e-9 * r0) {
         return Err(Alarm::error(
             AlarmCode::ArcEndNotOnCircle,

@@ -35,7 +35,7 @@ pub fn machine_for(name: &str) -> Machine {
     if name.starts_with("ledfloor_") {
         // A Fusion 360 generic post writes `Y35` and `Z10` meaning millimetres: the control it was
         // made for reads numbers without a decimal point as whole units (FANUC parameter DPI = 1).
-        machine.profile.decimal_less = vcnc::profile::DecimalLess::WholeUnits;
+        machine.profile.units.decimal_less = vcnc::profile::DecimalLess::WholeUnits;
     }
     if name.starts_with("boreyko_") {
         // Macro templates that read the tool diameter from the offset table (`#[2400 + #3026]`):

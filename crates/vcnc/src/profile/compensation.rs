@@ -1,0 +1,60 @@
+//! A control's tool offsets and compensation: the offset numbers, what G10's tool L numbers
+//! set, radius or diameter, how G41/G42 find their offset, cutter compensation's look-ahead, and
+//! the G45-G48 tool position offsets.
+
+use serde::{Deserialize, Serialize};
+
+/// What a G10 L number sets, for tool offsets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolOffsetField {
+    /// Tool length, geometry.
+    LengthGeometry,
+    /// Tool length, wear.
+    LengthWear,
+    /// Cutter radius (or diameter, per `radius_offsets_are_diameters`), geometry.
+    RadiusGeometry,
+    /// Cutter radius, wear.
+    RadiusWear,
+}
+
+/// One G10 L number for tool offsets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ToolOffsetL {
+    /// The L number.
+    pub l: u32,
+    /// What it sets.
+    pub field: ToolOffsetField,
+}
+
+/// `[compensation]`: the tool offset memory and the compensations that read it (where the
+/// offsets sit among the system variables is the macros' `tool_offset_variables`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationRules {
+    /// Highest H/D offset number.
+    pub max_offset_number: u32,
+    /// The G10 L numbers that set tool offsets.
+    pub g10_tool_l: Vec<ToolOffsetL>,
+    /// A G10 tool offset block without L (`G10 P_ R_`) sets this field (FANUC 0M memory A).
+    #[serde(default)]
+    pub g10_tool_default: Option<ToolOffsetField>,
+    /// Cutter compensation values are diameters (Haas), not radii.
+    pub radius_offsets_are_diameters: bool,
+    /// A G41/G42 block with H and no D takes H as its radius offset number, not as a length
+    /// offset (the old FANUC 0M form, `G42 H19`, seen in the corpus).
+    #[serde(default)]
+    pub radius_offset_by_h: bool,
+    /// Blocks in a row without motion in the compensation plane after which the last element
+    /// ends perpendicular to itself (cutter compensation's look-ahead; FANUC: 2).
+    #[serde(default = "default_cutter_comp_look_ahead")]
+    pub cutter_comp_look_ahead: u32,
+    /// G45-G48 are tool position offsets (FANUC family, Syntec, Mitsubishi); Haas has no such
+    /// codes (its G47 engraves text).
+    #[serde(default = "super::default_true")]
+    pub tool_position_offset: bool,
+}
+
+fn default_cutter_comp_look_ahead() -> u32 {
+    2
+}

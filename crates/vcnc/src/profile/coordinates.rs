@@ -1,0 +1,31 @@
+//! Where a control's coordinate systems come from: which work offsets exist (G54.1 Pn, G59.x,
+//! G154), which G10 L numbers set them, Syntec's G92.1 with a rotation, and the reference
+//! points of G28 and G30.
+
+use serde::{Deserialize, Serialize};
+
+/// `[coordinates]`: work offsets, their G10 L numbers, G92.1, and the reference points.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CoordinateRules {
+    /// Number of G54.1 Pn work offsets (0: G54.1 does not exist).
+    pub g54_1_count: u32,
+    /// Syntec's G59.1 ... G59.9 work offsets 7 to 15.
+    pub g59_x_offsets: bool,
+    /// Haas's G154 Pn selects the extended work offsets like G54.1 Pn.
+    #[serde(default)]
+    pub g154_extended_offsets: bool,
+    /// The G10 L number that sets work offsets G54..G59 (P1..P6, P0 = external).
+    pub g10_work_l: u32,
+    /// The G10 L number that sets G54.1 work offsets (0: none).
+    pub g10_extended_work_l: u32,
+    /// Syntec's G92.1 X Y K R: a preset of the program origin with a rotation (spec 1.55);
+    /// elsewhere G92.1 is FANUC's work coordinate system preset.
+    #[serde(default)]
+    pub g92_1_rotation: bool,
+    /// Number of reference points (G28 is 1, G30 P2..Pn).
+    pub reference_points: u32,
+    /// G28 (and G30) without axis words sends every axis home (Haas); otherwise nothing moves.
+    #[serde(default)]
+    pub g28_without_axes_homes_all: bool,
+}

@@ -1,0 +1,70 @@
+//! How a control moves: G00's path, the feed before any F, arcs (the radius tolerance, Syntec's
+//! spirals), threads, Mitsubishi's circle cutting, polar coordinate interpolation, and the
+//! high-speed and smoothing codes.
+
+use serde::{Deserialize, Serialize};
+
+/// How G00 moves the axes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RapidPath {
+    /// All axes arrive together on a straight line (Syntec Pr411 = 0).
+    Linear,
+    /// Each axis at its own rapid rate: a dog-leg path (FANUC's classic positioning).
+    PerAxis,
+}
+
+/// The high-speed and smoothing codes of a control.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SmoothingCodes {
+    /// None that vcnc runs.
+    #[default]
+    None,
+    /// Syntec (spec iso-syntec-milling.md 1.8, 1.9): G05 P10000 (E optional) high-speed high-precision
+    /// mode and G05.1 Q1/Q2 E path smoothing, off with G05 P0 and G05.1 Q0.
+    Syntec,
+    /// FANUC: G05 P10000 (high-precision contour control), G05.1 Q1 (AI contour control) and
+    /// G08 P1 (look-ahead control), off with P0, Q0 and P0; none takes a tolerance.
+    Fanuc,
+}
+
+/// `[motion]`: the path of each kind of move (the timing is the machine file's `[planner]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotionRules {
+    /// G00 path shape.
+    pub rapid_path: RapidPath,
+    /// Feed used when G01/G02/G03 run before any F (None: alarm, as FANUC alarm 011).
+    #[serde(default)]
+    pub default_feed: Option<f64>,
+    /// Largest difference between start and end radius of an arc, mm (FANUC parameter 3410).
+    pub arc_radius_tolerance: f64,
+    /// L in a G02/G03 block is the number of turns of a spiral (Syntec, spec 1.6).
+    #[serde(default)]
+    pub arc_l_is_spiral: bool,
+    /// E in a G33 block gives threads per inch (Mitsubishi, spec B.10); elsewhere E in G33 is
+    /// refused like any E outside a tapping cycle.
+    #[serde(default)]
+    pub thread_e_per_inch: bool,
+    /// Mitsubishi's G12/G13 circle cutting exists.
+    #[serde(default)]
+    pub g12_g13_circle_cutting: bool,
+    /// G12.1/G13.1 polar coordinate interpolation exists (FANUC family, Syntec spec 1.13,
+    /// Mitsubishi); it turns the machine's C axis with X as the radius.
+    #[serde(default)]
+    pub polar_interpolation: bool,
+    /// Largest distance, mm, between the programmed path in G12.1 and the path the straight X-C
+    /// pieces that replace it trace on the part (vcnc's choice: FANUC and Syntec interpolate in
+    /// their servo cycle and give no such number).
+    #[serde(default = "default_polar_interpolation_tolerance")]
+    pub polar_interpolation_tolerance: f64,
+    /// Which high-speed and smoothing codes the control has (they change the timing, within a
+    /// tolerance the path).
+    #[serde(default)]
+    pub smoothing_codes: SmoothingCodes,
+}
+
+fn default_polar_interpolation_tolerance() -> f64 {
+    0.001
+}

@@ -1,0 +1,57 @@
+//! How a control reads a program's text into blocks and words: block ends, comments, program
+//! numbers, the digit limit, and what a block may hold. The number reading of lengths and angles
+//! is the units' ([`UnitRules`](super::UnitRules)).
+
+use crate::syntax::iso::SyntaxOptions;
+use serde::{Deserialize, Serialize};
+
+/// What two G codes of one modal group in one block do.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SameGroupRule {
+    /// The last one written is effective (FANUC); vcnc warns.
+    LastWins,
+    /// An alarm.
+    Alarm,
+}
+
+/// `[reading]`: how the text becomes blocks and words (the ISO front end and the decoder read it).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReadingRules {
+    /// `;` ends a block (true) or starts a comment (false).
+    pub semicolon_ends_block: bool,
+    /// `//` starts a comment to the end of the line.
+    pub slash_slash_comments: bool,
+    /// `:1234` is a program number.
+    pub colon_program_number: bool,
+    /// Largest magnitude of any value as written (`X99999999` ...): the control's digit limit.
+    #[serde(default = "default_max_word_value")]
+    pub max_word_value: f64,
+    /// M codes a block may hold; when a block has more, only the last ones run (FANUC 0M: one,
+    /// spec A.15 and example fanuc0m/06).
+    #[serde(default = "default_m_codes_per_block")]
+    pub m_codes_per_block: u32,
+    /// Two G codes of one group in a block.
+    pub same_group: SameGroupRule,
+}
+
+impl ReadingRules {
+    /// The character-level options of the ISO front end.
+    pub fn syntax(&self) -> SyntaxOptions {
+        SyntaxOptions {
+            semicolon_ends_block: self.semicolon_ends_block,
+            slash_slash_comments: self.slash_slash_comments,
+            colon_program_number: self.colon_program_number,
+        }
+    }
+}
+
+fn default_m_codes_per_block() -> u32 {
+    3
+}
+
+fn default_max_word_value() -> f64 {
+    // Nine digits before the point: FANUC's widest input format.
+    999_999_999.0
+}
