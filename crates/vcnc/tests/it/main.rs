@@ -34,6 +34,7 @@ mod rotation;
 mod scaling;
 mod seed_examples;
 mod sinumerik;
+mod sinumerik_compensation;
 mod sinumerik_corpus;
 mod sinumerik_examples;
 mod sinumerik_language;

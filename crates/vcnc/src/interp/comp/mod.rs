@@ -20,11 +20,13 @@
 //! - Alarms: an arc smaller than the tool and interference stop the control before the pending
 //!   block moves; the caller drops what was held.
 pub(crate) mod geometry;
+pub(crate) mod transition;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::AXES;
-use crate::motion::{ArcDirection, MachinePos, Segment, SegmentKind};
-use geometry::{Element, GeometryError, Side, V2};
+use crate::motion::{ArcDirection, Feed, MachinePos, Plane, Segment, SegmentKind};
+use geometry::{Element, GeometryError, Link, Side, V2};
+use transition::{Approach, Rules};
 
 /// Cutter compensation in force: turns the programmed motion of the executor (machine
 /// coordinates, the tool's programmed centre) into the tool-centre path, one corner late.
@@ -56,6 +58,8 @@ pub(crate) struct Compensator {
     left: bool,
     /// One axis of the plane was mirrored when the side was last worked out.
     reversed: bool,
+    /// The dialect's corner and approach rules.
+    rules: Rules,
 }
 
 #[derive(Clone, Debug)]
@@ -107,7 +111,30 @@ impl Compensator {
             next: None,
             left,
             reversed: false,
+            rules: Rules::FANUC,
         }
+    }
+
+    /// The same compensation under a dialect's `rules`.
+    pub(crate) fn with_rules(mut self, rules: Rules) -> Self {
+        self.rules = rules;
+        self
+    }
+
+    /// The rules from here on (a change of corner or approach mode while compensating).
+    pub(crate) fn set_rules(&mut self, rules: Rules) {
+        self.rules = rules;
+    }
+
+    /// The plane of the compensation's axes.
+    fn plane(&self) -> Plane {
+        [Plane::Xy, Plane::Zx, Plane::Yz]
+            .into_iter()
+            .find(|plane| {
+                let (a, b, _) = plane.axes();
+                (a, b) == self.axes
+            })
+            .unwrap_or(Plane::Xy)
     }
 
     /// The programmed element of a motion segment in the plane, `None` for a move with no travel
@@ -180,7 +207,7 @@ impl Compensator {
         self.moved = true;
         if self.cancelling {
             // The G40 block: from the tool centre to the programmed end.
-            self.finish(items, held)?;
+            self.retract(&element, &segment, items, held)?;
             let mut segment = segment;
             if let Some(motion) = motion_mut(&mut segment) {
                 set_plane(&mut motion.from.0, self.axes, self.tool);
@@ -195,7 +222,7 @@ impl Compensator {
         // control before the block waiting for it moves.
         element
             .offset(setting.0, setting.1)
-            .map_err(|e| geometry_alarm(e, &segment))?;
+            .map_err(|e| self.alarm(e, &segment))?;
         if setting.1 != self.radius
             && self.pending.is_some()
             && matches!(element, Element::Arc { .. })
@@ -225,7 +252,7 @@ impl Compensator {
                 (self.side, self.radius) = setting;
                 let start = geometry::start_up_end(&element, self.side, self.radius);
                 let tool = self.tool;
-                self.links(tool, &[start], &segment, items);
+                self.links(tool, &[Link::Line(start)], &segment, items);
                 start
             }
         };
@@ -252,12 +279,27 @@ impl Compensator {
         next: &Element,
         segment: &Segment,
         (side, radius): (Side, f64),
-    ) -> Result<(V2, Vec<V2>), Alarm> {
+    ) -> Result<(V2, Vec<Link>), Alarm> {
         if pending.start_up {
-            return Ok((geometry::start_up_end(next, side, radius), Vec::new()));
+            let around = match pending.element {
+                Element::Line { start, .. } if self.rules.approach == Approach::AroundPoint => {
+                    transition::around_start(self.rules.outer, start, next, side, radius)
+                }
+                _ => None,
+            };
+            return Ok(match around {
+                Some(corner) => (corner.a_end, corner.links),
+                None => (geometry::start_up_end(next, side, radius), Vec::new()),
+            });
         }
         let corner = if side == self.side {
-            geometry::corner(&pending.element, next, self.side, self.radius)
+            transition::corner(
+                self.rules.outer,
+                &pending.element,
+                next,
+                self.side,
+                self.radius,
+            )
         } else {
             geometry::side_change(
                 &pending.element,
@@ -266,7 +308,7 @@ impl Compensator {
                 (side, radius),
             )
         }
-        .map_err(|e| geometry_alarm(e, segment))?;
+        .map_err(|e| self.alarm(e, segment))?;
         Ok((corner.a_end, corner.links))
     }
 
@@ -283,10 +325,7 @@ impl Compensator {
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
         if !pending.start_up && geometry::interferes(&pending.element, pending.start, end) {
-            return Err(geometry_alarm(
-                GeometryError::Interference,
-                &pending.segment,
-            ));
+            return Err(self.alarm(GeometryError::Interference, &pending.segment));
         }
         let at = held.take().unwrap_or(items.len());
         let mut segment = pending.segment;
@@ -308,42 +347,89 @@ impl Compensator {
         Ok(())
     }
 
-    /// The straight moves of an outer corner, as moves of the block that turns the corner.
+    /// The moves of an outer corner, as moves of the block that turns the corner.
     fn links(
         &mut self,
         from: V2,
-        links: &[V2],
+        links: &[Link],
         segment: &Segment,
         items: &mut Vec<Result<Segment, Alarm>>,
     ) {
         let mut here = from;
-        for &point in links {
+        for &link in links {
+            let point = link.to();
             if point.distance(here) < geometry::EPSILON {
                 continue;
             }
-            let mut link = *segment;
-            let (a, b) = self.axes;
-            if let Some(motion) = motion_mut(&mut link) {
-                let mut to = motion.from.0;
-                to[a] = point.x;
-                to[b] = point.y;
-                let mut start = motion.from.0;
-                start[a] = here.x;
-                start[b] = here.y;
-                motion.from = MachinePos(start);
-                motion.to = MachinePos(to);
-            }
-            let link = match link.kind {
-                SegmentKind::Arc { motion, feed, .. } => Segment {
-                    kind: SegmentKind::Line { motion, feed },
-                    ..link
-                },
-                _ => link,
+            let mut motion = match segment.motion() {
+                Some(motion) => *motion,
+                None => continue,
             };
-            items.push(Ok(link));
+            let (mut start, mut to) = (motion.from.0, motion.from.0);
+            set_plane(&mut start, self.axes, here);
+            set_plane(&mut to, self.axes, point);
+            motion.from = MachinePos(start);
+            motion.to = MachinePos(to);
+            let kind = match (link, segment.kind) {
+                (Link::Arc { center, ccw, .. }, kind) => {
+                    let mut centre = start;
+                    set_plane(&mut centre, self.axes, center);
+                    SegmentKind::Arc {
+                        motion,
+                        center: MachinePos(centre),
+                        direction: if ccw {
+                            ArcDirection::CounterClockwise
+                        } else {
+                            ArcDirection::Clockwise
+                        },
+                        plane: self.plane(),
+                        extra_turns: 0,
+                        feed: match kind {
+                            SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => feed,
+                            _ => Feed::PerMinute(self.rules.rapid_arc_feed),
+                        },
+                    }
+                }
+                (Link::Line(_), SegmentKind::Arc { feed, .. }) => {
+                    SegmentKind::Line { motion, feed }
+                }
+                (Link::Line(_), kind) => with_motion(kind, motion),
+            };
+            items.push(Ok(Segment { kind, ..*segment }));
             here = point;
         }
         self.tool = here;
+    }
+
+    /// The G40 block's move in the plane: the pending element ends perpendicular to itself
+    /// (or round its end point, by the rules), and the block goes from there to its end.
+    fn retract(
+        &mut self,
+        element: &Element,
+        segment: &Segment,
+        items: &mut Vec<Result<Segment, Alarm>>,
+        held: &mut Option<usize>,
+    ) -> Result<(), Alarm> {
+        let around = match &self.pending {
+            Some(pending) if !pending.start_up && self.rules.approach == Approach::AroundPoint => {
+                transition::around_end(
+                    self.rules.outer,
+                    &pending.element,
+                    element.end(),
+                    self.side,
+                    self.radius,
+                )
+            }
+            _ => None,
+        };
+        let Some(corner) = around else {
+            return self.finish(items, held);
+        };
+        let pending = self.pending.take().expect("matched above");
+        self.emit(pending, corner.a_end, items, held)?;
+        let a_end = corner.a_end;
+        self.links(a_end, &corner.links, segment, items);
+        Ok(())
     }
 
     /// A block ends: past the look-ahead of blocks without motion in the plane, the pending
@@ -430,6 +516,11 @@ impl Compensator {
         self.pending = None;
     }
 
+    /// The alarm of a corner or element that cannot be made, in the dialect's terms.
+    fn alarm(&self, error: GeometryError, segment: &Segment) -> Alarm {
+        geometry_alarm(error, segment, self.rules.alarm_help)
+    }
+
     /// G40 in the block being executed.
     pub(crate) fn cancel(&mut self) {
         self.cancelling = true;
@@ -460,7 +551,16 @@ fn motion_mut(segment: &mut Segment) -> Option<&mut crate::motion::Move> {
     }
 }
 
-fn geometry_alarm(error: GeometryError, segment: &Segment) -> Alarm {
+/// The segment `kind` (a rapid or a line) moving along `motion` instead.
+fn with_motion(kind: SegmentKind, motion: crate::motion::Move) -> SegmentKind {
+    match kind {
+        SegmentKind::Rapid { per_axis, .. } => SegmentKind::Rapid { motion, per_axis },
+        SegmentKind::Line { feed, .. } => SegmentKind::Line { motion, feed },
+        other => other,
+    }
+}
+
+fn geometry_alarm(error: GeometryError, segment: &Segment, help: &'static str) -> Alarm {
     let message = match error {
         GeometryError::ArcSmallerThanTool {
             arc_radius,
@@ -473,6 +573,5 @@ fn geometry_alarm(error: GeometryError, segment: &Segment) -> Alarm {
         }
         GeometryError::ZeroLength => "a move of no length where compensation needs a direction".to_string(),
     };
-    Alarm::error(AlarmCode::CutterCompensation, segment.span, message)
-        .with_help("FANUC alarms 033/041: a smaller tool, a larger radius or another path")
+    Alarm::error(AlarmCode::CutterCompensation, segment.span, message).with_help(help)
 }

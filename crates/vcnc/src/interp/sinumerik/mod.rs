@@ -14,6 +14,7 @@
 
 mod arcs;
 mod block;
+mod compensation;
 mod contour;
 mod control;
 mod eval;
@@ -117,6 +118,8 @@ pub struct Sinumerik {
     structure: flow::Structure,
     /// Jumps made (GOTO, CASE, loops back).
     jumps: u64,
+    /// Tool radius compensation: G40/G41/G42 and how it approaches and turns corners.
+    radius_compensation: compensation::RadiusCompensation,
 }
 
 /// One program level of the call stack.
@@ -229,6 +232,7 @@ impl Sinumerik {
             tangent: None,
             arc_tolerance: machine.profile.arc_radius_tolerance,
             jumps: 0,
+            radius_compensation: compensation::RadiusCompensation::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
@@ -615,7 +619,11 @@ impl Sinumerik {
 
 impl FrontEnd for Sinumerik {
     fn step(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
-        self.next_step(kernel).map_err(with_sinumerik_help)
+        let step = self.next_step(kernel).map_err(with_sinumerik_help)?;
+        // Compensation counts the blocks without motion in its plane, and stops at a corner
+        // it could not make.
+        kernel.end_block()?;
+        Ok(step)
     }
 }
 

@@ -27,7 +27,7 @@ fn tool_path(elements: &[Element], side: Side, r: f64) -> Vec<V2> {
     for pair in elements.windows(2) {
         let corner = corner(&pair[0], &pair[1], side, r).expect("the corner can be made");
         points.push(corner.a_end);
-        points.extend(corner.links);
+        points.extend(corner.links.iter().map(|link| link.to()));
     }
     points.push(perpendicular_end(elements.last().unwrap(), side, r));
     points
@@ -280,7 +280,7 @@ fn a_reversal_goes_round_the_end() {
     )
     .unwrap();
     assert_path(
-        &[corner.a_end, corner.links[0]],
+        &[corner.a_end, corner.links[0].to()],
         &[(12.0, 2.0), (12.0, -2.0)],
     );
 }
@@ -356,7 +356,7 @@ proptest! {
             Err(other) => panic!("{other:?}"),
         };
         let mut points = vec![corner.a_end];
-        points.extend(corner.links.iter().copied());
+        points.extend(corner.links.iter().map(|link| link.to()));
         for point in &points {
             prop_assert!(distance_to(&a, *point) >= r - 1e-6, "{point:?} too near a");
             prop_assert!(distance_to(&b, *point) >= r - 1e-6, "{point:?} too near b");
@@ -403,7 +403,7 @@ proptest! {
             Err(other) => panic!("{other:?}"),
         };
         let mut points = vec![corner.a_end];
-        points.extend(corner.links.iter().copied());
+        points.extend(corner.links.iter().map(|link| link.to()));
         for point in &points {
             prop_assert!(distance_to(&a, *point) >= r - 1e-6, "{point:?} too near {a:?}");
             prop_assert!(distance_to(&b, *point) >= r - 1e-6, "{point:?} too near {b:?}");

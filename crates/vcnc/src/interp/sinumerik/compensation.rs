@@ -1,0 +1,244 @@
+//! SINUMERIK tool radius compensation (docs/SINUMERIK.md 10; sinumerik-part-b.md 2, seed 002
+//! L6949-7396): G40/G41/G42 with the edge's radius ($TC_DP6) and OFFN, NORM/KONT, G450/G451 and
+//! DISC, in the plane of G17/G18/G19.
+//!
+//! The front end keeps the programmed functions; the kernel's compensator (`interp/comp`, the
+//! FANUC compensator's look-ahead stage) makes the tool-centre path under SINUMERIK's rules
+//! ([`Rules`]: transition circle or intersection at outer corners, KONT round the start and end
+//! point). A block's compensation is settled after its tool words and before its motion
+//! ([`before_motion`]), and a cancelling block's return onto the programmed point after it
+//! ([`after_motion`]).
+//!
+//! Never: change a rule of the ISO compensation; every SINUMERIK choice is in this file or in
+//! the rules it hands the kernel.
+
+use super::gcodes::Motion;
+use super::Sinumerik;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::comp::geometry::Side;
+use crate::interp::comp::transition::{Approach, OuterCorner, Rules};
+use crate::interp::kernel::{Kernel, Origin};
+use crate::motion::Plane;
+use crate::source::Span;
+use crate::syntax::sinumerik::{Value, Word};
+
+/// The compensation functions vcnc runs: groups 7 (G40, G41, G42), 17 (NORM, KONT) and 18
+/// (G450, G451).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum RadiusFunction {
+    /// G40.
+    Off,
+    /// G41: the tool left of the contour.
+    Left,
+    /// G42: the tool right of the contour.
+    Right,
+    /// NORM or KONT.
+    Approach(Approach),
+    /// G450 or G451.
+    Outer(OuterCorner),
+}
+
+/// The blocks without motion in the compensation plane after which the element waiting for
+/// its corner ends perpendicular to itself: MD20250 $MC_CUTCOM_MAXNUM_DUMMY_BLOCKS (seed 002
+/// L7150-7155 names the machine data, not its value; 3 is vcnc's choice).
+const DUMMY_BLOCKS: u32 = 3;
+
+/// What the interference alarm tells on a SINUMERIK (seed 002 L7761 gives 10751).
+const ALARM_HELP: &str = "SINUMERIK alarm 10751 (collision danger): a smaller tool, a smaller OFFN or another path; the compensated path would cut into the contour";
+
+/// The compensation's modal state.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RadiusCompensation {
+    /// G41 (Some(true)), G42 (Some(false)) or G40.
+    left: Option<bool>,
+    approach: Approach,
+    outer: OuterCorner,
+    /// OFFN: the contour offset added to the radius.
+    offset: f64,
+    /// While compensating: its plane, and the side and radius the kernel has.
+    on: Option<(Plane, (Side, f64))>,
+}
+
+impl Default for RadiusCompensation {
+    /// The power-on state: G40, NORM, G450, OFFN=0 (group defaults, seed 002 L7176, L7295).
+    fn default() -> Self {
+        RadiusCompensation {
+            left: None,
+            approach: Approach::Straight,
+            outer: OuterCorner::TransitionCircle,
+            offset: 0.0,
+            on: None,
+        }
+    }
+}
+
+/// A compensation function of the block, taken as it is read.
+pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
+    let state = &mut front.radius_compensation;
+    match function {
+        RadiusFunction::Off => state.left = None,
+        RadiusFunction::Left => state.left = Some(true),
+        RadiusFunction::Right => state.left = Some(false),
+        RadiusFunction::Approach(approach) => state.approach = approach,
+        RadiusFunction::Outer(outer) => state.outer = outer,
+    }
+}
+
+/// OFFN= and DISC=: the contour offset, and the transition circle's shape.
+///
+/// # Errors
+/// A value that is not a number; DISC above 0, which vcnc does not run.
+pub(super) fn word(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Alarm> {
+    let value = match &word.value {
+        Value::Constant(n) => n.value,
+        Value::Expression(expr) => front.value(kernel, expr)?,
+        _ => {
+            return Err(Alarm::error(
+                AlarmCode::MissingValue,
+                word.span,
+                format!("{} needs a value: {}=5", word.address, word.address),
+            ))
+        }
+    };
+    match &*word.address {
+        "OFFN" => front.radius_compensation.offset = value * super::motion::unit(front),
+        // DISC=0 is the transition circle itself; higher values flatten it towards the
+        // intersection (seed 002 L7314-7320) along a curve the manual does not define.
+        _ if value == 0.0 => {}
+        _ => {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                word.span,
+                format!("DISC={value} is not run yet: vcnc makes the transition circle of DISC=0 at outer corners"),
+            )
+            .with_help("use DISC=0 (the transition circle) or G451 (the intersection)"))
+        }
+    }
+    Ok(())
+}
+
+/// The side and radius of G41 (`left`) or G42 now: the edge's radius plus OFFN, a negative
+/// total and a mirrored plane each swapping the side (seed 002 L7097).
+fn setting(front: &Sinumerik, kernel: &Kernel, left: bool, plane: Plane) -> (Side, f64) {
+    let radius = front.edge().map_or(0.0, |edge| edge.radius) + front.radius_compensation.offset;
+    let side = Side::of(left, radius);
+    let (a, b, _) = plane.axes();
+    let side = match (kernel.state().frames.reverses_plane((a, b)), side) {
+        (false, side) => side,
+        (true, Side::Left) => Side::Right,
+        (true, Side::Right) => Side::Left,
+    };
+    (side, radius.abs())
+}
+
+/// The rules the kernel compensates by.
+fn rules(front: &Sinumerik, kernel: &Kernel, plane: Plane) -> Rules {
+    let (a, b, _) = plane.axes();
+    let axes = &kernel.state().setup.machine().axes;
+    let rapid = [a, b]
+        .iter()
+        .filter_map(|&i| axes[i].as_ref().map(|axis| axis.rapid))
+        .fold(f64::INFINITY, f64::min);
+    Rules {
+        outer: front.radius_compensation.outer,
+        approach: front.radius_compensation.approach,
+        alarm_help: ALARM_HELP,
+        rapid_arc_feed: if rapid.is_finite() { rapid } else { 10_000.0 },
+    }
+}
+
+/// Before the block's motion (after its D): compensation starts, changes or is cancelled.
+///
+/// # Errors
+/// G41/G42 starting in a circle block; a change of plane while compensating.
+pub(super) fn before_motion(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    moves: bool,
+    span: Span,
+) -> Result<(), Alarm> {
+    let state = front.radius_compensation;
+    let plane = front.modal.plane;
+    let (a, b, _) = plane.axes();
+    if state.left.is_some()
+        && kernel
+            .state()
+            .frames
+            .programmable()
+            .is_some_and(|frame| !frame.keeps_plane((a, b)))
+    {
+        return Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            "G41 and G42 in a frame that tilts or unevenly scales the plane are not run yet",
+        )
+        .with_help("vcnc compensates in a machine plane: turn the frame about the plane's normal only (CUT2DF, 3+2 work, is issue 22's)"));
+    }
+    match (state.left, state.on) {
+        (None, None) => {}
+        (None, Some(_)) => kernel.cancel_compensation(),
+        (Some(left), None) => {
+            let rapid_or_line = matches!(front.modal.motion, Motion::Rapid | Motion::Line);
+            if moves && !rapid_or_line {
+                return Err(Alarm::error(
+                    AlarmCode::CutterCompensation,
+                    span,
+                    "G41 and G42 start in a G0 or G1 block",
+                )
+                .with_help("switch the compensation on in the straight approach block before the contour (seed 002 L6968)"));
+            }
+            // Turning and grinding tools (types 400-599) have a cutting edge position
+            // (seed 002 L7988-8032): their compensation is a lathe's.
+            if let Some(edge) = front.edge().filter(|e| (400..600).contains(&e.tool_type)) {
+                return Err(Alarm::error(
+                    AlarmCode::NotInProduct,
+                    span,
+                    format!(
+                        "{} with tool type {} belongs to turning (the nose radius compensation of a turning tool), which vcnc does not simulate",
+                        if left { "G41" } else { "G42" },
+                        edge.tool_type
+                    ),
+                ));
+            }
+            let setting = setting(front, kernel, left, plane);
+            let rules = rules(front, kernel, plane);
+            kernel.start_compensation(setting, plane, left, rules, DUMMY_BLOCKS);
+            front.radius_compensation.on = Some((plane, setting));
+        }
+        (Some(left), Some((on_plane, old))) => {
+            if plane != on_plane {
+                return Err(Alarm::error(
+                    AlarmCode::CutterCompensation,
+                    span,
+                    "the working plane cannot change while G41 or G42 is on",
+                )
+                .with_help("cancel the compensation with G40 before G17, G18 or G19"));
+            }
+            let setting = setting(front, kernel, left, plane);
+            if setting != old {
+                kernel.change_compensation(setting, left);
+                front.radius_compensation.on = Some((plane, setting));
+            }
+            let rules = rules(front, kernel, plane);
+            kernel.set_compensation_rules(rules);
+        }
+    }
+    Ok(())
+}
+
+/// After the block's motion: a G40 block ends compensation, the tool centre going onto the
+/// programmed point if the block itself did not move in the plane.
+///
+/// # Errors
+/// Interference where the last element ends; a line without a feed.
+pub(super) fn after_motion(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    if front.radius_compensation.left.is_some() || front.radius_compensation.on.is_none() {
+        return Ok(());
+    }
+    front.radius_compensation.on = None;
+    kernel.end_compensation(front.modal.motion == Motion::Rapid, origin)
+}
