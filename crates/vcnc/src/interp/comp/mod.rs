@@ -60,6 +60,12 @@ pub(crate) struct Compensator {
     reversed: bool,
     /// The dialect's corner and approach rules.
     rules: Rules,
+    /// SINUMERIK's CUTCONON: moves go uncompensated, shifted by this vector (the tool centre's
+    /// offset where the last compensated element ended).
+    constant: Option<V2>,
+    /// The last element moved under CUTCONON, until the next compensated one: KONT goes round
+    /// the corner between them.
+    suppressed: Option<Element>,
 }
 
 #[derive(Clone, Debug)]
@@ -112,6 +118,8 @@ impl Compensator {
             left,
             reversed: false,
             rules: Rules::FANUC,
+            constant: None,
+            suppressed: None,
         }
     }
 
@@ -183,6 +191,10 @@ impl Compensator {
             items.push(Ok(segment));
             return Ok(());
         }
+        if let Some(shift) = self.constant {
+            self.push_shifted(segment, shift, items);
+            return Ok(());
+        }
         let Some(element) = self.element(&segment) else {
             let mut segment = segment;
             let here = self.pending.as_ref().map_or(self.tool, |p| p.provisional);
@@ -252,7 +264,8 @@ impl Compensator {
                 (self.side, self.radius) = setting;
                 let start = geometry::start_up_end(&element, self.side, self.radius);
                 let tool = self.tool;
-                self.links(tool, &[Link::Line(start)], &segment, items);
+                let link = self.rejoin(&element, start);
+                self.links(tool, &[link], &segment, items);
                 start
             }
         };
@@ -268,6 +281,82 @@ impl Compensator {
         });
         self.started = true;
         Ok(())
+    }
+
+    /// A move under CUTCONON: as programmed, shifted by the offset kept.
+    fn push_shifted(
+        &mut self,
+        mut segment: Segment,
+        shift: V2,
+        items: &mut Vec<Result<Segment, Alarm>>,
+    ) {
+        if let Some(element) = self.element(&segment) {
+            self.suppressed = Some(element);
+            self.moved = true;
+            self.idle_blocks = 0;
+        }
+        let axes = self.axes;
+        let moved = |point: &mut [f64; AXES]| {
+            let p = plane_point(point, axes) + shift;
+            set_plane(point, axes, p);
+        };
+        if let SegmentKind::Arc { center, .. } = &mut segment.kind {
+            moved(&mut center.0);
+        }
+        if let Some(motion) = motion_mut(&mut segment) {
+            moved(&mut motion.from.0);
+            moved(&mut motion.to.0);
+            self.tool = plane_point(&motion.to.0, axes);
+        }
+        items.push(Ok(segment));
+    }
+
+    /// How the tool centre goes from where it stands to `start`, the compensated start of
+    /// `element`, after an end perpendicular to the last element: straight, or after CUTCONON
+    /// with KONT round an outer corner on the circle about it (seed 002 L7960-7985).
+    fn rejoin(&mut self, element: &Element, start: V2) -> Link {
+        let Some(last) = self.suppressed.take() else {
+            return Link::Line(start);
+        };
+        let corner = element.start();
+        let outer = matches!(
+            geometry::turn(last.end_tangent(), element.start_tangent(), self.side),
+            geometry::Turn::Outer | geometry::Turn::SharpOuter
+        );
+        if self.rules.approach == Approach::AroundPoint
+            && outer
+            && (self.tool.distance(corner) - self.radius).abs() < 1e-6
+        {
+            Link::Arc {
+                to: start,
+                center: corner,
+                ccw: self.side == Side::Right,
+            }
+        } else {
+            Link::Line(start)
+        }
+    }
+
+    /// CUTCONON: the pending element ends perpendicular to itself, and the moves from here on
+    /// go as programmed, shifted by the tool centre's offset there from `programmed`, the
+    /// programmed point (plane axes).
+    ///
+    /// # Errors
+    /// Interference at the pending element's end.
+    pub(crate) fn keep_constant(
+        &mut self,
+        programmed: V2,
+        items: &mut Vec<Result<Segment, Alarm>>,
+        held: &mut Option<usize>,
+    ) -> Result<(), Alarm> {
+        self.finish(items, held)?;
+        self.constant = Some(self.tool - programmed);
+        Ok(())
+    }
+
+    /// CUTCONOF: the next element is compensated again, joined from the shifted position.
+    pub(crate) fn release_constant(&mut self) {
+        self.constant = None;
     }
 
     /// The end of the pending element and the links to the next one's start, which is

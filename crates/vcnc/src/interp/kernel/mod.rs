@@ -430,6 +430,23 @@ impl Kernel {
         }
     }
 
+    /// CUTCONON (`keep`): the moves from here on go as programmed, shifted by the offset the
+    /// tool centre has where the last compensated element ends; CUTCONOF: compensated again.
+    ///
+    /// # Errors
+    /// Interference where the last compensated element ends.
+    pub(crate) fn keep_compensation_constant(&mut self, keep: bool) -> Result<(), Alarm> {
+        let position = self.state.position;
+        self.out.change_compensation(|comp, items, held| {
+            if !keep {
+                comp.release_constant();
+                return Ok(());
+            }
+            let (a, b) = comp.axes();
+            comp.keep_constant(V2::new(position[a], position[b]), items, held)
+        })
+    }
+
     /// The block being run cancels compensation: its move in the plane leaves the contour.
     pub(crate) fn cancel_compensation(&mut self) {
         if let Some(comp) = self.out.compensation_mut() {

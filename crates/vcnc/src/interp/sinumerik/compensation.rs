@@ -36,6 +36,8 @@ pub(super) enum RadiusFunction {
     Approach(Approach),
     /// G450 or G451.
     Outer(OuterCorner),
+    /// CUTCONON (true) or CUTCONOF.
+    Constant(bool),
 }
 
 /// The blocks without motion in the compensation plane after which the element waiting for
@@ -55,6 +57,9 @@ pub(super) struct RadiusCompensation {
     outer: OuterCorner,
     /// OFFN: the contour offset added to the radius.
     offset: f64,
+    /// CUTCONON programmed, and whether the kernel keeps the offset constant now.
+    constant: bool,
+    kept: bool,
     /// While compensating: its plane, and the side and radius the kernel has.
     on: Option<(Plane, (Side, f64))>,
 }
@@ -67,6 +72,8 @@ impl Default for RadiusCompensation {
             approach: Approach::Straight,
             outer: OuterCorner::TransitionCircle,
             offset: 0.0,
+            constant: false,
+            kept: false,
             on: None,
         }
     }
@@ -81,6 +88,7 @@ pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
         RadiusFunction::Right => state.left = Some(false),
         RadiusFunction::Approach(approach) => state.approach = approach,
         RadiusFunction::Outer(outer) => state.outer = outer,
+        RadiusFunction::Constant(constant) => state.constant = constant,
     }
 }
 
@@ -222,6 +230,12 @@ pub(super) fn before_motion(
             let rules = rules(front, kernel, plane);
             kernel.set_compensation_rules(rules);
         }
+    }
+    let state = &mut front.radius_compensation;
+    let constant = state.constant && state.on.is_some();
+    if constant != state.kept {
+        state.kept = constant;
+        kernel.keep_compensation_constant(constant)?;
     }
     Ok(())
 }

@@ -288,15 +288,18 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "KONT" => Radius(RadiusFunction::Approach(Approach::AroundPoint)),
         "G450" => Radius(RadiusFunction::Outer(OuterCorner::TransitionCircle)),
         "G451" => Radius(RadiusFunction::Outer(OuterCorner::Intersection)),
+        "CUTCONON" => Radius(RadiusFunction::Constant(true)),
+        "CUTCONOF" => Radius(RadiusFunction::Constant(false)),
         "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "BRISK" | "SOFT" | "DRIVE"
         | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF" | "COMPOF" | "COMPON"
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
         | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF" | "CDON" | "CDOF2"
-        | "TRAFOOF" => State,
+        // G460: collision detection on the approach and retraction blocks, what vcnc's
+        // compensation does.
+        | "TRAFOOF" | "G460" => State,
         "G641" | "G642" | "G643" | "G644" | "G645" | "KONTT" | "KONTC" | "CUT2DF" | "G140"
         | "G141" | "G142" | "G143" | "G147" | "G148" | "G247" | "G248" | "G347" | "G348"
-        | "G340" | "G341" | "G460" | "G461" | "G462" | "CUTCONON" | "CUTCONOF" | "FLIN"
-        | "FCUB" => Planned,
+        | "G340" | "G341" | "G461" | "G462" | "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
