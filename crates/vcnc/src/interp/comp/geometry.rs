@@ -631,4 +631,4 @@ pub(crate) fn interferes(programmed: &Element, start: V2, end: V2) -> bool {
 }
 
 #[cfg(test)]
-mod tests;
+pub(super) mod tests;

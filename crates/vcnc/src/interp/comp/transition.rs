@@ -138,6 +138,29 @@ fn circling(center: V2, point: V2, ccw: bool) -> V2 {
     }
 }
 
+/// True when the path turns from direction `from` into `to` away from the tool: the tool goes
+/// round the corner.
+fn turns_outward(from: V2, to: V2, side: Side) -> bool {
+    from != V2::default() && matches!(turn(from, to, side), Turn::Outer | Turn::SharpOuter)
+}
+
+/// Where a line through `p` touches the circle of radius `r` about `center`, the circle being
+/// travelled the way an outer corner turns for a tool on `side`: the line arriving at it
+/// (`arriving`, KONT's approach) or leaving it (the retraction) in the circle's direction.
+fn touching(p: V2, center: V2, r: f64, side: Side, arriving: bool) -> Option<V2> {
+    let ccw = side == Side::Right;
+    tangent_points(p, center, r)?.into_iter().find(|&t| {
+        let along = if arriving { t - p } else { p - t };
+        along.dot(circling(center, t, ccw)) > 0.0
+    })
+}
+
+/// G451's point: where the straight line `line` meets `element` compensated, nearest `near`.
+fn meeting(line: Element, element: &Element, side: Side, r: f64, near: V2) -> Option<V2> {
+    let compensated = element.offset(side, r).ok()?;
+    nearest(intersections(&line, &compensated), near)
+}
+
 /// KONT's start-up: the start-up block from `p0` (the uncompensated point before it) into the
 /// first element `next`. `None` when the tool is in front of the contour (or within a radius of
 /// its start): the start-up is NORM's.
@@ -149,35 +172,23 @@ pub(crate) fn around_start(
     r: f64,
 ) -> Option<Corner> {
     let s = next.start();
-    let approach = (s - p0).unit();
-    if approach == V2::default()
-        || !matches!(
-            turn(approach, next.start_tangent(), side),
-            Turn::Outer | Turn::SharpOuter
-        )
-    {
+    if !turns_outward((s - p0).unit(), next.start_tangent(), side) {
         return None;
     }
-    let ccw = side == Side::Right;
-    // The line arrives at the circle and goes on round it the way the corner turns.
-    let touch = tangent_points(p0, s, r)?
-        .into_iter()
-        .find(|&t| (t - p0).dot(circling(s, t, ccw)) > 0.0)?;
+    let touch = touching(p0, s, r, side, true)?;
     let on_contour = start_up_end(next, side, r);
-    if rule == OuterCorner::Intersection {
-        let line = Element::Line {
-            start: p0,
-            end: touch,
-        };
-        let compensated = next.offset(side, r).ok()?;
-        if let Some(point) = nearest(intersections(&line, &compensated), on_contour) {
-            return Some(Corner {
-                a_end: point,
-                links: Vec::new(),
-            });
-        }
+    let line = Element::Line {
+        start: p0,
+        end: touch,
+    };
+    match rule {
+        OuterCorner::Intersection => meeting(line, next, side, r, on_contour).map(|point| Corner {
+            a_end: point,
+            links: Vec::new(),
+        }),
+        _ => None,
     }
-    Some(circle_corner(touch, on_contour, s, side))
+    .or_else(|| Some(circle_corner(touch, on_contour, s, side)))
 }
 
 /// KONT's retraction: from the last element `last` to the uncompensated point `p0` the cancel
@@ -191,47 +202,141 @@ pub(crate) fn around_end(
     r: f64,
 ) -> Option<Corner> {
     let e = last.end();
-    let leave = (p0 - e).unit();
-    if leave == V2::default()
-        || !matches!(
-            turn(last.end_tangent(), leave, side),
-            Turn::Outer | Turn::SharpOuter
-        )
-    {
+    if !turns_outward(last.end_tangent(), (p0 - e).unit(), side) {
         return None;
     }
-    let ccw = side == Side::Right;
-    // The circle hands over to the line where the line leaves it in its direction of travel.
-    let touch = tangent_points(p0, e, r)?
-        .into_iter()
-        .find(|&t| (p0 - t).dot(circling(e, t, ccw)) > 0.0)?;
+    let touch = touching(p0, e, r, side, false)?;
     let off_contour = perpendicular_end(last, side, r);
-    if rule == OuterCorner::Intersection {
-        let line = Element::Line {
-            start: touch,
-            end: p0,
-        };
-        let compensated = last.offset(side, r).ok()?;
-        if let Some(point) = nearest(intersections(&compensated, &line), off_contour) {
-            return Some(Corner {
+    let line = Element::Line {
+        start: touch,
+        end: p0,
+    };
+    match rule {
+        OuterCorner::Intersection => {
+            meeting(line, last, side, r, off_contour).map(|point| Corner {
                 a_end: point,
                 links: Vec::new(),
-            });
+            })
         }
+        _ => None,
     }
-    Some(circle_corner(off_contour, touch, e, side))
+    .or_else(|| Some(circle_corner(off_contour, touch, e, side)))
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::geometry::tests::{arc, direction, distance_to, line, side};
     use super::*;
+    use proptest::prelude::*;
 
     fn p(x: f64, y: f64) -> V2 {
         V2::new(x, y)
     }
 
-    fn line(a: V2, b: V2) -> Element {
-        Element::Line { start: a, end: b }
+    /// Every point of a corner's tool-centre path: its end of `a`, its links' ends, and eight
+    /// points along each transition circle.
+    fn corner_points(corner: &Corner) -> Vec<V2> {
+        let mut points = vec![corner.a_end];
+        let mut here = corner.a_end;
+        for link in &corner.links {
+            if let Link::Arc { to, center, ccw } = *link {
+                let (from, end) = (here - center, to - center);
+                let angle = |v: V2| v.y.atan2(v.x);
+                let tau = std::f64::consts::TAU;
+                let sweep = if ccw {
+                    (angle(end) - angle(from)).rem_euclid(tau)
+                } else {
+                    -(angle(from) - angle(end)).rem_euclid(tau)
+                };
+                let radius = from.length();
+                for k in 1..8 {
+                    let a = angle(from) + sweep * f64::from(k) / 8.0;
+                    points.push(center + V2::new(a.cos(), a.sin()) * radius);
+                }
+            }
+            here = link.to();
+            points.push(here);
+        }
+        points
+    }
+
+    fn rule() -> impl Strategy<Value = OuterCorner> {
+        prop_oneof![
+            Just(OuterCorner::TransitionCircle),
+            Just(OuterCorner::Intersection)
+        ]
+    }
+
+    proptest! {
+        /// Two lines meeting at the origin under G450 or G451: every tool-centre point of the
+        /// corner (along the transition circle too) is at least the radius from both lines, and
+        /// the circle runs at exactly the radius about the corner.
+        #[test]
+        fn line_corners_keep_the_radius(
+            u in direction(),
+            v in direction(),
+            la in 5.0f64..100.0,
+            lb in 5.0f64..100.0,
+            r in 0.5f64..4.0,
+            side in side(),
+            rule in rule(),
+        ) {
+            let origin = V2::default();
+            let a = line(origin - u * la, origin);
+            let b = line(origin, v * lb);
+            let corner = match corner(rule, &a, &b, side, r) {
+                Ok(corner) => corner,
+                Err(GeometryError::Interference) => {
+                    prop_assert_eq!(turn(u, v, side), Turn::Inner);
+                    return Ok(());
+                }
+                Err(other) => panic!("{other:?}"),
+            };
+            for point in corner_points(&corner) {
+                prop_assert!(distance_to(&a, point) >= r - 1e-6, "{point:?} too near a");
+                prop_assert!(distance_to(&b, point) >= r - 1e-6, "{point:?} too near b");
+            }
+            for link in &corner.links {
+                if let Link::Arc { to, center, .. } = *link {
+                    prop_assert!((to.distance(center) - r).abs() < 1e-9);
+                }
+            }
+        }
+
+        /// A line into an arc or an arc into a line under G450 or G451: the corner's points keep
+        /// at least the radius from both programmed elements.
+        #[test]
+        fn line_arc_corners_keep_the_radius(
+            u in direction(),
+            start_angle in 0.0f64..std::f64::consts::TAU,
+            sweep in 0.2f64..3.0,
+            radius in 10.0f64..50.0,
+            r in 0.5f64..4.0,
+            ccw in proptest::bool::ANY,
+            side in side(),
+            line_first in proptest::bool::ANY,
+            rule in rule(),
+        ) {
+            let at = |angle: f64| V2::new(angle.cos(), angle.sin()) * radius;
+            let end_angle = if ccw { start_angle + sweep } else { start_angle - sweep };
+            let the_arc = arc(at(start_angle), at(end_angle), V2::default(), ccw);
+            let (a, b) = if line_first {
+                let joint = the_arc.start();
+                (line(joint - u * 30.0, joint), the_arc)
+            } else {
+                let joint = the_arc.end();
+                (the_arc, line(joint, joint + u * 30.0))
+            };
+            let corner = match corner(rule, &a, &b, side, r) {
+                Ok(corner) => corner,
+                Err(GeometryError::NoIntersection | GeometryError::Interference) => return Ok(()),
+                Err(other) => panic!("{other:?}"),
+            };
+            for point in corner_points(&corner) {
+                prop_assert!(distance_to(&a, point) >= r - 1e-6, "{point:?} too near {a:?}");
+                prop_assert!(distance_to(&b, point) >= r - 1e-6, "{point:?} too near {b:?}");
+            }
+        }
     }
 
     fn near(a: V2, b: (f64, f64)) -> bool {
