@@ -342,3 +342,97 @@ fn a_plunge_between_elements_happens_at_the_corner() {
     expected.insert(3, ('L', [35.0, 5.0, -5.0]));
     assert_path(&program, 5.0, &expected);
 }
+
+/// MIRROR X0 swaps G41 and G42 on the machine (seed 002 L9124-9244): the mirrored rectangle is
+/// still cut with the tool inside, so the path is the unmirrored one's mirror image in X.
+#[test]
+fn a_mirrored_contour_keeps_the_tool_on_its_side() {
+    let program = INNER.replace("N10 ", "N5 MIRROR X0\nN10 ");
+    let mirrored: Vec<(char, [f64; 3])> = INNER_PATH
+        .iter()
+        .map(|&(kind, [x, y, z])| (kind, [-x, y, z]))
+        .collect();
+    assert_path(&program, 5.0, &mirrored);
+}
+
+/// G41 to G42 in offset mode (allowed without G40, seed 002 L7135): the compensated lines y=5
+/// and y=-5 of two collinear elements never cross, so N30 ends perpendicular at (40,5) and a
+/// straight move joins N40's start perpendicular on the right, (40,-5); N40 ends
+/// perpendicular at (80,-5) and G40 goes straight to (90,-10).
+#[test]
+fn the_side_changes_without_g40() {
+    let program = "N10 G0 X0 Y-10 Z0 T1 M6 D1\nN20 G1 G41 X0 Y0 F100\nN30 X40\nN40 G42 X80\n\
+                   N50 G40 X90 Y-10\nN60 M30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [0.0, -10.0, 0.0]),
+            (L, [0.0, 5.0, 0.0]),
+            (L, [40.0, 5.0, 0.0]),
+            (L, [40.0, -5.0, 0.0]),
+            (L, [80.0, -5.0, 0.0]),
+            (L, [90.0, -10.0, 0.0]),
+        ],
+    );
+}
+
+/// KONT with G451 (examples/sinumerik-b/52's contour under G451), r 5.
+/// - Approach: the tangent from (35,0) that touches the circle about (10,10) at (9.03741,
+///   5.09353) (as with G450), carried on to the first compensated element X5: at
+///   y = 5.09353 * (35 - 5) / (35 - 9.03741) = 5.88562.
+/// - (10,60): N40's X5 meets N50's compensated line through (13,64) along (0.8,-0.6) at
+///   (5,70).
+/// - (50,30): n1 (0.6,0.8), n2 (0.44721,-0.89443), n1.n2 -0.44721: (50,30) + 5 (n1 + n2) /
+///   (1 + n1.n2) = (59.47214,29.14590).
+/// - Retract: the tangent to (-20,50) that leaves the circle about (10,10) at (5.72005,7.41504)
+///   meets N60's compensated line (through (12.23607,5.52786) along (-0.89443,-0.44721)) at
+///   (8.10682,3.46324); from there straight to (-20,50).
+#[test]
+fn kont_under_g451_goes_through_the_intersections() {
+    let program = "N10 G17 T1 D1 M6 G0 X35 Y0 Z0 F500\nN20 G1 Z-5\n\
+                   N30 G41 KONT G451 X10 Y10\nN40 Y60\nN50 X50 Y30\nN60 X10 Y10\n\
+                   N80 G40 X-20 Y50\nN90 G0 Y100\nN100 X200 M30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [35.0, 0.0, 0.0]),
+            (L, [35.0, 0.0, -5.0]),
+            (L, [5.0, 5.88562, -5.0]),
+            (L, [5.0, 70.0, -5.0]),
+            (L, [59.47214, 29.14590, -5.0]),
+            (L, [8.10682, 3.46324, -5.0]),
+            (L, [-20.0, 50.0, -5.0]),
+            (L, [-20.0, 100.0, -5.0]),
+            (L, [200.0, 100.0, -5.0]),
+        ],
+    );
+}
+
+/// CUTCONON keeps the offset the tool centre has where the last compensated block ends
+/// (seed 002 L7967-7985). G42, r 5, on a counter-clockwise path: the tool outside. Start-up
+/// to (0,-5); N30 ends at (40,-5), the circle about (40,0) to (45,0); N40 ends perpendicular
+/// at (45,30), an offset (5,0) from the programmed (40,30). N50 X0 CUTCONON runs shifted:
+/// (5,30). N60 Y40 CUTCONOF is compensated again from its start (0,30) moved right of +Y:
+/// (5,30), where the tool stands (no joining move), and ends perpendicular at (5,40); G40
+/// goes straight to (-10,40).
+#[test]
+fn cutconon_shifts_the_blocks_by_the_offset_kept() {
+    let program = "N10 G0 X0 Y-10 Z0 T1 M6 D1\nN20 G1 G42 X0 Y0 F100\nN30 X40\nN40 Y30\n\
+                   N50 X0 CUTCONON\nN60 Y40 CUTCONOF\nN70 G40 X-10\nN80 M30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [0.0, -10.0, 0.0]),
+            (L, [0.0, -5.0, 0.0]),
+            (L, [40.0, -5.0, 0.0]),
+            (A, [45.0, 0.0, 0.0]),
+            (L, [45.0, 30.0, 0.0]),
+            (L, [5.0, 30.0, 0.0]),
+            (L, [5.0, 40.0, 0.0]),
+            (L, [-10.0, 40.0, 0.0]),
+        ],
+    );
+}
