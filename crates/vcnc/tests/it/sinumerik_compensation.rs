@@ -436,3 +436,61 @@ fn cutconon_shifts_the_blocks_by_the_offset_kept() {
         ],
     );
 }
+
+/// G347 with G341 (seed 002 L7398-7538), G41 r 5: P4 (30,0) compensated onto (30,5) along +X;
+/// the half circle of DISR 10 for the tool centre has its centre (30,15) on the tool's side and
+/// starts at (30,25). Rapid over it at Z10, down to DISCL=2 above Z0, FAD (100) down to Z0,
+/// the half circle counter-clockwise to (30,5) at F300; N30 ends perpendicular at (60,5), G40
+/// goes straight to (70,10). The feeds: the infeed at FAD, the circle and N30 at F.
+#[test]
+fn g347_approaches_on_a_half_circle_after_the_infeed() {
+    let program = "N10 G0 X0 Y0 Z10 T1 M6 D1\n\
+                   N20 G1 G41 G347 G341 DISR=10 DISCL=2 FAD=100 X30 Y0 Z0 F300\n\
+                   N30 X60\nN40 G40 X70 Y10\nN50 M30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [0.0, 0.0, 10.0]),
+            (L, [30.0, 25.0, 10.0]),
+            (L, [30.0, 25.0, 2.0]),
+            (L, [30.0, 25.0, 0.0]),
+            (A, [30.0, 5.0, 0.0]),
+            (L, [60.0, 5.0, 0.0]),
+            (L, [70.0, 10.0, 0.0]),
+        ],
+    );
+    let (segments, _) = stream(program, &with_tool(5.0));
+    let feeds: Vec<Option<f64>> = segments
+        .iter()
+        .filter(|s| s.motion().is_some())
+        .map(|s| match s.kind {
+            SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => feed.mm_per_min(1.0),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        feeds,
+        [
+            None,
+            None,
+            None,
+            Some(100.0),
+            Some(300.0),
+            Some(300.0),
+            Some(300.0)
+        ]
+    );
+}
+
+/// A smooth approach needs the compensation to start in its block (vcnc's choice: the other
+/// cases are not run yet).
+#[test]
+fn a_smooth_approach_without_starting_compensation_is_not_run_yet() {
+    let alarm = error(
+        "N10 G0 X0 Y0 T1 M6 D1\nN20 G1 G247 DISR=5 X10 F100\nN30 M30\n",
+        5.0,
+    );
+    assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
+    assert!(alarm.message.contains("G247"), "{alarm:?}");
+}

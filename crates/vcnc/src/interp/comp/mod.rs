@@ -20,6 +20,7 @@
 //! - Alarms: an arc smaller than the tool and interference stop the control before the pending
 //!   block moves; the caller drops what was held.
 pub(crate) mod geometry;
+pub(crate) mod smooth;
 pub(crate) mod transition;
 
 use crate::alarm::{Alarm, AlarmCode};
@@ -66,6 +67,12 @@ pub(crate) struct Compensator {
     /// The last element moved under CUTCONON, until the next compensated one: KONT goes round
     /// the corner between them.
     suppressed: Option<Element>,
+    /// SINUMERIK's smooth approach of the start-up block, the moves before it without travel
+    /// in the plane (the end of one is the approach's level), taken into it from where the first
+    /// started, and the first element's start direction once known.
+    smooth: Option<smooth::Approach>,
+    absorbed: Option<[f64; AXES]>,
+    next_tangent: Option<V2>,
 }
 
 #[derive(Clone, Debug)]
@@ -120,7 +127,15 @@ impl Compensator {
             rules: Rules::FANUC,
             constant: None,
             suppressed: None,
+            smooth: None,
+            absorbed: None,
+            next_tangent: None,
         }
+    }
+
+    /// The start-up block approaches the contour smoothly (SINUMERIK's G147, G247, G347).
+    pub(crate) fn approach_smoothly(&mut self, approach: smooth::Approach) {
+        self.smooth = Some(approach);
     }
 
     /// The same compensation under a dialect's `rules`.
@@ -196,6 +211,13 @@ impl Compensator {
             return Ok(());
         }
         let Some(element) = self.element(&segment) else {
+            if self.smooth.is_some() && !self.started {
+                // Before a smooth approach: the move only sets the level the contour starts at.
+                if let Some(motion) = segment.motion() {
+                    self.absorbed.get_or_insert(motion.from.0);
+                }
+                return Ok(());
+            }
             let mut segment = segment;
             let here = self.pending.as_ref().map_or(self.tool, |p| p.provisional);
             if let Some(motion) = motion_mut(&mut segment) {
@@ -247,6 +269,13 @@ impl Compensator {
             ));
         }
         let start_up = !self.started;
+        let mut segment = segment;
+        if let (true, Some(from), Some(motion)) =
+            (start_up, self.absorbed.take(), motion_mut(&mut segment))
+        {
+            motion.from = MachinePos(from);
+        }
+        self.next_tangent = Some(element.start_tangent());
         let start = match self.pending.take() {
             Some(pending) => {
                 let (a_end, links) = self.corner(&pending, &element, &segment, setting)?;
@@ -422,6 +451,17 @@ impl Compensator {
             set_plane(&mut motion.from.0, self.axes, pending.start);
             set_plane(&mut motion.to.0, self.axes, end);
         }
+        let smooth = self.smooth.take().filter(|_| pending.start_up);
+        let segments = match (smooth, self.next_tangent) {
+            (Some(approach), Some(tangent)) => smooth::approach_moves(
+                &approach,
+                &segment,
+                (end, tangent),
+                (self.side, self.radius),
+                self.plane(),
+            ),
+            _ => vec![segment],
+        };
         for later in items[at..].iter_mut().flatten() {
             if let Some(motion) = motion_mut(later) {
                 for point in [&mut motion.from.0, &mut motion.to.0] {
@@ -431,7 +471,7 @@ impl Compensator {
                 }
             }
         }
-        items.insert(at, Ok(segment));
+        items.splice(at..at, segments.into_iter().map(Ok));
         self.tool = end;
         Ok(())
     }

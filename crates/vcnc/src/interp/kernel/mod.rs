@@ -416,6 +416,21 @@ impl Kernel {
         self.out.start_compensation(comp);
     }
 
+    /// The start-up block approaches the contour smoothly (SINUMERIK's SAR).
+    pub(crate) fn approach_smoothly(&mut self, approach: super::comp::smooth::Approach) {
+        if let Some(comp) = self.out.compensation_mut() {
+            comp.approach_smoothly(approach);
+        }
+    }
+
+    /// The cutting feed in force, as the segments carry it.
+    ///
+    /// # Errors
+    /// [`AlarmCode::NoFeedRate`] without a feed.
+    pub(crate) fn cutting_feed(&self, origin: Origin) -> Result<crate::motion::Feed, Alarm> {
+        self.state.cutting_feed(self.feed_mode, &origin)
+    }
+
     /// A new side or radius while compensating: from the next element in the plane.
     pub(crate) fn change_compensation(&mut self, setting: (Side, f64), left: bool) {
         if let Some(comp) = self.out.compensation_mut() {

@@ -383,7 +383,9 @@ fn read<'a>(
                 words.centre[i] = Some(axis_value(front, kernel, word)?);
             }
             "CR" => words.radius = Some((number(front, kernel, word)?, word.span)),
-            "OFFN" | "DISC" => super::compensation::word(front, kernel, word)?,
+            "OFFN" | "DISC" | "DISR" | "DISCL" | "FAD" => {
+                super::compensation::word(front, kernel, word)?
+            }
             // H functions go to the machine's PLC; they move nothing (H=QU(..) included).
             "H" => {}
             // Machine axes by their own names (G74, G75): X1, Y1, Z1, A1, B1, C1.

@@ -16,11 +16,13 @@ use super::gcodes::Motion;
 use super::Sinumerik;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::comp::geometry::Side;
+use crate::interp::comp::smooth::{self, Clearance, Shape};
 use crate::interp::comp::transition::{Approach, OuterCorner, Rules};
 use crate::interp::kernel::{Kernel, Origin};
+use crate::motion::Feed;
 use crate::motion::Plane;
 use crate::source::Span;
-use crate::syntax::sinumerik::{Value, Word};
+use crate::syntax::sinumerik::{ExprKind, Value, Word};
 
 /// The compensation functions vcnc runs: groups 7 (G40, G41, G42), 17 (NORM, KONT) and 18
 /// (G450, G451).
@@ -38,6 +40,23 @@ pub(super) enum RadiusFunction {
     Outer(OuterCorner),
     /// CUTCONON (true) or CUTCONOF.
     Constant(bool),
+    /// G147, G247, G347: a smooth approach in this block.
+    Smooth(Shape),
+    /// G341 (true) or G340: the smooth approach's infeed first, or in space.
+    SmoothInPlane(bool),
+    /// G140: the approach from the compensation's side, what vcnc does.
+    SmoothSide,
+}
+
+/// The smooth approach's words of a block (DISR, DISCL, FAD are non-modal).
+#[derive(Clone, Copy, Debug, Default)]
+struct SmoothWords {
+    shape: Option<Shape>,
+    distance: Option<f64>,
+    /// DISCL, with true for `AC(..)`.
+    clearance: Option<(f64, bool)>,
+    /// FAD, with `PM` (Some(false)) or `PR` (Some(true)) when written so.
+    slow: Option<(f64, Option<bool>)>,
 }
 
 /// The blocks without motion in the compensation plane after which the element waiting for
@@ -60,6 +79,9 @@ pub(super) struct RadiusCompensation {
     /// CUTCONON programmed, and whether the kernel keeps the offset constant now.
     constant: bool,
     kept: bool,
+    /// G341 in force (G340 at power-on).
+    smooth_in_plane: bool,
+    smooth: SmoothWords,
     /// While compensating: its plane, and the side and radius the kernel has.
     on: Option<(Plane, (Side, f64))>,
 }
@@ -74,6 +96,8 @@ impl Default for RadiusCompensation {
             offset: 0.0,
             constant: false,
             kept: false,
+            smooth_in_plane: false,
+            smooth: SmoothWords::default(),
             on: None,
         }
     }
@@ -89,6 +113,9 @@ pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
         RadiusFunction::Approach(approach) => state.approach = approach,
         RadiusFunction::Outer(outer) => state.outer = outer,
         RadiusFunction::Constant(constant) => state.constant = constant,
+        RadiusFunction::Smooth(shape) => state.smooth.shape = Some(shape),
+        RadiusFunction::SmoothInPlane(in_plane) => state.smooth_in_plane = in_plane,
+        RadiusFunction::SmoothSide => {}
     }
 }
 
@@ -97,9 +124,24 @@ pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
 /// # Errors
 /// A value that is not a number; DISC above 0, which vcnc does not run.
 pub(super) fn word(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Alarm> {
+    // DISCL=AC(..), FAD=PM(..), FAD=PR(..).
+    let mut wrapped = None;
     let value = match &word.value {
+        Value::Expression(expr) => match &expr.kind {
+            ExprKind::Call(name, args) if matches!(&**name, "AC" | "PM" | "PR") => {
+                let [Some(arg)] = args.as_slice() else {
+                    return Err(Alarm::error(
+                        AlarmCode::MacroSyntax,
+                        word.span,
+                        format!("{name}(..) takes one value"),
+                    ));
+                };
+                wrapped = Some(name.to_string());
+                front.value(kernel, arg)?
+            }
+            _ => front.value(kernel, expr)?,
+        },
         Value::Constant(n) => n.value,
-        Value::Expression(expr) => front.value(kernel, expr)?,
         _ => {
             return Err(Alarm::error(
                 AlarmCode::MissingValue,
@@ -108,12 +150,27 @@ pub(super) fn word(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Resul
             ))
         }
     };
-    match &*word.address {
-        "OFFN" => front.radius_compensation.offset = value * super::motion::unit(front),
+    let unit = super::motion::unit(front);
+    let smooth = &mut front.radius_compensation.smooth;
+    match (&*word.address, wrapped.as_deref()) {
+        ("DISR", None) => smooth.distance = Some(value * unit),
+        ("DISCL", None) => smooth.clearance = Some((value * unit, false)),
+        ("DISCL", Some("AC")) => smooth.clearance = Some((value * unit, true)),
+        ("FAD", None) => smooth.slow = Some((value, None)),
+        ("FAD", Some("PM")) => smooth.slow = Some((value, Some(false))),
+        ("FAD", Some("PR")) => smooth.slow = Some((value, Some(true))),
+        (_, Some(wrapper)) => {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                word.span,
+                format!("{} does not take {wrapper}(..)", word.address),
+            ))
+        }
+        ("OFFN", _) => front.radius_compensation.offset = value * unit,
         // DISC=0 is the transition circle itself; higher values flatten it towards the
         // intersection (seed 002 L7314-7320) along a curve the manual does not define.
-        _ if value == 0.0 => {}
-        _ => {
+        (_, _) if value == 0.0 => {}
+        (_, _) => {
             return Err(Alarm::error(
                 AlarmCode::NotSupportedYet,
                 word.span,
@@ -212,6 +269,9 @@ pub(super) fn before_motion(
             let rules = rules(front, kernel, plane);
             kernel.start_compensation(setting, plane, left, rules, DUMMY_BLOCKS);
             front.radius_compensation.on = Some((plane, setting));
+            if let Some(approach) = smooth_approach(front, kernel, plane, span)? {
+                kernel.approach_smoothly(approach);
+            }
         }
         (Some(left), Some((on_plane, old))) => {
             if plane != on_plane {
@@ -232,12 +292,98 @@ pub(super) fn before_motion(
         }
     }
     let state = &mut front.radius_compensation;
+    if let Some(shape) = std::mem::take(&mut state.smooth).shape {
+        // Still programmed: the block did not start the compensation.
+        let name = match shape {
+            Shape::Line => "G147",
+            Shape::QuarterCircle => "G247",
+            Shape::HalfCircle => "G347",
+        };
+        if !matches!((state.left, state.on), (Some(_), Some(_))) || moves {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                span,
+                format!("{name} without G41 or G42 starting in its block is not run yet (planned: issue 22)"),
+            )
+            .with_help("start the compensation in the block of the smooth approach: G41 G247 ..."));
+        }
+    }
     let constant = state.constant && state.on.is_some();
     if constant != state.kept {
         state.kept = constant;
         kernel.keep_compensation_constant(constant)?;
     }
     Ok(())
+}
+
+/// The smooth approach the block programs with the compensation it starts (SAR, seed 002
+/// L7398-7672), its words taken; None without G147, G247 or G347.
+///
+/// # Errors
+/// G247 or G347 without DISR; FAD under G93.
+fn smooth_approach(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    plane: Plane,
+    span: Span,
+) -> Result<Option<smooth::Approach>, Alarm> {
+    let state = &mut front.radius_compensation;
+    let words = std::mem::take(&mut state.smooth);
+    let Some(shape) = words.shape else {
+        return Ok(None);
+    };
+    let distance = match (words.distance, shape) {
+        (Some(d), _) => d,
+        (None, Shape::Line) => 0.0,
+        (None, _) => {
+            return Err(Alarm::error(
+                AlarmCode::MissingValue,
+                span,
+                "an approach on a circle needs its radius: DISR=",
+            )
+            .with_help("DISR is the radius of the tool centre's path (seed 002 L7526-7538)"))
+        }
+    };
+    let (_, _, normal) = plane.axes();
+    let clearance = match words.clearance {
+        None => Clearance::Above(0.0),
+        Some((d, false)) => Clearance::Above(d),
+        // The work system's position along the normal, in machine coordinates (the frames'
+        // translation; the plane is never tilted here).
+        Some((z, true)) => {
+            Clearance::At(z + kernel.position().0[normal] - kernel.program_position()[normal])
+        }
+    };
+    let rpm = kernel.state().spindle.speed();
+    let per_revolution = |per_revolution: f64| Feed::PerRevolution {
+        per_revolution,
+        rpm: (rpm > 0.0).then_some(rpm),
+    };
+    let slow = match words.slow {
+        None => None,
+        Some((f, Some(false))) => Some(Feed::PerMinute(f)),
+        Some((f, Some(true))) => Some(per_revolution(f)),
+        Some((f, None)) => Some(match front.modal.feed_type {
+            super::gcodes::FeedType::PerMinute => Feed::PerMinute(f),
+            super::gcodes::FeedType::PerRevolution => per_revolution(f),
+            super::gcodes::FeedType::InverseTime => {
+                return Err(Alarm::error(
+                    AlarmCode::NotSupportedYet,
+                    span,
+                    "FAD under G93 is not run yet: write FAD=PM(..)",
+                ))
+            }
+        }),
+    };
+    Ok(Some(smooth::Approach {
+        shape,
+        in_plane: front.radius_compensation.smooth_in_plane,
+        distance,
+        clearance,
+        slow,
+        feed: kernel.cutting_feed(Origin::at(span))?,
+        per_axis: kernel.state().setup.profile().rapid_path == crate::profile::RapidPath::PerAxis,
+    }))
 }
 
 /// After the block's motion: a G40 block ends compensation, the tool centre going onto the

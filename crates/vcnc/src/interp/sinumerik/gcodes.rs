@@ -205,6 +205,7 @@ pub(super) fn common(number: u32) -> Option<(Function, u8)> {
 /// named modal function.
 pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
     use super::compensation::RadiusFunction;
+    use crate::interp::comp::smooth::Shape;
     use crate::interp::comp::transition::{Approach, OuterCorner};
     use Function::*;
     let f = match name {
@@ -290,6 +291,12 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G451" => Radius(RadiusFunction::Outer(OuterCorner::Intersection)),
         "CUTCONON" => Radius(RadiusFunction::Constant(true)),
         "CUTCONOF" => Radius(RadiusFunction::Constant(false)),
+        "G147" => Radius(RadiusFunction::Smooth(Shape::Line)),
+        "G247" => Radius(RadiusFunction::Smooth(Shape::QuarterCircle)),
+        "G347" => Radius(RadiusFunction::Smooth(Shape::HalfCircle)),
+        "G340" => Radius(RadiusFunction::SmoothInPlane(false)),
+        "G341" => Radius(RadiusFunction::SmoothInPlane(true)),
+        "G140" => Radius(RadiusFunction::SmoothSide),
         "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "BRISK" | "SOFT" | "DRIVE"
         | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF" | "COMPOF" | "COMPON"
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
@@ -297,9 +304,10 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         // G460: collision detection on the approach and retraction blocks, what vcnc's
         // compensation does.
         | "TRAFOOF" | "G460" => State,
-        "G641" | "G642" | "G643" | "G644" | "G645" | "KONTT" | "KONTC" | "CUT2DF" | "G140"
-        | "G141" | "G142" | "G143" | "G147" | "G148" | "G247" | "G248" | "G347" | "G348"
-        | "G340" | "G341" | "G461" | "G462" | "FLIN" | "FCUB" => Planned,
+        "G641" | "G642" | "G643" | "G644" | "G645" | "KONTT" | "KONTC" | "CUT2DF" | "G141"
+        | "G142" | "G143" | "G148" | "G248" | "G348" | "G461" | "G462" | "FLIN" | "FCUB" => {
+            Planned
+        }
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
