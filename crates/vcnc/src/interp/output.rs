@@ -247,6 +247,22 @@ impl Output {
         finished
     }
 
+    /// Runs `change` on the compensation in force, with the queue its moves enter.
+    ///
+    /// # Errors
+    /// The alarm `change` gives.
+    pub(crate) fn change_compensation(
+        &mut self,
+        change: impl FnOnce(&mut Compensator, &mut Vec<Item>, &mut Option<usize>) -> Result<(), Alarm>,
+    ) -> Result<(), Alarm> {
+        let changed = match self.entry() {
+            (Some(comp), items, held) => change(comp, items, held),
+            (None, _, _) => Ok(()),
+        };
+        self.settle();
+        changed
+    }
+
     /// G28, G29, G30, G53 or G92 while compensating: cancelled for this block.
     ///
     /// # Errors

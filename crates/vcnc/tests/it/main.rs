@@ -35,6 +35,7 @@ mod scaling;
 mod seed_examples;
 mod sinumerik;
 mod sinumerik_axes;
+mod sinumerik_compensation;
 mod sinumerik_corpus;
 mod sinumerik_examples;
 mod sinumerik_language;

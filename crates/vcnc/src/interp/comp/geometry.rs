@@ -319,16 +319,35 @@ impl Element {
 pub(crate) struct Corner {
     /// Where the compensated `a` ends.
     pub(crate) a_end: V2,
-    /// Straight moves after `a_end`, in order; the last one ends where the compensated `b`
-    /// starts. Empty when `b` starts at `a_end`.
-    pub(crate) links: Vec<V2>,
+    /// Moves after `a_end`, in order; the last one ends where the compensated `b` starts.
+    /// Empty when `b` starts at `a_end`.
+    pub(crate) links: Vec<Link>,
+}
+
+/// A move of the tool centre that joins two compensated elements.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Link {
+    /// A straight move to the point (FANUC's outer corners).
+    Line(V2),
+    /// An arc to `to` about `center` (SINUMERIK's transition circle about the programmed
+    /// corner); `ccw` for counter-clockwise.
+    Arc { to: V2, center: V2, ccw: bool },
+}
+
+impl Link {
+    /// Where the move ends.
+    pub(crate) fn to(self) -> V2 {
+        match self {
+            Link::Line(to) | Link::Arc { to, .. } => to,
+        }
+    }
 }
 
 impl Corner {
     /// Where the compensated `b` starts.
     #[cfg(test)]
     pub(crate) fn b_start(&self) -> V2 {
-        self.links.last().copied().unwrap_or(self.a_end)
+        self.links.last().map_or(self.a_end, |link| link.to())
     }
 }
 
@@ -384,7 +403,7 @@ pub(crate) fn corner(
         Turn::Straight => Ok(Corner {
             a_end: pa,
             links: if pa.distance(pb) > EPSILON {
-                vec![pb]
+                vec![Link::Line(pb)]
             } else {
                 Vec::new()
             },
@@ -448,7 +467,7 @@ pub(crate) fn side_change(
         },
         None => Corner {
             a_end: perpendicular_end(a, old.0, old.1),
-            links: vec![start_up_end(b, new.0, new.1)],
+            links: vec![Link::Line(start_up_end(b, new.0, new.1))],
         },
     })
 }
@@ -471,11 +490,14 @@ fn outer_corner(a: &Element, b: &Element, pa: V2, pb: V2, via: &[V2]) -> Corner 
     if links.first().is_some_and(|p| p.distance(a_end) < EPSILON) {
         links.remove(0);
     }
-    Corner { a_end, links }
+    Corner {
+        a_end,
+        links: links.into_iter().map(Link::Line).collect(),
+    }
 }
 
 /// The point of `points` nearest `to`.
-fn nearest(points: Vec<V2>, to: V2) -> Option<V2> {
+pub(crate) fn nearest(points: Vec<V2>, to: V2) -> Option<V2> {
     points
         .into_iter()
         .min_by(|p, q| p.distance(to).total_cmp(&q.distance(to)))
@@ -493,7 +515,7 @@ fn line_intersection(p: V2, u: V2, q: V2, v: V2) -> Option<V2> {
 
 /// The points where two compensated elements meet, taking lines as infinite and arcs as full
 /// circles (the corner picks the one nearest the programmed corner).
-fn intersections(a: &Element, b: &Element) -> Vec<V2> {
+pub(crate) fn intersections(a: &Element, b: &Element) -> Vec<V2> {
     match (*a, *b) {
         (Element::Line { start: p, end: p2 }, Element::Line { start: q, end: q2 }) => {
             line_intersection(p, (p2 - p).unit(), q, (q2 - q).unit())
@@ -609,4 +631,4 @@ pub(crate) fn interferes(programmed: &Element, start: V2, end: V2) -> bool {
 }
 
 #[cfg(test)]
-mod tests;
+pub(super) mod tests;

@@ -20,11 +20,16 @@
 //! - Alarms: an arc smaller than the tool and interference stop the control before the pending
 //!   block moves; the caller drops what was held.
 pub(crate) mod geometry;
+pub(crate) mod smooth;
+pub(crate) mod transition;
 
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::AXES;
-use crate::motion::{ArcDirection, Item, MachinePos, Segment, SegmentKind, StreamItem};
-use geometry::{Element, GeometryError, Side, V2};
+use crate::motion::{
+    ArcDirection, Feed, Item, MachinePos, Plane, Segment, SegmentKind, StreamItem,
+};
+use geometry::{Element, GeometryError, Link, Side, V2};
+use transition::{Approach, Rules};
 
 /// Cutter compensation in force: turns the programmed motion of the executor (machine
 /// coordinates, the tool's programmed centre) into the tool-centre path, one corner late.
@@ -56,6 +61,20 @@ pub(crate) struct Compensator {
     left: bool,
     /// One axis of the plane was mirrored when the side was last worked out.
     reversed: bool,
+    /// The dialect's corner and approach rules.
+    rules: Rules,
+    /// SINUMERIK's CUTCONON: moves go uncompensated, shifted by this vector (the tool centre's
+    /// offset where the last compensated element ended).
+    constant: Option<V2>,
+    /// The last element moved under CUTCONON, until the next compensated one: KONT goes round
+    /// the corner between them.
+    suppressed: Option<Element>,
+    /// SINUMERIK's smooth approach of the start-up block, the moves before it without travel
+    /// in the plane (the end of one is the approach's level), taken into it from where the first
+    /// started, and the first element's start direction once known.
+    smooth: Option<smooth::Approach>,
+    absorbed: Option<[f64; AXES]>,
+    next_tangent: Option<V2>,
 }
 
 #[derive(Clone, Debug)]
@@ -107,7 +126,40 @@ impl Compensator {
             next: None,
             left,
             reversed: false,
+            rules: Rules::FANUC,
+            constant: None,
+            suppressed: None,
+            smooth: None,
+            absorbed: None,
+            next_tangent: None,
         }
+    }
+
+    /// The start-up block approaches the contour smoothly (SINUMERIK's G147, G247, G347).
+    pub(crate) fn approach_smoothly(&mut self, approach: smooth::Approach) {
+        self.smooth = Some(approach);
+    }
+
+    /// The same compensation under a dialect's `rules`.
+    pub(crate) fn with_rules(mut self, rules: Rules) -> Self {
+        self.rules = rules;
+        self
+    }
+
+    /// The rules from here on (a change of corner or approach mode while compensating).
+    pub(crate) fn set_rules(&mut self, rules: Rules) {
+        self.rules = rules;
+    }
+
+    /// The plane of the compensation's axes.
+    fn plane(&self) -> Plane {
+        [Plane::Xy, Plane::Zx, Plane::Yz]
+            .into_iter()
+            .find(|plane| {
+                let (a, b, _) = plane.axes();
+                (a, b) == self.axes
+            })
+            .unwrap_or(Plane::Xy)
     }
 
     /// The programmed element of a motion segment in the plane, `None` for a move with no travel
@@ -156,7 +208,18 @@ impl Compensator {
             items.push(Ok(segment.into()));
             return Ok(());
         }
+        if let Some(shift) = self.constant {
+            self.push_shifted(segment, shift, items);
+            return Ok(());
+        }
         let Some(element) = self.element(&segment) else {
+            if self.smooth.is_some() && !self.started {
+                // Before a smooth approach: the move only sets the level the contour starts at.
+                if let Some(motion) = segment.motion() {
+                    self.absorbed.get_or_insert(motion.from.0);
+                }
+                return Ok(());
+            }
             let mut segment = segment;
             let here = self.pending.as_ref().map_or(self.tool, |p| p.provisional);
             if let Some(motion) = motion_mut(&mut segment) {
@@ -180,7 +243,7 @@ impl Compensator {
         self.moved = true;
         if self.cancelling {
             // The G40 block: from the tool centre to the programmed end.
-            self.finish(items, held)?;
+            self.retract(&element, &segment, items, held)?;
             let mut segment = segment;
             if let Some(motion) = motion_mut(&mut segment) {
                 set_plane(&mut motion.from.0, self.axes, self.tool);
@@ -195,7 +258,7 @@ impl Compensator {
         // control before the block waiting for it moves.
         element
             .offset(setting.0, setting.1)
-            .map_err(|e| geometry_alarm(e, &segment))?;
+            .map_err(|e| self.alarm(e, &segment))?;
         if setting.1 != self.radius
             && self.pending.is_some()
             && matches!(element, Element::Arc { .. })
@@ -208,6 +271,13 @@ impl Compensator {
             ));
         }
         let start_up = !self.started;
+        let mut segment = segment;
+        if let (true, Some(from), Some(motion)) =
+            (start_up, self.absorbed.take(), motion_mut(&mut segment))
+        {
+            motion.from = MachinePos(from);
+        }
+        self.next_tangent = Some(element.start_tangent());
         let start = match self.pending.take() {
             Some(pending) => {
                 let (a_end, links) = self.corner(&pending, &element, &segment, setting)?;
@@ -225,7 +295,8 @@ impl Compensator {
                 (self.side, self.radius) = setting;
                 let start = geometry::start_up_end(&element, self.side, self.radius);
                 let tool = self.tool;
-                self.links(tool, &[start], &segment, items);
+                let link = self.rejoin(&element, start);
+                self.links(tool, &[link], &segment, items);
                 start
             }
         };
@@ -243,6 +314,77 @@ impl Compensator {
         Ok(())
     }
 
+    /// A move under CUTCONON: as programmed, shifted by the offset kept.
+    fn push_shifted(&mut self, mut segment: Segment, shift: V2, items: &mut Vec<StreamItem>) {
+        if let Some(element) = self.element(&segment) {
+            self.suppressed = Some(element);
+            self.moved = true;
+            self.idle_blocks = 0;
+        }
+        let axes = self.axes;
+        let moved = |point: &mut [f64; AXES]| {
+            let p = plane_point(point, axes) + shift;
+            set_plane(point, axes, p);
+        };
+        if let SegmentKind::Arc { center, .. } = &mut segment.kind {
+            moved(&mut center.0);
+        }
+        if let Some(motion) = motion_mut(&mut segment) {
+            moved(&mut motion.from.0);
+            moved(&mut motion.to.0);
+            self.tool = plane_point(&motion.to.0, axes);
+        }
+        items.push(Ok(segment.into()));
+    }
+
+    /// How the tool centre goes from where it stands to `start`, the compensated start of
+    /// `element`, after an end perpendicular to the last element: straight, or after CUTCONON
+    /// with KONT round an outer corner on the circle about it (seed 002 L7960-7985).
+    fn rejoin(&mut self, element: &Element, start: V2) -> Link {
+        let Some(last) = self.suppressed.take() else {
+            return Link::Line(start);
+        };
+        let corner = element.start();
+        let outer = matches!(
+            geometry::turn(last.end_tangent(), element.start_tangent(), self.side),
+            geometry::Turn::Outer | geometry::Turn::SharpOuter
+        );
+        if self.rules.approach == Approach::AroundPoint
+            && outer
+            && (self.tool.distance(corner) - self.radius).abs() < 1e-6
+        {
+            Link::Arc {
+                to: start,
+                center: corner,
+                ccw: self.side == Side::Right,
+            }
+        } else {
+            Link::Line(start)
+        }
+    }
+
+    /// CUTCONON: the pending element ends perpendicular to itself, and the moves from here on
+    /// go as programmed, shifted by the tool centre's offset there from `programmed`, the
+    /// programmed point (plane axes).
+    ///
+    /// # Errors
+    /// Interference at the pending element's end.
+    pub(crate) fn keep_constant(
+        &mut self,
+        programmed: V2,
+        items: &mut Vec<StreamItem>,
+        held: &mut Option<usize>,
+    ) -> Result<(), Alarm> {
+        self.finish(items, held)?;
+        self.constant = Some(self.tool - programmed);
+        Ok(())
+    }
+
+    /// CUTCONOF: the next element is compensated again, joined from the shifted position.
+    pub(crate) fn release_constant(&mut self) {
+        self.constant = None;
+    }
+
     /// The end of the pending element and the links to the next one's start, which is
     /// compensated with `setting`. A change of radius takes effect at the end of the next
     /// element (the corner is made with the old one); a change of side at this corner.
@@ -252,12 +394,27 @@ impl Compensator {
         next: &Element,
         segment: &Segment,
         (side, radius): (Side, f64),
-    ) -> Result<(V2, Vec<V2>), Alarm> {
+    ) -> Result<(V2, Vec<Link>), Alarm> {
         if pending.start_up {
-            return Ok((geometry::start_up_end(next, side, radius), Vec::new()));
+            let around = match pending.element {
+                Element::Line { start, .. } if self.rules.approach == Approach::AroundPoint => {
+                    transition::around_start(self.rules.outer, start, next, side, radius)
+                }
+                _ => None,
+            };
+            return Ok(match around {
+                Some(corner) => (corner.a_end, corner.links),
+                None => (geometry::start_up_end(next, side, radius), Vec::new()),
+            });
         }
         let corner = if side == self.side {
-            geometry::corner(&pending.element, next, self.side, self.radius)
+            transition::corner(
+                self.rules.outer,
+                &pending.element,
+                next,
+                self.side,
+                self.radius,
+            )
         } else {
             geometry::side_change(
                 &pending.element,
@@ -266,7 +423,7 @@ impl Compensator {
                 (side, radius),
             )
         }
-        .map_err(|e| geometry_alarm(e, segment))?;
+        .map_err(|e| self.alarm(e, segment))?;
         Ok((corner.a_end, corner.links))
     }
 
@@ -283,10 +440,7 @@ impl Compensator {
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
         if !pending.start_up && geometry::interferes(&pending.element, pending.start, end) {
-            return Err(geometry_alarm(
-                GeometryError::Interference,
-                &pending.segment,
-            ));
+            return Err(self.alarm(GeometryError::Interference, &pending.segment));
         }
         let at = held.take().unwrap_or(items.len());
         let mut segment = pending.segment;
@@ -294,6 +448,17 @@ impl Compensator {
             set_plane(&mut motion.from.0, self.axes, pending.start);
             set_plane(&mut motion.to.0, self.axes, end);
         }
+        let smooth = self.smooth.take().filter(|_| pending.start_up);
+        let segments = match (smooth, self.next_tangent) {
+            (Some(approach), Some(tangent)) => smooth::approach_moves(
+                &approach,
+                &segment,
+                (end, tangent),
+                (self.side, self.radius),
+                self.plane(),
+            ),
+            _ => vec![segment],
+        };
         for later in items[at..].iter_mut() {
             if let Some(motion) = segment_mut(later).and_then(motion_mut) {
                 for point in [&mut motion.from.0, &mut motion.to.0] {
@@ -303,41 +468,88 @@ impl Compensator {
                 }
             }
         }
-        items.insert(at, Ok(segment.into()));
+        items.splice(at..at, segments.into_iter().map(|s| Ok(s.into())));
         self.tool = end;
         Ok(())
     }
 
-    /// The straight moves of an outer corner, as moves of the block that turns the corner.
-    fn links(&mut self, from: V2, links: &[V2], segment: &Segment, items: &mut Vec<StreamItem>) {
+    /// The moves of an outer corner, as moves of the block that turns the corner.
+    fn links(&mut self, from: V2, links: &[Link], segment: &Segment, items: &mut Vec<StreamItem>) {
         let mut here = from;
-        for &point in links {
+        for &link in links {
+            let point = link.to();
             if point.distance(here) < geometry::EPSILON {
                 continue;
             }
-            let mut link = *segment;
-            let (a, b) = self.axes;
-            if let Some(motion) = motion_mut(&mut link) {
-                let mut to = motion.from.0;
-                to[a] = point.x;
-                to[b] = point.y;
-                let mut start = motion.from.0;
-                start[a] = here.x;
-                start[b] = here.y;
-                motion.from = MachinePos(start);
-                motion.to = MachinePos(to);
-            }
-            let link = match link.kind {
-                SegmentKind::Arc { motion, feed, .. } => Segment {
-                    kind: SegmentKind::Line { motion, feed },
-                    ..link
-                },
-                _ => link,
+            let mut motion = match segment.motion() {
+                Some(motion) => *motion,
+                None => continue,
             };
-            items.push(Ok(link.into()));
+            let (mut start, mut to) = (motion.from.0, motion.from.0);
+            set_plane(&mut start, self.axes, here);
+            set_plane(&mut to, self.axes, point);
+            motion.from = MachinePos(start);
+            motion.to = MachinePos(to);
+            let kind = match (link, segment.kind) {
+                (Link::Arc { center, ccw, .. }, kind) => {
+                    let mut centre = start;
+                    set_plane(&mut centre, self.axes, center);
+                    SegmentKind::Arc {
+                        motion,
+                        center: MachinePos(centre),
+                        direction: if ccw {
+                            ArcDirection::CounterClockwise
+                        } else {
+                            ArcDirection::Clockwise
+                        },
+                        plane: self.plane(),
+                        extra_turns: 0,
+                        feed: match kind {
+                            SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => feed,
+                            _ => Feed::PerMinute(self.rules.rapid_arc_feed),
+                        },
+                    }
+                }
+                (Link::Line(_), SegmentKind::Arc { feed, .. }) => {
+                    SegmentKind::Line { motion, feed }
+                }
+                (Link::Line(_), kind) => with_motion(kind, motion),
+            };
+            items.push(Ok(Segment { kind, ..*segment }.into()));
             here = point;
         }
         self.tool = here;
+    }
+
+    /// The G40 block's move in the plane: the pending element ends perpendicular to itself
+    /// (or round its end point, by the rules), and the block goes from there to its end.
+    fn retract(
+        &mut self,
+        element: &Element,
+        segment: &Segment,
+        items: &mut Vec<StreamItem>,
+        held: &mut Option<usize>,
+    ) -> Result<(), Alarm> {
+        let around = match &self.pending {
+            Some(pending) if !pending.start_up && self.rules.approach == Approach::AroundPoint => {
+                transition::around_end(
+                    self.rules.outer,
+                    &pending.element,
+                    element.end(),
+                    self.side,
+                    self.radius,
+                )
+            }
+            _ => None,
+        };
+        let Some(corner) = around else {
+            return self.finish(items, held);
+        };
+        let pending = self.pending.take().expect("matched above");
+        self.emit(pending, corner.a_end, items, held)?;
+        let a_end = corner.a_end;
+        self.links(a_end, &corner.links, segment, items);
+        Ok(())
     }
 
     /// A block ends: past the look-ahead of blocks without motion in the plane, the pending
@@ -424,6 +636,11 @@ impl Compensator {
         self.pending = None;
     }
 
+    /// The alarm of a corner or element that cannot be made, in the dialect's terms.
+    fn alarm(&self, error: GeometryError, segment: &Segment) -> Alarm {
+        geometry_alarm(error, segment, self.rules.alarm_help)
+    }
+
     /// G40 in the block being executed.
     pub(crate) fn cancel(&mut self) {
         self.cancelling = true;
@@ -462,7 +679,16 @@ fn motion_mut(segment: &mut Segment) -> Option<&mut crate::motion::Move> {
     }
 }
 
-fn geometry_alarm(error: GeometryError, segment: &Segment) -> Alarm {
+/// The segment `kind` (a rapid or a line) moving along `motion` instead.
+fn with_motion(kind: SegmentKind, motion: crate::motion::Move) -> SegmentKind {
+    match kind {
+        SegmentKind::Rapid { per_axis, .. } => SegmentKind::Rapid { motion, per_axis },
+        SegmentKind::Line { feed, .. } => SegmentKind::Line { motion, feed },
+        other => other,
+    }
+}
+
+fn geometry_alarm(error: GeometryError, segment: &Segment, help: &'static str) -> Alarm {
     let message = match error {
         GeometryError::ArcSmallerThanTool {
             arc_radius,
@@ -475,6 +701,5 @@ fn geometry_alarm(error: GeometryError, segment: &Segment) -> Alarm {
         }
         GeometryError::ZeroLength => "a move of no length where compensation needs a direction".to_string(),
     };
-    Alarm::error(AlarmCode::CutterCompensation, segment.span, message)
-        .with_help("FANUC alarms 033/041: a smaller tool, a larger radius or another path")
+    Alarm::error(AlarmCode::CutterCompensation, segment.span, message).with_help(help)
 }

@@ -16,6 +16,9 @@ pub(crate) use state::{check_position, same_place, KernelState, MoveModes};
 
 use super::arc::{arc_center, in_plane, ArcSpec};
 use super::circular::ArcTo;
+use super::comp::geometry::{Side, V2};
+use super::comp::transition::Rules;
+use super::comp::Compensator;
 use super::modal::FeedMode;
 use super::modal::ModalState;
 use super::Output;
@@ -393,6 +396,140 @@ impl Kernel {
     /// Nothing waits any more: the program is over.
     pub(super) fn finish(&mut self) {
         self.out.finish();
+    }
+
+    /// Cutter radius compensation starts in `plane`, on the side and at the radius of
+    /// `setting`, from the tool's position now, under a dialect's `rules`; `left` says G41 (or
+    /// its dialect's equal). `look_ahead` blocks without motion in the plane end the element
+    /// pending perpendicular to itself.
+    pub(crate) fn start_compensation(
+        &mut self,
+        setting: (Side, f64),
+        plane: Plane,
+        left: bool,
+        rules: Rules,
+        look_ahead: u32,
+    ) {
+        let (a, b, _) = plane.axes();
+        let comp = Compensator::new(setting, (a, b), &self.state.position, left, look_ahead)
+            .with_rules(rules);
+        self.out.start_compensation(comp);
+    }
+
+    /// The start-up block approaches the contour smoothly (SINUMERIK's SAR).
+    pub(crate) fn approach_smoothly(&mut self, approach: super::comp::smooth::Approach) {
+        if let Some(comp) = self.out.compensation_mut() {
+            comp.approach_smoothly(approach);
+        }
+    }
+
+    /// The cutting feed in force, as the segments carry it.
+    ///
+    /// # Errors
+    /// [`AlarmCode::NoFeedRate`] without a feed.
+    pub(crate) fn cutting_feed(&self, origin: Origin) -> Result<crate::motion::Feed, Alarm> {
+        self.state.cutting_feed(self.feed_mode, &origin)
+    }
+
+    /// A new side or radius while compensating: from the next element in the plane.
+    pub(crate) fn change_compensation(&mut self, setting: (Side, f64), left: bool) {
+        if let Some(comp) = self.out.compensation_mut() {
+            comp.change(setting, left);
+        }
+    }
+
+    /// New corner or approach rules while compensating.
+    pub(crate) fn set_compensation_rules(&mut self, rules: Rules) {
+        if let Some(comp) = self.out.compensation_mut() {
+            comp.set_rules(rules);
+        }
+    }
+
+    /// CUTCONON (`keep`): the moves from here on go as programmed, shifted by the offset the
+    /// tool centre has where the last compensated element ends; CUTCONOF: compensated again.
+    ///
+    /// # Errors
+    /// Interference where the last compensated element ends.
+    pub(crate) fn keep_compensation_constant(&mut self, keep: bool) -> Result<(), Alarm> {
+        let position = self.state.position;
+        self.out.change_compensation(|comp, items, held| {
+            if !keep {
+                comp.release_constant();
+                return Ok(());
+            }
+            let (a, b) = comp.axes();
+            comp.keep_constant(V2::new(position[a], position[b]), items, held)
+        })
+    }
+
+    /// The block being run cancels compensation: its move in the plane leaves the contour.
+    pub(crate) fn cancel_compensation(&mut self) {
+        if let Some(comp) = self.out.compensation_mut() {
+            comp.cancel();
+        }
+    }
+
+    /// After the cancelling block's motion: compensation ends, and when the block did not move
+    /// in the plane the tool centre goes from where it stands onto the programmed point, at
+    /// rapid (`rapid`) or at the feed in force.
+    ///
+    /// # Errors
+    /// Interference at the pending element's end; a line without a feed.
+    pub(crate) fn end_compensation(&mut self, rapid: bool, origin: Origin) -> Result<(), Alarm> {
+        if !self
+            .out
+            .compensation()
+            .is_some_and(Compensator::is_cancelling)
+        {
+            return Ok(());
+        }
+        let Some(mut comp) = self.out.take_compensation() else {
+            return Ok(());
+        };
+        self.out.finish_compensation(&mut comp)?;
+        let (a, b) = comp.axes();
+        let tool = comp.tool();
+        let here = self.state.position;
+        if tool.distance(V2::new(here[a], here[b])) < 1e-9 {
+            return Ok(());
+        }
+        let mut from = here;
+        (from[a], from[b]) = (tool.x, tool.y);
+        let motion = crate::motion::Move {
+            from: MachinePos(from),
+            to: MachinePos(here),
+            path_mode: self.modes.path_mode,
+            exact_stop: self.modes.exact_stop,
+            smoothing: self.modes.smoothing,
+            offset: self.state.frames.offset_at(&here),
+            frame: self.state.frame_in_force(&mut self.out),
+        };
+        let kind = if rapid {
+            let per_axis =
+                self.state.setup.profile().motion.rapid_path == crate::profile::RapidPath::PerAxis;
+            SegmentKind::Rapid { motion, per_axis }
+        } else {
+            let feed = self.state.cutting_feed(self.feed_mode, &origin)?;
+            SegmentKind::Line { motion, feed }
+        };
+        self.out.push(&origin, kind);
+        Ok(())
+    }
+
+    /// A block of the front end ends: compensation counts the blocks without motion in the
+    /// plane, and a corner it could not make stops the program here.
+    ///
+    /// # Errors
+    /// The compensation's alarm (interference, an arc smaller than the tool).
+    pub(crate) fn end_block(&mut self) -> Result<(), Alarm> {
+        if !self.out.compensating() && !self.out.failing() {
+            return Ok(());
+        }
+        self.out.end_block()?;
+        match self.out.take_failure() {
+            Some(alarm) => Err(alarm),
+            None => Ok(()),
+        }
     }
 
     /// The feed of the moves to come, as the segments carry it.

@@ -298,6 +298,7 @@ pub(super) fn run(
         PathMode::Continuous
     };
     kernel.set_path_mode(path_mode, exact_stop);
+    super::compensation::before_motion(front, kernel, moved, origin.span)?;
     match suppress {
         Some(OneBlock::Reference | OneBlock::FixedPoint) => {
             motion::reference_move(
@@ -311,6 +312,7 @@ pub(super) fn run(
         Some(level) => motion::suppressed_move(front, kernel, &words, level, origin)?,
         None => prepared.finish(front, kernel)?,
     }
+    super::compensation::after_motion(front, kernel, origin)?;
     axes::position(front, kernel, &words, origin)?;
     spindle::constant_rate(front, kernel, origin);
     spindle::restore_feed(front, kernel, mode);
@@ -444,6 +446,9 @@ fn read<'a>(
                 words.centre[i] = Some(axis_value(front, kernel, word)?);
             }
             "CR" => words.radius = Some((number(front, kernel, word)?, word.span)),
+            "OFFN" | "DISC" | "DISR" | "DISCL" | "FAD" => {
+                super::compensation::word(front, kernel, word)?
+            }
             // H functions go to the machine's PLC; they move nothing (H=QU(..) included).
             "H" => {}
             // Machine axes by their own names (G74, G75): X1, Y1, Z1, A1, B1, C1.
@@ -716,6 +721,7 @@ pub(super) fn apply_modal(
             front.modal.settable = n;
             kernel.select_work_offset(settable_id(n, front.is_828d()));
         }
+        Function::Radius(function) => super::compensation::select(front, function),
         Function::ExactStop => front.modal.exact_stop = true,
         Function::ContinuousPath => front.modal.exact_stop = false,
         Function::CuttingRate(constant, feed_type) => {

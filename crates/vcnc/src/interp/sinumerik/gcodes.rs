@@ -35,6 +35,8 @@ pub(super) enum Function {
     /// G25 (false) or G26 (true): with S, the spindle's speed limits; with axes, the working
     /// area (issue 22).
     SpeedLimit(bool),
+    /// Tool radius compensation: G40/G41/G42, NORM/KONT, G450/G451 (`compensation.rs`).
+    Radius(super::compensation::RadiusFunction),
     /// Kept as state: no geometric effect on a 3-axis mill (or the planner's default already).
     State,
     /// The next SINUMERIK issue adds it.
@@ -202,6 +204,9 @@ pub(super) fn common(number: u32) -> Option<(Function, u8)> {
 /// What `name` does, on the 828D when `m828d`; None for a name that is not a G function or a
 /// named modal function.
 pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
+    use super::compensation::RadiusFunction;
+    use crate::interp::comp::smooth::Shape;
+    use crate::interp::comp::transition::{Approach, OuterCorner};
     use Function::*;
     let f = match name {
         "G0" => Motion(self::Motion::Rapid),
@@ -277,15 +282,32 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "AMIRROR" => Frame(FrameOp::Amirror),
         "G58" => Frame(FrameOp::G58),
         "G59" => Frame(FrameOp::G59),
-        "G40" | "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "NORM" | "G450" | "BRISK"
-        | "SOFT" | "DRIVE" | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF"
-        | "COMPOF" | "COMPON" | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF"
-        | "DYNNORM" | "DYNPOS" | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF"
-        | "CDON" | "CDOF2" | "TRAFOOF" => State,
-        "G41" | "G42" | "G451" | "G641" | "G642" | "G643" | "G644" | "G645" | "KONT" | "KONTT"
-        | "KONTC" | "CUT2DF" | "G140" | "G141" | "G142" | "G143" | "G147" | "G148" | "G247"
-        | "G248" | "G347" | "G348" | "G340" | "G341" | "G460" | "G461" | "G462" | "CUTCONON"
-        | "CUTCONOF" | "FLIN" | "FCUB" => Planned,
+        "G40" => Radius(RadiusFunction::Off),
+        "G41" => Radius(RadiusFunction::Left),
+        "G42" => Radius(RadiusFunction::Right),
+        "NORM" => Radius(RadiusFunction::Approach(Approach::Straight)),
+        "KONT" => Radius(RadiusFunction::Approach(Approach::AroundPoint)),
+        "G450" => Radius(RadiusFunction::Outer(OuterCorner::TransitionCircle)),
+        "G451" => Radius(RadiusFunction::Outer(OuterCorner::Intersection)),
+        "CUTCONON" => Radius(RadiusFunction::Constant(true)),
+        "CUTCONOF" => Radius(RadiusFunction::Constant(false)),
+        "G147" => Radius(RadiusFunction::Smooth(Shape::Line)),
+        "G247" => Radius(RadiusFunction::Smooth(Shape::QuarterCircle)),
+        "G347" => Radius(RadiusFunction::Smooth(Shape::HalfCircle)),
+        "G340" => Radius(RadiusFunction::SmoothInPlane(false)),
+        "G341" => Radius(RadiusFunction::SmoothInPlane(true)),
+        "G140" => Radius(RadiusFunction::SmoothSide),
+        "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "BRISK" | "SOFT" | "DRIVE"
+        | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF" | "COMPOF" | "COMPON"
+        | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
+        | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF" | "CDON" | "CDOF2"
+        // G460: collision detection on the approach and retraction blocks, what vcnc's
+        // compensation does.
+        | "TRAFOOF" | "G460" => State,
+        "G641" | "G642" | "G643" | "G644" | "G645" | "KONTT" | "KONTC" | "CUT2DF" | "G141"
+        | "G142" | "G143" | "G148" | "G248" | "G348" | "G461" | "G462" | "FLIN" | "FCUB" => {
+            Planned
+        }
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
@@ -401,8 +423,6 @@ pub(super) fn planned_call(name: &str) -> bool {
                 | "HOLES1"
                 | "HOLES2"
                 | "WALCS1"
-                | "DISC"
-                | "OFFN"
         )
 }
 
@@ -755,7 +775,8 @@ mod listing_tests {
         let row = |name: &str| listing().into_iter().find(|row| row.name == name).unwrap();
         assert_eq!(row("G1").on_840d, Support::Runs);
         assert_eq!(row("SOFT").on_828d, Support::State);
-        assert_eq!(row("G41").on_840d, Support::Planned);
+        assert_eq!(row("G41").on_840d, Support::Runs);
+        assert_eq!(row("KONTC").on_840d, Support::Planned);
         assert!(matches!(row("DIAMON").on_840d, Support::OutOfProduct(_)));
         let range = row("G505 … G599");
         assert_eq!(

@@ -15,6 +15,7 @@
 mod arcs;
 mod axes;
 mod block;
+mod compensation;
 mod contour;
 mod control;
 mod eval;
@@ -126,6 +127,8 @@ pub struct Sinumerik {
     /// A block to read the next line into, with the room of the last one's words (boxed:
     /// swapped with a line's block parsed ahead, it moves as a pointer).
     spare: Option<Box<Block>>,
+    /// Tool radius compensation: G40/G41/G42 and how it approaches and turns corners.
+    radius_compensation: compensation::RadiusCompensation,
 }
 
 /// One program level of the call stack.
@@ -239,6 +242,7 @@ impl Sinumerik {
             arc_tolerance: machine.profile.motion.arc_radius_tolerance,
             jumps: 0,
             spare: None,
+            radius_compensation: compensation::RadiusCompensation::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
@@ -664,7 +668,11 @@ impl Sinumerik {
 
 impl FrontEnd for Sinumerik {
     fn step(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
-        self.next_step(kernel).map_err(with_sinumerik_help)
+        let step = self.next_step(kernel).map_err(with_sinumerik_help)?;
+        // Compensation counts the blocks without motion in its plane, and stops at a corner
+        // it could not make.
+        kernel.end_block()?;
+        Ok(step)
     }
 }
 

@@ -60,9 +60,9 @@ pub(super) fn swivel(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Res
 }
 
 /// The G functions a machine has at power-on that change nothing vcnc models: no note.
-const QUIET_STATE: [&str; 17] = [
+const QUIET_STATE: [&str; 18] = [
     "BRISK", "FFWOF", "COMPOF", "CFC", "NORM", "G450", "G601", "WALIMON", "DIAMOF", "FNORM",
-    "RTLION", "DYNNORM", "CUT2D", "G40", "G290", "CDOF", "TRAFOOF",
+    "RTLION", "DYNNORM", "CUT2D", "G40", "G290", "CDOF", "TRAFOOF", "G460",
 ];
 
 /// A note, once per command, that vcnc keeps a command as state without its effect on the

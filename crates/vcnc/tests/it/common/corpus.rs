@@ -178,6 +178,12 @@ pub const EXPECTED_ALARMS: &[(&str, AlarmCode, u32, &str)] = &[
         "run alone: its arguments are vacant, and the helical arc has radius 0",
     ),
     (
+        "dangarpt_test.MPF",
+        AlarmCode::UnknownGCode,
+        196,
+        "its post writes the ISO drilling cycle G81 into SINUMERIK text, which an 840D in Siemens mode rejects (alarm 12470)",
+    ),
+    (
         "dubovikov_123.MPF",
         AlarmCode::ProgramNotFound,
         13,

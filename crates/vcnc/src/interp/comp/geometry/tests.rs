@@ -7,11 +7,11 @@ fn p(x: f64, y: f64) -> V2 {
     V2::new(x, y)
 }
 
-fn line(a: V2, b: V2) -> Element {
+pub(crate) fn line(a: V2, b: V2) -> Element {
     Element::Line { start: a, end: b }
 }
 
-fn arc(a: V2, b: V2, center: V2, ccw: bool) -> Element {
+pub(crate) fn arc(a: V2, b: V2, center: V2, ccw: bool) -> Element {
     Element::Arc {
         start: a,
         end: b,
@@ -27,7 +27,7 @@ fn tool_path(elements: &[Element], side: Side, r: f64) -> Vec<V2> {
     for pair in elements.windows(2) {
         let corner = corner(&pair[0], &pair[1], side, r).expect("the corner can be made");
         points.push(corner.a_end);
-        points.extend(corner.links);
+        points.extend(corner.links.iter().map(|link| link.to()));
     }
     points.push(perpendicular_end(elements.last().unwrap(), side, r));
     points
@@ -280,7 +280,7 @@ fn a_reversal_goes_round_the_end() {
     )
     .unwrap();
     assert_path(
-        &[corner.a_end, corner.links[0]],
+        &[corner.a_end, corner.links[0].to()],
         &[(12.0, 2.0), (12.0, -2.0)],
     );
 }
@@ -298,7 +298,7 @@ fn parallel_lines_in_opposite_directions_on_the_inside_do_not_meet() {
 }
 
 /// Distance from a point to a programmed element (segment or arc piece).
-fn distance_to(element: &Element, point: V2) -> f64 {
+pub(crate) fn distance_to(element: &Element, point: V2) -> f64 {
     match *element {
         Element::Line { start, end } => {
             let d = end - start;
@@ -319,11 +319,11 @@ fn distance_to(element: &Element, point: V2) -> f64 {
     }
 }
 
-fn direction() -> impl Strategy<Value = V2> {
+pub(crate) fn direction() -> impl Strategy<Value = V2> {
     (0.0..std::f64::consts::TAU).prop_map(|a| V2::new(a.cos(), a.sin()))
 }
 
-fn side() -> impl Strategy<Value = Side> {
+pub(crate) fn side() -> impl Strategy<Value = Side> {
     prop_oneof![Just(Side::Left), Just(Side::Right)]
 }
 
@@ -356,7 +356,7 @@ proptest! {
             Err(other) => panic!("{other:?}"),
         };
         let mut points = vec![corner.a_end];
-        points.extend(corner.links.iter().copied());
+        points.extend(corner.links.iter().map(|link| link.to()));
         for point in &points {
             prop_assert!(distance_to(&a, *point) >= r - 1e-6, "{point:?} too near a");
             prop_assert!(distance_to(&b, *point) >= r - 1e-6, "{point:?} too near b");
@@ -403,7 +403,7 @@ proptest! {
             Err(other) => panic!("{other:?}"),
         };
         let mut points = vec![corner.a_end];
-        points.extend(corner.links.iter().copied());
+        points.extend(corner.links.iter().map(|link| link.to()));
         for point in &points {
             prop_assert!(distance_to(&a, *point) >= r - 1e-6, "{point:?} too near {a:?}");
             prop_assert!(distance_to(&b, *point) >= r - 1e-6, "{point:?} too near {b:?}");

@@ -1,0 +1,405 @@
+//! SINUMERIK tool radius compensation (docs/SINUMERIK.md 11; sinumerik-part-b.md 2, seed 002
+//! L6949-7396): G40/G41/G42 with the edge's radius ($TC_DP6) and OFFN, NORM/KONT, G450/G451 and
+//! DISC, in the plane of G17/G18/G19.
+//!
+//! The front end keeps the programmed functions; the kernel's compensator (`interp/comp`, the
+//! FANUC compensator's look-ahead stage) makes the tool-centre path under SINUMERIK's rules
+//! ([`Rules`]: transition circle or intersection at outer corners, KONT round the start and end
+//! point). A block's compensation is settled after its tool words and before its motion
+//! ([`before_motion`]), and a cancelling block's return onto the programmed point after it
+//! ([`after_motion`]).
+//!
+//! Never: change a rule of the ISO compensation; every SINUMERIK choice is in this file or in
+//! the rules it hands the kernel.
+
+use super::gcodes::Motion;
+use super::Sinumerik;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::comp::geometry::Side;
+use crate::interp::comp::smooth::{self, Clearance, Shape};
+use crate::interp::comp::transition::{Approach, OuterCorner, Rules};
+use crate::interp::kernel::{Kernel, Origin};
+use crate::motion::Feed;
+use crate::motion::Plane;
+use crate::source::Span;
+use crate::syntax::sinumerik::{ExprKind, Value, Word};
+
+/// The compensation functions vcnc runs: groups 7 (G40, G41, G42), 17 (NORM, KONT) and 18
+/// (G450, G451).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum RadiusFunction {
+    /// G40.
+    Off,
+    /// G41: the tool left of the contour.
+    Left,
+    /// G42: the tool right of the contour.
+    Right,
+    /// NORM or KONT.
+    Approach(Approach),
+    /// G450 or G451.
+    Outer(OuterCorner),
+    /// CUTCONON (true) or CUTCONOF.
+    Constant(bool),
+    /// G147, G247, G347: a smooth approach in this block.
+    Smooth(Shape),
+    /// G341 (true) or G340: the smooth approach's infeed first, or in space.
+    SmoothInPlane(bool),
+    /// G140: the approach from the compensation's side, what vcnc does.
+    SmoothSide,
+}
+
+/// The smooth approach's words of a block (DISR, DISCL, FAD are non-modal).
+#[derive(Clone, Copy, Debug, Default)]
+struct SmoothWords {
+    shape: Option<Shape>,
+    distance: Option<f64>,
+    /// DISCL, with true for `AC(..)`.
+    clearance: Option<(f64, bool)>,
+    /// FAD, with `PM` (Some(false)) or `PR` (Some(true)) when written so.
+    slow: Option<(f64, Option<bool>)>,
+}
+
+/// The blocks without motion in the compensation plane after which the element waiting for
+/// its corner ends perpendicular to itself: MD20250 $MC_CUTCOM_MAXNUM_DUMMY_BLOCKS (seed 002
+/// L7150-7155 names the machine data, not its value; 3 is vcnc's choice).
+const DUMMY_BLOCKS: u32 = 3;
+
+/// What the interference alarm tells on a SINUMERIK (seed 002 L7761 gives 10751).
+const ALARM_HELP: &str = "SINUMERIK alarm 10751 (collision danger): a smaller tool, a smaller OFFN or another path; the compensated path would cut into the contour";
+
+/// The compensation's modal state.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RadiusCompensation {
+    /// G41 (Some(true)), G42 (Some(false)) or G40.
+    left: Option<bool>,
+    approach: Approach,
+    outer: OuterCorner,
+    /// OFFN: the contour offset added to the radius.
+    offset: f64,
+    /// CUTCONON programmed, and whether the kernel keeps the offset constant now.
+    constant: bool,
+    kept: bool,
+    /// G341 in force (G340 at power-on).
+    smooth_in_plane: bool,
+    smooth: SmoothWords,
+    /// While compensating: its plane, and the side and radius the kernel has.
+    on: Option<(Plane, (Side, f64))>,
+}
+
+impl Default for RadiusCompensation {
+    /// The power-on state: G40, NORM, G450, OFFN=0 (group defaults, seed 002 L7176, L7295).
+    fn default() -> Self {
+        RadiusCompensation {
+            left: None,
+            approach: Approach::Straight,
+            outer: OuterCorner::TransitionCircle,
+            offset: 0.0,
+            constant: false,
+            kept: false,
+            smooth_in_plane: false,
+            smooth: SmoothWords::default(),
+            on: None,
+        }
+    }
+}
+
+/// A compensation function of the block, taken as it is read.
+pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
+    let state = &mut front.radius_compensation;
+    match function {
+        RadiusFunction::Off => state.left = None,
+        RadiusFunction::Left => state.left = Some(true),
+        RadiusFunction::Right => state.left = Some(false),
+        RadiusFunction::Approach(approach) => state.approach = approach,
+        RadiusFunction::Outer(outer) => state.outer = outer,
+        RadiusFunction::Constant(constant) => state.constant = constant,
+        RadiusFunction::Smooth(shape) => state.smooth.shape = Some(shape),
+        RadiusFunction::SmoothInPlane(in_plane) => state.smooth_in_plane = in_plane,
+        RadiusFunction::SmoothSide => {}
+    }
+}
+
+/// OFFN= and DISC=: the contour offset, and the transition circle's shape.
+///
+/// # Errors
+/// A value that is not a number; DISC above 0, which vcnc does not run.
+pub(super) fn word(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Alarm> {
+    // DISCL=AC(..), FAD=PM(..), FAD=PR(..).
+    let mut wrapped = None;
+    let value = match &word.value {
+        Value::Expression(expr) => match &expr.kind {
+            ExprKind::Call(name, args) if matches!(&**name, "AC" | "PM" | "PR") => {
+                let [Some(arg)] = args.as_slice() else {
+                    return Err(Alarm::error(
+                        AlarmCode::MacroSyntax,
+                        word.span,
+                        format!("{name}(..) takes one value"),
+                    ));
+                };
+                wrapped = Some(name.to_string());
+                front.value(kernel, arg)?
+            }
+            _ => front.value(kernel, expr)?,
+        },
+        Value::Constant(n) => n.value,
+        _ => {
+            return Err(Alarm::error(
+                AlarmCode::MissingValue,
+                word.span,
+                format!("{} needs a value: {}=5", word.address, word.address),
+            ))
+        }
+    };
+    let unit = super::motion::unit(front);
+    let smooth = &mut front.radius_compensation.smooth;
+    match (&*word.address, wrapped.as_deref()) {
+        ("DISR", None) => smooth.distance = Some(value * unit),
+        ("DISCL", None) => smooth.clearance = Some((value * unit, false)),
+        ("DISCL", Some("AC")) => smooth.clearance = Some((value * unit, true)),
+        ("FAD", None) => smooth.slow = Some((value, None)),
+        ("FAD", Some("PM")) => smooth.slow = Some((value, Some(false))),
+        ("FAD", Some("PR")) => smooth.slow = Some((value, Some(true))),
+        (_, Some(wrapper)) => {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                word.span,
+                format!("{} does not take {wrapper}(..)", word.address),
+            ))
+        }
+        ("OFFN", _) => front.radius_compensation.offset = value * unit,
+        // DISC=0 is the transition circle itself; higher values flatten it towards the
+        // intersection (seed 002 L7314-7320) along a curve the manual does not define.
+        (_, _) if value == 0.0 => {}
+        (_, _) => {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                word.span,
+                format!("DISC={value} is not run yet: vcnc makes the transition circle of DISC=0 at outer corners"),
+            )
+            .with_help("use DISC=0 (the transition circle) or G451 (the intersection)"))
+        }
+    }
+    Ok(())
+}
+
+/// The side and radius of G41 (`left`) or G42 now: the edge's radius plus OFFN, a negative
+/// total and a mirrored plane each swapping the side (seed 002 L7097).
+fn setting(front: &Sinumerik, kernel: &Kernel, left: bool, plane: Plane) -> (Side, f64) {
+    let radius = front.edge().map_or(0.0, |edge| edge.radius) + front.radius_compensation.offset;
+    let side = Side::of(left, radius);
+    let (a, b, _) = plane.axes();
+    let side = match (kernel.state().frames.reverses_plane((a, b)), side) {
+        (false, side) => side,
+        (true, Side::Left) => Side::Right,
+        (true, Side::Right) => Side::Left,
+    };
+    (side, radius.abs())
+}
+
+/// The rules the kernel compensates by.
+fn rules(front: &Sinumerik, kernel: &Kernel, plane: Plane) -> Rules {
+    let (a, b, _) = plane.axes();
+    let axes = &kernel.state().setup.machine().axes;
+    let rapid = [a, b]
+        .iter()
+        .filter_map(|&i| axes[i].as_ref().map(|axis| axis.rapid))
+        .fold(f64::INFINITY, f64::min);
+    Rules {
+        outer: front.radius_compensation.outer,
+        approach: front.radius_compensation.approach,
+        alarm_help: ALARM_HELP,
+        rapid_arc_feed: if rapid.is_finite() { rapid } else { 10_000.0 },
+    }
+}
+
+/// Before the block's motion (after its D): compensation starts, changes or is cancelled.
+///
+/// # Errors
+/// G41/G42 starting in a circle block; a change of plane while compensating.
+pub(super) fn before_motion(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    moves: bool,
+    span: Span,
+) -> Result<(), Alarm> {
+    let state = front.radius_compensation;
+    let plane = front.modal.plane;
+    let (a, b, _) = plane.axes();
+    if state.left.is_some()
+        && kernel
+            .state()
+            .frames
+            .programmable()
+            .is_some_and(|frame| !frame.keeps_plane((a, b)))
+    {
+        return Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            "G41 and G42 in a frame that tilts or unevenly scales the plane are not run yet",
+        )
+        .with_help("vcnc compensates in a machine plane: turn the frame about the plane's normal only (CUT2DF, 3+2 work, is issue 22's)"));
+    }
+    match (state.left, state.on) {
+        (None, None) => {}
+        (None, Some(_)) => kernel.cancel_compensation(),
+        (Some(left), None) => {
+            let rapid_or_line = matches!(front.modal.motion, Motion::Rapid | Motion::Line);
+            if moves && !rapid_or_line {
+                return Err(Alarm::error(
+                    AlarmCode::CutterCompensation,
+                    span,
+                    "G41 and G42 start in a G0 or G1 block",
+                )
+                .with_help("switch the compensation on in the straight approach block before the contour (seed 002 L6968)"));
+            }
+            // Turning and grinding tools (types 400-599) have a cutting edge position
+            // (seed 002 L7988-8032): their compensation is a lathe's.
+            if let Some(edge) = front.edge().filter(|e| (400..600).contains(&e.tool_type)) {
+                return Err(Alarm::error(
+                    AlarmCode::NotInProduct,
+                    span,
+                    format!(
+                        "{} with tool type {} belongs to turning (the nose radius compensation of a turning tool), which vcnc does not simulate",
+                        if left { "G41" } else { "G42" },
+                        edge.tool_type
+                    ),
+                ));
+            }
+            let setting = setting(front, kernel, left, plane);
+            let rules = rules(front, kernel, plane);
+            kernel.start_compensation(setting, plane, left, rules, DUMMY_BLOCKS);
+            front.radius_compensation.on = Some((plane, setting));
+            if let Some(approach) = smooth_approach(front, kernel, plane, span)? {
+                kernel.approach_smoothly(approach);
+            }
+        }
+        (Some(left), Some((on_plane, old))) => {
+            if plane != on_plane {
+                return Err(Alarm::error(
+                    AlarmCode::CutterCompensation,
+                    span,
+                    "the working plane cannot change while G41 or G42 is on",
+                )
+                .with_help("cancel the compensation with G40 before G17, G18 or G19"));
+            }
+            let setting = setting(front, kernel, left, plane);
+            if setting != old {
+                kernel.change_compensation(setting, left);
+                front.radius_compensation.on = Some((plane, setting));
+            }
+            let rules = rules(front, kernel, plane);
+            kernel.set_compensation_rules(rules);
+        }
+    }
+    let state = &mut front.radius_compensation;
+    if let Some(shape) = std::mem::take(&mut state.smooth).shape {
+        // Still programmed: the block did not start the compensation.
+        let name = match shape {
+            Shape::Line => "G147",
+            Shape::QuarterCircle => "G247",
+            Shape::HalfCircle => "G347",
+        };
+        if !matches!((state.left, state.on), (Some(_), Some(_))) || moves {
+            return Err(Alarm::error(
+                AlarmCode::NotSupportedYet,
+                span,
+                format!("{name} without G41 or G42 starting in its block is not run yet (planned: issue 22)"),
+            )
+            .with_help("start the compensation in the block of the smooth approach: G41 G247 ..."));
+        }
+    }
+    let constant = state.constant && state.on.is_some();
+    if constant != state.kept {
+        state.kept = constant;
+        kernel.keep_compensation_constant(constant)?;
+    }
+    Ok(())
+}
+
+/// The smooth approach the block programs with the compensation it starts (SAR, seed 002
+/// L7398-7672), its words taken; None without G147, G247 or G347.
+///
+/// # Errors
+/// G247 or G347 without DISR; FAD under G93.
+fn smooth_approach(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    plane: Plane,
+    span: Span,
+) -> Result<Option<smooth::Approach>, Alarm> {
+    let state = &mut front.radius_compensation;
+    let words = std::mem::take(&mut state.smooth);
+    let Some(shape) = words.shape else {
+        return Ok(None);
+    };
+    let distance = match (words.distance, shape) {
+        (Some(d), _) => d,
+        (None, Shape::Line) => 0.0,
+        (None, _) => {
+            return Err(Alarm::error(
+                AlarmCode::MissingValue,
+                span,
+                "an approach on a circle needs its radius: DISR=",
+            )
+            .with_help("DISR is the radius of the tool centre's path (seed 002 L7526-7538)"))
+        }
+    };
+    let (_, _, normal) = plane.axes();
+    let clearance = match words.clearance {
+        None => Clearance::Above(0.0),
+        Some((d, false)) => Clearance::Above(d),
+        // The work system's position along the normal, in machine coordinates (the frames'
+        // translation; the plane is never tilted here).
+        Some((z, true)) => {
+            Clearance::At(z + kernel.position().0[normal] - kernel.program_position()[normal])
+        }
+    };
+    let rpm = kernel.state().spindle.speed();
+    let per_revolution = |per_revolution: f64| Feed::PerRevolution {
+        per_revolution,
+        rpm: (rpm > 0.0).then_some(rpm),
+    };
+    let slow = match words.slow {
+        None => None,
+        Some((f, Some(false))) => Some(Feed::PerMinute(f)),
+        Some((f, Some(true))) => Some(per_revolution(f)),
+        Some((f, None)) => Some(match front.modal.feed_type {
+            super::gcodes::FeedType::PerMinute => Feed::PerMinute(f),
+            super::gcodes::FeedType::PerRevolution => per_revolution(f),
+            super::gcodes::FeedType::InverseTime => {
+                return Err(Alarm::error(
+                    AlarmCode::NotSupportedYet,
+                    span,
+                    "FAD under G93 is not run yet: write FAD=PM(..)",
+                ))
+            }
+        }),
+    };
+    Ok(Some(smooth::Approach {
+        shape,
+        in_plane: front.radius_compensation.smooth_in_plane,
+        distance,
+        clearance,
+        slow,
+        feed: kernel.cutting_feed(Origin::at(span))?,
+        per_axis: kernel.state().setup.profile().motion.rapid_path
+            == crate::profile::RapidPath::PerAxis,
+    }))
+}
+
+/// After the block's motion: a G40 block ends compensation, the tool centre going onto the
+/// programmed point if the block itself did not move in the plane.
+///
+/// # Errors
+/// Interference where the last element ends; a line without a feed.
+pub(super) fn after_motion(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    if front.radius_compensation.left.is_some() || front.radius_compensation.on.is_none() {
+        return Ok(());
+    }
+    front.radius_compensation.on = None;
+    kernel.end_compensation(front.modal.motion == Motion::Rapid, origin)
+}
