@@ -197,17 +197,21 @@ fn alarm(code: AlarmCode, span: Span, message: impl Into<String>) -> Alarm {
 }
 
 impl Core {
+    /// What kind of variable `#number` is on this profile.
+    fn variable_kind(&self, number: u32) -> Kind {
+        let extended = self
+            .exec
+            .kernel
+            .setup
+            .profile()
+            .macros
+            .extended_common_variables;
+        Variables::kind(number, extended)
+    }
+
     /// The value of `#number`.
     pub(crate) fn read_variable(&self, number: u32, span: Span) -> Result<MacroValue, Alarm> {
-        let kind = Variables::kind(
-            number,
-            self.exec
-                .kernel
-                .setup
-                .profile()
-                .macros
-                .extended_common_variables,
-        );
+        let kind = self.variable_kind(number);
         match kind {
             Kind::System => {
                 system::read(&self.exec, &self.out, &self.macros.counters, number, span)
@@ -228,15 +232,7 @@ impl Core {
         span: Span,
         message: Option<&str>,
     ) -> Result<(), Alarm> {
-        let kind = Variables::kind(
-            number,
-            self.exec
-                .kernel
-                .setup
-                .profile()
-                .macros
-                .extended_common_variables,
-        );
+        let kind = self.variable_kind(number);
         match kind {
             Kind::Vacant => Err(alarm(AlarmCode::BadVariable, span, "#0 cannot be written")),
             Kind::System => {
