@@ -13,7 +13,7 @@
 //! ([`ReleasedCheck`]). This module never depends on the interpreter.
 
 use crate::alarm::{Alarm, AlarmCode};
-use crate::machine::{Axis, Machine, AXES};
+use crate::machine::{Axis, AxisName, Machine, AXES};
 use crate::motion::{
     arc_sweep, for_arc_extreme_points, ArcDirection, Item, MachinePos, Move, Plane, Segment,
     SegmentKind, StreamItem,
@@ -44,6 +44,8 @@ pub struct TravelCheck {
 struct Limits {
     low: [f64; AXES],
     high: [f64; AXES],
+    /// The axes' names, for the alarm.
+    names: [AxisName; AXES],
 }
 
 impl<I> TravelLimits<I> {
@@ -100,6 +102,7 @@ impl TravelCheck {
                         .as_ref()
                         .map_or(f64::INFINITY, |a| a.max + SLACK)
                 }),
+                names: Axis::ALL.map(|axis| machine.layout.name(axis)),
             },
             stopped: false,
             xyz_only: (0..AXES).all(|i| machine.axes[i].is_some() == (i < 3)),
@@ -291,7 +294,7 @@ impl Limits {
         } else {
             ("-", self.low[i] + SLACK)
         };
-        let letter = Axis::ALL[i].letter() as char;
+        let letter = self.names[i];
         Alarm::error(
             AlarmCode::Overtravel,
             segment.span,
@@ -303,7 +306,7 @@ impl Limits {
         .with_help(format!(
             "the machine file gives the travel ([axes.{}] min and max); FANUC stops with \
              OT0500/OT0501 (stored stroke limit 1)",
-            letter.to_ascii_lowercase()
+            letter.as_str().to_ascii_lowercase()
         ))
     }
 }

@@ -5,7 +5,7 @@
 //! its controller profile and may override any profile field, in the profile's own tables
 //! (`[profile_overrides.motion]`, ...: see [`Profile::with_overrides`]).
 
-pub use crate::axis::{Axis, AXES};
+pub use crate::axis::{Axis, AxisKind, AxisLayout, AxisName, AXES};
 use crate::plan::{PlannerConfig, PlannerFile};
 use crate::profile::{check_range, Lower, Profile, ProfileName};
 use serde::Deserialize;
@@ -104,35 +104,30 @@ fn end_mill() -> u32 {
     120
 }
 
-/// A position given per axis letter in a machine file; missing axes are zero.
-#[derive(Clone, Debug, PartialEq, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AxisValues {
-    /// X.
-    #[serde(default)]
-    pub x: f64,
-    /// Y.
-    #[serde(default)]
-    pub y: f64,
-    /// Z.
-    #[serde(default)]
-    pub z: f64,
-    /// A.
-    #[serde(default)]
-    pub a: f64,
-    /// B.
-    #[serde(default)]
-    pub b: f64,
-    /// C.
-    #[serde(default)]
-    pub c: f64,
-}
+/// A position given per axis name in a machine file (`{ x = 1.0, u = 2.0 }`); missing axes are
+/// zero.
+pub type AxisValues = BTreeMap<String, f64>;
 
-impl AxisValues {
-    /// As a position array.
-    pub fn to_array(&self) -> [f64; AXES] {
-        [self.x, self.y, self.z, self.a, self.b, self.c]
+/// The position array of `values`, by the names of `layout`.
+fn position_array(
+    table: &str,
+    values: &AxisValues,
+    layout: &AxisLayout,
+    axes: &[Option<AxisConfig>; AXES],
+) -> Result<[f64; AXES], MachineError> {
+    let mut array = [0.0; AXES];
+    for (name, value) in values {
+        let axis = layout
+            .by_name(name)
+            .filter(|a| a.is_geometry() || axes[a.index()].is_some())
+            .ok_or_else(|| {
+                MachineError::Invalid(format!(
+                    "{table}.{name}: the machine has no axis `{name}` (its axes are the tables under [axes])"
+                ))
+            })?;
+        array[axis.index()] = *value;
     }
+    Ok(array)
 }
 
 /// The spindle.
@@ -160,7 +155,8 @@ struct MachineFile {
     profile: ProfileName,
     #[serde(default)]
     profile_overrides: toml::Table,
-    axes: BTreeMap<String, AxisConfig>,
+    /// Each axis's table: an [`AxisConfig`] and its `kind`, read apart (see [`read_axes`]).
+    axes: BTreeMap<String, toml::Table>,
     #[serde(default)]
     start: AxisValues,
     #[serde(default)]
@@ -253,6 +249,8 @@ pub struct Machine {
     pub profile: Profile,
     /// Configured axes, by axis; `None` for axes the machine does not have.
     pub axes: [Option<AxisConfig>; AXES],
+    /// The axes' names and kinds, by slot (X Y Z and A B C unless the file names others).
+    pub layout: AxisLayout,
     /// Start position, machine coordinates.
     pub start: [f64; AXES],
     /// Reference points 1 (G28) to n (G30 Pn), machine coordinates.
@@ -279,22 +277,8 @@ impl Machine {
         let file: MachineFile = toml::from_str(text)?;
         let profile = Profile::with_overrides(file.profile, &file.profile_overrides)?;
         profile.check_ranges().map_err(MachineError::Invalid)?;
+        let (axes, layout) = read_axes(&file.axes)?;
         file.check_ranges(&profile).map_err(MachineError::Invalid)?;
-        let mut axes: [Option<AxisConfig>; AXES] = Default::default();
-        for (letter, config) in file.axes {
-            let axis = single_letter(&letter)
-                .and_then(Axis::from_letter)
-                .ok_or_else(|| {
-                    MachineError::Invalid(format!("unknown axis `{letter}` (expected x y z a b c)"))
-                })?;
-            if config.min > config.max {
-                return Err(MachineError::Invalid(format!(
-                    "axes.{letter}: min = {} is above max = {}",
-                    config.min, config.max
-                )));
-            }
-            axes[axis.index()] = Some(config);
-        }
         let count = profile.coordinates.reference_points.max(1) as usize;
         let mut reference_points = vec![[0.0; AXES]; count];
         for (key, values) in &file.reference_points {
@@ -305,7 +289,8 @@ impl Machine {
                 .ok_or_else(|| {
                     MachineError::Invalid(format!("reference point `{key}`: expected 1 to {count}"))
                 })?;
-            reference_points[n - 1] = values.to_array();
+            let table = format!("reference_points.{key}");
+            reference_points[n - 1] = position_array(&table, values, &layout, &axes)?;
         }
         let mut work_offsets = BTreeMap::new();
         for (key, values) in &file.work_offsets {
@@ -314,7 +299,8 @@ impl Machine {
                     "work offset `{key}`: expected G54..G59, G54.1 Pn or external"
                 ))
             })?;
-            work_offsets.insert(id, values.to_array());
+            let table = format!("work_offsets.{key}");
+            work_offsets.insert(id, position_array(&table, values, &layout, &axes)?);
         }
         let tool_offsets = file
             .tool_offsets
@@ -325,8 +311,9 @@ impl Machine {
         Ok(Machine {
             name: file.name,
             profile,
+            start: position_array("start", &file.start, &layout, &axes)?,
             axes,
-            start: file.start.to_array(),
+            layout,
             reference_points,
             work_offsets,
             tool_offsets,
@@ -345,6 +332,39 @@ impl Machine {
         self.profile = Profile::with_overrides(name, &self.profile_overrides)?;
         self.profile.check_ranges().map_err(MachineError::Invalid)?;
         Ok(self)
+    }
+
+    /// Adds an axis after X Y Z named `name` (`"U"`, `"C1"`), with the kind its name gives
+    /// unless `kind` says otherwise, as a table `[axes.NAME]` of the machine file would: A, B
+    /// and C take their own slots, other names the first free one. Returns its slot.
+    ///
+    /// # Errors
+    /// A name that is no axis name, one the machine has already, or no free slot.
+    pub fn add_axis(
+        &mut self,
+        name: &str,
+        kind: Option<AxisKind>,
+        config: AxisConfig,
+    ) -> Result<Axis, MachineError> {
+        let name = AxisName::new(name).ok_or_else(|| {
+            MachineError::Invalid(format!(
+                "`{name}` is no axis name (1 to 8 letters, digits or `_`, starting with a letter)"
+            ))
+        })?;
+        if ["X", "Y", "Z"].contains(&name.as_str()) {
+            return Err(MachineError::Invalid(format!(
+                "{name} is a geometry axis; set `axes[{}]`",
+                name.as_str()
+            )));
+        }
+        check_axis(name.as_str(), &config).map_err(MachineError::Invalid)?;
+        let mut axes = MachineAxes {
+            axes: self.axes.clone(),
+            layout: self.layout,
+        };
+        let axis = axes.add(name, kind, config)?;
+        (self.axes, self.layout) = (axes.axes, axes.layout);
+        Ok(axis)
     }
 
     /// True when the machine has this axis.
@@ -381,15 +401,6 @@ impl MachineFile {
         use Lower::{Above, AtLeast};
         let position =
             |key: &str, value: f64| check_range(key, value, AtLeast(-MAX_POSITION), MAX_POSITION);
-        for (letter, axis) in &self.axes {
-            let key = |name: &str| format!("axes.{letter}.{name}");
-            position(&key("min"), axis.min)?;
-            position(&key("max"), axis.max)?;
-            check_range(&key("rapid"), axis.rapid, Above(0.0), MAX_RATE)?;
-            check_range(&key("max_feed"), axis.max_feed, Above(0.0), MAX_RATE)?;
-            check_range(&key("acceleration"), axis.acceleration, Above(0.0), 1e6)?;
-            check_range(&key("jerk"), axis.jerk, Above(0.0), f64::INFINITY)?;
-        }
         let tables = [("start".to_string(), &self.start)]
             .into_iter()
             .chain(
@@ -403,8 +414,8 @@ impl MachineFile {
                     .map(|(k, v)| (format!("work_offsets.{k}"), v)),
             );
         for (table, values) in tables {
-            for (letter, value) in ["x", "y", "z", "a", "b", "c"].iter().zip(values.to_array()) {
-                position(&format!("{table}.{letter}"), value)?;
+            for (name, value) in values {
+                position(&format!("{table}.{name}"), *value)?;
             }
         }
         for tool in &self.tool_offsets {
@@ -428,11 +439,142 @@ impl MachineFile {
     }
 }
 
-fn single_letter(text: &str) -> Option<u8> {
-    match text.as_bytes() {
-        [b] => Some(*b),
+/// The axes of the `[axes]` tables, in their slots, and the layout that names them: x y z are
+/// the geometry axes; a b c keep the slots they have always had (4th to 6th), other names take
+/// the free ones of those in alphabetical order. `kind = "linear" | "rotary"` in an axis's table
+/// overrides the kind its name gives (rotary for A, B, C and names starting so).
+fn read_axes(
+    tables: &BTreeMap<String, toml::Table>,
+) -> Result<([Option<AxisConfig>; AXES], AxisLayout), MachineError> {
+    let invalid = |message: String| MachineError::Invalid(message);
+    let mut axes: [Option<AxisConfig>; AXES] = Default::default();
+    let layout = AxisLayout::default();
+    let mut named = Vec::new();
+    for (key, table) in tables {
+        let mut table = table.clone();
+        let kind = match table.remove("kind") {
+            None => None,
+            Some(toml::Value::String(kind)) if kind == "linear" => Some(AxisKind::Linear),
+            Some(toml::Value::String(kind)) if kind == "rotary" => Some(AxisKind::Rotary),
+            Some(other) => {
+                return Err(invalid(format!(
+                    "axes.{key}.kind = {other}: expected \"linear\" or \"rotary\""
+                )))
+            }
+        };
+        let config = AxisConfig::deserialize(table)
+            .map_err(|error| invalid(format!("axes.{key}: {}", error.message())))?;
+        check_axis(key, &config).map_err(invalid)?;
+        let name = AxisName::new(key).ok_or_else(|| {
+            invalid(format!(
+                "axes.{key}: an axis name is 1 to 8 letters, digits or `_`, starting with a letter"
+            ))
+        })?;
+        let geometry = ["X", "Y", "Z"].iter().position(|g| *g == name.as_str());
+        match geometry {
+            Some(_) if kind == Some(AxisKind::Rotary) => {
+                return Err(invalid(format!("axes.{key}: X, Y and Z are linear axes")))
+            }
+            Some(i) => axes[i] = Some(config),
+            None => named.push((name, kind, config)),
+        }
+    }
+    // A, B and C first into their own slots, then the other names into the free ones.
+    named.sort_by_key(|(name, _, _)| own_slot(name).is_none());
+    let mut machine_axes = MachineAxes { axes, layout };
+    for (name, kind, config) in named {
+        machine_axes.add(name, kind, config)?;
+    }
+    let MachineAxes { axes, layout } = machine_axes;
+    Ok((axes, layout))
+}
+
+/// The slot an axis of this name always takes: A, B and C the 4th to 6th.
+fn own_slot(name: &AxisName) -> Option<usize> {
+    match name.as_str() {
+        "A" => Some(Axis::A.index()),
+        "B" => Some(Axis::B.index()),
+        "C" => Some(Axis::C.index()),
         _ => None,
     }
+}
+
+/// A machine's axes and their layout, while axes are added.
+struct MachineAxes {
+    axes: [Option<AxisConfig>; AXES],
+    layout: AxisLayout,
+}
+
+impl MachineAxes {
+    /// Adds an axis after X Y Z: in its own slot (A B C) or the first free one.
+    fn add(
+        &mut self,
+        name: AxisName,
+        kind: Option<AxisKind>,
+        config: AxisConfig,
+    ) -> Result<Axis, MachineError> {
+        let invalid = |message: String| MachineError::Invalid(message);
+        let table = format!("axes.{}", name.as_str().to_ascii_lowercase());
+        // Other single letters are addresses (I J K R F ...); names of several characters are
+        // SINUMERIK's (C1, SP2), which ISO programs cannot address.
+        if name
+            .single_letter()
+            .is_some_and(|l| !b"ABCUVW".contains(&l))
+        {
+            return Err(invalid(format!(
+                "{table}: {name} is an address, not an axis; an axis of one letter is A, B, C, U, V or W"
+            )));
+        }
+        if (3..AXES).any(|i| self.axes[i].is_some() && self.layout.name(Axis::ALL[i]) == name) {
+            return Err(invalid(format!(
+                "{table}: the machine has this axis already"
+            )));
+        }
+        let slot = match own_slot(&name) {
+            Some(slot) if self.axes[slot].is_none() => slot,
+            Some(slot) => {
+                return Err(invalid(format!(
+                    "{table}: {name} takes the axis slot {} that {} has",
+                    slot + 1,
+                    self.layout.name(Axis::ALL[slot])
+                )))
+            }
+            None => (3..AXES).find(|&i| self.axes[i].is_none()).ok_or_else(|| {
+                invalid(format!(
+                    "{table}: vcnc's machines have at most {} axes besides X Y Z",
+                    AXES - 3
+                ))
+            })?,
+        };
+        let axis = Axis::ALL[slot];
+        let kind = kind.unwrap_or_else(|| AxisLayout::default_kind(&name));
+        self.layout = self.layout.with(axis, name, kind);
+        self.axes[slot] = Some(config);
+        Ok(axis)
+    }
+}
+
+/// An axis's numbers are ones a machine could have (see [`MachineFile::check_ranges`]).
+fn check_axis(key: &str, axis: &AxisConfig) -> Result<(), String> {
+    use Lower::{Above, AtLeast};
+    let key = |name: &str| format!("axes.{key}.{name}");
+    let position =
+        |key: &str, value: f64| check_range(key, value, AtLeast(-MAX_POSITION), MAX_POSITION);
+    position(&key("min"), axis.min)?;
+    position(&key("max"), axis.max)?;
+    check_range(&key("rapid"), axis.rapid, Above(0.0), MAX_RATE)?;
+    check_range(&key("max_feed"), axis.max_feed, Above(0.0), MAX_RATE)?;
+    check_range(&key("acceleration"), axis.acceleration, Above(0.0), 1e6)?;
+    check_range(&key("jerk"), axis.jerk, Above(0.0), f64::INFINITY)?;
+    if axis.min > axis.max {
+        return Err(format!(
+            "{}: min = {} is above max = {}",
+            key("min"),
+            axis.min,
+            axis.max
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -581,6 +723,109 @@ mod tests {
     fn a_bad_axis_letter_is_reported() {
         let text = DEFAULT_MACHINE_TOML.replace("[axes.z]", "[axes.q]");
         let error = Machine::from_toml(&text).unwrap_err().to_string();
-        assert!(error.contains("unknown axis `q`"), "{error}");
+        assert!(
+            error.contains("axes.q: Q is an address, not an axis"),
+            "{error}"
+        );
+        let text = DEFAULT_MACHINE_TOML.replace("[axes.z]", "[axes.\"1a\"]");
+        let error = Machine::from_toml(&text).unwrap_err().to_string();
+        assert!(error.contains("an axis name is 1 to 8 letters"), "{error}");
+    }
+
+    /// The default machine's X table with another name, and `extra` lines in it.
+    fn axis_table(name: &str, extra: &str) -> String {
+        format!("\n[axes.{name}]\nmin = -100.0\nmax = 100.0\nrapid = 5000.0\nmax_feed = 2000.0\n{extra}")
+    }
+
+    #[test]
+    fn axes_named_u_v_w_are_linear_and_take_the_free_slots() {
+        let text = format!(
+            "{DEFAULT_MACHINE_TOML}{}{}{}",
+            axis_table("w", ""),
+            axis_table("c", ""),
+            axis_table("u", "")
+        )
+        .replace("[start]\nx = 0.0", "[start]\nu = 12.5\nx = 0.0");
+        let machine = Machine::from_toml(&text).unwrap();
+        let layout = &machine.layout;
+        // C keeps its own slot; U and W take the free ones in alphabetical order.
+        assert_eq!(layout.by_name("C"), Some(Axis::C));
+        assert_eq!(layout.by_name("u"), Some(Axis::A));
+        assert_eq!(layout.by_name("W"), Some(Axis::B));
+        assert!(!layout.is_rotary(Axis::A) && !layout.is_rotary(Axis::B));
+        assert!(layout.is_rotary(Axis::C));
+        assert_eq!(machine.start[Axis::A.index()], 12.5);
+        assert!(machine.has_axis(Axis::A) && machine.has_axis(Axis::B));
+    }
+
+    #[test]
+    fn an_axis_kind_and_sinumerik_names_come_from_the_file() {
+        let text = format!(
+            "{DEFAULT_MACHINE_TOML}{}{}",
+            axis_table("c1", ""),
+            axis_table("v", "kind = \"rotary\"\n")
+        );
+        let machine = Machine::from_toml(&text).unwrap();
+        let c1 = machine.layout.by_name("C1").unwrap();
+        let v = machine.layout.by_name("V").unwrap();
+        assert!(machine.layout.is_rotary(c1) && machine.layout.is_rotary(v));
+        let bad = format!(
+            "{DEFAULT_MACHINE_TOML}{}",
+            axis_table("u", "kind = \"round\"\n")
+        );
+        let error = Machine::from_toml(&bad).unwrap_err().to_string();
+        assert!(
+            error.contains("expected \"linear\" or \"rotary\""),
+            "{error}"
+        );
+        let bad = DEFAULT_MACHINE_TOML.replace("[axes.z]", "[axes.z]\nkind = \"rotary\"");
+        let error = Machine::from_toml(&bad).unwrap_err().to_string();
+        assert!(error.contains("X, Y and Z are linear"), "{error}");
+    }
+
+    #[test]
+    fn at_most_three_axes_besides_xyz_and_positions_name_present_axes() {
+        let four: String = ["a", "b", "c", "u"]
+            .iter()
+            .map(|n| axis_table(n, ""))
+            .collect();
+        let error = Machine::from_toml(&format!("{DEFAULT_MACHINE_TOML}{four}"))
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("at most 3 axes besides X Y Z"), "{error}");
+        let text = DEFAULT_MACHINE_TOML.replace("[start]\nx = 0.0", "[start]\nu = 1.0\nx = 0.0");
+        let error = Machine::from_toml(&text).unwrap_err().to_string();
+        assert!(
+            error.contains("start.u: the machine has no axis `u`"),
+            "{error}"
+        );
+    }
+
+    #[test]
+    fn add_axis_places_axes_as_the_file_would() {
+        let mut machine = Machine::default();
+        let config = machine.axes[0].clone().unwrap();
+        assert_eq!(
+            machine.add_axis("u", None, config.clone()).unwrap(),
+            Axis::A
+        );
+        assert_eq!(
+            machine.add_axis("C", None, config.clone()).unwrap(),
+            Axis::C
+        );
+        let error = machine
+            .add_axis("A", None, config.clone())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("A takes the axis slot 4 that U has"),
+            "{error}"
+        );
+        let error = machine
+            .add_axis("U", None, config.clone())
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("has this axis already"), "{error}");
+        assert!(machine.add_axis("X", None, config).is_err());
     }
 }

@@ -134,7 +134,7 @@ struct Writer {
     /// The text of the end of the last record that ended with z, f and nothing else: see
     /// [`Writer::jsonl`].
     end: RememberedRun,
-    /// True when a motion's record has no field after z but f and the arc's: no rotary axis,
+    /// True when a motion's record has no field after z but f and the arc's: no axis after Z,
     /// no work coordinates.
     plain_end: bool,
     /// The program files, for the name of a called program's file.
@@ -143,7 +143,8 @@ struct Writer {
     file: FileId,
     file_json: PaddedText,
     file_csv: PaddedText,
-    rotary: Vec<Axis>,
+    /// The machine's axes after X Y Z, with their JSON keys (`,"a":`, `,"u":`) and names.
+    extra: Vec<(Axis, Key, String)>,
     work: bool,
     /// The map back to program coordinates of the frame in force (`--work`); None before the
     /// stream's first frame.
@@ -279,16 +280,20 @@ impl Writer {
             file: FileId(0),
             file_json: PaddedText::default(),
             file_csv: PaddedText::default(),
-            rotary: [Axis::A, Axis::B, Axis::C]
-                .into_iter()
-                .filter(|a| machine.has_axis(*a))
+            extra: Axis::ALL[3..]
+                .iter()
+                .filter(|a| machine.has_axis(**a))
+                .map(|&a| {
+                    let name = machine.layout.name(a).as_str().to_ascii_lowercase();
+                    (a, Key::new(&format!(",\"{name}\":")), name)
+                })
                 .collect(),
             work,
             frame: None,
             arc_words: arc_words(),
             plain_end: false,
         };
-        writer.plain_end = writer.rotary.is_empty() && !work;
+        writer.plain_end = writer.extra.is_empty() && !work;
         writer.set_file(FileId(0));
         writer
     }
@@ -427,7 +432,7 @@ impl Writer {
             // The fields after the rotary axes are written by two copies of the same code: in
             // the one without the loop over the axes, the compiler can bound the record's
             // length and checks no window.
-            if self.rotary.is_empty() {
+            if self.extra.is_empty() {
                 let [_, _, z_memory, _, _, _, feed_memory] = &mut self.memory;
                 jsonl_end(
                     &mut text,
@@ -437,12 +442,7 @@ impl Writer {
                     &record,
                 );
             } else {
-                for &axis in &self.rotary {
-                    let key = match axis {
-                        Axis::A => key!("a"),
-                        Axis::B => key!("b"),
-                        _ => key!("c"),
-                    };
+                for &(axis, key, _) in &self.extra {
                     text.remembered(key, &mut self.memory[axis.index()], to[axis.index()]);
                 }
                 let [_, _, z_memory, _, _, _, feed_memory] = &mut self.memory;
@@ -462,9 +462,9 @@ impl Writer {
 
     fn csv_header(&mut self) {
         self.out.put(b"kind,line,file,n,t,dt,x,y,z");
-        for i in 0..self.rotary.len() {
-            self.out
-                .put(&[b',', self.rotary[i].letter().to_ascii_lowercase()]);
+        for (_, _, name) in &self.extra {
+            self.out.put(b",");
+            self.out.put(name.as_bytes());
         }
         self.out.put(if self.work {
             b",f,cx,cy,cz,dir,plane,wx,wy,wz,value\n".as_slice()
@@ -491,7 +491,7 @@ impl Writer {
                 let to = motion.to.0;
                 for i in [0, 1, 2]
                     .into_iter()
-                    .chain(self.rotary.iter().map(|a| a.index()))
+                    .chain(self.extra.iter().map(|(a, _, _)| a.index()))
                 {
                     // x and y are not remembered: see `memory`.
                     if i < 2 {
@@ -501,7 +501,7 @@ impl Writer {
                     }
                 }
             }
-            None => (0..3 + self.rotary.len()).for_each(|_| text.byte(b',')),
+            None => (0..3 + self.extra.len()).for_each(|_| text.byte(b',')),
         }
         text.byte(b',');
         if let Some(f) = record.feed {

@@ -629,3 +629,37 @@ fn a_reader_that_goes_away_ends_the_run_report_quietly() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(out.status.code(), Some(0), "{stderr}");
 }
+
+#[test]
+fn a_trace_names_the_axes_as_the_machine_file_does() {
+    // A FANUC 0M mill with the additional linear axis U (its travel -50 to 50 mm).
+    let machine = vcnc(&["machine", "--profile", "fanuc0m"]);
+    let text = String::from_utf8(machine.stdout).unwrap().replace(
+        "\n[start]",
+        "\n[axes.u]\nmin = -50.0\nmax = 50.0\nrapid = 10000.0\nmax_feed = 5000.0\n\n[start]",
+    );
+    let path = temp_program("u-axis.toml", &text);
+    let program = temp_program("u-axis.nc", "G00 X1. U5.\nG01 U-2. F100.\nU60.\nM30\n");
+    let trace = vcnc(&["trace", "--format", "jsonl", "--machine", &path, &program]);
+    let records = String::from_utf8_lossy(&trace.stdout);
+    let first = records.lines().next().unwrap_or_default();
+    assert!(
+        first.ends_with(",\"x\":1,\"y\":0,\"z\":0,\"u\":5}"),
+        "{records}"
+    );
+    let csv = vcnc(&["trace", "--format", "csv", "--machine", &path, &program]);
+    let header = String::from_utf8_lossy(&csv.stdout);
+    assert!(
+        header.starts_with("kind,line,file,n,t,dt,x,y,z,u,f,"),
+        "{header}"
+    );
+    // U60 is beyond U's travel: the overtravel alarm names U.
+    let check = vcnc(&["check", "--machine", &path, &program]);
+    let errors = String::from_utf8_lossy(&check.stdout).to_string()
+        + &String::from_utf8_lossy(&check.stderr);
+    assert!(
+        errors.contains("+U overtravel: the move takes U to 60.000"),
+        "{errors}"
+    );
+    assert!(errors.contains("[axes.u]"), "{errors}");
+}

@@ -168,15 +168,15 @@ impl Command {
         self.values.get(slot)
     }
 
-    /// True when an axis word of a rotary axis (A, B, C) is present.
+    /// True when an axis word beyond X Y Z (the 4th to 6th axis) is present.
     #[inline]
-    pub(crate) fn has_rotary_words(&self) -> bool {
+    pub(crate) fn has_extra_axis_words(&self) -> bool {
         self.letters & letter_bits(b"ABC") != 0
     }
 
-    /// The axis word of axis index `i` (X Y Z A B C).
+    /// The axis word of axis index `i`, whatever the machine calls the axis.
     pub(crate) fn axis(&self, i: usize) -> Option<Value> {
-        self.word(b"XYZABC"[i])
+        self.word(SLOT_LETTERS[i])
     }
 
     /// The centre word I, J or K for axis index 0, 1 or 2.
@@ -269,8 +269,7 @@ impl Command {
     /// Moves the word of axis `from`, if any, to the slot of axis `to`, which must be empty: in
     /// G12.1 the rotary axis's address names the plane's hypothetical second axis.
     pub(crate) fn move_axis_word(&mut self, from: Axis, to: Axis) {
-        let slot = |axis: Axis| usize::from(axis.letter() - b'A');
-        let (from, to) = (slot(from), slot(to));
+        let (from, to) = (AXIS_SLOT[from.index()], AXIS_SLOT[to.index()]);
         if self.letters & (1 << from) != 0 {
             self.values[to] = self.values[from];
             self.letters = (self.letters & !(1 << from)) | (1 << to);
@@ -417,14 +416,15 @@ impl Command {
         Ok(())
     }
 
-    /// Records the word of a letter of the decoder's plain letters (`bit` is its letter bit,
-    /// `order` its index in the block).
+    /// Records the word of a letter of the decoder's plain letters under `letter` (its own, or
+    /// the slot letter of a renamed axis), whose letter bit is `bit`; `order` is its index in
+    /// the block.
     ///
     /// # Errors
     /// [`AlarmCode::DuplicateAddress`] when the letter was already written in the block.
     #[inline]
-    fn set_plain(&mut self, word: &Word, bit: u32, order: usize) -> Result<(), Alarm> {
-        let slot = usize::from(word.letter.wrapping_sub(b'A'));
+    fn set_plain(&mut self, word: &Word, letter: u8, bit: u32, order: usize) -> Result<(), Alarm> {
+        let slot = usize::from(letter.wrapping_sub(b'A'));
         let Some(stored) = self.values.get_mut(slot) else {
             return Err(not_an_address(word));
         };
@@ -463,7 +463,10 @@ fn axis_not_on_machine(word: &Word) -> Alarm {
         word.span,
         format!("the machine has no {} axis", word.letter as char),
     )
-    .with_help("add the axis to the machine file (`[axes.a]` ...) or remove the word")
+    .with_help(format!(
+        "add the axis to the machine file (`[axes.{}]`) or remove the word",
+        word.letter.to_ascii_lowercase() as char
+    ))
 }
 
 /// An address letter written twice in a block; `previous` is the first.
@@ -545,16 +548,50 @@ impl super::kernel::BlockOrigin for Command {
     }
 }
 
-/// The letters [`decode`] records with no check but the duplicate one: the axes `machine_axes`
-/// names (by axis index) and [`UNCHECKED_LETTERS`]. Computed once per machine: most words of a
-/// program are of these letters, and one mask test sorts them out.
-pub(crate) fn plain_letters(machine_axes: &[bool; crate::machine::AXES]) -> u32 {
-    Axis::ALL
-        .iter()
-        .filter(|axis| machine_axes[axis.index()])
-        .fold(UNCHECKED_LETTERS, |bits, axis| {
-            bits | 1 << (axis.letter() - b'A')
-        })
+/// The letter a [`Command`] keeps each axis's word under, by axis index, whatever the machine
+/// calls the axis: X Y Z, and A B C for the 4th to 6th axes (a machine's U in the 4th slot is
+/// kept as A), so the masks and slots below hold for every machine.
+const SLOT_LETTERS: &[u8; crate::machine::AXES] = b"XYZABC";
+
+/// How [`decode`] reads a machine's axis words; computed once per machine.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct AxisLetters {
+    /// The letters recorded with no check but the duplicate one: the machine's axes kept under
+    /// their own letters and [`UNCHECKED_LETTERS`]. Most words of a program are of these
+    /// letters, and one mask test sorts them out.
+    plain: u32,
+    /// For each letter A-Z that names an axis kept under another letter (U in the 4th slot),
+    /// that letter ([`SLOT_LETTERS`]); 0 for the others.
+    renamed: [u8; 26],
+}
+
+impl AxisLetters {
+    /// The letters of the axes `present` (by axis index) on a machine of `layout`.
+    pub(crate) fn new(
+        layout: &crate::machine::AxisLayout,
+        present: &[bool; crate::machine::AXES],
+    ) -> AxisLetters {
+        let mut letters = AxisLetters {
+            plain: UNCHECKED_LETTERS,
+            renamed: [0; 26],
+        };
+        for axis in Axis::ALL.into_iter().filter(|a| present[a.index()]) {
+            let slot_letter = SLOT_LETTERS[axis.index()];
+            match layout.name(axis).single_letter() {
+                Some(letter) if letter == slot_letter => letters.plain |= letter_bit(letter),
+                Some(letter) => letters.renamed[usize::from(letter - b'A')] = slot_letter,
+                // SINUMERIK's names of several characters: not an ISO address.
+                None => {}
+            }
+        }
+        letters
+    }
+
+    /// The letter an axis word of `letter` is kept under, when `letter` names a renamed axis.
+    fn renamed(&self, letter: u8) -> Option<u8> {
+        let to = *self.renamed.get(usize::from(letter.wrapping_sub(b'A')))?;
+        (to != 0).then_some(to)
+    }
 }
 
 /// The address-letter slot of each axis, by axis index.
@@ -562,7 +599,7 @@ const AXIS_SLOT: [usize; crate::machine::AXES] = {
     let mut slots = [0; crate::machine::AXES];
     let mut i = 0;
     while i < slots.len() {
-        slots[i] = (Axis::ALL[i].letter() - b'A') as usize;
+        slots[i] = (SLOT_LETTERS[i] - b'A') as usize;
         i += 1;
     }
     slots
@@ -603,8 +640,7 @@ const fn group_slot(group: Group) -> usize {
     }
 }
 
-/// Sorts the words of `block` into `out`; `plain_letters` are the letters recorded as written
-/// (see [`plain_letters`]).
+/// Sorts the words of `block` into `out`, reading the axis words by `axes`.
 ///
 /// # Errors
 /// The first alarm of the block: unknown or unsupported G codes, addresses written twice,
@@ -612,7 +648,7 @@ const fn group_slot(group: Group) -> usize {
 pub(crate) fn decode(
     block: &Block,
     profile: &Profile,
-    plain_letters: u32,
+    axes: &AxisLetters,
     out: &mut Command,
 ) -> Result<(), Alarm> {
     out.reset(block.span);
@@ -624,8 +660,8 @@ pub(crate) fn decode(
         // letters taken as written) before the G test and the `match`, whose jump table
         // mispredicts when letters alternate word after word.
         let bit = letter_bit(word.letter);
-        if bit & plain_letters != 0 {
-            out.set_plain(word, bit, order)?;
+        if bit & axes.plain != 0 {
+            out.set_plain(word, word.letter, bit, order)?;
             continue;
         }
         if word.letter == b'G' {
@@ -635,6 +671,10 @@ pub(crate) fn decode(
                 out.set_macro_call(call, order + 1);
                 break;
             }
+            continue;
+        }
+        if let Some(letter) = axes.renamed(word.letter) {
+            out.set_plain(word, letter, letter_bit(letter), order)?;
             continue;
         }
         decode_other(word, order, profile, out)?;
@@ -880,7 +920,7 @@ fn whole(word: &Word) -> Result<(), Alarm> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::machine::Machine;
+    use crate::machine::{AxisLayout, Machine};
     use crate::source::FileId;
     use crate::syntax::iso::{parse_line, LineBlocks, SyntaxOptions};
     use crate::syntax::lines::Line;
@@ -897,7 +937,13 @@ mod tests {
         parse_line(line, FileId(0), &SyntaxOptions::default(), &mut blocks);
         let block = &blocks.as_slice()[0];
         let mut cmd = Command::default();
-        decode(block, &profile, plain_letters(&machine_axes), &mut cmd).map(|()| cmd)
+        decode(
+            block,
+            &profile,
+            &AxisLetters::new(&AxisLayout::default(), &machine_axes),
+            &mut cmd,
+        )
+        .map(|()| cmd)
     }
 
     /// What decoding must make of words of the letters X Y Z A B C I J K R P Q E: each
@@ -908,7 +954,7 @@ mod tests {
     ) -> Result<Vec<(u8, f64)>, (AlarmCode, usize)> {
         let mut seen: Vec<(u8, f64)> = Vec::new();
         for (i, &(letter, value)) in words.iter().enumerate() {
-            if let Some(axis) = Axis::from_letter(letter) {
+            if let Some(axis) = AxisLayout::default().by_letter(letter) {
                 if !machine_axes[axis.index()] {
                     return Err((AlarmCode::AxisNotOnMachine, i));
                 }
@@ -995,7 +1041,7 @@ mod tests {
                     let want: Vec<(Axis, f64)> = Axis::ALL
                         .iter()
                         .filter_map(|axis| {
-                            values.iter().find(|(l, _)| *l == axis.letter()).map(|(_, v)| (*axis, *v))
+                            values.iter().find(|(l, _)| *l == SLOT_LETTERS[axis.index()]).map(|(_, v)| (*axis, *v))
                         })
                         .collect();
                     proptest::prop_assert_eq!(cmd.has_axis_words(), !want.is_empty());
@@ -1038,7 +1084,7 @@ mod tests {
     #[test]
     fn a_reused_command_keeps_nothing_of_the_block_before() {
         let profile = Machine::default().profile;
-        let axes = plain_letters(&[true; 6]);
+        let axes = AxisLetters::new(&AxisLayout::default(), &[true; 6]);
         let mut fresh = Command::default();
         let mut reused = Command::default();
         for before in [
@@ -1063,10 +1109,10 @@ mod tests {
                     blocks.as_slice()[0].clone()
                 };
                 let (before_block, after_block) = (parsed(before), parsed(after));
-                decode(&before_block, &profile, axes, &mut reused).unwrap();
+                decode(&before_block, &profile, &axes, &mut reused).unwrap();
                 assert_ne!(contents(&reused), contents(&Command::default()), "{before}");
-                decode(&after_block, &profile, axes, &mut reused).unwrap();
-                decode(&after_block, &profile, axes, &mut fresh).unwrap();
+                decode(&after_block, &profile, &axes, &mut reused).unwrap();
+                decode(&after_block, &profile, &axes, &mut fresh).unwrap();
                 assert_eq!(contents(&reused), contents(&fresh), "{before} then {after}");
                 fresh = Command::default();
             }

@@ -410,7 +410,7 @@ impl Executor {
 
     /// An axis word converted: mm for linear axes, degrees for rotary ones.
     pub(crate) fn axis_value(&self, axis: Axis, value: &Value) -> f64 {
-        if axis.is_rotary() {
+        if self.kernel.setup.is_rotary(axis) {
             self.kernel.setup.angle(value)
         } else {
             self.length(value)
@@ -436,7 +436,7 @@ impl Executor {
         let mut place = |i: usize, v: f64| {
             target[i] = if incremental { target[i] + v } else { v };
         };
-        // X, Y and Z, linear axes, one test each (most blocks); the rotary axes, rare, through
+        // X, Y and Z, linear axes, one test each (most blocks); the other axes, rare, through
         // the loop over the words present. Looping over all, every word paid for finding its
         // axis and asking whether it is rotary.
         for (i, letter) in [b'X', b'Y', b'Z'].into_iter().enumerate() {
@@ -444,9 +444,9 @@ impl Executor {
                 place(i, self.length(value));
             }
         }
-        if cmd.has_rotary_words() {
-            for (axis, value) in cmd.axis_words().filter(|(axis, _)| axis.is_rotary()) {
-                place(axis.index(), self.kernel.setup.angle(value));
+        if cmd.has_extra_axis_words() {
+            for (axis, value) in cmd.axis_words().filter(|(axis, _)| !axis.is_geometry()) {
+                place(axis.index(), self.axis_value(axis, value));
             }
         }
         target
@@ -647,7 +647,7 @@ mod tests {
                 if decode(
                     block,
                     fast.kernel.setup.profile(),
-                    fast.kernel.setup.plain_letters(),
+                    fast.kernel.setup.axis_letters(),
                     &mut cmd,
                 )
                 .is_err()
@@ -713,7 +713,7 @@ mod tests {
                 let line = Line { text: text.as_bytes(), offset: 0, number };
                 parse_line(line, FileId(0), &SyntaxOptions::default(), &mut lines);
                 for block in lines.as_slice() {
-                    if decode(block, fast.kernel.setup.profile(), fast.kernel.setup.plain_letters(), &mut cmd).is_err() {
+                    if decode(block, fast.kernel.setup.profile(), fast.kernel.setup.axis_letters(), &mut cmd).is_err() {
                         return Ok(());
                     }
                     let (by_run, by_loop) = (fast.apply_modal(&cmd), full.apply_modal_codes(&cmd));
@@ -747,7 +747,7 @@ mod tests {
                 let line = Line { text: text.as_bytes(), offset: 0, number };
                 parse_line(line, FileId(0), &SyntaxOptions::default(), &mut lines);
                 for block in lines.as_slice() {
-                    if decode(block, exec.kernel.setup.profile(), exec.kernel.setup.plain_letters(), &mut cmd).is_err() {
+                    if decode(block, exec.kernel.setup.profile(), exec.kernel.setup.axis_letters(), &mut cmd).is_err() {
                         return Ok(());
                     }
                     if exec.apply_modal(&cmd).is_err() {

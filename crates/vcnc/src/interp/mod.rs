@@ -580,7 +580,7 @@ impl Core {
         let decoded = decode::decode(
             block,
             self.exec.kernel.setup.profile(),
-            self.exec.kernel.setup.plain_letters(),
+            self.exec.kernel.setup.axis_letters(),
             &mut self.command,
         );
         if self.command.has_warnings() {

@@ -46,8 +46,10 @@ use crate::profile::{GCode, Group};
 
 /// The linear axis of the plane: the radius.
 const LINEAR: usize = Axis::X.index();
-/// The rotary axis: the angle.
-const ROTARY: usize = Axis::C.index();
+/// The rotary axis C, the angle.
+const ROTARY_AXIS: Axis = Axis::C;
+/// [`ROTARY_AXIS`]'s index.
+const ROTARY: usize = ROTARY_AXIS.index();
 /// The slot of positions that carries the hypothetical axis while the mode is on.
 const HYPOTHETICAL: usize = Axis::Y.index();
 
@@ -85,7 +87,7 @@ pub(crate) fn prepare(cmd: &mut Command) -> Result<(), Alarm> {
         )
         .with_help("the plane is X and C; cancel the mode with G13.1 to move Y"));
     }
-    cmd.move_axis_word(Axis::C, Axis::Y);
+    cmd.move_axis_word(ROTARY_AXIS, Axis::Y);
     Ok(())
 }
 
@@ -146,22 +148,25 @@ fn start(exec: &mut Executor, cmd: &Command, g: GWord, out: &mut Output) -> Resu
             "G12.1 while polar coordinate interpolation is already on",
         ));
     }
-    for axis in [Axis::X, Axis::C] {
-        if !exec.kernel.setup.has_axis(axis) {
+    let layout = &exec.kernel.setup.machine().layout;
+    for (axis, letter) in [(Axis::X, 'X'), (ROTARY_AXIS, 'C')] {
+        let named = layout.by_letter(letter as u8) == Some(axis)
+            && layout.is_rotary(axis) == (letter == 'C');
+        if !exec.kernel.setup.has_axis(axis) || !named {
             return Err(Alarm::error(
                 AlarmCode::AxisNotOnMachine,
                 g.span,
-                format!(
-                    "G12.1 needs the {} axis: the machine has none",
-                    axis.letter() as char
-                ),
+                format!("G12.1 needs the {letter} axis: the machine has none"),
             )
             .with_help(
                 "polar coordinate interpolation moves X and turns the rotary axis C; add them to the machine file (`[axes.c]`)",
             ));
         }
     }
-    if let Some(axis) = cmd.axes_present().find(|a| !matches!(a, Axis::X | Axis::C)) {
+    if let Some(axis) = cmd
+        .axes_present()
+        .find(|a| *a != Axis::X && *a != ROTARY_AXIS)
+    {
         let span = cmd.axis(axis.index()).map_or(g.span, |v| v.span);
         return Err(Alarm::error(
             AlarmCode::WordNotAllowed,

@@ -123,7 +123,7 @@ pub(crate) fn g29(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
                 value.span,
                 format!(
                     "G29 {}: no G28 or G30 has set an intermediate point for this axis",
-                    axis.letter() as char
+                    exec.kernel.setup.machine().layout.letter(axis) as char
                 ),
             ));
         };

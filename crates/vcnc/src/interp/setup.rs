@@ -5,7 +5,7 @@
 //! A part of the executor with private fields: nothing changes the setup while a program runs,
 //! so what is derived from it stays right by construction. It never holds run-time state.
 
-use super::decode::Value;
+use super::decode::{AxisLetters, Value};
 use super::modal::Units;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, WorkOffsetId, AXES};
@@ -18,8 +18,8 @@ pub(crate) struct Setup {
     machine: Machine,
     /// Which axes the machine has, by axis index.
     axes: [bool; AXES],
-    /// The letters decoding records as written on this machine (`decode::plain_letters`).
-    plain_letters: u32,
+    /// How decoding reads the machine's axis words.
+    axis_letters: AxisLetters,
 }
 
 impl Setup {
@@ -29,7 +29,7 @@ impl Setup {
         let axes = std::array::from_fn(|i| machine.axes[i].is_some());
         Setup {
             profile: machine.profile.clone(),
-            plain_letters: super::decode::plain_letters(&axes),
+            axis_letters: AxisLetters::new(&machine.layout, &axes),
             axes,
             machine,
         }
@@ -50,9 +50,14 @@ impl Setup {
         self.axes[axis.index()]
     }
 
-    /// The letters decoding records with no check but the duplicate one.
-    pub(crate) fn plain_letters(&self) -> u32 {
-        self.plain_letters
+    /// How decoding reads the machine's axis words.
+    pub(crate) fn axis_letters(&self) -> &AxisLetters {
+        &self.axis_letters
+    }
+
+    /// True when `axis` is rotary on this machine.
+    pub(crate) fn is_rotary(&self, axis: Axis) -> bool {
+        self.machine.layout.is_rotary(axis)
     }
 
     /// The tool offset number an H or D word gives (`letter`).

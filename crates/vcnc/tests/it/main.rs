@@ -7,6 +7,7 @@
 mod common;
 
 mod alarms;
+mod axes_by_name;
 mod compensation;
 mod compensation_cases;
 mod compensation_corpus;

@@ -600,24 +600,24 @@ const STAND_INS: &[(&str, &str)] = &[
     ("G_TOOL", "PROC G_TOOL(REAL LENGTH, REAL RADIUS)\nRET\n"),
 ];
 
-/// Where each program stops with [`STAND_INS`]: (file, alarm, line, word the message names).
-const AFTER_STAND_INS: &[(&str, AlarmCode, u32, &str)] = &[
-    ("dubovikov_123.MPF", AlarmCode::NotSupportedYet, 56, "G41"),
-    // `Z0 W0`: W is an axis of the author's boring mill (its quill); vcnc's machines have X Y Z
-    // A B C.
-    ("dubovikov_KONUS.SPF", AlarmCode::WordNotAllowed, 24, "W"),
+/// Where each program stops with [`STAND_INS`]: (file, alarm, line, word the message names),
+/// or None when it runs to its end.
+type StopAt = Option<(AlarmCode, u32, &'static str)>;
+const AFTER_STAND_INS: &[(&str, StopAt)] = &[
+    (
+        "dubovikov_123.MPF",
+        Some((AlarmCode::NotSupportedYet, 56, "G41")),
+    ),
+    // `Z0 W0`: W is the quill of the author's boring mill, an axis of its machine file.
+    ("dubovikov_KONUS.SPF", None),
     (
         "gcodeworkshop_SINUMERIK840D.MPF",
-        AlarmCode::NotSupportedYet,
-        96,
-        "CYCLE81",
+        Some((AlarmCode::NotSupportedYet, 96, "CYCLE81")),
     ),
     // N26: CYCLE800 swivelling B to 91.064 degrees.
     (
         "jennings_CYCLE189_TEST.MPF",
-        AlarmCode::NotSupportedYet,
-        46,
-        "CYCLE800",
+        Some((AlarmCode::NotSupportedYet, 46, "CYCLE800")),
     ),
 ];
 
@@ -634,7 +634,7 @@ fn with_stand_ins_for_missing_subprograms_the_programs_run_on() {
         .collect();
     let listed: Vec<&str> = AFTER_STAND_INS.iter().map(|a| a.0).collect();
     assert_eq!(missing, listed);
-    for &(file, code, line, word) in AFTER_STAND_INS {
+    for &(file, stop) in AFTER_STAND_INS {
         let case = CASES.iter().find(|c| c.file == file).unwrap();
         let outcome = run_with(case, &folder, STAND_INS);
         println!(
@@ -646,6 +646,10 @@ fn with_stand_ins_for_missing_subprograms_the_programs_run_on() {
                 .as_ref()
                 .map(|a| (a.code.id(), a.span.map_or(0, |s| s.line), &a.message))
         );
+        let Some((code, line, word)) = stop else {
+            assert!(outcome.error.is_none(), "{file}: {:?}", outcome.error);
+            continue;
+        };
         let error = outcome.error.as_ref().expect("a stop");
         assert_eq!(
             (error.code, error.span.map_or(0, |s| s.line)),

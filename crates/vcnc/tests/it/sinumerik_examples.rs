@@ -91,6 +91,7 @@ const KEYS: &[&str] = &[
     "profile",
     "start",
     "rotary_axes",
+    "linear_axes",
     "spindles",
     "tool_change",
     "tools",
@@ -133,6 +134,9 @@ struct Example {
     /// Rotary axes the machine has besides X Y Z: "a", "c".
     #[serde(default)]
     rotary_axes: Vec<String>,
+    /// Linear axes the machine has besides X Y Z, by name: "u", "v".
+    #[serde(default)]
+    linear_axes: Vec<String>,
     /// Spindles the machine has (the machine file's `[spindle] count`; 1 when not given).
     spindles: Option<u32>,
     /// "m6" (T preselects, M6 changes: the milling default) or "t" (T changes at once).
@@ -199,6 +203,12 @@ impl Example {
                 other => return Err(format!("rotary_axes: unknown axis {other}")),
             };
             machine.axes[axis.index()] = rotary.clone();
+        }
+        for name in &self.linear_axes {
+            let travel = common::sinumerik_machines::linear(-1000.0, 1000.0);
+            machine
+                .add_axis(name, Some(vcnc::machine::AxisKind::Linear), travel)
+                .map_err(|e| format!("linear_axes: {e}"))?;
         }
         if let Some(count) = self.spindles {
             machine.spindle.count = count;
@@ -558,7 +568,7 @@ fn examples_doc_lists(table: &Table) -> String {
     for (code, commands) in &alarms {
         let count: usize = commands.values().map(Vec::len).sum();
         let heading = match code.as_str() {
-            "V020" => "not supported yet (issue 22: radius compensation, path control, cycles, working area; issue 18: axes named by the machine file)",
+            "V020" => "not supported yet (issue 22: radius compensation, path control, cycles, working area)",
             "V022" => "outside the product (turning, grinding, synchronized actions, couplings, hardware data)",
             "V031" => "an error of the example itself (the control stops there too)",
             "V032" => "an inconsistent circle of the example itself (the control's 14040 too)",

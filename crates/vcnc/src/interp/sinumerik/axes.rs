@@ -11,7 +11,7 @@
 //! a positioning word move an axis the machine file does not declare.
 
 use super::block::{AxisValue, Words};
-use super::language::AXIS_NAMES;
+use super::language::AxisLookup;
 use super::motion::unit;
 use super::predefined::written;
 use super::Sinumerik;
@@ -58,7 +58,7 @@ pub(super) fn read_word(
         ("FGROUP", Value::Call(arguments)) => {
             let mut group = [false; AXES];
             for argument in arguments.iter().flatten() {
-                group[axis_of(front, argument, word)?] = true;
+                group[axis_of(front, kernel, argument, word)?] = true;
             }
             // FGROUP() brings back the geometry axes (L2581-2590).
             let default = [true, true, true, false, false, false];
@@ -72,8 +72,9 @@ pub(super) fn read_word(
                     format!("{address}[axis] takes one axis"),
                 ));
             };
-            let axis = axis_of(front, index, word)?;
-            let feeds = if front.modal.inch && front.modal.inch_feeds && axis < 3 {
+            let axis = axis_of(front, kernel, index, word)?;
+            let feeds = if front.modal.inch && front.modal.inch_feeds && !front.axes.rotary()[axis]
+            {
                 25.4
             } else {
                 1.0
@@ -107,7 +108,7 @@ pub(super) fn read_word(
         ("WAITP", Value::Call(arguments)) => {
             // vcnc's positioning moves end before the next block starts: nothing to wait for.
             for argument in arguments.iter().flatten() {
-                axis_of(front, argument, word)?;
+                axis_of(front, kernel, argument, word)?;
             }
         }
         _ => return Ok(false),
@@ -115,26 +116,37 @@ pub(super) fn read_word(
     Ok(true)
 }
 
-/// The axis an index or argument names, on the machine.
-fn axis_of(front: &Sinumerik, expr: &Expr, word: &Word) -> Result<usize, Alarm> {
+/// The axis an index or argument names, on the machine: an axis name, or an AXIS variable
+/// holding one (PGsl 1.3, axis variables stand for the axis they hold).
+fn axis_of(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    expr: &Expr,
+    word: &Word,
+) -> Result<usize, Alarm> {
+    let held;
     let name = match &expr.kind {
+        ExprKind::Name(name) if front.is_variable(name) => {
+            held = match front.evaluate(kernel, expr)? {
+                super::value::Value::Axis(name) => name.to_string(),
+                _ => String::from("?"),
+            };
+            held.as_str()
+        }
         ExprKind::Name(name) => &**name,
         _ => "?",
     };
-    match AXIS_NAMES.iter().position(|a| *a == name) {
-        Some(axis) if front.axes[axis] => Ok(axis),
-        Some(_) => Err(Alarm::error(
+    match front.axes.lookup(name) {
+        AxisLookup::Present(axis) => Ok(axis),
+        AxisLookup::Absent | AxisLookup::NotAnAxis => Err(Alarm::error(
             AlarmCode::AxisNotOnMachine,
             word.span,
             format!("{}: the machine has no axis {name}", written(word)),
-        )),
-        // U, V, W and a machine's own names wait for axes named by the machine file.
-        None => Err(Alarm::error(
-            AlarmCode::NotSupportedYet,
-            word.span,
-            format!("{}: {name} is no axis of vcnc's machines yet, which have X Y Z and the rotary axes A B C (planned: issue 18, axes named by the machine file)", written(word)),
         )
-        .with_help("vcnc's machine files declare the axes x y z a b c")),
+        .with_help(format!(
+            "add the axis to the machine file (`[axes.{}]`)",
+            name.to_ascii_lowercase()
+        ))),
     }
 }
 
@@ -197,7 +209,7 @@ pub(super) fn position(
             origin.span,
             format!(
                 "{} is a path axis and a positioning axis (POS, POSA) in one block",
-                AXIS_NAMES[axis]
+                front.axes.name(axis)
             ),
         )
         .with_help("move the axis either on the path or with POS/POSA"));
@@ -209,7 +221,7 @@ pub(super) fn position(
     let mut minutes = 0.0_f64;
     let mut any_feed = false;
     for &(axis, value) in positioning {
-        let scale = if axis < 3 { unit(front) } else { 1.0 };
+        let scale = front.axes.scale(axis, unit(front));
         let to = if value.absolute.unwrap_or(front.modal.absolute) {
             value.value * scale
         } else {
@@ -339,7 +351,8 @@ pub(super) fn scale_feed(
         .group
         .unwrap_or([true, true, true, false, false, false]);
     let moving: Vec<usize> = (0..AXES).filter(|&i| moves(i) && group[i]).collect();
-    let linear_moves = moving.iter().any(|&i| i < 3);
+    let rotary = *front.axes.rotary();
+    let linear_moves = moving.iter().any(|&i| !rotary[i]);
     let default_radius = |i: usize| {
         feeds.reference_radius[i]
             .is_none_or(|r| (r - DEFAULT_REFERENCE_RADIUS).abs() < 1e-6 * DEFAULT_REFERENCE_RADIUS)
@@ -348,7 +361,7 @@ pub(super) fn scale_feed(
     let (length, factor) = if moving.is_empty() {
         // No axis of the group moves: the block's axes make the path as the geometry axes
         // would (vcnc's choice; the manual is silent). F of a rotary-only move is deg/min.
-        let rotary_only = (0..3).all(|i| !moves(i));
+        let rotary_only = (0..AXES).all(|i| rotary[i] || !moves(i));
         let planner = planner_length(&start, target, arc);
         (
             planner,
@@ -369,7 +382,7 @@ pub(super) fn scale_feed(
             squares += s * s;
         }
         for &i in moving.iter().filter(|&&i| !in_arc_plane(i)) {
-            let travel = if i < 3 {
+            let travel = if !rotary[i] {
                 delta[i]
             } else {
                 let radius = feeds.reference_radius[i].unwrap_or(DEFAULT_REFERENCE_RADIUS);

@@ -28,7 +28,7 @@ const UNLISTED_TOOLS: u32 = 1_000_000;
 /// Predefined procedures that are neither subprograms nor cycles (the language's own).
 const PREDEFINED: [&str; 4] = ["MSG", "SETAL", "STOPRE", "CYCLE800"];
 
-use super::language::AXIS_NAMES;
+use super::language::AxisLookup;
 
 /// A value on an axis or centre word: as written, or made absolute or incremental for this word
 /// (`X=AC(10)`, `X=IC(5)`).
@@ -428,17 +428,23 @@ fn read<'a>(
             words.functions.push((function, group, word));
             continue;
         }
-        if let Some(axis) = AXIS_NAMES.iter().position(|a| *a == address) {
-            if !front.axes[axis] {
+        match front.axes.lookup(address) {
+            AxisLookup::Present(axis) => {
+                words.axes[axis] = Some(axis_value(front, kernel, word)?);
+                continue;
+            }
+            AxisLookup::Absent => {
                 return Err(Alarm::error(
                     AlarmCode::AxisNotOnMachine,
                     word.span,
                     format!("the machine has no axis {address}"),
                 )
-                .with_help("add the axis to the machine file's [axes], or remove the word"));
+                .with_help(format!(
+                    "add the axis to the machine file (`[axes.{}]`), or remove the word",
+                    address.to_ascii_lowercase()
+                )));
             }
-            words.axes[axis] = Some(axis_value(front, kernel, word)?);
-            continue;
+            AxisLookup::NotAnAxis => {}
         }
         match address {
             "I" | "J" | "K" => {
@@ -454,20 +460,16 @@ fn read<'a>(
             // Machine axes by their own names (G74, G75): X1, Y1, Z1, A1, B1, C1.
             _ if address.len() == 2
                 && address.ends_with('1')
-                && AXIS_NAMES.contains(&&address[..1])
+                && front.axes.lookup(&address[..1]) != AxisLookup::NotAnAxis
                 && !front.is_variable(address) =>
             {
-                let axis = AXIS_NAMES
-                    .iter()
-                    .position(|a| *a == &address[..1])
-                    .unwrap_or(0);
-                if !front.axes[axis] {
+                let Some(axis) = front.axes.index(&address[..1]) else {
                     return Err(Alarm::error(
                         AlarmCode::AxisNotOnMachine,
                         word.span,
                         format!("the machine has no axis {address}"),
                     ));
-                }
+                };
                 words.machine_axes[axis] = Some(number(front, kernel, word)?);
             }
             "FP" => words.fixed_point = Some((whole(front, kernel, word)?, word.span)),
@@ -609,21 +611,11 @@ fn letter_constant<'a>(
         value,
         absolute: None,
     };
+    if let Some(axis) = front.axes.by_letter(letter) {
+        words.axes[axis] = Some(plain);
+        return true;
+    }
     match letter {
-        b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' => {
-            let axis = match letter {
-                b'X' => 0,
-                b'Y' => 1,
-                b'Z' => 2,
-                b'A' => 3,
-                b'B' => 4,
-                _ => 5,
-            };
-            if !front.axes[axis] {
-                return false;
-            }
-            words.axes[axis] = Some(plain);
-        }
         b'I' | b'J' | b'K' => words.centre[usize::from(letter - b'I')] = Some(plain),
         b'F' => words.feed = Some((value, word.span)),
         b'G' => {

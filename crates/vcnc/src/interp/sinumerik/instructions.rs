@@ -35,7 +35,7 @@ pub(super) fn frame_instruction(
     }
     let unit = unit(front);
     let lengths: [Option<f64>; AXES] = std::array::from_fn(|i| {
-        let scale = if i < 3 { unit } else { 1.0 };
+        let scale = front.axes.scale(i, unit);
         words.axes[i].map(|v| v.value * scale)
     });
     let plain: [Option<f64>; 3] = std::array::from_fn(|i| words.axes[i].map(|v| v.value));

@@ -11,18 +11,106 @@ use super::vars::{Init, ParamType, Variables};
 use super::{Modal, Sinumerik, ToolState};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
-use crate::machine::{ToolEdge, AXES};
+use crate::machine::{AxisLayout, AxisName, ToolEdge, AXES};
 use crate::source::Span;
 use crate::syntax::sinumerik::{DataType, Definition, Expr, ExprKind, Parameter, Procedure, Scope};
 
-/// The axis letters, by kernel index.
-pub(super) const AXIS_NAMES: [&str; AXES] = ["X", "Y", "Z", "A", "B", "C"];
+/// The machine's axes as programs name them: the machine file's names (X Y Z, A B C by
+/// default, or U V W, C1 ...), which axes it has, and a table for the one-letter names of the
+/// plain blocks.
+#[derive(Clone, Debug)]
+pub(super) struct ChannelAxes {
+    layout: AxisLayout,
+    present: [bool; AXES],
+    /// Rotary (degrees, never converted by G70/G700) or linear, by index.
+    rotary: [bool; AXES],
+    /// The index of the present axis each letter A-Z names alone; `u8::MAX` for none.
+    by_letter: [u8; 26],
+}
+
+/// What a name is among the machine's axes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum AxisLookup {
+    /// An axis of the machine, by index.
+    Present(usize),
+    /// An axis name the machine does not have: its own absent slots (X Y Z A B C), or U V W.
+    Absent,
+    /// No axis name.
+    NotAnAxis,
+}
+
+impl ChannelAxes {
+    pub(super) fn new(machine: &crate::machine::Machine) -> ChannelAxes {
+        let present: [bool; AXES] = std::array::from_fn(|i| machine.axes[i].is_some());
+        let mut by_letter = [u8::MAX; 26];
+        for axis in crate::machine::Axis::ALL
+            .into_iter()
+            .filter(|a| present[a.index()])
+        {
+            if let Some(letter) = machine.layout.name(axis).single_letter() {
+                by_letter[usize::from(letter - b'A')] = axis.index() as u8;
+            }
+        }
+        ChannelAxes {
+            layout: machine.layout,
+            rotary: machine.layout.rotary_mask(),
+            present,
+            by_letter,
+        }
+    }
+
+    /// The machine's axis that `name` calls.
+    pub(super) fn lookup(&self, name: &str) -> AxisLookup {
+        match self.layout.by_name(name) {
+            Some(axis) if self.present[axis.index()] => AxisLookup::Present(axis.index()),
+            Some(_) => AxisLookup::Absent,
+            None if matches!(name, "A" | "B" | "C" | "U" | "V" | "W") => AxisLookup::Absent,
+            None => AxisLookup::NotAnAxis,
+        }
+    }
+
+    /// The index of the machine's axis `name` calls, if it has one.
+    pub(super) fn index(&self, name: &str) -> Option<usize> {
+        match self.lookup(name) {
+            AxisLookup::Present(i) => Some(i),
+            _ => None,
+        }
+    }
+
+    /// The index of the present axis whose name is the letter `letter` (upper case).
+    #[inline]
+    pub(super) fn by_letter(&self, letter: u8) -> Option<usize> {
+        let i = *self.by_letter.get(usize::from(letter.wrapping_sub(b'A')))?;
+        (i != u8::MAX).then_some(usize::from(i))
+    }
+
+    /// The name of the axis of index `i`.
+    pub(super) fn name(&self, i: usize) -> AxisName {
+        self.layout.name(crate::machine::Axis::ALL[i])
+    }
+
+    /// Rotary or not, by index.
+    pub(super) fn rotary(&self) -> &[bool; AXES] {
+        &self.rotary
+    }
+
+    /// The factor to mm of an axis value of index `i` in the length unit `unit` (rotary axes
+    /// are in degrees whatever the unit).
+    #[inline]
+    pub(super) fn scale(&self, i: usize, unit: f64) -> f64 {
+        if self.rotary[i] {
+            1.0
+        } else {
+            unit
+        }
+    }
+}
 
 /// What the evaluator may read of the machine: the front end's state beside its variables.
 pub(super) struct Machine<'a> {
     pub(super) kernel: &'a Kernel,
     pub(super) programmed: &'a [f64; AXES],
-    pub(super) axes: &'a [bool; AXES],
+    pub(super) axes: &'a ChannelAxes,
     pub(super) frame: &'a ProgrammableFrame,
     pub(super) tool: &'a ToolState,
     pub(super) tools: &'a mut Vec<ToolEdge>,
@@ -58,17 +146,13 @@ impl Machine<'_> {
             Some(Value::Axis(name) | Value::Str(name)) => name.as_str(),
             _ => "",
         };
-        AXIS_NAMES
-            .iter()
-            .position(|a| *a == name)
-            .filter(|&i| self.axes[i])
-            .ok_or_else(|| {
-                Alarm::error(
-                    AlarmCode::BadVariable,
-                    span,
-                    format!("`{name}` is not an axis of the machine"),
-                )
-            })
+        self.axes.index(name).ok_or_else(|| {
+            Alarm::error(
+                AlarmCode::BadVariable,
+                span,
+                format!("`{name}` is not an axis of the machine"),
+            )
+        })
     }
 
     /// The edge `$TC_DP..[t, d]` names.
@@ -283,10 +367,7 @@ impl Environment for Machine<'_> {
     }
 
     fn is_axis(&self, name: &str) -> bool {
-        AXIS_NAMES
-            .iter()
-            .position(|a| *a == name)
-            .is_some_and(|i| self.axes[i])
+        self.axes.index(name).is_some()
     }
 }
 

@@ -63,8 +63,8 @@ pub struct Sinumerik {
     modal: Modal,
     /// The programmed position of every axis, in the work system (Siemens' `$P_EP`).
     programmed: [f64; AXES],
-    /// The axes the machine has, by index (X Y Z A B C).
-    axes: [bool; AXES],
+    /// The machine's axes by name.
+    axes: language::ChannelAxes,
     /// Block skip levels /0 .. /9 switched on.
     skip: [bool; 10],
     /// R parameters and user variables.
@@ -257,7 +257,7 @@ impl Sinumerik {
                 settable: 0,
             },
             programmed: [0.0; AXES],
-            axes: std::array::from_fn(|i| machine.axes[i].is_some()),
+            axes: language::ChannelAxes::new(machine),
             spindles: spindles::Spindles::new(machine.spindle.count),
             axis_feeds: axes::AxisFeeds::default(),
             skip: [false; 10],

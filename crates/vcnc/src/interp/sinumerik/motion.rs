@@ -107,8 +107,7 @@ fn end_point(front: &Sinumerik, words: &Words<'_>) -> [Option<f64>; AXES] {
     let unit = unit(front);
     std::array::from_fn(|i| {
         let v = words.axes[i]?;
-        // Rotary axes are in degrees whatever the unit.
-        let scale = if i < 3 { unit } else { 1.0 };
+        let scale = front.axes.scale(i, unit);
         Some(if v.absolute.unwrap_or(front.modal.absolute) {
             v.value * scale
         } else {
@@ -856,7 +855,7 @@ pub(super) fn suppressed_move(
     let mut to = here;
     for (i, value) in words.axes.iter().enumerate() {
         let Some(v) = value else { continue };
-        let scale = if i < 3 { unit } else { 1.0 };
+        let scale = front.axes.scale(i, unit);
         let length = tool.get(i).copied().unwrap_or(0.0);
         to[i] = if v.absolute.unwrap_or(front.modal.absolute) {
             v.value * scale + external[i] + length

@@ -142,6 +142,10 @@ pub fn dubovikov_boring_mill() -> Machine {
         (-500.0, 2000.0),
         &[],
     );
+    // The quill W, parallel to Z (`Z0 W0` in dubovikov_KONUS.SPF).
+    machine
+        .add_axis("W", None, linear(-500.0, 1000.0))
+        .expect("a free axis slot");
     machine.tools.push(tool(1, None, 160.0, false));
     for t in 2..=5 {
         machine.tools.push(tool(t, None, 25.0, false));
