@@ -74,6 +74,7 @@ pub(crate) fn before_motion(
             }
         }
     }
+    refuse_plane_change(exec, cmd, out)?;
     let Some(g) = cmd.group(Group::CutterComp) else {
         return Ok(());
     };
@@ -113,12 +114,45 @@ pub(crate) fn before_motion(
         }
         GCode::CutterCompCancel => {
             if let Some(comp) = out.compensation_mut() {
+                if matches!(exec.modal.motion, MotionMode::Arc(_))
+                    && (cmd.has_axis_words() || cmd.has_center_words())
+                {
+                    // The cancel block ends on the programmed point: an arc to it from the offset
+                    // point would not be an arc (spec A.22 rule 5; Syntec L1740).
+                    return Err(Alarm::error(
+                        AlarmCode::CutterCompensation,
+                        g.span,
+                        "cutter compensation ends only in a G00 or G01 block",
+                    )
+                    .with_help("cancel it in a straight move after the arc (FANUC alarm 034)"));
+                }
                 comp.cancel();
             }
         }
         _ => {}
     }
     Ok(())
+}
+
+/// G17/G18/G19 to another plane while compensating: the offset vector lies in the old plane
+/// (FANUC alarm 037). A G40 block may change it: it ends the offset.
+fn refuse_plane_change(exec: &Executor, cmd: &Command, out: &Output) -> Result<(), Alarm> {
+    let (Some(g), Some(comp)) = (cmd.group(Group::Plane), out.compensation()) else {
+        return Ok(());
+    };
+    let cancelling = cmd
+        .group(Group::CutterComp)
+        .is_some_and(|c| c.code == GCode::CutterCompCancel);
+    let (a, b, _) = exec.modal.plane.axes();
+    if cancelling || comp.axes() == (a, b) {
+        return Ok(());
+    }
+    Err(Alarm::error(
+        AlarmCode::CutterCompensation,
+        g.span,
+        "the plane cannot change while cutter compensation is on",
+    )
+    .with_help("cancel the compensation with G40 first (FANUC alarm 037)"))
 }
 
 /// True when the block's H word is the radius offset number (`G42 H19`, the old FANUC 0M

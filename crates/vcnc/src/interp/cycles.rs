@@ -71,6 +71,7 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
         exec.cycle = None;
         return Ok(());
     }
+    refuse_reference_return(exec, cmd)?;
     let Some(g) = cmd.group(Group::Cycle) else {
         if let Some(cycle) = &exec.cycle {
             if exec.modal.plane != cycle.plane
@@ -111,6 +112,30 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
         _ => {}
     }
     Ok(())
+}
+
+/// G27 to G30 while a cycle is in force: the control's reference returns do not mix with the
+/// cycle's hole data (FANUC alarm 044; the 0M manual's warning, 001 L1754, spec A.32).
+fn refuse_reference_return(exec: &Executor, cmd: &Command) -> Result<(), Alarm> {
+    let Some(g) = cmd.group(Group::NonModal) else {
+        return Ok(());
+    };
+    let returns = matches!(
+        g.code,
+        GCode::ReferenceReturn | GCode::ReturnFromReference | GCode::NthReferenceReturn
+    );
+    let cancelled = cmd
+        .group(Group::Cycle)
+        .is_some_and(|c| c.code == GCode::CycleCancel);
+    if exec.cycle.is_none() || !returns || cancelled {
+        return Ok(());
+    }
+    Err(Alarm::error(
+        AlarmCode::CycleData,
+        g.span,
+        "G28, G29 and G30 cannot be commanded while a canned cycle is in force",
+    )
+    .with_help("cancel the cycle with G80 first (FANUC alarm 044)"))
 }
 
 /// A block in cycle mode: stores its hole data and machines its holes. A block without a

@@ -751,7 +751,9 @@ fn decode_other(
         // whose plain letters leave them out. E is Syntec's threads per inch of a tapping
         // cycle.
         b'I' | b'J' | b'K' | b'R' | b'P' | b'Q' | b'E' => out.set(word, value)?,
+        // `S1=` names spindle 1, the one S drives (Syntec 1.64, L4865).
         b'F' | b'S' if word.index == 0 => out.set(word, value)?,
+        b'S' if word.index == 1 => out.set(word, value)?,
         b'F' if word.index == 2 => {
             out.retract_feed = Some(value);
             out.rare = true;

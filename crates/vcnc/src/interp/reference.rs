@@ -24,11 +24,19 @@ pub(crate) fn g28(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Resul
 /// G30 Pn: return to reference point n (P2 when P is omitted).
 ///
 /// # Errors
-/// [`AlarmCode::ReferencePointOutOfRange`] for a P the machine does not have.
+/// [`AlarmCode::ReferencePointOutOfRange`] for a P the machine does not have (on Mitsubishi,
+/// only beyond the machine's points: P0, P1 and P5 and above go to the 2nd).
 pub(crate) fn g30(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<bool, Alarm> {
     let count = exec.kernel.setup.machine().reference_points.len();
+    let other_is_second = exec
+        .kernel
+        .setup
+        .profile()
+        .coordinates
+        .g30_other_p_is_second;
     let n = match cmd.p() {
         None => 2,
+        Some(p) if other_is_second && !matches!(p.number.whole(), Some(2..=4)) => 2,
         Some(p) => {
             let n = p.number.whole().unwrap_or(0);
             if n < 1 || n as usize > count {

@@ -28,4 +28,8 @@ pub struct CoordinateRules {
     /// G28 (and G30) without axis words sends every axis home (Haas); otherwise nothing moves.
     #[serde(default)]
     pub g28_without_axes_homes_all: bool,
+    /// A G30 P the control does not have (P0, P1, P5 and above) goes to the 2nd reference
+    /// point (Mitsubishi, 003 L50); otherwise it is an alarm.
+    #[serde(default)]
+    pub g30_other_p_is_second: bool,
 }

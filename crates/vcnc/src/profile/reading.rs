@@ -34,6 +34,9 @@ pub struct ReadingRules {
     pub m_codes_per_block: u32,
     /// Two G codes of one group in a block.
     pub same_group: SameGroupRule,
+    /// `G` with no number is G00 (Mitsubishi, 003 B.0).
+    #[serde(default)]
+    pub bare_g_is_g00: bool,
 }
 
 impl ReadingRules {
@@ -43,6 +46,7 @@ impl ReadingRules {
             semicolon_ends_block: self.semicolon_ends_block,
             slash_slash_comments: self.slash_slash_comments,
             colon_program_number: self.colon_program_number,
+            bare_g_is_g00: self.bare_g_is_g00,
         }
     }
 }

@@ -23,6 +23,7 @@ mod lcnc_traces;
 mod macro_alarms;
 mod macros;
 mod mangled;
+mod manual_rules;
 mod modal;
 mod pipeline;
 mod plan_reference;

@@ -589,10 +589,11 @@ fn deeply_repeated_words_end_with_a_bounded_stream() {
 
 #[test]
 fn a_lone_address_or_stray_character_is_an_error_that_ends_the_run() {
-    // The checker proves nothing if nothing raises alarms: these must stop with an error.
+    // The checker proves nothing if nothing raises alarms: these must stop with an error. (`G`
+    // alone is G00 on Mitsubishi, 003 B.0; `G.` is an error everywhere.)
     let machines = machines();
     for text in [
-        "X-", "G", "N", "O", "X1.2.3", "#1=", "[", "IF", "G0 X1. $", "XX",
+        "X-", "G.", "N", "O", "X1.2.3", "#1=", "[", "IF", "G0 X1. $", "XX",
     ] {
         let stats = check_everywhere(text.as_bytes(), &machines).unwrap();
         assert_eq!(

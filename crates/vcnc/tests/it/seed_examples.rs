@@ -11,6 +11,14 @@ use vcnc::interp::MemoryLibrary;
 use vcnc::machine::{ToolOffset, WorkOffsetId};
 use vcnc::{FileId, Machine, Options, ProfileName, SegmentKind};
 
+/// An alarm expected at a line of the example.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct AlarmAt {
+    code: String,
+    line: u32,
+}
+
 #[derive(Deserialize, Debug)]
 struct Table {
     example: Vec<Example>,
@@ -75,6 +83,9 @@ struct Example {
     dwell_seconds: Option<f64>,
     tolerance: Option<f64>,
     skip: Option<String>,
+    /// The alarm the real control stops the program with, after the asserted motions: code and
+    /// line (`{ code = "V070", line = 32 }`).
+    alarm: Option<AlarmAt>,
     /// Blocks during which the interrupt signal comes (`Options::interrupts`: `"13"` is line 13
     /// of the example file, `"N20"` a sequence number).
     #[serde(default)]
@@ -246,9 +257,22 @@ fn manual_examples_reach_their_expected_positions() {
             }
             continue;
         }
-        if let Some(alarm) = run.error() {
-            failures.push(fail(format!("alarm: {alarm}")));
-            continue;
+        match (run.error(), &example.alarm) {
+            (Some(alarm), Some(want))
+                if alarm.code.code() == want.code
+                    && alarm.span.map(|s| s.line) == Some(want.line) => {}
+            (Some(alarm), _) => {
+                failures.push(fail(format!("alarm: {alarm}")));
+                continue;
+            }
+            (None, Some(want)) => {
+                failures.push(fail(format!(
+                    "no alarm; expected {} at line {}",
+                    want.code, want.line
+                )));
+                continue;
+            }
+            (None, None) => {}
         }
         let tolerance = example.tolerance.unwrap_or(0.001);
         let motions: Vec<_> = run

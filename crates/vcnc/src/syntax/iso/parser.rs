@@ -35,6 +35,9 @@ pub struct SyntaxOptions {
     pub slash_slash_comments: bool,
     /// `:` at the start of a block is a program number (FANUC 0M ISO code).
     pub colon_program_number: bool,
+    /// `G` with no number is G00 (Mitsubishi, 003 B.0); elsewhere it is an address without a
+    /// value.
+    pub bare_g_is_g00: bool,
 }
 
 impl Default for SyntaxOptions {
@@ -43,6 +46,7 @@ impl Default for SyntaxOptions {
             semicolon_ends_block: true,
             slash_slash_comments: false,
             colon_program_number: true,
+            bare_g_is_g00: false,
         }
     }
 }
@@ -668,6 +672,14 @@ impl Reader<'_, '_> {
             self.pos += 1;
         }
         if !any_digit {
+            if letter == b'G'
+                && self.options.bare_g_is_g00
+                && digits_start == self.pos
+                && !decimal_point
+                && !negative
+            {
+                return Some(Number::default());
+            }
             let span = self.span(word_start, self.pos.max(word_start + 1));
             let message = if digits_start == self.pos && !decimal_point {
                 format!("address {} has no value", letter as char)

@@ -1,0 +1,145 @@
+//! Rules of the ISO manuals that vcnc once read differently from the controls (issue 23's list),
+//! each test quoting its rule: the compensation and cycle alarms of the FANUC family, Mitsubishi's
+//! G30 P and bare G, Syntec's `S1=`.
+
+use vcnc::{AlarmCode, Machine, ProfileName};
+
+use crate::common::{run, trace_on, Run};
+
+fn on(profile: ProfileName) -> Machine {
+    Machine::default().with_profile(profile).unwrap()
+}
+
+fn iso(text: &str, machine: &Machine) -> Run {
+    run(text.as_bytes(), machine, vcnc::interp::Options::default())
+}
+
+/// The code and line of the alarm that stops `text` on `profile`.
+fn stop(text: &str, profile: ProfileName) -> (AlarmCode, u32, String) {
+    let run = iso(text, &on(profile));
+    let alarm = run
+        .error()
+        .unwrap_or_else(|| panic!("no alarm on {profile:?}:\n{text}"));
+    (
+        alarm.code,
+        alarm.span.map_or(0, |s| s.line),
+        alarm.message.clone(),
+    )
+}
+
+const ISO: [ProfileName; 5] = [
+    ProfileName::Fanuc,
+    ProfileName::Fanuc0m,
+    ProfileName::Mitsubishi,
+    ProfileName::Syntec,
+    ProfileName::Haas,
+];
+
+/// "G41/G42 start-up and G40 cancel are allowed only in blocks with G00 or G01 motion, never with
+/// G02/G03" (Syntec L1740; FANUC alarm 034). Before, the cancel arc ran from the offset point
+/// (radius 11.18) to the programmed one (radius 10): no arc at all.
+#[test]
+fn cutter_compensation_ends_only_in_a_straight_move() {
+    let text = "G90 G17 G00 X0 Y0\nG41 D1 G01 X20. Y0. F100.\nG40 G02 X30. Y10. R10.\nM30\n";
+    for profile in ISO {
+        let (code, line, message) = stop(text, profile);
+        assert_eq!(
+            (code, line),
+            (AlarmCode::CutterCompensation, 3),
+            "{profile:?}"
+        );
+        assert!(
+            message.contains("ends only in a G00 or G01 block"),
+            "{message}"
+        );
+    }
+    // G40 with G01, then the arc: fine.
+    let text =
+        "G90 G17 G00 X0 Y0\nG41 D1 G01 X20. Y0. F100.\nG40 G01 X20. Y0.\nG02 X30. Y10. R10.\nM30\n";
+    assert!(iso(text, &on(ProfileName::Fanuc)).error().is_none());
+}
+
+/// The offset vector lies in the plane of G41/G42: another plane while it is on is FANUC alarm
+/// 037; the G40 block may change it.
+#[test]
+fn the_plane_cannot_change_while_compensating() {
+    let text = "G90 G17 G00 X0 Y0\nG41 D1 G01 X20. Y0. F100.\nG18 X30.\nG40 X0\nM30\n";
+    for profile in ISO {
+        let (code, line, _) = stop(text, profile);
+        assert_eq!(
+            (code, line),
+            (AlarmCode::CutterCompensation, 3),
+            "{profile:?}"
+        );
+    }
+    let text = "G90 G17 G00 X0 Y0\nG41 D1 G01 X20. Y0. F100.\nG17 Y10.\nG40 G18 X0 Y0\nG02 X10. Z0 R5.\nM30\n";
+    let run = iso(text, &on(ProfileName::Fanuc));
+    assert!(run.error().is_none(), "{:?}", run.alarms);
+}
+
+/// "Cancel with G80 ... otherwise the machine cannot return to the machine origin" (0M 001
+/// L1754, spec A.32): G28/G29/G30 while a canned cycle is in force is FANUC alarm 044. Before,
+/// the G28 ran and the next X drilled a hole down from the reference point.
+#[test]
+fn a_reference_return_in_a_canned_cycle_is_an_alarm() {
+    let text = "G90 G00 X0 Y0 Z10.\nG81 X10. Y10. Z-5. R2. F100.\nG28 Z10.\nX20.\nG80\nM30\n";
+    for profile in ISO {
+        let (code, line, message) = stop(text, profile);
+        assert_eq!((code, line), (AlarmCode::CycleData, 3), "{profile:?}");
+        assert!(
+            message.contains("while a canned cycle is in force"),
+            "{message}"
+        );
+    }
+    // With G80 in the block, or before it, the return runs.
+    let text = "G90 G00 X0 Y0 Z10.\nG81 X10. Y10. Z-5. R2. F100.\nG80 G28 Z10.\nM30\n";
+    assert!(iso(text, &on(ProfileName::Fanuc)).error().is_none());
+}
+
+/// "P omitted, P0, P1 or P >= 5 -> 2nd reference point" (Mitsubishi 003 L50, spec B.9); FANUC
+/// has no such rule: a P it lacks is an alarm.
+#[test]
+fn mitsubishi_g30_with_another_p_goes_to_the_second_reference_point() {
+    let mut machine = on(ProfileName::Mitsubishi);
+    machine.reference_points[1][0] = 222.0; // the 2nd point's X
+    machine.reference_points[2][0] = 333.0; // the 3rd's
+    for (p, x) in [
+        ("", 222.0),
+        ("P0", 222.0),
+        ("P1", 222.0),
+        ("P2", 222.0),
+        ("P3", 333.0),
+        ("P5", 222.0),
+        ("P9", 222.0),
+    ] {
+        // G91 X0: the intermediate point is where the tool stands; then X to the point.
+        let trace = trace_on(&machine, &format!("G91 G30 {p} X0\nM30\n"));
+        let last_rapid = trace.lines().rev().find(|l| l.starts_with("rapid"));
+        assert_eq!(
+            last_rapid,
+            Some(format!("rapid X{x} Y0 Z0").as_str()),
+            "{p}: {trace}"
+        );
+    }
+    let (code, _, _) = stop("G91 G30 P5 X0\nM30\n", ProfileName::Fanuc);
+    assert_eq!(code, AlarmCode::ReferencePointOutOfRange);
+}
+
+/// "G (no number): treated as G00" (Mitsubishi 003 B.0); elsewhere an address without a value.
+#[test]
+fn a_bare_g_is_g00_on_mitsubishi_only() {
+    let trace = trace_on(
+        &on(ProfileName::Mitsubishi),
+        "G01 X1. F100.\nG X10. Y5.\nM30\n",
+    );
+    assert!(trace.contains("rapid X10 Y5 Z0"), "{trace}");
+    let (code, line, _) = stop("G X10. Y5.\nM30\n", ProfileName::Fanuc);
+    assert_eq!((code, line), (AlarmCode::MissingValue, 1));
+}
+
+/// "`Sn=` addresses spindle n explicitly" (Syntec 1.64, L4865): `S1=150` is spindle 1's speed.
+#[test]
+fn syntec_s1_sets_the_speed_of_spindle_one() {
+    let trace = trace_on(&on(ProfileName::Syntec), "M03 S1=150\nM30\n");
+    assert!(trace.contains("spindle Clockwise 150"), "{trace}");
+}
