@@ -42,8 +42,14 @@ pub(crate) fn move_to_new_vector(
 ) -> Result<(), Alarm> {
     let program = exec.kernel.program_position();
     let target = exec.machine_target(&program, true);
+    let at_rapid = exec
+        .kernel
+        .setup
+        .profile()
+        .compensation
+        .length_change_at_rapid;
     match (exec.modal.motion, exec.kernel.feed) {
-        (MotionMode::Linear | MotionMode::Arc(_), Some(_)) => {
+        (MotionMode::Linear | MotionMode::Arc(_), Some(_)) if !at_rapid => {
             let feed = exec.cutting_feed(cmd)?;
             let motion = exec.move_to(target, cmd, out)?;
             out.push(cmd, SegmentKind::Line { motion, feed });

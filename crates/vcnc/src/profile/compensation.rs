@@ -53,6 +53,10 @@ pub struct CompensationRules {
     /// codes (its G47 engraves text).
     #[serde(default = "super::default_true")]
     pub tool_position_offset: bool,
+    /// G43/G44 H or G49 without a Z word moves by the change of offset at rapid, as `G00 G91
+    /// Z0` would (Mitsubishi 003 L65 note 1); otherwise in the motion mode in force.
+    #[serde(default)]
+    pub length_change_at_rapid: bool,
 }
 
 fn default_cutter_comp_look_ahead() -> u32 {

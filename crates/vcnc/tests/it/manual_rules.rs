@@ -143,3 +143,28 @@ fn syntec_s1_sets_the_speed_of_spindle_one() {
     let trace = trace_on(&on(ProfileName::Syntec), "M03 S1=150\nM30\n");
     assert!(trace.contains("spindle Clockwise 150"), "{trace}");
 }
+
+/// "G43/G44 H or G49 without a Z move still performs the offset movement, as if `G00 G91 Z0`
+/// had been commanded" (Mitsubishi 003 L65 note 1): at rapid, also in G01.
+#[test]
+fn mitsubishi_moves_a_length_change_without_z_at_rapid() {
+    let mut machine = on(ProfileName::Mitsubishi);
+    machine.tool_offsets.insert(
+        1,
+        vcnc::machine::ToolOffset {
+            number: 1,
+            length: 50.0,
+            ..Default::default()
+        },
+    );
+    let text = "G90 G00 Z100.\nG01 F100. X1.\nG43 H01\nG49\nM30\n";
+    let trace = trace_on(&machine, text);
+    let lines: Vec<&str> = trace.lines().collect();
+    // Z100 with the 50 mm tool is machine Z150; G49 takes it back to 100: both at rapid.
+    assert!(lines.contains(&"rapid X1 Y0 Z150"), "{trace}");
+    assert!(lines.contains(&"rapid X1 Y0 Z100"), "{trace}");
+    // On FANUC the same block moves in the mode in force, G01.
+    machine.profile = on(ProfileName::Fanuc).profile;
+    let trace = trace_on(&machine, text);
+    assert!(trace.contains("line X1 Y0 Z150 F100"), "{trace}");
+}
