@@ -822,7 +822,7 @@ fn decode_g(
         // The warning of `same_group` goes where `rare` says to look.
         out.rare = true;
         if let Some(previous) = out.group(group).filter(|previous| previous.code != code) {
-            same_group(word, previous, group, profile, out)?;
+            same_group(word, code, previous, group, profile, out)?;
         }
     }
     out.set_group(slot, new);
@@ -873,19 +873,32 @@ fn classify_g_word(word: &Word, profile: &Profile) -> Result<GCode, Alarm> {
 #[cold]
 fn same_group(
     word: &Word,
+    code: GCode,
     previous: GWord,
     group: Group,
     profile: &Profile,
     out: &mut Command,
 ) -> Result<(), Alarm> {
+    // Of the one-shot codes only G53 and G28 may meet: "the later one is effective"
+    // (Mitsubishi 003 L79).
+    let g53_g28 = profile.reading.g53_g28_later_wins
+        && matches!(
+            (previous.code, code),
+            (GCode::MachineCoordinates, GCode::ReferenceReturn)
+                | (GCode::ReferenceReturn, GCode::MachineCoordinates)
+        );
     match profile.reading.same_group {
-        SameGroupRule::LastWins if group != Group::NonModal => {
+        SameGroupRule::LastWins if group != Group::NonModal || g53_g28 => {
             // The word was classified, so its value is a code in tenths.
             let name = word
                 .number
                 .tenths()
                 .map_or_else(|| format!("G{}", word.number.value), g_name);
-            let message = format!("two G codes of one modal group in a block: {name} wins");
+            let message = if group == Group::NonModal {
+                format!("G53 and G28 in a block: the later one, {name}, wins")
+            } else {
+                format!("two G codes of one modal group in a block: {name} wins")
+            };
             out.warn(
                 Alarm::warning(AlarmCode::SameGroupGCodes, word.span, message)
                     .with_label(previous.span, "overridden by the later code"),

@@ -7,7 +7,7 @@
 
 use super::decode::Command;
 use super::exec::Executor;
-use super::modal::DistanceMode;
+use super::modal::{DistanceMode, LengthComp};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
@@ -83,6 +83,7 @@ fn reference_return(
             }
             exec.kernel.frames.set_length_vector(0.0);
             exec.rapid_to(target, cmd, out)?;
+            after_reference_return(exec, n);
         } else {
             let span = cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span);
             out.push_warning(
@@ -111,7 +112,27 @@ fn reference_return(
         exec.kernel.frames.set_length_vector(0.0);
     }
     exec.rapid_to(home, cmd, out)?;
+    after_reference_return(exec, n);
     Ok(true)
+}
+
+/// What reaching reference point 1 (G28) cancels on the profile: the G52 local system
+/// (Mitsubishi 003 L75), tool length compensation (Haas).
+fn after_reference_return(exec: &mut Executor, n: usize) {
+    let rules = &exec.kernel.setup.profile().coordinates;
+    let (local, length) = (rules.g28_cancels_local, rules.g28_cancels_length_offset);
+    if n != 1 {
+        return;
+    }
+    if local {
+        for axis in 0..AXES {
+            exec.kernel.frames.set_local(axis, 0.0);
+        }
+    }
+    if length {
+        exec.modal.length_comp = LengthComp::Off;
+        exec.kernel.frames.set_length_vector(0.0);
+    }
 }
 
 /// G29: from the reference point through the last intermediate point to the programmed point

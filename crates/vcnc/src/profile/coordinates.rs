@@ -32,4 +32,12 @@ pub struct CoordinateRules {
     /// point (Mitsubishi, 003 L50); otherwise it is an alarm.
     #[serde(default)]
     pub g30_other_p_is_second: bool,
+    /// G28 cancels the G52 local coordinate system (Mitsubishi 003 L75: reference point return
+    /// cancels it).
+    #[serde(default)]
+    pub g28_cancels_local: bool,
+    /// G28 cancels tool length compensation (G49), not only its vector until the next Z move
+    /// (Haas).
+    #[serde(default)]
+    pub g28_cancels_length_offset: bool,
 }

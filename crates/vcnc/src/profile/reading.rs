@@ -37,6 +37,10 @@ pub struct ReadingRules {
     /// `G` with no number is G00 (Mitsubishi, 003 B.0).
     #[serde(default)]
     pub bare_g_is_g00: bool,
+    /// G53 and G28 may share a block, the later one acting (Mitsubishi 003 L79); otherwise two
+    /// one-shot codes in a block are an alarm.
+    #[serde(default)]
+    pub g53_g28_later_wins: bool,
 }
 
 impl ReadingRules {

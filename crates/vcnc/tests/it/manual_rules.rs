@@ -168,3 +168,74 @@ fn mitsubishi_moves_a_length_change_without_z_at_rapid() {
     let trace = trace_on(&machine, text);
     assert!(trace.contains("line X1 Y0 Z150 F100"), "{trace}");
 }
+
+/// "At reference point return the local coordinate system is cancelled" (Mitsubishi 003 L75):
+/// after G28 the program's X0 is the work zero again; FANUC keeps G52.
+#[test]
+fn mitsubishi_g28_cancels_the_local_coordinate_system() {
+    let text = "G90 G52 X10.\nG00 X0 Y0\nG91 G28 X0\nG90 G00 X0\nM30\n";
+    let last = |profile| {
+        let trace = trace_on(&on(profile), text);
+        trace
+            .lines()
+            .rev()
+            .find(|l| l.starts_with("rapid"))
+            .map(str::to_string)
+    };
+    assert_eq!(
+        last(ProfileName::Mitsubishi).as_deref(),
+        Some("rapid X0 Y0 Z0")
+    );
+    assert_eq!(last(ProfileName::Fanuc).as_deref(), Some("rapid X10 Y0 Z0"));
+}
+
+/// Haas's G28 cancels tool length compensation: the next Z move is without it; FANUC only
+/// clears the vector until the next Z move (spec A.26).
+#[test]
+fn haas_g28_cancels_the_tool_length_offset() {
+    let text = "G90 G00 G43 H01 Z100.\nG91 G28 Z0\nG90 G00 Z100.\nM30\n";
+    let last = |profile| {
+        let mut machine = on(profile);
+        machine.tool_offsets.insert(
+            1,
+            vcnc::machine::ToolOffset {
+                number: 1,
+                length: 50.0,
+                ..Default::default()
+            },
+        );
+        let trace = trace_on(&machine, text);
+        trace
+            .lines()
+            .rev()
+            .find(|l| l.starts_with("rapid"))
+            .map(str::to_string)
+    };
+    assert_eq!(last(ProfileName::Haas).as_deref(), Some("rapid X0 Y0 Z100"));
+    assert_eq!(
+        last(ProfileName::Fanuc).as_deref(),
+        Some("rapid X0 Y0 Z150")
+    );
+}
+
+/// "If G53 and G28 are in the same block, the later one is effective" (Mitsubishi 003 L79);
+/// FANUC refuses two one-shot codes in a block.
+#[test]
+fn mitsubishi_takes_the_later_of_g53_and_g28() {
+    let text = "G90 G00 X10. Y10. Z10.\nG53 G28 Z5.\nG28 G53 X5.\nM30\n";
+    let trace = trace_on(&on(ProfileName::Mitsubishi), text);
+    let rapids: Vec<&str> = trace.lines().filter(|l| l.starts_with("rapid")).collect();
+    // G28 Z5: through Z5 to the reference point Z0; G53 X5: machine X5.
+    assert_eq!(
+        rapids,
+        [
+            "rapid X10 Y10 Z10",
+            "rapid X10 Y10 Z5",
+            "rapid X10 Y10 Z0",
+            "rapid X5 Y10 Z0"
+        ],
+        "{trace}"
+    );
+    let (code, line, _) = stop(text, ProfileName::Fanuc);
+    assert_eq!((code, line), (AlarmCode::SameGroupGCodes, 2));
+}
