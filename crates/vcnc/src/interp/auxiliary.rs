@@ -182,6 +182,22 @@ pub(crate) fn dwell(
             "dwell time cannot be negative",
         ));
     }
+    // G04 is a block of its own on the controls: its other axis words move nothing. Said, not
+    // dropped quietly (`G01 X10. Y0. F100. G04 P1000`).
+    let x_is_time = cmd.p().is_none();
+    if let Some((_, value)) = cmd
+        .axis_words()
+        .find(|(axis, _)| !(x_is_time && *axis == Axis::X))
+    {
+        out.push_warning(
+            Alarm::warning(
+                AlarmCode::WordNotAllowed,
+                value.span,
+                "the axis words of a G04 block move nothing: the block only dwells",
+            )
+            .with_help("move in a block of its own, before or after the dwell"),
+        );
+    }
     out.push(cmd, SegmentKind::Dwell { seconds });
     Ok(())
 }

@@ -239,3 +239,24 @@ fn mitsubishi_takes_the_later_of_g53_and_g28() {
     let (code, line, _) = stop(text, ProfileName::Fanuc);
     assert_eq!((code, line), (AlarmCode::SameGroupGCodes, 2));
 }
+
+/// A G04 block only dwells: its other axis words were dropped without a word; now a warning
+/// names the first (X is the dwell time when P is absent, spec A.8).
+#[test]
+fn axis_words_of_a_dwell_block_are_warned() {
+    let run = iso(
+        "G01 X10. Y0. F100. G04 P1000\nM30\n",
+        &on(ProfileName::Fanuc),
+    );
+    assert!(run.error().is_none());
+    let warning = run
+        .alarms
+        .iter()
+        .find(|a| a.message.contains("G04 block"))
+        .expect("a warning");
+    assert_eq!(warning.code, AlarmCode::WordNotAllowed);
+    assert_eq!(warning.span.map(|s| s.start), Some(4));
+    // G04 X2. is a dwell of 2 s: no warning.
+    let run = iso("G04 X2.\nM30\n", &on(ProfileName::Fanuc));
+    assert!(run.alarms.is_empty(), "{:?}", run.alarms);
+}
