@@ -41,6 +41,10 @@ pub struct ReadingRules {
     /// one-shot codes in a block are an alarm.
     #[serde(default)]
     pub g53_g28_later_wins: bool,
+    /// A comment ends at its first `)`: `(` is control-out, `)` control-in (FANUC 0M); otherwise
+    /// parentheses nest.
+    #[serde(default)]
+    pub comment_ends_at_first_paren: bool,
 }
 
 impl ReadingRules {
@@ -51,6 +55,7 @@ impl ReadingRules {
             slash_slash_comments: self.slash_slash_comments,
             colon_program_number: self.colon_program_number,
             bare_g_is_g00: self.bare_g_is_g00,
+            comment_ends_at_first_paren: self.comment_ends_at_first_paren,
         }
     }
 }

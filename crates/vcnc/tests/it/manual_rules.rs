@@ -260,3 +260,15 @@ fn axis_words_of_a_dwell_block_are_warned() {
     let run = iso("G04 X2.\nM30\n", &on(ProfileName::Fanuc));
     assert!(run.alarms.is_empty(), "{:?}", run.alarms);
 }
+
+/// FANUC's `(` is control-out and the first `)` control-in: on FANUC 0M `(A (B) C)` ends at
+/// `(B)`, and ` C)` is read as words (an alarm, as on the control); the default profile nests
+/// parentheses for programs that write them (docs/DEVIATIONS.md).
+#[test]
+fn a_fanuc_0m_comment_ends_at_its_first_parenthesis() {
+    let text = "G00 X1. (A (B) C) Y2.\nM30\n";
+    let (code, line, message) = stop(text, ProfileName::Fanuc0m);
+    assert_eq!((code, line), (AlarmCode::MissingValue, 1));
+    assert!(message.contains("address C"), "{message}");
+    assert!(iso(text, &on(ProfileName::Fanuc)).error().is_none());
+}

@@ -38,6 +38,9 @@ pub struct SyntaxOptions {
     /// `G` with no number is G00 (Mitsubishi, 003 B.0); elsewhere it is an address without a
     /// value.
     pub bare_g_is_g00: bool,
+    /// A comment ends at the first `)` (FANUC 0M); otherwise parentheses nest, so that
+    /// `(A (B) C)` is one comment.
+    pub comment_ends_at_first_paren: bool,
 }
 
 impl Default for SyntaxOptions {
@@ -47,6 +50,7 @@ impl Default for SyntaxOptions {
             slash_slash_comments: false,
             colon_program_number: true,
             bare_g_is_g00: false,
+            comment_ends_at_first_paren: false,
         }
     }
 }
@@ -419,14 +423,16 @@ impl Reader<'_, '_> {
         }
     }
 
-    /// `( ... )`; nested parentheses are counted so that `(A (B) C)` is one comment.
+    /// `( ... )`; nested parentheses are counted so that `(A (B) C)` is one comment, unless the
+    /// control ends a comment at its first `)`.
     fn read_comment(&mut self, block: &mut crate::syntax::Block) {
         let start = self.pos;
         let mut depth = 0usize;
+        let nested = !self.options.comment_ends_at_first_paren;
         while let Some(b) = self.peek() {
             self.pos += 1;
             match b {
-                b'(' => depth += 1,
+                b'(' if nested || depth == 0 => depth += 1,
                 b')' => {
                     depth -= 1;
                     if depth == 0 {
