@@ -1,0 +1,528 @@
+//! SINUMERIK's standard cycles (docs/SINUMERIK.md, Standard cycles): the drilling cycles, the
+//! position patterns with MCALL, the pockets, and the cycles' alarms (61xxx, V074).
+//!
+//! Every expected position is worked out by hand from the parameter meanings the docs give:
+//! the hole is where the cycle is called, RFP+SDIS is the safety plane the tool rapids to,
+//! DP (or RFP-DPR) the depth it feeds to, RTP the plane it rapids back to. The machine is the
+//! default one with no work offset and no tool length, so program and machine coordinates are
+//! the same.
+
+use vcnc::interp::sinumerik::{run_str, Sinumerik};
+use vcnc::interp::{Kernel, MemoryLibrary, Run};
+use vcnc::motion::SpindleState;
+use vcnc::source::FileId;
+use vcnc::{Alarm, AlarmCode, Machine, Segment, SegmentKind};
+
+use crate::common::collect;
+use crate::common::sinumerik::{machine, mill};
+
+/// A move as the tests compare it: R rapid, L line, A arc, T thread (a line per revolution),
+/// and its end X Y Z.
+type Move = (char, [f64; 3]);
+
+fn run(text: &str, machine: &Machine) -> Vec<Segment> {
+    let run = collect(run_str(text, machine));
+    assert!(run.error().is_none(), "{text}\n{:#?}", run.alarms);
+    run.segments
+}
+
+fn moves(segments: &[Segment]) -> Vec<Move> {
+    segments
+        .iter()
+        .filter_map(|s| {
+            let kind = match &s.kind {
+                SegmentKind::Rapid { .. } => 'R',
+                SegmentKind::Line {
+                    feed: vcnc::motion::Feed::PerRevolution { .. },
+                    ..
+                } => 'T',
+                SegmentKind::Line { .. } => 'L',
+                SegmentKind::Arc { .. } => 'A',
+                _ => return None,
+            };
+            let to = s.motion()?.to.0;
+            Some((kind, [to[0], to[1], to[2]]))
+        })
+        .collect()
+}
+
+/// The moves of `text` after its first `skip` (the positioning before the cycle).
+fn moves_after(text: &str, skip: usize) -> Vec<Move> {
+    moves(&run(text, &machine()))[skip..].to_vec()
+}
+
+fn assert_moves(got: &[Move], wanted: &[Move]) {
+    assert_eq!(got.len(), wanted.len(), "got {got:?}\nwanted {wanted:?}");
+    for (k, (g, w)) in got.iter().zip(wanted).enumerate() {
+        let close = (0..3).all(|i| (g.1[i] - w.1[i]).abs() < 1e-3);
+        assert!(
+            g.0 == w.0 && close,
+            "move {k}: got {g:?}, wanted {w:?}\nall: {got:?}"
+        );
+    }
+}
+
+/// The feed of every cutting line in order, mm/min.
+fn line_feeds(segments: &[Segment]) -> Vec<f64> {
+    segments
+        .iter()
+        .filter_map(|s| match &s.kind {
+            SegmentKind::Line { feed, .. } => feed.mm_per_min(1.0),
+            _ => None,
+        })
+        .collect()
+}
+
+fn error(text: &str, machine: &Machine) -> Alarm {
+    collect(run_str(text, machine))
+        .error()
+        .cloned()
+        .unwrap_or_else(|| panic!("no error in\n{text}"))
+}
+
+/// The cycle alarm of `text` on a machine with a 10 mm end mill (T1 D1): its number.
+fn cycle_alarm(text: &str) -> String {
+    let mut machine = machine();
+    machine.tools.push(mill(1, "MILL", 1, 0.0, 5.0));
+    let alarm = error(text, &machine);
+    assert_eq!(alarm.code, AlarmCode::CycleParameter, "{alarm:?}");
+    let span = alarm.span.expect("a cycle alarm points at the call");
+    assert!(span.end > span.start, "{alarm:?}");
+    alarm.message.split(':').next().unwrap_or("").to_string()
+}
+
+const START: &str = "G17 G90 F100 S1000 M3\nG0 X10 Y20 Z50\n";
+
+#[test]
+fn cycle81_rapids_to_the_safety_plane_drills_and_rapids_to_the_retraction_plane() {
+    // RTP 10, RFP 0, SDIS 2, DP -15: rapid to Z 0+2, feed to Z-15, rapid to Z10, at X10 Y20.
+    let got = moves_after(&format!("{START}CYCLE81(10,0,2,-15)\nM30\n"), 1);
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 2.0]),
+            ('L', [10.0, 20.0, -15.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn a_relative_depth_wins_over_the_absolute_one() {
+    // DPR 5 below RFP 1: the depth is 1-5 = -4, whatever DP says.
+    let got = moves_after(&format!("{START}CYCLE81(10,1,2,-15,5)\nM30\n"), 1);
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 3.0]),
+            ('L', [10.0, 20.0, -4.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn the_next_block_continues_from_the_retraction_plane() {
+    // After the cycle the programmed Z is RTP 10: G91 Z5 goes to 15.
+    let got = moves_after(&format!("{START}CYCLE81(10,0,2,-15)\nG91 Z5\nM30\n"), 4);
+    assert_moves(&got, &[('R', [10.0, 20.0, 15.0])]);
+}
+
+#[test]
+fn cycle82_dwells_at_the_depth() {
+    let segments = run(
+        &format!("{START}CYCLE82(10,0,2,-6,,1.5)\nM30\n"),
+        &machine(),
+    );
+    let kinds: Vec<_> = segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Line { .. } => Some("line".to_string()),
+            SegmentKind::Dwell { seconds } => Some(format!("dwell {seconds}")),
+            SegmentKind::Rapid { .. } => Some("rapid".to_string()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(kinds, ["rapid", "rapid", "line", "dwell 1.5", "rapid"]);
+}
+
+#[test]
+fn cycle83_removing_the_swarf_goes_out_after_every_peck_and_back_to_the_anticipation_distance() {
+    // RTP 10, RFP 0, SDIS 1, DP -20, FDEP -8, DAM 3, VARI 1. The infeeds: 8 (to -8), 5 (-13),
+    // 3 (5-3 = 2 is less than DAM: 3, to -16), 3 (-19), the rest (-20). The drilling path
+    // 1-(-20) = 21 is under 30 mm: the anticipation distance is 0.6 mm.
+    let got = moves_after(
+        &format!("{START}CYCLE83(10,0,1,-20,,-8,,3,0,0,1,1)\nM30\n"),
+        1,
+    );
+    let mut wanted = vec![('R', [10.0, 20.0, 1.0]), ('L', [10.0, 20.0, -8.0])];
+    for (last, next) in [
+        (-8.0, -13.0),
+        (-13.0, -16.0),
+        (-16.0, -19.0),
+        (-19.0, -20.0),
+    ] {
+        wanted.push(('R', [10.0, 20.0, 1.0]));
+        wanted.push(('R', [10.0, 20.0, last + 0.6]));
+        wanted.push(('L', [10.0, 20.0, next]));
+    }
+    wanted.push(('R', [10.0, 20.0, 10.0]));
+    assert_moves(&got, &wanted);
+}
+
+#[test]
+fn cycle83_breaking_the_chip_backs_off_one_millimetre_at_the_feed() {
+    // FDEP -5, no degression, VARI 0: pecks to -5, -10, -12, each followed by 1 mm back.
+    let got = moves_after(
+        &format!("{START}CYCLE83(10,0,1,-12,,-5,,0,0,0,1,0)\nM30\n"),
+        1,
+    );
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 1.0]),
+            ('L', [10.0, 20.0, -5.0]),
+            ('L', [10.0, 20.0, -4.0]),
+            ('L', [10.0, 20.0, -10.0]),
+            ('L', [10.0, 20.0, -9.0]),
+            ('L', [10.0, 20.0, -12.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn cycle83_cuts_its_first_peck_at_the_feed_factor() {
+    // F100 with FRF 0.5: the first infeed at 50 mm/min, the others at 100.
+    let segments = run(
+        &format!("{START}CYCLE83(10,0,1,-8,,-4,,0,0,0,0.5,1)\nM30\n"),
+        &machine(),
+    );
+    let feeds = line_feeds(&segments);
+    assert_eq!(feeds, [50.0, 100.0]);
+}
+
+#[test]
+fn cycle84_taps_in_at_sst_and_out_at_sst1_the_other_way() {
+    // MPIT 8: M8, pitch 1.25, right hand. SDAC 3: M3 again at S1000 afterwards.
+    let segments = run(
+        &format!("{START}CYCLE84(10,0,2,-20,,0,3,8,,0,500,800)\nM30\n"),
+        &machine(),
+    );
+    let got = moves(&segments)[1..].to_vec();
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 2.0]),
+            ('T', [10.0, 20.0, -20.0]),
+            ('T', [10.0, 20.0, 2.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+    let spindle: Vec<_> = segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Spindle { speed, state } => Some((speed, state)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        spindle[1..],
+        [
+            (1000.0, SpindleState::Oriented),
+            (500.0, SpindleState::Clockwise),
+            (800.0, SpindleState::CounterClockwise),
+            (1000.0, SpindleState::Clockwise),
+        ]
+    );
+    let leads: Vec<f64> = segments
+        .iter()
+        .filter_map(|s| match &s.kind {
+            SegmentKind::Line {
+                feed: vcnc::motion::Feed::PerRevolution { per_revolution, .. },
+                ..
+            } => Some(*per_revolution),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(leads, [1.25, 1.25]);
+}
+
+#[test]
+fn cycle85_feeds_in_at_ffr_and_out_at_rff() {
+    let segments = run(
+        &format!("{START}CYCLE85(10,0,2,-10,,0,300,600)\nM30\n"),
+        &machine(),
+    );
+    let got = moves(&segments)[1..].to_vec();
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 2.0]),
+            ('L', [10.0, 20.0, -10.0]),
+            ('L', [10.0, 20.0, 2.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+    let feeds = line_feeds(&segments);
+    assert_eq!(feeds, [300.0, 600.0]);
+}
+
+#[test]
+fn cycle86_lifts_off_the_wall_before_it_comes_out() {
+    // SDIR 3, RPA -1, RPO 0, RPAP 0.5: after the oriented stop the tool moves to X9, up 0.5,
+    // out to the safety plane and RTP, and back over the hole's centre.
+    let got = moves_after(
+        &format!("{START}CYCLE86(10,0,2,-10,,0,3,-1,0,0.5,0)\nM30\n"),
+        1,
+    );
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 2.0]),
+            ('L', [10.0, 20.0, -10.0]),
+            ('R', [9.0, 20.0, -10.0]),
+            ('R', [9.0, 20.0, -9.5]),
+            ('R', [9.0, 20.0, 2.0]),
+            ('R', [9.0, 20.0, 10.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn cycle89_comes_out_at_the_feed() {
+    let got = moves_after(&format!("{START}CYCLE89(10,0,2,-10,,0.5)\nM30\n"), 1);
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 2.0]),
+            ('L', [10.0, 20.0, -10.0]),
+            ('L', [10.0, 20.0, 2.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn mcall_drills_after_every_positioning_block_until_mcall_alone() {
+    let text = format!("{START}MCALL CYCLE81(10,0,2,-5)\nX30\nY40\nMCALL\nX50\nM30\n");
+    // X30 moves in G0 at Z50, Y40 at RTP 10 where the first hole left the tool; X50 after
+    // MCALL alone moves only.
+    let got = moves_after(&text, 1);
+    assert_moves(
+        &got,
+        &[
+            ('R', [30.0, 20.0, 50.0]),
+            ('R', [30.0, 20.0, 2.0]),
+            ('L', [30.0, 20.0, -5.0]),
+            ('R', [30.0, 20.0, 10.0]),
+            ('R', [30.0, 40.0, 10.0]),
+            ('R', [30.0, 40.0, 2.0]),
+            ('L', [30.0, 40.0, -5.0]),
+            ('R', [30.0, 40.0, 10.0]),
+            ('R', [50.0, 40.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn holes2_drills_the_circle_of_the_manuals_milling_example() {
+    // HOLES2(0,0,25,0,45,6) of sinumerik-a/10-milling-example.mpf: six holes 45° apart on a
+    // circle of radius 25: 25·(cos, sin) of 0°, 45°, ... 225°; each drilled to -2.6 and back
+    // to RTP 2.
+    let text = "G17 G90 F100 S1000 M3\nG0 X25 Y0 Z2\nMCALL CYCLE82(2,0,1,-2.6,,0)\nHOLES2(0,0,25,0,45,6)\nMCALL\nM30\n";
+    let got = moves_after(text, 1);
+    let mut wanted = Vec::new();
+    for k in 0..6 {
+        let (sin, cos) = (45.0 * k as f64).to_radians().sin_cos();
+        let (x, y) = (25.0 * cos, 25.0 * sin);
+        wanted.extend([
+            ('R', [x, y, 2.0]),
+            ('R', [x, y, 1.0]),
+            ('L', [x, y, -2.6]),
+            ('R', [x, y, 2.0]),
+        ]);
+    }
+    // The first position is where the tool already is: no move there.
+    wanted.remove(0);
+    assert_moves(&got, &wanted);
+}
+
+#[test]
+fn holes1_and_cycle801_visit_their_positions_in_order() {
+    // HOLES1(5,10,0,10,20,3): from (5,10) along X, the first 10 away, 20 apart.
+    let got = moves_after("G0 X0 Y0 Z5\nHOLES1(5,10,0,10,20,3)\nM30\n", 1);
+    assert_moves(
+        &got,
+        &[
+            ('R', [15.0, 10.0, 5.0]),
+            ('R', [35.0, 10.0, 5.0]),
+            ('R', [55.0, 10.0, 5.0]),
+        ],
+    );
+    // CYCLE801(0,0,0,10,5,3,2): three columns 10 apart, two rows 5 apart, in a meander.
+    let got = moves_after("G0 X-1 Y0 Z5\nCYCLE801(0,0,0,10,5,3,2)\nM30\n", 1);
+    let wanted: Vec<Move> = [
+        (0.0, 0.0),
+        (10.0, 0.0),
+        (20.0, 0.0),
+        (20.0, 5.0),
+        (10.0, 5.0),
+        (0.0, 5.0),
+    ]
+    .iter()
+    .map(|&(x, y)| ('R', [x, y, 5.0]))
+    .collect();
+    assert_moves(&got, &wanted);
+}
+
+#[test]
+fn a_subprogram_of_the_cycles_name_wins_over_the_built_in_cycle() {
+    let mut library = MemoryLibrary::new();
+    library.insert_named(
+        "CYCLE81.SPF",
+        FileId(1),
+        "PROC CYCLE81(REAL _XPOS)\nG0 X=_XPOS\nM17\n",
+    );
+    let machine = machine();
+    let text = "G0 X0 Y0 Z0\nCYCLE81(7)\nM30\n";
+    let front_end =
+        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
+    let run = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert!(run.error().is_none(), "{:?}", run.alarms);
+    assert_moves(&moves(&run.segments), &[('R', [7.0, 0.0, 0.0])]);
+}
+
+/// The machine with a 10 mm end mill in the spindle (T1 D1) for the pockets.
+fn pocket_machine() -> Machine {
+    let mut machine = machine();
+    machine.tools.push(mill(1, "MILL", 1, 0.0, 5.0));
+    machine
+}
+
+const POCKET_START: &str = "T1 M6 D1\nG17 G90 F500 S3000 M3\nG0 X0 Y0 Z10\n";
+
+#[test]
+fn pocket4_stays_inside_the_pocket_and_reaches_its_depth() {
+    // The manual's POCKET4(2,0,1,-5,15,0,0,0,0,0,800,1300,0,21,5,,,2,0.5) with a 10 mm mill:
+    // the tool centre stays within 15-5 = 10 of the centre, reaches Z-5 in one level, goes in
+    // on a helix of radius 2 (0.5 per turn: 12 turns from the safety plane at 1), and ends at
+    // the retraction plane 2.
+    let text =
+        format!("{POCKET_START}POCKET4(2,0,1,-5,15,0,0,0,0,0,800,1300,0,21,5,,,2,0.5)\nM30\n");
+    let segments = run(&text, &pocket_machine());
+    let got = moves(&segments);
+    let lowest = got.iter().map(|m| m.1[2]).fold(f64::MAX, f64::min);
+    assert!((lowest + 5.0).abs() < 1e-9, "{lowest}");
+    for m in &got {
+        let r = m.1[0].hypot(m.1[1]);
+        assert!(r <= 10.0 + 1e-9, "{m:?} is {r} from the centre");
+    }
+    // The outermost ring is at radius 10, cut as two half circles.
+    assert!(got
+        .iter()
+        .any(|m| m.0 == 'A' && (m.1[0] + 10.0).abs() < 1e-9));
+    assert_eq!(got.last().map(|m| m.1[2]), Some(2.0));
+    // No rapid below the reference plane outside what was cut: every rapid below Z0 is at
+    // the level's height plus the clearance or above the centre.
+    for m in got.iter().filter(|m| m.0 == 'R' && m.1[2] < 0.0) {
+        assert!(m.1[0].hypot(m.1[1]) <= 10.0 + 1e-9, "{m:?}");
+    }
+}
+
+#[test]
+fn pocket3_clears_a_rectangle_in_levels_of_mid() {
+    // POCKET3(RTP 10, RFP 0, SDIS 1, DP -6, LENG 40, WID 20, CRAD 6, PA 50, PO 30, STA 0, MID
+    // 3, FAL 0, FALD 0, FFP1 400, FFD 100, CDIR 0, VARI 11 (roughing, vertical at G1), MIDA 4):
+    // two levels (-3, -6); the centre path's outline is 20-5 = 15 by 10-5 = 5 about (50, 30).
+    let text =
+        format!("{POCKET_START}POCKET3(10,0,1,-6,40,20,6,50,30,0,3,0,0,400,100,0,11,4)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    let heights: Vec<f64> = got
+        .iter()
+        .filter(|m| m.0 == 'L' && (m.1[0] - 50.0).abs() < 1e-9 && (m.1[1] - 30.0).abs() < 1e-9)
+        .map(|m| m.1[2])
+        .collect();
+    assert_eq!(heights, [-3.0, -6.0]);
+    for m in &got[1..] {
+        assert!(
+            (m.1[0] - 50.0).abs() <= 15.0 + 1e-9 && (m.1[1] - 30.0).abs() <= 5.0 + 1e-9,
+            "{m:?}"
+        );
+    }
+    // The outline's corners are arcs of radius 6-5 = 1, cut counter-clockwise (climb with
+    // M3): the last one ends at (50+15, 30-5+1).
+    assert!(got
+        .iter()
+        .any(|m| m.0 == 'A' && (m.1[0] - 65.0).abs() < 1e-9 && (m.1[1] - 26.0).abs() < 1e-9));
+    assert_eq!(got.last().map(|m| m.1[2]), Some(10.0));
+}
+
+#[test]
+fn the_cycles_alarms_give_their_numbers() {
+    let cases = [
+        // The depth is above the reference plane, or the retraction plane below it.
+        ("CYCLE81(10,0,2,5)", "cycle alarm 61101"),
+        ("CYCLE81(-5,0,2,-10)", "cycle alarm 61101"),
+        // No pitch, a size that is no thread, MPIT and PIT disagreeing.
+        ("CYCLE84(10,0,2,-10,,0,3)", "cycle alarm 61001"),
+        ("CYCLE84(10,0,2,-10,,0,3,7)", "cycle alarm 61001"),
+        ("CYCLE84(10,0,2,-10,,0,3,8,1.5)", "cycle alarm 61001"),
+        // No spindle direction: SDAC, SDIR, SDR.
+        ("CYCLE84(10,0,2,-10,,0,0,8)", "cycle alarm 61102"),
+        ("CYCLE86(10,0,2,-10,,0,0)", "cycle alarm 61102"),
+        ("CYCLE87(10,0,2,-10,,6)", "cycle alarm 61102"),
+        ("CYCLE840(10,0,2,-10,,0,0,3,1)", "cycle alarm 61102"),
+        ("HOLES2(0,0,25,0,45,0)", "cycle alarm 61103"),
+        ("CYCLE83(10,0,1,-20,,5)", "cycle alarm 61107"),
+        (
+            "POCKET4(2,0,1,-5,4,0,0,0,0,0,800,1300,0,11)",
+            "cycle alarm 61105",
+        ),
+        (
+            "POCKET4(2,0,1,-5,15,0,0,0,0,0,800,1300,0,15)",
+            "cycle alarm 61002",
+        ),
+        (
+            "POCKET4(2,0,1,-5,15,0,0,0,0,0,800,1300,0,21,5,,,0,0.5)",
+            "cycle alarm 61108",
+        ),
+        (
+            "POCKET4(2,0,1,-5,15,0,0,0,0,0,800,1300,7,11)",
+            "cycle alarm 61109",
+        ),
+        (
+            "POCKET4(2,0,1,-5,15,0,0,1,0,2,800,1300,0,11)",
+            "cycle alarm 61110",
+        ),
+        (
+            "POCKET4(2,0,1,-5,15,0,0,0,0,0,800,1300,0,11,12)",
+            "cycle alarm 61111",
+        ),
+        (
+            "POCKET3(2,0,1,-5,40,20,11,0,0,0,0,0,0,800,1300,0,11)",
+            "cycle alarm 61113",
+        ),
+    ];
+    for (call, number) in cases {
+        let text = format!("{POCKET_START}{call}\nM30\n");
+        assert_eq!(cycle_alarm(&text), number, "{call}");
+    }
+}
+
+#[test]
+fn a_pocket_needs_a_tool_edge_with_a_radius() {
+    let pocket = "POCKET4(2,0,1,-5,15,0,0,0,0,0,800,1300,0,11)";
+    // No D in force: 61000.
+    let alarm = error(&format!("G0 X0 Y0 Z10\nF100\n{pocket}\nM30\n"), &machine());
+    assert!(alarm.message.starts_with("cycle alarm 61000"), "{alarm:?}");
+    // An edge of radius 0: 61117.
+    let mut machine = machine();
+    machine.tools.push(mill(1, "POINT", 1, 0.0, 0.0));
+    let alarm = error(
+        &format!("T1 M6 D1\nG0 X0 Y0 Z10\nF100\n{pocket}\nM30\n"),
+        &machine,
+    );
+    assert!(alarm.message.starts_with("cycle alarm 61117"), "{alarm:?}");
+}
