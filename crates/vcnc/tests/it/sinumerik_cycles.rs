@@ -526,3 +526,114 @@ fn a_pocket_needs_a_tool_edge_with_a_radius() {
     );
     assert!(alarm.message.starts_with("cycle alarm 61117"), "{alarm:?}");
 }
+
+#[test]
+fn slot1_mills_its_slots_along_the_radius() {
+    // SLOT1(RTP 10, RFP 0, SDIS 1, DP -4, -, NUM 2, LENG 30, WID 12, CPA 50, CPO 50, RAD 25, STA1
+    // 0, INDA 180, FFD 100, FFP1 400, MID 0, CDIR 2, FAL 0, VARI 1): the slots' middles at
+    // (75, 50) and (25, 50), along X. With the 10 mm mill the centre path stays within 15-5 =
+    // 10 of the middle along the slot and 6-5 = 1 across it.
+    let text =
+        format!("{POCKET_START}SLOT1(10,0,1,-4,,2,30,12,50,50,25,0,180,100,400,0,2,0,1)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    let inside = |m: &Move, middle: f64| {
+        (m.1[0] - middle).abs() <= 10.0 + 1e-9 && (m.1[1] - 50.0).abs() <= 1.0 + 1e-9
+    };
+    let cutting: Vec<_> = got.iter().filter(|m| m.1[2] < 0.0).collect();
+    assert!(!cutting.is_empty());
+    for m in &cutting {
+        assert!(inside(m, 75.0) || inside(m, 25.0), "{m:?}");
+    }
+    // Both slots reach -4 and their round ends (75 ± 10, 25 ± 10).
+    for x in [85.0, 65.0, 35.0, 15.0] {
+        assert!(
+            cutting
+                .iter()
+                .any(|m| (m.1[0] - x).abs() < 1e-9 && m.1[2] == -4.0),
+            "{x}"
+        );
+    }
+    assert_eq!(got.last().map(|m| m.1[2]), Some(10.0));
+}
+
+#[test]
+fn slot2_as_wide_as_the_tool_goes_along_its_arc_and_back() {
+    // SLOT2(RTP 10, RFP 0, SDIS 1, DP -3, -, NUM 1, AFSL 90, WID 10, CPA 0, CPO 0, RAD 30, STA1
+    // 0, INDA 0, FFD 100, FFP1 400, MID 0, CDIR 3, FAL 0, VARI 1) with the 10 mm mill: in at
+    // the start (30, 0), G3 to (0, 30), back to the start, up by SDIS, out to RTP.
+    let text = format!("{POCKET_START}SLOT2(10,0,1,-3,,1,90,10,0,0,30,0,0,100,400,0,3,0,1)\nM30\n");
+    // The first move is POCKET_START's G0 Z10.
+    let got = moves(&run(&text, &pocket_machine()));
+    assert_moves(
+        &got[1..],
+        &[
+            ('R', [30.0, 0.0, 10.0]),
+            ('R', [30.0, 0.0, 1.0]),
+            ('L', [30.0, 0.0, -3.0]),
+            ('A', [0.0, 30.0, -3.0]),
+            ('A', [30.0, 0.0, -3.0]),
+            ('R', [30.0, 0.0, -2.0]),
+            ('R', [30.0, 0.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn longhole_goes_in_at_either_end_in_turn() {
+    // LONGHOLE(RTP 10, RFP 0, SDIS 1, DP -6, -, NUM 1, LENG 30, CPA 0, CPO 0, RAD 20, STA1 90,
+    // INDA 0, FFD 100, FFP1 400, MID 3): the hole's middle at (0, 20), along Y; the 10 mm mill's
+    // centre goes from Y10 to Y30. Levels -3 and -6, each in at one end and along to the other.
+    let text = format!("{POCKET_START}LONGHOLE(10,0,1,-6,,1,30,0,0,20,90,0,100,400,3)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    assert_moves(
+        &got[1..],
+        &[
+            ('R', [0.0, 10.0, 10.0]),
+            ('R', [0.0, 10.0, 1.0]),
+            ('L', [0.0, 10.0, -3.0]),
+            ('L', [0.0, 30.0, -3.0]),
+            ('L', [0.0, 30.0, -6.0]),
+            ('L', [0.0, 10.0, -6.0]),
+            ('R', [0.0, 10.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn the_slots_alarms_give_their_numbers() {
+    let cases = [
+        // RAD 20: the inner ends 20-15 = 5 from the centre, 180 degrees apart: 10 < WID 12.
+        (
+            "SLOT1(10,0,1,-4,,2,30,12,50,50,20,0,180,100,400,0,2,0,1)",
+            "cycle alarm 61104",
+        ),
+        // A slot 8 wide for a 10 mm mill.
+        (
+            "SLOT1(10,0,1,-4,,1,30,8,50,50,25,0,0,100,400,0,2,0,1)",
+            "cycle alarm 61105",
+        ),
+        // Four slots 120 degrees apart do not fit on the circle.
+        (
+            "SLOT1(10,0,1,-4,,4,30,12,50,50,25,0,120,100,400,0,2,0,1)",
+            "cycle alarm 61106",
+        ),
+        (
+            "SLOT1(10,0,1,-4,,1,30,12,50,50,25,0,0,100,400,0,2,0,7)",
+            "cycle alarm 61002",
+        ),
+        // Two slots of 175 degrees 180 apart: with their round ends (2 asin(5/30) = 19.2
+        // degrees) they overlap.
+        (
+            "SLOT2(10,0,1,-3,,2,175,10,0,0,30,0,180,100,400,0,3,0,1)",
+            "cycle alarm 61104",
+        ),
+        (
+            "LONGHOLE(10,0,1,-6,,0,30,0,0,20,90,0,100,400,3)",
+            "cycle alarm 61106",
+        ),
+    ];
+    for (call, number) in cases {
+        let text = format!("{POCKET_START}{call}\nM30\n");
+        assert_eq!(cycle_alarm(&text), number, "{call}");
+    }
+}

@@ -18,6 +18,8 @@
 mod drilling;
 mod patterns;
 mod pockets;
+mod rings;
+mod slots;
 
 use super::language::Argument;
 use super::motion::unit;
@@ -30,9 +32,10 @@ use crate::source::Span;
 use std::collections::HashSet;
 
 /// The cycles vcnc runs itself.
-const BUILT_IN: [&str; 16] = [
+const BUILT_IN: [&str; 19] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
+    "SLOT1", "SLOT2", "LONGHOLE",
 ];
 
 /// True when `name` is a standard cycle vcnc runs.
@@ -137,6 +140,9 @@ fn run_here(
         "CYCLE89" => drilling::boring_with_dwell(&mut at, kernel, params),
         "POCKET3" => pockets::rectangular(&mut at, kernel, params, radius),
         "POCKET4" => pockets::circular(&mut at, kernel, params, radius),
+        "SLOT1" => slots::radial(&mut at, kernel, params, radius),
+        "SLOT2" => slots::circumferential(&mut at, kernel, params, radius),
+        "LONGHOLE" => slots::elongated(&mut at, kernel, params, radius),
         _ => unreachable!("BUILT_IN lists the cycles run_called runs"),
     };
     at.finish(front);
