@@ -637,3 +637,34 @@ fn the_slots_alarms_give_their_numbers() {
         assert_eq!(cycle_alarm(&text), number, "{call}");
     }
 }
+
+#[test]
+fn cycle61_faces_the_rectangle_in_rows_from_outside_it() {
+    // CYCLE61(RTP 10, RFP 0, SDIS 2, DP -3, X0 0, Y0 0, X1 40, Y1 20, DZ 2, DXY 50, UZ 0.5, F
+    // 1000, VARI 11) with the 10 mm mill: rows 50 % of 10 = 5 apart (Y 0, 5, 10, 15, 20), from
+    // X 0-5-2 = -7 to 40+5 = 45; roughing down to -3+0.5 = -2.5 in two levels of 1.25.
+    let text = format!("{POCKET_START}CYCLE61(10,0,2,-3,0,0,40,20,2,50,0.5,1000,11)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    let mut wanted = vec![('R', [-7.0, 0.0, 10.0]), ('R', [-7.0, 0.0, 2.0])];
+    for (level, z) in [-1.25, -2.5].into_iter().enumerate() {
+        if level > 0 {
+            wanted.push(('R', [-7.0, 0.0, 2.0]));
+        }
+        wanted.push(('L', [-7.0, 0.0, z]));
+        for k in 0..5 {
+            let y = 5.0 * k as f64;
+            let (from, to) = if k % 2 == 0 {
+                (-7.0, 45.0)
+            } else {
+                (45.0, -7.0)
+            };
+            if k > 0 {
+                wanted.push(('L', [from, y, z]));
+            }
+            wanted.push(('L', [to, y, z]));
+        }
+        wanted.push(('R', [45.0, 20.0, 2.0]));
+    }
+    wanted.push(('R', [45.0, 20.0, 10.0]));
+    assert_moves(&got[1..], &wanted);
+}

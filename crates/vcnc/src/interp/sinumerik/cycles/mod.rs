@@ -16,6 +16,7 @@
 //! behind the machine's (the next block continues from where the cycle ends).
 
 mod drilling;
+mod facing;
 mod patterns;
 mod pockets;
 mod rings;
@@ -32,10 +33,10 @@ use crate::source::Span;
 use std::collections::HashSet;
 
 /// The cycles vcnc runs itself.
-const BUILT_IN: [&str; 19] = [
+const BUILT_IN: [&str; 20] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
-    "SLOT1", "SLOT2", "LONGHOLE",
+    "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61",
 ];
 
 /// True when `name` is a standard cycle vcnc runs.
@@ -143,6 +144,7 @@ fn run_here(
         "SLOT1" => slots::radial(&mut at, kernel, params, radius),
         "SLOT2" => slots::circumferential(&mut at, kernel, params, radius),
         "LONGHOLE" => slots::elongated(&mut at, kernel, params, radius),
+        "CYCLE61" => facing::face(&mut at, kernel, params, radius),
         _ => unreachable!("BUILT_IN lists the cycles run_called runs"),
     };
     at.finish(front);
