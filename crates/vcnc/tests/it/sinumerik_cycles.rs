@@ -668,3 +668,41 @@ fn cycle61_faces_the_rectangle_in_rows_from_outside_it() {
     wanted.push(('R', [45.0, 20.0, 10.0]));
     assert_moves(&got[1..], &wanted);
 }
+
+/// The moves of `text` with the subprograms of `library`.
+fn moves_with(text: &str, programs: &[(&str, &str)]) -> Vec<Move> {
+    let mut library = MemoryLibrary::new();
+    for (k, (name, program)) in programs.iter().enumerate() {
+        library.insert_named(name, FileId(k as u32 + 1), program);
+    }
+    let machine = machine();
+    let front_end =
+        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
+    let run = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert!(run.error().is_none(), "{:?}", run.alarms);
+    moves(&run.segments)
+}
+
+#[test]
+fn a_pattern_runs_a_modal_subprogram_at_each_position_before_the_next() {
+    // HOLES1(0,0,0,10,10,3): X10, X20, X30 on Y0; the shop's own cycle DRILL (a subprogram,
+    // called modally) feeds to its depth and rapids back to Z5 at each, before the next
+    // position. The second form ends at its text's end, without M17.
+    let text = "G0 X0 Y0 Z5 F100\nMCALL DRILL(-4)\nHOLES1(0,0,0,10,10,3)\nMCALL\nG0 X0\nM30\n";
+    for drill in [
+        "PROC DRILL(REAL DEPTH)\nG1 Z=DEPTH\nG0 Z5\nM17\n",
+        "PROC DRILL(REAL DEPTH)\nG1 Z=DEPTH\nG0 Z5\n",
+    ] {
+        let got = moves_with(text, &[("DRILL.SPF", drill)]);
+        let mut wanted = vec![('R', [0.0, 0.0, 5.0])];
+        for x in [10.0, 20.0, 30.0] {
+            wanted.extend([
+                ('R', [x, 0.0, 5.0]),
+                ('L', [x, 0.0, -4.0]),
+                ('R', [x, 0.0, 5.0]),
+            ]);
+        }
+        wanted.push(('R', [0.0, 0.0, 5.0]));
+        assert_moves(&got, &wanted);
+    }
+}

@@ -601,6 +601,8 @@ impl Sinumerik {
         }
         self.iterations += 1;
         loop {
+            // A position pattern waiting for a subprogram that returned at its text's end.
+            cycles::run_called(self, kernel)?;
             let (program, index) = self.next_line();
             self.fetch(program, index)?;
             let text = &mut self.programs[program];

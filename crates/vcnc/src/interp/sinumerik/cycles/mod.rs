@@ -53,10 +53,12 @@ pub(super) struct Call {
     arguments: Vec<Argument>,
 }
 
-/// The call waiting, and the cycle names found to be built in (the library is asked once).
+/// The call waiting, the pattern waiting for a subprogram, and the cycle names found to be
+/// built in (the library is asked once).
 #[derive(Default)]
 pub(super) struct Calls {
     waiting: Option<Call>,
+    pattern: Option<Pattern>,
     built_in: HashSet<Box<str>>,
 }
 
@@ -89,10 +91,11 @@ impl Calls {
     }
 }
 
-/// Runs the cycle the block called, if it called one.
+/// Runs the cycle the block called, if it called one, or goes on with a pattern whose
+/// subprogram has returned.
 pub(super) fn run_called(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> {
     let Some(call) = front.cycles.waiting.take() else {
-        return Ok(());
+        return resume_pattern(front, kernel);
     };
     // A chamfer or rounding waiting for the next block is made first: the cycle's moves follow.
     front.flush_contour(kernel)?;
@@ -151,28 +154,33 @@ fn run_here(
     result
 }
 
+/// What the modal call did at a pattern's position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Modal {
+    /// No modal call in force (the pattern only visits its positions).
+    None,
+    /// A standard cycle ran there.
+    Ran,
+    /// A subprogram was called: the pattern goes on when it returns.
+    Called,
+}
+
 /// Runs the modal call (MCALL) of the current level, if any, at a position a pattern cycle
-/// reached: a built-in cycle only (a subprogram would need the pattern to wait for its return).
-pub(super) fn run_modal(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> {
+/// reached: a standard cycle at once, a subprogram by calling it.
+pub(super) fn run_modal(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<Modal, Alarm> {
     let Some(modal) = front
         .modal_call
         .as_ref()
         .filter(|c| c.depth == front.levels.len())
         .cloned()
     else {
-        return Ok(());
+        return Ok(Modal::None);
     };
     let is_program = front.programs.iter().any(|p| *p.name == *modal.name)
         || front.load(&modal.name, modal.span)?.is_some();
     if is_program {
-        return Err(Alarm::error(
-            AlarmCode::NotSupportedYet,
-            modal.span,
-            format!(
-                "a position pattern calling subprogram {} modally is not run yet: vcnc runs its standard cycles there",
-                modal.name
-            ),
-        ));
+        front.call(&modal.name, 1, modal.span, modal.arguments)?;
+        return Ok(Modal::Called);
     }
     let call = Call {
         name: modal.name,
@@ -180,7 +188,36 @@ pub(super) fn run_modal(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<()
         span: modal.span,
         arguments: modal.arguments.unwrap_or_default(),
     };
-    run(front, kernel, &call)
+    run(front, kernel, &call)?;
+    Ok(Modal::Ran)
+}
+
+/// A pattern waiting for the subprogram its modal call called at one of its positions.
+#[derive(Clone, Debug)]
+pub(super) struct Pattern {
+    /// The positions still to visit.
+    rest: Vec<(f64, f64)>,
+    /// The call stack's depth of the pattern's program.
+    depth: usize,
+}
+
+/// Goes on with the pattern waiting for a subprogram, once the subprogram has returned.
+fn resume_pattern(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> {
+    let Some(depth) = front.cycles.pattern.as_ref().map(|p| p.depth) else {
+        return Ok(());
+    };
+    if front.levels.len() > depth {
+        return Ok(());
+    }
+    let pattern = front.cycles.pattern.take().expect("checked above");
+    // A program that left the pattern's level another way (M30 in the subprogram) ends it.
+    if front.levels.len() < depth {
+        return Ok(());
+    }
+    let saved_feed = kernel.feed_setting();
+    let result = patterns::visit(front, kernel, &pattern.rest);
+    kernel.set_feed_in(saved_feed.0, saved_feed.1);
+    result
 }
 
 /// The radius of the edge in force, for the milling cycles (None without a tool or with D0).

@@ -1,12 +1,13 @@
 //! The position patterns: HOLES1 (a row of holes), HOLES2 (a circle of holes), CYCLE801 (a
 //! grid), CYCLE802 (positions as listed). A pattern rapids in the plane to each position in
 //! turn, at the height the tool is at, and runs the modal call (MCALL) there, which drills the
-//! hole; without a modal call it only visits the positions.
+//! hole; without a modal call it only visits the positions. A modal call of a subprogram runs
+//! the subprogram's blocks before the pattern goes on to its next position.
 //!
 //! Never: move along the tool axis itself (the drilling cycle does, and ends at its retraction
 //! plane, from where the next position is reached).
 
-use super::{alarm, run_modal, Params, Place};
+use super::{alarm, run_modal, Modal, Params, Pattern, Place};
 use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 use crate::interp::sinumerik::Sinumerik;
@@ -25,17 +26,24 @@ pub(super) fn positions(
     }
 }
 
-/// Rapids to every position, running the modal call at each.
+/// Rapids to every position, running the modal call at each; a subprogram it calls runs
+/// before the next position (the pattern waits in `front`).
 pub(super) fn visit(
     front: &mut Sinumerik,
     kernel: &mut Kernel,
     positions: &[(f64, f64)],
 ) -> Result<(), Alarm> {
-    for &position in positions {
+    for (k, &position) in positions.iter().enumerate() {
         let mut at = Place::new(front, kernel);
         at.rapid_plane(kernel, position)?;
         at.finish(front);
-        run_modal(front, kernel)?;
+        if run_modal(front, kernel)? == Modal::Called {
+            front.cycles.pattern = Some(Pattern {
+                rest: positions[k + 1..].to_vec(),
+                depth: front.levels.len() - 1,
+            });
+            return Ok(());
+        }
     }
     Ok(())
 }
