@@ -706,3 +706,61 @@ fn a_pattern_runs_a_modal_subprogram_at_each_position_before_the_next() {
         assert_moves(&got, &wanted);
     }
 }
+
+#[test]
+fn cycle77_mills_round_the_spigot_from_the_blank_in() {
+    // CYCLE77(RTP 10, RFP 0, SDIS 1, DP -4, -, PRAD 40, PA 50, PO 50, MID 0, FAL 0, FALD 0, FFP1
+    // 400, FFD 100, CDIR 0, VARI 1, AP1 60) with the 10 mm mill: the spigot of diameter 40
+    // (radius 20) from a blank of diameter 60; rings at the tool radius 5 outside the spigot
+    // plus 10, 5, 0 (the blank's 10 in steps of the tool radius): radii 35, 30, 25, clockwise
+    // (climbing outside with M3). In at 20+15+5+1 = 41 from the centre, outside the blank.
+    let text = format!("{POCKET_START}CYCLE77(10,0,1,-4,,40,50,50,0,0,0,400,100,0,1,60)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    let mut wanted = vec![
+        ('R', [91.0, 50.0, 10.0]),
+        ('R', [91.0, 50.0, 1.0]),
+        ('L', [91.0, 50.0, -4.0]),
+    ];
+    for r in [35.0, 30.0, 25.0] {
+        wanted.extend([
+            ('L', [50.0 + r, 50.0, -4.0]),
+            ('A', [50.0 - r, 50.0, -4.0]),
+            ('A', [50.0 + r, 50.0, -4.0]),
+        ]);
+    }
+    wanted.extend([
+        ('R', [75.0, 50.0, -3.0]),
+        ('R', [91.0, 50.0, -3.0]),
+        ('R', [91.0, 50.0, 10.0]),
+    ]);
+    assert_moves(&got[1..], &wanted);
+    let segments = run(&text, &pocket_machine());
+    assert!(segments.iter().all(|s| !matches!(
+        s.kind,
+        SegmentKind::Arc {
+            direction: vcnc::motion::ArcDirection::CounterClockwise,
+            ..
+        }
+    )));
+}
+
+#[test]
+fn cycle76_keeps_outside_the_rectangular_spigot() {
+    // CYCLE76(RTP 10, RFP 0, SDIS 1, DP -6, -, LENG 40, WID 20, CRAD 5, PA 0, PO 0, STA 0, MID 3,
+    // FAL 0.5, FALD 0, FFP1 400, FFD 100, CDIR 0, VARI 1, AP1 50, AP2 30): two levels (-3, -6);
+    // the innermost ring is the spigot's outline plus the tool radius 5 and FAL 0.5: the tool
+    // centre never comes within 5.5 of the 40 × 20 rectangle, and reaches it on the right side
+    // (20 + 5.5 = 25.5).
+    let text =
+        format!("{POCKET_START}CYCLE76(10,0,1,-6,,40,20,5,0,0,0,3,0.5,0,400,100,0,1,50,30)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    for m in got.iter().filter(|m| m.1[2] < 0.0) {
+        let dx = (m.1[0].abs() - 20.0).max(0.0);
+        let dy = (m.1[1].abs() - 10.0).max(0.0);
+        assert!(dx.hypot(dy) >= 5.5 - 1e-9, "{m:?}");
+    }
+    for z in [-3.0, -6.0] {
+        assert!(got.iter().any(|m| m.1 == [25.5, 0.0, z]), "{z}");
+    }
+    assert_eq!(got.last().map(|m| m.1[2]), Some(10.0));
+}

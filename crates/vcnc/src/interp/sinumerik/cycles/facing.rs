@@ -12,7 +12,7 @@
 //! Never: feed down inside the area (every level starts outside it).
 
 use super::pockets::tool_radius;
-use super::{alarm, Levels, Params, Place};
+use super::{machining_type, Levels, Params, Place};
 use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 
@@ -32,12 +32,11 @@ pub(super) fn face(
     let vari = p.or_zero(12).round() as i64;
     let (units, tens) = (vari % 10, vari / 10 % 10);
     if !(1..=2).contains(&units) || !(0..=4).contains(&tens) {
-        return Err(alarm(
-            61002,
-            p.span,
-            format_args!("CYCLE61: machining type defined incorrectly: VARI {vari}"),
-        )
-        .with_help("VARI: units 1 roughing or 2 finishing, tens the direction of the rows"));
+        return Err(machining_type(
+            p,
+            vari,
+            "units 1 roughing or 2 finishing, tens the direction of the rows",
+        ));
     }
     let percent = match p.or_zero(9) {
         v if v > 0.0 => v.min(100.0),

@@ -21,6 +21,7 @@ mod patterns;
 mod pockets;
 mod rings;
 mod slots;
+mod spigots;
 
 use super::language::Argument;
 use super::motion::unit;
@@ -33,10 +34,10 @@ use crate::source::Span;
 use std::collections::HashSet;
 
 /// The cycles vcnc runs itself.
-const BUILT_IN: [&str; 20] = [
+const BUILT_IN: [&str; 22] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
-    "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61",
+    "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE76", "CYCLE77",
 ];
 
 /// True when `name` is a standard cycle vcnc runs.
@@ -148,6 +149,8 @@ fn run_here(
         "SLOT2" => slots::circumferential(&mut at, kernel, params, radius),
         "LONGHOLE" => slots::elongated(&mut at, kernel, params, radius),
         "CYCLE61" => facing::face(&mut at, kernel, params, radius),
+        "CYCLE76" => spigots::rectangular(&mut at, kernel, params, radius),
+        "CYCLE77" => spigots::circular(&mut at, kernel, params, radius),
         _ => unreachable!("BUILT_IN lists the cycles run_called runs"),
     };
     at.finish(front);
@@ -232,6 +235,20 @@ pub(super) fn alarm(number: u32, span: Span, message: impl std::fmt::Display) ->
         span,
         format!("cycle alarm {number}: {message}"),
     )
+}
+
+/// Alarm 61002 "machining type defined incorrectly" for VARI `vari`, with the values the cycle
+/// takes.
+pub(super) fn machining_type(p: &Params, vari: i64, values: &str) -> Alarm {
+    alarm(
+        61002,
+        p.span,
+        format_args!(
+            "{}: machining type defined incorrectly: VARI {vari}",
+            p.name()
+        ),
+    )
+    .with_help(format!("VARI: {values}"))
 }
 
 /// A cycle's parameters as numbers, by position (0-based), lengths in mm.

@@ -14,7 +14,7 @@
 //! the reference plane except where the tool has cut.
 
 use super::rings::{self, Piece};
-use super::{alarm, Levels, Params, Place};
+use super::{alarm, machining_type, Levels, Params, Place};
 use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 use crate::interp::modal::FeedMode;
@@ -140,16 +140,10 @@ impl Milling {
         let vari = p.or_zero(layout.vari).round() as i64;
         let (units, tens) = (vari % 10, vari / 10 % 10);
         if !(1..=2).contains(&units) || !(0..=3).contains(&tens) {
-            return Err(alarm(
-                61002,
-                p.span,
-                format_args!(
-                    "{}: machining type defined incorrectly: VARI {vari}",
-                    p.name()
-                ),
-            )
-            .with_help(
-                "VARI: units 1 roughing or 2 finishing; tens 0 or 1 vertical, 2 helical insertion",
+            return Err(machining_type(
+                p,
+                vari,
+                "units 1 roughing or 2 finishing; tens 0 or 1 vertical, 2 helical insertion",
             ));
         }
         let clockwise = direction(p, layout.cdir, at)?;

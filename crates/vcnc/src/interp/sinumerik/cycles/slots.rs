@@ -13,7 +13,7 @@
 
 use super::pockets::{Frame, Milling, Pocket};
 use super::rings::{self, polar};
-use super::{alarm, Levels, Params, Place};
+use super::{alarm, machining_type, Levels, Params, Place};
 use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 
@@ -213,15 +213,11 @@ impl Slots {
 fn variant(p: &Params, index: usize) -> Result<i64, Alarm> {
     match p.or_zero(index).round() as i64 {
         units @ 0..=2 => Ok(units),
-        vari => Err(alarm(
-            61002,
-            p.span,
-            format_args!(
-                "{}: machining type defined incorrectly: VARI {vari}",
-                p.name()
-            ),
-        )
-        .with_help("VARI: 0 complete, 1 roughing, 2 finishing")),
+        vari => Err(machining_type(
+            p,
+            vari,
+            "0 complete, 1 roughing, 2 finishing",
+        )),
     }
 }
 
