@@ -764,3 +764,66 @@ fn cycle76_keeps_outside_the_rectangular_spigot() {
     }
     assert_eq!(got.last().map(|m| m.1[2]), Some(10.0));
 }
+
+#[test]
+fn cycle71_faces_in_rows_mida_apart_one_way_or_alternating() {
+    // CYCLE71(RTP 10, RFP 0, SDIS 2, DP -2, PA 0, PO 0, LENG 30, WID 10, STA 0, MID 0, MIDA 4,
+    // FDP 3, FALD 0, FFP1 600, VARI, FDP1 1) with the 10 mm mill: rows from X -3-5 = -8 to
+    // 30+3+5 = 38; the first row's centre on Y0, the last one's edge 1 past Y10 (centre 6):
+    // rows 0, 3, 6 (MIDA 4: two steps of 3). One level at -2.
+    let wanted_start = [
+        ('R', [-8.0, 0.0, 10.0]),
+        ('R', [-8.0, 0.0, 2.0]),
+        ('L', [-8.0, 0.0, -2.0]),
+    ];
+    let end = |x: f64| [('R', [x, 6.0, 2.0]), ('R', [x, 6.0, 10.0])];
+    // VARI 31: alternating along X.
+    let text = format!("{POCKET_START}CYCLE71(10,0,2,-2,0,0,30,10,0,0,4,3,0,600,31,1)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    let mut wanted = wanted_start.to_vec();
+    wanted.extend([
+        ('L', [38.0, 0.0, -2.0]),
+        ('L', [38.0, 3.0, -2.0]),
+        ('L', [-8.0, 3.0, -2.0]),
+        ('L', [-8.0, 6.0, -2.0]),
+        ('L', [38.0, 6.0, -2.0]),
+    ]);
+    wanted.extend(end(38.0));
+    assert_moves(&got[1..], &wanted);
+    // VARI 11: one direction, back over the face at the safety plane.
+    let text = format!("{POCKET_START}CYCLE71(10,0,2,-2,0,0,30,10,0,0,4,3,0,600,11,1)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    let mut wanted = wanted_start.to_vec();
+    wanted.push(('L', [38.0, 0.0, -2.0]));
+    for y in [3.0, 6.0] {
+        wanted.extend([
+            ('R', [38.0, y - 3.0, 2.0]),
+            ('R', [-8.0, y, 2.0]),
+            ('L', [-8.0, y, -2.0]),
+            ('L', [38.0, y, -2.0]),
+        ]);
+    }
+    wanted.extend(end(38.0));
+    assert_moves(&got[1..], &wanted);
+    // MIDA 0 and MIDA above the diameter.
+    for (call, number) in [
+        (
+            "CYCLE71(10,0,2,-2,0,0,30,10,0,0,0,3,0,600,31,1)",
+            "cycle alarm 61124",
+        ),
+        (
+            "CYCLE71(10,0,2,-2,0,0,30,10,0,0,12,3,0,600,31,1)",
+            "cycle alarm 61111",
+        ),
+        (
+            "CYCLE71(10,0,2,-2,0,0,0,10,0,0,4,3,0,600,31,1)",
+            "cycle alarm 61118",
+        ),
+    ] {
+        assert_eq!(
+            cycle_alarm(&format!("{POCKET_START}{call}\nM30\n")),
+            number,
+            "{call}"
+        );
+    }
+}

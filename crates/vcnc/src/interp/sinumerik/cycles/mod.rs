@@ -34,10 +34,10 @@ use crate::source::Span;
 use std::collections::HashSet;
 
 /// The cycles vcnc runs itself.
-const BUILT_IN: [&str; 22] = [
+const BUILT_IN: [&str; 23] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
-    "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE76", "CYCLE77",
+    "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE71", "CYCLE76", "CYCLE77",
 ];
 
 /// True when `name` is a standard cycle vcnc runs.
@@ -148,7 +148,8 @@ fn run_here(
         "SLOT1" => slots::radial(&mut at, kernel, params, radius),
         "SLOT2" => slots::circumferential(&mut at, kernel, params, radius),
         "LONGHOLE" => slots::elongated(&mut at, kernel, params, radius),
-        "CYCLE61" => facing::face(&mut at, kernel, params, radius),
+        "CYCLE61" => facing::shopmill(&mut at, kernel, params, radius),
+        "CYCLE71" => facing::classic(&mut at, kernel, params, radius),
         "CYCLE76" => spigots::rectangular(&mut at, kernel, params, radius),
         "CYCLE77" => spigots::circular(&mut at, kernel, params, radius),
         _ => unreachable!("BUILT_IN lists the cycles run_called runs"),
