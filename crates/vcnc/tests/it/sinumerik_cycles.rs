@@ -827,3 +827,121 @@ fn cycle71_faces_in_rows_mida_apart_one_way_or_alternating() {
         );
     }
 }
+
+/// The spindle, dwell and stop events of `segments` in order, as text.
+fn events(segments: &[Segment]) -> Vec<String> {
+    segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Spindle { speed, state } => Some(format!("S{speed} {state:?}")),
+            SegmentKind::Dwell { seconds } => Some(format!("dwell {seconds}")),
+            SegmentKind::Stop { kind } => Some(format!("stop {kind:?}")),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn cycle87_and_cycle88_stop_the_spindle_and_the_program_at_the_depth() {
+    // CYCLE87(RTP 10, RFP 0, SDIS 2, DP -10, -, SDIR 3): M3 already turns; in at the feed, M5,
+    // M0, out in rapid to RTP with the spindle stopped.
+    let segments = run(&format!("{START}CYCLE87(10,0,2,-10,,3)\nM30\n"), &machine());
+    assert_moves(
+        &moves(&segments)[1..],
+        &[
+            ('R', [10.0, 20.0, 2.0]),
+            ('L', [10.0, 20.0, -10.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+    assert_eq!(events(&segments)[1..], ["S1000 Stopped", "stop Program"]);
+    // CYCLE88(..., DTB 1, SDIR 4): the spindle turns M4 first, dwells 1 s at the depth.
+    let segments = run(
+        &format!("{START}CYCLE88(10,0,2,-10,,1,4)\nM30\n"),
+        &machine(),
+    );
+    assert_eq!(
+        events(&segments)[1..],
+        [
+            "S1000 CounterClockwise",
+            "dwell 1",
+            "S1000 Stopped",
+            "stop Program"
+        ]
+    );
+}
+
+#[test]
+fn cycle840_taps_with_the_feed_without_an_encoder_and_with_the_pitch_with_one() {
+    // CYCLE840(RTP 10, RFP 0, SDIS 2, DP -10, -, DTB 0, SDR 4, SDAC 3, ENC 1): in and out as
+    // lines at F100 (G63), the spindle turning M4 for the way out, M3 again after.
+    let segments = run(
+        &format!("{START}CYCLE840(10,0,2,-10,,0,4,3,1)\nM30\n"),
+        &machine(),
+    );
+    assert_moves(
+        &moves(&segments)[1..],
+        &[
+            ('R', [10.0, 20.0, 2.0]),
+            ('L', [10.0, 20.0, -10.0]),
+            ('L', [10.0, 20.0, 2.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+    assert_eq!(
+        events(&segments)[1..],
+        ["S1000 CounterClockwise", "S1000 Clockwise"]
+    );
+    // With an encoder (ENC 0) and MPIT 10 (M10, pitch 1.5): threads; SDR 0 reverses the
+    // spindle.
+    let segments = run(
+        &format!("{START}CYCLE840(10,0,2,-10,,0,0,3,0,10)\nM30\n"),
+        &machine(),
+    );
+    assert_moves(
+        &moves(&segments)[1..],
+        &[
+            ('R', [10.0, 20.0, 2.0]),
+            ('T', [10.0, 20.0, -10.0]),
+            ('T', [10.0, 20.0, 2.0]),
+            ('R', [10.0, 20.0, 10.0]),
+        ],
+    );
+}
+
+#[test]
+fn cycle802_visits_its_listed_positions() {
+    // (10, 20); (30, Y left out: 20); (X left out: 30, 40); the rest left out: no position.
+    let got = moves_after("G0 X0 Y0 Z5\nCYCLE802(1,1,10,20,30,,,40)\nM30\n", 1);
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 5.0]),
+            ('R', [30.0, 20.0, 5.0]),
+            ('R', [30.0, 40.0, 5.0]),
+        ],
+    );
+}
+
+#[test]
+fn pocket4_finishing_goes_round_the_outline_at_every_level() {
+    // POCKET4(RTP 2, RFP 0, SDIS 1, DP -6, PRAD 15, PA 0, PO 0, MID 3, FAL 0, FALD 0, FFP1 800,
+    // FFD 300, CDIR 2, VARI 12): finishing, G2; at -3 and -6 in vertically at the centre, out to
+    // the outline's radius 15-5 = 10, round it in two halves, up by SDIS, back over the centre.
+    // The tool stands over the centre at Z10, above RTP: it goes straight down to RFP+SDIS.
+    let text = format!("{POCKET_START}POCKET4(2,0,1,-6,15,0,0,3,0,0,800,300,2,12)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    let mut wanted = vec![('R', [0.0, 0.0, 1.0])];
+    for z in [-3.0, -6.0] {
+        wanted.extend([
+            ('L', [0.0, 0.0, z]),
+            ('L', [10.0, 0.0, z]),
+            ('A', [-10.0, 0.0, z]),
+            ('A', [10.0, 0.0, z]),
+            ('R', [10.0, 0.0, z + 1.0]),
+            ('R', [0.0, 0.0, z + 1.0]),
+        ]);
+    }
+    wanted.push(('R', [0.0, 0.0, 2.0]));
+    assert_moves(&got[1..], &wanted);
+}
