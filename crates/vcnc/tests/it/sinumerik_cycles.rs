@@ -945,3 +945,24 @@ fn pocket4_finishing_goes_round_the_outline_at_every_level() {
     wanted.push(('R', [0.0, 0.0, 2.0]));
     assert_moves(&got[1..], &wanted);
 }
+
+#[test]
+fn steps_written_far_too_small_neither_hang_nor_run_away() {
+    // MID 0.000001 on a 5 mm deep pocket would be 5 million levels: vcnc makes 10000 at most.
+    let text = format!("{POCKET_START}POCKET4(2,0,1,-5,15,0,0,0.000001,0,0,800,1300,0,11)\nM30\n");
+    let got = moves(&run(&text, &pocket_machine()));
+    let levels = got
+        .iter()
+        .filter(|m| m.0 == 'L' && m.1[0] == 0.0 && m.1[1] == 0.0)
+        .count();
+    assert_eq!(levels, 10_000);
+    // A first peck a millionth of a millimetre deep: at most 10000 pecks.
+    let text = format!("{START}CYCLE83(10,0,1,-20,,-0.000001,,0,0,0,1,0)\nM30\n");
+    assert!(moves(&run(&text, &machine())).len() <= 2 * 10_001 + 3);
+    // A billion holes alarm.
+    let alarm = error(
+        &format!("{START}HOLES2(0,0,25,0,0,1000000000)\nM30\n"),
+        &machine(),
+    );
+    assert_eq!(alarm.code, AlarmCode::ValueOutOfRange, "{alarm:?}");
+}

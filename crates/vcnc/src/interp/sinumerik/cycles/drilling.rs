@@ -62,9 +62,10 @@ fn dwell(at: &Place, kernel: &mut Kernel, time: Option<f64>) -> Result<(), Alarm
 /// depth.
 fn peck_depths(levels: &Levels, first: f64, degression: f64) -> Vec<f64> {
     let mut depths = vec![first];
-    let mut infeed = levels.reference - first;
+    // At least the depth over MAX_DIVISIONS a peck: vcnc's limit.
+    let least = (levels.reference - levels.depth) / super::MAX_DIVISIONS as f64;
+    let mut infeed = (levels.reference - first).max(least);
     let mut reached = first;
-    // An infeed of zero would never reach the depth: the first infeed stays (choice).
     while reached > levels.depth {
         if degression > 0.0 {
             infeed = if infeed - degression > degression {
@@ -73,7 +74,7 @@ fn peck_depths(levels: &Levels, first: f64, degression: f64) -> Vec<f64> {
                 degression
             };
         }
-        reached = (reached - infeed).max(levels.depth);
+        reached = (reached - infeed.max(least)).max(levels.depth);
         depths.push(reached);
     }
     depths

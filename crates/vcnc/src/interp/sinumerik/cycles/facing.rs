@@ -13,7 +13,7 @@
 //! Never: feed down inside the area (every level starts outside it).
 
 use super::pockets::tool_radius;
-use super::{alarm, machining_type, Levels, Params, Place};
+use super::{alarm, divisions, machining_type, Levels, Params, Place};
 use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 
@@ -52,10 +52,7 @@ impl Face {
     /// The heights of the levels, top first.
     fn heights(&self) -> Vec<f64> {
         let total = self.levels.reference - self.bottom;
-        let count = match self.step_down {
-            s if s > 0.0 => (total / s - 1e-9).ceil().max(1.0) as usize,
-            _ => 1,
-        };
+        let count = divisions(total, self.step_down);
         (1..=count)
             .map(|k| self.levels.reference - total * k as f64 / count as f64)
             .collect()
@@ -106,10 +103,10 @@ impl Face {
 /// `count` rows shared out evenly from `first` to `last`, at most `step` apart.
 fn rows(first: f64, last: f64, step: f64) -> Vec<f64> {
     let width = last - first;
-    let count = (width.abs() / step - 1e-9).ceil().max(0.0) as usize;
-    if count == 0 {
+    if width.abs() < 1e-9 {
         return vec![first];
     }
+    let count = divisions(width, step);
     (0..=count)
         .map(|k| first + width * k as f64 / count as f64)
         .collect()

@@ -40,6 +40,37 @@ const BUILT_IN: [&str; 23] = [
     "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE71", "CYCLE76", "CYCLE77",
 ];
 
+/// The most pieces (levels, rings, rows, pecks, holes, slots) one cycle divides its work into:
+/// vcnc's limit, no control's, so that a step written far too small cannot make a cycle run
+/// for ever (levels, rings and rows then grow beyond their step; holes and slots alarm).
+pub(super) const MAX_DIVISIONS: usize = 10_000;
+
+/// The most moves one cycle call makes before it stops with an alarm (vcnc's limit).
+const MAX_MOVES: u64 = 2_000_000;
+
+/// The number of equal pieces of at most `step` that `length` divides into: at least 1, at
+/// most [`MAX_DIVISIONS`].
+pub(super) fn divisions(length: f64, step: f64) -> usize {
+    if step.is_nan() || step <= 0.0 {
+        return 1;
+    }
+    (length.abs() / step - 1e-9)
+        .ceil()
+        .clamp(1.0, MAX_DIVISIONS as f64) as usize
+}
+
+/// Alarm V007 for a count of holes or slots beyond [`MAX_DIVISIONS`].
+pub(super) fn too_many(p: &Params, count: f64, what: &str) -> Alarm {
+    Alarm::error(
+        AlarmCode::ValueOutOfRange,
+        p.span,
+        format!(
+            "{}: {count} {what} is more than vcnc runs in one call ({MAX_DIVISIONS})",
+            p.name()
+        ),
+    )
+}
+
 /// True when `name` is a standard cycle vcnc runs.
 pub(super) fn runs(name: &str) -> bool {
     BUILT_IN.contains(&name)
@@ -322,6 +353,8 @@ pub(super) struct Place {
     pub(super) clockwise: bool,
     /// The path mode of the block (G60 or continuous), restored after a tapping move.
     pub(super) path_mode: PathMode,
+    /// The moves made so far (at most [`MAX_MOVES`]).
+    moves: u64,
 }
 
 impl Place {
@@ -340,6 +373,7 @@ impl Place {
             } else {
                 PathMode::Continuous
             },
+            moves: 0,
         }
     }
 
@@ -354,8 +388,21 @@ impl Place {
     }
 
     /// The target of a move to `point` in the plane and `height` on the tool axis (each
-    /// None: stays).
-    fn target(&mut self, point: Option<(f64, f64)>, height: Option<f64>) -> [Option<f64>; AXES] {
+    /// None: stays); an alarm past [`MAX_MOVES`].
+    fn target(
+        &mut self,
+        point: Option<(f64, f64)>,
+        height: Option<f64>,
+    ) -> Result<[Option<f64>; AXES], Alarm> {
+        self.moves += 1;
+        if self.moves > MAX_MOVES {
+            return Err(Alarm::error(
+                AlarmCode::MacroLimit,
+                self.origin.span,
+                format!("the cycle makes more than {MAX_MOVES} moves"),
+            )
+            .with_help("check the cycle's steps (MID, MIDA, DXY, DP1): one is far too small"));
+        }
         let (a, b, n) = self.axes;
         if let Some((x, y)) = point {
             self.position[a] = x;
@@ -368,18 +415,18 @@ impl Place {
         for i in [a, b, n] {
             target[i] = Some(self.position[i]);
         }
-        target
+        Ok(target)
     }
 
     /// A rapid along the tool axis to `height`.
     pub(super) fn rapid_height(&mut self, kernel: &mut Kernel, height: f64) -> Result<(), Alarm> {
-        let target = self.target(None, Some(height));
+        let target = self.target(None, Some(height))?;
         kernel.rapid_to(target, self.origin)
     }
 
     /// A cutting line along the tool axis to `height` at the feed in force.
     pub(super) fn feed_height(&mut self, kernel: &mut Kernel, height: f64) -> Result<(), Alarm> {
-        let target = self.target(None, Some(height));
+        let target = self.target(None, Some(height))?;
         kernel.feed_to(target, self.origin)
     }
 
@@ -389,7 +436,7 @@ impl Place {
         kernel: &mut Kernel,
         point: (f64, f64),
     ) -> Result<(), Alarm> {
-        let target = self.target(Some(point), None);
+        let target = self.target(Some(point), None)?;
         kernel.rapid_to(target, self.origin)
     }
 
@@ -400,7 +447,7 @@ impl Place {
         point: (f64, f64),
         height: Option<f64>,
     ) -> Result<(), Alarm> {
-        let target = self.target(Some(point), height);
+        let target = self.target(Some(point), height)?;
         kernel.feed_to(target, self.origin)
     }
 
@@ -420,7 +467,7 @@ impl Place {
         } else {
             ArcDirection::CounterClockwise
         };
-        let target = self.target(Some(point), height);
+        let target = self.target(Some(point), height)?;
         kernel.arc_in(self.plane, target, centre, direction, turns, self.origin)
     }
 
@@ -431,7 +478,7 @@ impl Place {
         height: f64,
         lead: f64,
     ) -> Result<(), Alarm> {
-        let target = self.target(None, Some(height));
+        let target = self.target(None, Some(height))?;
         kernel.thread_to(target, lead, self.origin)
     }
 

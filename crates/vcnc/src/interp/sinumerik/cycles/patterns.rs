@@ -7,7 +7,7 @@
 //! Never: move along the tool axis itself (the drilling cycle does, and ends at its retraction
 //! plane, from where the next position is reached).
 
-use super::{alarm, run_modal, Modal, Params, Pattern, Place};
+use super::{alarm, run_modal, too_many, Modal, Params, Pattern, Place, MAX_DIVISIONS};
 use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 use crate::interp::sinumerik::Sinumerik;
@@ -51,6 +51,9 @@ pub(super) fn visit(
 /// The number of holes NUM at `index`: alarm 61103 when 0 (or less).
 fn count(p: &Params, index: usize) -> Result<usize, Alarm> {
     let number = p.or_zero(index).round();
+    if number > MAX_DIVISIONS as f64 {
+        return Err(too_many(p, number, "holes"));
+    }
     if number < 1.0 {
         return Err(alarm(
             61103,
@@ -108,6 +111,9 @@ fn circle(p: &Params) -> Result<Vec<(f64, f64)>, Alarm> {
 /// pictures' order).
 fn grid(p: &Params) -> Result<Vec<(f64, f64)>, Alarm> {
     let (columns, rows) = (count(p, 5)?, count(p, 6)?);
+    if columns * rows > MAX_DIVISIONS {
+        return Err(too_many(p, (columns * rows) as f64, "holes"));
+    }
     let (x, y) = (p.length_or_zero(0), p.length_or_zero(1));
     let (sin, cos) = p.or_zero(2).to_radians().sin_cos();
     let (across, up) = (p.length_or_zero(3), p.length_or_zero(4));

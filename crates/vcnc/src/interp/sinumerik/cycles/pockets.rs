@@ -14,7 +14,7 @@
 //! the reference plane except where the tool has cut.
 
 use super::rings::{self, Piece};
-use super::{alarm, machining_type, Levels, Params, Place};
+use super::{alarm, divisions, machining_type, Levels, Params, Place};
 use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 use crate::interp::modal::FeedMode;
@@ -210,12 +210,9 @@ impl Milling {
     /// The heights of the levels, top first, down to `bottom`.
     fn heights(&self, bottom: f64) -> Vec<f64> {
         let total = self.levels.reference - bottom;
-        let count = match self.step_down {
-            s if s > 0.0 => (total / s - 1e-9).ceil().max(1.0),
-            _ => 1.0,
-        };
-        (1..=count as usize)
-            .map(|k| self.levels.reference - total * k as f64 / count)
+        let count = divisions(total, self.step_down);
+        (1..=count)
+            .map(|k| self.levels.reference - total * k as f64 / count as f64)
             .collect()
     }
 }
@@ -319,7 +316,7 @@ impl Pocket<'_> {
         let clockwise = self.milling.clockwise;
         self.at.rapid_height(self.kernel, top)?;
         self.at.feed_to(self.kernel, start, None)?;
-        let turns = ((top - height) / per_turn - 1e-9).ceil().max(1.0) as u32;
+        let turns = divisions(top - height, per_turn) as u32;
         self.at.arc_to(
             self.kernel,
             start,

@@ -54,7 +54,7 @@ pub(super) fn steps(outer: f64, step: f64) -> Vec<f64> {
     if outer <= 0.0 {
         return Vec::new();
     }
-    let count = (outer / step - 1e-9).ceil().max(1.0) as usize;
+    let count = super::divisions(outer, step);
     (1..=count)
         .map(|k| outer * k as f64 / count as f64)
         .collect()
@@ -115,7 +115,11 @@ pub(super) fn rectangle(a: f64, b: f64, corner: f64) -> Vec<Piece> {
 /// closes (the innermost a line or a point), each with the corner less its offset.
 pub(super) fn rectangles(a: f64, b: f64, corner: f64, step: f64) -> Vec<Vec<Piece>> {
     let inner = a.min(b);
-    let count = (inner / step - 1e-9).ceil().max(0.0) as usize;
+    let count = if inner > 0.0 {
+        super::divisions(inner, step)
+    } else {
+        0
+    };
     (0..=count)
         .rev()
         .map(|k| {

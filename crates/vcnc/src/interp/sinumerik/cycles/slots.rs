@@ -13,7 +13,7 @@
 
 use super::pockets::{Frame, Milling, Pocket};
 use super::rings::{self, polar};
-use super::{alarm, machining_type, Levels, Params, Place};
+use super::{alarm, machining_type, too_many, Levels, Params, Place, MAX_DIVISIONS};
 use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 
@@ -96,6 +96,9 @@ impl Slots {
             ));
         }
         let number = p.or_zero(layout.num).round();
+        if number > MAX_DIVISIONS as f64 {
+            return Err(too_many(p, number, "slots"));
+        }
         let step = match p.or_zero(layout.inda) {
             0.0 if number > 0.0 => 360.0 / number,
             step => step,
