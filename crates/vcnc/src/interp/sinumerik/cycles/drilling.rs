@@ -86,22 +86,7 @@ fn peck_depths(levels: &Levels, first: f64, degression: f64) -> Vec<f64> {
 /// in rapid to the anticipation distance above the last depth).
 pub(super) fn deep_hole(at: &mut Place, kernel: &mut Kernel, p: &Params) -> Result<(), Alarm> {
     let levels = Levels::read(p, Some(4))?;
-    // FDPR (relative) wins over FDEP as DPR does over DP; with neither, one infeed (choice).
-    let first = match (p.length(6), p.length(5)) {
-        (Some(below), _) if below != 0.0 => levels.reference - below.abs(),
-        (_, Some(depth)) => depth,
-        _ => levels.depth,
-    };
-    if first >= levels.reference {
-        return Err(alarm(
-            61107,
-            p.span,
-            format_args!("CYCLE83: first drilling depth defined incorrectly: {first} is not below the reference plane {}", levels.reference),
-        )
-        .with_help("give the first depth below the reference plane (FDEP), or its distance from it (FDPR)"));
-    }
-    let first = first.max(levels.depth);
-    let depths = peck_depths(&levels, first, p.length_or_zero(7).abs());
+    let depths = peck_depths(&levels, first_depth(p, &levels)?, p.length_or_zero(7).abs());
     let (mode, feed) = kernel.feed_setting();
     // FRF scales the first infeed's feed: 0.001 to 1 (0: 1); above 1 read as percent, as
     // ShopMill writes it (inferred).
@@ -115,14 +100,7 @@ pub(super) fn deep_hole(at: &mut Place, kernel: &mut Kernel, p: &Params) -> Resu
         v if v > 0.0 => v,
         _ => 1.0,
     };
-    // The anticipation distance of swarf removal: _DIS1, or from the drilling path (0.6 mm up
-    // to 30 mm, a fiftieth beyond, at most 7 mm: the cycles manual, inferred for 0).
-    let path = levels.safety - levels.depth;
-    let anticipation = match p.length_or_zero(16) {
-        v if v > 0.0 => v,
-        _ if path <= 30.0 => 0.6,
-        _ => (path / 50.0).min(7.0),
-    };
+    let anticipation = anticipation(p, &levels);
     at.rapid_height(kernel, levels.safety)?;
     let mut last = levels.safety;
     for (k, &depth) in depths.iter().enumerate() {
@@ -146,6 +124,36 @@ pub(super) fn deep_hole(at: &mut Place, kernel: &mut Kernel, p: &Params) -> Resu
         }
     }
     at.rapid_height(kernel, levels.retraction)
+}
+
+/// CYCLE83's first drilling depth: FDPR (relative) wins over FDEP as DPR does over DP; with
+/// neither, one infeed (choice). Alarm 61107 when it is not below the reference plane.
+fn first_depth(p: &Params, levels: &Levels) -> Result<f64, Alarm> {
+    let first = match (p.length(6), p.length(5)) {
+        (Some(below), _) if below != 0.0 => levels.reference - below.abs(),
+        (_, Some(depth)) => depth,
+        _ => levels.depth,
+    };
+    if first >= levels.reference {
+        return Err(alarm(
+            61107,
+            p.span,
+            format_args!("CYCLE83: first drilling depth defined incorrectly: {first} is not below the reference plane {}", levels.reference),
+        )
+        .with_help("give the first depth below the reference plane (FDEP), or its distance from it (FDPR)"));
+    }
+    Ok(first.max(levels.depth))
+}
+
+/// The anticipation distance of swarf removal: _DIS1, or from the drilling path (0.6 mm up to
+/// 30 mm, a fiftieth beyond, at most 7 mm: the cycles manual, inferred for 0).
+fn anticipation(p: &Params, levels: &Levels) -> f64 {
+    let path = levels.safety - levels.depth;
+    match p.length_or_zero(16) {
+        v if v > 0.0 => v,
+        _ if path <= 30.0 => 0.6,
+        _ => (path / 50.0).min(7.0),
+    }
 }
 
 /// The pitch of an ISO metric coarse thread M3 to M48 (MPIT), mm.

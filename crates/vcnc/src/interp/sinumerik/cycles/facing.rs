@@ -179,23 +179,9 @@ pub(super) fn shopmill(
     face.mill(at, kernel)
 }
 
-/// CYCLE71(RTP, RFP, SDIS, DP, PA, PO, LENG, WID, STA, MID, MIDA, FDP, FALD, FFP1, VARI, FDP1):
-/// the rectangle LENG × WID from the corner (PA, PO) (their signs give the directions), turned
-/// STA degrees about it. Rows MIDA apart (at most the tool's diameter; 0 is alarm 61124),
-/// along the abscissa (VARI tens 1, 3) or the ordinate (2, 4), in one direction (1, 2: back at
-/// the safety plane) or alternating (3, 4); each row from FDP plus the tool radius before the
-/// area to FDP plus the radius past it; the first row's centre on the near edge, the last one's
-/// edge FDP1 past the far edge (**inferred**). Levels at most MID deep down to DP+FALD
-/// (roughing) or DP (finishing), at FFP1.
-pub(super) fn classic(
-    at: &mut Place,
-    kernel: &mut Kernel,
-    p: &Params,
-    radius: Option<f64>,
-) -> Result<(), Alarm> {
-    let levels = Levels::read(p, None)?;
-    let r = tool_radius(p, radius)?;
-    let (units, tens) = variant(p, 14, 4)?;
+/// CYCLE71's checks: VARI's tens 1 to 4 (61002), MIDA programmed (61124) and at most the tool's
+/// diameter (61111), LENG and WID not 0 (61118). Gives MIDA, LENG and WID.
+fn check_classic(p: &Params, tens: i64, r: f64) -> Result<(f64, f64, f64), Alarm> {
     if tens == 0 {
         return Err(machining_type(
             p,
@@ -222,6 +208,27 @@ pub(super) fn classic(
         return Err(alarm(61118, p.span, "CYCLE71: length or width = 0")
             .with_help("give the face's length (LENG) and width (WID)"));
     }
+    Ok((step, length, width))
+}
+
+/// CYCLE71(RTP, RFP, SDIS, DP, PA, PO, LENG, WID, STA, MID, MIDA, FDP, FALD, FFP1, VARI, FDP1):
+/// the rectangle LENG × WID from the corner (PA, PO) (their signs give the directions), turned
+/// STA degrees about it. Rows MIDA apart (at most the tool's diameter; 0 is alarm 61124),
+/// along the abscissa (VARI tens 1, 3) or the ordinate (2, 4), in one direction (1, 2: back at
+/// the safety plane) or alternating (3, 4); each row from FDP plus the tool radius before the
+/// area to FDP plus the radius past it; the first row's centre on the near edge, the last one's
+/// edge FDP1 past the far edge (**inferred**). Levels at most MID deep down to DP+FALD
+/// (roughing) or DP (finishing), at FFP1.
+pub(super) fn classic(
+    at: &mut Place,
+    kernel: &mut Kernel,
+    p: &Params,
+    radius: Option<f64>,
+) -> Result<(), Alarm> {
+    let levels = Levels::read(p, None)?;
+    let r = tool_radius(p, radius)?;
+    let (units, tens) = variant(p, 14, 4)?;
+    let (step, length, width) = check_classic(p, tens, r)?;
     let along_abscissa = tens % 2 == 1;
     // u runs along the rows, v across them; a negative size runs the other way from the
     // corner.

@@ -1,13 +1,16 @@
 //! SINUMERIK's standard cycles (CYCLE81 ... CYCLE89, CYCLE840, HOLES1, HOLES2, CYCLE801,
-//! CYCLE802, POCKET3, POCKET4, ...) built into the front end: called by name like a
-//! subprogram, directly or through MCALL, when neither the program's directory nor `--lib` has
-//! a program of that name (a machine's own cycle wins).
+//! CYCLE802, POCKET3, POCKET4, SLOT1, SLOT2, LONGHOLE, CYCLE61, CYCLE71, CYCLE76, CYCLE77)
+//! built into the front end: called by name like a subprogram, directly or through MCALL, when
+//! neither the program's directory nor `--lib` has a program of that name (a machine's own
+//! cycle wins).
 //!
 //! A block's call is kept by [`Calls::call`] and run at the block's end by [`run_called`]: the
-//! cycle reads its parameters ([`Params`]), checks them (the cycle's own alarm 61xxx as
-//! [`AlarmCode::CycleParameter`]) and makes its moves as ordinary rapids, lines and arcs through
-//! the kernel, so the planner times them. The hole or pocket is where the cycle is called: the
-//! programmed position in the plane in force (G17: X Y, drilling along Z).
+//! cycle reads its parameters (`params.rs`), checks them (the cycle's own alarm 61xxx as
+//! `AlarmCode::CycleParameter`) and makes its moves (`place.rs`) as ordinary rapids, lines,
+//! arcs and threads through the kernel, so the planner times them. A drilling cycle drills
+//! where it is called: the programmed position in the plane in force (G17: X Y, along Z). The
+//! cycles by kind: `drilling.rs`, `patterns.rs`, `pockets.rs` (with `rings.rs`, the closed
+//! paths that clear a level), `slots.rs`, `facing.rs`, `spigots.rs`.
 //!
 //! The parameter lists are the cycles manual's; the meanings vcnc had to infer are marked so
 //! here and in docs/SINUMERIK.md ("Standard cycles").
@@ -17,19 +20,21 @@
 
 mod drilling;
 mod facing;
+mod params;
 mod patterns;
+mod place;
 mod pockets;
 mod rings;
 mod slots;
 mod spigots;
 
+use params::{alarm, machining_type, too_many, Levels, Params};
+use place::Place;
+
 use super::language::Argument;
-use super::motion::unit;
 use super::Sinumerik;
-use crate::alarm::{Alarm, AlarmCode};
-use crate::interp::kernel::{Kernel, Origin};
-use crate::machine::AXES;
-use crate::motion::{ArcDirection, PathMode, Plane, SpindleState};
+use crate::alarm::Alarm;
+use crate::interp::kernel::Kernel;
 use crate::source::Span;
 use std::collections::HashSet;
 
@@ -39,37 +44,6 @@ const BUILT_IN: [&str; 23] = [
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
     "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE71", "CYCLE76", "CYCLE77",
 ];
-
-/// The most pieces (levels, rings, rows, pecks, holes, slots) one cycle divides its work into:
-/// vcnc's limit, no control's, so that a step written far too small cannot make a cycle run
-/// for ever (levels, rings and rows then grow beyond their step; holes and slots alarm).
-pub(super) const MAX_DIVISIONS: usize = 10_000;
-
-/// The most moves one cycle call makes before it stops with an alarm (vcnc's limit).
-const MAX_MOVES: u64 = 2_000_000;
-
-/// The number of equal pieces of at most `step` that `length` divides into: at least 1, at
-/// most [`MAX_DIVISIONS`].
-pub(super) fn divisions(length: f64, step: f64) -> usize {
-    if step.is_nan() || step <= 0.0 {
-        return 1;
-    }
-    (length.abs() / step - 1e-9)
-        .ceil()
-        .clamp(1.0, MAX_DIVISIONS as f64) as usize
-}
-
-/// Alarm V007 for a count of holes or slots beyond [`MAX_DIVISIONS`].
-pub(super) fn too_many(p: &Params, count: f64, what: &str) -> Alarm {
-    Alarm::error(
-        AlarmCode::ValueOutOfRange,
-        p.span,
-        format!(
-            "{}: {count} {what} is more than vcnc runs in one call ({MAX_DIVISIONS})",
-            p.name()
-        ),
-    )
-}
 
 /// True when `name` is a standard cycle vcnc runs.
 pub(super) fn runs(name: &str) -> bool {
@@ -260,293 +234,21 @@ fn edge_radius(front: &Sinumerik) -> Option<f64> {
     front.edge().map(|edge| edge.radius)
 }
 
-/// A cycle's alarm: the control's number first, then what is wrong.
-pub(super) fn alarm(number: u32, span: Span, message: impl std::fmt::Display) -> Alarm {
-    Alarm::error(
-        AlarmCode::CycleParameter,
-        span,
-        format!("cycle alarm {number}: {message}"),
-    )
-}
+/// The most pieces (levels, rings, rows, pecks, holes, slots) one cycle divides its work into:
+/// vcnc's limit, no control's, so that a step written far too small cannot make a cycle run
+/// for ever (levels, rings and rows then grow beyond their step; holes and slots alarm).
+pub(super) const MAX_DIVISIONS: usize = 10_000;
 
-/// Alarm 61002 "machining type defined incorrectly" for VARI `vari`, with the values the cycle
-/// takes.
-pub(super) fn machining_type(p: &Params, vari: i64, values: &str) -> Alarm {
-    alarm(
-        61002,
-        p.span,
-        format_args!(
-            "{}: machining type defined incorrectly: VARI {vari}",
-            p.name()
-        ),
-    )
-    .with_help(format!("VARI: {values}"))
-}
+/// The most moves one cycle call makes before it stops with an alarm (vcnc's limit).
+const MAX_MOVES: u64 = 2_000_000;
 
-/// A cycle's parameters as numbers, by position (0-based), lengths in mm.
-pub(super) struct Params {
-    name: String,
-    values: Vec<Option<f64>>,
-    /// The factor of lengths: 25.4 under G70/G700.
-    unit: f64,
-    /// The call's span: where a cycle's alarm points.
-    pub(super) span: Span,
-}
-
-impl Params {
-    /// The arguments of `call`, each a number or left out.
-    fn read(front: &mut Sinumerik, call: &Call) -> Result<Params, Alarm> {
-        let mut values = Vec::with_capacity(call.arguments.len());
-        for argument in &call.arguments {
-            let value = match argument {
-                Argument::Omitted => None,
-                Argument::Value(value) => value.as_f64(),
-                Argument::Place(place) => front.vars.get(place, call.span)?.as_f64(),
-            };
-            values.push(value);
-        }
-        Ok(Params {
-            name: call.name.clone(),
-            values,
-            unit: unit(front),
-            span: call.span,
-        })
+/// The number of equal pieces of at most `step` that `length` divides into: at least 1, at
+/// most [`MAX_DIVISIONS`].
+pub(super) fn divisions(length: f64, step: f64) -> usize {
+    if step.is_nan() || step <= 0.0 {
+        return 1;
     }
-
-    /// Parameter `index` as written, if given.
-    pub(super) fn number(&self, index: usize) -> Option<f64> {
-        self.values.get(index).copied().flatten()
-    }
-
-    /// Parameter `index`, 0 when left out (the cycles' default for a number).
-    pub(super) fn or_zero(&self, index: usize) -> f64 {
-        self.number(index).unwrap_or(0.0)
-    }
-
-    /// Parameter `index` as a length in mm.
-    pub(super) fn length(&self, index: usize) -> Option<f64> {
-        self.number(index).map(|v| v * self.unit)
-    }
-
-    /// Parameter `index` as a length in mm, 0 when left out.
-    pub(super) fn length_or_zero(&self, index: usize) -> f64 {
-        self.length(index).unwrap_or(0.0)
-    }
-
-    /// The cycle's name, for messages.
-    pub(super) fn name(&self) -> &str {
-        &self.name
-    }
-}
-
-/// Where a cycle works: the plane, the tool's position in program coordinates as the cycle
-/// moves it, and the block its moves belong to.
-pub(super) struct Place {
-    /// The plane's first and second axes and the tool axis (G17: X, Y, Z).
-    pub(super) axes: (usize, usize, usize),
-    pub(super) plane: Plane,
-    /// The position in program coordinates.
-    position: [f64; AXES],
-    pub(super) origin: Origin,
-    /// Whether the spindle turns clockwise (M3) when the cycle starts: climb milling depends
-    /// on it.
-    pub(super) clockwise: bool,
-    /// The path mode of the block (G60 or continuous), restored after a tapping move.
-    pub(super) path_mode: PathMode,
-    /// The moves made so far (at most [`MAX_MOVES`]).
-    moves: u64,
-}
-
-impl Place {
-    pub(super) fn new(front: &Sinumerik, kernel: &Kernel) -> Place {
-        let plane = front.modal.plane;
-        Place {
-            axes: plane.axes(),
-            plane,
-            position: front.programmed,
-            // The moves belong to the block that runs the cycle (the positioning block of a
-            // modal call); alarms point at the call.
-            origin: Origin::at(front.last_span),
-            clockwise: kernel.state().spindle.state() != SpindleState::CounterClockwise,
-            path_mode: if front.modal.exact_stop {
-                PathMode::ExactStop
-            } else {
-                PathMode::Continuous
-            },
-            moves: 0,
-        }
-    }
-
-    /// The position in the plane (abscissa, ordinate).
-    pub(super) fn in_plane(&self) -> (f64, f64) {
-        (self.position[self.axes.0], self.position[self.axes.1])
-    }
-
-    /// The position along the tool axis.
-    pub(super) fn height(&self) -> f64 {
-        self.position[self.axes.2]
-    }
-
-    /// The target of a move to `point` in the plane and `height` on the tool axis (each
-    /// None: stays); an alarm past [`MAX_MOVES`].
-    fn target(
-        &mut self,
-        point: Option<(f64, f64)>,
-        height: Option<f64>,
-    ) -> Result<[Option<f64>; AXES], Alarm> {
-        self.moves += 1;
-        if self.moves > MAX_MOVES {
-            return Err(Alarm::error(
-                AlarmCode::MacroLimit,
-                self.origin.span,
-                format!("the cycle makes more than {MAX_MOVES} moves"),
-            )
-            .with_help("check the cycle's steps (MID, MIDA, DXY, DP1): one is far too small"));
-        }
-        let (a, b, n) = self.axes;
-        if let Some((x, y)) = point {
-            self.position[a] = x;
-            self.position[b] = y;
-        }
-        if let Some(h) = height {
-            self.position[n] = h;
-        }
-        let mut target = [None; AXES];
-        for i in [a, b, n] {
-            target[i] = Some(self.position[i]);
-        }
-        Ok(target)
-    }
-
-    /// A rapid along the tool axis to `height`.
-    pub(super) fn rapid_height(&mut self, kernel: &mut Kernel, height: f64) -> Result<(), Alarm> {
-        let target = self.target(None, Some(height))?;
-        kernel.rapid_to(target, self.origin)
-    }
-
-    /// A cutting line along the tool axis to `height` at the feed in force.
-    pub(super) fn feed_height(&mut self, kernel: &mut Kernel, height: f64) -> Result<(), Alarm> {
-        let target = self.target(None, Some(height))?;
-        kernel.feed_to(target, self.origin)
-    }
-
-    /// A rapid in the plane to `point`.
-    pub(super) fn rapid_plane(
-        &mut self,
-        kernel: &mut Kernel,
-        point: (f64, f64),
-    ) -> Result<(), Alarm> {
-        let target = self.target(Some(point), None)?;
-        kernel.rapid_to(target, self.origin)
-    }
-
-    /// A cutting line to `point` in the plane and `height` (None: stays) at the feed in force.
-    pub(super) fn feed_to(
-        &mut self,
-        kernel: &mut Kernel,
-        point: (f64, f64),
-        height: Option<f64>,
-    ) -> Result<(), Alarm> {
-        let target = self.target(Some(point), height)?;
-        kernel.feed_to(target, self.origin)
-    }
-
-    /// An arc in the plane to `point` about `centre` (a helix when `height` changes; `turns`
-    /// full turns beyond the first when the end is the start) at the feed in force.
-    pub(super) fn arc_to(
-        &mut self,
-        kernel: &mut Kernel,
-        point: (f64, f64),
-        centre: (f64, f64),
-        clockwise: bool,
-        height: Option<f64>,
-        turns: u32,
-    ) -> Result<(), Alarm> {
-        let direction = if clockwise {
-            ArcDirection::Clockwise
-        } else {
-            ArcDirection::CounterClockwise
-        };
-        let target = self.target(Some(point), height)?;
-        kernel.arc_in(self.plane, target, centre, direction, turns, self.origin)
-    }
-
-    /// A thread along the tool axis to `height`, `lead` mm per revolution.
-    pub(super) fn thread_height(
-        &mut self,
-        kernel: &mut Kernel,
-        height: f64,
-        lead: f64,
-    ) -> Result<(), Alarm> {
-        let target = self.target(None, Some(height))?;
-        kernel.thread_to(target, lead, self.origin)
-    }
-
-    /// The programmed position becomes where the cycle left the tool.
-    pub(super) fn finish(self, front: &mut Sinumerik) {
-        let (a, b, n) = self.axes;
-        for i in [a, b, n] {
-            front.programmed[i] = self.position[i];
-        }
-    }
-}
-
-/// The planes of a drilling cycle along the tool axis: the retraction plane (RTP), the
-/// reference plane (RFP), the safety clearance above it (SDIS) and the final depth (DP, or
-/// DPR below the reference plane), read from the first five parameters every drilling and
-/// milling cycle shares.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Levels {
-    pub(super) retraction: f64,
-    pub(super) reference: f64,
-    /// The reference plane brought forward by the safety clearance.
-    pub(super) safety: f64,
-    pub(super) depth: f64,
-}
-
-impl Levels {
-    /// RTP, RFP, SDIS, DP, DPR at `first..first + 5` (DPR at `relative`, when the cycle has
-    /// one).
-    ///
-    /// The cycles manual: a relative depth DPR, when given, wins over DP. **Inferred**: the
-    /// cycles drill toward the tool axis' negative side (G17: -Z), and alarm 61101 "reference
-    /// plane defined incorrectly" stands for a depth not below the reference plane and for a
-    /// retraction plane below it.
-    pub(super) fn read(params: &Params, relative: Option<usize>) -> Result<Levels, Alarm> {
-        let retraction = params.length_or_zero(0);
-        let reference = params.length_or_zero(1);
-        let clearance = params.length_or_zero(2).abs();
-        let depth = match relative.and_then(|i| params.length(i)) {
-            Some(below) if below != 0.0 => reference - below.abs(),
-            _ => params.length_or_zero(3),
-        };
-        if depth >= reference {
-            return Err(alarm(
-                61101,
-                params.span,
-                format_args!(
-                    "{}: reference plane defined incorrectly: the depth {depth} is not below the reference plane {reference}",
-                    params.name()
-                ),
-            )
-            .with_help("give the final depth below the reference plane (DP), or the depth below it (DPR)"));
-        }
-        if retraction < reference {
-            return Err(alarm(
-                61101,
-                params.span,
-                format_args!(
-                    "{}: reference plane defined incorrectly: the retraction plane {retraction} is below the reference plane {reference}",
-                    params.name()
-                ),
-            )
-            .with_help("the retraction plane (RTP, the first parameter) must be at or above the reference plane (RFP, the second)"));
-        }
-        Ok(Levels {
-            retraction,
-            reference,
-            safety: reference + clearance,
-            depth,
-        })
-    }
+    (length.abs() / step - 1e-9)
+        .ceil()
+        .clamp(1.0, MAX_DIVISIONS as f64) as usize
 }
