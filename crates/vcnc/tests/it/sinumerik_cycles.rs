@@ -966,3 +966,46 @@ fn steps_written_far_too_small_neither_hang_nor_run_away() {
     );
     assert_eq!(alarm.code, AlarmCode::ValueOutOfRange, "{alarm:?}");
 }
+
+#[test]
+fn the_planes_are_absolute_under_g91_and_inches_under_g70() {
+    // G91: the positioning blocks move 10 at a time (X20, X30); the cycle's planes stay
+    // absolute: Z2, Z-5, Z10 at each hole.
+    let text = "G17 G90 F100 S1000 M3\nG0 X10 Y20 Z50\nG91\nMCALL CYCLE81(10,0,2,-5)\nX10\nX10\nMCALL\nM30\n";
+    let got = moves_after(text, 1);
+    let hole = |x: f64, above: f64| {
+        [
+            ('R', [x, 20.0, above]),
+            ('R', [x, 20.0, 2.0]),
+            ('L', [x, 20.0, -5.0]),
+            ('R', [x, 20.0, 10.0]),
+        ]
+    };
+    let mut wanted = hole(20.0, 50.0).to_vec();
+    wanted.extend(hole(30.0, 10.0));
+    assert_moves(&got, &wanted);
+    // G70: RTP 1, SDIS 0.1, DP -0.5 inch: 25.4, 2.54, -12.7 mm.
+    let got = moves_after(&format!("{START}G70 CYCLE81(1,0,0.1,-0.5)\nM30\n"), 1);
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 20.0, 2.54]),
+            ('L', [10.0, 20.0, -12.7]),
+            ('R', [10.0, 20.0, 25.4]),
+        ],
+    );
+}
+
+#[test]
+fn under_g18_the_cycle_drills_along_y() {
+    // G18: the plane is Z X, the tool axis Y.
+    let got = moves_after("G18 G90 F100\nG0 X10 Z20 Y50\nCYCLE81(10,0,2,-5)\nM30\n", 1);
+    assert_moves(
+        &got,
+        &[
+            ('R', [10.0, 2.0, 20.0]),
+            ('L', [10.0, -5.0, 20.0]),
+            ('R', [10.0, 10.0, 20.0]),
+        ],
+    );
+}
