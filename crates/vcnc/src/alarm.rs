@@ -110,6 +110,12 @@ pub enum AlarmCode {
     /// A canned cycle without the data it needs (Z, Q), with a bad K, or a plane change inside
     /// a cycle.
     CycleData,
+    /// A SINUMERIK standard cycle (CYCLE81 ..., HOLES2, POCKET4 ...) refuses its parameters or
+    /// the state it is called in: the cycle's own alarm 61000-61999, whose number the message
+    /// gives first (61101 reference plane defined incorrectly, 61102 no spindle direction
+    /// programmed, 61103 number of holes is zero ...; docs/SINUMERIK.md "Standard cycles").
+    /// Fix: correct the parameter the message names.
+    CycleParameter,
     /// G12/G13 circle cutting without an offset number, or with a circle no larger than the
     /// offset (Mitsubishi P170, P233).
     CircleCutting,
@@ -211,6 +217,7 @@ impl AlarmCode {
             CutterCompensation => "cutter_compensation",
             PositionOffset => "position_offset",
             CycleData => "cycle_data",
+            CycleParameter => "cycle_parameter",
             CircleCutting => "circle_cutting",
             SmoothingCommand => "smoothing_command",
             Overtravel => "overtravel",
@@ -268,6 +275,7 @@ impl AlarmCode {
             CutterCompensation => "V060",
             PositionOffset => "V061",
             CycleData => "V070",
+            CycleParameter => "V074",
             CircleCutting => "V071",
             SmoothingCommand => "V072",
             Overtravel => "V073",
@@ -326,6 +334,7 @@ impl AlarmCode {
             CutterCompensation => "use a smaller tool radius (D), or change the contour so that the tool fits",
             PositionOffset => "cancel cutter compensation first, and give G45-G48 arcs of 90 or 270 degrees with I, J",
             CycleData => "give the cycle the words it needs (Z, R, Q ...); cancel it with G80 before changing the plane",
+            CycleParameter => "correct the cycle's parameter the message names: the parameter lists are in docs/SINUMERIK.md, Standard cycles",
             CircleCutting => "give G12/G13 a D offset smaller than the circle's radius I",
             SmoothingCommand => "give the smoothing code its words (P, Q, E), and switch it on outside G61/G63/G93",
             Overtravel => "move the program's zero (work offset) or change the travel limits of the machine file",

@@ -21,7 +21,7 @@ const TAPS: &str = "G90 G21 G17\nG0 X0 Y0 Z10.\nG84 Z-10. R2. F100.\nX10.\nX20.\
 fn the_report_is_on_standard_output_and_ends_with_the_totals() {
     let dir = test_dir("totals");
     std::fs::write(dir.join("bad.nc"), NO_FEED).unwrap();
-    std::fs::write(dir.join("PART.MPF"), "G0 X=10\nCYCLE81(10,0,2,-5)\nM30\n").unwrap();
+    std::fs::write(dir.join("PART.MPF"), "G0 X=10\nCYCLE70(10,0,2,-5)\nM30\n").unwrap();
     let out = vcnc(&[
         "check",
         &example(),
@@ -101,7 +101,7 @@ fn repeated_identical_warnings_are_folded() {
 fn every_diagnostic_of_a_sinumerik_program_names_its_file_and_place() {
     let dir = test_dir("whole");
     let program = dir.join("PART.MPF").display().to_string();
-    std::fs::write(&program, "G0 X=10\nN20 CYCLE81(10,0,2,-5)\nM30\n").unwrap();
+    std::fs::write(&program, "G0 X=10\nN20 CYCLE70(10,0,2,-5)\nM30\n").unwrap();
     let out = vcnc(&["check", &program]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains(&format!("┌─ {program}:2:5")), "{stdout}");
@@ -109,7 +109,7 @@ fn every_diagnostic_of_a_sinumerik_program_names_its_file_and_place() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         stdout.starts_with(&format!(
-            "{program}:2:5: error[V020]: CYCLE81 is not run yet (planned: issue 22"
+            "{program}:2:5: error[V020]: CYCLE70 is not run yet (planned: issue 22"
         )),
         "{stdout}"
     );

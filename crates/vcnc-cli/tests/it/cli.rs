@@ -239,12 +239,12 @@ fn sinumerik_programs_run_and_name_the_commands_still_planned() {
     let program = temp_program("PART.MPF", "G0 X=10\nM30\n");
     let out = vcnc(&["check", &program]);
     assert_eq!(out.status.code(), Some(0));
-    let program = temp_program("CYCLE.MPF", "G0 X=10\nCYCLE81(10,0,2,-5)\nM30\n");
+    let program = temp_program("CYCLE.MPF", "G0 X=10\nCYCLE70(10,0,2,-5)\nM30\n");
     let out = vcnc(&["check", &program]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8(out.stdout)
         .unwrap()
-        .contains("CYCLE81 is not run yet (planned: issue 22"));
+        .contains("CYCLE70 is not run yet (planned: issue 22"));
     // What is outside the product counts as not supported too, not as the program's fault.
     let program = temp_program(
         "TURN.MPF",

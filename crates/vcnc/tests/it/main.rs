@@ -39,6 +39,7 @@ mod sinumerik;
 mod sinumerik_axes;
 mod sinumerik_compensation;
 mod sinumerik_corpus;
+mod sinumerik_cycles;
 mod sinumerik_examples;
 mod sinumerik_language;
 mod sinumerik_robust;

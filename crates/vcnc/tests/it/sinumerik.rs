@@ -431,8 +431,9 @@ fn what_the_next_issue_adds_alarms_planned_with_its_number() {
     for (text, name) in [
         ("G41 KONTC G1 X10 F100\nM30\n", "KONTC"),
         ("G641 ADIS=0.1\nM30\n", "G641"),
-        ("CYCLE81(10,0,2,-5)\nM30\n", "CYCLE81"),
-        ("POCKET3(1,2,3)\nM30\n", "POCKET3"),
+        // The standard cycles vcnc does not run yet (CYCLE81, POCKET3 ... run: sinumerik_cycles).
+        ("CYCLE70(10,0,2,-5)\nM30\n", "CYCLE70"),
+        ("CYCLE899(1,2,3)\nM30\n", "CYCLE899"),
     ] {
         let alarm = error(text, &machine());
         assert_eq!(alarm.code, AlarmCode::NotSupportedYet, "{text}");

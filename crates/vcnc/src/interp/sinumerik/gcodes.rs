@@ -402,8 +402,12 @@ pub(super) fn other_unit(
 
 /// Predefined procedures and the standard cycles the next SINUMERIK issue adds: the cycles'
 /// own names only (a machine's own cycle, such as CYCLE189 of a manufacturer, is a subprogram
-/// like any other and is found in the library first).
+/// like any other and is found in the library first), less those the front end runs
+/// (`cycles/`).
 pub(super) fn planned_call(name: &str) -> bool {
+    if super::cycles::runs(name) {
+        return false;
+    }
     let standard_cycle = name
         .strip_prefix("CYCLE")
         .and_then(|n| n.parse::<u32>().ok())

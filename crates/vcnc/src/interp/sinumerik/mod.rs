@@ -18,6 +18,7 @@ mod block;
 mod compensation;
 mod contour;
 mod control;
+mod cycles;
 mod eval;
 mod flow;
 mod frame;
@@ -129,6 +130,8 @@ pub struct Sinumerik {
     spare: Option<Box<Block>>,
     /// Tool radius compensation: G40/G41/G42 and how it approaches and turns corners.
     radius_compensation: compensation::RadiusCompensation,
+    /// The standard cycle a block called, run at its end, and the names that are built in.
+    cycles: cycles::Calls,
 }
 
 /// One program level of the call stack.
@@ -243,6 +246,7 @@ impl Sinumerik {
             jumps: 0,
             spare: None,
             radius_compensation: compensation::RadiusCompensation::default(),
+            cycles: cycles::Calls::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
@@ -534,7 +538,11 @@ impl Sinumerik {
         }
         let program = match self.programs.iter().position(|p| *p.name == *name) {
             Some(index) => index,
-            None => self.load(name, span)?,
+            None => match self.load(name, span)? {
+                Some(index) => index,
+                // A standard cycle: run by the front end at the block's end.
+                None => return self.cycles.call(name, passes, span, arguments),
+            },
         };
         if passes == 0 {
             return Ok(());
@@ -560,8 +568,12 @@ impl Sinumerik {
         Ok(())
     }
 
-    /// Loads subprogram `name` from the library.
-    fn load(&mut self, name: &str, span: Span) -> Result<usize, Alarm> {
+    /// Loads subprogram `name` from the library; None for a standard cycle the library does
+    /// not have (a machine's own program of that name wins over the built-in cycle).
+    fn load(&mut self, name: &str, span: Span) -> Result<Option<usize>, Alarm> {
+        if self.cycles.is_built_in(name) {
+            return Ok(None);
+        }
         let found = match self.library.as_mut() {
             Some(library) => library
                 .find_named(name)
@@ -569,11 +581,15 @@ impl Sinumerik {
             None => None,
         };
         let Some(found) = found else {
+            if cycles::runs(name) {
+                self.cycles.remember_built_in(name);
+                return Ok(None);
+            }
             return Err(gcodes::missing_program(name, span));
         };
         self.programs
             .push(Program::new(found.file, name, found.text));
-        Ok(self.programs.len() - 1)
+        Ok(Some(self.programs.len() - 1))
     }
 }
 
@@ -585,6 +601,8 @@ impl Sinumerik {
         }
         self.iterations += 1;
         loop {
+            // A position pattern waiting for a subprogram that returned at its text's end.
+            cycles::run_called(self, kernel)?;
             let (program, index) = self.next_line();
             self.fetch(program, index)?;
             let text = &mut self.programs[program];
@@ -605,7 +623,11 @@ impl Sinumerik {
             let step = self.run_line(kernel, &block, program, index);
             // The block's room goes to the next line.
             self.spare = Some(block);
-            if let Some(step) = step? {
+            let step = step?;
+            // A standard cycle the block called runs at its end (docs/SINUMERIK.md, Standard
+            // cycles).
+            cycles::run_called(self, kernel)?;
+            if let Some(step) = step {
                 return Ok(step);
             }
         }
