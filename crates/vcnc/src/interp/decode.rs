@@ -455,6 +455,38 @@ fn word_out_of_range(word: &Word, profile: &Profile) -> Alarm {
     )
 }
 
+/// A number written with more digits than the control reads (FANUC 0M: 7): the digits of its
+/// shortest form, leading zeros of the whole part left out (`X1.2345678` has 8).
+///
+/// # Errors
+/// [`AlarmCode::ValueOutOfRange`] beyond `max`.
+fn check_digits(word: &Word, max: u32) -> Result<(), Alarm> {
+    let text = format!("{}", word.number.value.abs());
+    let digits = text
+        .trim_start_matches(['0', '.'])
+        .bytes()
+        .filter(u8::is_ascii_digit)
+        .count();
+    // The zeros between the point and the first digit of 0.00123 are keyed too.
+    let zeros_after_point = match text.split_once('.') {
+        Some(("0", fraction)) => fraction.len() - fraction.trim_start_matches('0').len(),
+        _ => 0,
+    };
+    let written = digits + zeros_after_point;
+    if written as u32 <= max {
+        return Ok(());
+    }
+    Err(Alarm::error(
+        AlarmCode::ValueOutOfRange,
+        word.span,
+        format!(
+            "{} is written with {written} digits: this control reads at most {max}",
+            word.letter as char
+        ),
+    )
+    .with_help("drop the decimals beyond the control's least increment"))
+}
+
 /// An axis word for an axis the machine does not have.
 #[cold]
 fn axis_not_on_machine(word: &Word) -> Alarm {
@@ -655,6 +687,9 @@ pub(crate) fn decode(
     for (order, word) in block.words.iter().enumerate() {
         if word.number.value.abs() > profile.reading.max_word_value {
             return Err(word_out_of_range(word, profile));
+        }
+        if profile.reading.max_digits != 0 {
+            check_digits(word, profile.reading.max_digits)?;
         }
         // Axis words are most of every program: one mask test records them (and the other
         // letters taken as written) before the G test and the `match`, whose jump table

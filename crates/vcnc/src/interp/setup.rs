@@ -98,12 +98,15 @@ impl Setup {
     /// for numbers without a decimal point.
     pub(crate) fn length(&self, units: Units, value: &Value) -> f64 {
         let n = value.number;
+        let increment = match units {
+            Units::Millimetres => self.profile.units.increment_mm,
+            Units::Inches => self.profile.units.increment_inch,
+        };
         let raw = if !n.decimal_point && self.profile.units.decimal_less == DecimalLess::Increments
         {
-            match units {
-                Units::Millimetres => n.value * self.profile.units.increment_mm,
-                Units::Inches => n.value * self.profile.units.increment_inch,
-            }
+            n.value * increment
+        } else if self.profile.units.drop_excess_decimals {
+            drop_excess_decimals(n.value, increment)
         } else {
             n.value
         };
@@ -116,8 +119,25 @@ impl Setup {
         let n = value.number;
         if !n.decimal_point && self.profile.units.decimal_less == DecimalLess::Increments {
             n.value * self.profile.units.increment_deg
+        } else if self.profile.units.drop_excess_decimals {
+            drop_excess_decimals(n.value, self.profile.units.increment_deg)
         } else {
             n.value
         }
     }
+}
+
+/// `value` cut toward zero to a whole number of `increment`s (a power of ten): `1.23456` at
+/// 0.001 is 1.234. A value already on the grid stays as written (1.234 is not 1.233 for the
+/// binary error of 1.234 * 1000).
+fn drop_excess_decimals(value: f64, increment: f64) -> f64 {
+    let per_unit = (1.0 / increment).round();
+    let steps = value * per_unit;
+    let nearest = steps.round();
+    let whole = if (steps - nearest).abs() < 1e-6 {
+        nearest
+    } else {
+        steps.trunc()
+    };
+    whole / per_unit
 }

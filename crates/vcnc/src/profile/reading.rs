@@ -41,6 +41,10 @@ pub struct ReadingRules {
     /// one-shot codes in a block are an alarm.
     #[serde(default)]
     pub g53_g28_later_wins: bool,
+    /// Most digits a number may be written with (FANUC 0M: "generally 7 digits", `X1.2345678`
+    /// is an alarm, 001 L79-136); 0: no limit but `max_word_value`.
+    #[serde(default)]
+    pub max_digits: u32,
     /// A comment ends at its first `)`: `(` is control-out, `)` control-in (FANUC 0M); otherwise
     /// parentheses nest.
     #[serde(default)]

@@ -29,4 +29,8 @@ pub struct UnitRules {
     pub increment_deg: f64,
     /// Syntec's G70/G71 select inch/metric (besides G20/G21).
     pub g70_g71_units: bool,
+    /// Decimals beyond the least increment are dropped (FANUC 0M: `X1.23456` is X1.234 in mm,
+    /// X1.2345 in inches, 001 L79-136); otherwise the value is kept whole.
+    #[serde(default)]
+    pub drop_excess_decimals: bool,
 }

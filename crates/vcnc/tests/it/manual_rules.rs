@@ -272,3 +272,25 @@ fn a_fanuc_0m_comment_ends_at_its_first_parenthesis() {
     assert!(message.contains("address C"), "{message}");
     assert!(iso(text, &on(ProfileName::Fanuc)).error().is_none());
 }
+
+/// "Excess decimals are ignored: X1.23456 is taken as X1.234 (mm) or X1.2345 (inch)"; "generally
+/// 7 digits: X1.2345678 raises an alarm" (FANUC 0M, 001 L79-136, spec A.5). Other profiles keep
+/// the value whole (docs/DEVIATIONS.md).
+#[test]
+fn fanuc_0m_drops_excess_decimals_and_limits_digits() {
+    let machine = on(ProfileName::Fanuc0m);
+    let trace = trace_on(&machine, "G90 G00 X1.23456 Y-0.0019\nM30\n");
+    assert!(trace.starts_with("rapid X1.234 Y-0.001 Z0"), "{trace}");
+    // Inches: 1.23456 in is 1.2345 in = 31.3563 mm.
+    let trace = trace_on(&machine, "G20 G90 G00 X1.23456\nM30\n");
+    assert!(trace.starts_with("rapid X31.3563 Y0 Z0"), "{trace}");
+    // A value on the grid stays as written, binary error or not.
+    let trace = trace_on(&machine, "G90 G00 X1.234 Y4.35\nM30\n");
+    assert!(trace.starts_with("rapid X1.234 Y4.35 Z0"), "{trace}");
+    let (code, line, message) = stop("G00 X1.2345678\nM30\n", ProfileName::Fanuc0m);
+    assert_eq!((code, line), (AlarmCode::ValueOutOfRange, 1));
+    assert!(message.contains("8 digits"), "{message}");
+    // FANUC keeps the whole value and reads the 8 digits.
+    let trace = trace_on(&on(ProfileName::Fanuc), "G90 G00 X1.2345678\nM30\n");
+    assert!(trace.starts_with("rapid X1.2346 Y0 Z0"), "{trace}");
+}
