@@ -287,29 +287,42 @@ impl Element {
                 let margin = SPAN_TOLERANCE / length;
                 (-margin..=1.0 + margin).contains(&t)
             }
-            Element::Arc {
-                start,
-                end,
-                center,
-                ccw,
-            } => {
-                let angle = |v: V2| v.y.atan2(v.x);
+            Element::Arc { start, center, .. } => {
                 let tau = std::f64::consts::TAU;
-                // Counter-clockwise angle from `from` to `to`, in [0, tau).
-                let sweep = |from: f64, to: f64| (to - from).rem_euclid(tau);
-                let (a0, a1, a) = (
-                    angle(start - center),
-                    angle(end - center),
-                    angle(point - center),
-                );
-                let full = start.distance(end) < EPSILON;
                 let tolerance = SPAN_TOLERANCE / start.distance(center).max(EPSILON);
-                full || if ccw {
-                    sweep(a0, a) <= sweep(a0, a1) + tolerance || sweep(a, a0) < tolerance
-                } else {
-                    sweep(a, a0) <= sweep(a1, a0) + tolerance || sweep(a0, a) < tolerance
-                }
+                let along = self.angle_along(point);
+                along <= self.sweep() + tolerance || tau - along < tolerance
             }
+        }
+    }
+
+    /// The angle an arc turns from its start to `point`'s direction from its centre, in its
+    /// own direction, in [0, tau); 0 for a line.
+    pub(crate) fn angle_along(&self, point: V2) -> f64 {
+        let Element::Arc {
+            start, center, ccw, ..
+        } = *self
+        else {
+            return 0.0;
+        };
+        let angle = |v: V2| v.y.atan2(v.x);
+        let tau = std::f64::consts::TAU;
+        let turned = (angle(point - center) - angle(start - center)).rem_euclid(tau);
+        if ccw {
+            turned
+        } else {
+            (tau - turned).rem_euclid(tau)
+        }
+    }
+
+    /// The angle an arc sweeps (tau for a full circle); 0 for a line.
+    pub(crate) fn sweep(&self) -> f64 {
+        match *self {
+            Element::Line { .. } => 0.0,
+            Element::Arc { start, end, .. } if start.distance(end) < EPSILON => {
+                std::f64::consts::TAU
+            }
+            Element::Arc { end, .. } => self.angle_along(end),
         }
     }
 }

@@ -306,7 +306,7 @@ mod tests {
         /// A line into an arc or an arc into a line under G450 or G451: the corner's points keep
         /// at least the radius from both programmed elements.
         #[test]
-        #[ignore = "open bug (issue 22): a line into a CCW arc of R10, 1.5 degrees from tangent, G41 G450, r 0.5, brings a transition-circle point within the radius of the arc (proptest-regressions/interp/comp/transition.txt)"]
+
         fn line_arc_corners_keep_the_radius(
             u in direction(),
             start_angle in 0.0f64..std::f64::consts::TAU,
