@@ -495,3 +495,78 @@ fn a_smooth_approach_without_starting_compensation_is_not_run_yet() {
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
     assert!(alarm.message.contains("G247"), "{alarm:?}");
 }
+
+/// Example 2 of 10.4.2 (seed 002 L7720-7730, examples/sinumerik-b/57), G42 r 10, G461: N60
+/// (-Y from (50,5) to (50,0), compensated X40) is shorter than the tool needs before N70 (-X,
+/// compensated Y10): the lines meet at (40,10), 5 beyond N60's start. G461 produces N60 back by
+/// the circle of 10 about its start (50,5), which meets Y10 at X = 50 - sqrt(100 - 25) =
+/// 41.33975: the approach N50 ends there and N60 is skipped. N70 ends at (30,10); the outer
+/// corner at (30,0) (G450) goes round to (30,0) + 10 (-0.44721,0.89443) = (25.52786,8.94427),
+/// the right normal of N80's direction (-0.89443,-0.44721); N80 ends perpendicular, at
+/// (20,-5) + the same normal * 10 = (15.52786,3.94427), and N90 G40 goes to (0,0).
+#[test]
+fn g461_skips_a_first_element_too_short_for_the_tool() {
+    let program = "N30 X0 Y0 F10000 T1 M6 D1\nN40 Y20\nN50 G42 X50 Y5 G461\nN60 Y0 F600\n\
+                   N70 X30\nN80 X20 Y-5\nN90 X0 Y0 G40\nN100 M30\n";
+    let tail = [
+        (L, [30.0, 10.0, 0.0]),
+        (A, [25.52786, 8.94427, 0.0]),
+        (L, [15.52786, 3.94427, 0.0]),
+        (L, [0.0, 0.0, 0.0]),
+    ];
+    let expected = |x: f64| {
+        let mut path = vec![(L, [0.0, 20.0, 0.0]), (L, [x, 10.0, 0.0])];
+        path.extend(tail);
+        path
+    };
+    assert_path(program, 10.0, &expected(50.0 - 75f64.sqrt()));
+    // G462 produces N60's compensated line X40 back (+Y) instead: it meets Y10 at (40,10).
+    assert_path(&program.replace("G461", "G462"), 10.0, &expected(40.0));
+    // G460 (power-on): the collision alarm (SINUMERIK 10751).
+    let alarm = error(&program.replace("G461", "G460"), 10.0);
+    assert_eq!(alarm.code, AlarmCode::CutterCompensation);
+    assert!(alarm.help.as_deref().is_some_and(|h| h.contains("10751")));
+}
+
+/// Example 1 of 10.4.2 (seed 002 L7712-7718, examples/sinumerik-b/56), G42 r 20: N10 runs -X
+/// at Y0 (compensated Y20), N20 +Y from (0,0) to (0,10) (compensated X20), their compensated
+/// lines meet at (20,20), 10 beyond N20's end; N30 G40 goes to (50,50).
+/// - G461: the circle of 20 about N20's end (0,10) meets Y20 at X = sqrt(400 - 100) =
+///   17.32051: N10 ends there, N20 is skipped, N30 leaves from there.
+/// - G462: N20's compensated line X20 produced beyond its end meets Y20 at (20,20). N20's Z
+///   move (written here) is made where the tool centre stands.
+#[test]
+fn g461_and_g462_skip_a_last_element_too_short_for_the_tool() {
+    let program = "T1 M6 D1 F1000\nG42 G461\nG1 X110 Y0\nN10 X0\nN20 Y10\nN30 G40 X50 Y50\nM30\n";
+    assert_path(
+        program,
+        20.0,
+        &[
+            (L, [110.0, 20.0, 0.0]),
+            (L, [300f64.sqrt(), 20.0, 0.0]),
+            (L, [50.0, 50.0, 0.0]),
+        ],
+    );
+    let program = program.replace("G461", "G462").replace("Y10", "Y10 Z-3");
+    assert_path(
+        &program,
+        20.0,
+        &[
+            (L, [110.0, 20.0, 0.0]),
+            (L, [20.0, 20.0, 0.0]),
+            (L, [20.0, 20.0, -3.0]),
+            (L, [50.0, 50.0, -3.0]),
+        ],
+    );
+}
+
+/// G461 helps only at the contour's ends: the same short N20 with the contour going on after
+/// it (N25 +X) is the collision alarm.
+#[test]
+fn g461_inside_the_contour_is_still_the_collision_alarm() {
+    let program =
+        "T1 M6 D1 F1000\nG42 G461\nG1 X110 Y0\nN10 X0\nN20 Y10\nN25 X50\nN30 G40 X50 Y50\nM30\n";
+    let alarm = error(program, 20.0);
+    assert_eq!(alarm.code, AlarmCode::CutterCompensation);
+    assert_eq!(alarm.span.map(|s| s.line), Some(5), "the alarm names N20");
+}

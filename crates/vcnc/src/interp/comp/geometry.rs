@@ -278,7 +278,7 @@ impl Element {
 
     /// True when `point` (on the element's line or circle) lies between its ends, or at most
     /// [`SPAN_TOLERANCE`] beyond one.
-    fn spans(&self, point: V2) -> bool {
+    pub(crate) fn spans(&self, point: V2) -> bool {
         match *self {
             Element::Line { start, end } => {
                 let d = end - start;

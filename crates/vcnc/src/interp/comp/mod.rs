@@ -19,6 +19,7 @@
 //!   by the radius. G41/G42 in G02/G03 is refused by the caller (FANUC alarm 034).
 //! - Alarms: an arc smaller than the tool and interference stop the control before the pending
 //!   block moves; the caller drops what was held.
+pub(crate) mod extension;
 pub(crate) mod geometry;
 pub(crate) mod smooth;
 pub(crate) mod transition;
@@ -28,6 +29,7 @@ use crate::machine::AXES;
 use crate::motion::{
     ArcDirection, Feed, Item, MachinePos, Plane, Segment, SegmentKind, StreamItem,
 };
+use extension::Extension;
 use geometry::{Element, GeometryError, Link, Side, V2};
 use transition::{Approach, Rules};
 
@@ -75,6 +77,19 @@ pub(crate) struct Compensator {
     smooth: Option<smooth::Approach>,
     absorbed: Option<[f64; AXES]>,
     next_tangent: Option<V2>,
+    /// SINUMERIK G461/G462: the element after the pending one, whose corner with it has no
+    /// intersection, kept until the next block shows whether it ends the contour.
+    doubt: Option<Doubt>,
+}
+
+/// An element whose corner with the pending one cannot be made, and the alarm it raises unless
+/// the contour ends with it (`place`: its segment's place in the queue, after the hold).
+#[derive(Clone, Debug)]
+struct Doubt {
+    element: Element,
+    segment: Segment,
+    alarm: Alarm,
+    place: usize,
 }
 
 #[derive(Clone, Debug)]
@@ -90,6 +105,10 @@ struct Pending {
     start_up: bool,
     /// The plane position used meanwhile by moves of other axes: the perpendicular end.
     provisional: V2,
+    /// The contour's first element, the start-up block held before it (SINUMERIK G461/G462 may
+    /// still move the start-up's end), and its place in the queue after the hold.
+    first: bool,
+    place: usize,
 }
 
 fn plane_point(p: &[f64; AXES], (a, b): (usize, usize)) -> V2 {
@@ -132,6 +151,7 @@ impl Compensator {
             smooth: None,
             absorbed: None,
             next_tangent: None,
+            doubt: None,
         }
     }
 
@@ -243,6 +263,7 @@ impl Compensator {
         self.moved = true;
         if self.cancelling {
             // The G40 block: from the tool centre to the programmed end.
+            self.resolve_doubt(items, held)?;
             self.retract(&element, &segment, items, held)?;
             let mut segment = segment;
             if let Some(motion) = motion_mut(&mut segment) {
@@ -277,15 +298,55 @@ impl Compensator {
         {
             motion.from = MachinePos(from);
         }
+        if let Some(doubt) = self.doubt.take() {
+            // The element that met no intersection does not end the contour.
+            return Err(doubt.alarm);
+        }
         self.next_tangent = Some(element.start_tangent());
+        let mut start_up_at = None;
         let start = match self.pending.take() {
-            Some(pending) => {
-                let (a_end, links) = self.corner(&pending, &element, &segment, setting)?;
-                self.emit(pending, a_end, items, held)?;
-                (self.side, self.radius) = setting;
-                self.links(a_end, &links, &segment, items);
-                self.tool
-            }
+            Some(pending) => match self.corner(&pending, &element, &segment, setting) {
+                Ok((a_end, links)) => {
+                    let keep = pending.start_up
+                        && self.rules.extension != Extension::None
+                        && self.smooth.is_none()
+                        && links.is_empty();
+                    let at = self.emit(pending, a_end, items, held)?;
+                    start_up_at = keep.then_some(at);
+                    (self.side, self.radius) = setting;
+                    self.links(a_end, &links, &segment, items);
+                    self.tool
+                }
+                Err(alarm) if self.rules.extension == Extension::None || pending.start_up => {
+                    return Err(alarm)
+                }
+                Err(alarm) => {
+                    // The first element skipped (the approach), or else perhaps the last one
+                    // (the retraction, once the next block tells).
+                    let skip_to = pending.first.then(|| {
+                        let rule = self.rules.extension;
+                        extension::extended_start(rule, &pending.element, &element, setting)
+                    });
+                    if let Some(point) = skip_to.flatten() {
+                        self.skip_first(pending, point, items, held);
+                        (self.side, self.radius) = setting;
+                        point
+                    } else {
+                        let place = items.len() - held.unwrap_or(items.len());
+                        self.pending = Some(pending);
+                        self.doubt = Some(Doubt {
+                            element,
+                            segment,
+                            alarm,
+                            place,
+                        });
+                        if setting != (self.side, self.radius) {
+                            self.next = Some(setting);
+                        }
+                        return Ok(());
+                    }
+                }
+            },
             None if start_up => {
                 (self.side, self.radius) = setting;
                 self.tool
@@ -302,13 +363,17 @@ impl Compensator {
         };
         let provisional = geometry::perpendicular_end(&element, self.side, self.radius);
         debug_assert!(held.is_none(), "one pending element at a time");
-        *held = Some(items.len());
+        // The start-up block stays held while the first element's end is unknown.
+        let hold = start_up_at.unwrap_or(items.len());
+        *held = Some(hold);
         self.pending = Some(Pending {
             element,
             start,
             segment,
             start_up,
             provisional,
+            first: start_up_at.is_some(),
+            place: items.len() - hold,
         });
         self.started = true;
         Ok(())
@@ -428,7 +493,8 @@ impl Compensator {
     }
 
     /// Writes the pending element's compensated segment at its place in the queue, ending at
-    /// `end`, and moves what was held after it from the provisional point to `end`.
+    /// `end`, and moves what was held after it from the provisional point to `end`; returns
+    /// that place.
     ///
     /// # Errors
     /// Interference: the compensated element would run against the programmed one.
@@ -438,11 +504,11 @@ impl Compensator {
         end: V2,
         items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
-    ) -> Result<(), Alarm> {
+    ) -> Result<usize, Alarm> {
         if !pending.start_up && geometry::interferes(&pending.element, pending.start, end) {
             return Err(self.alarm(GeometryError::Interference, &pending.segment));
         }
-        let at = held.take().unwrap_or(items.len());
+        let at = held.take().map_or(items.len(), |hold| hold + pending.place);
         let mut segment = pending.segment;
         if let Some(motion) = motion_mut(&mut segment) {
             set_plane(&mut motion.from.0, self.axes, pending.start);
@@ -470,6 +536,85 @@ impl Compensator {
         }
         items.splice(at..at, segments.into_iter().map(|s| Ok(s.into())));
         self.tool = end;
+        Ok(at)
+    }
+
+    /// G461/G462 at the approach: the contour's first element is skipped, and the start-up
+    /// block, held before it, ends at `point` instead, where the next element starts.
+    fn skip_first(
+        &mut self,
+        pending: Pending,
+        point: V2,
+        items: &mut Vec<StreamItem>,
+        held: &mut Option<usize>,
+    ) {
+        let at = held.take().unwrap_or(items.len());
+        for later in items[at..].iter_mut() {
+            if let Some(motion) = segment_mut(later).and_then(motion_mut) {
+                for p in [&mut motion.from.0, &mut motion.to.0] {
+                    let here = plane_point(p, self.axes);
+                    if here == pending.start || here == pending.provisional {
+                        set_plane(p, self.axes, point);
+                    }
+                }
+            }
+        }
+        if let Some(skipped) = self.skipped(pending.segment, point) {
+            items.insert((at + pending.place).min(items.len()), Ok(skipped.into()));
+        }
+        self.tool = point;
+    }
+
+    /// A skipped element's move, standing at `point` in the plane: what it moves of the other
+    /// axes, or nothing.
+    fn skipped(&self, mut segment: Segment, point: V2) -> Option<Segment> {
+        let motion = motion_mut(&mut segment)?;
+        set_plane(&mut motion.from.0, self.axes, point);
+        set_plane(&mut motion.to.0, self.axes, point);
+        if motion.from == motion.to {
+            return None;
+        }
+        let motion = *motion;
+        segment.kind = match segment.kind {
+            SegmentKind::Arc { feed, .. } => SegmentKind::Line { motion, feed },
+            kind => kind,
+        };
+        Some(segment)
+    }
+
+    /// G461/G462 at the retraction: the element kept in doubt ends the contour. The pending
+    /// element ends where the doubtful one, produced beyond its end, meets it, and the doubtful
+    /// one is skipped. Without a G40 block, or without such a point, its alarm.
+    ///
+    /// # Errors
+    /// The kept alarm (SINUMERIK 10751); interference of the pending element.
+    fn resolve_doubt(
+        &mut self,
+        items: &mut Vec<StreamItem>,
+        held: &mut Option<usize>,
+    ) -> Result<(), Alarm> {
+        let Some(doubt) = self.doubt.take() else {
+            return Ok(());
+        };
+        let point = match &self.pending {
+            Some(pending) if self.cancelling => extension::extended_end(
+                self.rules.extension,
+                &pending.element,
+                &doubt.element,
+                (self.side, self.radius),
+            ),
+            _ => None,
+        };
+        let (Some(point), Some(pending)) = (point, self.pending.take()) else {
+            return Err(doubt.alarm);
+        };
+        let hold = held.unwrap_or(items.len());
+        let before = items.len();
+        self.emit(pending, point, items, held)?;
+        if let Some(skipped) = self.skipped(doubt.segment, point) {
+            let place = (hold + doubt.place + items.len() - before).min(items.len());
+            items.insert(place, Ok(skipped.into()));
+        }
         Ok(())
     }
 
@@ -546,7 +691,7 @@ impl Compensator {
             return self.finish(items, held);
         };
         let pending = self.pending.take().expect("matched above");
-        self.emit(pending, corner.a_end, items, held)?;
+        let _ = self.emit(pending, corner.a_end, items, held)?;
         let a_end = corner.a_end;
         self.links(a_end, &corner.links, segment, items);
         Ok(())
@@ -586,10 +731,11 @@ impl Compensator {
         items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
+        self.resolve_doubt(items, held)?;
         match self.pending.take() {
             Some(pending) => {
                 let end = pending.provisional;
-                self.emit(pending, end, items, held)
+                self.emit(pending, end, items, held).map(|_| ())
             }
             None => Ok(()),
         }

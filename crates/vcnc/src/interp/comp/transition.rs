@@ -17,6 +17,7 @@
 //!   round it (G450) or to where that line meets the first compensated element (G451); the
 //!   retraction is the same in reverse. A tool in front of the contour goes as with NORM.
 
+use super::extension::Extension;
 use super::geometry::{
     intersections, nearest, perpendicular_end, start_up_end, turn, Corner, Element, GeometryError,
     Link, Side, Turn, EPSILON, V2,
@@ -48,6 +49,8 @@ pub(crate) enum Approach {
 pub(crate) struct Rules {
     pub(crate) outer: OuterCorner,
     pub(crate) approach: Approach,
+    /// Where an open contour's first or last element meets no neighbour (SINUMERIK G460-G462).
+    pub(crate) extension: Extension,
     /// The help line of the interference alarm, in the control's own terms.
     pub(crate) alarm_help: &'static str,
     /// The feed of a transition circle joining moves at rapid, mm/min: the plane axes' rapid
@@ -60,6 +63,7 @@ impl Rules {
     pub(crate) const FANUC: Rules = Rules {
         outer: OuterCorner::Fanuc,
         approach: Approach::Straight,
+        extension: Extension::None,
         alarm_help: "FANUC alarms 033/041: a smaller tool, a larger radius or another path",
         rapid_arc_feed: 0.0,
     };

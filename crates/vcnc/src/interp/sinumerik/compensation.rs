@@ -15,6 +15,7 @@
 use super::gcodes::Motion;
 use super::Sinumerik;
 use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::comp::extension::Extension;
 use crate::interp::comp::geometry::Side;
 use crate::interp::comp::smooth::{self, Clearance, Shape};
 use crate::interp::comp::transition::{Approach, OuterCorner, Rules};
@@ -46,6 +47,9 @@ pub(super) enum RadiusFunction {
     SmoothInPlane(bool),
     /// G140: the approach from the compensation's side, what vcnc does.
     SmoothSide,
+    /// G460, G461, G462: the approach and retraction where the contour's first or last element
+    /// meets no neighbour.
+    Extension(Extension),
 }
 
 /// The smooth approach's words of a block (DISR, DISCL, FAD are non-modal).
@@ -74,6 +78,7 @@ pub(super) struct RadiusCompensation {
     left: Option<bool>,
     approach: Approach,
     outer: OuterCorner,
+    extension: Extension,
     /// OFFN: the contour offset added to the radius.
     offset: f64,
     /// CUTCONON programmed, and whether the kernel keeps the offset constant now.
@@ -93,6 +98,10 @@ impl Default for RadiusCompensation {
             left: None,
             approach: Approach::Straight,
             outer: OuterCorner::TransitionCircle,
+            // G460 is group 48's power-on member in the G-group table; the text's "initial
+            // setting" at G462 (L7701-7703, L7751-7753) is read as G462 being the default
+            // element of the extension.
+            extension: Extension::None,
             offset: 0.0,
             constant: false,
             kept: false,
@@ -116,6 +125,7 @@ pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
         RadiusFunction::Smooth(shape) => state.smooth.shape = Some(shape),
         RadiusFunction::SmoothInPlane(in_plane) => state.smooth_in_plane = in_plane,
         RadiusFunction::SmoothSide => {}
+        RadiusFunction::Extension(extension) => state.extension = extension,
     }
 }
 
@@ -207,6 +217,7 @@ fn rules(front: &Sinumerik, kernel: &Kernel, plane: Plane) -> Rules {
     Rules {
         outer: front.radius_compensation.outer,
         approach: front.radius_compensation.approach,
+        extension: front.radius_compensation.extension,
         alarm_help: ALARM_HELP,
         rapid_arc_feed: if rapid.is_finite() { rapid } else { 10_000.0 },
     }

@@ -205,6 +205,7 @@ pub(super) fn common(number: u32) -> Option<(Function, u8)> {
 /// named modal function.
 pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
     use super::compensation::RadiusFunction;
+    use crate::interp::comp::extension::Extension;
     use crate::interp::comp::smooth::Shape;
     use crate::interp::comp::transition::{Approach, OuterCorner};
     use Function::*;
@@ -297,17 +298,16 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G340" => Radius(RadiusFunction::SmoothInPlane(false)),
         "G341" => Radius(RadiusFunction::SmoothInPlane(true)),
         "G140" => Radius(RadiusFunction::SmoothSide),
+        "G460" => Radius(RadiusFunction::Extension(Extension::None)),
+        "G461" => Radius(RadiusFunction::Extension(Extension::Circle)),
+        "G462" => Radius(RadiusFunction::Extension(Extension::Line)),
         "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "BRISK" | "SOFT" | "DRIVE"
         | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF" | "COMPOF" | "COMPON"
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
         | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF" | "CDON" | "CDOF2"
-        // G460: collision detection on the approach and retraction blocks, what vcnc's
-        // compensation does.
-        | "TRAFOOF" | "G460" => State,
+        | "TRAFOOF" => State,
         "G641" | "G642" | "G643" | "G644" | "G645" | "KONTT" | "KONTC" | "CUT2DF" | "G141"
-        | "G142" | "G143" | "G148" | "G248" | "G348" | "G461" | "G462" | "FLIN" | "FCUB" => {
-            Planned
-        }
+        | "G142" | "G143" | "G148" | "G248" | "G348" | "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
