@@ -570,3 +570,122 @@ fn g461_inside_the_contour_is_still_the_collision_alarm() {
     assert_eq!(alarm.code, AlarmCode::CutterCompensation);
     assert_eq!(alarm.span.map(|s| s.line), Some(5), "the alarm names N20");
 }
+
+/// The feeds of the moves at a feed, mm/min, in order (rapids left out).
+fn feeds(segments: &[Segment]) -> Vec<f64> {
+    segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => match feed {
+                vcnc::motion::Feed::PerMinute(f) => Some(f),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect()
+}
+
+/// The manual's SAR example (seed 002 L7458-7503, examples/sinumerik-b/53): r 10 + OFFN 5 =
+/// 15, tool left. Approach (G247 G341): rapid over P3 (20,15), down to DISCL=AC(7), FAD 200 to
+/// Z0, the quarter circle about (30,15) to (30,5) at F1500; N40 to (40,5,2), N50 to (50,5,2)
+/// (P4 of the retraction, +X). Retraction (G248 G340, DISR 5, DISCL 6): the quarter circle for
+/// the tool centre leaves (50,5) along +X and turns left about (50,5) + 5 (0,1) = (50,10) to
+/// (55,10), rising in space from the contour's Z2 to Z2 + 6 = Z8 (a helix) at the last block's
+/// F1500; then up to N60's Z20 and across to P0 (70,0) at N60's F10000; N70 to (80,0).
+#[test]
+fn g248_leaves_on_a_quarter_circle_rising_to_the_clearance() {
+    let program = "N10 G0 X0 Y0 Z20 D1 T1 M6 OFFN=5\n\
+                   N20 G41 G247 G341 Z0 DISCL=AC(7) DISR=10 F1500 FAD=200\n\
+                   N30 G1 X30 Y-10\nN40 X40 Z2\nN50 X50\n\
+                   N60 G248 G340 X70 Y0 Z20 DISCL=6 DISR=5 G40 F10000\nN70 X80 Y0\nN80 M30\n";
+    assert_path(
+        program,
+        10.0,
+        &[
+            (L, [0.0, 0.0, 20.0]),
+            (L, [20.0, 15.0, 20.0]),
+            (L, [20.0, 15.0, 7.0]),
+            (L, [20.0, 15.0, 0.0]),
+            (A, [30.0, 5.0, 0.0]),
+            (L, [40.0, 5.0, 2.0]),
+            (L, [50.0, 5.0, 2.0]),
+            (A, [55.0, 10.0, 8.0]),
+            (L, [55.0, 10.0, 20.0]),
+            (L, [70.0, 0.0, 20.0]),
+            (L, [80.0, 0.0, 20.0]),
+        ],
+    );
+    let (segments, _) = stream(program, &with_tool(10.0));
+    assert_eq!(
+        feeds(&segments),
+        [200.0, 1500.0, 1500.0, 1500.0, 1500.0, 10000.0, 10000.0, 10000.0]
+    );
+}
+
+/// G148 with G341, r 5, tool left of N40 (+X at Y0): P4 = (30,5). The line is r + DISR = 5 +
+/// 4 = 9 long along +X: P3 (39,5) at the contour's Z0, at N40's F500; up at FAD 200 to DISCL
+/// 3 above Z0 (towards P0's Z10); up to Z10 and across to P0 (50,20) at N50's F2000.
+#[test]
+fn g148_leaves_on_a_line_then_rises_at_fad() {
+    let program = "N10 G0 X-20 Y0 Z10 T1 M6 D1\nN20 G1 Z0 F500\nN30 G41 X0 Y0\nN40 X30\n\
+                   N50 G40 G148 G341 X50 Y20 Z10 DISR=4 DISCL=3 FAD=200 F2000\nM30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [-20.0, 0.0, 10.0]),
+            (L, [-20.0, 0.0, 0.0]),
+            (L, [0.0, 5.0, 0.0]),
+            (L, [30.0, 5.0, 0.0]),
+            (L, [39.0, 5.0, 0.0]),
+            (L, [39.0, 5.0, 3.0]),
+            (L, [39.0, 5.0, 10.0]),
+            (L, [50.0, 20.0, 10.0]),
+        ],
+    );
+    let (segments, _) = stream(program, &with_tool(5.0));
+    assert_eq!(
+        feeds(&segments),
+        [500.0, 500.0, 500.0, 500.0, 200.0, 2000.0, 2000.0]
+    );
+}
+
+/// G348 with G42, r 5: N40 (+X at Y0) ends at P4 (30,-5); the half circle of DISR 6 for the
+/// tool centre turns right (clockwise) about (30,-5) + 6 (0,-1) = (30,-11) to (30,-17); no
+/// DISCL: the rest in the plane, straight to P0 (30,-30).
+#[test]
+fn g348_leaves_on_a_half_circle_to_the_tools_side() {
+    let program =
+        "N10 G0 X-20 Y0 T1 M6 D1\nN20 G1 F500\nN30 G42 X0 Y0\nN40 X30\nN50 G40 G348 X30 Y-30 DISR=6\nM30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [-20.0, 0.0, 0.0]),
+            (L, [0.0, -5.0, 0.0]),
+            (L, [30.0, -5.0, 0.0]),
+            (A, [30.0, -17.0, 0.0]),
+            (L, [30.0, -30.0, 0.0]),
+        ],
+    );
+    let (segments, _) = stream(program, &with_tool(5.0));
+    let centre = segments.iter().find_map(|s| match s.kind {
+        SegmentKind::Arc {
+            center, direction, ..
+        } => Some((center.0[0], center.0[1], direction)),
+        _ => None,
+    });
+    assert_eq!(
+        centre,
+        Some((30.0, -11.0, vcnc::motion::ArcDirection::Clockwise))
+    );
+}
+
+/// A smooth retraction needs the G40 in its own block.
+#[test]
+fn a_smooth_retraction_without_g40_is_not_run_yet() {
+    let program = "N10 G0 X-20 Y0 T1 M6 D1\nN20 G1 F500\nN30 G41 X0 Y0\nN40 X30\nN50 G248 X50 Y20 DISR=4\nM30\n";
+    let alarm = error(program, 5.0);
+    assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
+    assert!(alarm.message.contains("G248"), "{}", alarm.message);
+}

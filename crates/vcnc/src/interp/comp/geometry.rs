@@ -125,6 +125,14 @@ impl Side {
         }
     }
 
+    /// The side opposite.
+    pub(crate) fn other(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    }
+
     /// The unit normal on this side of a travel direction `tangent` (a unit vector).
     pub(crate) fn normal(self, tangent: V2) -> V2 {
         match self {

@@ -77,6 +77,10 @@ pub(crate) struct Compensator {
     smooth: Option<smooth::Approach>,
     absorbed: Option<[f64; AXES]>,
     next_tangent: Option<V2>,
+    /// SINUMERIK's smooth retraction of the cancelling block (G148, G248, G348), and the moves
+    /// of that block along the plane's normal only, taken into it.
+    retraction: Option<smooth::Approach>,
+    retraction_moves: Option<Segment>,
     /// SINUMERIK G461/G462: the element after the pending one, whose corner with it has no
     /// intersection, kept until the next block shows whether it ends the contour.
     doubt: Option<Doubt>,
@@ -151,13 +155,20 @@ impl Compensator {
             smooth: None,
             absorbed: None,
             next_tangent: None,
+            retraction: None,
+            retraction_moves: None,
             doubt: None,
         }
     }
 
-    /// The start-up block approaches the contour smoothly (SINUMERIK's G147, G247, G347).
+    /// The start-up block approaches the contour smoothly (SINUMERIK's G147, G247, G347), or
+    /// the cancelling block leaves it so (G148, G248, G348).
     pub(crate) fn approach_smoothly(&mut self, approach: smooth::Approach) {
-        self.smooth = Some(approach);
+        if self.cancelling {
+            self.retraction = Some(approach);
+        } else {
+            self.smooth = Some(approach);
+        }
     }
 
     /// The same compensation under a dialect's `rules`.
@@ -233,6 +244,14 @@ impl Compensator {
             return Ok(());
         }
         let Some(element) = self.element(&segment) else {
+            if self.cancelling && self.retraction.is_some() {
+                // The smooth retraction's block moves only along the normal: its end is P0.
+                let taken = self.retraction_moves.get_or_insert(segment);
+                if let (Some(all), Some(this)) = (motion_mut(taken), segment.motion()) {
+                    all.to = this.to;
+                }
+                return Ok(());
+            }
             if self.smooth.is_some() && !self.started {
                 // Before a smooth approach: the move only sets the level the contour starts at.
                 if let Some(motion) = segment.motion() {
@@ -264,6 +283,9 @@ impl Compensator {
         if self.cancelling {
             // The G40 block: from the tool centre to the programmed end.
             self.resolve_doubt(items, held)?;
+            if let Some(retraction) = self.retraction.take() {
+                return self.retract_smoothly(&retraction, Some(segment), items, held);
+            }
             self.retract(&element, &segment, items, held)?;
             let mut segment = segment;
             if let Some(motion) = motion_mut(&mut segment) {
@@ -618,6 +640,49 @@ impl Compensator {
         Ok(())
     }
 
+    /// The cancelling block's smooth retraction: the last element ends perpendicular to itself
+    /// (P4), and the block's `segment` (from there to its programmed end P0, at the contour's
+    /// level) becomes the retraction's moves. Without a segment (a block that moved nothing),
+    /// nothing but the end.
+    ///
+    /// # Errors
+    /// Interference at the last element's end.
+    fn retract_smoothly(
+        &mut self,
+        retraction: &smooth::Approach,
+        segment: Option<Segment>,
+        items: &mut Vec<StreamItem>,
+        held: &mut Option<usize>,
+    ) -> Result<(), Alarm> {
+        let last = self.pending.as_ref().map(|pending| {
+            let feed = match pending.segment.kind {
+                SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => Some(feed),
+                _ => None,
+            };
+            (pending.element.end_tangent(), feed)
+        });
+        self.finish(items, held)?;
+        let (Some(mut segment), Some((tangent, feed))) = (segment, last) else {
+            return Ok(());
+        };
+        let Some(motion) = motion_mut(&mut segment) else {
+            return Ok(());
+        };
+        set_plane(&mut motion.from.0, self.axes, self.tool);
+        let end = plane_point(&motion.to.0, self.axes);
+        let moves = smooth::retraction_moves(
+            retraction,
+            &segment,
+            (self.tool, tangent),
+            (self.side, self.radius),
+            self.plane(),
+            feed,
+        );
+        items.extend(moves.into_iter().map(|s| Ok(s.into())));
+        self.tool = end;
+        Ok(())
+    }
+
     /// The moves of an outer corner, as moves of the block that turns the corner.
     fn links(&mut self, from: V2, links: &[Link], segment: &Segment, items: &mut Vec<StreamItem>) {
         let mut here = from;
@@ -732,6 +797,10 @@ impl Compensator {
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
         self.resolve_doubt(items, held)?;
+        if let Some(retraction) = self.retraction.take().filter(|_| self.cancelling) {
+            let moves = self.retraction_moves.take();
+            return self.retract_smoothly(&retraction, moves, items, held);
+        }
         match self.pending.take() {
             Some(pending) => {
                 let end = pending.provisional;

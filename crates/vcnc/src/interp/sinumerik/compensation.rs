@@ -43,6 +43,8 @@ pub(super) enum RadiusFunction {
     Constant(bool),
     /// G147, G247, G347: a smooth approach in this block.
     Smooth(Shape),
+    /// G148, G248, G348: a smooth retraction in this block.
+    Retreat(Shape),
     /// G341 (true) or G340: the smooth approach's infeed first, or in space.
     SmoothInPlane(bool),
     /// G140: the approach from the compensation's side, what vcnc does.
@@ -56,6 +58,7 @@ pub(super) enum RadiusFunction {
 #[derive(Clone, Copy, Debug, Default)]
 struct SmoothWords {
     shape: Option<Shape>,
+    retreat: Option<Shape>,
     distance: Option<f64>,
     /// DISCL, with true for `AC(..)`.
     clearance: Option<(f64, bool)>,
@@ -123,6 +126,7 @@ pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
         RadiusFunction::Outer(outer) => state.outer = outer,
         RadiusFunction::Constant(constant) => state.constant = constant,
         RadiusFunction::Smooth(shape) => state.smooth.shape = Some(shape),
+        RadiusFunction::Retreat(shape) => state.smooth.retreat = Some(shape),
         RadiusFunction::SmoothInPlane(in_plane) => state.smooth_in_plane = in_plane,
         RadiusFunction::SmoothSide => {}
         RadiusFunction::Extension(extension) => state.extension = extension,
@@ -252,7 +256,12 @@ pub(super) fn before_motion(
     }
     match (state.left, state.on) {
         (None, None) => {}
-        (None, Some(_)) => kernel.cancel_compensation(),
+        (None, Some((plane, _))) => {
+            kernel.cancel_compensation();
+            if let Some(retraction) = smooth_retraction(front, kernel, plane, moves, span)? {
+                kernel.approach_smoothly(retraction);
+            }
+        }
         (Some(left), None) => {
             let rapid_or_line = matches!(front.modal.motion, Motion::Rapid | Motion::Line);
             if moves && !rapid_or_line {
@@ -303,7 +312,8 @@ pub(super) fn before_motion(
         }
     }
     let state = &mut front.radius_compensation;
-    if let Some(shape) = std::mem::take(&mut state.smooth).shape {
+    let words = std::mem::take(&mut state.smooth);
+    if let Some(shape) = words.shape {
         // Still programmed: the block did not start the compensation.
         let name = match shape {
             Shape::Line => "G147",
@@ -314,10 +324,24 @@ pub(super) fn before_motion(
             return Err(Alarm::error(
                 AlarmCode::NotSupportedYet,
                 span,
-                format!("{name} without G41 or G42 starting in its block is not run yet (planned: issue 22)"),
+                format!("{name} without G41 or G42 starting in its block is not run yet"),
             )
-            .with_help("start the compensation in the block of the smooth approach: G41 G247 ..."));
+            .with_help(
+                "start the compensation in the block of the smooth approach: G41 G247 ...",
+            ));
         }
+    }
+    if let Some(shape) = words.retreat {
+        // Still programmed: the block did not end the compensation.
+        return Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            format!(
+                "{} without G40 in its block is not run yet",
+                retreat_name(shape)
+            ),
+        )
+        .with_help("end the compensation in the block of the smooth retraction: G40 G248 ..."));
     }
     let constant = state.constant && state.on.is_some();
     if constant != state.kept {
@@ -325,6 +349,14 @@ pub(super) fn before_motion(
         kernel.keep_compensation_constant(constant)?;
     }
     Ok(())
+}
+
+fn retreat_name(shape: Shape) -> &'static str {
+    match shape {
+        Shape::Line => "G148",
+        Shape::QuarterCircle => "G248",
+        Shape::HalfCircle => "G348",
+    }
 }
 
 /// The smooth approach the block programs with the compensation it starts (SAR, seed 002
@@ -343,6 +375,52 @@ fn smooth_approach(
     let Some(shape) = words.shape else {
         return Ok(None);
     };
+    smooth_moves(front, kernel, plane, span, (shape, words)).map(Some)
+}
+
+/// The smooth retraction the block programs with the G40 it ends the compensation with (SAR,
+/// seed 002 L7551-7646), its words taken; None without G148, G248 or G348.
+///
+/// # Errors
+/// G248 or G348 without DISR; FAD under G93; a retraction block without axes (the manual ends
+/// it at P2, not run).
+fn smooth_retraction(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    plane: Plane,
+    moves: bool,
+    span: Span,
+) -> Result<Option<smooth::Approach>, Alarm> {
+    let state = &mut front.radius_compensation;
+    let Some(shape) = state.smooth.retreat.take() else {
+        return Ok(None);
+    };
+    let words = std::mem::take(&mut state.smooth);
+    if !moves {
+        return Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            format!(
+                "{} in a block without axes is not run yet",
+                retreat_name(shape)
+            ),
+        )
+        .with_help("program the retraction's end point P0 in the block (seed 002 L7551-7619)"));
+    }
+    smooth_moves(front, kernel, plane, span, (shape, words)).map(Some)
+}
+
+/// The moves of an approach or retraction of `shape` by the block's SAR words.
+///
+/// # Errors
+/// A circle without DISR; FAD under G93.
+fn smooth_moves(
+    front: &Sinumerik,
+    kernel: &Kernel,
+    plane: Plane,
+    span: Span,
+    (shape, words): (Shape, SmoothWords),
+) -> Result<smooth::Approach, Alarm> {
     let distance = match (words.distance, shape) {
         (Some(d), _) => d,
         (None, Shape::Line) => 0.0,
@@ -386,7 +464,7 @@ fn smooth_approach(
             }
         }),
     };
-    Ok(Some(smooth::Approach {
+    Ok(smooth::Approach {
         shape,
         in_plane: front.radius_compensation.smooth_in_plane,
         distance,
@@ -395,7 +473,7 @@ fn smooth_approach(
         feed: kernel.cutting_feed(Origin::at(span))?,
         per_axis: kernel.state().setup.profile().motion.rapid_path
             == crate::profile::RapidPath::PerAxis,
-    }))
+    })
 }
 
 /// After the block's motion: a G40 block ends compensation, the tool centre going onto the

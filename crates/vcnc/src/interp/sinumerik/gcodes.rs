@@ -295,6 +295,9 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G147" => Radius(RadiusFunction::Smooth(Shape::Line)),
         "G247" => Radius(RadiusFunction::Smooth(Shape::QuarterCircle)),
         "G347" => Radius(RadiusFunction::Smooth(Shape::HalfCircle)),
+        "G148" => Radius(RadiusFunction::Retreat(Shape::Line)),
+        "G248" => Radius(RadiusFunction::Retreat(Shape::QuarterCircle)),
+        "G348" => Radius(RadiusFunction::Retreat(Shape::HalfCircle)),
         "G340" => Radius(RadiusFunction::SmoothInPlane(false)),
         "G341" => Radius(RadiusFunction::SmoothInPlane(true)),
         "G140" => Radius(RadiusFunction::SmoothSide),
@@ -307,7 +310,7 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF" | "CDON" | "CDOF2"
         | "TRAFOOF" => State,
         "G641" | "G642" | "G643" | "G644" | "G645" | "KONTT" | "KONTC" | "CUT2DF" | "G141"
-        | "G142" | "G143" | "G148" | "G248" | "G348" | "FLIN" | "FCUB" => Planned,
+        | "G142" | "G143" | "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
