@@ -689,3 +689,65 @@ fn a_smooth_retraction_without_g40_is_not_run_yet() {
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
     assert!(alarm.message.contains("G248"), "{}", alarm.message);
 }
+
+/// The manual's KONTC example (seed 002 L7222-7229, examples/sinumerik-b/51): a full circle of
+/// 70 about the origin, clockwise, tool left (outside, r 10): the tool centre runs on the
+/// circle of 80, starting at (80,0) heading -Y, its curvature -1/80. The approach from
+/// (0,0,60) is a curve in straight pieces (within 1 um) ending at (80,0,0) with that tangent
+/// and curvature, Z coming to rest there; the circle; the retraction the same backwards, to
+/// (0,0,60). KONTT meets the same point and tangent.
+#[test]
+fn kontc_joins_the_circle_with_its_tangent_and_curvature() {
+    let program = "N10 G1 X0 Y0 Z60 T1 M6 D1 F10000\nN20 G41 KONTC X70 Y0 Z0\nN30 G2 I-70\n\
+                   N40 G40 G1 X0 Y0 Z60\nN50 M30\n";
+    for continuity in ["KONTC", "KONTT"] {
+        let program = program.replace("KONTC", continuity);
+        let (segments, alarms) = stream(&program, &with_tool(10.0));
+        assert!(alarms.is_empty(), "{alarms:#?}");
+        let path = ends(&segments);
+        let circle = path.iter().position(|(kind, _)| *kind == A).unwrap();
+        assert_eq!(path.iter().filter(|(kind, _)| *kind == A).count(), 1);
+        let at = |i: usize| path[i].1;
+        assert_eq!(
+            at(circle),
+            [80.0, 0.0, 0.0],
+            "{continuity}: the full circle"
+        );
+        assert_eq!(
+            at(circle - 1),
+            [80.0, 0.0, 0.0],
+            "{continuity}: the approach's end"
+        );
+        assert_eq!(*at(path.len() - 1).first().unwrap(), 0.0);
+        assert_eq!(at(path.len() - 1), [0.0, 0.0, 60.0]);
+        // The approach's last piece heads -Y (its chord turned from the tangent by half the
+        // curve's turn along it), Z at rest (KONTT: Z' is 0 at the end, so the last of n
+        // pieces falls 60 / n^2 there).
+        let (q, r) = (at(circle - 2), at(circle - 1));
+        let d = ((r[0] - q[0]), (r[1] - q[1]));
+        let length = d.0.hypot(d.1);
+        assert!(
+            d.0.abs() / length < 1e-2 && d.1 < 0.0,
+            "{continuity}: {d:?}"
+        );
+        assert!((r[2] - q[2]).abs() < 2e-3, "{continuity}: {q:?} {r:?}");
+        let first = at(circle + 1);
+        assert!(
+            (first[0] - 80.0).abs() < 0.05 && first[1] < 0.0,
+            "{first:?}"
+        );
+        // Z falls from 60 to 0 without turning back.
+        assert!(path[..circle]
+            .windows(2)
+            .all(|w| w[1].1[2] <= w[0].1[2] + 1e-9));
+    }
+}
+
+/// KONTC and KONTT replace a G1 block only (seed 002 L7207-7208).
+#[test]
+fn kontc_from_a_rapid_alarms() {
+    let program = "N10 G0 X0 Y0 Z60 T1 M6 D1 F1000\nN20 G41 KONTC X70 Y0 Z0\nN30 G2 I-70\nM30\n";
+    let alarm = error(program, 10.0);
+    assert_eq!(alarm.code, AlarmCode::CutterCompensation);
+    assert!(alarm.message.contains("G1"), "{}", alarm.message);
+}

@@ -21,6 +21,7 @@
 //!   block moves; the caller drops what was held.
 pub(crate) mod extension;
 pub(crate) mod geometry;
+pub(crate) mod polynomial;
 pub(crate) mod smooth;
 pub(crate) mod transition;
 
@@ -77,6 +78,8 @@ pub(crate) struct Compensator {
     smooth: Option<smooth::Approach>,
     absorbed: Option<[f64; AXES]>,
     next_tangent: Option<V2>,
+    /// The first element's compensated curvature where it starts (KONTC).
+    next_curvature: f64,
     /// SINUMERIK's smooth retraction of the cancelling block (G148, G248, G348), and the moves
     /// of that block along the plane's normal only, taken into it.
     retraction: Option<smooth::Approach>,
@@ -155,6 +158,7 @@ impl Compensator {
             smooth: None,
             absorbed: None,
             next_tangent: None,
+            next_curvature: 0.0,
             retraction: None,
             retraction_moves: None,
             doubt: None,
@@ -286,6 +290,9 @@ impl Compensator {
             if let Some(retraction) = self.retraction.take() {
                 return self.retract_smoothly(&retraction, Some(segment), items, held);
             }
+            if let Approach::Curve(continuity) = self.rules.approach {
+                return self.retract_on_curve(continuity, segment, items, held);
+            }
             self.retract(&element, &segment, items, held)?;
             let mut segment = segment;
             if let Some(motion) = motion_mut(&mut segment) {
@@ -325,6 +332,7 @@ impl Compensator {
             return Err(doubt.alarm);
         }
         self.next_tangent = Some(element.start_tangent());
+        self.next_curvature = polynomial::curvature(&element, setting);
         let mut start_up_at = None;
         let start = match self.pending.take() {
             Some(pending) => match self.corner(&pending, &element, &segment, setting) {
@@ -537,14 +545,20 @@ impl Compensator {
             set_plane(&mut motion.to.0, self.axes, end);
         }
         let smooth = self.smooth.take().filter(|_| pending.start_up);
-        let segments = match (smooth, self.next_tangent) {
-            (Some(approach), Some(tangent)) => smooth::approach_moves(
+        let segments = match (smooth, self.next_tangent, self.rules.approach) {
+            (Some(approach), Some(tangent), _) => smooth::approach_moves(
                 &approach,
                 &segment,
                 (end, tangent),
                 (self.side, self.radius),
                 self.plane(),
             ),
+            (None, Some(tangent), Approach::Curve(continuity)) if pending.start_up => {
+                let arrival = (tangent, self.next_curvature);
+                curve_pieces(&segment, |ends| {
+                    polynomial::approach(continuity, ends, self.axes, arrival)
+                })
+            }
             _ => vec![segment],
         };
         for later in items[at..].iter_mut() {
@@ -680,6 +694,44 @@ impl Compensator {
         );
         items.extend(moves.into_iter().map(|s| Ok(s.into())));
         self.tool = end;
+        Ok(())
+    }
+
+    /// The cancelling block under KONTC or KONTT: the last element ends perpendicular to
+    /// itself, and the block leaves it on the polynomial to its programmed end.
+    ///
+    /// # Errors
+    /// Interference at the last element's end.
+    fn retract_on_curve(
+        &mut self,
+        continuity: polynomial::Continuity,
+        mut segment: Segment,
+        items: &mut Vec<StreamItem>,
+        held: &mut Option<usize>,
+    ) -> Result<(), Alarm> {
+        let last = self.pending.as_ref().map(|pending| {
+            let setting = (self.side, self.radius);
+            let element = pending.element;
+            let curvature = match element {
+                // The compensated arc's curvature is the same all along.
+                Element::Arc { .. } => polynomial::curvature(&element, setting),
+                Element::Line { .. } => 0.0,
+            };
+            (element.end_tangent(), curvature)
+        });
+        self.finish(items, held)?;
+        let Some(motion) = motion_mut(&mut segment) else {
+            return Ok(());
+        };
+        set_plane(&mut motion.from.0, self.axes, self.tool);
+        self.tool = plane_point(&motion.to.0, self.axes);
+        let moves = match last {
+            Some(leaving) => curve_pieces(&segment, |ends| {
+                polynomial::retraction(continuity, ends, self.axes, leaving)
+            }),
+            None => vec![segment],
+        };
+        items.extend(moves.into_iter().map(|s| Ok(s.into())));
         Ok(())
     }
 
@@ -892,6 +944,35 @@ fn motion_mut(segment: &mut Segment) -> Option<&mut crate::motion::Move> {
         | SegmentKind::Arc { motion, .. } => Some(motion),
         _ => None,
     }
+}
+
+/// The straight pieces of a curve that replaces `segment`, from its start to its end: `points`
+/// gives their ends from the segment's two ends.
+fn curve_pieces(
+    segment: &Segment,
+    points: impl FnOnce(([f64; AXES], [f64; AXES])) -> Vec<[f64; AXES]>,
+) -> Vec<Segment> {
+    let Some(motion) = segment.motion() else {
+        return vec![*segment];
+    };
+    let mut here = motion.from.0;
+    points((motion.from.0, motion.to.0))
+        .into_iter()
+        .map(|to| {
+            let mut piece = *motion;
+            piece.from = MachinePos(here);
+            piece.to = MachinePos(to);
+            here = to;
+            let kind = match segment.kind {
+                SegmentKind::Arc { feed, .. } => SegmentKind::Line {
+                    motion: piece,
+                    feed,
+                },
+                kind => with_motion(kind, piece),
+            };
+            Segment { kind, ..*segment }
+        })
+        .collect()
 }
 
 /// The segment `kind` (a rapid or a line) moving along `motion` instead.

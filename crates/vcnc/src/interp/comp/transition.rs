@@ -22,6 +22,7 @@ use super::geometry::{
     intersections, nearest, perpendicular_end, start_up_end, turn, Corner, Element, GeometryError,
     Link, Side, Turn, EPSILON, V2,
 };
+use super::polynomial::Continuity;
 
 /// How the tool centre goes round an outer corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,6 +43,9 @@ pub(crate) enum Approach {
     Straight,
     /// SINUMERIK KONT: round the start or end point when the tool is behind the contour.
     AroundPoint,
+    /// SINUMERIK KONTT, KONTC: a polynomial joining the contour with its tangent (and
+    /// curvature), `polynomial.rs`.
+    Curve(Continuity),
 }
 
 /// The rules of a dialect's compensation.

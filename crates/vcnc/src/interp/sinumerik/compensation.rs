@@ -254,6 +254,19 @@ pub(super) fn before_motion(
         )
         .with_help("vcnc compensates in a machine plane: turn the frame about the plane's normal only (CUT2DF, 3+2 work, is issue 22's)"));
     }
+    if matches!(state.approach, Approach::Curve(_))
+        && moves
+        && state.left.is_some() != state.on.is_some()
+        && front.modal.motion != Motion::Line
+    {
+        // The control replaces the G1 block by its polynomial (seed 002 L7207-7208).
+        return Err(Alarm::error(
+            AlarmCode::CutterCompensation,
+            span,
+            "KONTC and KONTT approach and retract only in a G1 block",
+        )
+        .with_help("write G1 in the block that switches G41, G42 or G40"));
+    }
     match (state.left, state.on) {
         (None, None) => {}
         (None, Some((plane, _))) => {

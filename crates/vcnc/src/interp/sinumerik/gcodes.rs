@@ -206,6 +206,7 @@ pub(super) fn common(number: u32) -> Option<(Function, u8)> {
 pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
     use super::compensation::RadiusFunction;
     use crate::interp::comp::extension::Extension;
+    use crate::interp::comp::polynomial::Continuity;
     use crate::interp::comp::smooth::Shape;
     use crate::interp::comp::transition::{Approach, OuterCorner};
     use Function::*;
@@ -288,6 +289,12 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G42" => Radius(RadiusFunction::Right),
         "NORM" => Radius(RadiusFunction::Approach(Approach::Straight)),
         "KONT" => Radius(RadiusFunction::Approach(Approach::AroundPoint)),
+        "KONTT" => Radius(RadiusFunction::Approach(Approach::Curve(
+            Continuity::Tangent,
+        ))),
+        "KONTC" => Radius(RadiusFunction::Approach(Approach::Curve(
+            Continuity::Curvature,
+        ))),
         "G450" => Radius(RadiusFunction::Outer(OuterCorner::TransitionCircle)),
         "G451" => Radius(RadiusFunction::Outer(OuterCorner::Intersection)),
         "CUTCONON" => Radius(RadiusFunction::Constant(true)),
@@ -309,8 +316,8 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
         | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF" | "CDON" | "CDOF2"
         | "TRAFOOF" => State,
-        "G641" | "G642" | "G643" | "G644" | "G645" | "KONTT" | "KONTC" | "CUT2DF" | "G141"
-        | "G142" | "G143" | "FLIN" | "FCUB" => Planned,
+        "G641" | "G642" | "G643" | "G644" | "G645" | "CUT2DF" | "G141" | "G142" | "G143"
+        | "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
@@ -779,7 +786,7 @@ mod listing_tests {
         assert_eq!(row("G1").on_840d, Support::Runs);
         assert_eq!(row("SOFT").on_828d, Support::State);
         assert_eq!(row("G41").on_840d, Support::Runs);
-        assert_eq!(row("KONTC").on_840d, Support::Planned);
+        assert_eq!(row("G641").on_840d, Support::Planned);
         assert!(matches!(row("DIAMON").on_840d, Support::OutOfProduct(_)));
         let range = row("G505 … G599");
         assert_eq!(
