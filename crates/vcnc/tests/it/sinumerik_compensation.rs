@@ -751,3 +751,67 @@ fn kontc_from_a_rapid_alarms() {
     assert_eq!(alarm.code, AlarmCode::CutterCompensation);
     assert!(alarm.message.contains("G1"), "{}", alarm.message);
 }
+
+/// G141-G143 choose the side of the approach contour (seed 002 L7421-7432). b/55's approach
+/// (G41 r 7, G247 G341, DISR 13): P4 (40,-3) heading +X. G140 and G141 take the left: the
+/// quarter circle about (40,10) from (27,10), counter-clockwise. G142 takes the right: about
+/// (40,-3) + 13 (0,-1) = (40,-16), from (27,-16), clockwise. G143 takes the side of the
+/// tangent at P4 that P0 lies on: from (0,0) (3 above the tangent Y-3) the left; from
+/// (0,-20) the right.
+#[test]
+fn g141_to_g143_choose_the_approach_side() {
+    let program = |side: &str, start: &str| {
+        format!(
+            "N10 G90 G0 {start} Z20 T1 M6 D1\nN20 G41 G341 G247 {side} DISCL=AC(5) DISR=13 \
+             FAD=500 X40 Y-10 Z=0 F200\nN30 X50\nM30\n"
+        )
+    };
+    let path = |p3: (f64, f64), start: (f64, f64)| {
+        vec![
+            (L, [start.0, start.1, 20.0]),
+            (L, [p3.0, p3.1, 20.0]),
+            (L, [p3.0, p3.1, 5.0]),
+            (L, [p3.0, p3.1, 0.0]),
+            (A, [40.0, -3.0, 0.0]),
+            (L, [50.0, -3.0, 0.0]),
+        ]
+    };
+    let origin = "X0 Y0";
+    let below = "X0 Y-20";
+    assert_path(
+        &program("G140", origin),
+        7.0,
+        &path((27.0, 10.0), (0.0, 0.0)),
+    );
+    assert_path(
+        &program("G141", origin),
+        7.0,
+        &path((27.0, 10.0), (0.0, 0.0)),
+    );
+    assert_path(
+        &program("G142", origin),
+        7.0,
+        &path((27.0, -16.0), (0.0, 0.0)),
+    );
+    assert_path(
+        &program("G143", origin),
+        7.0,
+        &path((27.0, 10.0), (0.0, 0.0)),
+    );
+    assert_path(
+        &program("G143", below),
+        7.0,
+        &path((27.0, -16.0), (0.0, -20.0)),
+    );
+    let (segments, _) = stream(&program("G142", origin), &with_tool(7.0));
+    let arc = segments.iter().find_map(|s| match s.kind {
+        SegmentKind::Arc {
+            center, direction, ..
+        } => Some((center.0[0], center.0[1], direction)),
+        _ => None,
+    });
+    assert_eq!(
+        arc,
+        Some((40.0, -16.0, vcnc::motion::ArcDirection::Clockwise))
+    );
+}

@@ -39,10 +39,24 @@ pub(crate) enum Clearance {
     At(f64),
 }
 
+/// The side the approach or retraction contour lies on (group 43).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Direction {
+    /// G140: the compensation's side.
+    Compensation,
+    /// G141: from (or to) the left of the contour.
+    Left,
+    /// G142: from (or to) the right.
+    Right,
+    /// G143: the side of the contour's tangent at P4 that P0 lies on.
+    Tangent,
+}
+
 /// A smooth approach, as the SAR block programs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Approach {
     pub(crate) shape: Shape,
+    pub(crate) direction: Direction,
     /// G341: infeed first, then the approach in the plane; G340 (false): in space.
     pub(crate) in_plane: bool,
     /// DISR: the line's length beyond the tool's edge, or the circle's radius for the centre.
@@ -54,6 +68,20 @@ pub(crate) struct Approach {
     pub(crate) feed: Feed,
     /// Rapids per axis (the profile's rapid path).
     pub(crate) per_axis: bool,
+}
+
+impl Approach {
+    /// The side the contour lies on for a tool on `side`, P0 lying at `away` from P4, where
+    /// the contour's tangent is `tangent` (the manual: G140-G143, seed 002 L7421-7432).
+    fn side(&self, side: Side, (away, tangent): (V2, V2)) -> Side {
+        match self.direction {
+            Direction::Compensation => side,
+            Direction::Left => Side::Left,
+            Direction::Right => Side::Right,
+            Direction::Tangent if tangent.cross(away) >= 0.0 => Side::Left,
+            Direction::Tangent => Side::Right,
+        }
+    }
 }
 
 /// The approach contour in the plane: its start P3 and, for a circle, its centre and direction.
@@ -90,9 +118,10 @@ pub(crate) fn approach_moves(
     let Some(motion) = segment.motion() else {
         return vec![*segment];
     };
-    let (_, _, normal) = plane.axes();
-    let (p3, circle) = contour(approach, p4, tangent, side, radius);
+    let (a, b, normal) = plane.axes();
     let from = motion.from.0;
+    let side = approach.side(side, (V2::new(from[a], from[b]) - p4, tangent));
+    let (p3, circle) = contour(approach, p4, tangent, side, radius);
     let level = motion.to.0[normal];
     let clearance = clearance(approach.clearance, level, from[normal]);
     let mut moves = Moves::new(segment, plane, approach.per_axis);
@@ -133,7 +162,11 @@ pub(crate) fn retraction_moves(
     let Some(motion) = segment.motion() else {
         return vec![*segment];
     };
-    let (_, _, normal) = plane.axes();
+    let (a, b, normal) = plane.axes();
+    let side = retraction.side(
+        side,
+        (V2::new(motion.to.0[a], motion.to.0[b]) - p4, tangent),
+    );
     let (p3, circle) = contour(retraction, p4, -tangent, side.other(), radius);
     // Travelled the other way: the circle turns the way the approach's would, seen backwards.
     let circle = circle.map(|(centre, ccw)| (centre, !ccw));
@@ -276,6 +309,7 @@ mod tests {
     fn the_line_is_the_radius_and_disr_long() {
         let approach = Approach {
             shape: Shape::Line,
+            direction: Direction::Compensation,
             in_plane: false,
             distance: 13.0,
             clearance: Clearance::Above(3.0),
@@ -299,6 +333,7 @@ mod tests {
     fn the_quarter_circle_is_tangent_on_the_tools_side() {
         let approach = Approach {
             shape: Shape::QuarterCircle,
+            direction: Direction::Compensation,
             in_plane: true,
             distance: 10.0,
             clearance: Clearance::At(7.0),

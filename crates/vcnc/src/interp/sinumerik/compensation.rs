@@ -47,8 +47,8 @@ pub(super) enum RadiusFunction {
     Retreat(Shape),
     /// G341 (true) or G340: the smooth approach's infeed first, or in space.
     SmoothInPlane(bool),
-    /// G140: the approach from the compensation's side, what vcnc does.
-    SmoothSide,
+    /// G140-G143: the side the approach and retraction contour lies on.
+    SmoothSide(smooth::Direction),
     /// G460, G461, G462: the approach and retraction where the contour's first or last element
     /// meets no neighbour.
     Extension(Extension),
@@ -89,6 +89,7 @@ pub(super) struct RadiusCompensation {
     kept: bool,
     /// G341 in force (G340 at power-on).
     smooth_in_plane: bool,
+    smooth_side: smooth::Direction,
     smooth: SmoothWords,
     /// While compensating: its plane, and the side and radius the kernel has.
     on: Option<(Plane, (Side, f64))>,
@@ -109,6 +110,7 @@ impl Default for RadiusCompensation {
             constant: false,
             kept: false,
             smooth_in_plane: false,
+            smooth_side: smooth::Direction::Compensation,
             smooth: SmoothWords::default(),
             on: None,
         }
@@ -128,7 +130,7 @@ pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
         RadiusFunction::Smooth(shape) => state.smooth.shape = Some(shape),
         RadiusFunction::Retreat(shape) => state.smooth.retreat = Some(shape),
         RadiusFunction::SmoothInPlane(in_plane) => state.smooth_in_plane = in_plane,
-        RadiusFunction::SmoothSide => {}
+        RadiusFunction::SmoothSide(direction) => state.smooth_side = direction,
         RadiusFunction::Extension(extension) => state.extension = extension,
     }
 }
@@ -479,6 +481,7 @@ fn smooth_moves(
     };
     Ok(smooth::Approach {
         shape,
+        direction: front.radius_compensation.smooth_side,
         in_plane: front.radius_compensation.smooth_in_plane,
         distance,
         clearance,

@@ -207,7 +207,7 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
     use super::compensation::RadiusFunction;
     use crate::interp::comp::extension::Extension;
     use crate::interp::comp::polynomial::Continuity;
-    use crate::interp::comp::smooth::Shape;
+    use crate::interp::comp::smooth::{Direction, Shape};
     use crate::interp::comp::transition::{Approach, OuterCorner};
     use Function::*;
     let f = match name {
@@ -307,7 +307,10 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G348" => Radius(RadiusFunction::Retreat(Shape::HalfCircle)),
         "G340" => Radius(RadiusFunction::SmoothInPlane(false)),
         "G341" => Radius(RadiusFunction::SmoothInPlane(true)),
-        "G140" => Radius(RadiusFunction::SmoothSide),
+        "G140" => Radius(RadiusFunction::SmoothSide(Direction::Compensation)),
+        "G141" => Radius(RadiusFunction::SmoothSide(Direction::Left)),
+        "G142" => Radius(RadiusFunction::SmoothSide(Direction::Right)),
+        "G143" => Radius(RadiusFunction::SmoothSide(Direction::Tangent)),
         "G460" => Radius(RadiusFunction::Extension(Extension::None)),
         "G461" => Radius(RadiusFunction::Extension(Extension::Circle)),
         "G462" => Radius(RadiusFunction::Extension(Extension::Line)),
@@ -316,8 +319,7 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
         | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF" | "CDON" | "CDOF2"
         | "TRAFOOF" => State,
-        "G641" | "G642" | "G643" | "G644" | "G645" | "CUT2DF" | "G141" | "G142" | "G143"
-        | "FLIN" | "FCUB" => Planned,
+        "G641" | "G642" | "G643" | "G644" | "G645" | "CUT2DF" | "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
