@@ -323,12 +323,47 @@ fn the_plane_cannot_change_while_compensating() {
     assert!(alarm.message.contains("plane"), "{alarm:?}");
 }
 
-/// DISC above 0 (a flattened transition curve the manual does not define) is refused by name.
+/// DISC flattens the transition circle towards the intersection (seed 002 L7300-7340): a
+/// square outer corner at (10,0), tool left, r 2. The compensated ends (10,2) and (12,0); with
+/// DISC=100 the curve is the two tangent lines through their meeting point (12,2), moves of
+/// N40 (the block after the corner); DISC=50 leaves (10,2) on a conic whose middle is
+/// (11.70711,1.70711) (0.70711 of the way from (11,1) to (12,2); the circle's is 0.41421),
+/// in straight pieces; under G451 DISC does nothing. Out of 0..100 it alarms.
 #[test]
-fn disc_above_zero_is_not_run_yet() {
-    let alarm = error("N10 DISC=50\nN20 M30\n", 5.0);
-    assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
-    assert!(alarm.message.contains("DISC"), "{alarm:?}");
+fn disc_flattens_the_transition_circle() {
+    let program = "N10 G0 X-10 Y0 T1 M6 D1\nN20 G1 F500 G41 DISC=100 X0 Y0\nN30 X10\nN40 Y-10\n\
+                   N50 G40 X20 Y-20\nM30\n";
+    let tail = [(L, [12.0, -10.0, 0.0]), (L, [20.0, -20.0, 0.0])];
+    let mut expected = vec![
+        (L, [-10.0, 0.0, 0.0]),
+        (L, [0.0, 2.0, 0.0]),
+        (L, [10.0, 2.0, 0.0]),
+        (L, [12.0, 2.0, 0.0]),
+        (L, [12.0, 0.0, 0.0]),
+    ];
+    expected.extend(tail);
+    assert_path(program, 2.0, &expected);
+    let (segments, _) = stream(&program.replace("DISC=100", "DISC=50"), &with_tool(2.0));
+    let path = ends(&segments);
+    let corner = &path[3..path.len() - 2];
+    assert!(corner.len() > 8, "{corner:?}");
+    assert_eq!(corner.last().unwrap().1, [12.0, 0.0, 0.0]);
+    let half = 0.5f64.sqrt();
+    let middle = corner[corner.len() / 2 - 1].1;
+    assert!(
+        (middle[0] - 11.0 - half).abs() < 1e-9 && (middle[1] - 1.0 - half).abs() < 1e-9,
+        "{middle:?}"
+    );
+    let g451 = program.replace("G41", "G41 G451");
+    let mut expected = vec![
+        (L, [-10.0, 0.0, 0.0]),
+        (L, [0.0, 2.0, 0.0]),
+        (L, [12.0, 2.0, 0.0]),
+    ];
+    expected.extend(tail);
+    assert_path(&g451, 2.0, &expected);
+    let alarm = error("N10 DISC=150\nN20 M30\n", 5.0);
+    assert_eq!(alarm.code, AlarmCode::ValueOutOfRange);
 }
 
 /// Z moves while compensating are made where the tool centre stands: a plunge between two

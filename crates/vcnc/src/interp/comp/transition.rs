@@ -33,6 +33,9 @@ pub(crate) enum OuterCorner {
     TransitionCircle,
     /// SINUMERIK G451: the intersection of the compensated elements.
     Intersection,
+    /// SINUMERIK G450 with DISC 1 to 100: the transition circle flattened towards the
+    /// intersection, a conic ([`conic_corner`]).
+    Conic(u8),
 }
 
 /// How the tool reaches the contour at the start-up and leaves it at the cancel.
@@ -102,7 +105,76 @@ pub(crate) fn corner(
             });
         }
     }
-    Ok(circle_corner(oa.end(), ob.start(), a.end(), side))
+    let circle = circle_corner(oa.end(), ob.start(), a.end(), side);
+    Ok(match rule {
+        OuterCorner::Conic(disc) => conic_corner(
+            (oa.end(), a.end_tangent()),
+            (ob.start(), b.start_tangent()),
+            disc,
+        )
+        .unwrap_or(circle),
+        _ => circle,
+    })
+}
+
+/// G450 with DISC (seed 002 L7300-7340: 0 the circle, 100 the intersection of the
+/// equidistants, the curve in between "an ellipse, parabola or hyperbola"): the rational
+/// quadratic Bezier curve from `a` to `b` (points with their directions of travel) whose
+/// control point is where the two tangents meet. Its weight cos(turn / 2) is the transition
+/// circle itself; vcnc's choice for DISC: the curve's middle moves DISC/100 of the way from
+/// the circle's middle to the tangents' meeting point, the weight growing through 1 (the
+/// parabola) towards infinity (the two tangent lines). As straight pieces within 1 um of the
+/// curve; `None` where the tangents do not meet ahead (a reversal): the circle.
+fn conic_corner((a, ta): (V2, V2), (b, tb): (V2, V2), disc: u8) -> Option<Corner> {
+    let denominator = ta.cross(tb);
+    if denominator.abs() < 1e-9 {
+        return None;
+    }
+    let along_a = (b - a).cross(tb) / denominator;
+    let q = a + ta * along_a;
+    if along_a <= EPSILON || (b - q).dot(tb) <= EPSILON {
+        return None;
+    }
+    let circle = (1.0 + ta.dot(tb)).max(0.0).sqrt() / std::f64::consts::SQRT_2;
+    let middle = |w: f64| w / (1.0 + w);
+    let share = f64::from(disc.min(100)) / 100.0;
+    let f = middle(circle) + (1.0 - middle(circle)) * share;
+    if f >= 1.0 - 1e-12 {
+        return Some(Corner {
+            a_end: a,
+            links: vec![Link::Line(q), Link::Line(b)],
+        });
+    }
+    let w = f / (1.0 - f);
+    let at = |t: f64| {
+        let (s, u) = (1.0 - t, 2.0 * w * t * (1.0 - t));
+        (a * (s * s) + q * u + b * (t * t)) * (1.0 / (s * s + u + t * t))
+    };
+    let mut pieces = 2;
+    while pieces < 4096 {
+        let n = f64::from(pieces);
+        let worst = (0..pieces)
+            .map(|k| {
+                let (t0, t1) = (f64::from(k) / n, f64::from(k + 1) / n);
+                let chord = (at(t0) + at(t1)) * 0.5;
+                chord.distance(at((t0 + t1) / 2.0))
+            })
+            .fold(0.0, f64::max);
+        if worst < 1e-3 {
+            break;
+        }
+        pieces *= 2;
+    }
+    let links = (1..=pieces)
+        .map(|k| {
+            Link::Line(if k == pieces {
+                b
+            } else {
+                at(f64::from(k) / f64::from(pieces))
+            })
+        })
+        .collect();
+    Some(Corner { a_end: a, links })
 }
 
 /// The transition circle from `from` to `to` about the programmed corner `center`: it turns the
@@ -271,7 +343,8 @@ mod tests {
     fn rule() -> impl Strategy<Value = OuterCorner> {
         prop_oneof![
             Just(OuterCorner::TransitionCircle),
-            Just(OuterCorner::Intersection)
+            Just(OuterCorner::Intersection),
+            (1u8..=100).prop_map(OuterCorner::Conic),
         ]
     }
 
@@ -372,6 +445,30 @@ mod tests {
         let meet = corner(OuterCorner::Intersection, &a, &b, Side::Left, 2.0).unwrap();
         assert!(near(meet.a_end, (12.0, 2.0)));
         assert!(meet.links.is_empty());
+    }
+
+    /// DISC on the square corner above (tool left, r 2): the compensated ends (10,2) and
+    /// (12,0), their tangents meeting at (12,2). The circle's middle is (10,0) + 2 (0.70711,
+    /// 0.70711) = (11.41421,1.41421), 0.41421 of the way from the chord's middle (11,1) to
+    /// (12,2); DISC=50 takes the curve's middle half of the rest further: 0.70711 of the way,
+    /// (11.70711,1.70711); DISC=100 is the two tangent lines through (12,2).
+    #[test]
+    fn disc_flattens_the_transition_circle_towards_the_intersection() {
+        let a = line(p(0.0, 0.0), p(10.0, 0.0));
+        let b = line(p(10.0, 0.0), p(10.0, -10.0));
+        let middle = |disc: u8| {
+            let c = corner(OuterCorner::Conic(disc), &a, &b, Side::Left, 2.0).unwrap();
+            assert!(near(c.a_end, (10.0, 2.0)) && near(c.b_start(), (12.0, 0.0)));
+            // The pieces are a power of two: the middle one ends at t = 1/2.
+            c.links[c.links.len() / 2 - 1].to()
+        };
+        let half = 0.5f64.sqrt();
+        let circle = half / (1.0 + half);
+        let at = |f: f64| p(11.0 + f, 1.0 + f);
+        assert!((circle - (2f64.sqrt() - 1.0)).abs() < 1e-12);
+        assert!(middle(1).distance(at(circle + (1.0 - circle) / 100.0)) < 1e-9);
+        assert!(middle(50).distance(at(half)) < 1e-9);
+        assert!(near(middle(100), (12.0, 2.0)));
     }
 
     /// A reversal has no intersection: G451 takes the circle, a half turn round the corner.

@@ -82,6 +82,8 @@ pub(super) struct RadiusCompensation {
     approach: Approach,
     outer: OuterCorner,
     extension: Extension,
+    /// DISC: 0 the transition circle, up to 100 flattened towards the intersection.
+    disc: u8,
     /// OFFN: the contour offset added to the radius.
     offset: f64,
     /// CUTCONON programmed, and whether the kernel keeps the offset constant now.
@@ -106,6 +108,7 @@ impl Default for RadiusCompensation {
             // setting" at G462 (L7701-7703, L7751-7753) is read as G462 being the default
             // element of the extension.
             extension: Extension::None,
+            disc: 0,
             offset: 0.0,
             constant: false,
             kept: false,
@@ -183,16 +186,19 @@ pub(super) fn word(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Resul
             ))
         }
         ("OFFN", _) => front.radius_compensation.offset = value * unit,
-        // DISC=0 is the transition circle itself; higher values flatten it towards the
-        // intersection (seed 002 L7314-7320) along a curve the manual does not define.
-        (_, _) if value == 0.0 => {}
+        // DISC is an INT of 0 to 100 (seed 002 L7314-7320); a REAL is rounded as the
+        // language assigns it to an INT.
+        (_, _) if (-0.5..100.5).contains(&value) => {
+            front.radius_compensation.disc = value.round() as u8;
+        }
         (_, _) => {
             return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
+                AlarmCode::ValueOutOfRange,
                 word.span,
-                format!("DISC={value} is not run yet: vcnc makes the transition circle of DISC=0 at outer corners"),
-            )
-            .with_help("use DISC=0 (the transition circle) or G451 (the intersection)"))
+                format!(
+                "DISC={value} is out of range: 0 (the transition circle) to 100 (the intersection)"
+            ),
+            ))
         }
     }
     Ok(())
@@ -220,8 +226,12 @@ fn rules(front: &Sinumerik, kernel: &Kernel, plane: Plane) -> Rules {
         .iter()
         .filter_map(|&i| axes[i].as_ref().map(|axis| axis.rapid))
         .fold(f64::INFINITY, f64::min);
+    let state = &front.radius_compensation;
     Rules {
-        outer: front.radius_compensation.outer,
+        outer: match (state.outer, state.disc) {
+            (OuterCorner::TransitionCircle, disc @ 1..) => OuterCorner::Conic(disc),
+            (outer, _) => outer,
+        },
         approach: front.radius_compensation.approach,
         extension: front.radius_compensation.extension,
         alarm_help: ALARM_HELP,
