@@ -850,3 +850,21 @@ fn g141_to_g143_choose_the_approach_side() {
         Some((40.0, -16.0, vcnc::motion::ArcDirection::Clockwise))
     );
 }
+
+/// CDON's bottleneck detection (seed 002 L7796-7852), r 3, tool left: N30 runs +X at Y0, N40
+/// a major arc (292.6 degrees, radius sqrt(13) about (23,2)) round to (20,4), N50 back -X at
+/// Y4. Both corners turn right, outer for the tool (transition circles), so the neighbouring
+/// blocks never meet; but N50's compensated line, Y1, runs 1 from N30 two blocks back: the
+/// passage is 4 wide for a tool of 6. CDON stops there with the collision alarm; CDOF
+/// (power-on) checks neighbours only and runs.
+#[test]
+fn cdon_finds_a_bottleneck_two_blocks_back() {
+    let program = "N10 G0 X-10 Y10 T1 M6 D1\nN20 G1 F500 G41 CDON X0 Y0\nN30 X20\n\
+                   N40 G3 X20 Y4 I3 J2\nN50 G1 X0\nN60 G40 X-10 Y10\nM30\n";
+    let alarm = error(program, 3.0);
+    assert_eq!(alarm.code, AlarmCode::CutterCompensation);
+    assert!(alarm.message.contains("bottleneck"), "{}", alarm.message);
+    assert_eq!(alarm.span.map(|s| s.line), Some(5), "the alarm names N50");
+    let (_, alarms) = stream(&program.replace("CDON", "CDOF"), &with_tool(3.0));
+    assert!(alarms.iter().all(|a| !a.is_error()), "{alarms:#?}");
+}

@@ -182,6 +182,9 @@ pub(crate) enum GeometryError {
     Interference,
     /// An element of no length where a direction is needed.
     ZeroLength,
+    /// The compensated element comes within the tool radius of a programmed element before its
+    /// neighbour (SINUMERIK's bottleneck detection, CDON).
+    Bottleneck,
 }
 
 impl Element {
@@ -300,6 +303,28 @@ impl Element {
                 let tolerance = SPAN_TOLERANCE / start.distance(center).max(EPSILON);
                 let along = self.angle_along(point);
                 along <= self.sweep() + tolerance || tau - along < tolerance
+            }
+        }
+    }
+
+    /// The distance from `point` to the element, exactly: a point whose nearest point on an
+    /// arc's circle lies beyond the arc's ends is measured to the nearer end. (`spans` would
+    /// not do: a point 0.005 mm beyond an end counts as on the element there.)
+    pub(crate) fn distance(&self, point: V2) -> f64 {
+        match *self {
+            Element::Line { start, end } => {
+                let d = end - start;
+                let t = ((point - start).dot(d) / d.dot(d)).clamp(0.0, 1.0);
+                point.distance(start + d * t)
+            }
+            Element::Arc {
+                start, end, center, ..
+            } => {
+                if self.angle_along(point) <= self.sweep() {
+                    (point.distance(center) - start.distance(center)).abs()
+                } else {
+                    point.distance(start).min(point.distance(end))
+                }
             }
         }
     }

@@ -19,6 +19,8 @@
 //!   by the radius. G41/G42 in G02/G03 is refused by the caller (FANUC alarm 034).
 //! - Alarms: an arc smaller than the tool and interference stop the control before the pending
 //!   block moves; the caller drops what was held.
+pub(crate) mod bottleneck;
+mod ends;
 pub(crate) mod extension;
 pub(crate) mod geometry;
 pub(crate) mod polynomial;
@@ -84,6 +86,9 @@ pub(crate) struct Compensator {
     /// of that block along the plane's normal only, taken into it.
     retraction: Option<smooth::Approach>,
     retraction_moves: Option<Segment>,
+    /// The programmed elements emitted last, the newest last (SINUMERIK CDON checks against
+    /// them).
+    history: Vec<Element>,
     /// SINUMERIK G461/G462: the element after the pending one, whose corner with it has no
     /// intersection, kept until the next block shows whether it ends the contour.
     doubt: Option<Doubt>,
@@ -162,6 +167,7 @@ impl Compensator {
             retraction: None,
             retraction_moves: None,
             doubt: None,
+            history: Vec::new(),
         }
     }
 
@@ -538,6 +544,19 @@ impl Compensator {
         if !pending.start_up && geometry::interferes(&pending.element, pending.start, end) {
             return Err(self.alarm(GeometryError::Interference, &pending.segment));
         }
+        if !pending.start_up {
+            let before_neighbour = &self.history[..self.history.len().saturating_sub(1)];
+            let ends = (pending.start, end);
+            if self.rules.bottleneck
+                && bottleneck::cuts_into(&pending.element, ends, before_neighbour, self.radius)
+            {
+                return Err(self.alarm(GeometryError::Bottleneck, &pending.segment));
+            }
+            if self.history.len() == bottleneck::CHECKED_BLOCKS {
+                self.history.remove(0);
+            }
+            self.history.push(pending.element);
+        }
         let at = held.take().map_or(items.len(), |hold| hold + pending.place);
         let mut segment = pending.segment;
         if let Some(motion) = motion_mut(&mut segment) {
@@ -555,7 +574,7 @@ impl Compensator {
             ),
             (None, Some(tangent), Approach::Curve(continuity)) if pending.start_up => {
                 let arrival = (tangent, self.next_curvature);
-                curve_pieces(&segment, |ends| {
+                ends::curve_pieces(&segment, |ends| {
                     polynomial::approach(continuity, ends, self.axes, arrival)
                 })
             }
@@ -573,166 +592,6 @@ impl Compensator {
         items.splice(at..at, segments.into_iter().map(|s| Ok(s.into())));
         self.tool = end;
         Ok(at)
-    }
-
-    /// G461/G462 at the approach: the contour's first element is skipped, and the start-up
-    /// block, held before it, ends at `point` instead, where the next element starts.
-    fn skip_first(
-        &mut self,
-        pending: Pending,
-        point: V2,
-        items: &mut Vec<StreamItem>,
-        held: &mut Option<usize>,
-    ) {
-        let at = held.take().unwrap_or(items.len());
-        for later in items[at..].iter_mut() {
-            if let Some(motion) = segment_mut(later).and_then(motion_mut) {
-                for p in [&mut motion.from.0, &mut motion.to.0] {
-                    let here = plane_point(p, self.axes);
-                    if here == pending.start || here == pending.provisional {
-                        set_plane(p, self.axes, point);
-                    }
-                }
-            }
-        }
-        if let Some(skipped) = self.skipped(pending.segment, point) {
-            items.insert((at + pending.place).min(items.len()), Ok(skipped.into()));
-        }
-        self.tool = point;
-    }
-
-    /// A skipped element's move, standing at `point` in the plane: what it moves of the other
-    /// axes, or nothing.
-    fn skipped(&self, mut segment: Segment, point: V2) -> Option<Segment> {
-        let motion = motion_mut(&mut segment)?;
-        set_plane(&mut motion.from.0, self.axes, point);
-        set_plane(&mut motion.to.0, self.axes, point);
-        if motion.from == motion.to {
-            return None;
-        }
-        let motion = *motion;
-        segment.kind = match segment.kind {
-            SegmentKind::Arc { feed, .. } => SegmentKind::Line { motion, feed },
-            kind => kind,
-        };
-        Some(segment)
-    }
-
-    /// G461/G462 at the retraction: the element kept in doubt ends the contour. The pending
-    /// element ends where the doubtful one, produced beyond its end, meets it, and the doubtful
-    /// one is skipped. Without a G40 block, or without such a point, its alarm.
-    ///
-    /// # Errors
-    /// The kept alarm (SINUMERIK 10751); interference of the pending element.
-    fn resolve_doubt(
-        &mut self,
-        items: &mut Vec<StreamItem>,
-        held: &mut Option<usize>,
-    ) -> Result<(), Alarm> {
-        let Some(doubt) = self.doubt.take() else {
-            return Ok(());
-        };
-        let point = match &self.pending {
-            Some(pending) if self.cancelling => extension::extended_end(
-                self.rules.extension,
-                &pending.element,
-                &doubt.element,
-                (self.side, self.radius),
-            ),
-            _ => None,
-        };
-        let (Some(point), Some(pending)) = (point, self.pending.take()) else {
-            return Err(doubt.alarm);
-        };
-        let hold = held.unwrap_or(items.len());
-        let before = items.len();
-        self.emit(pending, point, items, held)?;
-        if let Some(skipped) = self.skipped(doubt.segment, point) {
-            let place = (hold + doubt.place + items.len() - before).min(items.len());
-            items.insert(place, Ok(skipped.into()));
-        }
-        Ok(())
-    }
-
-    /// The cancelling block's smooth retraction: the last element ends perpendicular to itself
-    /// (P4), and the block's `segment` (from there to its programmed end P0, at the contour's
-    /// level) becomes the retraction's moves. Without a segment (a block that moved nothing),
-    /// nothing but the end.
-    ///
-    /// # Errors
-    /// Interference at the last element's end.
-    fn retract_smoothly(
-        &mut self,
-        retraction: &smooth::Approach,
-        segment: Option<Segment>,
-        items: &mut Vec<StreamItem>,
-        held: &mut Option<usize>,
-    ) -> Result<(), Alarm> {
-        let last = self.pending.as_ref().map(|pending| {
-            let feed = match pending.segment.kind {
-                SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => Some(feed),
-                _ => None,
-            };
-            (pending.element.end_tangent(), feed)
-        });
-        self.finish(items, held)?;
-        let (Some(mut segment), Some((tangent, feed))) = (segment, last) else {
-            return Ok(());
-        };
-        let Some(motion) = motion_mut(&mut segment) else {
-            return Ok(());
-        };
-        set_plane(&mut motion.from.0, self.axes, self.tool);
-        let end = plane_point(&motion.to.0, self.axes);
-        let moves = smooth::retraction_moves(
-            retraction,
-            &segment,
-            (self.tool, tangent),
-            (self.side, self.radius),
-            self.plane(),
-            feed,
-        );
-        items.extend(moves.into_iter().map(|s| Ok(s.into())));
-        self.tool = end;
-        Ok(())
-    }
-
-    /// The cancelling block under KONTC or KONTT: the last element ends perpendicular to
-    /// itself, and the block leaves it on the polynomial to its programmed end.
-    ///
-    /// # Errors
-    /// Interference at the last element's end.
-    fn retract_on_curve(
-        &mut self,
-        continuity: polynomial::Continuity,
-        mut segment: Segment,
-        items: &mut Vec<StreamItem>,
-        held: &mut Option<usize>,
-    ) -> Result<(), Alarm> {
-        let last = self.pending.as_ref().map(|pending| {
-            let setting = (self.side, self.radius);
-            let element = pending.element;
-            let curvature = match element {
-                // The compensated arc's curvature is the same all along.
-                Element::Arc { .. } => polynomial::curvature(&element, setting),
-                Element::Line { .. } => 0.0,
-            };
-            (element.end_tangent(), curvature)
-        });
-        self.finish(items, held)?;
-        let Some(motion) = motion_mut(&mut segment) else {
-            return Ok(());
-        };
-        set_plane(&mut motion.from.0, self.axes, self.tool);
-        self.tool = plane_point(&motion.to.0, self.axes);
-        let moves = match last {
-            Some(leaving) => curve_pieces(&segment, |ends| {
-                polynomial::retraction(continuity, ends, self.axes, leaving)
-            }),
-            None => vec![segment],
-        };
-        items.extend(moves.into_iter().map(|s| Ok(s.into())));
-        Ok(())
     }
 
     /// The moves of an outer corner, as moves of the block that turns the corner.
@@ -946,35 +805,6 @@ fn motion_mut(segment: &mut Segment) -> Option<&mut crate::motion::Move> {
     }
 }
 
-/// The straight pieces of a curve that replaces `segment`, from its start to its end: `points`
-/// gives their ends from the segment's two ends.
-fn curve_pieces(
-    segment: &Segment,
-    points: impl FnOnce(([f64; AXES], [f64; AXES])) -> Vec<[f64; AXES]>,
-) -> Vec<Segment> {
-    let Some(motion) = segment.motion() else {
-        return vec![*segment];
-    };
-    let mut here = motion.from.0;
-    points((motion.from.0, motion.to.0))
-        .into_iter()
-        .map(|to| {
-            let mut piece = *motion;
-            piece.from = MachinePos(here);
-            piece.to = MachinePos(to);
-            here = to;
-            let kind = match segment.kind {
-                SegmentKind::Arc { feed, .. } => SegmentKind::Line {
-                    motion: piece,
-                    feed,
-                },
-                kind => with_motion(kind, piece),
-            };
-            Segment { kind, ..*segment }
-        })
-        .collect()
-}
-
 /// The segment `kind` (a rapid or a line) moving along `motion` instead.
 fn with_motion(kind: SegmentKind, motion: crate::motion::Move) -> SegmentKind {
     match kind {
@@ -996,6 +826,7 @@ fn geometry_alarm(error: GeometryError, segment: &Segment, help: &'static str) -
             "the compensated path would cut into the contour here (interference)".to_string()
         }
         GeometryError::ZeroLength => "a move of no length where compensation needs a direction".to_string(),
+        GeometryError::Bottleneck => "bottleneck: the compensated path comes within the tool radius of an earlier block".to_string(),
     };
     Alarm::error(AlarmCode::CutterCompensation, segment.span, message).with_help(help)
 }

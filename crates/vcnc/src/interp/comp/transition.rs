@@ -58,6 +58,9 @@ pub(crate) struct Rules {
     pub(crate) approach: Approach,
     /// Where an open contour's first or last element meets no neighbour (SINUMERIK G460-G462).
     pub(crate) extension: Extension,
+    /// SINUMERIK CDON: each compensated element checked against the programmed elements
+    /// before its neighbour (`bottleneck.rs`).
+    pub(crate) bottleneck: bool,
     /// The help line of the interference alarm, in the control's own terms.
     pub(crate) alarm_help: &'static str,
     /// The feed of a transition circle joining moves at rapid, mm/min: the plane axes' rapid
@@ -71,6 +74,7 @@ impl Rules {
         outer: OuterCorner::Fanuc,
         approach: Approach::Straight,
         extension: Extension::None,
+        bottleneck: false,
         alarm_help: "FANUC alarms 033/041: a smaller tool, a larger radius or another path",
         rapid_arc_feed: 0.0,
     };

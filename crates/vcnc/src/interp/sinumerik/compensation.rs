@@ -52,6 +52,8 @@ pub(super) enum RadiusFunction {
     /// G460, G461, G462: the approach and retraction where the contour's first or last element
     /// meets no neighbour.
     Extension(Extension),
+    /// CDON (true), CDOF or CDOF2: bottleneck detection beyond the neighbouring block.
+    Bottleneck(bool),
 }
 
 /// The smooth approach's words of a block (DISR, DISCL, FAD are non-modal).
@@ -82,6 +84,8 @@ pub(super) struct RadiusCompensation {
     approach: Approach,
     outer: OuterCorner,
     extension: Extension,
+    /// CDON in force (CDOF at power-on).
+    bottleneck: bool,
     /// DISC: 0 the transition circle, up to 100 flattened towards the intersection.
     disc: u8,
     /// OFFN: the contour offset added to the radius.
@@ -109,6 +113,7 @@ impl Default for RadiusCompensation {
             // element of the extension.
             extension: Extension::None,
             disc: 0,
+            bottleneck: false,
             offset: 0.0,
             constant: false,
             kept: false,
@@ -135,6 +140,7 @@ pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
         RadiusFunction::SmoothInPlane(in_plane) => state.smooth_in_plane = in_plane,
         RadiusFunction::SmoothSide(direction) => state.smooth_side = direction,
         RadiusFunction::Extension(extension) => state.extension = extension,
+        RadiusFunction::Bottleneck(on) => state.bottleneck = on,
     }
 }
 
@@ -234,6 +240,7 @@ fn rules(front: &Sinumerik, kernel: &Kernel, plane: Plane) -> Rules {
         },
         approach: front.radius_compensation.approach,
         extension: front.radius_compensation.extension,
+        bottleneck: front.radius_compensation.bottleneck,
         alarm_help: ALARM_HELP,
         rapid_arc_feed: if rapid.is_finite() { rapid } else { 10_000.0 },
     }
@@ -264,7 +271,7 @@ pub(super) fn before_motion(
             span,
             "G41 and G42 in a frame that tilts or unevenly scales the plane are not run yet",
         )
-        .with_help("vcnc compensates in a machine plane: turn the frame about the plane's normal only (CUT2DF, 3+2 work, is issue 22's)"));
+        .with_help("vcnc compensates in a machine plane, under CUT2D and CUT2DF alike: turn the frame about the plane's normal only"));
     }
     if matches!(state.approach, Approach::Curve(_))
         && moves

@@ -312,14 +312,19 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G142" => Radius(RadiusFunction::SmoothSide(Direction::Right)),
         "G143" => Radius(RadiusFunction::SmoothSide(Direction::Tangent)),
         "G460" => Radius(RadiusFunction::Extension(Extension::None)),
+        "CDON" => Radius(RadiusFunction::Bottleneck(true)),
+        // CDOF2 differs from CDOF in 3D circumferential milling only (seed 002 L7810-7815).
+        "CDOF" | "CDOF2" => Radius(RadiusFunction::Bottleneck(false)),
         "G461" => Radius(RadiusFunction::Extension(Extension::Circle)),
         "G462" => Radius(RadiusFunction::Extension(Extension::Line)),
         "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "BRISK" | "SOFT" | "DRIVE"
         | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF" | "COMPOF" | "COMPON"
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
-        | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF" | "CDON" | "CDOF2"
-        | "TRAFOOF" => State,
-        "G641" | "G642" | "G643" | "G644" | "G645" | "CUT2DF" | "FLIN" | "FCUB" => Planned,
+        | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "TRAFOOF"
+        // CUT2DF compensates in the frame's plane: with a frame that keeps the plane (the
+        // only kind vcnc compensates under) that is CUT2D's (seed 002 L7854-7928).
+        | "CUT2DF" => State,
+        "G641" | "G642" | "G643" | "G644" | "G645" | "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")

@@ -297,29 +297,9 @@ fn parallel_lines_in_opposite_directions_on_the_inside_do_not_meet() {
     assert!(result.is_empty());
 }
 
-/// Distance from a point to a programmed element (segment or arc piece), exactly: a point whose
-/// nearest point on the arc's circle lies beyond the arc's ends is measured to the nearer end.
-/// (`Element::spans` would not do here: it lets a corner point 0.005 mm past an end count as on
-/// the element, and a point just before an arc's start, at the radius from the start, then
-/// measured to the whole circle, came out nearer than the radius.)
+/// Distance from a point to a programmed element (segment or arc piece).
 pub(crate) fn distance_to(element: &Element, point: V2) -> f64 {
-    match *element {
-        Element::Line { start, end } => {
-            let d = end - start;
-            let t = ((point - start).dot(d) / d.dot(d)).clamp(0.0, 1.0);
-            point.distance(start + d * t)
-        }
-        Element::Arc { start, center, .. } => {
-            let radius = start.distance(center);
-            if element.angle_along(point) <= element.sweep() {
-                (point.distance(center) - radius).abs()
-            } else {
-                point
-                    .distance(element.start())
-                    .min(point.distance(element.end()))
-            }
-        }
-    }
+    element.distance(point)
 }
 
 pub(crate) fn direction() -> impl Strategy<Value = V2> {
