@@ -169,15 +169,24 @@ fn conic_corner((a, ta): (V2, V2), (b, tb): (V2, V2), disc: u8) -> Option<Corner
         }
         pieces *= 2;
     }
-    let links = (1..=pieces)
-        .map(|k| {
-            Link::Line(if k == pieces {
-                b
-            } else {
-                at(f64::from(k) / f64::from(pieces))
-            })
+    // The corners of the polygon round the curve, where the tangents at the pieces' ends
+    // meet: it never comes nearer the contour than the curve (chords would, by up to 1 um).
+    // The tangent at t joins the two points of the last de Casteljau step.
+    let tangent = |t: f64| {
+        let near = (a * (1.0 - t) + q * (w * t)) * (1.0 / (1.0 - t + w * t));
+        let far = (q * (w * (1.0 - t)) + b * t) * (1.0 / (w * (1.0 - t) + t));
+        (near, far - near)
+    };
+    let mut links: Vec<Link> = (0..pieces)
+        .filter_map(|k| {
+            let (p, u) = tangent(f64::from(k) / f64::from(pieces));
+            let (r, v) = tangent(f64::from(k + 1) / f64::from(pieces));
+            let denominator = u.cross(v);
+            (denominator.abs() > 1e-15)
+                .then(|| Link::Line(p + u * ((r - p).cross(v) / denominator)))
         })
         .collect();
+    links.push(Link::Line(b));
     Some(Corner { a_end: a, links })
 }
 
@@ -460,19 +469,33 @@ mod tests {
     fn disc_flattens_the_transition_circle_towards_the_intersection() {
         let a = line(p(0.0, 0.0), p(10.0, 0.0));
         let b = line(p(10.0, 0.0), p(10.0, -10.0));
-        let middle = |disc: u8| {
+        // How far the corner's polygon passes from `point`, and how near it comes to the
+        // programmed corner (10,0).
+        let passes = |disc: u8, point: V2| {
             let c = corner(OuterCorner::Conic(disc), &a, &b, Side::Left, 2.0).unwrap();
             assert!(near(c.a_end, (10.0, 2.0)) && near(c.b_start(), (12.0, 0.0)));
-            // The pieces are a power of two: the middle one ends at t = 1/2.
-            c.links[c.links.len() / 2 - 1].to()
+            let mut from = c.a_end;
+            let (mut off, mut nearest) = (f64::INFINITY, f64::INFINITY);
+            for link in &c.links {
+                let to = link.to();
+                let d = to - from;
+                let t = ((point - from).dot(d) / d.dot(d)).clamp(0.0, 1.0);
+                off = off.min(point.distance(from + d * t));
+                nearest = nearest.min(to.distance(p(10.0, 0.0)));
+                from = to;
+            }
+            (off, nearest)
         };
         let half = 0.5f64.sqrt();
         let circle = half / (1.0 + half);
         let at = |f: f64| p(11.0 + f, 1.0 + f);
         assert!((circle - (2f64.sqrt() - 1.0)).abs() < 1e-12);
-        assert!(middle(1).distance(at(circle + (1.0 - circle) / 100.0)) < 1e-9);
-        assert!(middle(50).distance(at(half)) < 1e-9);
-        assert!(near(middle(100), (12.0, 2.0)));
+        // The polygon runs round the curve within 1 um of it, never inside the circle.
+        for (disc, f) in [(1, circle + (1.0 - circle) / 100.0), (50, half), (100, 1.0)] {
+            let (off, nearest) = passes(disc, at(f));
+            assert!(off < 1e-3, "DISC={disc}: {off}");
+            assert!(nearest >= 2.0 - 1e-12, "DISC={disc}: {nearest}");
+        }
     }
 
     /// A reversal has no intersection: G451 takes the circle, a half turn round the corner.
