@@ -1,6 +1,6 @@
-//! SINUMERIK tool radius compensation (G40/G41/G42, NORM/KONT, G450/G451, OFFN): tool-centre
-//! paths worked out by hand in each test's comment (docs/SINUMERIK.md 11; sinumerik-part-b.md 2,
-//! seed 002 L6949-7396). Positions are machine coordinates X Y Z; the machine is the default
+//! SINUMERIK tool radius compensation (G40/G41/G42, NORM/KONT/KONTC/KONTT, G450/G451/DISC,
+//! OFFN, SAR, G460-G462, CDON, CUTCONON): tool-centre paths worked out by hand in each test's
+//! comment (docs/SINUMERIK.md 11; sinumerik-part-b.md 2, seed 002 L6949-7986). Positions are machine coordinates X Y Z; the machine is the default
 //! one on the 840D profile with tool 1 (D1, length 0) of the radius each test says.
 
 use vcnc::interp::sinumerik::run_str;

@@ -1,11 +1,13 @@
 //! SINUMERIK tool radius compensation (docs/SINUMERIK.md 11; sinumerik-part-b.md 2, seed 002
-//! L6949-7396): G40/G41/G42 with the edge's radius ($TC_DP6) and OFFN, NORM/KONT, G450/G451 and
-//! DISC, in the plane of G17/G18/G19.
+//! L6949-7986): G40/G41/G42 with the edge's radius ($TC_DP6) and OFFN, NORM/KONT/KONTC/KONTT,
+//! G450/G451 and DISC, the smooth approach and retraction (G140-G143, G147-G348, G340/G341,
+//! DISR, DISCL, FAD), G460-G462, CDON/CDOF/CDOF2, CUTCONON/CUTCONOF, in the plane of
+//! G17/G18/G19.
 //!
 //! The front end keeps the programmed functions; the kernel's compensator (`interp/comp`, the
 //! FANUC compensator's look-ahead stage) makes the tool-centre path under SINUMERIK's rules
-//! ([`Rules`]: transition circle or intersection at outer corners, KONT round the start and end
-//! point). A block's compensation is settled after its tool words and before its motion
+//! ([`Rules`]: transition circle, conic or intersection at outer corners, the approach round the
+//! start point or on a curve, the extension of a contour's short ends, bottleneck detection). A block's compensation is settled after its tool words and before its motion
 //! ([`before_motion`]), and a cancelling block's return onto the programmed point after it
 //! ([`after_motion`]).
 //!
