@@ -877,3 +877,21 @@ fn cdon_finds_a_bottleneck_two_blocks_back() {
     let (_, alarms) = stream(&program.replace("CDON", "CDOF"), &with_tool(3.0));
     assert!(alarms.iter().all(|a| !a.is_error()), "{alarms:#?}");
 }
+
+/// G462 and a smooth retraction together: b/56's N20 is skipped, N10 ends at (20,20) (see
+/// g461_and_g462_skip_a_last_element_too_short_for_the_tool), and with no last element left
+/// to leave tangentially the G248 block goes straight on to its end (50,50).
+#[test]
+fn a_smooth_retraction_after_a_skipped_last_element_goes_straight() {
+    let program = "T1 M6 D1 F1000\nG42 G462\nG1 X110 Y0\nN10 X0\nN20 Y10\n\
+                   N30 G40 G248 DISR=5 X50 Y50\nM30\n";
+    assert_path(
+        program,
+        20.0,
+        &[
+            (L, [110.0, 20.0, 0.0]),
+            (L, [20.0, 20.0, 0.0]),
+            (L, [50.0, 50.0, 0.0]),
+        ],
+    );
+}

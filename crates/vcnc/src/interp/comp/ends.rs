@@ -114,7 +114,7 @@ impl Compensator {
             (pending.element.end_tangent(), feed)
         });
         self.finish(items, held)?;
-        let (Some(mut segment), Some((tangent, feed))) = (segment, last) else {
+        let Some(mut segment) = segment else {
             return Ok(());
         };
         let Some(motion) = motion_mut(&mut segment) else {
@@ -122,14 +122,18 @@ impl Compensator {
         };
         set_plane(&mut motion.from.0, self.axes, self.tool);
         let end = plane_point(&motion.to.0, self.axes);
-        let moves = smooth::retraction_moves(
-            retraction,
-            &segment,
-            (self.tool, tangent),
-            (self.side, self.radius),
-            self.plane(),
-            feed,
-        );
+        // Without a last element (G461/G462 skipped it, or none came), straight to P0.
+        let moves = match last {
+            Some((tangent, feed)) => smooth::retraction_moves(
+                retraction,
+                &segment,
+                (self.tool, tangent),
+                (self.side, self.radius),
+                self.plane(),
+                feed,
+            ),
+            None => vec![segment],
+        };
         items.extend(moves.into_iter().map(|s| Ok(s.into())));
         self.tool = end;
         Ok(())
