@@ -19,7 +19,14 @@
 //!   by the radius. G41/G42 in G02/G03 is refused by the caller (FANUC alarm 034).
 //! - Alarms: an arc smaller than the tool and interference stop the control before the pending
 //!   block moves; the caller drops what was held.
+//!
+//! A dialect's rules come as data ([`Rules`], `transition.rs`). SINUMERIK's own parts: the
+//! smooth approach and retraction (`smooth.rs`), KONTC/KONTT curves (`polynomial.rs`), the
+//! extension of a contour's short ends (`extension.rs`), bottleneck detection
+//! (`bottleneck.rs`), and the compensator's methods for them: `ends.rs` (a contour's ends) and
+//! `constant.rs` (CUTCONON).
 pub(crate) mod bottleneck;
+mod constant;
 mod ends;
 pub(crate) mod extension;
 pub(crate) mod geometry;
@@ -413,77 +420,6 @@ impl Compensator {
         });
         self.started = true;
         Ok(())
-    }
-
-    /// A move under CUTCONON: as programmed, shifted by the offset kept.
-    fn push_shifted(&mut self, mut segment: Segment, shift: V2, items: &mut Vec<StreamItem>) {
-        if let Some(element) = self.element(&segment) {
-            self.suppressed = Some(element);
-            self.moved = true;
-            self.idle_blocks = 0;
-        }
-        let axes = self.axes;
-        let moved = |point: &mut [f64; AXES]| {
-            let p = plane_point(point, axes) + shift;
-            set_plane(point, axes, p);
-        };
-        if let SegmentKind::Arc { center, .. } = &mut segment.kind {
-            moved(&mut center.0);
-        }
-        if let Some(motion) = motion_mut(&mut segment) {
-            moved(&mut motion.from.0);
-            moved(&mut motion.to.0);
-            self.tool = plane_point(&motion.to.0, axes);
-        }
-        items.push(Ok(segment.into()));
-    }
-
-    /// How the tool centre goes from where it stands to `start`, the compensated start of
-    /// `element`, after an end perpendicular to the last element: straight, or after CUTCONON
-    /// with KONT round an outer corner on the circle about it (seed 002 L7960-7985).
-    fn rejoin(&mut self, element: &Element, start: V2) -> Link {
-        let Some(last) = self.suppressed.take() else {
-            return Link::Line(start);
-        };
-        let corner = element.start();
-        let outer = matches!(
-            geometry::turn(last.end_tangent(), element.start_tangent(), self.side),
-            geometry::Turn::Outer | geometry::Turn::SharpOuter
-        );
-        if self.rules.approach == Approach::AroundPoint
-            && outer
-            && (self.tool.distance(corner) - self.radius).abs() < 1e-6
-        {
-            Link::Arc {
-                to: start,
-                center: corner,
-                ccw: self.side == Side::Right,
-            }
-        } else {
-            Link::Line(start)
-        }
-    }
-
-    /// CUTCONON: the pending element ends perpendicular to itself, and the moves from here on
-    /// go as programmed, shifted by the tool centre's offset there from `programmed`, the
-    /// programmed point (plane axes).
-    ///
-    /// # Errors
-    /// Interference at the pending element's end.
-    pub(crate) fn keep_constant(
-        &mut self,
-        programmed: V2,
-        items: &mut Vec<StreamItem>,
-        held: &mut Option<usize>,
-    ) -> Result<(), Alarm> {
-        self.finish(items, held)?;
-        self.constant = Some(self.tool - programmed);
-        Ok(())
-    }
-
-    /// CUTCONOF: the next element is compensated again, joined from the shifted position.
-    pub(crate) fn release_constant(&mut self) {
-        self.constant = None;
     }
 
     /// The end of the pending element and the links to the next one's start, which is
