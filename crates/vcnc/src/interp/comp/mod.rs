@@ -350,9 +350,12 @@ impl Compensator {
         let start = match self.pending.take() {
             Some(pending) => match self.corner(&pending, &element, &segment, setting) {
                 Ok((a_end, links)) => {
+                    // G461/G462 may still move a start-up block of one straight move (not a
+                    // smooth approach, a curve or KONT's way round the start).
                     let keep = pending.start_up
                         && self.rules.extension != Extension::None
                         && self.smooth.is_none()
+                        && !matches!(self.rules.approach, Approach::Curve(_))
                         && links.is_empty();
                     let at = self.emit(pending, a_end, items, held)?;
                     start_up_at = keep.then_some(at);
