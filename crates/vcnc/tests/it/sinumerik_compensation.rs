@@ -895,3 +895,28 @@ fn a_smooth_retraction_after_a_skipped_last_element_goes_straight() {
         ],
     );
 }
+
+/// A smooth retraction block that moves only the plane's normal (seed 002 L7600-7610): the
+/// contour ends at P1, and as the block also deselects the compensation a move from P1 to P0,
+/// the uncompensated end point, follows. r 5, tool left of N40 (+X at Y0): P4 (30,5,0); the
+/// line r + DISR = 9 to P3 (39,5); G340 in space up to DISCL 3 above Z0, (39,5,3); up to N50's
+/// Z10; across to P0 (30,0,10); N60 on to (40,0,10).
+#[test]
+fn a_smooth_retraction_moving_only_the_normal_ends_uncompensated() {
+    let program = "N10 G0 X-20 Y0 Z10 T1 M6 D1\nN20 G1 Z0 F500\nN30 G41 X0 Y0\nN40 X30\n\
+                   N50 G40 G148 Z10 DISR=4 DISCL=3 F2000\nN60 X40\nM30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [-20.0, 0.0, 10.0]),
+            (L, [-20.0, 0.0, 0.0]),
+            (L, [0.0, 5.0, 0.0]),
+            (L, [30.0, 5.0, 0.0]),
+            (L, [39.0, 5.0, 3.0]),
+            (L, [39.0, 5.0, 10.0]),
+            (L, [30.0, 0.0, 10.0]),
+            (L, [40.0, 0.0, 10.0]),
+        ],
+    );
+}
