@@ -429,7 +429,6 @@ fn skipped_blocks_run_unless_their_level_is_on() {
 #[test]
 fn what_the_next_issue_adds_alarms_planned_with_its_number() {
     for (text, name) in [
-        ("G41 KONTC G1 X10 F100\nM30\n", "KONTC"),
         ("G641 ADIS=0.1\nM30\n", "G641"),
         // The standard cycles vcnc does not run yet (CYCLE81, POCKET3 ... run: sinumerik_cycles).
         ("CYCLE70(10,0,2,-5)\nM30\n", "CYCLE70"),

@@ -1,6 +1,6 @@
-//! SINUMERIK tool radius compensation (G40/G41/G42, NORM/KONT, G450/G451, OFFN): tool-centre
-//! paths worked out by hand in each test's comment (docs/SINUMERIK.md 11; sinumerik-part-b.md 2,
-//! seed 002 L6949-7396). Positions are machine coordinates X Y Z; the machine is the default
+//! SINUMERIK tool radius compensation (G40/G41/G42, NORM/KONT/KONTC/KONTT, G450/G451/DISC,
+//! OFFN, SAR, G460-G462, CDON, CUTCONON): tool-centre paths worked out by hand in each test's
+//! comment (docs/SINUMERIK.md 11; sinumerik-part-b.md 2, seed 002 L6949-7986). Positions are machine coordinates X Y Z; the machine is the default
 //! one on the 840D profile with tool 1 (D1, length 0) of the radius each test says.
 
 use vcnc::interp::sinumerik::run_str;
@@ -323,12 +323,56 @@ fn the_plane_cannot_change_while_compensating() {
     assert!(alarm.message.contains("plane"), "{alarm:?}");
 }
 
-/// DISC above 0 (a flattened transition curve the manual does not define) is refused by name.
+/// DISC flattens the transition circle towards the intersection (seed 002 L7300-7340): a
+/// square outer corner at (10,0), tool left, r 2. The compensated ends (10,2) and (12,0); with
+/// DISC=100 the curve is the two tangent lines through their meeting point (12,2), moves of
+/// N40 (the block after the corner); DISC=50 leaves (10,2) on a conic whose middle is
+/// (11.70711,1.70711) (0.70711 of the way from (11,1) to (12,2); the circle's is 0.41421),
+/// in straight pieces; under G451 DISC does nothing. Out of 0..100 it alarms.
 #[test]
-fn disc_above_zero_is_not_run_yet() {
-    let alarm = error("N10 DISC=50\nN20 M30\n", 5.0);
-    assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
-    assert!(alarm.message.contains("DISC"), "{alarm:?}");
+fn disc_flattens_the_transition_circle() {
+    let program = "N10 G0 X-10 Y0 T1 M6 D1\nN20 G1 F500 G41 DISC=100 X0 Y0\nN30 X10\nN40 Y-10\n\
+                   N50 G40 X20 Y-20\nM30\n";
+    let tail = [(L, [12.0, -10.0, 0.0]), (L, [20.0, -20.0, 0.0])];
+    let mut expected = vec![
+        (L, [-10.0, 0.0, 0.0]),
+        (L, [0.0, 2.0, 0.0]),
+        (L, [10.0, 2.0, 0.0]),
+        (L, [12.0, 2.0, 0.0]),
+        (L, [12.0, 0.0, 0.0]),
+    ];
+    expected.extend(tail);
+    assert_path(program, 2.0, &expected);
+    let (segments, _) = stream(&program.replace("DISC=100", "DISC=50"), &with_tool(2.0));
+    let path = ends(&segments);
+    let corner = &path[3..path.len() - 2];
+    assert!(corner.len() > 8, "{corner:?}");
+    assert_eq!(corner.last().unwrap().1, [12.0, 0.0, 0.0]);
+    // The pieces run round the curve (their corners where its tangents meet), within 1 um:
+    // one passes that near the curve's middle.
+    let half = 0.5f64.sqrt();
+    let middle = (11.0 + half, 1.0 + half);
+    let off = corner
+        .windows(2)
+        .map(|w| {
+            let (p, q) = ((w[0].1[0], w[0].1[1]), (w[1].1[0], w[1].1[1]));
+            let d = (q.0 - p.0, q.1 - p.1);
+            let t = (((middle.0 - p.0) * d.0 + (middle.1 - p.1) * d.1) / (d.0 * d.0 + d.1 * d.1))
+                .clamp(0.0, 1.0);
+            (middle.0 - p.0 - d.0 * t).hypot(middle.1 - p.1 - d.1 * t)
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(off < 1e-3, "{off} {corner:?}");
+    let g451 = program.replace("G41", "G41 G451");
+    let mut expected = vec![
+        (L, [-10.0, 0.0, 0.0]),
+        (L, [0.0, 2.0, 0.0]),
+        (L, [12.0, 2.0, 0.0]),
+    ];
+    expected.extend(tail);
+    assert_path(&g451, 2.0, &expected);
+    let alarm = error("N10 DISC=150\nN20 M30\n", 5.0);
+    assert_eq!(alarm.code, AlarmCode::ValueOutOfRange);
 }
 
 /// Z moves while compensating are made where the tool centre stands: a plunge between two
@@ -494,4 +538,385 @@ fn a_smooth_approach_without_starting_compensation_is_not_run_yet() {
     );
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
     assert!(alarm.message.contains("G247"), "{alarm:?}");
+}
+
+/// Example 2 of 10.4.2 (seed 002 L7720-7730, examples/sinumerik-b/57), G42 r 10, G461: N60
+/// (-Y from (50,5) to (50,0), compensated X40) is shorter than the tool needs before N70 (-X,
+/// compensated Y10): the lines meet at (40,10), 5 beyond N60's start. G461 produces N60 back by
+/// the circle of 10 about its start (50,5), which meets Y10 at X = 50 - sqrt(100 - 25) =
+/// 41.33975: the approach N50 ends there and N60 is skipped. N70 ends at (30,10); the outer
+/// corner at (30,0) (G450) goes round to (30,0) + 10 (-0.44721,0.89443) = (25.52786,8.94427),
+/// the right normal of N80's direction (-0.89443,-0.44721); N80 ends perpendicular, at
+/// (20,-5) + the same normal * 10 = (15.52786,3.94427), and N90 G40 goes to (0,0).
+#[test]
+fn g461_skips_a_first_element_too_short_for_the_tool() {
+    let program = "N30 X0 Y0 F10000 T1 M6 D1\nN40 Y20\nN50 G42 X50 Y5 G461\nN60 Y0 F600\n\
+                   N70 X30\nN80 X20 Y-5\nN90 X0 Y0 G40\nN100 M30\n";
+    let tail = [
+        (L, [30.0, 10.0, 0.0]),
+        (A, [25.52786, 8.94427, 0.0]),
+        (L, [15.52786, 3.94427, 0.0]),
+        (L, [0.0, 0.0, 0.0]),
+    ];
+    let expected = |x: f64| {
+        let mut path = vec![(L, [0.0, 20.0, 0.0]), (L, [x, 10.0, 0.0])];
+        path.extend(tail);
+        path
+    };
+    assert_path(program, 10.0, &expected(50.0 - 75f64.sqrt()));
+    // G462 produces N60's compensated line X40 back (+Y) instead: it meets Y10 at (40,10).
+    assert_path(&program.replace("G461", "G462"), 10.0, &expected(40.0));
+    // G460 (power-on): the collision alarm (SINUMERIK 10751).
+    let alarm = error(&program.replace("G461", "G460"), 10.0);
+    assert_eq!(alarm.code, AlarmCode::CutterCompensation);
+    assert!(alarm.help.as_deref().is_some_and(|h| h.contains("10751")));
+}
+
+/// Example 1 of 10.4.2 (seed 002 L7712-7718, examples/sinumerik-b/56), G42 r 20: N10 runs -X
+/// at Y0 (compensated Y20), N20 +Y from (0,0) to (0,10) (compensated X20), their compensated
+/// lines meet at (20,20), 10 beyond N20's end; N30 G40 goes to (50,50).
+/// - G461: the circle of 20 about N20's end (0,10) meets Y20 at X = sqrt(400 - 100) =
+///   17.32051: N10 ends there, N20 is skipped, N30 leaves from there.
+/// - G462: N20's compensated line X20 produced beyond its end meets Y20 at (20,20). N20's Z
+///   move (written here) is made where the tool centre stands.
+#[test]
+fn g461_and_g462_skip_a_last_element_too_short_for_the_tool() {
+    let program = "T1 M6 D1 F1000\nG42 G461\nG1 X110 Y0\nN10 X0\nN20 Y10\nN30 G40 X50 Y50\nM30\n";
+    assert_path(
+        program,
+        20.0,
+        &[
+            (L, [110.0, 20.0, 0.0]),
+            (L, [300f64.sqrt(), 20.0, 0.0]),
+            (L, [50.0, 50.0, 0.0]),
+        ],
+    );
+    let program = program.replace("G461", "G462").replace("Y10", "Y10 Z-3");
+    assert_path(
+        &program,
+        20.0,
+        &[
+            (L, [110.0, 20.0, 0.0]),
+            (L, [20.0, 20.0, 0.0]),
+            (L, [20.0, 20.0, -3.0]),
+            (L, [50.0, 50.0, -3.0]),
+        ],
+    );
+}
+
+/// G461 helps only at the contour's ends: the same short N20 with the contour going on after
+/// it (N25 +X) is the collision alarm.
+#[test]
+fn g461_inside_the_contour_is_still_the_collision_alarm() {
+    let program =
+        "T1 M6 D1 F1000\nG42 G461\nG1 X110 Y0\nN10 X0\nN20 Y10\nN25 X50\nN30 G40 X50 Y50\nM30\n";
+    let alarm = error(program, 20.0);
+    assert_eq!(alarm.code, AlarmCode::CutterCompensation);
+    assert_eq!(alarm.span.map(|s| s.line), Some(5), "the alarm names N20");
+}
+
+/// The feeds of the moves at a feed, mm/min, in order (rapids left out).
+fn feeds(segments: &[Segment]) -> Vec<f64> {
+    segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => match feed {
+                vcnc::motion::Feed::PerMinute(f) => Some(f),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect()
+}
+
+/// The manual's SAR example (seed 002 L7458-7503, examples/sinumerik-b/53): r 10 + OFFN 5 =
+/// 15, tool left. Approach (G247 G341): rapid over P3 (20,15), down to DISCL=AC(7), FAD 200 to
+/// Z0, the quarter circle about (30,15) to (30,5) at F1500; N40 to (40,5,2), N50 to (50,5,2)
+/// (P4 of the retraction, +X). Retraction (G248 G340, DISR 5, DISCL 6): the quarter circle for
+/// the tool centre leaves (50,5) along +X and turns left about (50,5) + 5 (0,1) = (50,10) to
+/// (55,10), rising in space from the contour's Z2 to Z2 + 6 = Z8 (a helix) at the last block's
+/// F1500; then up to N60's Z20 and across to P0 (70,0) at N60's F10000; N70 to (80,0).
+#[test]
+fn g248_leaves_on_a_quarter_circle_rising_to_the_clearance() {
+    let program = "N10 G0 X0 Y0 Z20 D1 T1 M6 OFFN=5\n\
+                   N20 G41 G247 G341 Z0 DISCL=AC(7) DISR=10 F1500 FAD=200\n\
+                   N30 G1 X30 Y-10\nN40 X40 Z2\nN50 X50\n\
+                   N60 G248 G340 X70 Y0 Z20 DISCL=6 DISR=5 G40 F10000\nN70 X80 Y0\nN80 M30\n";
+    assert_path(
+        program,
+        10.0,
+        &[
+            (L, [0.0, 0.0, 20.0]),
+            (L, [20.0, 15.0, 20.0]),
+            (L, [20.0, 15.0, 7.0]),
+            (L, [20.0, 15.0, 0.0]),
+            (A, [30.0, 5.0, 0.0]),
+            (L, [40.0, 5.0, 2.0]),
+            (L, [50.0, 5.0, 2.0]),
+            (A, [55.0, 10.0, 8.0]),
+            (L, [55.0, 10.0, 20.0]),
+            (L, [70.0, 0.0, 20.0]),
+            (L, [80.0, 0.0, 20.0]),
+        ],
+    );
+    let (segments, _) = stream(program, &with_tool(10.0));
+    assert_eq!(
+        feeds(&segments),
+        [200.0, 1500.0, 1500.0, 1500.0, 1500.0, 10000.0, 10000.0, 10000.0]
+    );
+}
+
+/// G148 with G341, r 5, tool left of N40 (+X at Y0): P4 = (30,5). The line is r + DISR = 5 +
+/// 4 = 9 long along +X: P3 (39,5) at the contour's Z0, at N40's F500; up at FAD 200 to DISCL
+/// 3 above Z0 (towards P0's Z10); up to Z10 and across to P0 (50,20) at N50's F2000.
+#[test]
+fn g148_leaves_on_a_line_then_rises_at_fad() {
+    let program = "N10 G0 X-20 Y0 Z10 T1 M6 D1\nN20 G1 Z0 F500\nN30 G41 X0 Y0\nN40 X30\n\
+                   N50 G40 G148 G341 X50 Y20 Z10 DISR=4 DISCL=3 FAD=200 F2000\nM30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [-20.0, 0.0, 10.0]),
+            (L, [-20.0, 0.0, 0.0]),
+            (L, [0.0, 5.0, 0.0]),
+            (L, [30.0, 5.0, 0.0]),
+            (L, [39.0, 5.0, 0.0]),
+            (L, [39.0, 5.0, 3.0]),
+            (L, [39.0, 5.0, 10.0]),
+            (L, [50.0, 20.0, 10.0]),
+        ],
+    );
+    let (segments, _) = stream(program, &with_tool(5.0));
+    assert_eq!(
+        feeds(&segments),
+        [500.0, 500.0, 500.0, 500.0, 200.0, 2000.0, 2000.0]
+    );
+}
+
+/// G348 with G42, r 5: N40 (+X at Y0) ends at P4 (30,-5); the half circle of DISR 6 for the
+/// tool centre turns right (clockwise) about (30,-5) + 6 (0,-1) = (30,-11) to (30,-17); no
+/// DISCL: the rest in the plane, straight to P0 (30,-30).
+#[test]
+fn g348_leaves_on_a_half_circle_to_the_tools_side() {
+    let program =
+        "N10 G0 X-20 Y0 T1 M6 D1\nN20 G1 F500\nN30 G42 X0 Y0\nN40 X30\nN50 G40 G348 X30 Y-30 DISR=6\nM30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [-20.0, 0.0, 0.0]),
+            (L, [0.0, -5.0, 0.0]),
+            (L, [30.0, -5.0, 0.0]),
+            (A, [30.0, -17.0, 0.0]),
+            (L, [30.0, -30.0, 0.0]),
+        ],
+    );
+    let (segments, _) = stream(program, &with_tool(5.0));
+    let centre = segments.iter().find_map(|s| match s.kind {
+        SegmentKind::Arc {
+            center, direction, ..
+        } => Some((center.0[0], center.0[1], direction)),
+        _ => None,
+    });
+    assert_eq!(
+        centre,
+        Some((30.0, -11.0, vcnc::motion::ArcDirection::Clockwise))
+    );
+}
+
+/// A smooth retraction needs the G40 in its own block.
+#[test]
+fn a_smooth_retraction_without_g40_is_not_run_yet() {
+    let program = "N10 G0 X-20 Y0 T1 M6 D1\nN20 G1 F500\nN30 G41 X0 Y0\nN40 X30\nN50 G248 X50 Y20 DISR=4\nM30\n";
+    let alarm = error(program, 5.0);
+    assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
+    assert!(alarm.message.contains("G248"), "{}", alarm.message);
+}
+
+/// The manual's KONTC example (seed 002 L7222-7229, examples/sinumerik-b/51): a full circle of
+/// 70 about the origin, clockwise, tool left (outside, r 10): the tool centre runs on the
+/// circle of 80, starting at (80,0) heading -Y, its curvature -1/80. The approach from
+/// (0,0,60) is a curve in straight pieces (within 1 um) ending at (80,0,0) with that tangent
+/// and curvature, Z coming to rest there; the circle; the retraction the same backwards, to
+/// (0,0,60). KONTT meets the same point and tangent.
+#[test]
+fn kontc_joins_the_circle_with_its_tangent_and_curvature() {
+    let program = "N10 G1 X0 Y0 Z60 T1 M6 D1 F10000\nN20 G41 KONTC X70 Y0 Z0\nN30 G2 I-70\n\
+                   N40 G40 G1 X0 Y0 Z60\nN50 M30\n";
+    for continuity in ["KONTC", "KONTT"] {
+        let program = program.replace("KONTC", continuity);
+        let (segments, alarms) = stream(&program, &with_tool(10.0));
+        assert!(alarms.is_empty(), "{alarms:#?}");
+        let path = ends(&segments);
+        let circle = path.iter().position(|(kind, _)| *kind == A).unwrap();
+        assert_eq!(path.iter().filter(|(kind, _)| *kind == A).count(), 1);
+        let at = |i: usize| path[i].1;
+        assert_eq!(
+            at(circle),
+            [80.0, 0.0, 0.0],
+            "{continuity}: the full circle"
+        );
+        assert_eq!(
+            at(circle - 1),
+            [80.0, 0.0, 0.0],
+            "{continuity}: the approach's end"
+        );
+        assert_eq!(*at(path.len() - 1).first().unwrap(), 0.0);
+        assert_eq!(at(path.len() - 1), [0.0, 0.0, 60.0]);
+        // The approach's last piece heads -Y (its chord turned from the tangent by half the
+        // curve's turn along it), Z at rest (KONTT: Z' is 0 at the end, so the last of n
+        // pieces falls 60 / n^2 there).
+        let (q, r) = (at(circle - 2), at(circle - 1));
+        let d = ((r[0] - q[0]), (r[1] - q[1]));
+        let length = d.0.hypot(d.1);
+        assert!(
+            d.0.abs() / length < 1e-2 && d.1 < 0.0,
+            "{continuity}: {d:?}"
+        );
+        assert!((r[2] - q[2]).abs() < 2e-3, "{continuity}: {q:?} {r:?}");
+        let first = at(circle + 1);
+        assert!(
+            (first[0] - 80.0).abs() < 0.05 && first[1] < 0.0,
+            "{first:?}"
+        );
+        // Z falls from 60 to 0 without turning back.
+        assert!(path[..circle]
+            .windows(2)
+            .all(|w| w[1].1[2] <= w[0].1[2] + 1e-9));
+    }
+}
+
+/// KONTC and KONTT replace a G1 block only (seed 002 L7207-7208).
+#[test]
+fn kontc_from_a_rapid_alarms() {
+    let program = "N10 G0 X0 Y0 Z60 T1 M6 D1 F1000\nN20 G41 KONTC X70 Y0 Z0\nN30 G2 I-70\nM30\n";
+    let alarm = error(program, 10.0);
+    assert_eq!(alarm.code, AlarmCode::CutterCompensation);
+    assert!(alarm.message.contains("G1"), "{}", alarm.message);
+}
+
+/// G141-G143 choose the side of the approach contour (seed 002 L7421-7432). b/55's approach
+/// (G41 r 7, G247 G341, DISR 13): P4 (40,-3) heading +X. G140 and G141 take the left: the
+/// quarter circle about (40,10) from (27,10), counter-clockwise. G142 takes the right: about
+/// (40,-3) + 13 (0,-1) = (40,-16), from (27,-16), clockwise. G143 takes the side of the
+/// tangent at P4 that P0 lies on: from (0,0) (3 above the tangent Y-3) the left; from
+/// (0,-20) the right.
+#[test]
+fn g141_to_g143_choose_the_approach_side() {
+    let program = |side: &str, start: &str| {
+        format!(
+            "N10 G90 G0 {start} Z20 T1 M6 D1\nN20 G41 G341 G247 {side} DISCL=AC(5) DISR=13 \
+             FAD=500 X40 Y-10 Z=0 F200\nN30 X50\nM30\n"
+        )
+    };
+    let path = |p3: (f64, f64), start: (f64, f64)| {
+        vec![
+            (L, [start.0, start.1, 20.0]),
+            (L, [p3.0, p3.1, 20.0]),
+            (L, [p3.0, p3.1, 5.0]),
+            (L, [p3.0, p3.1, 0.0]),
+            (A, [40.0, -3.0, 0.0]),
+            (L, [50.0, -3.0, 0.0]),
+        ]
+    };
+    let origin = "X0 Y0";
+    let below = "X0 Y-20";
+    assert_path(
+        &program("G140", origin),
+        7.0,
+        &path((27.0, 10.0), (0.0, 0.0)),
+    );
+    assert_path(
+        &program("G141", origin),
+        7.0,
+        &path((27.0, 10.0), (0.0, 0.0)),
+    );
+    assert_path(
+        &program("G142", origin),
+        7.0,
+        &path((27.0, -16.0), (0.0, 0.0)),
+    );
+    assert_path(
+        &program("G143", origin),
+        7.0,
+        &path((27.0, 10.0), (0.0, 0.0)),
+    );
+    assert_path(
+        &program("G143", below),
+        7.0,
+        &path((27.0, -16.0), (0.0, -20.0)),
+    );
+    let (segments, _) = stream(&program("G142", origin), &with_tool(7.0));
+    let arc = segments.iter().find_map(|s| match s.kind {
+        SegmentKind::Arc {
+            center, direction, ..
+        } => Some((center.0[0], center.0[1], direction)),
+        _ => None,
+    });
+    assert_eq!(
+        arc,
+        Some((40.0, -16.0, vcnc::motion::ArcDirection::Clockwise))
+    );
+}
+
+/// CDON's bottleneck detection (seed 002 L7796-7852), r 3, tool left: N30 runs +X at Y0, N40
+/// a major arc (292.6 degrees, radius sqrt(13) about (23,2)) round to (20,4), N50 back -X at
+/// Y4. Both corners turn right, outer for the tool (transition circles), so the neighbouring
+/// blocks never meet; but N50's compensated line, Y1, runs 1 from N30 two blocks back: the
+/// passage is 4 wide for a tool of 6. CDON stops there with the collision alarm; CDOF
+/// (power-on) checks neighbours only and runs.
+#[test]
+fn cdon_finds_a_bottleneck_two_blocks_back() {
+    let program = "N10 G0 X-10 Y10 T1 M6 D1\nN20 G1 F500 G41 CDON X0 Y0\nN30 X20\n\
+                   N40 G3 X20 Y4 I3 J2\nN50 G1 X0\nN60 G40 X-10 Y10\nM30\n";
+    let alarm = error(program, 3.0);
+    assert_eq!(alarm.code, AlarmCode::CutterCompensation);
+    assert!(alarm.message.contains("bottleneck"), "{}", alarm.message);
+    assert_eq!(alarm.span.map(|s| s.line), Some(5), "the alarm names N50");
+    let (_, alarms) = stream(&program.replace("CDON", "CDOF"), &with_tool(3.0));
+    assert!(alarms.iter().all(|a| !a.is_error()), "{alarms:#?}");
+}
+
+/// G462 and a smooth retraction together: b/56's N20 is skipped, N10 ends at (20,20) (see
+/// g461_and_g462_skip_a_last_element_too_short_for_the_tool), and with no last element left
+/// to leave tangentially the G248 block goes straight on to its end (50,50).
+#[test]
+fn a_smooth_retraction_after_a_skipped_last_element_goes_straight() {
+    let program = "T1 M6 D1 F1000\nG42 G462\nG1 X110 Y0\nN10 X0\nN20 Y10\n\
+                   N30 G40 G248 DISR=5 X50 Y50\nM30\n";
+    assert_path(
+        program,
+        20.0,
+        &[
+            (L, [110.0, 20.0, 0.0]),
+            (L, [20.0, 20.0, 0.0]),
+            (L, [50.0, 50.0, 0.0]),
+        ],
+    );
+}
+
+/// A smooth retraction block that moves only the plane's normal (seed 002 L7600-7610): the
+/// contour ends at P1, and as the block also deselects the compensation a move from P1 to P0,
+/// the uncompensated end point, follows. r 5, tool left of N40 (+X at Y0): P4 (30,5,0); the
+/// line r + DISR = 9 to P3 (39,5); G340 in space up to DISCL 3 above Z0, (39,5,3); up to N50's
+/// Z10; across to P0 (30,0,10); N60 on to (40,0,10).
+#[test]
+fn a_smooth_retraction_moving_only_the_normal_ends_uncompensated() {
+    let program = "N10 G0 X-20 Y0 Z10 T1 M6 D1\nN20 G1 Z0 F500\nN30 G41 X0 Y0\nN40 X30\n\
+                   N50 G40 G148 Z10 DISR=4 DISCL=3 F2000\nN60 X40\nM30\n";
+    assert_path(
+        program,
+        5.0,
+        &[
+            (L, [-20.0, 0.0, 10.0]),
+            (L, [-20.0, 0.0, 0.0]),
+            (L, [0.0, 5.0, 0.0]),
+            (L, [30.0, 5.0, 0.0]),
+            (L, [39.0, 5.0, 3.0]),
+            (L, [39.0, 5.0, 10.0]),
+            (L, [30.0, 0.0, 10.0]),
+            (L, [40.0, 0.0, 10.0]),
+        ],
+    );
 }

@@ -125,6 +125,14 @@ impl Side {
         }
     }
 
+    /// The side opposite.
+    pub(crate) fn other(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    }
+
     /// The unit normal on this side of a travel direction `tangent` (a unit vector).
     pub(crate) fn normal(self, tangent: V2) -> V2 {
         match self {
@@ -174,6 +182,9 @@ pub(crate) enum GeometryError {
     Interference,
     /// An element of no length where a direction is needed.
     ZeroLength,
+    /// The compensated element comes within the tool radius of a programmed element before its
+    /// neighbour (SINUMERIK's bottleneck detection, CDON).
+    Bottleneck,
 }
 
 impl Element {
@@ -278,7 +289,7 @@ impl Element {
 
     /// True when `point` (on the element's line or circle) lies between its ends, or at most
     /// [`SPAN_TOLERANCE`] beyond one.
-    fn spans(&self, point: V2) -> bool {
+    pub(crate) fn spans(&self, point: V2) -> bool {
         match *self {
             Element::Line { start, end } => {
                 let d = end - start;
@@ -287,29 +298,64 @@ impl Element {
                 let margin = SPAN_TOLERANCE / length;
                 (-margin..=1.0 + margin).contains(&t)
             }
-            Element::Arc {
-                start,
-                end,
-                center,
-                ccw,
-            } => {
-                let angle = |v: V2| v.y.atan2(v.x);
+            Element::Arc { start, center, .. } => {
                 let tau = std::f64::consts::TAU;
-                // Counter-clockwise angle from `from` to `to`, in [0, tau).
-                let sweep = |from: f64, to: f64| (to - from).rem_euclid(tau);
-                let (a0, a1, a) = (
-                    angle(start - center),
-                    angle(end - center),
-                    angle(point - center),
-                );
-                let full = start.distance(end) < EPSILON;
                 let tolerance = SPAN_TOLERANCE / start.distance(center).max(EPSILON);
-                full || if ccw {
-                    sweep(a0, a) <= sweep(a0, a1) + tolerance || sweep(a, a0) < tolerance
+                let along = self.angle_along(point);
+                along <= self.sweep() + tolerance || tau - along < tolerance
+            }
+        }
+    }
+
+    /// The distance from `point` to the element, exactly: a point whose nearest point on an
+    /// arc's circle lies beyond the arc's ends is measured to the nearer end. (`spans` would
+    /// not do: a point 0.005 mm beyond an end counts as on the element there.)
+    pub(crate) fn distance(&self, point: V2) -> f64 {
+        match *self {
+            Element::Line { start, end } => {
+                let d = end - start;
+                let t = ((point - start).dot(d) / d.dot(d)).clamp(0.0, 1.0);
+                point.distance(start + d * t)
+            }
+            Element::Arc {
+                start, end, center, ..
+            } => {
+                if self.angle_along(point) <= self.sweep() {
+                    (point.distance(center) - start.distance(center)).abs()
                 } else {
-                    sweep(a, a0) <= sweep(a1, a0) + tolerance || sweep(a0, a) < tolerance
+                    point.distance(start).min(point.distance(end))
                 }
             }
+        }
+    }
+
+    /// The angle an arc turns from its start to `point`'s direction from its centre, in its
+    /// own direction, in [0, tau); 0 for a line.
+    pub(crate) fn angle_along(&self, point: V2) -> f64 {
+        let Element::Arc {
+            start, center, ccw, ..
+        } = *self
+        else {
+            return 0.0;
+        };
+        let angle = |v: V2| v.y.atan2(v.x);
+        let tau = std::f64::consts::TAU;
+        let turned = (angle(point - center) - angle(start - center)).rem_euclid(tau);
+        if ccw {
+            turned
+        } else {
+            (tau - turned).rem_euclid(tau)
+        }
+    }
+
+    /// The angle an arc sweeps (tau for a full circle); 0 for a line.
+    pub(crate) fn sweep(&self) -> f64 {
+        match *self {
+            Element::Line { .. } => 0.0,
+            Element::Arc { start, end, .. } if start.distance(end) < EPSILON => {
+                std::f64::consts::TAU
+            }
+            Element::Arc { end, .. } => self.angle_along(end),
         }
     }
 }

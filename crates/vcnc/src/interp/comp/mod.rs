@@ -19,7 +19,18 @@
 //!   by the radius. G41/G42 in G02/G03 is refused by the caller (FANUC alarm 034).
 //! - Alarms: an arc smaller than the tool and interference stop the control before the pending
 //!   block moves; the caller drops what was held.
+//!
+//! A dialect's rules come as data ([`Rules`], `transition.rs`). SINUMERIK's own parts: the
+//! smooth approach and retraction (`smooth.rs`), KONTC/KONTT curves (`polynomial.rs`), the
+//! extension of a contour's short ends (`extension.rs`), bottleneck detection
+//! (`bottleneck.rs`), and the compensator's methods for them: `ends.rs` (a contour's ends) and
+//! `constant.rs` (CUTCONON).
+pub(crate) mod bottleneck;
+mod constant;
+mod ends;
+pub(crate) mod extension;
 pub(crate) mod geometry;
+pub(crate) mod polynomial;
 pub(crate) mod smooth;
 pub(crate) mod transition;
 
@@ -28,6 +39,7 @@ use crate::machine::AXES;
 use crate::motion::{
     ArcDirection, Feed, Item, MachinePos, Plane, Segment, SegmentKind, StreamItem,
 };
+use extension::Extension;
 use geometry::{Element, GeometryError, Link, Side, V2};
 use transition::{Approach, Rules};
 
@@ -75,6 +87,28 @@ pub(crate) struct Compensator {
     smooth: Option<smooth::Approach>,
     absorbed: Option<[f64; AXES]>,
     next_tangent: Option<V2>,
+    /// The first element's compensated curvature where it starts (KONTC).
+    next_curvature: f64,
+    /// SINUMERIK's smooth retraction of the cancelling block (G148, G248, G348), and the moves
+    /// of that block along the plane's normal only, taken into it.
+    retraction: Option<smooth::Approach>,
+    retraction_moves: Option<Segment>,
+    /// The programmed elements emitted last, the newest last (SINUMERIK CDON checks against
+    /// them).
+    history: Vec<Element>,
+    /// SINUMERIK G461/G462: the element after the pending one, whose corner with it has no
+    /// intersection, kept until the next block shows whether it ends the contour.
+    doubt: Option<Doubt>,
+}
+
+/// An element whose corner with the pending one cannot be made, and the alarm it raises unless
+/// the contour ends with it (`place`: its segment's place in the queue, after the hold).
+#[derive(Clone, Debug)]
+struct Doubt {
+    element: Element,
+    segment: Segment,
+    alarm: Alarm,
+    place: usize,
 }
 
 #[derive(Clone, Debug)]
@@ -90,6 +124,10 @@ struct Pending {
     start_up: bool,
     /// The plane position used meanwhile by moves of other axes: the perpendicular end.
     provisional: V2,
+    /// The contour's first element, the start-up block held before it (SINUMERIK G461/G462 may
+    /// still move the start-up's end), and its place in the queue after the hold.
+    first: bool,
+    place: usize,
 }
 
 fn plane_point(p: &[f64; AXES], (a, b): (usize, usize)) -> V2 {
@@ -132,12 +170,22 @@ impl Compensator {
             smooth: None,
             absorbed: None,
             next_tangent: None,
+            next_curvature: 0.0,
+            retraction: None,
+            retraction_moves: None,
+            doubt: None,
+            history: Vec::new(),
         }
     }
 
-    /// The start-up block approaches the contour smoothly (SINUMERIK's G147, G247, G347).
+    /// The start-up block approaches the contour smoothly (SINUMERIK's G147, G247, G347), or
+    /// the cancelling block leaves it so (G148, G248, G348).
     pub(crate) fn approach_smoothly(&mut self, approach: smooth::Approach) {
-        self.smooth = Some(approach);
+        if self.cancelling {
+            self.retraction = Some(approach);
+        } else {
+            self.smooth = Some(approach);
+        }
     }
 
     /// The same compensation under a dialect's `rules`.
@@ -213,6 +261,14 @@ impl Compensator {
             return Ok(());
         }
         let Some(element) = self.element(&segment) else {
+            if self.cancelling && self.retraction.is_some() {
+                // The smooth retraction's block moves only along the normal: its end is P0.
+                let taken = self.retraction_moves.get_or_insert(segment);
+                if let (Some(all), Some(this)) = (motion_mut(taken), segment.motion()) {
+                    all.to = this.to;
+                }
+                return Ok(());
+            }
             if self.smooth.is_some() && !self.started {
                 // Before a smooth approach: the move only sets the level the contour starts at.
                 if let Some(motion) = segment.motion() {
@@ -243,6 +299,13 @@ impl Compensator {
         self.moved = true;
         if self.cancelling {
             // The G40 block: from the tool centre to the programmed end.
+            self.resolve_doubt(items, held)?;
+            if let Some(retraction) = self.retraction.take() {
+                return self.retract_smoothly(&retraction, Some(segment), items, held);
+            }
+            if let Approach::Curve(continuity) = self.rules.approach {
+                return self.retract_on_curve(continuity, segment, items, held);
+            }
             self.retract(&element, &segment, items, held)?;
             let mut segment = segment;
             if let Some(motion) = motion_mut(&mut segment) {
@@ -277,15 +340,59 @@ impl Compensator {
         {
             motion.from = MachinePos(from);
         }
+        if let Some(doubt) = self.doubt.take() {
+            // The element that met no intersection does not end the contour.
+            return Err(doubt.alarm);
+        }
         self.next_tangent = Some(element.start_tangent());
+        self.next_curvature = polynomial::curvature(&element, setting);
+        let mut start_up_at = None;
         let start = match self.pending.take() {
-            Some(pending) => {
-                let (a_end, links) = self.corner(&pending, &element, &segment, setting)?;
-                self.emit(pending, a_end, items, held)?;
-                (self.side, self.radius) = setting;
-                self.links(a_end, &links, &segment, items);
-                self.tool
-            }
+            Some(pending) => match self.corner(&pending, &element, &segment, setting) {
+                Ok((a_end, links)) => {
+                    // G461/G462 may still move a start-up block of one straight move (not a
+                    // smooth approach, a curve or KONT's way round the start).
+                    let keep = pending.start_up
+                        && self.rules.extension != Extension::None
+                        && self.smooth.is_none()
+                        && !matches!(self.rules.approach, Approach::Curve(_))
+                        && links.is_empty();
+                    let at = self.emit(pending, a_end, items, held)?;
+                    start_up_at = keep.then_some(at);
+                    (self.side, self.radius) = setting;
+                    self.links(a_end, &links, &segment, items);
+                    self.tool
+                }
+                Err(alarm) if self.rules.extension == Extension::None || pending.start_up => {
+                    return Err(alarm)
+                }
+                Err(alarm) => {
+                    // The first element skipped (the approach), or else perhaps the last one
+                    // (the retraction, once the next block tells).
+                    let skip_to = pending.first.then(|| {
+                        let rule = self.rules.extension;
+                        extension::extended_start(rule, &pending.element, &element, setting)
+                    });
+                    if let Some(point) = skip_to.flatten() {
+                        self.skip_first(pending, point, items, held);
+                        (self.side, self.radius) = setting;
+                        point
+                    } else {
+                        let place = items.len() - held.unwrap_or(items.len());
+                        self.pending = Some(pending);
+                        self.doubt = Some(Doubt {
+                            element,
+                            segment,
+                            alarm,
+                            place,
+                        });
+                        if setting != (self.side, self.radius) {
+                            self.next = Some(setting);
+                        }
+                        return Ok(());
+                    }
+                }
+            },
             None if start_up => {
                 (self.side, self.radius) = setting;
                 self.tool
@@ -302,87 +409,20 @@ impl Compensator {
         };
         let provisional = geometry::perpendicular_end(&element, self.side, self.radius);
         debug_assert!(held.is_none(), "one pending element at a time");
-        *held = Some(items.len());
+        // The start-up block stays held while the first element's end is unknown.
+        let hold = start_up_at.unwrap_or(items.len());
+        *held = Some(hold);
         self.pending = Some(Pending {
             element,
             start,
             segment,
             start_up,
             provisional,
+            first: start_up_at.is_some(),
+            place: items.len() - hold,
         });
         self.started = true;
         Ok(())
-    }
-
-    /// A move under CUTCONON: as programmed, shifted by the offset kept.
-    fn push_shifted(&mut self, mut segment: Segment, shift: V2, items: &mut Vec<StreamItem>) {
-        if let Some(element) = self.element(&segment) {
-            self.suppressed = Some(element);
-            self.moved = true;
-            self.idle_blocks = 0;
-        }
-        let axes = self.axes;
-        let moved = |point: &mut [f64; AXES]| {
-            let p = plane_point(point, axes) + shift;
-            set_plane(point, axes, p);
-        };
-        if let SegmentKind::Arc { center, .. } = &mut segment.kind {
-            moved(&mut center.0);
-        }
-        if let Some(motion) = motion_mut(&mut segment) {
-            moved(&mut motion.from.0);
-            moved(&mut motion.to.0);
-            self.tool = plane_point(&motion.to.0, axes);
-        }
-        items.push(Ok(segment.into()));
-    }
-
-    /// How the tool centre goes from where it stands to `start`, the compensated start of
-    /// `element`, after an end perpendicular to the last element: straight, or after CUTCONON
-    /// with KONT round an outer corner on the circle about it (seed 002 L7960-7985).
-    fn rejoin(&mut self, element: &Element, start: V2) -> Link {
-        let Some(last) = self.suppressed.take() else {
-            return Link::Line(start);
-        };
-        let corner = element.start();
-        let outer = matches!(
-            geometry::turn(last.end_tangent(), element.start_tangent(), self.side),
-            geometry::Turn::Outer | geometry::Turn::SharpOuter
-        );
-        if self.rules.approach == Approach::AroundPoint
-            && outer
-            && (self.tool.distance(corner) - self.radius).abs() < 1e-6
-        {
-            Link::Arc {
-                to: start,
-                center: corner,
-                ccw: self.side == Side::Right,
-            }
-        } else {
-            Link::Line(start)
-        }
-    }
-
-    /// CUTCONON: the pending element ends perpendicular to itself, and the moves from here on
-    /// go as programmed, shifted by the tool centre's offset there from `programmed`, the
-    /// programmed point (plane axes).
-    ///
-    /// # Errors
-    /// Interference at the pending element's end.
-    pub(crate) fn keep_constant(
-        &mut self,
-        programmed: V2,
-        items: &mut Vec<StreamItem>,
-        held: &mut Option<usize>,
-    ) -> Result<(), Alarm> {
-        self.finish(items, held)?;
-        self.constant = Some(self.tool - programmed);
-        Ok(())
-    }
-
-    /// CUTCONOF: the next element is compensated again, joined from the shifted position.
-    pub(crate) fn release_constant(&mut self) {
-        self.constant = None;
     }
 
     /// The end of the pending element and the links to the next one's start, which is
@@ -428,7 +468,8 @@ impl Compensator {
     }
 
     /// Writes the pending element's compensated segment at its place in the queue, ending at
-    /// `end`, and moves what was held after it from the provisional point to `end`.
+    /// `end`, and moves what was held after it from the provisional point to `end`; returns
+    /// that place.
     ///
     /// # Errors
     /// Interference: the compensated element would run against the programmed one.
@@ -438,25 +479,44 @@ impl Compensator {
         end: V2,
         items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
-    ) -> Result<(), Alarm> {
+    ) -> Result<usize, Alarm> {
         if !pending.start_up && geometry::interferes(&pending.element, pending.start, end) {
             return Err(self.alarm(GeometryError::Interference, &pending.segment));
         }
-        let at = held.take().unwrap_or(items.len());
+        if !pending.start_up {
+            let before_neighbour = &self.history[..self.history.len().saturating_sub(1)];
+            let ends = (pending.start, end);
+            if self.rules.bottleneck
+                && bottleneck::cuts_into(&pending.element, ends, before_neighbour, self.radius)
+            {
+                return Err(self.alarm(GeometryError::Bottleneck, &pending.segment));
+            }
+            if self.history.len() == bottleneck::CHECKED_BLOCKS {
+                self.history.remove(0);
+            }
+            self.history.push(pending.element);
+        }
+        let at = held.take().map_or(items.len(), |hold| hold + pending.place);
         let mut segment = pending.segment;
         if let Some(motion) = motion_mut(&mut segment) {
             set_plane(&mut motion.from.0, self.axes, pending.start);
             set_plane(&mut motion.to.0, self.axes, end);
         }
         let smooth = self.smooth.take().filter(|_| pending.start_up);
-        let segments = match (smooth, self.next_tangent) {
-            (Some(approach), Some(tangent)) => smooth::approach_moves(
+        let segments = match (smooth, self.next_tangent, self.rules.approach) {
+            (Some(approach), Some(tangent), _) => smooth::approach_moves(
                 &approach,
                 &segment,
                 (end, tangent),
                 (self.side, self.radius),
                 self.plane(),
             ),
+            (None, Some(tangent), Approach::Curve(continuity)) if pending.start_up => {
+                let arrival = (tangent, self.next_curvature);
+                ends::curve_pieces(&segment, |ends| {
+                    polynomial::approach(continuity, ends, self.axes, arrival)
+                })
+            }
             _ => vec![segment],
         };
         for later in items[at..].iter_mut() {
@@ -470,7 +530,7 @@ impl Compensator {
         }
         items.splice(at..at, segments.into_iter().map(|s| Ok(s.into())));
         self.tool = end;
-        Ok(())
+        Ok(at)
     }
 
     /// The moves of an outer corner, as moves of the block that turns the corner.
@@ -546,7 +606,7 @@ impl Compensator {
             return self.finish(items, held);
         };
         let pending = self.pending.take().expect("matched above");
-        self.emit(pending, corner.a_end, items, held)?;
+        let _ = self.emit(pending, corner.a_end, items, held)?;
         let a_end = corner.a_end;
         self.links(a_end, &corner.links, segment, items);
         Ok(())
@@ -586,10 +646,15 @@ impl Compensator {
         items: &mut Vec<StreamItem>,
         held: &mut Option<usize>,
     ) -> Result<(), Alarm> {
+        self.resolve_doubt(items, held)?;
+        if let Some(retraction) = self.retraction.take().filter(|_| self.cancelling) {
+            let moves = self.retraction_moves.take();
+            return self.retract_smoothly(&retraction, moves, items, held);
+        }
         match self.pending.take() {
             Some(pending) => {
                 let end = pending.provisional;
-                self.emit(pending, end, items, held)
+                self.emit(pending, end, items, held).map(|_| ())
             }
             None => Ok(()),
         }
@@ -700,6 +765,7 @@ fn geometry_alarm(error: GeometryError, segment: &Segment, help: &'static str) -
             "the compensated path would cut into the contour here (interference)".to_string()
         }
         GeometryError::ZeroLength => "a move of no length where compensation needs a direction".to_string(),
+        GeometryError::Bottleneck => "bottleneck: the compensated path comes within the tool radius of an earlier block".to_string(),
     };
     Alarm::error(AlarmCode::CutterCompensation, segment.span, message).with_help(help)
 }

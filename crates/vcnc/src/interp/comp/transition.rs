@@ -17,10 +17,12 @@
 //!   round it (G450) or to where that line meets the first compensated element (G451); the
 //!   retraction is the same in reverse. A tool in front of the contour goes as with NORM.
 
+use super::extension::Extension;
 use super::geometry::{
     intersections, nearest, perpendicular_end, start_up_end, turn, Corner, Element, GeometryError,
     Link, Side, Turn, EPSILON, V2,
 };
+use super::polynomial::Continuity;
 
 /// How the tool centre goes round an outer corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,6 +33,9 @@ pub(crate) enum OuterCorner {
     TransitionCircle,
     /// SINUMERIK G451: the intersection of the compensated elements.
     Intersection,
+    /// SINUMERIK G450 with DISC 1 to 100: the transition circle flattened towards the
+    /// intersection, a conic ([`conic_corner`]).
+    Conic(u8),
 }
 
 /// How the tool reaches the contour at the start-up and leaves it at the cancel.
@@ -41,6 +46,9 @@ pub(crate) enum Approach {
     Straight,
     /// SINUMERIK KONT: round the start or end point when the tool is behind the contour.
     AroundPoint,
+    /// SINUMERIK KONTT, KONTC: a polynomial joining the contour with its tangent (and
+    /// curvature), `polynomial.rs`.
+    Curve(Continuity),
 }
 
 /// The rules of a dialect's compensation.
@@ -48,6 +56,11 @@ pub(crate) enum Approach {
 pub(crate) struct Rules {
     pub(crate) outer: OuterCorner,
     pub(crate) approach: Approach,
+    /// Where an open contour's first or last element meets no neighbour (SINUMERIK G460-G462).
+    pub(crate) extension: Extension,
+    /// SINUMERIK CDON: each compensated element checked against the programmed elements
+    /// before its neighbour (`bottleneck.rs`).
+    pub(crate) bottleneck: bool,
     /// The help line of the interference alarm, in the control's own terms.
     pub(crate) alarm_help: &'static str,
     /// The feed of a transition circle joining moves at rapid, mm/min: the plane axes' rapid
@@ -60,6 +73,8 @@ impl Rules {
     pub(crate) const FANUC: Rules = Rules {
         outer: OuterCorner::Fanuc,
         approach: Approach::Straight,
+        extension: Extension::None,
+        bottleneck: false,
         alarm_help: "FANUC alarms 033/041: a smaller tool, a larger radius or another path",
         rapid_arc_feed: 0.0,
     };
@@ -94,7 +109,85 @@ pub(crate) fn corner(
             });
         }
     }
-    Ok(circle_corner(oa.end(), ob.start(), a.end(), side))
+    let circle = circle_corner(oa.end(), ob.start(), a.end(), side);
+    Ok(match rule {
+        OuterCorner::Conic(disc) => conic_corner(
+            (oa.end(), a.end_tangent()),
+            (ob.start(), b.start_tangent()),
+            disc,
+        )
+        .unwrap_or(circle),
+        _ => circle,
+    })
+}
+
+/// G450 with DISC (seed 002 L7300-7340: 0 the circle, 100 the intersection of the
+/// equidistants, the curve in between "an ellipse, parabola or hyperbola"): the rational
+/// quadratic Bezier curve from `a` to `b` (points with their directions of travel) whose
+/// control point is where the two tangents meet. Its weight cos(turn / 2) is the transition
+/// circle itself; vcnc's choice for DISC: the curve's middle moves DISC/100 of the way from
+/// the circle's middle to the tangents' meeting point, the weight growing through 1 (the
+/// parabola) towards infinity (the two tangent lines). As straight pieces within 1 um of the
+/// curve; `None` where the tangents do not meet ahead (a reversal): the circle.
+fn conic_corner((a, ta): (V2, V2), (b, tb): (V2, V2), disc: u8) -> Option<Corner> {
+    let denominator = ta.cross(tb);
+    if denominator.abs() < 1e-9 {
+        return None;
+    }
+    let along_a = (b - a).cross(tb) / denominator;
+    let q = a + ta * along_a;
+    if along_a <= EPSILON || (b - q).dot(tb) <= EPSILON {
+        return None;
+    }
+    let circle = (1.0 + ta.dot(tb)).max(0.0).sqrt() / std::f64::consts::SQRT_2;
+    let middle = |w: f64| w / (1.0 + w);
+    let share = f64::from(disc.min(100)) / 100.0;
+    let f = middle(circle) + (1.0 - middle(circle)) * share;
+    if f >= 1.0 - 1e-12 {
+        return Some(Corner {
+            a_end: a,
+            links: vec![Link::Line(q), Link::Line(b)],
+        });
+    }
+    let w = f / (1.0 - f);
+    let at = |t: f64| {
+        let (s, u) = (1.0 - t, 2.0 * w * t * (1.0 - t));
+        (a * (s * s) + q * u + b * (t * t)) * (1.0 / (s * s + u + t * t))
+    };
+    let mut pieces = 2;
+    while pieces < 4096 {
+        let n = f64::from(pieces);
+        let worst = (0..pieces)
+            .map(|k| {
+                let (t0, t1) = (f64::from(k) / n, f64::from(k + 1) / n);
+                let chord = (at(t0) + at(t1)) * 0.5;
+                chord.distance(at((t0 + t1) / 2.0))
+            })
+            .fold(0.0, f64::max);
+        if worst < 1e-3 {
+            break;
+        }
+        pieces *= 2;
+    }
+    // The corners of the polygon round the curve, where the tangents at the pieces' ends
+    // meet: it never comes nearer the contour than the curve (chords would, by up to 1 um).
+    // The tangent at t joins the two points of the last de Casteljau step.
+    let tangent = |t: f64| {
+        let near = (a * (1.0 - t) + q * (w * t)) * (1.0 / (1.0 - t + w * t));
+        let far = (q * (w * (1.0 - t)) + b * t) * (1.0 / (w * (1.0 - t) + t));
+        (near, far - near)
+    };
+    let mut links: Vec<Link> = (0..pieces)
+        .filter_map(|k| {
+            let (p, u) = tangent(f64::from(k) / f64::from(pieces));
+            let (r, v) = tangent(f64::from(k + 1) / f64::from(pieces));
+            let denominator = u.cross(v);
+            (denominator.abs() > 1e-15)
+                .then(|| Link::Line(p + u * ((r - p).cross(v) / denominator)))
+        })
+        .collect();
+    links.push(Link::Line(b));
+    Some(Corner { a_end: a, links })
 }
 
 /// The transition circle from `from` to `to` about the programmed corner `center`: it turns the
@@ -263,7 +356,8 @@ mod tests {
     fn rule() -> impl Strategy<Value = OuterCorner> {
         prop_oneof![
             Just(OuterCorner::TransitionCircle),
-            Just(OuterCorner::Intersection)
+            Just(OuterCorner::Intersection),
+            (1u8..=100).prop_map(OuterCorner::Conic),
         ]
     }
 
@@ -306,7 +400,7 @@ mod tests {
         /// A line into an arc or an arc into a line under G450 or G451: the corner's points keep
         /// at least the radius from both programmed elements.
         #[test]
-        #[ignore = "open bug (issue 22): a line into a CCW arc of R10, 1.5 degrees from tangent, G41 G450, r 0.5, brings a transition-circle point within the radius of the arc (proptest-regressions/interp/comp/transition.txt)"]
+
         fn line_arc_corners_keep_the_radius(
             u in direction(),
             start_angle in 0.0f64..std::f64::consts::TAU,
@@ -364,6 +458,44 @@ mod tests {
         let meet = corner(OuterCorner::Intersection, &a, &b, Side::Left, 2.0).unwrap();
         assert!(near(meet.a_end, (12.0, 2.0)));
         assert!(meet.links.is_empty());
+    }
+
+    /// DISC on the square corner above (tool left, r 2): the compensated ends (10,2) and
+    /// (12,0), their tangents meeting at (12,2). The circle's middle is (10,0) + 2 (0.70711,
+    /// 0.70711) = (11.41421,1.41421), 0.41421 of the way from the chord's middle (11,1) to
+    /// (12,2); DISC=50 takes the curve's middle half of the rest further: 0.70711 of the way,
+    /// (11.70711,1.70711); DISC=100 is the two tangent lines through (12,2).
+    #[test]
+    fn disc_flattens_the_transition_circle_towards_the_intersection() {
+        let a = line(p(0.0, 0.0), p(10.0, 0.0));
+        let b = line(p(10.0, 0.0), p(10.0, -10.0));
+        // How far the corner's polygon passes from `point`, and how near it comes to the
+        // programmed corner (10,0).
+        let passes = |disc: u8, point: V2| {
+            let c = corner(OuterCorner::Conic(disc), &a, &b, Side::Left, 2.0).unwrap();
+            assert!(near(c.a_end, (10.0, 2.0)) && near(c.b_start(), (12.0, 0.0)));
+            let mut from = c.a_end;
+            let (mut off, mut nearest) = (f64::INFINITY, f64::INFINITY);
+            for link in &c.links {
+                let to = link.to();
+                let d = to - from;
+                let t = ((point - from).dot(d) / d.dot(d)).clamp(0.0, 1.0);
+                off = off.min(point.distance(from + d * t));
+                nearest = nearest.min(to.distance(p(10.0, 0.0)));
+                from = to;
+            }
+            (off, nearest)
+        };
+        let half = 0.5f64.sqrt();
+        let circle = half / (1.0 + half);
+        let at = |f: f64| p(11.0 + f, 1.0 + f);
+        assert!((circle - (2f64.sqrt() - 1.0)).abs() < 1e-12);
+        // The polygon runs round the curve within 1 um of it, never inside the circle.
+        for (disc, f) in [(1, circle + (1.0 - circle) / 100.0), (50, half), (100, 1.0)] {
+            let (off, nearest) = passes(disc, at(f));
+            assert!(off < 1e-3, "DISC={disc}: {off}");
+            assert!(nearest >= 2.0 - 1e-12, "DISC={disc}: {nearest}");
+        }
     }
 
     /// A reversal has no intersection: G451 takes the circle, a half turn round the corner.

@@ -1,11 +1,13 @@
 //! SINUMERIK tool radius compensation (docs/SINUMERIK.md 11; sinumerik-part-b.md 2, seed 002
-//! L6949-7396): G40/G41/G42 with the edge's radius ($TC_DP6) and OFFN, NORM/KONT, G450/G451 and
-//! DISC, in the plane of G17/G18/G19.
+//! L6949-7986): G40/G41/G42 with the edge's radius ($TC_DP6) and OFFN, NORM/KONT/KONTC/KONTT,
+//! G450/G451 and DISC, the smooth approach and retraction (G140-G143, G147-G348, G340/G341,
+//! DISR, DISCL, FAD), G460-G462, CDON/CDOF/CDOF2, CUTCONON/CUTCONOF, in the plane of
+//! G17/G18/G19.
 //!
 //! The front end keeps the programmed functions; the kernel's compensator (`interp/comp`, the
 //! FANUC compensator's look-ahead stage) makes the tool-centre path under SINUMERIK's rules
-//! ([`Rules`]: transition circle or intersection at outer corners, KONT round the start and end
-//! point). A block's compensation is settled after its tool words and before its motion
+//! ([`Rules`]: transition circle, conic or intersection at outer corners, the approach round the
+//! start point or on a curve, the extension of a contour's short ends, bottleneck detection). A block's compensation is settled after its tool words and before its motion
 //! ([`before_motion`]), and a cancelling block's return onto the programmed point after it
 //! ([`after_motion`]).
 //!
@@ -15,6 +17,7 @@
 use super::gcodes::Motion;
 use super::Sinumerik;
 use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::comp::extension::Extension;
 use crate::interp::comp::geometry::Side;
 use crate::interp::comp::smooth::{self, Clearance, Shape};
 use crate::interp::comp::transition::{Approach, OuterCorner, Rules};
@@ -42,16 +45,24 @@ pub(super) enum RadiusFunction {
     Constant(bool),
     /// G147, G247, G347: a smooth approach in this block.
     Smooth(Shape),
+    /// G148, G248, G348: a smooth retraction in this block.
+    Retreat(Shape),
     /// G341 (true) or G340: the smooth approach's infeed first, or in space.
     SmoothInPlane(bool),
-    /// G140: the approach from the compensation's side, what vcnc does.
-    SmoothSide,
+    /// G140-G143: the side the approach and retraction contour lies on.
+    SmoothSide(smooth::Direction),
+    /// G460, G461, G462: the approach and retraction where the contour's first or last element
+    /// meets no neighbour.
+    Extension(Extension),
+    /// CDON (true), CDOF or CDOF2: bottleneck detection beyond the neighbouring block.
+    Bottleneck(bool),
 }
 
 /// The smooth approach's words of a block (DISR, DISCL, FAD are non-modal).
 #[derive(Clone, Copy, Debug, Default)]
 struct SmoothWords {
     shape: Option<Shape>,
+    retreat: Option<Shape>,
     distance: Option<f64>,
     /// DISCL, with true for `AC(..)`.
     clearance: Option<(f64, bool)>,
@@ -74,6 +85,11 @@ pub(super) struct RadiusCompensation {
     left: Option<bool>,
     approach: Approach,
     outer: OuterCorner,
+    extension: Extension,
+    /// CDON in force (CDOF at power-on).
+    bottleneck: bool,
+    /// DISC: 0 the transition circle, up to 100 flattened towards the intersection.
+    disc: u8,
     /// OFFN: the contour offset added to the radius.
     offset: f64,
     /// CUTCONON programmed, and whether the kernel keeps the offset constant now.
@@ -81,6 +97,7 @@ pub(super) struct RadiusCompensation {
     kept: bool,
     /// G341 in force (G340 at power-on).
     smooth_in_plane: bool,
+    smooth_side: smooth::Direction,
     smooth: SmoothWords,
     /// While compensating: its plane, and the side and radius the kernel has.
     on: Option<(Plane, (Side, f64))>,
@@ -93,10 +110,17 @@ impl Default for RadiusCompensation {
             left: None,
             approach: Approach::Straight,
             outer: OuterCorner::TransitionCircle,
+            // G460 is group 48's power-on member in the G-group table; the text's "initial
+            // setting" at G462 (L7701-7703, L7751-7753) is read as G462 being the default
+            // element of the extension.
+            extension: Extension::None,
+            disc: 0,
+            bottleneck: false,
             offset: 0.0,
             constant: false,
             kept: false,
             smooth_in_plane: false,
+            smooth_side: smooth::Direction::Compensation,
             smooth: SmoothWords::default(),
             on: None,
         }
@@ -114,8 +138,11 @@ pub(super) fn select(front: &mut Sinumerik, function: RadiusFunction) {
         RadiusFunction::Outer(outer) => state.outer = outer,
         RadiusFunction::Constant(constant) => state.constant = constant,
         RadiusFunction::Smooth(shape) => state.smooth.shape = Some(shape),
+        RadiusFunction::Retreat(shape) => state.smooth.retreat = Some(shape),
         RadiusFunction::SmoothInPlane(in_plane) => state.smooth_in_plane = in_plane,
-        RadiusFunction::SmoothSide => {}
+        RadiusFunction::SmoothSide(direction) => state.smooth_side = direction,
+        RadiusFunction::Extension(extension) => state.extension = extension,
+        RadiusFunction::Bottleneck(on) => state.bottleneck = on,
     }
 }
 
@@ -167,16 +194,19 @@ pub(super) fn word(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Resul
             ))
         }
         ("OFFN", _) => front.radius_compensation.offset = value * unit,
-        // DISC=0 is the transition circle itself; higher values flatten it towards the
-        // intersection (seed 002 L7314-7320) along a curve the manual does not define.
-        (_, _) if value == 0.0 => {}
+        // DISC is an INT of 0 to 100 (seed 002 L7314-7320); a REAL is rounded as the
+        // language assigns it to an INT.
+        (_, _) if (-0.5..100.5).contains(&value) => {
+            front.radius_compensation.disc = value.round() as u8;
+        }
         (_, _) => {
             return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
+                AlarmCode::ValueOutOfRange,
                 word.span,
-                format!("DISC={value} is not run yet: vcnc makes the transition circle of DISC=0 at outer corners"),
-            )
-            .with_help("use DISC=0 (the transition circle) or G451 (the intersection)"))
+                format!(
+                "DISC={value} is out of range: 0 (the transition circle) to 100 (the intersection)"
+            ),
+            ))
         }
     }
     Ok(())
@@ -204,9 +234,15 @@ fn rules(front: &Sinumerik, kernel: &Kernel, plane: Plane) -> Rules {
         .iter()
         .filter_map(|&i| axes[i].as_ref().map(|axis| axis.rapid))
         .fold(f64::INFINITY, f64::min);
+    let state = &front.radius_compensation;
     Rules {
-        outer: front.radius_compensation.outer,
+        outer: match (state.outer, state.disc) {
+            (OuterCorner::TransitionCircle, disc @ 1..) => OuterCorner::Conic(disc),
+            (outer, _) => outer,
+        },
         approach: front.radius_compensation.approach,
+        extension: front.radius_compensation.extension,
+        bottleneck: front.radius_compensation.bottleneck,
         alarm_help: ALARM_HELP,
         rapid_arc_feed: if rapid.is_finite() { rapid } else { 10_000.0 },
     }
@@ -237,11 +273,29 @@ pub(super) fn before_motion(
             span,
             "G41 and G42 in a frame that tilts or unevenly scales the plane are not run yet",
         )
-        .with_help("vcnc compensates in a machine plane: turn the frame about the plane's normal only (CUT2DF, 3+2 work, is issue 22's)"));
+        .with_help("vcnc compensates in a machine plane, under CUT2D and CUT2DF alike: turn the frame about the plane's normal only"));
+    }
+    if matches!(state.approach, Approach::Curve(_))
+        && moves
+        && state.left.is_some() != state.on.is_some()
+        && front.modal.motion != Motion::Line
+    {
+        // The control replaces the G1 block by its polynomial (seed 002 L7207-7208).
+        return Err(Alarm::error(
+            AlarmCode::CutterCompensation,
+            span,
+            "KONTC and KONTT approach and retract only in a G1 block",
+        )
+        .with_help("write G1 in the block that switches G41, G42 or G40"));
     }
     match (state.left, state.on) {
         (None, None) => {}
-        (None, Some(_)) => kernel.cancel_compensation(),
+        (None, Some((plane, _))) => {
+            kernel.cancel_compensation();
+            if let Some(retraction) = smooth_retraction(front, kernel, plane, moves, span)? {
+                kernel.approach_smoothly(retraction);
+            }
+        }
         (Some(left), None) => {
             let rapid_or_line = matches!(front.modal.motion, Motion::Rapid | Motion::Line);
             if moves && !rapid_or_line {
@@ -292,7 +346,8 @@ pub(super) fn before_motion(
         }
     }
     let state = &mut front.radius_compensation;
-    if let Some(shape) = std::mem::take(&mut state.smooth).shape {
+    let words = std::mem::take(&mut state.smooth);
+    if let Some(shape) = words.shape {
         // Still programmed: the block did not start the compensation.
         let name = match shape {
             Shape::Line => "G147",
@@ -303,10 +358,24 @@ pub(super) fn before_motion(
             return Err(Alarm::error(
                 AlarmCode::NotSupportedYet,
                 span,
-                format!("{name} without G41 or G42 starting in its block is not run yet (planned: issue 22)"),
+                format!("{name} without G41 or G42 starting in its block is not run yet"),
             )
-            .with_help("start the compensation in the block of the smooth approach: G41 G247 ..."));
+            .with_help(
+                "start the compensation in the block of the smooth approach: G41 G247 ...",
+            ));
         }
+    }
+    if let Some(shape) = words.retreat {
+        // Still programmed: the block did not end the compensation.
+        return Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            format!(
+                "{} without G40 in its block is not run yet",
+                retreat_name(shape)
+            ),
+        )
+        .with_help("end the compensation in the block of the smooth retraction: G40 G248 ..."));
     }
     let constant = state.constant && state.on.is_some();
     if constant != state.kept {
@@ -314,6 +383,14 @@ pub(super) fn before_motion(
         kernel.keep_compensation_constant(constant)?;
     }
     Ok(())
+}
+
+fn retreat_name(shape: Shape) -> &'static str {
+    match shape {
+        Shape::Line => "G148",
+        Shape::QuarterCircle => "G248",
+        Shape::HalfCircle => "G348",
+    }
 }
 
 /// The smooth approach the block programs with the compensation it starts (SAR, seed 002
@@ -332,6 +409,52 @@ fn smooth_approach(
     let Some(shape) = words.shape else {
         return Ok(None);
     };
+    smooth_moves(front, kernel, plane, span, (shape, words)).map(Some)
+}
+
+/// The smooth retraction the block programs with the G40 it ends the compensation with (SAR,
+/// seed 002 L7551-7646), its words taken; None without G148, G248 or G348.
+///
+/// # Errors
+/// G248 or G348 without DISR; FAD under G93; a retraction block without axes (the manual ends
+/// it at P2, not run).
+fn smooth_retraction(
+    front: &mut Sinumerik,
+    kernel: &Kernel,
+    plane: Plane,
+    moves: bool,
+    span: Span,
+) -> Result<Option<smooth::Approach>, Alarm> {
+    let state = &mut front.radius_compensation;
+    let Some(shape) = state.smooth.retreat.take() else {
+        return Ok(None);
+    };
+    let words = std::mem::take(&mut state.smooth);
+    if !moves {
+        return Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            span,
+            format!(
+                "{} in a block without axes is not run yet",
+                retreat_name(shape)
+            ),
+        )
+        .with_help("program the retraction's end point P0 in the block (seed 002 L7551-7619)"));
+    }
+    smooth_moves(front, kernel, plane, span, (shape, words)).map(Some)
+}
+
+/// The moves of an approach or retraction of `shape` by the block's SAR words.
+///
+/// # Errors
+/// A circle without DISR; FAD under G93.
+fn smooth_moves(
+    front: &Sinumerik,
+    kernel: &Kernel,
+    plane: Plane,
+    span: Span,
+    (shape, words): (Shape, SmoothWords),
+) -> Result<smooth::Approach, Alarm> {
     let distance = match (words.distance, shape) {
         (Some(d), _) => d,
         (None, Shape::Line) => 0.0,
@@ -375,8 +498,9 @@ fn smooth_approach(
             }
         }),
     };
-    Ok(Some(smooth::Approach {
+    Ok(smooth::Approach {
         shape,
+        direction: front.radius_compensation.smooth_side,
         in_plane: front.radius_compensation.smooth_in_plane,
         distance,
         clearance,
@@ -384,7 +508,7 @@ fn smooth_approach(
         feed: kernel.cutting_feed(Origin::at(span))?,
         per_axis: kernel.state().setup.profile().motion.rapid_path
             == crate::profile::RapidPath::PerAxis,
-    }))
+    })
 }
 
 /// After the block's motion: a G40 block ends compensation, the tool centre going onto the

@@ -205,7 +205,9 @@ pub(super) fn common(number: u32) -> Option<(Function, u8)> {
 /// named modal function.
 pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
     use super::compensation::RadiusFunction;
-    use crate::interp::comp::smooth::Shape;
+    use crate::interp::comp::extension::Extension;
+    use crate::interp::comp::polynomial::Continuity;
+    use crate::interp::comp::smooth::{Direction, Shape};
     use crate::interp::comp::transition::{Approach, OuterCorner};
     use Function::*;
     let f = match name {
@@ -287,6 +289,12 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G42" => Radius(RadiusFunction::Right),
         "NORM" => Radius(RadiusFunction::Approach(Approach::Straight)),
         "KONT" => Radius(RadiusFunction::Approach(Approach::AroundPoint)),
+        "KONTT" => Radius(RadiusFunction::Approach(Approach::Curve(
+            Continuity::Tangent,
+        ))),
+        "KONTC" => Radius(RadiusFunction::Approach(Approach::Curve(
+            Continuity::Curvature,
+        ))),
         "G450" => Radius(RadiusFunction::Outer(OuterCorner::TransitionCircle)),
         "G451" => Radius(RadiusFunction::Outer(OuterCorner::Intersection)),
         "CUTCONON" => Radius(RadiusFunction::Constant(true)),
@@ -294,20 +302,29 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G147" => Radius(RadiusFunction::Smooth(Shape::Line)),
         "G247" => Radius(RadiusFunction::Smooth(Shape::QuarterCircle)),
         "G347" => Radius(RadiusFunction::Smooth(Shape::HalfCircle)),
+        "G148" => Radius(RadiusFunction::Retreat(Shape::Line)),
+        "G248" => Radius(RadiusFunction::Retreat(Shape::QuarterCircle)),
+        "G348" => Radius(RadiusFunction::Retreat(Shape::HalfCircle)),
         "G340" => Radius(RadiusFunction::SmoothInPlane(false)),
         "G341" => Radius(RadiusFunction::SmoothInPlane(true)),
-        "G140" => Radius(RadiusFunction::SmoothSide),
+        "G140" => Radius(RadiusFunction::SmoothSide(Direction::Compensation)),
+        "G141" => Radius(RadiusFunction::SmoothSide(Direction::Left)),
+        "G142" => Radius(RadiusFunction::SmoothSide(Direction::Right)),
+        "G143" => Radius(RadiusFunction::SmoothSide(Direction::Tangent)),
+        "G460" => Radius(RadiusFunction::Extension(Extension::None)),
+        "CDON" => Radius(RadiusFunction::Bottleneck(true)),
+        // CDOF2 differs from CDOF in 3D circumferential milling only (seed 002 L7810-7815).
+        "CDOF" | "CDOF2" => Radius(RadiusFunction::Bottleneck(false)),
+        "G461" => Radius(RadiusFunction::Extension(Extension::Circle)),
+        "G462" => Radius(RadiusFunction::Extension(Extension::Line)),
         "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "BRISK" | "SOFT" | "DRIVE"
         | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF" | "COMPOF" | "COMPON"
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
-        | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "CDOF" | "CDON" | "CDOF2"
-        // G460: collision detection on the approach and retraction blocks, what vcnc's
-        // compensation does.
-        | "TRAFOOF" | "G460" => State,
-        "G641" | "G642" | "G643" | "G644" | "G645" | "KONTT" | "KONTC" | "CUT2DF" | "G141"
-        | "G142" | "G143" | "G148" | "G248" | "G348" | "G461" | "G462" | "FLIN" | "FCUB" => {
-            Planned
-        }
+        | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "TRAFOOF"
+        // CUT2DF compensates in the frame's plane: with a frame that keeps the plane (the
+        // only kind vcnc compensates under) that is CUT2D's (seed 002 L7854-7928).
+        | "CUT2DF" => State,
+        "G641" | "G642" | "G643" | "G644" | "G645" | "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
@@ -780,7 +797,7 @@ mod listing_tests {
         assert_eq!(row("G1").on_840d, Support::Runs);
         assert_eq!(row("SOFT").on_828d, Support::State);
         assert_eq!(row("G41").on_840d, Support::Runs);
-        assert_eq!(row("KONTC").on_840d, Support::Planned);
+        assert_eq!(row("G641").on_840d, Support::Planned);
         assert!(matches!(row("DIAMON").on_840d, Support::OutOfProduct(_)));
         let range = row("G505 … G599");
         assert_eq!(

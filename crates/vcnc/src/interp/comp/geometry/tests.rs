@@ -299,24 +299,7 @@ fn parallel_lines_in_opposite_directions_on_the_inside_do_not_meet() {
 
 /// Distance from a point to a programmed element (segment or arc piece).
 pub(crate) fn distance_to(element: &Element, point: V2) -> f64 {
-    match *element {
-        Element::Line { start, end } => {
-            let d = end - start;
-            let t = ((point - start).dot(d) / d.dot(d)).clamp(0.0, 1.0);
-            point.distance(start + d * t)
-        }
-        Element::Arc { start, center, .. } => {
-            let radius = start.distance(center);
-            let on_circle = center + (point - center).unit() * radius;
-            if element.spans(on_circle) {
-                (point.distance(center) - radius).abs()
-            } else {
-                point
-                    .distance(element.start())
-                    .min(point.distance(element.end()))
-            }
-        }
-    }
+    element.distance(point)
 }
 
 pub(crate) fn direction() -> impl Strategy<Value = V2> {
