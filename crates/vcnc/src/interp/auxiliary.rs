@@ -30,14 +30,28 @@ pub(crate) fn speed_and_tool(
                 "spindle speed cannot be negative",
             ));
         }
-        exec.kernel.spindle.set_speed(s.number.value);
-        let running = exec.kernel.spindle.running();
-        let starts_here = cmd
-            .m_codes()
-            .iter()
-            .any(|m| matches!(m.number.value as u32, 3 | 4));
-        if running && !starts_here && exec.modal.spindle_mode == SpindleMode::Rpm {
-            out.push(cmd, exec.kernel.spindle.event());
+        let g92 = cmd
+            .group(crate::profile::Group::NonModal)
+            .is_some_and(|g| g.code == crate::profile::GCode::SetCoordinates);
+        if g92 {
+            // `G92 S`: the clamp of constant surface speed, not a speed (Syntec 1.58, L4618).
+            exec.kernel.spindle.set_clamp(s.number.value);
+        } else {
+            let speed = match exec.modal.spindle_mode {
+                SpindleMode::Rpm => Some(s.number.value),
+                SpindleMode::SurfaceSpeed => surface_speed_rpm(exec, cmd, s, out)?,
+            };
+            if let Some(speed) = speed {
+                exec.kernel.spindle.set_speed(speed);
+                let running = exec.kernel.spindle.running();
+                let starts_here = cmd
+                    .m_codes()
+                    .iter()
+                    .any(|m| matches!(m.number.value as u32, 3 | 4));
+                if running && !starts_here {
+                    out.push(cmd, exec.kernel.spindle.event());
+                }
+            }
         }
     }
     if let Some(t) = cmd.t() {
@@ -50,6 +64,56 @@ pub(crate) fn speed_and_tool(
         );
     }
     Ok(())
+}
+
+/// G96's S, a surface speed (m/min, or ft/min under G20), as the spindle speed that gives it on
+/// the cutter: N = 1000 V / (pi D) with D the diameter of the radius register in force (the
+/// block's D first), clamped by `G92 S` and the machine's top speed (Syntec 1.58, L4597-4628; a
+/// mill's diameter is the cutter's, as the manual's example reads it). None, with a warning,
+/// when the register gives no diameter.
+///
+/// # Errors
+/// A D number out of range.
+fn surface_speed_rpm(
+    exec: &Executor,
+    cmd: &Command,
+    s: Value,
+    out: &mut Output,
+) -> Result<Option<f64>, Alarm> {
+    let number = match cmd.word(b'D') {
+        Some(d) => exec.kernel.setup.offset_number(d, 'D')?,
+        None => exec.kernel.tools.radius_number(),
+    };
+    let register = exec.kernel.tools.radius(number);
+    let profile = exec.kernel.setup.profile();
+    let diameter_mm = if profile.compensation.radius_offsets_are_diameters {
+        register
+    } else {
+        2.0 * register
+    }
+    .abs()
+        * exec.modal.units.to_mm();
+    if diameter_mm <= 0.0 {
+        out.push_warning(
+            Alarm::warning(
+                AlarmCode::ValueOutOfRange,
+                s.span,
+                format!("G96 S{}: no cutter diameter (D{number} holds no radius), so no spindle speed follows from the surface speed", s.number.value),
+            )
+            .with_help("select the tool's radius register (D) before G96 S, or program G97 S in rpm"),
+        );
+        return Ok(None);
+    }
+    // m/min over mm, or ft/min (304.8 mm a foot) under G20.
+    let per_minute_mm = match exec.modal.units {
+        Units::Millimetres => 1000.0,
+        Units::Inches => 304.8,
+    } * s.number.value;
+    let rpm = per_minute_mm / (std::f64::consts::PI * diameter_mm);
+    let top = exec.kernel.setup.machine().spindle.max_rpm;
+    Ok(Some(
+        rpm.min(exec.kernel.spindle.clamp().unwrap_or(top)).min(top),
+    ))
 }
 
 /// M codes that act before the motion of the block.

@@ -8,9 +8,11 @@ use crate::motion::{SegmentKind, SpindleState};
 /// The spindle's speed and state.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Spindle {
-    /// Last programmed S.
+    /// The speed in force, rpm (under G96, the one the surface speed gives).
     speed: f64,
     state: SpindleState,
+    /// The highest speed `G92 S` allows, rpm (None: the machine's).
+    clamp: Option<f64>,
 }
 
 impl Spindle {
@@ -19,10 +21,21 @@ impl Spindle {
         Spindle {
             speed: 0.0,
             state: SpindleState::Stopped,
+            clamp: None,
         }
     }
 
-    /// Last programmed S.
+    /// The highest speed `G92 S` allows, rpm.
+    pub(crate) fn clamp(&self) -> Option<f64> {
+        self.clamp
+    }
+
+    /// `G92 S`: the highest speed of constant surface speed control.
+    pub(crate) fn set_clamp(&mut self, rpm: f64) {
+        self.clamp = Some(rpm);
+    }
+
+    /// The speed in force, rpm.
     pub(crate) fn speed(&self) -> f64 {
         self.speed
     }
@@ -40,7 +53,7 @@ impl Spindle {
         )
     }
 
-    /// An S word.
+    /// An S word, or the speed G96 computed, rpm.
     pub(crate) fn set_speed(&mut self, speed: f64) {
         self.speed = speed;
     }

@@ -294,3 +294,47 @@ fn fanuc_0m_drops_excess_decimals_and_limits_digits() {
     let trace = trace_on(&on(ProfileName::Fanuc), "G90 G00 X1.2345678\nM30\n");
     assert!(trace.starts_with("rapid X1.2346 Y0 Z0"), "{trace}");
 }
+
+/// G96: "N = 1000 V / (pi D)", clamped by `G92 S` (Syntec 1.58, L4597-4628; example 65 in the
+/// seed table): with a 10 mm cutter S130 is 4138.03 rpm; G92 S2000 clamps it; under G20, S100
+/// ft/min on the same cutter (0.3937 in) is 12 x 100 / (pi x 0.3937) = 970.2 rpm; G97 S is rpm.
+#[test]
+fn g96_turns_the_surface_speed_into_the_cutters_rpm() {
+    let mut machine = on(ProfileName::Syntec);
+    machine.tool_offsets.insert(
+        1,
+        vcnc::machine::ToolOffset {
+            number: 1,
+            radius: 5.0,
+            ..Default::default()
+        },
+    );
+    // D2 for inch programs: the register is read in the unit in force, as the radius of G41.
+    machine.tool_offsets.insert(
+        2,
+        vcnc::machine::ToolOffset {
+            number: 2,
+            radius: 0.19685,
+            ..Default::default()
+        },
+    );
+    let speeds = |text: &str| -> Vec<f64> {
+        iso(text, &machine)
+            .segments
+            .iter()
+            .filter_map(|s| match s.kind {
+                vcnc::SegmentKind::Spindle { speed, .. } => Some((speed * 10.0).round() / 10.0),
+                _ => None,
+            })
+            .collect()
+    };
+    assert_eq!(speeds("D1 G96 S130 M03\nG97 S500\nM30\n"), [4138.0, 500.0]);
+    assert_eq!(speeds("G92 S2000\nD1 G96 S130 M03\nM30\n"), [2000.0]);
+    assert_eq!(speeds("G20 D2 G96 S100 M03\nM30\n"), [970.2]);
+    // No diameter: a warning, and the speed stays as it was (0).
+    let run = iso("G96 S130 M03\nM30\n", &machine);
+    assert!(run
+        .alarms
+        .iter()
+        .any(|a| a.message.contains("no cutter diameter")));
+}

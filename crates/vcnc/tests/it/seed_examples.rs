@@ -81,6 +81,8 @@ struct Example {
     feed_length: Option<f64>,
     rapid_length: Option<f64>,
     dwell_seconds: Option<f64>,
+    /// The speeds of the spindle events in order, rpm.
+    spindle_speeds: Option<Vec<f64>>,
     tolerance: Option<f64>,
     skip: Option<String>,
     /// The alarm the real control stops the program with, after the asserted motions: code and
@@ -377,6 +379,23 @@ fn manual_examples_reach_their_expected_positions() {
                 .sum();
             if !close(dwell, expected, 1e-6) {
                 failures.push(fail(format!("dwell {dwell} s, expected {expected}")));
+            }
+        }
+        if let Some(expected) = &example.spindle_speeds {
+            let speeds: Vec<f64> = run
+                .segments
+                .iter()
+                .filter_map(|s| match s.kind {
+                    SegmentKind::Spindle { speed, .. } => Some(speed),
+                    _ => None,
+                })
+                .collect();
+            let same = speeds.len() == expected.len()
+                && speeds.iter().zip(expected).all(|(a, b)| close(*a, *b, 0.5));
+            if !same {
+                failures.push(fail(format!(
+                    "spindle speeds {speeds:?}, expected {expected:?}"
+                )));
             }
         }
     }
