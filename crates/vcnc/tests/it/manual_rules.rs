@@ -10,6 +10,17 @@ fn on(profile: ProfileName) -> Machine {
     Machine::default().with_profile(profile).unwrap()
 }
 
+/// Writes tool offset register `number` of `machine`: its length and radius.
+fn set_register(machine: &mut Machine, number: u32, length: f64, radius: f64) {
+    let register = vcnc::machine::ToolOffset {
+        number,
+        length,
+        radius,
+        ..Default::default()
+    };
+    machine.tool_offsets.insert(number, register);
+}
+
 fn iso(text: &str, machine: &Machine) -> Run {
     run(text.as_bytes(), machine, vcnc::interp::Options::default())
 }
@@ -149,14 +160,7 @@ fn syntec_s1_sets_the_speed_of_spindle_one() {
 #[test]
 fn mitsubishi_moves_a_length_change_without_z_at_rapid() {
     let mut machine = on(ProfileName::Mitsubishi);
-    machine.tool_offsets.insert(
-        1,
-        vcnc::machine::ToolOffset {
-            number: 1,
-            length: 50.0,
-            ..Default::default()
-        },
-    );
+    set_register(&mut machine, 1, 50.0, 0.0);
     let text = "G90 G00 Z100.\nG01 F100. X1.\nG43 H01\nG49\nM30\n";
     let trace = trace_on(&machine, text);
     let lines: Vec<&str> = trace.lines().collect();
@@ -196,14 +200,7 @@ fn haas_g28_cancels_the_tool_length_offset() {
     let text = "G90 G00 G43 H01 Z100.\nG91 G28 Z0\nG90 G00 Z100.\nM30\n";
     let last = |profile| {
         let mut machine = on(profile);
-        machine.tool_offsets.insert(
-            1,
-            vcnc::machine::ToolOffset {
-                number: 1,
-                length: 50.0,
-                ..Default::default()
-            },
-        );
+        set_register(&mut machine, 1, 50.0, 0.0);
         let trace = trace_on(&machine, text);
         trace
             .lines()
@@ -301,23 +298,9 @@ fn fanuc_0m_drops_excess_decimals_and_limits_digits() {
 #[test]
 fn g96_turns_the_surface_speed_into_the_cutters_rpm() {
     let mut machine = on(ProfileName::Syntec);
-    machine.tool_offsets.insert(
-        1,
-        vcnc::machine::ToolOffset {
-            number: 1,
-            radius: 5.0,
-            ..Default::default()
-        },
-    );
+    set_register(&mut machine, 1, 0.0, 5.0);
     // D2 for inch programs: the register is read in the unit in force, as the radius of G41.
-    machine.tool_offsets.insert(
-        2,
-        vcnc::machine::ToolOffset {
-            number: 2,
-            radius: 0.19685,
-            ..Default::default()
-        },
-    );
+    set_register(&mut machine, 2, 0.0, 0.19685);
     let speeds = |text: &str| -> Vec<f64> {
         iso(text, &machine)
             .segments
