@@ -101,6 +101,12 @@ fn compare_dir(dir: &Path) -> Vec<Comparison> {
             // --blend-tol is G64 P, the planner's corner tolerance.
             let mut planner = format!("habits = \"linuxcnc\"\nmax_path_rate = {:?}", speed * 60.0);
             if let Some(tolerance) = tolerance {
+                // LinuxCNC blends with a tolerance only where the program's own `G64 P` sets
+                // it: lcnc-time's --blend-tol, in the startup code, never reaches its planner.
+                assert!(
+                    program.lines().any(|l| l.starts_with("G64 P")),
+                    "{stem}: a --blend-tol needs its `G64 P` in the program"
+                );
                 planner += &format!("\ncorner_tolerance = {tolerance:?}");
             }
             let machine = plan::machine(&plan::Limits {
@@ -281,6 +287,18 @@ fn the_random_programs_of_each_kind_get_no_worse() {
     );
     let kinds = random_by_kind(&comparisons);
     let report = readme_random_table(&kinds);
+    // Every program, for `--nocapture`.
+    for c in &comparisons {
+        let error = (c.vcnc - c.linuxcnc) / c.linuxcnc;
+        println!(
+            "{:<12} linuxcnc {:>8.3} s  vcnc {:>8.3} s  {:>+7.2} %  {}",
+            c.stem,
+            c.linuxcnc,
+            c.vcnc,
+            100.0 * error,
+            c.what
+        );
+    }
     println!("{report}");
     for k in &kinds {
         let today = RANDOM_WORST_TODAY
