@@ -44,7 +44,7 @@ mod report;
 mod speed_profile;
 
 pub(crate) use config::PlannerFile;
-pub use config::{PlannerConfig, PlannerHabits};
+pub use config::{BlendRadius, BlendTurning, PlannerConfig, PlannerHabits};
 pub use report::{BlockTime, TimeKind, TimeReport, SLOWEST};
 pub use speed_profile::{PathLimits, SpeedProfile};
 
@@ -180,6 +180,9 @@ pub struct Timeline {
     events: EventClock,
     clock: f64,
     speeds: FeedSpeeds,
+    /// Blend arcs that left the window before the motion after them, whose time and length go
+    /// to that motion (see `Slot::Blend`).
+    blend: (f64, f64),
 }
 
 impl Timeline {
@@ -199,6 +202,7 @@ impl Timeline {
             events: EventClock::default(),
             clock: 0.0,
             speeds: FeedSpeeds::default(),
+            blend: (0.0, 0.0),
         }
     }
 
@@ -270,7 +274,8 @@ impl Timeline {
             }
         };
         if limits.length > 0.0 {
-            let handover = Handover::new(class, motion, &limits, &ends);
+            let straight = !matches!(segment.kind, SegmentKind::Arc { .. });
+            let handover = Handover::new(class, straight, motion, &limits, &ends);
             self.window
                 .push_motion(limits, handover, &ends.start, per_axis_seconds, config);
         } else {
@@ -302,11 +307,23 @@ impl Timeline {
     /// alarms, per-axis rapids and motions of zero length).
     #[inline(always)]
     pub fn next_timing_and_profile(&mut self) -> Option<(Timing, Option<SpeedProfile>)> {
-        let (dt, profile, feed_unknown) = match self.window.pop_ready()? {
-            Slot::Fixed(seconds) => (*seconds, None, false),
-            Slot::Motion(planned) => {
-                let (profile, dt) = time_motion(planned);
-                (dt, profile, planned.limits.feed_unknown)
+        let (dt, profile, feed_unknown) = loop {
+            match self.window.pop_ready()? {
+                Slot::Fixed(seconds) => break (*seconds, None, false),
+                Slot::Motion(planned) => {
+                    let (mut profile, mut dt) = time_motion(planned);
+                    if self.blend.0 > 0.0 {
+                        let (seconds, length) = std::mem::take(&mut self.blend);
+                        dt += seconds;
+                        profile = profile.map(|p| p.with_lead_in_time(length, seconds));
+                    }
+                    break (dt, profile, planned.limits.feed_unknown);
+                }
+                Slot::Blend(planned) => {
+                    let (_, seconds) = time_motion(planned);
+                    self.blend.0 += seconds;
+                    self.blend.1 += planned.limits.length;
+                }
             }
         };
         let t = self.clock;
