@@ -129,7 +129,9 @@ impl Junction {
 }
 
 /// The junction of `prev` and `next`, which starts along `next_start`.
-#[inline]
+// Inlined into the window's push (as it was before LinuxCNC's blend arcs grew its cold paths):
+// a call costs more than most junctions.
+#[inline(always)]
 pub(crate) fn junction(
     prev: &Handover,
     next: &Handover,
@@ -219,6 +221,7 @@ pub(crate) fn junction(
 /// one a parabolic blend at half the acceleration would run along for as long, within the
 /// geometric one; along it the speed may change with the tangential share of `acceleration`.
 #[cold]
+#[inline(never)]
 fn blend_segment(
     prev: &Handover,
     next: &Handover,
@@ -255,6 +258,8 @@ fn blend_segment(
 /// direction d of the plane puts a d_i on axis i, and the largest d_i over the plane is
 /// sqrt(1 - n_i^2), n the plane's unit normal; so a <= limit / sqrt(1 - n_i^2) for the axis
 /// with the smallest n_i.
+#[cold]
+#[inline(never)]
 fn in_plane_factor(u: &[f64; 3], w: &[f64; 3]) -> f64 {
     let n = [
         u[1] * w[2] - u[2] * w[1],

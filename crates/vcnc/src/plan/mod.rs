@@ -226,7 +226,7 @@ impl Timeline {
     #[inline(always)]
     pub fn push(&mut self, segment: &Segment) {
         let (axes, config, speeds) = (&self.axes, &self.config, &mut self.speeds);
-        let (motion, (limits, ends), class, per_axis_seconds) = match &segment.kind {
+        let (motion, (limits, ends), (class, straight), per_axis_seconds) = match &segment.kind {
             SegmentKind::Line { motion, feed } => {
                 // The control locks the override at 100 % where the feed is tied to the
                 // spindle (G63 tapping mode, G33 threads).
@@ -236,7 +236,7 @@ impl Timeline {
                     self.feed_override
                 };
                 let limits = line(motion, Some((feed, speeds)), axes, config, feed_override);
-                (motion, limits, MotionClass::Cutting, None)
+                (motion, limits, (MotionClass::Cutting, true), None)
             }
             SegmentKind::Arc {
                 motion,
@@ -255,15 +255,20 @@ impl Timeline {
                     feed,
                 };
                 let limits = arc(&path, speeds, axes, config, self.feed_override);
-                (motion, limits, MotionClass::Cutting, None)
+                (motion, limits, (MotionClass::Cutting, false), None)
             }
             SegmentKind::Rapid { motion, per_axis } => {
                 let limits = line(motion, None, axes, config, 1.0);
                 if *per_axis {
                     let seconds = per_axis_rapid_seconds(motion, axes);
-                    (motion, limits, MotionClass::PerAxisRapid, Some(seconds))
+                    (
+                        motion,
+                        limits,
+                        (MotionClass::PerAxisRapid, true),
+                        Some(seconds),
+                    )
                 } else {
-                    (motion, limits, MotionClass::Rapid, None)
+                    (motion, limits, (MotionClass::Rapid, true), None)
                 }
             }
             _ => {
@@ -274,7 +279,6 @@ impl Timeline {
             }
         };
         if limits.length > 0.0 {
-            let straight = !matches!(segment.kind, SegmentKind::Arc { .. });
             let handover = Handover::new(class, straight, motion, &limits, &ends);
             self.window
                 .push_motion(limits, handover, &ends.start, per_axis_seconds, config);
