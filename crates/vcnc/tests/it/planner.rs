@@ -2,9 +2,9 @@
 //! properties (no axis over its limits, never faster than length / feed, monotonic in the feed
 //! override).
 //!
-//! Every closed form below is for the default (`vcnc`) habits: the normal share of the
-//! acceleration is sqrt(3)/2, corners blend within `corner_tolerance`, a stop between a rapid and
-//! a cutting move.
+//! Every closed form below is for the default (`vcnc`) habits unless its test names LinuxCNC's:
+//! the normal share of the acceleration is sqrt(3)/2, corners blend within `corner_tolerance`, a
+//! stop between a rapid and a cutting move.
 
 use crate::common::plan;
 
