@@ -22,6 +22,21 @@ pub struct PlannerConfig {
     pub smoothing_tolerance: f64,
     /// Share of a segment's length, at each end, that a corner blend may use.
     pub blend_length_share: f64,
+    /// The corner tolerance is at most this share of the shorter of the two segments' lengths
+    /// (LinuxCNC: 0.25, in plain G64 and under `G64 P` alike); infinite: no such bound.
+    pub corner_tolerance_length_share: f64,
+    /// Share of the turning acceleration that a corner blend's arc may use along its path, to
+    /// speed up or slow down on it (LinuxCNC: 0.5, its blend arcs being segments of their own).
+    /// 0: the arc is passed at the junction speed, as a lead-in of the next motion.
+    pub blend_arc_tangential_share: f64,
+    /// How large a corner blend's arc is drawn.
+    pub blend_radius: BlendRadius,
+    /// The acceleration a corner blend may turn with.
+    pub blend_turning: BlendTurning,
+    /// What is left of a line between two blends, when the blend speed crosses it in less than
+    /// this, s, is run as part of the blend arc after it (LinuxCNC: 4 servo cycles, its
+    /// `ARC_BLEND_GAP_CYCLES`); 0: never.
+    pub blend_consume_seconds: f64,
     /// Share of the acceleration limit given to the normal (centripetal) acceleration on arcs and
     /// corner blends; the tangential acceleration keeps sqrt(1 - share^2) of the limit at the
     /// arc's highest speed.
@@ -58,6 +73,31 @@ pub struct PlannerConfig {
     pub spindle_orientation_seconds: f64,
 }
 
+/// How large a corner blend's arc is drawn (within the tolerance and the segments' lengths).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BlendRadius {
+    /// The smallest arc that carries the junction speed: it cuts as little corner as it can.
+    Least,
+    /// LinuxCNC's: at least the arc a parabolic blend of the same corner would run along for
+    /// as long, at half the acceleration, up to the largest the corner allows. On short
+    /// segments that is much larger than the least arc: less path, more of it on the arc.
+    ParabolicTime,
+}
+
+/// The acceleration available to a corner blend for turning.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BlendTurning {
+    /// The lowest acceleration limit among the axes that move.
+    LowestAxis,
+    /// The largest acceleration in every direction of the plane of the two moves that no axis
+    /// exceeds, for axes as strong as the weakest one that moves (LinuxCNC's circle inscribed
+    /// in the plane's cut through the box of axis limits): above the lowest limit in a plane
+    /// oblique to the axes.
+    InPlane,
+}
+
 /// A named set of starting values for [`PlannerConfig`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -83,6 +123,11 @@ impl PlannerConfig {
                 corner_tolerance: 0.02,
                 smoothing_tolerance: 0.01,
                 blend_length_share: 0.5,
+                corner_tolerance_length_share: f64::INFINITY,
+                blend_arc_tangential_share: 0.0,
+                blend_radius: BlendRadius::Least,
+                blend_turning: BlendTurning::LowestAxis,
+                blend_consume_seconds: 0.0,
                 normal_acceleration_share: NORMAL_SHARE,
                 unblended_acceleration_factor: 1.0,
                 unblended_arc_tangential_share: 1.0,
@@ -96,14 +141,21 @@ impl PlannerConfig {
                 spindle_stop_seconds: 1.0,
                 spindle_orientation_seconds: 1.0,
             },
-            // LinuxCNC's planner as lcnc-time's README describes it: plain G64 has no tolerance,
-            // blends may use half of each segment, arcs keep half the acceleration tangentially,
-            // spindle and tool change are instant in its simulated machine.
+            // LinuxCNC's planner as lcnc-time's README describes it: plain G64 has no tolerance
+            // but a quarter of the segments' lengths, blends may use half of each segment and
+            // are arcs of their own with half the acceleration along them (tc.c, blendmath.c),
+            // arcs keep half the acceleration tangentially, spindle and tool change are instant
+            // in its simulated machine.
             PlannerHabits::Linuxcnc => PlannerConfig {
                 look_ahead: 200,
                 corner_tolerance: f64::INFINITY,
                 smoothing_tolerance: 0.01,
                 blend_length_share: 0.5,
+                corner_tolerance_length_share: 0.25,
+                blend_arc_tangential_share: 0.5,
+                blend_radius: BlendRadius::ParabolicTime,
+                blend_turning: BlendTurning::InPlane,
+                blend_consume_seconds: 0.004,
                 normal_acceleration_share: NORMAL_SHARE,
                 unblended_acceleration_factor: 0.5,
                 unblended_arc_tangential_share: 0.5,
@@ -133,6 +185,11 @@ pub(crate) struct PlannerFile {
     corner_tolerance: Option<f64>,
     smoothing_tolerance: Option<f64>,
     blend_length_share: Option<f64>,
+    corner_tolerance_length_share: Option<f64>,
+    blend_arc_tangential_share: Option<f64>,
+    blend_radius: Option<BlendRadius>,
+    blend_turning: Option<BlendTurning>,
+    blend_consume_seconds: Option<f64>,
     normal_acceleration_share: Option<f64>,
     unblended_acceleration_factor: Option<f64>,
     unblended_arc_tangential_share: Option<f64>,
@@ -155,6 +212,17 @@ impl PlannerFile {
         set(&mut c.corner_tolerance, self.corner_tolerance);
         set(&mut c.smoothing_tolerance, self.smoothing_tolerance);
         set(&mut c.blend_length_share, self.blend_length_share);
+        set(
+            &mut c.corner_tolerance_length_share,
+            self.corner_tolerance_length_share,
+        );
+        set(
+            &mut c.blend_arc_tangential_share,
+            self.blend_arc_tangential_share,
+        );
+        set(&mut c.blend_radius, self.blend_radius);
+        set(&mut c.blend_turning, self.blend_turning);
+        set(&mut c.blend_consume_seconds, self.blend_consume_seconds);
         set(
             &mut c.normal_acceleration_share,
             self.normal_acceleration_share,
@@ -225,6 +293,25 @@ impl PlannerConfig {
         // Kept in whole micrometres on every motion (crate::motion::Smoothing).
         within("smoothing_tolerance", self.smoothing_tolerance, 0.001, 65.0)?;
         within("blend_length_share", self.blend_length_share, 0.0, 0.5)?;
+        within(
+            "corner_tolerance_length_share",
+            self.corner_tolerance_length_share,
+            0.0,
+            f64::INFINITY,
+        )?;
+        // A share of 1 would leave the arc no acceleration to turn with.
+        within(
+            "blend_arc_tangential_share",
+            self.blend_arc_tangential_share,
+            0.0,
+            0.99,
+        )?;
+        within(
+            "blend_consume_seconds",
+            self.blend_consume_seconds,
+            0.0,
+            1.0,
+        )?;
         // A share of 1 would leave no tangential acceleration at an arc's top speed.
         within(
             "normal_acceleration_share",

@@ -11,8 +11,15 @@
 //! r phi and is passed at the junction speed: negligible at a tolerance of hundredths of a
 //! millimetre, a large part of the time where blends are only bounded by the segments' lengths
 //! (LinuxCNC's plain G64).
+//!
+//! LinuxCNC differs in ways its habits turn on one by one (see `config.rs`): its blend arc is a
+//! segment of its own, along which the speed may change with part of the acceleration (so that
+//! a chain of short chords, whose blends eat them whole, still speeds up); it draws the arc as
+//! large as a parabolic blend of the corner would take; it bounds the tolerance by a quarter of
+//! the segments' lengths; it turns with what the axes allow in the plane of the corner; and it
+//! runs what a blend leaves of a short line as part of the arc after it.
 
-use super::config::PlannerConfig;
+use super::config::{BlendRadius, BlendTurning, PlannerConfig};
 use super::limits::{Ends, MotionLimits};
 use super::{finite, greater, lesser};
 use crate::motion::{Move, PathMode, Smoothing};
@@ -45,6 +52,8 @@ pub(crate) struct Handover {
     /// Its turning acceleration (see [`Ends::turning`]), mm/s^2.
     turning: f64,
     class: MotionClass,
+    /// A straight move (a line or a rapid), whose rest a blend may take over.
+    pub(crate) straight: bool,
     /// The block asks for an exact stop at its end (G61, G63 or G09).
     exact_stop: bool,
     /// The high-speed or smoothing mode in force.
@@ -55,6 +64,7 @@ impl Handover {
     #[inline]
     pub(crate) fn new(
         class: MotionClass,
+        straight: bool,
         motion: &Move,
         limits: &MotionLimits,
         ends: &Ends,
@@ -65,6 +75,7 @@ impl Handover {
             cruise: limits.cruise,
             turning: ends.turning,
             class,
+            straight,
             exact_stop: motion.exact_stop
                 || matches!(motion.path_mode, PathMode::ExactStop | PathMode::Tapping),
             smoothing: motion.smoothing,
@@ -79,8 +90,12 @@ pub(crate) struct Junction {
     pub(crate) speed: f64,
     /// Path length each of the two segments gives up to the blend arc, mm.
     pub(crate) leg: f64,
-    /// Length of the blend arc, mm, passed at the junction speed.
+    /// Length of the blend arc, mm, passed at the junction speed unless it has an acceleration
+    /// of its own.
     pub(crate) arc: f64,
+    /// The blend arc's tangential acceleration, mm/s^2, when it is a piece of path of its own
+    /// (`PlannerConfig::blend_arc_tangential_share`); 0 when it is passed at the junction speed.
+    pub(crate) arc_acceleration: f64,
     /// A stop at a corner the path could not blend (exact stop, a reversal), as opposed to a
     /// stop between kinds of motion.
     pub(crate) corner_stop: bool,
@@ -91,6 +106,7 @@ impl Junction {
         speed: 0.0,
         leg: 0.0,
         arc: 0.0,
+        arc_acceleration: 0.0,
         corner_stop: false,
     };
     const CORNER_STOP: Junction = Junction {
@@ -101,6 +117,7 @@ impl Junction {
         speed: f64::INFINITY,
         leg: 0.0,
         arc: 0.0,
+        arc_acceleration: 0.0,
         corner_stop: false,
     };
 
@@ -112,7 +129,9 @@ impl Junction {
 }
 
 /// The junction of `prev` and `next`, which starts along `next_start`.
-#[inline]
+// Inlined into the window's push (as it was before LinuxCNC's blend arcs grew its cold paths):
+// a call costs more than most junctions.
+#[inline(always)]
 pub(crate) fn junction(
     prev: &Handover,
     next: &Handover,
@@ -153,27 +172,106 @@ pub(crate) fn junction(
         (Some(a), Some(b)) => a.mm().min(b.mm()),
         _ => config.corner_tolerance,
     };
+    let shorter = lesser(prev.length, next.length);
+    // Infinite for vcnc's habits: the tolerance stays as it is.
+    let tolerance = lesser(tolerance, config.corner_tolerance_length_share * shorter);
     let by_tolerance = if finite(tolerance) {
         tolerance * cos_half / (1.0 - cos_half)
     } else {
         f64::INFINITY
     };
-    let shorter = lesser(prev.length, next.length);
     let by_length = config.blend_length_share * shorter / tan_half;
     // The blend turns in the plane of the two moves: each axis that moves may carry the whole
     // normal acceleration somewhere on it.
-    let acceleration = lesser(prev.turning, next.turning);
+    let mut acceleration = lesser(prev.turning, next.turning);
+    if config.blend_turning == BlendTurning::InPlane {
+        acceleration *= in_plane_factor(u, w);
+    }
     let normal = config.normal_acceleration_share * acceleration;
+    let turn = 2.0 * half_turn(tan_half);
+    // LinuxCNC makes an arc of its own between two lines; where a G2/G3 meets the corner its
+    // arc blends mostly give up (tp.c: tpCreateLineArcBlend and the like) for a parabolic one.
+    if config.blend_arc_tangential_share > 0.0 && prev.straight && next.straight {
+        let geometric = lesser(by_length, by_tolerance);
+        return blend_segment(
+            prev,
+            next,
+            (tan_half, turn),
+            geometric,
+            acceleration,
+            config,
+        );
+    }
     // No larger arc than the speed of the two segments needs: it would only cut more corner.
     let wanted = lesser(prev.cruise, next.cruise);
     let radius = lesser(lesser(by_length, by_tolerance), wanted * wanted / normal);
-    let turn = 2.0 * half_turn(tan_half);
     Junction {
         speed: (normal * radius).sqrt(),
         leg: radius * tan_half,
         arc: radius * turn,
+        arc_acceleration: 0.0,
         corner_stop: false,
     }
+}
+
+/// The junction whose blend arc is a segment of its own (LinuxCNC's, tp.c and blendmath.c):
+/// its speed is capped by the arc as large as the corner allows (`geometric`, the radius) and
+/// by the faster of the two moves, since each move caps the arc's ends with its own speed; its
+/// radius is the least that carries that speed or, with [`BlendRadius::ParabolicTime`], the
+/// one a parabolic blend at half the acceleration would run along for as long, within the
+/// geometric one; along it the speed may change with the tangential share of `acceleration`.
+#[cold]
+#[inline(never)]
+fn blend_segment(
+    prev: &Handover,
+    next: &Handover,
+    (tan_half, turn): (f64, f64),
+    geometric: f64,
+    acceleration: f64,
+    config: &PlannerConfig,
+) -> Junction {
+    let normal = config.normal_acceleration_share * acceleration;
+    let wanted = greater(prev.cruise, next.cruise);
+    let speed = lesser((normal * geometric).sqrt(), wanted);
+    let mut radius = speed * speed / normal;
+    if config.blend_radius == BlendRadius::ParabolicTime {
+        // A parabolic blend at half the acceleration needs the time to change the speed
+        // across the corner, or less where the legs are too short to reach it.
+        let half = 0.5 * acceleration;
+        let reachable = (2.0 * half * geometric * tan_half).sqrt();
+        let seconds = lesser(reachable, speed) / half;
+        radius = greater(radius, lesser(seconds * speed / turn, geometric));
+    }
+    // Never past what the corner allows (rounding in the speed's square and root).
+    let radius = lesser(radius, geometric);
+    Junction {
+        speed,
+        leg: radius * tan_half,
+        arc: radius * turn,
+        arc_acceleration: config.blend_arc_tangential_share * acceleration,
+        corner_stop: false,
+    }
+}
+
+/// How much more than an axis's limit the path may turn with in the plane of `u` and `w`
+/// (unit vectors, not parallel) when every axis has that limit: the acceleration a along a unit
+/// direction d of the plane puts a d_i on axis i, and the largest d_i over the plane is
+/// sqrt(1 - n_i^2), n the plane's unit normal; so a <= limit / sqrt(1 - n_i^2) for the axis
+/// with the smallest n_i.
+#[cold]
+#[inline(never)]
+fn in_plane_factor(u: &[f64; 3], w: &[f64; 3]) -> f64 {
+    let n = [
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ];
+    let squared = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if squared <= 1e-24 {
+        return 1.0;
+    }
+    let smallest = lesser(lesser(n[0] * n[0], n[1] * n[1]), n[2] * n[2]) / squared;
+    1.0 / greater(1e-12, 1.0 - smallest).sqrt()
 }
 
 /// The half turn angle, radians, from its tangent (finite: the half turn is below a right
@@ -215,6 +313,7 @@ mod tests {
             cruise: 100.0,
             turning: 1000.0,
             class: MotionClass::Cutting,
+            straight: true,
             exact_stop,
             smoothing: None,
         }
@@ -293,6 +392,18 @@ mod tests {
             let t2 = t * t;
             proptest::prop_assert_eq!(atan_series(t2).to_bits(), plain_series(t2).to_bits());
         }
+    }
+
+    #[test]
+    fn a_corner_turns_with_more_than_an_axis_limit_only_in_a_plane_oblique_to_the_axes() {
+        // In the XY plane the X and Y limits bound the turn; in the plane whose normal is
+        // (1, 1, 1)/sqrt 3 every axis sees at most sqrt(2/3) of the acceleration.
+        let (x, y) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        assert_eq!(in_plane_factor(&x, &y), 1.0);
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let (u, w) = ([s, -s, 0.0], [0.0, s, -s]);
+        let expected = 1.0 / (2.0_f64 / 3.0).sqrt();
+        assert!((in_plane_factor(&u, &w) - expected).abs() < 1e-12);
     }
 
     #[test]

@@ -14,11 +14,16 @@
 //!
 //! Alarms and zero-length motions sit in the window in stream order and take no time; they do
 //! not break a chain of motions.
+//!
+//! A corner blend's arc with an acceleration of its own (LinuxCNC's habits) takes a slot of its
+//! own between the two motions it joins, planned like any motion; it is no item of the stream,
+//! so its time goes to the motion after it ([`Slot::Blend`]).
 
 use super::config::PlannerConfig;
+use super::corner::Junction;
 use super::corner::{junction, Handover};
 use super::limits::MotionLimits;
-use super::speed_profile::{reachable_speed_up_to, SpeedProfile};
+use super::speed_profile::{reachable_speed_up_to, PathLimits, SpeedProfile};
 use super::{greater, lesser};
 
 /// A motion's place in the plan.
@@ -47,6 +52,9 @@ pub(crate) struct Planned {
 pub(crate) enum Slot {
     /// A motion being planned.
     Motion(Planned),
+    /// A corner blend's arc planned as a motion of its own: no item of the stream, its time
+    /// goes to the motion after it.
+    Blend(Planned),
     /// An item whose duration is known when it enters: an event, an alarm, a motion of zero
     /// length.
     Fixed(f64),
@@ -140,7 +148,7 @@ impl Window {
         self.ready -= 1;
         self.len -= 1;
         let slot = self.ring.get(place)?;
-        if let Slot::Motion(planned) = slot {
+        if let Slot::Motion(planned) | Slot::Blend(planned) = slot {
             self.start_speed = planned.exit;
         }
         Some(slot)
@@ -177,6 +185,13 @@ impl Window {
         let mut lead_in = 0.0;
         if let Some(prev) = &self.last {
             let junction = junction(prev, &handover, start, config);
+            if junction.arc_acceleration > 0.0 && junction.arc > 0.0 {
+                let prev = *prev;
+                let arc_cruise = self.push_blend(&prev, &junction, limits.path.jerk, config);
+                max_entry = lesser(arc_cruise, limits.cruise);
+                limits.length = greater(0.0, limits.length - junction.leg);
+                return self.push_planned(limits, handover, max_entry, 0.0, per_axis_seconds);
+            }
             max_entry = lesser(lesser(prev.cruise, junction.speed), limits.cruise);
             limits.length = greater(0.0, limits.length - junction.leg);
             lead_in = junction.arc;
@@ -192,6 +207,18 @@ impl Window {
                 }
             }
         }
+        self.push_planned(limits, handover, max_entry, lead_in, per_axis_seconds);
+    }
+
+    #[inline(always)]
+    fn push_planned(
+        &mut self,
+        limits: MotionLimits,
+        handover: Handover,
+        max_entry: f64,
+        lead_in: f64,
+        per_axis_seconds: Option<f64>,
+    ) {
         self.last = Some(handover);
         self.push_slot(Slot::Motion(Planned {
             limits,
@@ -203,6 +230,54 @@ impl Window {
             per_axis_seconds,
         }));
         self.release_if_full();
+    }
+
+    /// Puts the blend arc of `junction` after the last motion (`prev` its handover), which
+    /// gives up the arc's leg; the arc's cruise speed, which caps the next motion's entry. What
+    /// the arc leaves of a straight move that the blend speed crosses in less than
+    /// `PlannerConfig::blend_consume_seconds` runs as part of the arc (LinuxCNC's
+    /// `blendCheckConsume`): at the arc's speed and acceleration.
+    #[cold]
+    fn push_blend(
+        &mut self,
+        prev: &Handover,
+        junction: &Junction,
+        jerk: f64,
+        config: &PlannerConfig,
+    ) -> f64 {
+        let mut length = junction.arc;
+        if let Some(last) = self.last_planned() {
+            last.limits.length = greater(0.0, last.limits.length - junction.leg);
+            let rest = last.limits.length;
+            if prev.straight && rest < config.blend_consume_seconds * junction.speed {
+                length += rest;
+                last.limits.length = 0.0;
+            }
+        }
+        // The least time per segment holds for the arc as for any segment.
+        let mut cruise = junction.speed;
+        if config.min_segment_seconds > 0.0 {
+            cruise = lesser(cruise, length / config.min_segment_seconds);
+        }
+        let acceleration = junction.arc_acceleration;
+        let limits = MotionLimits {
+            length,
+            cruise,
+            path: PathLimits { acceleration, jerk },
+            unblended_acceleration: acceleration,
+            feed_unknown: false,
+            stop_scaled: false,
+        };
+        self.push_slot(Slot::Blend(Planned {
+            limits,
+            lead_in: 0.0,
+            max_entry: lesser(prev.cruise, cruise),
+            backward: f64::NAN,
+            entry: 0.0,
+            exit: 0.0,
+            per_axis_seconds: None,
+        }));
+        cruise
     }
 
     #[inline(always)]
@@ -306,7 +381,7 @@ impl Slot {
     #[inline(always)]
     fn planned(&mut self) -> Option<&mut Planned> {
         match self {
-            Slot::Motion(planned) => Some(planned),
+            Slot::Motion(planned) | Slot::Blend(planned) => Some(planned),
             Slot::Fixed(_) => None,
         }
     }
@@ -338,7 +413,7 @@ mod tests {
     fn fixed_seconds(slot: &Slot) -> Option<f64> {
         match slot {
             Slot::Fixed(seconds) => Some(*seconds),
-            Slot::Motion(_) => None,
+            Slot::Motion(_) | Slot::Blend(_) => None,
         }
     }
 

@@ -44,7 +44,7 @@ mod report;
 mod speed_profile;
 
 pub(crate) use config::PlannerFile;
-pub use config::{PlannerConfig, PlannerHabits};
+pub use config::{BlendRadius, BlendTurning, PlannerConfig, PlannerHabits};
 pub use report::{BlockTime, TimeKind, TimeReport, SLOWEST};
 pub use speed_profile::{PathLimits, SpeedProfile};
 
@@ -180,6 +180,9 @@ pub struct Timeline {
     events: EventClock,
     clock: f64,
     speeds: FeedSpeeds,
+    /// Blend arcs that left the window before the motion after them, whose time and length go
+    /// to that motion (see `Slot::Blend`).
+    blend: (f64, f64),
 }
 
 impl Timeline {
@@ -199,6 +202,7 @@ impl Timeline {
             events: EventClock::default(),
             clock: 0.0,
             speeds: FeedSpeeds::default(),
+            blend: (0.0, 0.0),
         }
     }
 
@@ -222,7 +226,7 @@ impl Timeline {
     #[inline(always)]
     pub fn push(&mut self, segment: &Segment) {
         let (axes, config, speeds) = (&self.axes, &self.config, &mut self.speeds);
-        let (motion, (limits, ends), class, per_axis_seconds) = match &segment.kind {
+        let (motion, (limits, ends), (class, straight), per_axis_seconds) = match &segment.kind {
             SegmentKind::Line { motion, feed } => {
                 // The control locks the override at 100 % where the feed is tied to the
                 // spindle (G63 tapping mode, G33 threads).
@@ -232,7 +236,7 @@ impl Timeline {
                     self.feed_override
                 };
                 let limits = line(motion, Some((feed, speeds)), axes, config, feed_override);
-                (motion, limits, MotionClass::Cutting, None)
+                (motion, limits, (MotionClass::Cutting, true), None)
             }
             SegmentKind::Arc {
                 motion,
@@ -251,15 +255,20 @@ impl Timeline {
                     feed,
                 };
                 let limits = arc(&path, speeds, axes, config, self.feed_override);
-                (motion, limits, MotionClass::Cutting, None)
+                (motion, limits, (MotionClass::Cutting, false), None)
             }
             SegmentKind::Rapid { motion, per_axis } => {
                 let limits = line(motion, None, axes, config, 1.0);
                 if *per_axis {
                     let seconds = per_axis_rapid_seconds(motion, axes);
-                    (motion, limits, MotionClass::PerAxisRapid, Some(seconds))
+                    (
+                        motion,
+                        limits,
+                        (MotionClass::PerAxisRapid, true),
+                        Some(seconds),
+                    )
                 } else {
-                    (motion, limits, MotionClass::Rapid, None)
+                    (motion, limits, (MotionClass::Rapid, true), None)
                 }
             }
             _ => {
@@ -270,7 +279,7 @@ impl Timeline {
             }
         };
         if limits.length > 0.0 {
-            let handover = Handover::new(class, motion, &limits, &ends);
+            let handover = Handover::new(class, straight, motion, &limits, &ends);
             self.window
                 .push_motion(limits, handover, &ends.start, per_axis_seconds, config);
         } else {
@@ -302,11 +311,23 @@ impl Timeline {
     /// alarms, per-axis rapids and motions of zero length).
     #[inline(always)]
     pub fn next_timing_and_profile(&mut self) -> Option<(Timing, Option<SpeedProfile>)> {
-        let (dt, profile, feed_unknown) = match self.window.pop_ready()? {
-            Slot::Fixed(seconds) => (*seconds, None, false),
-            Slot::Motion(planned) => {
-                let (profile, dt) = time_motion(planned);
-                (dt, profile, planned.limits.feed_unknown)
+        let (dt, profile, feed_unknown) = loop {
+            match self.window.pop_ready()? {
+                Slot::Fixed(seconds) => break (*seconds, None, false),
+                Slot::Motion(planned) => {
+                    let (mut profile, mut dt) = time_motion(planned);
+                    if self.blend.0 > 0.0 {
+                        let (seconds, length) = std::mem::take(&mut self.blend);
+                        dt += seconds;
+                        profile = profile.map(|p| p.with_lead_in_time(length, seconds));
+                    }
+                    break (dt, profile, planned.limits.feed_unknown);
+                }
+                Slot::Blend(planned) => {
+                    let (_, seconds) = time_motion(planned);
+                    self.blend.0 += seconds;
+                    self.blend.1 += planned.limits.length;
+                }
             }
         };
         let t = self.clock;

@@ -352,6 +352,18 @@ impl SpeedProfile {
         self
     }
 
+    /// The same profile after `distance` passed in `seconds` before it (a corner blend's arc
+    /// planned as a motion of its own, whose speeds are not kept: over it the profile gives the
+    /// speed it starts with).
+    #[inline]
+    pub fn with_lead_in_time(mut self, distance: f64, seconds: f64) -> SpeedProfile {
+        if seconds > 0.0 {
+            self.lead_in_time += seconds;
+            self.length += distance;
+        }
+        self
+    }
+
     /// Seconds the segment takes.
     #[inline]
     pub fn duration(&self) -> f64 {

@@ -2,9 +2,9 @@
 //! properties (no axis over its limits, never faster than length / feed, monotonic in the feed
 //! override).
 //!
-//! Every closed form below is for the default (`vcnc`) habits: the normal share of the
-//! acceleration is sqrt(3)/2, corners blend within `corner_tolerance`, a stop between a rapid and
-//! a cutting move.
+//! Every closed form below is for the default (`vcnc`) habits unless its test names LinuxCNC's:
+//! the normal share of the acceleration is sqrt(3)/2, corners blend within `corner_tolerance`, a
+//! stop between a rapid and a cutting move.
 
 use crate::common::plan;
 
@@ -163,6 +163,60 @@ fn an_arc_at_its_centripetal_limit_runs_at_sqrt_of_share_a_r() {
     );
     let profile = arc.profile.expect("arcs have a profile");
     assert!((profile.peak - speed).abs() < 1e-9);
+}
+
+/// A regular polygon of `sides` around a circle of `radius` about the origin, from (radius, 0),
+/// at `feed`, in G64.
+fn polygon(sides: u32, radius: f64, feed: f64) -> String {
+    let mut text = format!("G90 G64 G0 X{radius:.4} Y0.\nG1 F{feed:.1}\n");
+    for i in 1..=sides {
+        let angle = std::f64::consts::TAU * f64::from(i) / f64::from(sides);
+        text += &format!(
+            "X{:.4} Y{:.4}\n",
+            radius * angle.cos(),
+            radius * angle.sin()
+        );
+    }
+    text + "M30\n"
+}
+
+#[test]
+fn short_chords_in_linuxcnc_habits_run_as_their_blend_arcs_with_half_the_acceleration() {
+    // A 360-gon of R10 (chords of 0.175 mm) at F6000, a = 1000. LinuxCNC's blend of each
+    // corner can reach half of both chords, an arc of R10 itself, passed at up to
+    // sqrt(share a 10) = 93.06 mm/s, below the feed; its radius is at least what a parabolic
+    // blend at a/2 would take, which is more than R10 here: each blend takes half of both
+    // chords, and the path is the circle, 2 pi 10 mm, at 93.06 mm/s, sped up and slowed down
+    // along the arcs with their tangential half of a: L/v + v/(a/2) = 0.675 + 0.186 s. (The
+    // first half chord is a line, with all of a, and the last one ends unblended, at a/2:
+    // about a millisecond less in all.)
+    let text = polygon(360, 10.0, 6000.0);
+    let linuxcnc = machine(&Limits {
+        planner: "habits = \"linuxcnc\"",
+        ..Limits::default()
+    });
+    // The chords alone: the rapid to the start stops before them.
+    let chords = |m: &vcnc::Machine| -> f64 {
+        timed(&text, m, PlanOptions::default())
+            .iter()
+            .filter(|s| matches!(s.segment.kind, SegmentKind::Line { .. }))
+            .map(|s| s.dt)
+            .sum()
+    };
+    let t = chords(&linuxcnc);
+    let speed = (NORMAL_SHARE * 1000.0 * 10.0_f64).sqrt();
+    let expected = std::f64::consts::TAU * 10.0 / speed + speed / 500.0;
+    assert!(
+        (t - expected).abs() <= 0.005 * expected,
+        "{t} s, {expected} s"
+    );
+    // Blend arcs passed at the corner's speed (as a lead-in of the next chord) never speed up
+    // when they eat their chords whole: the speed stays what the first half chord allows.
+    let lead_in = machine(&Limits {
+        planner: "habits = \"linuxcnc\"\nblend_arc_tangential_share = 0.0",
+        ..Limits::default()
+    });
+    assert!(chords(&lead_in) > 3.0 * t, "{} s", chords(&lead_in));
 }
 
 #[test]
@@ -374,6 +428,16 @@ fn random_machine(speed: f64, acceleration: f64, jerk: Option<f64>) -> (vcnc::Ma
     (m, jerk)
 }
 
+/// A machine with the drawn limits and LinuxCNC's planner habits.
+fn linuxcnc_machine(speed: f64, acceleration: f64) -> vcnc::Machine {
+    machine(&Limits {
+        speed,
+        acceleration,
+        planner: "habits = \"linuxcnc\"",
+        ..Limits::default()
+    })
+}
+
 fn end_time(segments: &[TimedSegment]) -> f64 {
     segments.last().map_or(0.0, |s| s.t + s.dt)
 }
@@ -415,6 +479,33 @@ proptest! {
             bound += fastest;
         }
         prop_assert!(end_time(&segments) >= bound * (1.0 - 1e-9));
+    }
+
+    /// The same in LinuxCNC's habits: blend arcs of their own, as large as a parabolic blend
+    /// takes, turning with the acceleration of the corner's plane.
+    #[test]
+    fn no_axis_exceeds_its_limits_in_linuxcnc_habits(
+        steps in prop::collection::vec((step(), any::<bool>()), 1..12),
+        (speed, acceleration, _) in limits_strategy(),
+    ) {
+        let m = linuxcnc_machine(speed, acceleration);
+        for s in timed(&program(&steps), &m, PlanOptions::default()) {
+            check_limits(&s, speed, acceleration, f64::INFINITY);
+        }
+    }
+
+    #[test]
+    fn a_higher_feed_override_never_takes_longer_in_linuxcnc_habits(
+        steps in prop::collection::vec((step(), any::<bool>()), 1..12),
+        (speed, acceleration, _) in limits_strategy(),
+        low in 0.1..1.5_f64,
+        raise in 0.0..1.5_f64,
+    ) {
+        let m = linuxcnc_machine(speed, acceleration);
+        let text = program(&steps);
+        let slow = end_time(&timed(&text, &m, PlanOptions { feed_override: low }));
+        let fast = end_time(&timed(&text, &m, PlanOptions { feed_override: low + raise }));
+        prop_assert!(fast <= slow * (1.0 + 1e-9) + 1e-12, "{fast} > {slow}");
     }
 
     #[test]
