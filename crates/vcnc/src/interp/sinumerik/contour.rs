@@ -521,9 +521,13 @@ fn rounding(a: &Element, b: &Element, left: bool, spec: CornerSpec) -> Result<Ma
             (radius, found)
         }
     };
+    // Snapped to an element's far end only by a sliver of the radius: moving a tangent point
+    // of a tiny rounding (a corner that nearly turns back) by SHORT turned its tangent by a
+    // thousandth of a radian.
+    let within = SHORT.min(radius * 1e-7);
     let element = Element::Arc {
-        start: snap(on_a, a.start()),
-        end: snap(on_b, b.end()),
+        start: snap_within(on_a, a.start(), within),
+        end: snap_within(on_b, b.end(), within),
         center: centre,
         ccw: left,
     };
@@ -600,7 +604,12 @@ fn largest(limit: f64, fits: impl Fn(f64) -> bool) -> f64 {
 
 /// `point` replaced by `end` when it lies within [`SHORT`] of it, so that pieces join exactly.
 fn snap(point: V2, end: V2) -> V2 {
-    if point.distance(end) < SHORT {
+    snap_within(point, end, SHORT)
+}
+
+/// `point` replaced by `end` when it lies within `distance` of it.
+fn snap_within(point: V2, end: V2, distance: f64) -> V2 {
+    if point.distance(end) < distance {
         end
     } else {
         point
