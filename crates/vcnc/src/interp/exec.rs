@@ -247,7 +247,11 @@ impl Executor {
                 true
             }
             Some(GCode::CircleCutting(direction)) => {
-                super::circle_cutting::run(self, cmd, direction, out)?;
+                if self.kernel.setup.profile().motion.g12_g13_pocket {
+                    super::circle_pocket::run(self, cmd, direction, out)?;
+                } else {
+                    super::circle_cutting::run(self, cmd, direction, out)?;
+                }
                 true
             }
             Some(GCode::Pattern(kind)) => {

@@ -13,6 +13,7 @@
 mod arc;
 mod auxiliary;
 mod circle_cutting;
+mod circle_pocket;
 mod circular;
 mod comp;
 mod compensation;

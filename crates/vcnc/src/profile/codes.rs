@@ -225,8 +225,8 @@ impl GCode {
             Pattern(PatternKind::Line) => "holes on a line at an angle",
             Pattern(PatternKind::Arc) => "holes on an arc",
             Pattern(PatternKind::Grid) => "grid hole pattern",
-            CircleCutting(ArcDirection::Clockwise) => "circle cutting CW",
-            CircleCutting(ArcDirection::CounterClockwise) => "circle cutting CCW",
+            CircleCutting(ArcDirection::Clockwise) => "circle cutting / circular pocket CW",
+            CircleCutting(ArcDirection::CounterClockwise) => "circle cutting / circular pocket CCW",
             Absolute => "absolute programming",
             Incremental => "incremental programming",
             SetCoordinates => "coordinate system setting",
@@ -389,8 +389,10 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         40 => Dwell,
         90 => ExactStopOnce,
         100 => DataInput,
-        120 if profile.motion.g12_g13_circle_cutting => CircleCutting(ArcDirection::Clockwise),
-        130 if profile.motion.g12_g13_circle_cutting => {
+        120 if profile.motion.g12_g13_circle_cutting || profile.motion.g12_g13_pocket => {
+            CircleCutting(ArcDirection::Clockwise)
+        }
+        130 if profile.motion.g12_g13_circle_cutting || profile.motion.g12_g13_pocket => {
             CircleCutting(ArcDirection::CounterClockwise)
         }
         121 if profile.motion.polar_interpolation => PolarInterpolation,

@@ -50,6 +50,9 @@ pub struct MotionRules {
     /// Mitsubishi's G12/G13 circle cutting exists.
     #[serde(default)]
     pub g12_g13_circle_cutting: bool,
+    /// G12/G13 are Haas's circular pocket milling (I K Q L D Z F).
+    #[serde(default)]
+    pub g12_g13_pocket: bool,
     /// G12.1/G13.1 polar coordinate interpolation exists (FANUC family, Syntec spec 1.13,
     /// Mitsubishi); it turns the machine's C axis with X as the radius.
     #[serde(default)]

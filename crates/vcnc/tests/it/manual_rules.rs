@@ -321,3 +321,55 @@ fn g96_turns_the_surface_speed_into_the_cutters_rpm() {
         .iter()
         .any(|a| a.message.contains("no cutter diameter")));
 }
+
+/// Haas G12/G13 circular pocket milling (Haas mill manual: I the first circle's radius, K the
+/// finish one, Q the step, L passes, D the cutter, Z the depth): with a 2 mm cutter, G13 I4. K10.
+/// Q3. cuts the tool centre on radii 2, 5 and 8 (4, 7, 10 less the cutter), each reached by a
+/// half circle out, then back to the centre; before, G12/G13 were refused on Haas.
+#[test]
+fn haas_g12_g13_mill_a_circular_pocket() {
+    let mut machine = on(ProfileName::Haas);
+    // Haas's D registers hold diameters: 4 mm is the 2 mm radius.
+    set_register(&mut machine, 1, 0.0, 4.0);
+    let text = "G90 G00 X0 Y0 Z1.\nG13 X20. Y10. I4. K10. Q3. Z-2. D01 F300.\nM30\n";
+    let trace = trace_on(&machine, text);
+    let lines: Vec<&str> = trace.lines().collect();
+    assert_eq!(lines[1], "rapid X20 Y10 Z1", "{trace}");
+    assert_eq!(lines[2], "line X20 Y10 Z-2 F300", "{trace}");
+    let arcs: Vec<&str> = lines
+        .iter()
+        .copied()
+        .filter(|l| l.starts_with("arc"))
+        .collect();
+    assert_eq!(
+        arcs,
+        [
+            "arc ccw xy X22 Y10 Z-2 C(21,10,-2) F300",
+            "arc ccw xy X22 Y10 Z-2 C(20,10,-2) F300",
+            "arc ccw xy X25 Y10 Z-2 C(23.5,10,-2) F300",
+            "arc ccw xy X25 Y10 Z-2 C(20,10,-2) F300",
+            "arc ccw xy X28 Y10 Z-2 C(26.5,10,-2) F300",
+            "arc ccw xy X28 Y10 Z-2 C(20,10,-2) F300",
+            "arc ccw xy X20 Y10 Z-2 C(24,10,-2) F300",
+        ],
+        "{trace}"
+    );
+    // G91 Z-1. L2: two passes, 1 mm deeper each.
+    let trace = trace_on(
+        &machine,
+        "G90 G00 X0 Y0 Z0\nG91 G12 I5. Z-1. L2 D01 F300.\nM30\n",
+    );
+    let depths: Vec<&str> = trace.lines().filter(|l| l.starts_with("line")).collect();
+    assert_eq!(
+        depths,
+        ["line X0 Y0 Z-1 F300", "line X0 Y0 Z-2 F300"],
+        "{trace}"
+    );
+    let (code, _, message) = stop("G12 I5. K10. D01 F300.\nM30\n", ProfileName::Haas);
+    assert_eq!(code, AlarmCode::CircleCutting);
+    assert!(message.contains("K needs Q"), "{message}");
+    let run = iso("G12 I1.5 D01 F300.\nM30\n", &machine);
+    assert!(run
+        .error()
+        .is_some_and(|a| a.message.contains("not larger than the cutter")));
+}
