@@ -53,6 +53,7 @@ pub mod program_scan;
 pub mod source;
 pub mod summary;
 pub mod syntax;
+pub mod tool_geometry;
 
 pub use alarm::{Alarm, AlarmCode, Severity};
 pub use interp::{Interpreter, Options};

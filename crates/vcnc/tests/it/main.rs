@@ -33,6 +33,7 @@ mod readme;
 mod rotation;
 mod scaling;
 mod seed_examples;
+mod sim;
 mod sinumerik;
 mod sinumerik_axes;
 mod sinumerik_compensation;
