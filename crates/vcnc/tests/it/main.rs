@@ -26,6 +26,7 @@ mod modal;
 mod pipeline;
 mod plan_reference;
 mod planner;
+mod plot;
 mod polar;
 mod polar_interpolation;
 mod position_offset;
