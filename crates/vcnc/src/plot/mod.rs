@@ -79,7 +79,6 @@ pub struct Toolpath {
     follower: ToolFollower,
     elements: Vec<Element>,
     tools: Vec<u32>,
-    last: Option<[f64; 3]>,
     pending_change: Option<u32>,
     unfollowed: Option<(Unfollowed, Span, usize)>,
 }
@@ -96,15 +95,16 @@ impl Toolpath {
             Followed::Move(motion) => {
                 let tool = self.follower.tool().number;
                 if let Some(tool) = self.pending_change.take() {
+                    // Marked where the new tool first arrives: the change itself is usually
+                    // far away, at the machine's home.
                     self.elements.push(Element::ToolChange {
-                        at: self.last.unwrap_or(motion.from),
+                        at: motion.to,
                         tool,
                     });
                 }
                 if !self.tools.contains(&tool) {
                     self.tools.push(tool);
                 }
-                self.last = Some(motion.to);
                 self.elements.push(Element::Move { motion, tool });
             }
             Followed::ToolChange(tool, _) => self.pending_change = Some(tool.number),
@@ -130,8 +130,14 @@ impl Toolpath {
         self.unfollowed
     }
 
-    /// The extents of the moves in part coordinates, `[min, max]`, arcs through their chords.
+    /// The extents of the cutting moves in part coordinates, `[min, max]`, arcs through their
+    /// chords (of all moves when none cuts): the drawing is framed on them, so that rapids
+    /// from and to the machine's home do not shrink the part to a dot.
     pub fn extents(&self) -> Option<[[f64; 3]; 2]> {
+        let cuts = self
+            .elements
+            .iter()
+            .any(|e| matches!(e, Element::Move { motion, .. } if !motion.rapid));
         let mut extents: Option<[[f64; 3]; 2]> = None;
         let mut grow = |p: [f64; 3]| {
             let e = extents.get_or_insert([p, p]);
@@ -142,6 +148,9 @@ impl Toolpath {
         };
         for element in &self.elements {
             if let Element::Move { motion, .. } = element {
+                if motion.rapid && cuts {
+                    continue;
+                }
                 grow(motion.from);
                 motion.for_each_point(0.001, &mut grow);
             }

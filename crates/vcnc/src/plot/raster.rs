@@ -105,7 +105,10 @@ impl Canvas {
         } else {
             (from[0], to[0])
         };
-        let (lo, hi) = (a0.min(a1).floor() as i64 - 1, a0.max(a1).ceil() as i64 + 1);
+        // Only the part on the canvas: a rapid from far away costs its visible length.
+        let extent = i64::from(if steep { self.height } else { self.width });
+        let lo = (a0.min(a1).floor() as i64 - 1).max(-2);
+        let hi = (a0.max(a1).ceil() as i64 + 1).min(extent + 2);
         let reach = (half + 1.5)
             * (1.0
                 + if steep {
