@@ -134,3 +134,31 @@ fn sim_takes_its_stock_from_the_cut_by_default() {
     );
     assert!(text.contains("T1    flat 10 mm"), "{text}");
 }
+
+#[test]
+fn the_readmes_sim_summary_is_what_sim_prints() {
+    let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let start = readme
+        .find("```text\nexamples/bracket.nc\n")
+        .expect("README shows the summary")
+        + 8;
+    let end = start + readme[start..].find("```").unwrap();
+    // From the repository's root, as the README runs it (the summary names the program so).
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .current_dir(&root)
+        .args([
+            "sim",
+            "examples/bracket.nc",
+            "--machine",
+            "examples/bracket-mill.toml",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), &readme[start..end]);
+}

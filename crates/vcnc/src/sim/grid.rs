@@ -11,6 +11,11 @@
 
 use crate::motion::{ToolShape, ToolTip};
 
+/// A cell is cut only when the tool goes this far below its height, mm: heights are kept as
+/// f32 (a hundred-thousandth of a millimetre at a metre), and a tool passing again over what it
+/// cut must not cut it again by that rounding.
+const HEIGHT_TOLERANCE: f64 = 1e-4;
+
 /// The stock as a grid of columns.
 #[derive(Clone, Debug)]
 pub struct HeightField {
@@ -143,7 +148,7 @@ impl HeightField {
                 let touched = sweep.lowest(c, radius, flat, cutter);
                 if let Some((z, tip)) = touched {
                     let new = z.max(self.bottom);
-                    if new < old {
+                    if new < old - HEIGHT_TOLERANCE {
                         result.removed += (old - new) * area;
                         result.depth = result.depth.max(old - tip);
                         self.heights[k] = new as f32;

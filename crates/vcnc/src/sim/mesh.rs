@@ -195,8 +195,14 @@ pub fn picture(grid: &HeightField, view: View, width: u32) -> Vec<u8> {
             return;
         }
         let lambert = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
+        // Floors are tinted by their height; walls (steep faces) all alike, so that the two
+        // triangles of one wall quad do not differ.
         let z = (t[0][2] + t[1][2] + t[2][2]) / 3.0;
-        let level = ((z - bottom) / (top - bottom).max(1e-9)).clamp(0.0, 1.0);
+        let level = if n[2] > 0.3 {
+            ((z - bottom) / (top - bottom).max(1e-9)).clamp(0.0, 1.0)
+        } else {
+            0.5
+        };
         let base = [
             90.0 + 100.0 * level,
             120.0 + 90.0 * level,

@@ -257,3 +257,87 @@ fn the_stl_is_watertight_and_holds_the_stock_less_the_cut() {
     let count = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;
     assert_eq!(stl.len(), 84 + 50 * count);
 }
+
+/// Asserts that `removed` is within 0.5 % of `expected`.
+fn assert_volume(removed: f64, expected: f64) {
+    assert!(
+        (removed - expected).abs() < expected * 0.005,
+        "{removed} vs {expected} ({:+.3} %)",
+        (removed / expected - 1.0) * 100.0
+    );
+}
+
+#[test]
+fn drilled_holes_remove_a_cylinder_and_the_points_cone() {
+    // A 10 mm drill with a 90° point, its tip to Z-10 from above the stock (top Z0), twice:
+    // the point is a cone 5 high (r / tan 45°), above it a cylinder 5 high:
+    // 2 * (pi 25 * 5 + pi 25 * 5 / 3) = 1047.20 mm^3.
+    let machine = machine_with_tools(
+        "[[tool_shapes]]\nt = 3\ntype = \"drill\"\ndiameter = 10.0\npoint_angle = 90.0\n",
+    );
+    let text =
+        "T3 M6\nS2000 M3\nG0 X0 Y0 Z10.\nG81 X0 Y0 Z-10. R2. F100.\nX20.\nG80\nG0 Z10.\nM30\n";
+    let stock = [[-10.0, -10.0, -15.0], [30.0, 10.0, 0.0]];
+    let simulation = simulate(text, &machine, stock, 0.1);
+    let pi = std::f64::consts::PI;
+    assert_volume(
+        simulation.removed(),
+        2.0 * (pi * 25.0 * 5.0 + pi * 25.0 * 5.0 / 3.0),
+    );
+    assert_eq!(simulation.events().kept, vec![]);
+}
+
+#[test]
+fn a_helically_milled_bore_leaves_an_annulus() {
+    // A flat mill of radius 3 on a helix of radius 5 about the origin, 1 mm down per turn to
+    // Z-4, then a level turn: it clears the ring from r 2 to r 8, 4 deep:
+    // pi (64 - 4) 4 = 753.98 mm^3 (the island inside r 2 stays).
+    let machine = machine_with_tools("[[tool_shapes]]\nt = 1\ntype = \"flat\"\ndiameter = 6.0\n");
+    let mut text = String::from("T1 M6\nS5000 M3\nG0 X5. Y0 Z1.\nG1 Z0 F300.\n");
+    for turn in 1..=4 {
+        text.push_str(&format!("G2 X5. Y0 Z-{turn}. I-5. J0\n"));
+    }
+    text.push_str("G2 X5. Y0 I-5. J0\nG0 Z5.\nM30\n");
+    let stock = [[-10.0, -10.0, -6.0], [10.0, 10.0, 0.0]];
+    let simulation = simulate(&text, &machine, stock, 0.1);
+    let pi = std::f64::consts::PI;
+    assert_volume(simulation.removed(), pi * (64.0 - 4.0) * 4.0);
+}
+
+#[test]
+fn a_rectangular_pocket_is_its_rounded_rectangle() {
+    // A flat mill of radius 5 zigzags over X0-40, Y0-20 in 5 mm steps, then follows the
+    // rectangle's edge: it clears the rectangle widened by 5 with corners of radius 5,
+    // 50 x 30 less (4 - pi) 25, 3 deep: (1500 - (4 - pi) 25) 3 = 4435.62 mm^3.
+    let machine = machine_with_tools(FLAT_10);
+    let mut text = String::from("T1 M6\nS5000 M3\nG0 X0 Y0 Z2.\nG1 Z-3. F300.\n");
+    for (k, y) in [0.0, 5.0, 10.0, 15.0, 20.0].into_iter().enumerate() {
+        let x = if k % 2 == 0 { 40.0 } else { 0.0 };
+        text.push_str(&format!("G1 Y{y:.1}\nG1 X{x:.1}\n"));
+    }
+    text.push_str("G1 X0 Y20.\nY0\nX40.\nY20.\nX0\nG0 Z5.\nM30\n");
+    let stock = [[-10.0, -10.0, -5.0], [50.0, 30.0, 0.0]];
+    let simulation = simulate(&text, &machine, stock, 0.1);
+    let pi = std::f64::consts::PI;
+    assert_volume(simulation.removed(), (1500.0 - (4.0 - pi) * 25.0) * 3.0);
+}
+
+#[test]
+fn a_sinumerik_program_cuts_the_same_slot() {
+    // The slot of the first test, written for a SINUMERIK control.
+    let machine = machine_with_tools(FLAT_10);
+    let text = "T1 D1\nM6\nS5000 M3\nG0 X0 Y0 Z5\nG1 Z-2 F200\nX100\nG0 Z5\nM30\n";
+    let stock = [[-10.0, -10.0, -5.0], [110.0, 10.0, 0.0]];
+    let mut simulation = Simulation::new(stock, 0.1);
+    let mut stream = Pipeline::new(&machine).open_text(text, "SLOT.MPF");
+    stream.for_each_timed(PlanOptions::default(), |items, timings| {
+        for (item, timing) in items.iter().zip(timings) {
+            simulation.add(item.as_ref().unwrap(), timing);
+        }
+        true
+    });
+    assert_volume(
+        simulation.removed(),
+        (1000.0 + std::f64::consts::PI * 25.0) * 2.0,
+    );
+}
