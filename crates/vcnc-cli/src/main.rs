@@ -34,6 +34,11 @@ enum Command {
     /// Print the embedded default machine file (or --machine's), with --profile's name and its
     /// settings spelled out, to copy and edit.
     Machine(cmd::machine::Args),
+    /// Draw the toolpath to scale as SVG or PNG: rapids dashed, cuts coloured by tool.
+    Plot(cmd::plot::Args),
+    /// Simulate 3-axis material removal on a box of stock: removed volume, cutting time,
+    /// rapids into the stock and collisions; the part as STL and a shaded PNG.
+    Sim(cmd::sim::Args),
 }
 
 fn main() -> ExitCode {
@@ -56,6 +61,8 @@ fn main() -> ExitCode {
         Command::Check(args) => cmd::check::run(&args),
         Command::Trace(args) => cmd::trace::run(&args),
         Command::Machine(args) => cmd::machine::run(&args),
+        Command::Plot(args) => cmd::plot::run(&args),
+        Command::Sim(args) => cmd::sim::run(&args),
     };
     match result {
         Ok(cmd::Outcome::Clean) => ExitCode::SUCCESS,

@@ -178,6 +178,24 @@ pub enum AlarmCode {
     /// mm, and the program's comments give sizes in inches (`1/2" END MILL`): written for a
     /// control that starts in inches. Fix: G20 at the program's start.
     UnitNotSelected,
+    /// The simulator (`vcnc sim`): a rapid (G0) removes material, the tool crashing into the
+    /// stock at rapid rate. Fix: a cutting feed (G01) there, or a clearance plane above the stock.
+    RapidIntoStock,
+    /// The simulator: the shank or the holder touches the stock. Fix: a longer stickout, a
+    /// slimmer holder, or shallower steps.
+    HolderCollision,
+    /// The simulator: the tool cuts deeper than its flutes (the machine file's
+    /// `cutting_length`). Fix: a tool with longer flutes, or more, shallower steps.
+    BeyondCuttingLength,
+    /// A warning of the simulator: a flat tool that cannot cut at its centre
+    /// (`center_cutting = false`) plunges into the stock. Fix: ramp or helix in, or pre-drill.
+    PlungeWithoutCenterCutting,
+    /// A warning of the simulator: moves it cannot cut (a rotary axis moving or away from 0, a
+    /// tool not along Z) are left out of the simulated part.
+    NotSimulated,
+    /// A warning of the simulator and the plot: the machine file's `[[tool_shapes]]` does not
+    /// describe a tool, taken as a flat end mill of its radius offset.
+    ToolWithoutShape,
 }
 
 impl AlarmCode {
@@ -236,6 +254,12 @@ impl AlarmCode {
             CuttingWithSpindleStopped => "cutting_with_spindle_stopped",
             SpindleSpeedAboveMaximum => "spindle_speed_above_maximum",
             UnitNotSelected => "unit_not_selected",
+            RapidIntoStock => "rapid_into_stock",
+            HolderCollision => "holder_collision",
+            BeyondCuttingLength => "beyond_cutting_length",
+            PlungeWithoutCenterCutting => "plunge_without_center_cutting",
+            NotSimulated => "not_simulated",
+            ToolWithoutShape => "tool_without_shape",
         }
     }
 
@@ -294,6 +318,12 @@ impl AlarmCode {
             CuttingWithSpindleStopped => "V102",
             SpindleSpeedAboveMaximum => "V103",
             UnitNotSelected => "V104",
+            RapidIntoStock => "V110",
+            HolderCollision => "V111",
+            BeyondCuttingLength => "V112",
+            PlungeWithoutCenterCutting => "V113",
+            NotSimulated => "V114",
+            ToolWithoutShape => "V115",
         }
     }
 
@@ -353,6 +383,12 @@ impl AlarmCode {
             CuttingWithSpindleStopped => "start the spindle (M03 or M04 with S) before the first cut",
             SpindleSpeedAboveMaximum => "program S within the machine file's spindle.max_rpm",
             UnitNotSelected => "add G20 (inch) or G21 (mm) at the program's start",
+            RapidIntoStock => "cut there with G01, or keep rapids above the stock",
+            HolderCollision => "use a longer stickout or a slimmer holder, or cut in shallower steps",
+            BeyondCuttingLength => "use a tool with longer flutes, or cut in shallower steps",
+            PlungeWithoutCenterCutting => "ramp or helix into the material, or pre-drill, with a tool that cannot cut at its centre",
+            NotSimulated => "the simulator cuts with a tool along Z and the rotary axes at 0",
+            ToolWithoutShape => "describe the tool under [[tool_shapes]] in the machine file",
         }
     }
 
@@ -408,6 +444,12 @@ impl AlarmCode {
         AlarmCode::CuttingWithSpindleStopped,
         AlarmCode::SpindleSpeedAboveMaximum,
         AlarmCode::UnitNotSelected,
+        AlarmCode::RapidIntoStock,
+        AlarmCode::HolderCollision,
+        AlarmCode::BeyondCuttingLength,
+        AlarmCode::PlungeWithoutCenterCutting,
+        AlarmCode::NotSimulated,
+        AlarmCode::ToolWithoutShape,
     ];
 }
 

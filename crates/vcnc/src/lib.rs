@@ -48,11 +48,15 @@ pub mod machine;
 pub mod motion;
 pub mod pipeline;
 pub mod plan;
+pub mod plot;
 pub mod profile;
 pub mod program_scan;
+pub mod sim;
 pub mod source;
 pub mod summary;
 pub mod syntax;
+pub mod tool_geometry;
+pub mod toolpath;
 
 pub use alarm::{Alarm, AlarmCode, Severity};
 pub use interp::{Interpreter, Options};

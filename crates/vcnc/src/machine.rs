@@ -167,6 +167,8 @@ struct MachineFile {
     tool_offsets: Vec<ToolOffset>,
     #[serde(default)]
     tools: Vec<ToolEdge>,
+    #[serde(default)]
+    tool_shapes: Vec<crate::tool_geometry::ToolShapeEntry>,
     spindle: SpindleConfig,
     #[serde(default)]
     planner: PlannerFile,
@@ -261,6 +263,8 @@ pub struct Machine {
     pub tool_offsets: BTreeMap<u32, ToolOffset>,
     /// The tool table of a SINUMERIK machine: tools by number and name, with their edges.
     pub tools: Vec<ToolEdge>,
+    /// The tools' shapes (`[[tool_shapes]]`), by tool number: what a tool change carries.
+    pub tool_shapes: crate::tool_geometry::ToolShapes,
     /// The spindle.
     pub spindle: SpindleConfig,
     /// The planner's settings (`[planner]`): look-ahead, corners, event times.
@@ -318,6 +322,8 @@ impl Machine {
             work_offsets,
             tool_offsets,
             tools: file.tools,
+            tool_shapes: crate::tool_geometry::ToolShapes::from_entries(file.tool_shapes)
+                .map_err(MachineError::Invalid)?,
             spindle: file.spindle,
             planner,
             profile_overrides: file.profile_overrides,

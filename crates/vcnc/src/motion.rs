@@ -479,31 +479,94 @@ pub struct ToolGeometry {
     pub radius: f64,
 }
 
-/// The shape of a tool's cutting part, as a machine file's tool table describes it. No
-/// machine file has shapes yet (issue 21 adds them): every [`SegmentKind::ToolChange`] carries
-/// `None`, which a consumer reads as a flat end mill of the tool's radius.
+/// A tool's shape, as the machine file's tool table (`[[tool_shapes]]`) describes it: the end
+/// that cuts, the length of its flutes, the shank and the holder above. A tool the table does
+/// not describe has none ([`SegmentKind::ToolChange`] carries `None`); a consumer takes it as a
+/// flat end mill of its radius offset ([`ToolShape::flat`]). A plain value (no allocation) so
+/// that a segment stays `Copy`: the holder is a short stack of fixed size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ToolShape {
+    /// The end that cuts.
+    pub tip: ToolTip,
+    /// The cutting diameter, mm.
+    pub diameter: f64,
+    /// Length of the flutes from the tip, mm (infinite when the table does not say).
+    pub cutting_length: f64,
+    /// The shank's diameter above the flutes, mm.
+    pub shank_diameter: f64,
+    /// From the tip to the holder's face, mm (infinite when the tool has no holder).
+    pub stickout: f64,
+    /// The holder, from its face upwards.
+    pub holder: Holder,
+    /// False for a flat end mill whose end teeth do not reach the centre: it cannot plunge.
+    pub center_cutting: bool,
+}
+
+/// The end of a tool that cuts: its profile about the tool's axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
-pub enum ToolShape {
+pub enum ToolTip {
     /// A flat end mill.
     Flat,
-    /// A ball nose end mill.
+    /// A ball nose end mill (the corner radius is half the diameter).
     Ball,
-    /// A bull nose end mill with this corner radius, mm.
+    /// A bull nose end mill.
     BullNose {
         /// The corner radius, mm.
         corner_radius: f64,
     },
-    /// A drill with this point angle, degrees.
+    /// A drill.
     Drill {
-        /// The included angle of the point, degrees.
+        /// The included angle of the point, degrees (118 for a common twist drill).
         point_angle: f64,
     },
-    /// A chamfer or engraving tool with this included angle, degrees.
+    /// A chamfer or engraving tool: a V.
     Cone {
-        /// The included angle, degrees.
+        /// The included angle of the V, degrees.
         angle: f64,
+        /// The diameter of the flat at its point, mm (0 for a sharp V).
+        tip_diameter: f64,
     },
+}
+
+/// The most sections a holder has in a machine file.
+pub const HOLDER_SECTIONS: usize = 4;
+
+/// A tool holder: a stack of cylinders and cones from its face (the tool side) upwards.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Holder {
+    sections: [HolderSection; HOLDER_SECTIONS],
+    count: u8,
+}
+
+impl Holder {
+    /// A holder of these sections, bottom first; `None` beyond [`HOLDER_SECTIONS`].
+    pub fn new(sections: &[HolderSection]) -> Option<Holder> {
+        let mut holder = Holder::default();
+        for (slot, section) in holder.sections.iter_mut().zip(sections) {
+            *slot = *section;
+        }
+        holder.count = u8::try_from(sections.len())
+            .ok()
+            .filter(|&n| usize::from(n) <= HOLDER_SECTIONS)?;
+        Some(holder)
+    }
+
+    /// Its sections, from the face upwards (none for a tool without holder).
+    pub fn sections(&self) -> &[HolderSection] {
+        &self.sections[..usize::from(self.count)]
+    }
+}
+
+/// One section of a holder: a cylinder, or a cone when its diameters differ.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct HolderSection {
+    /// Its length along the tool axis, mm.
+    pub length: f64,
+    /// Its diameter at the bottom (tool side), mm.
+    pub bottom_diameter: f64,
+    /// Its diameter at the top, mm.
+    pub top_diameter: f64,
 }
 
 /// What happened: a motion or an event.
@@ -558,8 +621,8 @@ pub enum SegmentKind {
         /// register was never set. The length the moves are made with is the frame's
         /// ([`WorkFrame::tool_length`]): it follows G43 H, not T.
         geometry: Option<ToolGeometry>,
-        /// The shape of its cutting part, from the machine file's tool table; always None until
-        /// machine files have shapes ([`ToolShape`]).
+        /// Its shape, from the machine file's tool table (`[[tool_shapes]]`, by tool
+        /// number); None for a tool the table does not describe.
         shape: Option<ToolShape>,
     },
     /// M03/M04/M05/M19 and S changes.

@@ -2,7 +2,9 @@
 
 pub(crate) mod check;
 pub(crate) mod machine;
+pub(crate) mod plot;
 pub(crate) mod run;
+pub(crate) mod sim;
 pub(crate) mod trace;
 
 use std::path::Path;

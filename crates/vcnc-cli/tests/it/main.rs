@@ -10,6 +10,7 @@ mod check_report;
 mod cli;
 mod golden;
 mod inputs;
+mod plot_sim;
 mod results;
 mod saved_programs;
 mod state;

@@ -165,7 +165,7 @@ pub(crate) fn before_motion(
                     SegmentKind::ToolChange {
                         tool,
                         geometry: exec.kernel.tools.geometry(tool, diameters),
-                        shape: None,
+                        shape: exec.kernel.setup.machine().tool_shapes.get(tool),
                     }
                 }
                 MCode::CoolantOn => SegmentKind::Coolant { on: true },

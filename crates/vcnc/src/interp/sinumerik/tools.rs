@@ -162,7 +162,7 @@ pub(super) fn change(
                 length: e.length,
                 radius: e.radius,
             });
-        let shape = None;
+        let shape = kernel.state().setup.machine().tool_shapes.get(t);
         kernel.event(
             SegmentKind::ToolChange {
                 tool: t,
