@@ -55,7 +55,8 @@ pub struct ToolMove {
 /// Why a move cannot be followed as a tool along Z.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Unfollowed {
-    /// A rotary axis moves, or stands away from 0.
+    /// An axis after X Y Z moves, or stands away from 0: a rotary axis, or a linear one the
+    /// machine file names (U V W, a quill), which this 3-axis follower does not place.
     RotaryAxes,
     /// The tool length vector is not along Z (a tool along X or Y).
     ToolNotAlongZ,
@@ -65,7 +66,9 @@ impl Unfollowed {
     /// Words for people.
     pub fn describe(self) -> &'static str {
         match self {
-            Unfollowed::RotaryAxes => "a rotary axis moves or stands away from 0",
+            Unfollowed::RotaryAxes => {
+                "an axis after X Y Z (rotary, or a linear U V W) moves or stands away from 0"
+            }
             Unfollowed::ToolNotAlongZ => "the tool is not along Z",
         }
     }
