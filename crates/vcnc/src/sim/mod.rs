@@ -122,7 +122,7 @@ pub struct SimTimes {
 /// The events of a simulation: alarms (errors) and warnings, each with its block.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SimEvents {
-    /// The events kept, in program order: at most [`EVENTS_KEPT`] of each code.
+    /// The events kept, in program order: at most 100 of each code.
     pub kept: Vec<Alarm>,
     /// How many of each code there were, kept or not.
     pub counts: Vec<(AlarmCode, usize)>,
