@@ -8,7 +8,7 @@ use super::exec::Executor;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::AXES;
-use crate::motion::{ArcDirection, MachinePos, SegmentKind};
+use crate::motion::{ArcDirection, Feed, MachinePos, Plane, SegmentKind};
 
 /// Runs a G12 (clockwise) or G13 block.
 ///
@@ -43,32 +43,60 @@ pub(crate) fn run(
         .with_help("Mitsubishi program error P233"));
     }
     let feed = exec.cutting_feed(cmd)?;
-    let plane = exec.modal.plane;
-    let (a, _, _) = plane.axes();
     let centre = exec.kernel.program_position();
-    let at = |da: f64| {
-        let mut p = centre;
-        p[a] += da;
-        p
+    let circle = Circles {
+        centre,
+        plane: exec.modal.plane,
+        direction,
+        feed,
     };
     // Out on a half circle about (r/2, 0), round the circle about the centre, back again.
-    let steps: [([f64; AXES], [f64; AXES]); 3] =
-        [(at(r), at(r / 2.0)), (at(r), centre), (centre, at(r / 2.0))];
-    for (to, about) in steps {
-        let to = exec.machine_target(&to, false);
-        let about = exec.machine_target(&about, false);
-        let motion = exec.move_to(to, cmd, out)?;
+    for step in [(r, r / 2.0), (r, 0.0), (0.0, r / 2.0)] {
+        circle.arc(exec, cmd, step, out)?;
+    }
+    Ok(())
+}
+
+/// Arcs about points on the first axis of the plane through `centre`, the shape of circle
+/// cutting and of Haas's circular pocket.
+pub(super) struct Circles {
+    /// The circle's centre, program coordinates.
+    pub(super) centre: [f64; AXES],
+    pub(super) plane: Plane,
+    pub(super) direction: ArcDirection,
+    pub(super) feed: Feed,
+}
+
+impl Circles {
+    /// An arc to the point `to` along the plane's first axis from the centre, about the point
+    /// `about` along it.
+    pub(super) fn arc(
+        &self,
+        exec: &mut Executor,
+        cmd: &Command,
+        (to, about): (f64, f64),
+        out: &mut Output,
+    ) -> Result<(), Alarm> {
+        let (a, _, _) = self.plane.axes();
+        let at = |da: f64| {
+            let mut p = self.centre;
+            p[a] += da;
+            p
+        };
+        let target = exec.machine_target(&at(to), false);
+        let about = exec.machine_target(&at(about), false);
+        let motion = exec.move_to(target, cmd, out)?;
         out.push(
             cmd,
             SegmentKind::Arc {
                 motion,
                 center: MachinePos(about),
-                direction,
-                plane,
+                direction: self.direction,
+                plane: self.plane,
                 extra_turns: 0,
-                feed,
+                feed: self.feed,
             },
         );
+        Ok(())
     }
-    Ok(())
 }

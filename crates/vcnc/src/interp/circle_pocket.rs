@@ -9,13 +9,14 @@
 //! Haas manual does not say (docs/DEVIATIONS.md): the plunge is at F at the centre, the step out
 //! to the next circle is a half circle like the first, and the tool stays at the centre at depth.
 
+use super::circle_cutting::Circles;
 use super::decode::{Command, Value};
 use super::exec::Executor;
 use super::modal::DistanceMode;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::machine::{Axis, AXES};
-use crate::motion::{ArcDirection, MachinePos, Plane, SegmentKind};
+use crate::machine::Axis;
+use crate::motion::{ArcDirection, Plane, SegmentKind};
 
 /// Most circles one block may cut (a Q far smaller than K would mean millions of moves).
 const MOST_CIRCLES: f64 = 10_000.0;
@@ -101,22 +102,20 @@ pub(crate) fn run(
             let motion = exec.move_to(to, cmd, out)?;
             out.push(cmd, SegmentKind::Line { motion, feed });
         }
+        let circles = Circles {
+            centre,
+            plane: Plane::Xy,
+            direction,
+            feed,
+        };
         let mut from = 0.0;
         for &r in &radii {
             // A half circle out from radius `from` to `r`, then the whole circle.
-            arc(
-                exec,
-                cmd,
-                &centre,
-                (r, (from + r) / 2.0),
-                direction,
-                feed,
-                out,
-            )?;
-            arc(exec, cmd, &centre, (r, 0.0), direction, feed, out)?;
+            circles.arc(exec, cmd, (r, (from + r) / 2.0), out)?;
+            circles.arc(exec, cmd, (r, 0.0), out)?;
             from = r;
         }
-        arc(exec, cmd, &centre, (0.0, from / 2.0), direction, feed, out)?;
+        circles.arc(exec, cmd, (0.0, from / 2.0), out)?;
     }
     Ok(())
 }
@@ -155,37 +154,4 @@ fn bad_loops(l: Value) -> Alarm {
         l.span,
         "L, the passes, is a whole number from 1 to 9999",
     )
-}
-
-/// An arc in the X-Y plane about `centre` shifted along X: to X `to` about X `about` (both
-/// offsets from the centre).
-fn arc(
-    exec: &mut Executor,
-    cmd: &Command,
-    centre: &[f64; AXES],
-    (to, about): (f64, f64),
-    direction: ArcDirection,
-    feed: crate::motion::Feed,
-    out: &mut Output,
-) -> Result<(), Alarm> {
-    let at = |dx: f64| {
-        let mut p = *centre;
-        p[0] += dx;
-        p
-    };
-    let target = exec.machine_target(&at(to), false);
-    let about = exec.machine_target(&at(about), false);
-    let motion = exec.move_to(target, cmd, out)?;
-    out.push(
-        cmd,
-        SegmentKind::Arc {
-            motion,
-            center: MachinePos(about),
-            direction,
-            plane: Plane::Xy,
-            extra_turns: 0,
-            feed,
-        },
-    );
-    Ok(())
 }
