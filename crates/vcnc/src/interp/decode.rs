@@ -456,26 +456,29 @@ fn word_out_of_range(word: &Word, profile: &Profile) -> Alarm {
 }
 
 /// A number written with more digits than the control reads (FANUC 0M: 7): the digits of its
-/// shortest form, leading zeros of the whole part left out (`X1.2345678` has 8).
+/// whole part, leading zeros left out, and of its fraction up to its last non-zero digit
+/// (`X1.2345678` has 8, `X0.00123` 5). Counted without text: the value shifted by the
+/// decimals the limit leaves must come out whole.
 ///
 /// # Errors
 /// [`AlarmCode::ValueOutOfRange`] beyond `max`.
 fn check_digits(word: &Word, max: u32) -> Result<(), Alarm> {
-    let text = format!("{}", word.number.value.abs());
-    let digits = text
-        .trim_start_matches(['0', '.'])
-        .bytes()
-        .filter(u8::is_ascii_digit)
-        .count();
-    // The zeros between the point and the first digit of 0.00123 are keyed too.
-    let zeros_after_point = match text.split_once('.') {
-        Some(("0", fraction)) => fraction.len() - fraction.trim_start_matches('0').len(),
-        _ => 0,
+    let value = word.number.value.abs();
+    let whole_digits = if value >= 1.0 {
+        value.log10().floor() as i32 + 1
+    } else {
+        0
     };
-    let written = digits + zeros_after_point;
-    if written as u32 <= max {
+    let whole_after = |decimals: i32| {
+        let shifted = value * 10f64.powi(decimals);
+        (shifted - shifted.round()).abs() <= 1e-12 * shifted.max(1.0)
+    };
+    let decimals = max as i32 - whole_digits;
+    if decimals >= 0 && whole_after(decimals) {
         return Ok(());
     }
+    // Past the limit (the rare case): how many digits, for the message.
+    let written = whole_digits + (0..17).find(|&k| whole_after(k)).unwrap_or(17);
     Err(Alarm::error(
         AlarmCode::ValueOutOfRange,
         word.span,
