@@ -16,7 +16,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::time::Duration;
-use vcnc::syntax::blocks::{BlockSource, ParsedLines};
+use vcnc::syntax::blocks::{line_blocks, BlockSource, ParsedLines};
 use vcnc::syntax::iso::SyntaxOptions;
 use vcnc::syntax::lines::{LineSource, TextLines};
 use vcnc::syntax::sinumerik::parse_block;
@@ -88,7 +88,7 @@ fn count_words(text: &str) -> usize {
         .advance()
         .expect("text in memory cannot fail to read")
     {
-        for block in black_box(source.blocks()) {
+        for block in black_box(line_blocks(&source)) {
             assert!(
                 block.alarms.is_empty(),
                 "the benchmark program reads without alarms"

@@ -46,7 +46,8 @@ use crate::checks::ReleasedCheck;
 use crate::machine::Machine;
 use crate::motion::{EndKind, Item, MachinePos, Segment, SegmentKind, StreamItem};
 use crate::source::{FileId, Span};
-use crate::syntax::blocks::{BlockSource, ParsedLines};
+use crate::syntax::blocks::{line_blocks, BlockSource, ParsedLines};
+use crate::syntax::iso::LineBlocks;
 use crate::syntax::lines::LineSource;
 use crate::syntax::{Block, BlockKind, Dialect};
 use decode::Command;
@@ -197,7 +198,7 @@ impl<S: LineSource> Interpreter<ParsedLines<S>> {
     }
 }
 
-impl<B: BlockSource> Interpreter<B> {
+impl<B: BlockSource<Line = LineBlocks>> Interpreter<B> {
     /// An interpreter for the blocks of `source` (file `file`) on `machine`; the source must
     /// parse with `machine.profile.syntax()`.
     pub fn from_blocks(
@@ -387,14 +388,14 @@ impl<B: BlockSource> Interpreter<B> {
             Place::Stream { block, last_line } => {
                 // The next line is read and its first block run in the same step: most lines
                 // have one block.
-                let mut blocks = self.source.blocks();
+                let mut blocks = line_blocks(&self.source);
                 if *block >= blocks.len() {
                     match self.source.advance() {
                         Ok(true) => *block = 0,
                         Ok(false) => return self.core.end_of_text(),
                         Err(error) => return self.core.read_failed(&error),
                     }
-                    blocks = self.source.blocks();
+                    blocks = line_blocks(&self.source);
                 }
                 if let Some(next) = blocks.get(*block) {
                     if next.span.line > *last_line {
@@ -669,7 +670,7 @@ impl Core {
     }
 }
 
-impl<B: BlockSource> Iterator for Interpreter<B> {
+impl<B: BlockSource<Line = LineBlocks>> Iterator for Interpreter<B> {
     type Item = StreamItem;
 
     fn next(&mut self) -> Option<Self::Item> {

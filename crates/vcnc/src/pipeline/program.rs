@@ -13,10 +13,9 @@ use crate::interp::{
 use crate::machine::Machine;
 use crate::profile::ProfileName;
 use crate::source::FileId;
-use crate::syntax::blocks::{BackgroundParser, BlockSource, ParsedLines};
+use crate::syntax::blocks::{IsoParser, ProgramLines};
 use crate::syntax::iso::SyntaxOptions;
-use crate::syntax::lines::ReaderLines;
-use crate::syntax::{detect_dialect, Block, Dialect};
+use crate::syntax::{detect_dialect, Dialect};
 use std::fs::File;
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
@@ -43,62 +42,26 @@ pub enum OpenError {
     },
 }
 
-/// A program's blocks, parsed as [`Parsing`] says.
-pub(crate) enum ProgramBlocks {
-    Ahead(BackgroundParser),
-    InLine(ParsedLines<ReaderLines<Box<dyn Read + Send>>>),
-}
+/// A program's ISO blocks, parsed where [`Parsing`] says.
+pub(crate) type IsoProgramLines = ProgramLines<IsoParser>;
 
-impl ProgramBlocks {
-    /// The blocks of `reader`'s text (about `length` bytes, 0 when unknown), parsed as
-    /// `parsing` says.
-    pub(crate) fn new(
-        reader: Box<dyn Read + Send>,
-        length: u64,
-        syntax: SyntaxOptions,
-        parsing: Parsing,
-    ) -> ProgramBlocks {
-        match parsing {
-            Parsing::Ahead => ProgramBlocks::Ahead(BackgroundParser::spawn_expecting(
-                reader,
-                FileId(0),
-                syntax,
-                length,
-            )),
-            Parsing::InLine | Parsing::AheadWhenHeavy => ProgramBlocks::InLine(ParsedLines::new(
-                ReaderLines::new(reader),
-                FileId(0),
-                syntax,
-            )),
-        }
-    }
-}
-
-impl BlockSource for ProgramBlocks {
-    fn advance(&mut self) -> io::Result<bool> {
-        match self {
-            ProgramBlocks::Ahead(blocks) => blocks.advance(),
-            ProgramBlocks::InLine(blocks) => blocks.advance(),
-        }
-    }
-
-    fn blocks(&self) -> &[Block] {
-        match self {
-            ProgramBlocks::Ahead(blocks) => blocks.blocks(),
-            ProgramBlocks::InLine(blocks) => blocks.blocks(),
-        }
-    }
-
-    fn text(&self) -> Option<&[u8]> {
-        match self {
-            ProgramBlocks::Ahead(blocks) => blocks.text(),
-            ProgramBlocks::InLine(blocks) => blocks.text(),
-        }
-    }
+/// The ISO blocks of `reader`'s text (about `length` bytes, 0 when unknown), parsed where
+/// `parsing` says.
+pub(crate) fn iso_program_lines(
+    reader: Box<dyn Read + Send>,
+    length: u64,
+    syntax: SyntaxOptions,
+    parsing: Parsing,
+) -> IsoProgramLines {
+    let ahead = match parsing {
+        Parsing::Ahead => Some(length),
+        Parsing::InLine | Parsing::AheadWhenHeavy => None,
+    };
+    ProgramLines::new(reader, IsoParser::new(FileId(0), syntax), ahead)
 }
 
 /// The interpreter of a pipeline's program.
-pub(crate) type ProgramInterpreter = Interpreter<ProgramBlocks>;
+pub(crate) type ProgramInterpreter = Interpreter<IsoProgramLines>;
 
 /// The files a run reads: the main program (file 0) and the programs it calls, for the
 /// consumer's diagnostics.
@@ -160,7 +123,7 @@ impl Opened {
         directories: &[PathBuf],
     ) -> (ProgramInterpreter, ProgramFiles) {
         let syntax = machine.profile.syntax();
-        let blocks = ProgramBlocks::new(self.reader, self.length, syntax, parsing);
+        let blocks = iso_program_lines(self.reader, self.length, syntax, parsing);
         let (library, loaded) = library(self.main, directories);
         let files = ProgramFiles::new(self.name, loaded);
         let interpreter =

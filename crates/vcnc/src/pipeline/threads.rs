@@ -20,6 +20,7 @@ use crate::interp::{FrontEnd, Interpreter, PersistentVariables};
 use crate::machine::Machine;
 use crate::plan::{PlanOptions, Timeline, Timing};
 use crate::syntax::blocks::BlockSource;
+use crate::syntax::iso::LineBlocks;
 use std::collections::VecDeque;
 use std::io;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -92,7 +93,7 @@ pub trait BatchSource: Send + 'static {
     }
 }
 
-impl<B: BlockSource + Send + 'static> BatchSource for Interpreter<B> {
+impl<B: BlockSource<Line = LineBlocks> + Send + 'static> BatchSource for Interpreter<B> {
     fn next_batch(&mut self, out: &mut Vec<Item>, at_least: usize) -> bool {
         Interpreter::next_batch(self, out, at_least)
     }
@@ -350,7 +351,7 @@ impl Pool {
 
 #[cfg(test)]
 mod tests {
-    use super::super::program::ProgramBlocks;
+    use super::super::program::iso_program_lines;
     use super::super::{Parsing, Waiting};
     use super::*;
     use crate::interp::{Interpreter, LoadedFiles, Options};
@@ -367,7 +368,7 @@ mod tests {
         }
         text.push_str("M30\n");
         let machine = Machine::default();
-        let blocks = ProgramBlocks::new(
+        let blocks = iso_program_lines(
             Box::new(std::io::Cursor::new(text.into_bytes())),
             0,
             machine.profile.syntax(),

@@ -1,10 +1,11 @@
-//! Where the interpreter gets its blocks: a [`BlockSource`] hands them out one line at a time.
+//! Where a front end gets its program's lines: a [`BlockSource`] hands them out one at a time,
+//! each read and parsed by the front end's [`LineParser`] into the front end's own type (the
+//! ISO front end's [`LineBlocks`], SINUMERIK's `ParsedLine`).
 //!
 //! [`ParsedLines`] reads and parses on demand, on the caller's thread. [`BackgroundParser`] reads
 //! and parses on a thread of its own, a few hundred lines ahead, so that a consumer with a second
-//! core spends its time interpreting; both give the same blocks (checked by the tests). What a
-//! line parses into is the front end's: a [`LineParser`] says it (the ISO front end's blocks by
-//! default; the SINUMERIK front end has its own, in `syntax::sinumerik`).
+//! core spends its time interpreting; both give the same lines (checked by the tests).
+//! [`ProgramLines`] is either, as the caller chooses, over a program's reader.
 
 use super::iso::{parse_line, parse_plain_line_in, LineBlocks, SyntaxOptions};
 use super::lines::{LineSource, ReaderLines};
@@ -14,16 +15,24 @@ use std::io::{self, Read};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread::JoinHandle;
 
-/// Blocks of a program, one line's worth at a time.
+/// A program's lines, read and parsed one at a time.
 pub trait BlockSource {
+    /// One line as the front end's parser gives it.
+    type Line;
+
     /// Moves to the next line; false at the end of the text.
     ///
     /// # Errors
     /// Whatever reading the text reports.
     fn advance(&mut self) -> io::Result<bool>;
 
-    /// The blocks of the current line (empty before the first `advance`).
-    fn blocks(&self) -> &[Block];
+    /// The line read last: before the first `advance`, None or a line without blocks; after the
+    /// end of the text, what the parser left there (the ISO parser: a line without blocks; SINUMERIK's: the last
+    /// line, for the spans of what the end finds missing).
+    fn line(&self) -> Option<&Self::Line>;
+
+    /// The line read last, to take parts of it: it is read into again by the next `advance`.
+    fn line_mut(&mut self) -> Option<&mut Self::Line>;
 
     /// The whole program text, when it is in memory (see [`LineSource::text`]).
     fn text(&self) -> Option<&[u8]> {
@@ -31,34 +40,55 @@ pub trait BlockSource {
     }
 }
 
-/// Lines from a [`LineSource`], parsed as they are asked for.
+/// The blocks of the line `source` read last (none before the first line).
+#[inline(always)]
+pub fn line_blocks<B: BlockSource<Line = LineBlocks> + ?Sized>(source: &B) -> &[Block] {
+    source.line().map_or(&[], LineBlocks::as_slice)
+}
+
+/// Lines from a [`LineSource`], parsed as they are asked for by `P` (the ISO parser unless
+/// said otherwise).
 #[derive(Debug)]
-pub struct ParsedLines<L> {
+pub struct ParsedLines<L, P: LineParser = IsoParser> {
     lines: L,
-    file: FileId,
-    syntax: SyntaxOptions,
-    blocks: LineBlocks,
+    parser: P,
+    line: P::Line,
 }
 
 impl<L: LineSource> ParsedLines<L> {
-    /// Parses the lines of `lines` (file `file`) with the character rules `syntax`.
+    /// Parses the lines of `lines` (file `file`) as ISO blocks with the character rules
+    /// `syntax`.
     pub fn new(lines: L, file: FileId, syntax: SyntaxOptions) -> ParsedLines<L> {
+        ParsedLines::with_parser(lines, IsoParser::new(file, syntax))
+    }
+}
+
+impl<L: LineSource, P: LineParser> ParsedLines<L, P> {
+    /// Parses the lines of `lines` with `parser`.
+    pub fn with_parser(lines: L, parser: P) -> ParsedLines<L, P> {
         ParsedLines {
+            line: parser.empty_line(),
             lines,
-            file,
-            syntax,
-            blocks: LineBlocks::new(),
+            parser,
         }
     }
 }
 
-impl<L: LineSource> BlockSource for ParsedLines<L> {
+impl<L: LineSource, P: LineParser> BlockSource for ParsedLines<L, P> {
+    type Line = P::Line;
+
+    #[inline(always)]
     fn advance(&mut self) -> io::Result<bool> {
-        read_next_line(&mut self.lines, self.file, &self.syntax, &mut self.blocks)
+        self.parser.read_line(&mut self.lines, &mut self.line)
     }
 
-    fn blocks(&self) -> &[Block] {
-        self.blocks.as_slice()
+    #[inline(always)]
+    fn line(&self) -> Option<&P::Line> {
+        Some(&self.line)
+    }
+
+    fn line_mut(&mut self) -> Option<&mut P::Line> {
+        Some(&mut self.line)
     }
 
     fn text(&self) -> Option<&[u8]> {
@@ -244,12 +274,12 @@ impl<P: LineParser> BackgroundParser<P> {
             thread: Some(thread),
         }
     }
+}
 
-    /// Moves to the next line; false at the end of the text.
-    ///
-    /// # Errors
-    /// Whatever reading the text reported on the parser's thread.
-    pub fn next_line(&mut self) -> io::Result<bool> {
+impl<P: LineParser> BlockSource for BackgroundParser<P> {
+    type Line = P::Line;
+
+    fn advance(&mut self) -> io::Result<bool> {
         if self.ended {
             return Ok(false);
         }
@@ -276,28 +306,71 @@ impl<P: LineParser> BackgroundParser<P> {
         }
     }
 
-    /// The current line: None before the first [`BackgroundParser::next_line`]; after the
-    /// end of the text, still the last line.
-    pub fn line(&self) -> Option<&P::Line> {
+    fn line(&self) -> Option<&P::Line> {
         self.batch.get(self.index)
     }
 
-    /// The current line, to take parts of it: it goes back to the parser thread with its batch,
-    /// to be read into again.
-    pub fn line_mut(&mut self) -> Option<&mut P::Line> {
+    fn line_mut(&mut self) -> Option<&mut P::Line> {
         self.batch.get_mut(self.index)
     }
 }
 
-impl BlockSource for BackgroundParser<IsoParser> {
+/// A program's lines read from its reader by `P`: here as they are asked for, or on a thread
+/// of its own ahead of them.
+// Made once per run: the variants' sizes do not matter.
+#[allow(clippy::large_enum_variant)]
+pub enum ProgramLines<P: LineParser> {
+    /// On a thread of its own ([`BackgroundParser`]).
+    Ahead(BackgroundParser<P>),
+    /// On the caller's thread ([`ParsedLines`]).
+    InLine(ParsedLines<ReaderLines<Box<dyn Read + Send>>, P>),
+}
+
+impl<P: LineParser> ProgramLines<P> {
+    /// The lines of `reader` parsed by `parser`: on a thread of its own when `ahead` says
+    /// about how many bytes the text holds (0 when unknown), here when it is None.
+    pub fn new(reader: Box<dyn Read + Send>, parser: P, ahead: Option<u64>) -> ProgramLines<P> {
+        match ahead {
+            Some(bytes) => ProgramLines::Ahead(BackgroundParser::start(reader, parser, bytes)),
+            None => {
+                ProgramLines::InLine(ParsedLines::with_parser(ReaderLines::new(reader), parser))
+            }
+        }
+    }
+}
+
+impl<P: LineParser> BlockSource for ProgramLines<P> {
+    type Line = P::Line;
+
+    #[inline(always)]
     fn advance(&mut self) -> io::Result<bool> {
-        self.next_line()
+        match self {
+            ProgramLines::Ahead(lines) => lines.advance(),
+            ProgramLines::InLine(lines) => lines.advance(),
+        }
     }
 
-    fn blocks(&self) -> &[Block] {
-        match self.line() {
-            Some(line) if !self.ended => line.as_slice(),
-            _ => &[],
+    #[inline(always)]
+    fn line(&self) -> Option<&P::Line> {
+        match self {
+            ProgramLines::Ahead(lines) => lines.line(),
+            ProgramLines::InLine(lines) => lines.line(),
+        }
+    }
+
+    fn line_mut(&mut self) -> Option<&mut P::Line> {
+        match self {
+            ProgramLines::Ahead(lines) => lines.line_mut(),
+            ProgramLines::InLine(lines) => lines.line_mut(),
+        }
+    }
+}
+
+impl<P: LineParser> std::fmt::Debug for ProgramLines<P> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ProgramLines::Ahead(lines) => lines.fmt(f),
+            ProgramLines::InLine(_) => f.write_str("ProgramLines::InLine"),
         }
     }
 }
@@ -330,10 +403,10 @@ mod tests {
     use crate::syntax::lines::tests::Trickle;
     use crate::syntax::lines::TextLines;
 
-    fn collect(source: &mut dyn BlockSource) -> Vec<Vec<Block>> {
+    fn collect(source: &mut dyn BlockSource<Line = LineBlocks>) -> Vec<Vec<Block>> {
         let mut lines = Vec::new();
         while source.advance().unwrap() {
-            lines.push(source.blocks().to_vec());
+            lines.push(line_blocks(source).to_vec());
         }
         lines
     }
@@ -378,7 +451,8 @@ mod tests {
     /// The blocks of every line of `text` as text, values to the bit (`{:?}` tells -0 from 0),
     /// as each source gives them.
     fn blocks_by_every_source(text: &[u8]) -> Vec<String> {
-        let read = |source: &mut dyn BlockSource| format!("{:?}", collect(source));
+        let read =
+            |source: &mut dyn BlockSource<Line = LineBlocks>| format!("{:?}", collect(source));
         let syntax = SyntaxOptions::default();
         let file = FileId(2);
         vec![
@@ -417,9 +491,9 @@ mod tests {
         // `\r` ends a line (old Mac line ends), the next `\r\n` an empty one.
         let mut lines = ParsedLines::new(TextLines::new(text), FileId(0), SyntaxOptions::default());
         assert!(lines.advance().unwrap());
-        assert_eq!(lines.blocks()[0].span.end, 26);
+        assert_eq!(line_blocks(&lines)[0].span.end, 26);
         assert!(lines.advance().unwrap());
-        assert_eq!(lines.blocks()[0].span.end, 26 + 2 + 29);
+        assert_eq!(line_blocks(&lines)[0].span.end, 26 + 2 + 29);
     }
 
     proptest::proptest! {

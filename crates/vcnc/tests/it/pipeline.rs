@@ -10,6 +10,7 @@ use vcnc::interp::{DirectoryLibrary, PersistentVariables};
 use vcnc::pipeline::{Item, Layout, Parsing, Pipeline, Stopping, Stream, Waiting};
 use vcnc::plan::{PlanOptions, Planner, Timing};
 use vcnc::syntax::blocks::BlockSource;
+use vcnc::syntax::iso::LineBlocks;
 use vcnc::{interpret_str, AlarmCode, FileId, Interpreter, Machine, Options};
 
 /// An item with its timing (none for an alarm: the planner passes alarms untouched).
@@ -70,7 +71,10 @@ fn consume(mut stream: Stream) -> (Tally, u64) {
 
 /// The same on one thread: the interpreter's iterator, the travel check and the planner;
 /// with the blocks the interpreter ran.
-fn single_threaded<B: BlockSource>(interpreter: Interpreter<B>, machine: &Machine) -> (Tally, u64) {
+fn single_threaded<B: BlockSource<Line = LineBlocks>>(
+    interpreter: Interpreter<B>,
+    machine: &Machine,
+) -> (Tally, u64) {
     let mut tally = Tally::default();
     let checked = TravelLimits::new(interpreter, machine);
     let mut planner = Planner::new(checked, machine, PlanOptions::default());

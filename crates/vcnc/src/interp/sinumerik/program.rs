@@ -8,16 +8,15 @@
 //! start of every line. Subprograms and texts given in memory are held whole from the start.
 //!
 //! A streamed main program is read and parsed on the interpreter's thread as it runs, or on a
-//! thread of its own a few hundred lines ahead ([`BackgroundParser`]): each line then comes
+//! thread of its own a few hundred lines ahead ([`BackgroundParser`](crate::syntax::blocks::BackgroundParser)): each line then comes
 //! with its block, which [`Program::take_block`] hands over.
 //!
 //! Never: read a program's file twice unless it jumps, or load a subprogram before it is
 //! called.
 
 use crate::source::{FileId, Span};
-use crate::syntax::blocks::{BackgroundParser, LineParser};
-use crate::syntax::lines::ReaderLines;
-use crate::syntax::sinumerik::{Block, ParsedLine, SinumerikParser};
+use crate::syntax::blocks::{BlockSource, ProgramLines};
+use crate::syntax::sinumerik::{Block, SinumerikParser};
 use std::io::{self, Read};
 use std::sync::Arc;
 
@@ -41,54 +40,11 @@ enum Text {
 
 /// A text read line by line.
 struct Streamed {
-    lines: StreamedLines,
+    lines: ProgramLines<SinumerikParser>,
     /// The line read last (0-based; `None` before the first).
     index: Option<usize>,
     /// The reader came to its end after line `index`.
     ended: bool,
-}
-
-/// Where a streamed text's lines are read and parsed.
-// Made once per run and held in a box with the rest of `Streamed`: the sizes do not matter.
-#[allow(clippy::large_enum_variant)]
-enum StreamedLines {
-    /// Here, as they are asked for; the line read last.
-    InLine {
-        lines: ReaderLines<Box<dyn Read + Send>>,
-        parser: SinumerikParser,
-        line: ParsedLine,
-    },
-    /// On a thread of its own.
-    Ahead(BackgroundParser<SinumerikParser>),
-}
-
-impl StreamedLines {
-    /// Moves to the next line; false at the end of the text.
-    fn advance(&mut self) -> io::Result<bool> {
-        match self {
-            StreamedLines::InLine {
-                lines,
-                parser,
-                line,
-            } => parser.read_line(lines, line),
-            StreamedLines::Ahead(parser) => parser.next_line(),
-        }
-    }
-
-    /// The line read last.
-    fn line(&self) -> Option<&ParsedLine> {
-        match self {
-            StreamedLines::InLine { line, .. } => Some(line),
-            StreamedLines::Ahead(parser) => parser.line(),
-        }
-    }
-
-    fn line_mut(&mut self) -> Option<&mut ParsedLine> {
-        match self {
-            StreamedLines::InLine { line, .. } => Some(line),
-            StreamedLines::Ahead(parser) => parser.line_mut(),
-        }
-    }
 }
 
 /// One line of a program: where it is, and its bytes (without the line end).
@@ -128,15 +84,7 @@ impl Program {
         reader: Box<dyn Read + Send>,
         ahead: Option<u64>,
     ) -> Program {
-        let parser = SinumerikParser::new(file);
-        let lines = match ahead {
-            Some(bytes) => StreamedLines::Ahead(BackgroundParser::start(reader, parser, bytes)),
-            None => StreamedLines::InLine {
-                lines: ReaderLines::new(reader),
-                line: parser.empty_line(),
-                parser,
-            },
-        };
+        let lines = ProgramLines::new(reader, SinumerikParser::new(file), ahead);
         Program {
             file,
             name: "".into(),
