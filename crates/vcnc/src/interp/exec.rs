@@ -27,6 +27,8 @@ pub(crate) struct Executor {
     pub(crate) intermediate: [Option<f64>; AXES],
     /// G16: the last polar point, while polar coordinate command is on.
     pub(crate) polar: Option<super::polar_coordinates::PolarPoint>,
+    /// G51 and G51.1 as set (the chain holds what they make together).
+    pub(crate) scaling: super::frames::scaling::ScalingState,
     /// The canned cycle in force.
     pub(crate) cycle: Option<super::cycles::Cycle>,
     /// Where the last G31 ended, program coordinates (FANUC #5061-#5066).
@@ -60,6 +62,7 @@ impl Executor {
             kernel,
             intermediate: [None; AXES],
             polar: None,
+            scaling: Default::default(),
             cycle: None,
             skip_position: [0.0; AXES],
             modal,
@@ -191,16 +194,12 @@ impl Executor {
         let rotation = cmd.group(Group::Rotation).map(|g| g.code);
         match scaling {
             Some(GCode::Scale) => super::frames::scaling::g51(self, cmd)?,
-            Some(GCode::ScalingCancel) => {
-                super::frames::scaling::cancel(&mut self.kernel.frames, false)
-            }
+            Some(GCode::ScalingCancel) => super::frames::scaling::cancel(self, false),
             _ => {}
         }
         match mirror {
             Some(GCode::Mirror) => super::frames::scaling::g51_1(self, cmd)?,
-            Some(GCode::MirrorCancel) => {
-                super::frames::scaling::cancel(&mut self.kernel.frames, true)
-            }
+            Some(GCode::MirrorCancel) => super::frames::scaling::cancel(self, true),
             _ => {}
         }
         match cmd.group(Group::Polar).map(|g| g.code) {

@@ -40,4 +40,39 @@ pub struct CoordinateRules {
     /// (Haas).
     #[serde(default)]
     pub g28_cancels_length_offset: bool,
+    /// How G16 reads a radius or an angle in G91.
+    #[serde(default)]
+    pub polar_increments: PolarIncrements,
+    /// Which axes G51 scales.
+    #[serde(default)]
+    pub scaling_axes: ScalingAxes,
+    /// G51 scaling and the G51.1 mirror can be on together (a FANUC: the mirror first); otherwise
+    /// the second is an alarm (Syntec spec 1.28, 1.29).
+    #[serde(default)]
+    pub scaling_with_mirror: bool,
+}
+
+/// How G16 polar coordinates read G91.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PolarIncrements {
+    /// Radius and angle add to the previous polar point's; the pole stays the program origin
+    /// (Syntec spec 1.14, L1033).
+    #[default]
+    AddToPreviousPoint,
+    /// A radius in G91 is measured from the current position, which becomes the pole (in G90
+    /// the pole is the program origin); an angle in G91 adds to the previous one (a FANUC).
+    PoleAtCurrentPosition,
+}
+
+/// The axes G51 scales.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ScalingAxes {
+    /// Only the axes named in the G51 block, about the coordinates they give (Syntec spec 1.28).
+    #[default]
+    Named,
+    /// X, Y and Z whether named or not (a FANUC's parameter SCLx set for the basic axes), each
+    /// about the coordinate its word gives or the current position.
+    BasicAxes,
 }

@@ -30,7 +30,7 @@ pub use codes::{
 };
 
 pub use compensation::{CompensationRules, ToolOffsetField, ToolOffsetL};
-pub use coordinates::CoordinateRules;
+pub use coordinates::{CoordinateRules, PolarIncrements, ScalingAxes};
 pub use cycles::{CycleRules, ShiftDirection};
 pub use dwell::{DwellP, DwellRules};
 pub use macros::{MacroArguments, MacroRules, ToolOffsetVariables};
@@ -529,7 +529,7 @@ mod tests {
         }
         // Every field but name, description, power_on and sinumerik: each is set or has a
         // default in some profile, so the flat-key error finds them all.
-        assert_eq!(seen.len(), 65);
+        assert_eq!(seen.len(), 68);
     }
 
     #[test]

@@ -373,3 +373,103 @@ fn haas_g12_g13_mill_a_circular_pocket() {
         .error()
         .is_some_and(|a| a.message.contains("not larger than the cutter")));
 }
+
+/// The end points of the moves of `text` on `profile` (rapids and lines), one per line.
+fn ends(profile: ProfileName, text: &str) -> Vec<String> {
+    trace_on(&on(profile), text)
+        .lines()
+        .filter(|l| l.starts_with("rapid") || l.starts_with("line"))
+        .map(|l| l.split(" F").next().unwrap_or(l).to_string())
+        .collect()
+}
+
+/// A FANUC's G16: "the current position is set as the origin of the polar coordinate system"
+/// when the radius is programmed incrementally, and an incremental angle adds to the previous
+/// one; a radius in G90 is measured from the work origin. Syntec adds both to the previous
+/// polar point (spec 1.14, L1033).
+#[test]
+fn a_fanuc_g16_radius_in_g91_is_measured_from_the_current_position() {
+    // From (50, 0), polar angle 0: radius 10 at +30 degrees about (50, 0) is
+    // (50 + 10 cos 30, 10 sin 30) = (58.6603, 5); the angle alone then steps to 60 degrees about
+    // the same pole: (50 + 10 cos 60, 10 sin 60) = (55, 8.6603).
+    let text = "G90 G17 G00 X50. Y0\nG16\nG91 G01 X10. Y30. F100.\nY30.\nM30\n";
+    for profile in [
+        ProfileName::Fanuc,
+        ProfileName::Fanuc0m,
+        ProfileName::Mitsubishi,
+        ProfileName::Haas,
+    ] {
+        assert_eq!(
+            ends(profile, text),
+            [
+                "rapid X50 Y0 Z0",
+                "line X58.6603 Y5 Z0",
+                "line X55 Y8.6603 Z0"
+            ],
+            "{profile:?}"
+        );
+    }
+    // Syntec: radius 50 + 10 = 60 at 30 degrees, then 60 degrees: (51.9615, 30), (30, 51.9615).
+    assert_eq!(
+        ends(ProfileName::Syntec, text),
+        [
+            "rapid X50 Y0 Z0",
+            "line X51.9615 Y30 Z0",
+            "line X30 Y51.9615 Z0"
+        ]
+    );
+}
+
+/// The bolt-hole circle of a FANUC's polar coordinates: radius in G90, angles stepped in G91;
+/// the pole stays the work origin since no radius is programmed incrementally. Every profile
+/// agrees: 100 at 30, 150 and 270 degrees.
+#[test]
+fn polar_angles_stepped_in_g91_keep_the_pole_at_the_origin() {
+    let text = "G90 G17 G16 G00 X100. Y30.\nG91 Y120.\nY120.\nG15 M30\n";
+    for profile in ISO {
+        assert_eq!(
+            ends(profile, text),
+            [
+                "rapid X86.6025 Y50 Z0",
+                "rapid X-86.6025 Y50 Z0",
+                "rapid X0 Y-100 Z0"
+            ],
+            "{profile:?}"
+        );
+    }
+}
+
+/// A FANUC scales the axes its parameters select (X Y Z), "if X Y Z are omitted, the tool
+/// position where G51 is commanded serves as the scaling center" (Haas says the same of its
+/// G51); Syntec scales only the axes named (spec 1.28).
+#[test]
+fn a_fanuc_g51_scales_every_basic_axis_about_the_current_position() {
+    // Z's centre is the current Z 10: 10 + 2 (5 - 10) = 0; X Y about (0, 0): (20, 20).
+    let text = "G90 G00 X0 Y0 Z10.\nG51 X0 Y0 P2.\nG01 X10. Y10. Z5. F100.\nG50\nM30\n";
+    for profile in [
+        ProfileName::Fanuc,
+        ProfileName::Haas,
+        ProfileName::Mitsubishi,
+    ] {
+        assert_eq!(ends(profile, text)[1], "line X20 Y20 Z0", "{profile:?}");
+    }
+    assert_eq!(ends(ProfileName::Syntec, text)[1], "line X20 Y20 Z5");
+}
+
+/// "Processing proceeds from program mirror image to scaling and coordinate rotation in the
+/// stated order" (a FANUC; Syntec refuses the two together, spec 1.28): G50 and G50.1 each end
+/// only their own.
+#[test]
+fn a_fanuc_combines_the_mirror_and_scaling() {
+    // Mirror about X = 50, scaling by 2 about (0, 0): X10 Y10 scales to (20, 20) and mirrors to
+    // (80, 20). After G50 the mirror alone: X10 -> 90, Y stays where the tool is (20). After
+    // G50.1: X10.
+    let text = "G90 G00 X0 Y0\nG51.1 X50.\nG51 X0 Y0 P2.\nG01 X10. Y10. F100.\nG50\nX10.\n\
+        G50.1\nX10.\nM30\n";
+    assert_eq!(
+        ends(ProfileName::Fanuc, text),
+        ["line X80 Y20 Z0", "line X90 Y20 Z0", "line X10 Y20 Z0"]
+    );
+    let (code, line, _) = stop(text, ProfileName::Syntec);
+    assert_eq!((code, line), (AlarmCode::WordNotAllowed, 3));
+}

@@ -430,7 +430,6 @@ mod tests {
         Scaling {
             center: [1.0, 2.0, 0.0, 0.0, 0.0, 0.0],
             factor,
-            mirror: false,
         }
     }
 

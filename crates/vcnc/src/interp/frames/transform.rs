@@ -194,8 +194,6 @@ pub(crate) struct Scaling {
     pub(crate) center: [f64; AXES],
     /// The factor of each axis (never zero).
     pub(crate) factor: [f64; AXES],
-    /// G51.1 rather than G51 (for messages).
-    pub(crate) mirror: bool,
 }
 
 impl Scaling {

@@ -190,10 +190,13 @@ impl Core {
         if self.exec.modal.smoothing.path.is_some() {
             return Some("path smoothing (G05.1) is on");
         }
-        match self.exec.kernel.frames.scaling() {
-            Some(scaling) if scaling.mirror => Some("the programmable mirror (G51.1) is on"),
-            Some(_) => Some("scaling (G51) is on"),
-            None => None,
+        let scaling = &self.exec.scaling;
+        if scaling.mirror_on() {
+            Some("the programmable mirror (G51.1) is on")
+        } else if scaling.scaling_on() {
+            Some("scaling (G51) is on")
+        } else {
+            None
         }
     }
 

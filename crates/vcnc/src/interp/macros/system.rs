@@ -357,7 +357,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
             CycleReturn::RLevel => 990.0,
         },
         11 => {
-            if exec.kernel.frames.scaling().is_some() {
+            if exec.scaling.scaling_on() {
                 510.0
             } else {
                 500.0
