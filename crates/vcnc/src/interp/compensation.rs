@@ -59,16 +59,25 @@ pub(crate) fn before_motion(
     }
     if out.compensating() {
         if let Some(g) = cmd.group(Group::NonModal) {
-            if matches!(
-                g.code,
-                GCode::ReferenceReturn
-                    | GCode::ReturnFromReference
-                    | GCode::NthReferenceReturn
-                    | GCode::MachineCoordinates
-                    | GCode::SetCoordinates
-                    | GCode::PresetCoordinates
-                    | GCode::LocalCoordinates
-            ) {
+            let keeps = g.code == GCode::MachineCoordinates
+                && exec
+                    .kernel
+                    .setup
+                    .profile()
+                    .compensation
+                    .g53_keeps_radius_compensation;
+            if !keeps
+                && matches!(
+                    g.code,
+                    GCode::ReferenceReturn
+                        | GCode::ReturnFromReference
+                        | GCode::NthReferenceReturn
+                        | GCode::MachineCoordinates
+                        | GCode::SetCoordinates
+                        | GCode::PresetCoordinates
+                        | GCode::LocalCoordinates
+                )
+            {
                 // Cancelled for this block, resumed with the next (spec A.22 rule 4).
                 out.suspend_compensation()?;
             }

@@ -57,6 +57,10 @@ pub struct CompensationRules {
     /// Z0` would (Mitsubishi 003 L65 note 1); otherwise in the motion mode in force.
     #[serde(default)]
     pub length_change_at_rapid: bool,
+    /// G53 in offset mode keeps the radius compensation of the axes it moves (Mitsubishi 003
+    /// L79); otherwise the block is made without it, as G28 is (FANUC family, spec A.22).
+    #[serde(default)]
+    pub g53_keeps_radius_compensation: bool,
 }
 
 fn default_cutter_comp_look_ahead() -> u32 {

@@ -473,3 +473,24 @@ fn a_fanuc_combines_the_mirror_and_scaling() {
     let (code, line, _) = stop(text, ProfileName::Syntec);
     assert_eq!((code, line), (AlarmCode::WordNotAllowed, 3));
 }
+
+/// "Even when G53 is commanded, the tool radius compensation of the commanded axes is not
+/// cancelled" (Mitsubishi 003 L79): its rapid is an element of the compensated path; a FANUC
+/// makes the block without compensation, as G28 (spec A.22 rule 4).
+#[test]
+fn mitsubishi_g53_keeps_the_radius_compensation() {
+    // Radius 5 on the left: up X20 from Y0 to Y20, then G53 along +X to X50 and a cancel up to
+    // Y40. Kept, the G53 element ends 5 to its left, (50, 25), as the last element before G40
+    // does; suspended, the tool centre goes to (50, 20) itself.
+    let text = "G90 G17 G00 X20. Y-10.\nG41 D1 G01 Y0 F100.\nY20.\nG53 X50. Y20.\n\
+        G40 G00 Y40.\nM30\n";
+    let g53_end = |profile| {
+        let mut machine = on(profile);
+        set_register(&mut machine, 1, 0.0, 5.0);
+        let trace = trace_on(&machine, text);
+        let rapids: Vec<_> = trace.lines().filter(|l| l.starts_with("rapid")).collect();
+        rapids[rapids.len() - 2].to_string()
+    };
+    assert_eq!(g53_end(ProfileName::Mitsubishi), "rapid X50 Y25 Z0");
+    assert_eq!(g53_end(ProfileName::Fanuc), "rapid X50 Y20 Z0");
+}
