@@ -119,6 +119,9 @@ pub enum AlarmCode {
     /// G12/G13 circle cutting without an offset number, or with a circle no larger than the
     /// offset (Mitsubishi P170, P233).
     CircleCutting,
+    /// Haas G47 text engraving with a bad P, J or E, no text, a character the font lacks, or
+    /// outside the X-Y plane.
+    Engraving,
     /// A high-speed or smoothing code (G05, G05.1, G08) with a word missing or out of range
     /// (Syntec COR-107), or switched on in exact stop or tapping mode, G61/G63 (Syntec COR-106),
     /// or high-speed mode with inverse time feed, G93 (spec 1.8, restriction 14).
@@ -237,6 +240,7 @@ impl AlarmCode {
             CycleData => "cycle_data",
             CycleParameter => "cycle_parameter",
             CircleCutting => "circle_cutting",
+            Engraving => "engraving",
             SmoothingCommand => "smoothing_command",
             Overtravel => "overtravel",
             MacroSyntax => "macro_syntax",
@@ -301,6 +305,7 @@ impl AlarmCode {
             CycleData => "V070",
             CycleParameter => "V074",
             CircleCutting => "V071",
+            Engraving => "V125",
             SmoothingCommand => "V072",
             Overtravel => "V073",
             MacroSyntax => "V080",
@@ -366,6 +371,7 @@ impl AlarmCode {
             CycleData => "give the cycle the words it needs (Z, R, Q ...); cancel it with G80 before changing the plane",
             CycleParameter => "correct the cycle's parameter the message names: the parameter lists are in docs/SINUMERIK.md, Standard cycles",
             CircleCutting => "give G12/G13 a D offset smaller than the circle's radius I",
+            Engraving => "give G47 P0 with the text as a comment, P32-126 for one character, J and E above zero, in G17",
             SmoothingCommand => "give the smoothing code its words (P, Q, E), and switch it on outside G61/G63/G93",
             Overtravel => "move the program's zero (work offset) or change the travel limits of the machine file",
             MacroSyntax => "check the brackets and keywords of the statement: the macro language is in docs/MACROS.md",
@@ -427,6 +433,7 @@ impl AlarmCode {
         AlarmCode::PositionOffset,
         AlarmCode::CycleData,
         AlarmCode::CircleCutting,
+        AlarmCode::Engraving,
         AlarmCode::SmoothingCommand,
         AlarmCode::Overtravel,
         AlarmCode::MacroSyntax,

@@ -74,6 +74,8 @@ pub(crate) struct Command {
     /// A subprogram call, return or interrupt code (M98, M99, M97, M198, M96): the macro
     /// layer runs it after the block's other words.
     subprogram: Option<(MCode, Value)>,
+    /// The text of the block's first comment, where the parser kept it (statements, G47).
+    text: Option<Box<str>>,
     /// G65 or G66: the block is a macro call; the words from this index on are its arguments
     /// and were not decoded.
     macro_call: Option<(GWord, usize)>,
@@ -323,6 +325,7 @@ impl Command {
         self.subprogram = None;
         self.macro_call = None;
         self.calls = false;
+        self.text = None;
         self.rare = false;
     }
 
@@ -381,6 +384,19 @@ impl Command {
     fn warn(&mut self, warning: Alarm) {
         self.warnings.push(warning);
         self.rare = true;
+    }
+
+    /// Records the text of the block's first comment.
+    #[cold]
+    fn set_text(&mut self, text: &str) {
+        self.text = Some(text.into());
+        self.rare = true;
+    }
+
+    /// The text of the block's first comment, where the parser kept it (blocks with statements,
+    /// G47 engraving).
+    pub(crate) fn text(&self) -> Option<&str> {
+        self.text.as_deref()
     }
 
     /// Records the block's G65 or G66 `call`, whose arguments are the words from `arguments` on.
@@ -687,6 +703,9 @@ pub(crate) fn decode(
     out: &mut Command,
 ) -> Result<(), Alarm> {
     out.reset(block.span);
+    if let Some(text) = &block.message {
+        out.set_text(text);
+    }
     for (order, word) in block.words.iter().enumerate() {
         if word.number.value.abs() > profile.reading.max_word_value {
             return Err(word_out_of_range(word, profile));

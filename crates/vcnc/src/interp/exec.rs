@@ -253,6 +253,10 @@ impl Executor {
                 }
                 true
             }
+            Some(GCode::Engrave) => {
+                super::engraving::g47(self, cmd, out)?;
+                true
+            }
             Some(GCode::Pattern(kind)) => {
                 super::cycles::pattern(self, cmd, kind, out)?;
                 true
@@ -268,16 +272,22 @@ impl Executor {
 
     /// E is read by tapping cycles, the smoothing modes and (on some profiles) threading only.
     fn refuse_stray_e(&self, cmd: &Command, smoothing: Option<GWord>) -> Result<(), Alarm> {
+        let Some(e) = cmd.word(b'E') else {
+            return Ok(());
+        };
         let thread_e = self.kernel.setup.profile().motion.thread_e_per_inch
             && self.modal.motion == MotionMode::Thread;
-        match (cmd.word(b'E'), &self.cycle, smoothing, thread_e) {
-            (Some(e), None, None, false) => Err(Alarm::not_supported(
+        let engraving = cmd
+            .group(Group::NonModal)
+            .is_some_and(|g| g.code == GCode::Engrave);
+        if self.cycle.is_none() && smoothing.is_none() && !thread_e && !engraving {
+            return Err(Alarm::not_supported(
                 e.span,
                 "address E outside a tapping cycle",
                 None,
-            )),
-            _ => Ok(()),
+            ));
         }
+        Ok(())
     }
 
     /// The block's motion: the canned cycle in force, the motion mode's move to the axis

@@ -20,6 +20,7 @@ mod compensation;
 mod cycles;
 mod data_input;
 mod decode;
+mod engraving;
 mod exec;
 mod frames;
 mod front_end;

@@ -241,6 +241,7 @@ impl ModalState {
             | PositionOffset(_)
             | Pattern(_)
             | CircleCutting(_)
+            | Engrave
             | PolarCancel
             | Polar
             | ScalingCancel

@@ -129,6 +129,8 @@ pub enum GCode {
     Incremental,
     /// G92.
     SetCoordinates,
+    /// Haas G47: text engraving.
+    Engrave,
     /// G45 (+1), G46 (-1), G47 (+2), G48 (-2): tool position offset by that many times the D
     /// value along each axis's travel, one block.
     PositionOffset(i8),
@@ -234,6 +236,7 @@ impl GCode {
             PositionOffset(-1) => "tool position offset -1",
             PositionOffset(2) => "tool position offset +2",
             PositionOffset(_) => "tool position offset -2",
+            Engrave => "text engraving",
             PresetCoordinates => "work coordinate system preset",
             InverseTimeFeed => "inverse time feed",
             FeedPerMinute => "feed per minute",
@@ -288,7 +291,7 @@ impl GCode {
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | Skip | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
-            | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_)
+            | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_) | Engrave
             | HighSpeedMode | PathSmoothing | LookAhead => Group::NonModal,
         }
     }
@@ -419,6 +422,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         450 if profile.compensation.tool_position_offset => PositionOffset(1),
         460 if profile.compensation.tool_position_offset => PositionOffset(-1),
         470 if profile.compensation.tool_position_offset => PositionOffset(2),
+        470 => Engrave,
         480 if profile.compensation.tool_position_offset => PositionOffset(-2),
         490 => LengthCompCancel,
         500 => ScalingCancel,
@@ -471,7 +475,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         50 if profile.motion.smoothing_codes != SmoothingCodes::None => HighSpeedMode,
         51 if profile.motion.smoothing_codes != SmoothingCodes::None => PathSmoothing,
         80 if profile.motion.smoothing_codes == SmoothingCodes::Fanuc => LookAhead,
-        _ => return not_yet(tenths, profile),
+        _ => return not_yet(tenths),
     };
     Known(known)
 }
@@ -497,27 +501,24 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (1870, None, "smoothness / accuracy setting"),
 ];
 
-/// Codes that exist only where a profile says so: (code, the profile's switch, issue, meaning).
-fn not_yet_on(tenths: i32, profile: &Profile) -> Option<(Option<u32>, &'static str)> {
-    match tenths {
-        470 if !profile.compensation.tool_position_offset => Some((None, "text engraving")),
-        _ => NOT_YET
-            .iter()
-            .find(|(code, _, _)| *code == tenths)
-            .map(|(_, issue, what)| (*issue, *what)),
-    }
+/// A code vcnc does not run yet: (issue, meaning).
+fn not_yet_on(tenths: i32) -> Option<(Option<u32>, &'static str)> {
+    NOT_YET
+        .iter()
+        .find(|(code, _, _)| *code == tenths)
+        .map(|(_, issue, what)| (*issue, *what))
 }
 
-fn not_yet(tenths: i32, profile: &Profile) -> GLookup {
-    match not_yet_on(tenths, profile) {
+fn not_yet(tenths: i32) -> GLookup {
+    match not_yet_on(tenths) {
         Some((issue, _)) => GLookup::NotSupported(issue),
         None => GLookup::Unknown,
     }
 }
 
 /// What a G code vcnc does not run yet does on `profile`, for messages and tables.
-pub fn not_supported_description(tenths: i32, profile: &Profile) -> Option<&'static str> {
-    not_yet_on(tenths, profile).map(|(_, what)| what)
+pub fn not_supported_description(tenths: i32, _profile: &Profile) -> Option<&'static str> {
+    not_yet_on(tenths).map(|(_, what)| what)
 }
 
 /// What an M code does.
@@ -801,7 +802,7 @@ mod tests {
         assert_eq!(classify_g(121, &fanuc0m), GLookup::Unknown);
         // Haas G47 engraves text; elsewhere G47 is a tool position offset.
         let haas = Profile::builtin(ProfileName::Haas);
-        assert_eq!(classify_g(470, &haas), GLookup::NotSupported(None));
+        assert_eq!(classify_g(470, &haas), GLookup::Known(GCode::Engrave));
         assert_eq!(
             classify_g(470, &fanuc),
             GLookup::Known(GCode::PositionOffset(2))

@@ -494,3 +494,39 @@ fn mitsubishi_g53_keeps_the_radius_compensation() {
     assert_eq!(g53_end(ProfileName::Mitsubishi), "rapid X50 Y25 Z0");
     assert_eq!(g53_end(ProfileName::Fanuc), "rapid X50 Y20 Z0");
 }
+
+/// Haas G47 engraves the comment's text (P0) or one ASCII character (P32-126) from X Y, J tall,
+/// turned by I degrees: a rapid to X Y and to R, and each stroke plunged to Z at E, cut at F and
+/// left at rapid to R. The font is vcnc's own: an A is (0,0)-(2,6)-(4,0) and (1,2)-(3,2) on a
+/// grid 6 units tall, so J6. draws it in millimetres as written.
+#[test]
+fn haas_g47_engraves_text_stroke_by_stroke() {
+    let machine = on(ProfileName::Haas);
+    let text = "G90 G17 G00 X0 Y0 Z5.\nF100.\nG47 P0 (A) X10. Y5. J6. R1. Z-0.5 E50.\nM30\n";
+    let trace = trace_on(&machine, text);
+    let moves: Vec<&str> = trace.lines().skip(1).take(9).collect();
+    assert_eq!(
+        moves,
+        [
+            "rapid X10 Y5 Z5",
+            "rapid X10 Y5 Z1",
+            "line X10 Y5 Z-0.5 F50",
+            "line X12 Y11 Z-0.5 F100",
+            "line X14 Y5 Z-0.5 F100",
+            "rapid X14 Y5 Z1",
+            "rapid X11 Y7 Z1",
+            "line X11 Y7 Z-0.5 F50",
+            "line X13 Y7 Z-0.5 F100",
+        ]
+    );
+    // P65 is the same A; I90 turns it about X Y: grid (x, y) goes to (-y, x), the apex (2, 6)
+    // to (-6, 2).
+    let turned = "G90 G17 G00 X0 Y0 Z5.\nG47 P65 X0 Y0 I90. J6. R1. Z-0.5 F100.\nM30\n";
+    let trace = trace_on(&machine, turned);
+    assert!(trace.contains("line X-6 Y2 Z-0.5 F100"), "{trace}");
+    // P0 without a comment, a character the font lacks, or G47 elsewhere than on Haas.
+    let (code, line, _) = stop("F100.\nG47 P0 X0 Y0 Z-1.\nM30\n", ProfileName::Haas);
+    assert_eq!((code, line), (AlarmCode::Engraving, 2));
+    let (code, _, _) = stop("F100.\nG47 P7 X0 Y0 Z-1.\nM30\n", ProfileName::Haas);
+    assert_eq!(code, AlarmCode::Engraving);
+}

@@ -198,6 +198,16 @@ impl Reader<'_, '_> {
     }
 }
 
+/// True when `block` has a comment and a G47 word: Haas engraves the comment's text, so it is
+/// kept.
+fn engraves(block: &crate::syntax::Block) -> bool {
+    block.comment.is_some()
+        && block
+            .words
+            .iter()
+            .any(|w| w.letter == b'G' && w.expr.is_none() && w.number.value == 47.0)
+}
+
 #[cfg(test)]
 pub(super) use macros::tests::describe as describe_block;
 
@@ -282,7 +292,7 @@ impl Reader<'_, '_> {
             stop -= 1;
         }
         block.span = self.span(start, stop.max(start));
-        if !block.statements.is_empty() {
+        if !block.statements.is_empty() || engraves(block) {
             if let Some(comment) = block.comment {
                 let from = comment.start.saturating_sub(self.base) as usize;
                 let to = (comment.end.saturating_sub(self.base) as usize).min(self.text.len());
