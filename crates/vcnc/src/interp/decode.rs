@@ -393,6 +393,18 @@ impl Command {
         self.rare = true;
     }
 
+    /// Puts `text` in place of the comment's (Haas G47 P1: the serial number to engrave).
+    pub(crate) fn replace_text(&mut self, text: &str) {
+        self.set_text(text);
+    }
+
+    /// True when the block is a Haas G47 P1, serial number engraving.
+    pub(crate) fn engraves_serial(&self) -> bool {
+        self.group(Group::NonModal)
+            .is_some_and(|g| g.code == GCode::Engrave)
+            && self.p().and_then(|p| p.number.whole()) == Some(1)
+    }
+
     /// The text of the block's first comment, where the parser kept it (blocks with statements,
     /// G47 engraving).
     pub(crate) fn text(&self) -> Option<&str> {

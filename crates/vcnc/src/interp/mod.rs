@@ -615,7 +615,19 @@ impl Core {
                 return self.fail(alarm);
             }
         }
+        // Only a block with a comment kept can be a G47 P1: one test for the others.
+        let serial = self.command.text().is_some() && self.command.engraves_serial();
+        if serial {
+            if let Err(alarm) = self.serial_engraving(false) {
+                return self.fail(alarm);
+            }
+        }
         let flow = self.exec.run(&self.command, &mut self.out);
+        if serial && flow.is_ok() {
+            if let Err(alarm) = self.serial_engraving(true) {
+                return self.fail(alarm);
+            }
+        }
         if !self.out.compensating() && !self.out.failing() {
             // The common case, kept short: no compensation stage to tell about the block.
             match flow {

@@ -530,3 +530,23 @@ fn haas_g47_engraves_text_stroke_by_stroke() {
     let (code, _, _) = stop("F100.\nG47 P7 X0 Y0 Z-1.\nM30\n", ProfileName::Haas);
     assert_eq!(code, AlarmCode::Engraving);
 }
+
+/// Haas G47 P1 engraves the serial number of #599 in as many digits as its comment has `#`,
+/// then counts #599 on: 41 in `(####)` is 0041, the 4 starting at (12 + 3, 0) and the 1 at
+/// (18 + 1, 5) on the font's grid (J6.: millimetres as written).
+#[test]
+fn haas_g47_p1_engraves_the_serial_number_and_counts_it_on() {
+    let machine = on(ProfileName::Haas);
+    let text = "#599=41\nG90 G17 G00 X0 Y0 Z5.\nF100.\nG47 P1 (####) X0 Y0 J6. R1. Z-0.5\n\
+        IF[#599NE42]THEN#3000=1(SERIAL NOT COUNTED)\nM30\n";
+    let trace = trace_on(&machine, text);
+    assert!(!trace.contains("alarm"), "{trace}");
+    assert!(trace.contains("rapid X15 Y0 Z1"), "{trace}");
+    assert!(trace.contains("rapid X19 Y5 Z1"), "{trace}");
+    // Five digits do not fit in four.
+    let (code, line, _) = stop(
+        "#599=12345\nF100.\nG47 P1 (####) X0 Y0 Z-1.\nM30\n",
+        ProfileName::Haas,
+    );
+    assert_eq!((code, line), (AlarmCode::Engraving, 3));
+}

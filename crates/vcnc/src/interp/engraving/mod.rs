@@ -11,7 +11,8 @@
 //!
 //! Where the manual is silent (docs/DEVIATIONS.md): the font is vcnc's own (`font.rs`), since
 //! the control's is compiled into it; its characters are two thirds of J wide and one J apart.
-//! P1 (serial numbers from #599) alarms as not supported yet.
+//! P1 engraves the serial number of #599 with as many digits as its comment has `#`
+//! (`(####)`: 0042), then counts #599 on (the macro layer does both, `serial_text`).
 
 mod font;
 
@@ -150,7 +151,37 @@ fn go(
     }
 }
 
-/// The text P asks for: the comment (P0) or one character (P32-P126).
+/// The serial number `value` (#599) as G47 P1 engraves it: as many digits as `comment` has
+/// `#`, zeros in front.
+///
+/// # Errors
+/// A comment without `#`, or a value that is not a whole number from 0 that fits them.
+pub(crate) fn serial_text(
+    comment: &str,
+    value: Option<f64>,
+    span: crate::source::Span,
+) -> Result<String, Alarm> {
+    let digits = comment.chars().filter(|&c| c == '#').count();
+    let value = value.unwrap_or(0.0);
+    let fits = (1..=9).contains(&digits)
+        && value >= 0.0
+        && value.fract() == 0.0
+        && value < 10f64.powi(digits as i32);
+    if !fits {
+        return Err(Alarm::error(
+            AlarmCode::Engraving,
+            span,
+            format!(
+                "G47 P1 engraves #599 ({value}) in as many digits as its comment has # (1 to 9): \
+                 {digits} here"
+            ),
+        ));
+    }
+    Ok(format!("{:0digits$}", value as u64))
+}
+
+/// The text P asks for: the comment (P0), the serial number put in its place (P1), or one
+/// character (P32-P126).
 fn text(cmd: &Command) -> Result<String, Alarm> {
     let refuse = |span, message: &str| Alarm::error(AlarmCode::Engraving, span, message);
     let Some(p) = cmd.p() else {
@@ -160,17 +191,13 @@ fn text(cmd: &Command) -> Result<String, Alarm> {
         ));
     };
     match p.number.whole() {
-        Some(0) => cmd.text().map(str::to_string).ok_or_else(|| {
+        // The macro layer put the serial number of #599 in place of the comment.
+        Some(0 | 1) => cmd.text().map(str::to_string).ok_or_else(|| {
             refuse(
                 p.span,
                 "G47 P0 engraves the block's comment: give the text as (TEXT)",
             )
         }),
-        Some(1) => Err(Alarm::not_supported(
-            p.span,
-            "G47 P1, serial number engraving (#599)",
-            Some(23),
-        )),
         Some(code @ 32..=126) => Ok(char::from(code as u8).to_string()),
         _ => Err(refuse(
             p.span,

@@ -224,6 +224,25 @@ impl Core {
         eval::evaluate(expr, code, &mut StateReader { core: self })
     }
 
+    /// Haas G47 P1: the block's `(####)` becomes the serial number of #599 with as many digits,
+    /// and #599 counts on once the block has run (`engraved`).
+    ///
+    /// # Errors
+    /// A comment without `#`, a serial number that is not a whole number from 0.
+    pub(crate) fn serial_engraving(&mut self, engraved: bool) -> Result<(), Alarm> {
+        const SERIAL: u32 = 599;
+        let span = self.command.span;
+        let value = self.read_variable(SERIAL, span)?;
+        if engraved {
+            let next = value.unwrap_or(0.0) + 1.0;
+            return self.write_variable(SERIAL, Some(next), span, None);
+        }
+        let comment = self.command.text().unwrap_or("");
+        let text = super::engraving::serial_text(comment, value, span)?;
+        self.command.replace_text(&text);
+        Ok(())
+    }
+
     /// Sets `#number`; `message` is the block's comment (for #3000 and #3006).
     fn write_variable(
         &mut self,
