@@ -22,7 +22,7 @@ use vcnc::motion::{
     SpindleState, StopKind,
 };
 use vcnc::pipeline::{Item, ProgramFiles};
-use vcnc::plan::Timing;
+use vcnc::plan::{DogLeg, Timing};
 use vcnc::{Alarm, Axis, FileId, Segment, SegmentKind};
 
 /// Output format of the trace.
@@ -150,6 +150,9 @@ struct Writer {
     /// stream's first frame.
     frame: Option<ProgramMap>,
     arc_words: [[ArcWords; 3]; 2],
+    /// Where a per-axis rapid really goes: a record for each piece between the moments its
+    /// axes come to rest.
+    dog_leg: DogLeg,
 }
 
 /// The parts of a record, shared by both formats.
@@ -292,6 +295,7 @@ impl Writer {
             frame: None,
             arc_words: arc_words(),
             plain_end: false,
+            dog_leg: DogLeg::new(machine),
         };
         writer.plain_end = writer.extra.is_empty() && !work;
         writer.set_file(FileId(0));
@@ -375,7 +379,48 @@ impl Writer {
                     Record::fed(kind!("arc"), motion, *feed, arc),
                 );
             }
+            SegmentKind::Rapid {
+                motion,
+                per_axis: true,
+            } => self.write_dog_leg::<JSON>(segment, timing, motion),
             _ => self.write::<JSON>(segment, timing, record(segment)),
+        }
+    }
+
+    /// A per-axis rapid as the machine moves it: a record for each piece, ending where an axis
+    /// comes to rest, timed by the axes' own profiles (scaled to the planner's duration).
+    fn write_dog_leg<const JSON: bool>(
+        &mut self,
+        segment: &Segment,
+        timing: &Timing,
+        motion: &Move,
+    ) {
+        let corners = self.dog_leg.corners(motion);
+        let total = corners.last().map_or(0.0, |&(t, _)| t);
+        if corners.len() < 2 || total <= 0.0 {
+            return self.write::<JSON>(segment, timing, record(segment));
+        }
+        let scale = timing.dt / total;
+        let (mut from, mut started) = (motion.from, 0.0);
+        for (t, to) in corners {
+            let piece = Move {
+                from,
+                to,
+                ..*motion
+            };
+            let piece_timing = Timing {
+                t: timing.t + started * scale,
+                dt: (t - started) * scale,
+                ..*timing
+            };
+            let record = Record {
+                kind: kind!("rapid"),
+                motion: Some(&piece),
+                feed: None,
+                arc: None,
+            };
+            self.write::<JSON>(segment, &piece_timing, record);
+            (from, started) = (to, t);
         }
     }
 

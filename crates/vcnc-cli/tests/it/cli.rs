@@ -642,9 +642,13 @@ fn a_trace_names_the_axes_as_the_machine_file_does() {
     let program = temp_program("u-axis.nc", "G00 X1. U5.\nG01 U-2. F100.\nU60.\nM30\n");
     let trace = vcnc(&["trace", "--format", "jsonl", "--machine", &path, &program]);
     let records = String::from_utf8_lossy(&trace.stdout);
-    let first = records.lines().next().unwrap_or_default();
+    // FANUC 0M's G00 moves each axis at its own rate: the rapid's last piece ends at U5.
+    let rapid_end = records
+        .lines()
+        .rfind(|l| l.starts_with("{\"kind\":\"rapid\""))
+        .unwrap_or_default();
     assert!(
-        first.ends_with(",\"x\":1,\"y\":0,\"z\":0,\"u\":5}"),
+        rapid_end.ends_with(",\"x\":1,\"y\":0,\"z\":0,\"u\":5}"),
         "{records}"
     );
     let csv = vcnc(&["trace", "--format", "csv", "--machine", &path, &program]);
@@ -662,4 +666,44 @@ fn a_trace_names_the_axes_as_the_machine_file_does() {
         "{errors}"
     );
     assert!(errors.contains("[axes.u]"), "{errors}");
+}
+
+/// FANUC 0M's G00 moves each axis at its own rate (001 A.19, "non-linear dog-leg" at power-on):
+/// the trace writes the rapid as the machine moves, a record where each axis comes to rest
+/// (Z 5 first, then Y 30, then X 100), the pieces back to back in time and the last at the end.
+#[test]
+fn a_per_axis_rapid_is_traced_as_its_pieces() {
+    let program = temp_program("dog-leg.nc", "G90 G00 X100. Y-30. Z5.\nM30\n");
+    let trace = vcnc(&["trace", "--profile", "fanuc0m", "--format", "csv", &program]);
+    let records = String::from_utf8_lossy(&trace.stdout);
+    let rapids: Vec<Vec<f64>> = records
+        .lines()
+        .filter(|l| l.starts_with("rapid,"))
+        .map(|l| {
+            l.split(',')
+                .skip(4)
+                .take(5)
+                .map(|v| v.parse().unwrap())
+                .collect()
+        })
+        .collect();
+    assert_eq!(rapids.len(), 3, "{records}");
+    // t, dt, x, y, z: Z stops first, then Y, then X at the end.
+    assert_eq!(rapids[0][4], 5.0);
+    assert!(rapids[0][2] < 100.0 && rapids[0][3] > -30.0, "{records}");
+    assert_eq!(&rapids[1][3..], [-30.0, 5.0]);
+    assert_eq!(&rapids[2][2..], [100.0, -30.0, 5.0]);
+    for pair in rapids.windows(2) {
+        assert!(
+            (pair[0][0] + pair[0][1] - pair[1][0]).abs() < 2e-6,
+            "{records}"
+        );
+    }
+    // The same move on FANUC (linear G00) is one record.
+    let linear = vcnc(&["trace", "--profile", "fanuc", "--format", "csv", &program]);
+    let linear = String::from_utf8_lossy(&linear.stdout);
+    assert_eq!(
+        linear.lines().filter(|l| l.starts_with("rapid,")).count(),
+        1
+    );
 }

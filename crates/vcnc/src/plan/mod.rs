@@ -37,6 +37,7 @@
 
 mod config;
 mod corner;
+mod dog_leg;
 mod events;
 mod limits;
 mod lookahead;
@@ -45,6 +46,7 @@ mod speed_profile;
 
 pub(crate) use config::PlannerFile;
 pub use config::{BlendRadius, BlendTurning, PlannerConfig, PlannerHabits};
+pub use dog_leg::DogLeg;
 pub use report::{BlockTime, TimeKind, TimeReport, SLOWEST};
 pub use speed_profile::{PathLimits, SpeedProfile};
 
