@@ -4,7 +4,7 @@
 use vcnc::interp::sinumerik::{run_str, Sinumerik};
 use vcnc::interp::{Kernel, MemoryLibrary, Run};
 use vcnc::machine::WorkOffsetId;
-use vcnc::motion::{ArcDirection, EndKind, SpindleState};
+use vcnc::motion::{ArcDirection, EndKind, Plane, SpindleState};
 use vcnc::{Alarm, AlarmCode, FileId, Machine, ProfileName, Segment, SegmentKind};
 
 use crate::common::sinumerik::{machine, mill};
@@ -813,6 +813,45 @@ fn an_arc_in_a_tilted_plane_is_cut_in_pieces_on_the_tilted_circle() {
             .zip([0.0, 10.0, 0.0])
             .all(|(a, b)| (a - b).abs() < 1e-9),
         "{last:?}"
+    );
+}
+
+#[test]
+fn an_arc_turned_onto_another_machine_plane_stays_an_arc() {
+    // ROT Y90 turns program X onto machine -Z and keeps Y (x = z, z = -x, as ROT Y-90 turns X
+    // onto +Z in the corpus test). G2 from (0,0) to (20,0) about (10,0) passes (10,10): on the
+    // machine from (0,0,0) through (0,10,-10) to (0,0,-20) about (0,0,-10), in the Y-Z plane.
+    // Seen from +X (Y to the right, Z up) it goes from Z up to Y to Z down: clockwise.
+    let text = "ROT Y90\nG0 X0 Y0\nG2 X20 Y0 I10 J0 F100\nG3 X0 Y0 I-10 J0\nM30\n";
+    let (segments, alarms) = stream(text, &machine());
+    assert!(alarms.is_empty(), "{alarms:?}");
+    let arcs: Vec<_> = segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Arc {
+                motion,
+                center,
+                direction,
+                plane,
+                ..
+            } => Some((motion.to.0, center.0, direction, plane)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(arcs.len(), 2, "{segments:?}");
+    let (to, centre, direction, plane) = arcs[0];
+    assert!(close([to[0], to[1], to[2]], [0.0, 0.0, -20.0]), "{to:?}");
+    assert!(
+        close([centre[0], centre[1], centre[2]], [0.0, 0.0, -10.0]),
+        "{centre:?}"
+    );
+    assert_eq!((direction, plane), (ArcDirection::Clockwise, Plane::Yz));
+    // G3 back about (10,0): counter-clockwise on the machine too, back to the start.
+    let (to, _, direction, plane) = arcs[1];
+    assert!(close([to[0], to[1], to[2]], [0.0, 0.0, 0.0]), "{to:?}");
+    assert_eq!(
+        (direction, plane),
+        (ArcDirection::CounterClockwise, Plane::Yz)
     );
 }
 

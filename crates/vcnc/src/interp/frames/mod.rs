@@ -563,6 +563,28 @@ mod tests {
     }
 
     #[test]
+    fn a_quarter_turn_puts_a_plane_onto_another_machine_plane() {
+        let (xy, yz) = ((0, 1), (1, 2));
+        // ROT Y90: x' = z, z' = -x. X-Y goes onto Y-Z, its normal Z onto X; in Y-Z's order the
+        // block (L_yx, L_yy; L_zx, L_zy) = (0, 1; -1, 0) has determinant 1: the same turn.
+        let rot_y90 = [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]];
+        let rot_y90 = Affine::new(rot_y90, [0.0; AXES]).unwrap();
+        assert!(!rot_y90.keeps_plane(xy));
+        assert_eq!(rot_y90.plane_image(xy), Some((yz, false)));
+        // Y-Z goes onto X-Y: Y stays, Z goes to X; (L_xy, L_xz; L_yy, L_yz) = (0, 1; 1, 0):
+        // mirrored.
+        assert_eq!(rot_y90.plane_image(yz), Some((xy, true)));
+        // A plane kept is not "turned onto another"; a tilt by 30 degrees has no image plane.
+        assert_eq!(affine(1.0, [0.0; 3]).plane_image(xy), None);
+        let (sin, cos) = sin_cos_degrees(30.0);
+        let tilt = [[cos, 0.0, sin], [0.0, 1.0, 0.0], [-sin, 0.0, cos]];
+        assert_eq!(
+            Affine::new(tilt, [0.0; AXES]).unwrap().plane_image(xy),
+            None
+        );
+    }
+
+    #[test]
     fn a_new_frame_is_told_once_and_only_when_the_map_changed() {
         let mut chain = frames();
         // Power-on: the first move tells frame 0.

@@ -172,6 +172,38 @@ impl Affine {
             && zero(l[b][normal])
     }
 
+    /// The machine plane onto which the plane of axes `(a, b)` maps its circles as circles when
+    /// the frame turns it onto another coordinate plane (`ROT Y90` takes X-Y onto Y-Z), and
+    /// whether its arcs then turn the other way there (seen from that plane's normal, in its
+    /// `Plane::axes` order): None where no coordinate plane takes the image whole (a tilt by
+    /// other than quarter turns, uneven scaling) and where the plane stays itself
+    /// ([`Affine::keeps_plane`] covers that case).
+    pub(crate) fn plane_image(&self, (a, b): (usize, usize)) -> Option<((usize, usize), bool)> {
+        let normal = 3 - a - b;
+        let l = &self.linear;
+        let size = l.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let zero = |v: f64| v.abs() <= ZERO * size;
+        // The machine axis the plane's normal goes to, alone.
+        let onto = (0..3).find(|&m| !zero(l[m][normal]))?;
+        if onto == normal || (0..3).any(|m| m != onto && !zero(l[m][normal])) {
+            return None;
+        }
+        // The machine plane of that normal, in `Plane::axes` order: Y-Z for X, Z-X for Y, X-Y
+        // for Z.
+        let (c, d) = match onto {
+            0 => (1, 2),
+            1 => (2, 0),
+            _ => (0, 1),
+        };
+        if !zero(l[onto][a]) || !zero(l[onto][b]) {
+            return None;
+        }
+        let [[p, q], [r, s]] = [[l[c][a], l[c][b]], [l[d][a], l[d][b]]];
+        let zero_product = |v: f64| v.abs() <= ZERO * size * size;
+        let similar = zero_product(p * p + r * r - q * q - s * s) && zero_product(p * q + r * s);
+        similar.then_some(((c, d), p * s - q * r < 0.0))
+    }
+
     /// How much a length in the plane of axes `(a, b)` grows through the map (a radius `CR`):
     /// the length of the image of a unit vector along `a`. Meaningful where
     /// [`Affine::keeps_plane`] holds.

@@ -184,21 +184,52 @@ impl Kernel {
         turns: u32,
         origin: Origin,
     ) -> Result<(), Alarm> {
+        let (a, b, _) = plane.axes();
+        let reversed = self.state.frames.reverses_plane((a, b));
+        self.arc_onto(
+            plane, plane, reversed, target, center, direction, turns, origin,
+        )
+    }
+
+    /// A circular move programmed in `plane` that the frame turns onto the machine plane
+    /// `onto` (SINUMERIK's ROT Y90 and the like: the frame's `plane_image`), `reversed` when it
+    /// turns the other way there: an arc of the stream in that plane, its helix along that
+    /// plane's normal.
+    ///
+    /// # Errors
+    /// No feed in force, an end point off the circle.
+    #[allow(clippy::too_many_arguments)] // the same words as `arc_in`, and where they land
+    pub(crate) fn arc_onto(
+        &mut self,
+        plane: Plane,
+        onto: Plane,
+        reversed: bool,
+        target: [Option<f64>; AXES],
+        center: (f64, f64),
+        direction: ArcDirection,
+        turns: u32,
+        origin: Origin,
+    ) -> Result<(), Alarm> {
         let feed = self.state.cutting_feed(self.feed_mode, &origin)?;
         let (a, b, _) = plane.axes();
+        let (c, d, _) = onto.axes();
+        let direction = if reversed {
+            direction.reversed()
+        } else {
+            direction
+        };
         let frames = &self.state.frames;
-        let direction = frames.arc_direction((a, b), direction);
         let mut center_point = self.state.program_position();
         (center_point[a], center_point[b]) = center;
         let center_machine = frames.to_machine(&center_point, frames.length_vector());
         let to = self.machine_target(target);
-        let start = in_plane(plane, &self.state.position);
+        let start = in_plane(onto, &self.state.position);
         let spec = ArcSpec::Center {
-            offset: (center_machine[a] - start.0, center_machine[b] - start.1),
+            offset: (center_machine[c] - start.0, center_machine[d] - start.1),
             span: origin.span,
         };
         let tolerance = self.state.setup.profile().motion.arc_radius_tolerance;
-        let center = arc_center(start, in_plane(plane, &to), spec, direction, tolerance)?;
+        let center = arc_center(start, in_plane(onto, &to), spec, direction, tolerance)?;
         let arc = ArcTo {
             target: to,
             center,
@@ -208,7 +239,7 @@ impl Kernel {
         };
         let modes = self.modes;
         self.state
-            .queue_arc(&origin, arc, plane, modes, &mut self.out)
+            .queue_arc(&origin, arc, onto, modes, &mut self.out)
     }
 
     /// The plane of arcs from here on.

@@ -646,7 +646,19 @@ fn direct(
     let moved = match arc {
         None if tag.rapid => kernel.rapid_to(tag.target, tag.origin),
         None => kernel.feed_to(tag.target, tag.origin),
-        Some(arc) if !keeps_plane(kernel, arc.plane) => tilted_arc(kernel, tag, arc),
+        Some(arc) if !keeps_plane(kernel, arc.plane) => match turned_plane(kernel, arc.plane) {
+            Some((onto, reversed)) => kernel.arc_onto(
+                arc.plane,
+                onto,
+                reversed,
+                tag.target,
+                (arc.centre.x, arc.centre.y),
+                arc.direction,
+                tag.turns,
+                tag.origin,
+            ),
+            None => tilted_arc(kernel, tag, arc),
+        },
         Some(arc) => kernel.arc_in(
             arc.plane,
             tag.target,
@@ -671,6 +683,21 @@ fn keeps_plane(kernel: &Kernel, plane: Plane) -> bool {
         .frames
         .programmable()
         .is_none_or(|frame| frame.keeps_plane((a, b)))
+}
+
+/// The machine plane the frame turns the arc's plane onto, when that is another coordinate
+/// plane (ROT Y90 takes X-Y onto Y-Z): the arc stays an arc of the stream there; and whether it
+/// turns the other way there.
+fn turned_plane(kernel: &Kernel, plane: Plane) -> Option<(Plane, bool)> {
+    let (a, b, _) = plane.axes();
+    let frame = kernel.state().frames.programmable()?;
+    let ((c, _), reversed) = frame.plane_image((a, b))?;
+    let onto = match c {
+        0 => Plane::Xy,
+        2 => Plane::Zx,
+        _ => Plane::Yz,
+    };
+    Some((onto, reversed))
 }
 
 /// An arc whose plane the frame tilts (or scales unevenly): straight pieces within 1 µm of the
