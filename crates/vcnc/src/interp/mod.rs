@@ -28,6 +28,7 @@ mod length;
 mod macros;
 pub mod modal;
 mod output;
+mod pieces;
 mod polar_coordinates;
 mod polar_interpolation;
 mod position_offset;
