@@ -23,6 +23,7 @@ pub(crate) fn arc(
     target: [f64; AXES],
     out: &mut Output,
 ) -> Result<(), Alarm> {
+    super::tilted_plane::refuse_arc(exec, cmd)?;
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
     // Borrowed: a copy of the scaling (two arrays of six) would cost every arc.

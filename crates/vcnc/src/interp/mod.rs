@@ -40,6 +40,8 @@ mod smoothing;
 mod spindle;
 mod spiral;
 mod thread;
+mod tilted_plane;
+mod tool_center;
 mod tools;
 
 use crate::alarm::{Alarm, AlarmCode};
