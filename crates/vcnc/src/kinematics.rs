@@ -360,6 +360,25 @@ pub fn rotate(v: Vec3, axis: Vec3, degrees: f64) -> Vec3 {
     add(add(scale(v, cos), scale(cross(axis, v), sin)), along)
 }
 
+/// The rotation matrix (row by row) of turns made one after the other, each about an axis of
+/// the system the turns before it left (`(axis, degrees)`, the axis in that turned system):
+/// the product of the turns in the order given.
+pub fn successive_turns(turns: &[(Vec3, f64)]) -> [[f64; 3]; 3] {
+    // The images of the unit vectors are the columns; the last turn acts first on them.
+    let column = |unit: Vec3| {
+        turns
+            .iter()
+            .rev()
+            .fold(unit, |v, (axis, degrees)| rotate(v, *axis, *degrees))
+    };
+    let columns = [
+        column([1.0, 0.0, 0.0]),
+        column([0.0, 1.0, 0.0]),
+        column([0.0, 0.0, 1.0]),
+    ];
+    std::array::from_fn(|row| std::array::from_fn(|col| columns[col][row]))
+}
+
 /// `p` turned by `degrees` about the line through `center` along `axis`.
 fn turn_about(p: Vec3, center: Vec3, axis: Vec3, degrees: f64) -> Vec3 {
     add(center, rotate(sub(p, center), axis, degrees))

@@ -20,7 +20,7 @@ use super::frames::{Affine, FrameSlot, Transform};
 use super::tool_center::{self, Keeper};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::kinematics::rotate;
+use crate::kinematics::successive_turns;
 use crate::machine::{Axis, AXES};
 use crate::profile::{GCode, Group};
 
@@ -29,10 +29,7 @@ use crate::profile::{GCode, Group};
 /// multiply in the order written.
 pub(crate) fn euler_zxz(i: f64, j: f64, k: f64) -> [[f64; 3]; 3] {
     let (x, z) = ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]);
-    // The images of the unit vectors are the columns.
-    let column = |unit: [f64; 3]| rotate(rotate(rotate(unit, z, k), x, j), z, i);
-    let columns = [column([1.0, 0.0, 0.0]), column([0.0, 1.0, 0.0]), column(z)];
-    std::array::from_fn(|row| std::array::from_fn(|col| columns[col][row]))
+    successive_turns(&[(z, i), (x, j), (z, k)])
 }
 
 /// G68.2: the feature coordinate system from the block's X Y Z and I J K.
@@ -56,7 +53,7 @@ pub(crate) fn g68_2(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
 /// kinematic transform G53.1 kept on ends.
 pub(crate) fn g69(exec: &mut Executor, out: &mut Output) {
     super::frames::rotation::g69(&mut exec.kernel.frames);
-    tool_center::release(exec, Keeper::ToolAxis, out);
+    tool_center::release(&mut exec.kernel, Keeper::ToolAxis, out);
 }
 
 /// The tilted plane in force, if G68.2 set one.
@@ -106,7 +103,7 @@ pub(crate) fn g53_1(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Res
         )
         .with_help("command G68.2 before G53.1 (Syntec spec 1.32)"));
     };
-    let kinematics = tool_center::kinematics(exec, g)?;
+    let kinematics = tool_center::kinematics(&exec.kernel, g.span, "G53.1")?;
     let linear = plane.linear();
     let normal = [linear[0][2], linear[1][2], linear[2][2]];
     let [first, second] = kinematics.rotary_axes();
@@ -131,7 +128,7 @@ pub(crate) fn g53_1(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Res
     // With the transform on, the rotary move keeps the tip where it is; off, the linear axes stay
     // and only the rotary axes turn (then the transform starts at the new angles).
     exec.rapid_to(target, cmd, out)?;
-    tool_center::start(exec, g, Keeper::ToolAxis, out)
+    tool_center::start(&mut exec.kernel, (g.span, "G53.1"), Keeper::ToolAxis, out)
 }
 
 #[cfg(test)]

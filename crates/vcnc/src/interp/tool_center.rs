@@ -16,13 +16,15 @@
 //!   point is the one the programmed angles give there. The tool length comes from the frames
 //!   that pass through the stage (`WorkFrame::tool_length`).
 //! - G49 (or G43/G44, the same group) ends it unless G53.1 keeps it on, G69 ends G53.1's; the
-//!   executor then holds the joints again.
+//!   executor then holds the joints again. SINUMERIK's CYCLE800 keeps it on as G53.1 does
+//!   (`sinumerik/cycles/swivel.rs`), until CYCLE800().
 //!
 //! Restrictions the manual lists and vcnc alarms: no G41/G42 with it (rule 1), a positive tool
 //! length (rule 3); a machine file without `[kinematics]` cannot run it.
 
-use super::decode::{Command, GWord};
+use super::decode::Command;
 use super::exec::Executor;
+use super::kernel::KernelState;
 use super::pieces::{self, PieceMap};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
@@ -30,13 +32,14 @@ use crate::kinematics::Kinematics;
 use crate::machine::AXES;
 use crate::motion::{Item, StreamItem};
 use crate::profile::{GCode, Group};
+use crate::source::Span;
 
 /// What keeps the kinematic transform on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Keeper {
     /// G43.4 until G49.
     CenterPoint,
-    /// G53.1 until G69.
+    /// G53.1 until G69, SINUMERIK's CYCLE800 until CYCLE800().
     ToolAxis,
 }
 
@@ -150,19 +153,17 @@ impl KinematicStage {
     }
 }
 
-/// The machine's kinematics, or the alarm for a 5-axis code on a machine without them.
+/// The machine's kinematics, or the alarm for `what` (a 5-axis code, at `span`) on a machine
+/// without them.
 ///
 /// # Errors
 /// [`AlarmCode::FiveAxis`] when the machine file has no `[kinematics]`.
-pub(crate) fn kinematics(exec: &Executor, g: GWord) -> Result<Kinematics, Alarm> {
-    exec.kernel.setup.machine().kinematics.clone().ok_or_else(|| {
+pub(crate) fn kinematics(state: &KernelState, span: Span, what: &str) -> Result<Kinematics, Alarm> {
+    state.setup.machine().kinematics.clone().ok_or_else(|| {
         Alarm::error(
             AlarmCode::FiveAxis,
-            g.span,
-            format!(
-                "{} needs the machine's kinematics: the machine file has none",
-                g.code.description()
-            ),
+            span,
+            format!("{what} needs the machine's kinematics: the machine file has none"),
         )
         .with_help("describe the rotary axes in the machine file's [kinematics] table (docs/KINEMATICS.md)")
     })
@@ -174,8 +175,8 @@ pub(crate) fn kinematics(exec: &Executor, g: GWord) -> Result<Kinematics, Alarm>
 /// # Errors
 /// [`AlarmCode::FiveAxis`] on a machine without kinematics.
 pub(crate) fn start(
-    exec: &mut Executor,
-    g: GWord,
+    state: &mut KernelState,
+    (span, what): (Span, &str),
     keeper: Keeper,
     out: &mut Output,
 ) -> Result<(), Alarm> {
@@ -183,21 +184,21 @@ pub(crate) fn start(
         stage.keep(keeper);
         return Ok(());
     }
-    let kinematics = kinematics(exec, g)?;
-    let frames = &exec.kernel.frames;
+    let kinematics = kinematics(state, span, what)?;
+    let frames = &state.frames;
     let [x, y] = frames.lateral_length();
     let map = TipMap {
         kinematics,
         length: [x, y, frames.length_vector()],
     };
-    let joints = exec.kernel.position;
-    exec.kernel.position = map.tip_coordinates(&joints);
+    let joints = state.position;
+    state.position = map.tip_coordinates(&joints);
     let mut stage = KinematicStage {
         staged: Vec::new(),
         held: None,
         map,
         last: joints,
-        tolerance: exec.kernel.setup.machine().planner.smoothing_tolerance,
+        tolerance: state.setup.machine().planner.smoothing_tolerance,
         center_point: false,
         tool_axis: false,
     };
@@ -208,13 +209,13 @@ pub(crate) fn start(
 
 /// `keeper` lets the transform go; when nothing keeps it on, it ends and the executor holds the
 /// joints where its last piece ended.
-pub(crate) fn release(exec: &mut Executor, keeper: Keeper, out: &mut Output) {
+pub(crate) fn release(state: &mut KernelState, keeper: Keeper, out: &mut Output) {
     let ended = out
         .kinematics_mut()
         .is_some_and(|stage| stage.release(keeper));
     if ended {
         if let Some(joints) = out.end_kinematics() {
-            exec.kernel.position = joints;
+            state.position = joints;
         }
     }
 }
@@ -229,7 +230,7 @@ pub(crate) fn switch(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Re
         return Ok(());
     };
     if g.code != GCode::ToolCenterPoint {
-        release(exec, Keeper::CenterPoint, out);
+        release(&mut exec.kernel, Keeper::CenterPoint, out);
         return Ok(());
     }
     if out.compensating() {
@@ -251,7 +252,12 @@ pub(crate) fn switch(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Re
         )
         .with_help("tool centre point control needs a positive tool length (spec 1.26 rule 3)"));
     }
-    start(exec, g, Keeper::CenterPoint, out)
+    start(
+        &mut exec.kernel,
+        (g.span, "G43.4"),
+        Keeper::CenterPoint,
+        out,
+    )
 }
 
 /// G41/G42 while G43.4 is on: refused (spec 1.26 rule 1).

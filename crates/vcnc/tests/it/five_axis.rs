@@ -332,6 +332,83 @@ fn five_axis_codes_without_kinematics_or_plane_are_alarms() {
     assert_eq!(run.error().map(|a| a.code), Some(AlarmCode::UnknownGCode));
 }
 
+/// The same machine on the SINUMERIK profile.
+fn sinumerik_machine(kinematics: &str) -> Machine {
+    machine(kinematics, 0.0)
+        .with_profile(vcnc::ProfileName::Sinumerik)
+        .expect("the machine fits the SINUMERIK profile")
+}
+
+/// The linear part of the swivel frame `CYCLE800(0,"TC1",200000,{params})` sets with _DIR 0
+/// (the frame only: no rotary axis moves), read from the frame of the move after it.
+fn swivel_frame(params: &str) -> [[f64; 3]; 3] {
+    let program = format!("CYCLE800(0,\"TC1\",200000,{params})\nG0 X10 Y20 Z30\nM30\n");
+    let machine = sinumerik_machine(A_C_TABLE);
+    let items: Vec<_> = vcnc::interp::sinumerik::run_str(&program, &machine).collect();
+    let linear = items.iter().rev().find_map(|item| match item {
+        Ok(vcnc::Item::Frame(frame)) => Some(frame.transform.linear),
+        _ => None,
+    });
+    let run = common::collect(items.into_iter());
+    assert!(run.error().is_none(), "{:?}", run.error());
+    let rotary_moved = |s: &Segment| s.motion().is_some_and(|m| m.to.0[3..] != [0.0; 3]);
+    assert!(!run.segments.iter().any(rotary_moved));
+    linear.expect("a frame")
+}
+
+#[test]
+fn cycle800_swivels_an_a_c_table_and_the_tip_reaches_the_swivelled_point() {
+    // Mode 57 (axis by axis, X then Y then Z), _A -15: the plane turned -15 about X, its Z
+    // (0, sin 15, cos 15). The A-C table shows the part that direction with A 15, C 0 or with
+    // A -15, C 180; _DIR +1 takes the first rotary axis (A) the plus way. The reference point
+    // (10, 0, 0) and the zero point after the turn (0, 0, 5) put the program zero at
+    // (10, 0, 0) + R (0, 0, 5) = (10, 5 sin 15, 5 cos 15) = (10, 1.294095, 4.829629).
+    let program = "G90 G0 X0 Y0 Z100
+                   CYCLE800(0,\"TC1\",200000,57,10,0,0,-15,0,0,0,0,5,1,,1)
+                   G0 X0 Y0 Z0
+CYCLE800()
+G0 Z200
+M30
+";
+    let machine = sinumerik_machine(A_C_TABLE);
+    let kin = kinematics(&machine);
+    let run = common::collect(vcnc::interp::sinumerik::run_str(program, &machine));
+    assert!(run.error().is_none(), "{:?}", run.error());
+    let swivel = end_of(&run, 2);
+    assert!(
+        (swivel[3] - 15.0).abs() < 1e-9 && swivel[5].abs() < 1e-9,
+        "{swivel:?}"
+    );
+    let tip = end_of(&run, 3);
+    let pose = kin.forward(&tip, 0.0);
+    let (s, c) = 15f64.to_radians().sin_cos();
+    assert_close(pose.tip, [10.0, 5.0 * s, 5.0 * c], 1e-9);
+    assert_close(pose.axis, [0.0, s, c], 1e-12);
+    // CYCLE800() ends the swivel: Z200 is a plain machine Z again, the table stays at A 15.
+    let last = last_joints(&run);
+    assert_eq!((last[2], last[3]), (200.0, tip[3]));
+}
+
+#[test]
+fn cycle800_projection_angles_tip_the_plane_by_its_traces() {
+    // Mode 128 + 57 (projection angles, X then Y), _A 30, _B 30: the second turn about Y is b'
+    // with tan b' = tan 30 cos 30 = 0.5, so the plane's Z is (sin b', -sin 30 cos b',
+    // cos 30 cos b') = (0.447214, -0.447214, 0.774597), and the plane's trace in the X-Z plane
+    // leans 30 degrees: atan(0.447214 / 0.774597) = 30. _DIR 0: the frame only, no rotary move.
+    let linear = swivel_frame("185,0,0,0,30,30,0,0,0,0,0");
+    let z = [linear[0][2], linear[1][2], linear[2][2]];
+    assert_close(z, [0.447214, -0.447214, 0.774597], 1e-6);
+}
+
+#[test]
+fn cycle800_axis_order_follows_the_mode_bits() {
+    // Mode 54 = 0b110110: Y first (10), then X (01), then Z (11), so R = Ry(_A) Rx(_B) Rz(_C).
+    // With _A 90, _B 90: Rx(90) takes the plane's Y to Z, Ry(90) takes Z to +X.
+    let linear = swivel_frame("54,0,0,0,90,90,0,0,0,0,0");
+    let y = [linear[0][1], linear[1][1], linear[2][1]];
+    assert_close(y, [1.0, 0.0, 0.0], 1e-12);
+}
+
 /// A random RTCP block: a tip end point and two rotary angles.
 fn block() -> impl Strategy<Value = (Vec3, [f64; 2])> {
     (

@@ -478,12 +478,7 @@ fn through_point(
     advance(front, &full);
     if let Some((plane, direction)) = circle.machine_plane() {
         let (a, b, _) = plane.axes();
-        if kernel
-            .state()
-            .frames
-            .programmable()
-            .is_none_or(|f| f.keeps_plane((a, b)))
-        {
+        if kernel.state().frames.affine_frames_keep_plane((a, b)) {
             let (arc, element) = Arc {
                 centre: V2::new(circle.centre[a], circle.centre[b]),
                 direction,
