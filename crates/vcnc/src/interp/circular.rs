@@ -23,7 +23,6 @@ pub(crate) fn arc(
     target: [f64; AXES],
     out: &mut Output,
 ) -> Result<(), Alarm> {
-    super::tilted_plane::refuse_arc(exec, cmd)?;
     let plane = exec.modal.plane;
     let (a, b, _) = plane.axes();
     // Borrowed: a copy of the scaling (two arrays of six) would cost every arc.
@@ -77,6 +76,9 @@ pub(crate) fn arc(
     let feed = exec.cutting_feed(cmd)?;
     if let (Some(turns), true) = (cmd.l(), exec.kernel.setup.profile().motion.arc_l_is_spiral) {
         return spiral(exec, cmd, spec, turns, direction, target, feed, out);
+    }
+    if super::tilted_plane::tilted(exec).is_some() {
+        return super::tilted_plane::arc_as_chords(exec, cmd, (spec, direction, feed), target, out);
     }
     let start = in_plane(plane, &exec.kernel.position);
     let end = in_plane(plane, &target);

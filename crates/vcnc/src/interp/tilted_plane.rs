@@ -13,7 +13,11 @@
 //! of `tool_center.rs`, kept on by G53.1 until G69), so a point of the feature system is reached
 //! by the tool tip under G43, whichever way the table or head has turned. G53.1 before any
 //! G68.2 is refused (L3031); the manual gives no alarm number.
+//!
+//! A G02/G03 in the feature plane is a circle in a tilted plane, which the machine's arcs (in
+//! G17/G18/G19) cannot carry: it becomes chords, computed in the feature system.
 
+use super::arc::{arc_center, in_plane, ArcSpec};
 use super::decode::Command;
 use super::exec::Executor;
 use super::frames::{Affine, FrameSlot, Transform};
@@ -22,6 +26,7 @@ use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::kinematics::successive_turns;
 use crate::machine::{Axis, AXES};
+use crate::motion::{ArcDirection, Feed, Move, PathMode, SegmentKind};
 use crate::profile::{GCode, Group};
 
 /// The rotation `Rz(i) Rx(j) Rz(k)` of the Euler angles (degrees) in Syntec's Z-X-Z order,
@@ -57,29 +62,92 @@ pub(crate) fn g69(exec: &mut Executor, out: &mut Output) {
 }
 
 /// The tilted plane in force, if G68.2 set one.
-fn tilted(exec: &Executor) -> Option<Affine> {
+pub(crate) fn tilted(exec: &Executor) -> Option<Affine> {
     match exec.kernel.frames.frame(FrameSlot::Rotation) {
         Some(Transform::Affine(affine)) => Some(*affine),
         _ => None,
     }
 }
 
-/// G02/G03 in a tilted working plane: not run yet (the arc lies in a plane of the feature
-/// system, which the machine's arcs in G17/G18/G19 cannot carry; it would need cutting into
-/// lines, as SINUMERIK's tilted frames do in `sinumerik/arcs.rs`).
+/// Largest distance, mm, between an arc in a tilted plane and the chords that replace it: the
+/// control interpolates the arc in its servo cycle; vcnc's choice, as SINUMERIK's tilted arcs
+/// (`sinumerik/motion.rs`).
+const CHORD_TOLERANCE: f64 = 0.001;
+
+/// G02/G03 in a tilted working plane: the arc lies in the feature system's plane, which no
+/// machine plane carries, so it is cut into chords within [`CHORD_TOLERANCE`] of it, computed in
+/// program coordinates (the axes off the plane linear along it, a helix) and each taken through
+/// the chain. The block's feed holds along the chords (an inverse-time feed is shared out).
 ///
 /// # Errors
-/// [`AlarmCode::NotSupportedYet`] for an arc while G68.2 is on.
-pub(crate) fn refuse_arc(exec: &Executor, cmd: &Command) -> Result<(), Alarm> {
-    match tilted(exec) {
-        Some(_) => Err(Alarm::not_supported(
-            cmd.span,
-            "G02/G03 in a tilted working plane (G68.2)",
-            Some(23),
-        )
-        .with_help("program the arc as short G01 lines, or cancel G68.2 with G69 first")),
-        None => Ok(()),
+/// The arc's own alarms (an end off the circle, R too small); a chord beyond the control's
+/// range.
+pub(crate) fn arc_as_chords(
+    exec: &mut Executor,
+    cmd: &Command,
+    (spec, direction, feed): (ArcSpec, ArcDirection, Feed),
+    target: [f64; AXES],
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let plane = exec.modal.plane;
+    let (a, b, _) = plane.axes();
+    let from = exec.kernel.program_position();
+    let to = exec.kernel.frames.to_program(&target);
+    let (start, end) = (in_plane(plane, &from), in_plane(plane, &to));
+    let tolerance = exec.kernel.setup.profile().motion.arc_radius_tolerance;
+    let centre = arc_center(start, end, spec, direction, tolerance)?;
+    let r0 = (start.0 - centre.0).hypot(start.1 - centre.1);
+    let r1 = (end.0 - centre.0).hypot(end.1 - centre.1);
+    let a0 = (start.1 - centre.1).atan2(start.0 - centre.0);
+    let a1 = (end.1 - centre.1).atan2(end.0 - centre.0);
+    let tau = std::f64::consts::TAU;
+    let mut sweep = match direction {
+        ArcDirection::CounterClockwise => (a1 - a0).rem_euclid(tau),
+        ArcDirection::Clockwise => -(a0 - a1).rem_euclid(tau),
+    };
+    // An arc by I J K ending on its start is a full circle.
+    if sweep == 0.0 && matches!(spec, ArcSpec::Center { .. }) {
+        sweep = if direction == ArcDirection::Clockwise {
+            -tau
+        } else {
+            tau
+        };
     }
+    // Chords of at most the tolerance from the circle: 2 r (1 - cos(step / 2)) <= tolerance.
+    let radius = r0.max(r1).max(CHORD_TOLERANCE);
+    let step = 2.0 * (1.0 - CHORD_TOLERANCE / radius).clamp(-1.0, 1.0).acos();
+    // At most a million chords: a radius far beyond any machine must not hang the run.
+    let count = ((sweep.abs() / step.max(1e-6)).ceil() as usize).clamp(1, 1_000_000);
+    let feed = match feed {
+        Feed::InverseTime(f) => Feed::InverseTime(f * count as f64),
+        other => other,
+    };
+    for k in 1..=count {
+        let machine = if k == count {
+            target
+        } else {
+            let t = k as f64 / count as f64;
+            let mut p: [f64; AXES] = std::array::from_fn(|i| from[i] + (to[i] - from[i]) * t);
+            let (sin, cos) = (a0 + sweep * t).sin_cos();
+            let r = r0 + (r1 - r0) * t;
+            (p[a], p[b]) = (centre.0 + r * cos, centre.1 + r * sin);
+            let length = exec.kernel.frames.length_vector();
+            exec.kernel.frames.to_machine(&p, length)
+        };
+        let last = k == count;
+        // The block's exact stop (G09, G61) is at its end, not between its chords.
+        let motion = exec.move_to(machine, cmd, out)?;
+        let motion = Move {
+            exact_stop: motion.exact_stop && last,
+            path_mode: match motion.path_mode {
+                PathMode::ExactStop if !last => PathMode::Continuous,
+                mode => mode,
+            },
+            ..motion
+        };
+        out.push(cmd, SegmentKind::Line { motion, feed });
+    }
+    Ok(())
 }
 
 /// G53.1: the rotary axes turn the tool along the feature Z axis (a rapid of the rotary axes),

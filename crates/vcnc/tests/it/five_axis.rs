@@ -320,12 +320,6 @@ fn five_axis_codes_without_kinematics_or_plane_are_alarms() {
         Options::default(),
     );
     assert_eq!(run.error().map(|a| a.code), Some(AlarmCode::WordNotAllowed));
-    let arc = b"G68.2 X0 Y0 Z0 I0 J30. K0\nG02 X10. R5. F100\nM30\n";
-    let run = common::run(arc, &machine, Options::default());
-    assert_eq!(
-        run.error().map(|a| a.code),
-        Some(AlarmCode::NotSupportedYet)
-    );
     // FANUC 0M's manual has no G43.4.
     let old = plain.with_profile(vcnc::ProfileName::Fanuc0m).unwrap();
     let run = common::run(b"G43.4 H1\nM30\n", &old, Options::default());
@@ -407,6 +401,35 @@ fn cycle800_axis_order_follows_the_mode_bits() {
     let linear = swivel_frame("54,0,0,0,90,90,0,0,0,0,0");
     let y = [linear[0][1], linear[1][1], linear[2][1]];
     assert_close(y, [1.0, 0.0, 0.0], 1e-12);
+}
+
+#[test]
+fn an_arc_in_the_tilted_plane_is_cut_into_chords_on_its_circle() {
+    // G68.2 tips the plane 30 degrees about X (J30) about the work point (5, 0, 2). A full
+    // circle of R10 about the feature origin (I-10 from X10): every chord end lies on the circle
+    // of radius 10 about (5, 0, 2) in the tilted plane, whose normal is (0, -sin 30, cos 30), and
+    // the chords stay within 0.001 mm of it (the sagitta of each chord).
+    let program = "G68.2 X5. Y0 Z2. I0 J30. K0\nG00 X10. Y0 Z0\nG03 X10. Y0 I-10. J0 F500\nM30\n";
+    let machine = machine(TABLE_TABLE, 0.0);
+    let run = run(program, &machine);
+    let chords = motions_of(&run, 3);
+    assert!(chords.len() > 100, "{}", chords.len());
+    let (s, c) = 30f64.to_radians().sin_cos();
+    let centre = [5.0, 0.0, 2.0];
+    for chord in &chords {
+        let m = chord.motion().unwrap();
+        for k in 0..=4 {
+            let p = lerp(&m.from.0, &m.to.0, f64::from(k) / 4.0);
+            let d: Vec3 = std::array::from_fn(|i| p[i] - centre[i]);
+            let off_plane = d[1] * -s + d[2] * c;
+            let radius = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            assert!(off_plane.abs() < 1e-9, "{p:?}");
+            let within = if k % 4 == 0 { 1e-9 } else { 0.001 + 1e-9 };
+            assert!((radius - 10.0).abs() <= within, "{p:?}: {radius}");
+        }
+    }
+    let end = last_joints(&run);
+    assert_close([end[0], end[1], end[2]], [15.0, 0.0, 2.0], 1e-9);
 }
 
 /// A random RTCP block: a tip end point and two rotary angles.
