@@ -29,6 +29,7 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Res
     // G43.4 starts tool centre point control with its H in force; G43, G44, G49 end it.
     super::tool_center::switch(exec, cmd, out)?;
     super::tool_center::refuse_compensation(cmd, out)?;
+    super::tool_center::refuse_high_speed(exec, cmd, out)?;
     let changed = cmd.group(Group::LengthComp).is_some()
         || (h.is_some() && exec.modal.length_comp != LengthComp::Off);
     Ok(changed && (exec.active_length() - exec.kernel.frames.length_vector()).abs() > 0.0)

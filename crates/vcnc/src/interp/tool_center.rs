@@ -281,3 +281,33 @@ pub(crate) fn refuse_compensation(cmd: &Command, out: &mut Output) -> Result<(),
         _ => Ok(()),
     }
 }
+
+/// G05 P10000 (high-speed high-precision mode) turned on while G43.4 is on: Syntec's alarm
+/// COR-140 (spec 1.26 rule 5).
+///
+/// # Errors
+/// [`AlarmCode::SmoothingCommand`] for the G05 that turned the mode on in the RTCP mode.
+pub(crate) fn refuse_high_speed(
+    exec: &Executor,
+    cmd: &Command,
+    out: &mut Output,
+) -> Result<(), Alarm> {
+    let on = out
+        .kinematics_mut()
+        .is_some_and(|stage| stage.kept_by(Keeper::CenterPoint));
+    match cmd.group(Group::NonModal) {
+        Some(g)
+            if on
+                && g.code == GCode::HighSpeedMode
+                && exec.modal.smoothing.high_speed.is_some() =>
+        {
+            Err(Alarm::error(
+                AlarmCode::SmoothingCommand,
+                g.span,
+                "COR-140: G05 high-precision cutting mode is prohibited in G43.4 (tool centre point control)",
+            )
+            .with_help("cancel G43.4 with G49 before G05 P10000 (Syntec spec 1.26 rule 5)"))
+        }
+        _ => Ok(()),
+    }
+}

@@ -320,6 +320,12 @@ fn five_axis_codes_without_kinematics_or_plane_are_alarms() {
         Options::default(),
     );
     assert_eq!(run.error().map(|a| a.code), Some(AlarmCode::WordNotAllowed));
+    // Spec 1.26 rule 5: G05 P10000 in G43.4 is Syntec's COR-140.
+    let hpcc = b"G43.4 H1\nG05 P10000\nM30\n";
+    let run = common::run(hpcc, &machine, Options::default());
+    let alarm = run.error().expect("COR-140");
+    assert_eq!(alarm.code, AlarmCode::SmoothingCommand);
+    assert!(alarm.message.contains("COR-140"), "{}", alarm.message);
     // FANUC 0M's manual has no G43.4.
     let old = plain.with_profile(vcnc::ProfileName::Fanuc0m).unwrap();
     let run = common::run(b"G43.4 H1\nM30\n", &old, Options::default());
