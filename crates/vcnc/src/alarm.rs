@@ -90,6 +90,11 @@ pub enum AlarmCode {
     WordNotAllowed,
     /// A reference point number that does not exist (G30 P5).
     ReferencePointOutOfRange,
+    /// A 5-axis function the machine cannot do: G43.4, G53.1 or CYCLE800 on a machine file
+    /// without `[kinematics]`, a tool direction its rotary axes cannot reach, G53.1 without
+    /// G68.2 (Syntec spec 1.32: the manual gives no number), a negative tool length under G43.4
+    /// (spec 1.26 rule 3).
+    FiveAxis,
     /// G29 for an axis that no G28/G30 has given an intermediate point.
     NoIntermediatePoint,
     /// The program text ended without M02, M30 or `%`.
@@ -228,6 +233,7 @@ impl AlarmCode {
             WorkOffsetOutOfRange => "work_offset_out_of_range",
             BadDataInput => "bad_data_input",
             AxisNotOnMachine => "axis_not_on_machine",
+            FiveAxis => "five_axis",
             WordNotAllowed => "word_not_allowed",
             ReferencePointOutOfRange => "reference_point_out_of_range",
             NoIntermediatePoint => "no_intermediate_point",
@@ -293,6 +299,7 @@ impl AlarmCode {
             WorkOffsetOutOfRange => "V041",
             BadDataInput => "V042",
             AxisNotOnMachine => "V043",
+            FiveAxis => "V047",
             WordNotAllowed => "V044",
             ReferencePointOutOfRange => "V045",
             NoIntermediatePoint => "V046",
@@ -359,6 +366,7 @@ impl AlarmCode {
             WorkOffsetOutOfRange => "use a work offset the control has (G54-G59, G54.1 P1 and up to the profile's count)",
             BadDataInput => "check the L and P words of G10 against the profile's table",
             AxisNotOnMachine => "add the axis to the machine file (`[axes.a]` ...) or remove the word",
+            FiveAxis => "describe the machine's rotary axes in its [kinematics] table (docs/KINEMATICS.md) and program a direction they reach",
             WordNotAllowed => "remove the word, or move it to a block that reads it",
             ReferencePointOutOfRange => "use a reference point the machine has (G30 P2 to P4 on most controls)",
             NoIntermediatePoint => "run G28 or G30 for this axis before G29",
@@ -422,6 +430,7 @@ impl AlarmCode {
         AlarmCode::WorkOffsetOutOfRange,
         AlarmCode::BadDataInput,
         AlarmCode::AxisNotOnMachine,
+        AlarmCode::FiveAxis,
         AlarmCode::WordNotAllowed,
         AlarmCode::ReferencePointOutOfRange,
         AlarmCode::NoIntermediatePoint,

@@ -44,6 +44,7 @@ pub mod alarm;
 pub mod axis;
 pub mod checks;
 pub mod interp;
+pub mod kinematics;
 pub mod machine;
 pub mod motion;
 pub mod pipeline;

@@ -172,6 +172,8 @@ struct MachineFile {
     spindle: SpindleConfig,
     #[serde(default)]
     planner: PlannerFile,
+    #[serde(default)]
+    kinematics: Option<crate::kinematics::KinematicsFile>,
 }
 
 /// Why a machine file was rejected.
@@ -269,6 +271,8 @@ pub struct Machine {
     pub spindle: SpindleConfig,
     /// The planner's settings (`[planner]`): look-ahead, corners, event times.
     pub planner: PlannerConfig,
+    /// How the rotary axes carry the tool and the part (`[kinematics]`), on a 5-axis machine.
+    pub kinematics: Option<crate::kinematics::Kinematics>,
     profile_overrides: toml::Table,
 }
 
@@ -312,6 +316,12 @@ impl Machine {
             .map(|t| (t.number, t))
             .collect();
         let planner = file.planner.resolve().map_err(MachineError::Invalid)?;
+        let limits = |axis: Axis| axes[axis.index()].as_ref().map(|a| (a.min, a.max));
+        let kinematics = file
+            .kinematics
+            .map(|k| k.resolve(&layout, limits))
+            .transpose()
+            .map_err(MachineError::Invalid)?;
         Ok(Machine {
             name: file.name,
             profile,
@@ -326,6 +336,7 @@ impl Machine {
                 .map_err(MachineError::Invalid)?,
             spindle: file.spindle,
             planner,
+            kinematics,
             profile_overrides: file.profile_overrides,
         })
     }
@@ -594,6 +605,24 @@ mod tests {
         assert!(!machine.has_axis(Axis::A));
         assert_eq!(machine.profile.name, ProfileName::Fanuc);
         assert_eq!(machine.reference_points.len(), 4);
+    }
+
+    #[test]
+    fn a_kinematics_table_names_rotary_axes_the_machine_has() {
+        let axes = "[axes.b]\nmin = -120.0\nmax = 120.0\nrapid = 9000.0\nmax_feed = 5000.0\n\n\
+                    [axes.c]\nmin = -1e5\nmax = 1e5\nrapid = 9000.0\nmax_feed = 5000.0\n\n";
+        let table = "[kinematics]\ntype = \"table_table\"\nrotary = [\n\
+                     { axis = \"b\", direction = [0.0, 2.0, 0.0] },\n\
+                     { axis = \"c\", direction = [0.0, 0.0, 1.0], center = [1.0, 2.0, 3.0] },\n]\n";
+        let text = DEFAULT_MACHINE_TOML.replace("[start]", &format!("{axes}{table}\n[start]"));
+        let machine = Machine::from_toml(&text).expect("valid");
+        let kinematics = machine.kinematics.expect("read");
+        assert_eq!(kinematics.rotary_axes(), [Axis::B, Axis::C]);
+        assert_eq!(kinematics.joints[0].direction, [0.0, 1.0, 0.0]);
+        assert_eq!(kinematics.joints[0].limits, (-120.0, 120.0));
+        let missing = text.replace("axis = \"b\"", "axis = \"a\"");
+        let error = Machine::from_toml(&missing).unwrap_err().to_string();
+        assert!(error.contains("no rotary axis"), "{error}");
     }
 
     #[test]

@@ -3,7 +3,8 @@
 //! JSON lines carry `kind`, `line`, `file`, the planner's start time `t` and duration `dt` in
 //! seconds, the end point `x y z` (and `a b c` when the machine has them) in machine coordinates, `f` in mm/min for cutting moves, `cx cy cz dir plane` for
 //! arcs, and `n` (sequence number) and, with `--work`, `wx wy wz` (end point in program
-//! coordinates) as extras.
+//! coordinates) as extras; on a machine with `[kinematics]`, `tx ty tz`, the tool tip in the
+//! workpiece (the kinematics' forward transform of the joints `x y z a b c`).
 //! Events carry their own fields (`tool`, `state`, `speed`, `on`, `seconds`, `stop`, `end`, `code`).
 
 use super::{Outcome, SetupError};
@@ -153,6 +154,9 @@ struct Writer {
     /// Where a per-axis rapid really goes: a record for each piece between the moments its
     /// axes come to rest.
     dog_leg: DogLeg,
+    /// A 5-axis machine's kinematics and the tool length of the frame in force: each motion's
+    /// record then ends with the tool tip in the workpiece, `tx ty tz`.
+    tip: Option<(vcnc::kinematics::Kinematics, f64)>,
 }
 
 /// The parts of a record, shared by both formats.
@@ -296,8 +300,9 @@ impl Writer {
             arc_words: arc_words(),
             plain_end: false,
             dog_leg: DogLeg::new(machine),
+            tip: machine.kinematics.clone().map(|k| (k, 0.0)),
         };
-        writer.plain_end = writer.extra.is_empty() && !work;
+        writer.plain_end = writer.extra.is_empty() && !work && writer.tip.is_none();
         writer.set_file(FileId(0));
         writer
     }
@@ -331,6 +336,11 @@ impl Writer {
                 Ok(Emitted::Segment(segment)) => segment,
                 Ok(Emitted::Frame(frame)) => {
                     self.frame = Some(frame.transform.program_map());
+                    if let Some((kinematics, length)) = &mut self.tip {
+                        let k = kinematics.tool_axis;
+                        let l = frame.tool_length;
+                        *length = l[0] * k[0] + l[1] * k[1] + l[2] * k[2];
+                    }
                     continue;
                 }
                 Ok(Emitted::Warning(alarm)) | Err(alarm) => {
@@ -485,11 +495,13 @@ impl Writer {
                     &self.arc_words,
                     self.work.then_some(self.frame.as_ref()),
                     &record,
+                    None,
                 );
             } else {
                 for &(axis, key, _) in &self.extra {
                     text.remembered(key, &mut self.memory[axis.index()], to[axis.index()]);
                 }
+                let tip = tip_point(self.tip.as_ref(), motion);
                 let [_, _, z_memory, _, _, _, feed_memory] = &mut self.memory;
                 jsonl_end(
                     &mut text,
@@ -497,6 +509,7 @@ impl Writer {
                     &self.arc_words,
                     self.work.then_some(self.frame.as_ref()),
                     &record,
+                    tip,
                 );
             }
         } else {
@@ -511,11 +524,14 @@ impl Writer {
             self.out.put(b",");
             self.out.put(name.as_bytes());
         }
-        self.out.put(if self.work {
-            b",f,cx,cy,cz,dir,plane,wx,wy,wz,value\n".as_slice()
-        } else {
-            b",f,cx,cy,cz,dir,plane,value\n".as_slice()
-        });
+        self.out.put(b",f,cx,cy,cz,dir,plane");
+        if self.work {
+            self.out.put(b",wx,wy,wz");
+        }
+        if self.tip.is_some() {
+            self.out.put(b",tx,ty,tz");
+        }
+        self.out.put(b",value\n");
     }
 
     #[inline(always)]
@@ -572,6 +588,12 @@ impl Writer {
                 None => text.put(b",,,"),
             }
         }
+        if self.tip.is_some() {
+            match record.motion.and_then(|m| tip_point(self.tip.as_ref(), m)) {
+                Some(tip) => tip.into_iter().for_each(|t| text.decimal(COMMA, t)),
+                None => text.put(b",,,"),
+            }
+        }
         text.byte(b',');
         if record.motion.is_none() {
             text.put(csv_value(&segment.kind).as_bytes());
@@ -589,6 +611,7 @@ fn jsonl_end(
     arc_words: &[[ArcWords; 3]; 2],
     work: Option<Option<&ProgramMap>>,
     record: &Record<'_>,
+    tip: Option<[f64; 3]>,
 ) {
     if let Some(f) = record.feed {
         text.remembered(key!("f"), feed_memory, f);
@@ -607,7 +630,17 @@ fn jsonl_end(
         text.decimal(key!("wy"), work[1]);
         text.decimal(key!("wz"), work[2]);
     }
+    if let Some(tip) = tip {
+        text.decimal(key!("tx"), tip[0]);
+        text.decimal(key!("ty"), tip[1]);
+        text.decimal(key!("tz"), tip[2]);
+    }
     text.put(b"}\n");
+}
+
+/// The tool tip in the workpiece at the end of `motion`, on a machine with kinematics.
+fn tip_point(tip: Option<&(vcnc::kinematics::Kinematics, f64)>, motion: &Move) -> Option<[f64; 3]> {
+    tip.map(|(kinematics, length)| kinematics.forward(&motion.to.0, *length).tip)
 }
 
 /// The end point of `motion` in program coordinates: through the whole frame it was made in

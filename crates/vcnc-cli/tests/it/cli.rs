@@ -707,3 +707,42 @@ fn a_per_axis_rapid_is_traced_as_its_pieces() {
         1
     );
 }
+
+#[test]
+fn a_trace_on_a_five_axis_machine_carries_the_tool_tip() {
+    // A B-C table, B about Y through (0, 0, -100): under G43.4 (tool length 0) the tip goes to
+    // (10, 0, 0) while B turns to 90. The part point (10, 0, 0) is then at the centre plus
+    // R_y(90) (10, 0, 100) = (0, 0, -100) + (100, 0, -10): the joints end at X100 Z-110 B90, and
+    // `tx ty tz`, their forward transform, is the programmed tip.
+    let machine = vcnc(&["machine", "--profile", "syntec"]);
+    let axis = |name: &str| {
+        format!("[axes.{name}]\nmin = -1000.0\nmax = 1000.0\nrapid = 9000.0\nmax_feed = 9000.0\n\n")
+    };
+    let kinematics = "[kinematics]\ntype = \"table_table\"\nrotary = [\n\
+        { axis = \"b\", direction = [0.0, 1.0, 0.0], center = [0.0, 0.0, -100.0] },\n\
+        { axis = \"c\", direction = [0.0, 0.0, 1.0], center = [0.0, 0.0, -100.0] },\n]\n";
+    let text = String::from_utf8(machine.stdout).unwrap().replace(
+        "\n[start]",
+        &format!("\n{}{}{kinematics}\n[start]", axis("b"), axis("c")),
+    );
+    let path = temp_program("five-axis.toml", &text);
+    let program = temp_program("five-axis.nc", "G43.4 H1\nG01 X10. B90. F1000.\nM30\n");
+    let trace = vcnc(&["trace", "--format", "jsonl", "--machine", &path, &program]);
+    let records = String::from_utf8_lossy(&trace.stdout);
+    let last = records
+        .lines()
+        .rev()
+        .find(|r| r.contains("\"kind\":\"feed\""))
+        .unwrap_or_default();
+    assert!(
+        last.contains("\"x\":100,\"y\":0,\"z\":-110,\"b\":90,\"c\":0,"),
+        "{records}"
+    );
+    assert!(last.ends_with(",\"tx\":10,\"ty\":0,\"tz\":0}"), "{records}");
+    let csv = vcnc(&["trace", "--format", "csv", "--machine", &path, &program]);
+    let header = String::from_utf8_lossy(&csv.stdout);
+    assert!(
+        header.starts_with("kind,line,file,n,t,dt,x,y,z,b,c,f,cx,cy,cz,dir,plane,tx,ty,tz,value\n"),
+        "{header}"
+    );
+}

@@ -77,6 +77,9 @@ pub(crate) fn arc(
     if let (Some(turns), true) = (cmd.l(), exec.kernel.setup.profile().motion.arc_l_is_spiral) {
         return spiral(exec, cmd, spec, turns, direction, target, feed, out);
     }
+    if super::tilted_plane::tilted(exec).is_some() {
+        return super::tilted_plane::arc_as_chords(exec, cmd, (spec, direction, feed), target, out);
+    }
     let start = in_plane(plane, &exec.kernel.position);
     let end = in_plane(plane, &target);
     if let ArcSpec::Radius { span, .. } = spec {

@@ -213,11 +213,12 @@ impl Executor {
         }
         match rotation {
             Some(GCode::Rotate) => super::frames::rotation::g68(self, cmd)?,
-            Some(GCode::RotationCancel) => super::frames::rotation::g69(&mut self.kernel.frames),
+            Some(GCode::TiltedPlane) => super::tilted_plane::g68_2(self, cmd)?,
+            Some(GCode::RotationCancel) => super::tilted_plane::g69(self, out),
             _ => {}
         }
         let taken = polar_interpolation.is_some()
-            || rotation == Some(GCode::Rotate)
+            || matches!(rotation, Some(GCode::Rotate | GCode::TiltedPlane))
             || scaling == Some(GCode::Scale)
             || mirror == Some(GCode::Mirror);
         Ok(if taken {
@@ -241,6 +242,10 @@ impl Executor {
             Some(GCode::ReturnFromReference) => super::reference::g29(self, cmd, out)?,
             Some(GCode::MachineCoordinates) => super::frames::coords::g53(self, cmd, out)?,
             Some(GCode::Dwell) => true,
+            Some(GCode::ToolAxisDirection) => {
+                super::tilted_plane::g53_1(self, cmd, out)?;
+                true
+            }
             Some(GCode::Skip) => {
                 super::skip::g31(self, cmd, out)?;
                 true
@@ -471,7 +476,7 @@ impl Executor {
         let value = self.kernel.tools.length();
         match self.modal.length_comp {
             LengthComp::Off => 0.0,
-            LengthComp::Plus => value,
+            LengthComp::Plus | LengthComp::CenterPoint => value,
             LengthComp::Minus => -value,
         }
     }

@@ -1,4 +1,4 @@
-//! G43/G44/G49: tool length compensation along Z.
+//! G43/G44/G49: tool length compensation along Z (and G43.4's length, `tool_center.rs`).
 //!
 //! The H number selects an entry of the offset memory (geometry + wear). A block with G43/G44/G49
 //! or a new H and no Z word still moves Z by the change of offset, as if `G91 Z0` had been
@@ -17,7 +17,7 @@ use crate::profile::Group;
 ///
 /// # Errors
 /// [`AlarmCode::OffsetNumberOutOfRange`] for an H number the control does not have.
-pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Result<bool, Alarm> {
+pub(crate) fn apply(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Result<bool, Alarm> {
     // In the old FANUC 0M form `G42 H19` the H belongs to cutter compensation.
     let h = cmd
         .h()
@@ -26,6 +26,10 @@ pub(crate) fn apply(exec: &mut Executor, cmd: &Command, _out: &mut Output) -> Re
         let number = exec.kernel.setup.offset_number(h, 'H')?;
         exec.kernel.tools.select_length(number);
     }
+    // G43.4 starts tool centre point control with its H in force; G43, G44, G49 end it.
+    super::tool_center::switch(exec, cmd, out)?;
+    super::tool_center::refuse_compensation(cmd, out)?;
+    super::tool_center::refuse_high_speed(exec, cmd, out)?;
     let changed = cmd.group(Group::LengthComp).is_some()
         || (h.is_some() && exec.modal.length_comp != LengthComp::Off);
     Ok(changed && (exec.active_length() - exec.kernel.frames.length_vector()).abs() > 0.0)

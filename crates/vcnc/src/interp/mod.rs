@@ -29,6 +29,7 @@ mod length;
 mod macros;
 pub mod modal;
 mod output;
+mod pieces;
 mod polar_coordinates;
 mod polar_interpolation;
 mod position_offset;
@@ -40,6 +41,8 @@ mod smoothing;
 mod spindle;
 mod spiral;
 mod thread;
+mod tilted_plane;
+mod tool_center;
 mod tools;
 
 use crate::alarm::{Alarm, AlarmCode};

@@ -65,6 +65,9 @@ pub enum LengthComp {
     Plus,
     /// G44.
     Minus,
+    /// G43.4: tool centre point control, the length applied like G43's and the tip kept on the
+    /// path (`tool_center.rs`).
+    CenterPoint,
 }
 
 /// Group 13.
@@ -212,6 +215,7 @@ impl ModalState {
             LengthCompPlus => self.length_comp = LengthComp::Plus,
             LengthCompMinus => self.length_comp = LengthComp::Minus,
             LengthCompCancel => self.length_comp = LengthComp::Off,
+            ToolCenterPoint => self.length_comp = LengthComp::CenterPoint,
             ReturnToInitialLevel => self.cycle_return = CycleReturn::InitialLevel,
             ReturnToRLevel => self.cycle_return = CycleReturn::RLevel,
             ConstantSurfaceSpeed => self.spindle_mode = SpindleMode::SurfaceSpeed,
@@ -255,6 +259,8 @@ impl ModalState {
             | LookAhead
             | ModalMacroCall
             | RotationCancel
+            | TiltedPlane
+            | ToolAxisDirection
             | Rotate
             | PolarInterpolation
             | PolarInterpolationCancel => {}

@@ -5,13 +5,14 @@
 //! place. Cutter compensation (G41/G42) is the first stage when it is on: it holds a move until
 //! the next one shows where the corner is, so the items queued behind the held move wait too
 //! (`held`). The transformations of finished motion come after it, in order (G12.1 polar
-//! coordinate interpolation, and whatever a dialect adds): each reads the released part of its own
+//! coordinate interpolation, the 5-axis kinematic transform, and whatever a dialect adds): each reads the released part of its own
 //! input queue and writes into the next stage's input, the last into the output queue. A stage
 //! never reads program text or modal state; the executor starts and ends stages.
 
 use super::comp::Compensator;
 use super::kernel::BlockOrigin;
 use super::polar_interpolation::PolarStage;
+use super::tool_center::KinematicStage;
 use crate::alarm::Alarm;
 use crate::machine::AXES;
 use crate::motion::{
@@ -28,6 +29,16 @@ pub(crate) enum Stage {
     Compensation(Box<Compensator>),
     /// G12.1 polar coordinate interpolation: Cartesian motion to machine X and C.
     PolarInterpolation(Box<PolarStage>),
+    /// G43.4 or G53.1: tool tip motion in the workpiece to the joints of a 5-axis machine.
+    Kinematics(Box<KinematicStage>),
+}
+
+/// What a transformation stage leaves when it ends: where the machine is.
+enum Ended {
+    /// G13.1: the plane before G12.1 and the machine position.
+    Polar(Plane, [f64; AXES]),
+    /// The kinematic transform: the machine position (joints).
+    Kinematics([f64; AXES]),
 }
 
 /// The queue of what the blocks produced and nobody has taken yet: a few items for
@@ -121,7 +132,7 @@ impl Output {
         match self.stages.first() {
             Some(Stage::Compensation(_)) => match self.stages.remove(0) {
                 Stage::Compensation(comp) => Some(*comp),
-                Stage::PolarInterpolation(_) => None,
+                _ => None,
             },
             _ => None,
         }
@@ -146,16 +157,50 @@ impl Output {
             .stages
             .iter()
             .position(|stage| matches!(stage, Stage::PolarInterpolation(_)))?;
-        self.end_transform(at)
+        match self.end_transform(at) {
+            Some(Ended::Polar(plane, position)) => Some((plane, position)),
+            _ => None,
+        }
+    }
+
+    /// The kinematic transform in force (G43.4, G53.1), to change it.
+    pub(crate) fn kinematics_mut(&mut self) -> Option<&mut KinematicStage> {
+        self.stages.iter_mut().find_map(|stage| match stage {
+            Stage::Kinematics(stage) => Some(&mut **stage),
+            _ => None,
+        })
+    }
+
+    /// The kinematic transform starts: a stage behind the others.
+    pub(crate) fn start_kinematics(&mut self, stage: KinematicStage) {
+        self.stages.push(Stage::Kinematics(Box::new(stage)));
+    }
+
+    /// The kinematic transform ends: what it holds is converted. The machine position (joints)
+    /// where its last piece ended, if it was on.
+    pub(crate) fn end_kinematics(&mut self) -> Option<[f64; AXES]> {
+        let at = self
+            .stages
+            .iter()
+            .position(|stage| matches!(stage, Stage::Kinematics(_)))?;
+        match self.end_transform(at) {
+            Some(Ended::Kinematics(position)) => Some(position),
+            _ => None,
+        }
     }
 
     /// Removes the transformation stage `at`, its input settled into the queue behind it.
-    fn end_transform(&mut self, at: usize) -> Option<(Plane, [f64; AXES])> {
-        let Stage::PolarInterpolation(stage) = self.stages.remove(at) else {
-            return None;
-        };
+    fn end_transform(&mut self, at: usize) -> Option<Ended> {
+        let stage = self.stages.remove(at);
         let (items, _) = input_of(&mut self.stages[at..], &mut self.items, &mut self.held);
-        let ended = stage.flush(items);
+        let ended = match stage {
+            Stage::PolarInterpolation(stage) => {
+                let (plane, position) = stage.flush(items);
+                Ended::Polar(plane, position)
+            }
+            Stage::Kinematics(stage) => Ended::Kinematics(stage.flush(items)),
+            Stage::Compensation(_) => return None,
+        };
         self.settle();
         Some(ended)
     }
@@ -198,11 +243,13 @@ impl Output {
     fn settle(&mut self) {
         let first = usize::from(self.compensating());
         for at in first..self.stages.len() {
-            if let Some((Stage::PolarInterpolation(stage), behind)) =
-                self.stages[at..].split_first_mut()
-            {
+            if let Some((stage, behind)) = self.stages[at..].split_first_mut() {
                 let (items, _) = input_of(behind, &mut self.items, &mut self.held);
-                stage.settle(items);
+                match stage {
+                    Stage::PolarInterpolation(stage) => stage.settle(items),
+                    Stage::Kinematics(stage) => stage.settle(items),
+                    Stage::Compensation(_) => {}
+                }
             }
         }
     }
@@ -219,7 +266,7 @@ impl Output {
                 self.stop(alarm);
             }
         }
-        // The program ends in G12.1: reset cancels the mode (spec 1.13.2 rule 2).
+        // The program ends in G12.1 (or G43.4): reset cancels the mode (spec 1.13.2 rule 2).
         while !self.stages.is_empty() {
             self.end_transform(0);
         }
@@ -340,6 +387,7 @@ fn input_of<'a>(
 ) -> (&'a mut Vec<Item>, &'a mut Option<usize>) {
     match stages.first_mut() {
         Some(Stage::PolarInterpolation(stage)) => (&mut stage.staged, &mut stage.held),
+        Some(Stage::Kinematics(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::Compensation(_)) | None => (items, held),
     }
 }

@@ -35,13 +35,11 @@
 use super::decode::{Command, GWord};
 use super::exec::Executor;
 use super::frames::sin_cos_degrees;
+use super::pieces::{self, PieceMap};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
-use crate::motion::{
-    arc_sweep, ArcDirection, Feed, Item, MachinePos, Move, PathMode, Plane, Segment, SegmentKind,
-    StreamItem,
-};
+use crate::motion::{Item, Plane, Segment, StreamItem};
 use crate::profile::{GCode, Group};
 
 /// The linear axis of the plane: the radius.
@@ -55,11 +53,6 @@ const HYPOTHETICAL: usize = Axis::Y.index();
 
 /// Closer than this to the rotation centre, mm, a point has no angle of its own.
 const CENTRE: f64 = 1e-9;
-/// Halvings of a segment at most: a piece is never shorter than 2^-30 of its segment.
-const MAX_DEPTH: u32 = 30;
-/// Halvings per segment at most, so that a tolerance finer than the arithmetic can follow (far
-/// from the centre at huge coordinates) cannot make pieces without end.
-const MAX_SPLITS: u32 = 1 << 16;
 
 /// Before a block in the mode: refuses the codes the mode does not allow and reads the address
 /// C as the hypothetical axis.
@@ -321,168 +314,27 @@ struct Converter {
     tolerance: f64,
 }
 
-/// A Cartesian segment as a function of t in [0, 1].
-enum Path {
-    Straight {
-        from: [f64; AXES],
-        to: [f64; AXES],
-    },
-    /// An arc in the plane axes, the other axes straight (a helix).
-    Arc {
-        from: [f64; AXES],
-        to: [f64; AXES],
-        axes: (usize, usize),
-        center: (f64, f64),
-        start_angle: f64,
-        /// Radians, negative clockwise.
-        sweep: f64,
-        /// Start and end radius (they may differ by the arc tolerance).
-        radius: (f64, f64),
-    },
-}
-
-impl Path {
-    fn of(segment: &Segment) -> Option<Path> {
-        match &segment.kind {
-            SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => {
-                Some(Path::Straight {
-                    from: motion.from.0,
-                    to: motion.to.0,
-                })
-            }
-            SegmentKind::Arc {
-                motion,
-                center,
-                direction,
-                plane,
-                extra_turns,
-                ..
-            } => {
-                let (a, b, _) = plane.axes();
-                let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
-                let sweep = match direction {
-                    ArcDirection::CounterClockwise => sweep,
-                    ArcDirection::Clockwise => -sweep,
-                };
-                let (from, to) = (motion.from.0, motion.to.0);
-                let center = (center.0[a], center.0[b]);
-                let start = (from[a] - center.0, from[b] - center.1);
-                let end = (to[a] - center.0, to[b] - center.1);
-                Some(Path::Arc {
-                    from,
-                    to,
-                    axes: (a, b),
-                    center,
-                    start_angle: start.1.atan2(start.0),
-                    sweep,
-                    radius: (start.0.hypot(start.1), end.0.hypot(end.1)),
-                })
-            }
-            _ => None,
-        }
-    }
-
-    /// The point at `t`: exactly the start at 0 and the end at 1.
-    fn at(&self, t: f64) -> [f64; AXES] {
-        let (from, to) = match self {
-            Path::Straight { from, to } | Path::Arc { from, to, .. } => (from, to),
-        };
-        if t <= 0.0 {
-            return *from;
-        }
-        if t >= 1.0 {
-            return *to;
-        }
-        let mut p = lerp(from, to, t);
-        if let Path::Arc {
-            axes: (a, b),
-            center,
-            start_angle,
-            sweep,
-            radius,
-            ..
-        } = self
-        {
-            let r = radius.0 + (radius.1 - radius.0) * t;
-            let (sin, cos) = (start_angle + sweep * t).sin_cos();
-            p[*a] = center.0 + r * cos;
-            p[*b] = center.1 + r * sin;
-        }
-        p
-    }
-}
-
-fn lerp(from: &[f64; AXES], to: &[f64; AXES], t: f64) -> [f64; AXES] {
-    std::array::from_fn(|i| from[i] + (to[i] - from[i]) * t)
-}
-
 /// `degrees` brought into [-180, 180).
 fn wrap(degrees: f64) -> f64 {
     degrees - 360.0 * ((degrees + 180.0) / 360.0).floor()
 }
 
-/// One piece's end and where it ends on its segment.
-struct PieceEnd {
-    t: f64,
-    machine: [f64; AXES],
-}
-
 impl Converter {
     /// Appends the pieces of the Cartesian `segment` to `items`.
     fn convert(&mut self, segment: &Segment, items: &mut Vec<StreamItem>) {
-        let (Some(path), Some(motion)) = (Path::of(segment), segment.motion()) else {
-            items.push(Ok((*segment).into()));
-            return;
-        };
-        let motion = *motion;
-        // The contour's length on the part: the control keeps F along it.
-        let contour = segment.length();
-        let start = self.last;
-        let mut cut = Cut {
-            converter: self,
-            path: &path,
-            offset: motion.offset,
-            splits: MAX_SPLITS,
-            ends: Vec::new(),
-        };
-        cut.refine((0.0, start), 1.0, 0);
-        let ends = cut.ends;
-        let count = ends.len();
-        let mut from = (0.0, start);
-        for (i, end) in ends.into_iter().enumerate() {
-            // The block's exact stop (G09, G61) is at its end, not between its pieces.
-            let last = i + 1 == count;
-            let piece = Move {
-                from: MachinePos(from.1),
-                to: MachinePos(end.machine),
-                exact_stop: motion.exact_stop && last,
-                path_mode: match motion.path_mode {
-                    PathMode::ExactStop if !last => PathMode::Continuous,
-                    mode => mode,
-                },
-                ..motion
-            };
-            let kind = match segment.kind {
-                SegmentKind::Rapid { .. } => SegmentKind::Rapid {
-                    motion: piece,
-                    per_axis: false,
-                },
-                SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => {
-                    SegmentKind::Line {
-                        motion: piece,
-                        feed: piece_feed(feed, end.t - from.0, contour),
-                    }
-                }
-                other => other,
-            };
-            items.push(Ok(Segment { kind, ..*segment }.into()));
-            from = (end.t, end.machine);
-        }
-        self.last = from.1;
+        self.last = pieces::cut(self, segment, self.last, self.tolerance, items);
     }
+}
 
-    /// The machine position of the Cartesian point `p`, its C next to `previous_c`.
-    fn to_machine(&self, p: &[f64; AXES], offset: &[f64; AXES], previous_c: f64) -> [f64; AXES] {
+impl PieceMap for Converter {
+    /// The machine position of the Cartesian point `p`, its C next to the previous position's.
+    fn to_machine(
+        &self,
+        p: &[f64; AXES],
+        offset: &[f64; AXES],
+        previous: &[f64; AXES],
+    ) -> [f64; AXES] {
+        let previous_c = previous[ROTARY];
         let u = p[LINEAR] - offset[LINEAR] + self.eccentricity.0;
         let v = p[HYPOTHETICAL] - offset[HYPOTHETICAL] + self.eccentricity.1;
         let radius = u.hypot(v);
@@ -498,77 +350,13 @@ impl Converter {
         machine
     }
 
-    /// The Cartesian point (X and the hypothetical axis, executor coordinates) of a machine
-    /// position.
-    fn to_cartesian(&self, machine: &[f64; AXES], offset: &[f64; AXES]) -> (f64, f64) {
+    /// The distance in the plane between the Cartesian point (X and the hypothetical axis,
+    /// executor coordinates) of a machine position and `p`.
+    fn deviation(&self, machine: &[f64; AXES], offset: &[f64; AXES], p: &[f64; AXES]) -> f64 {
         let radius = machine[LINEAR] - offset[LINEAR];
         let (sin, cos) = (machine[ROTARY] - offset[ROTARY]).to_radians().sin_cos();
-        (
-            radius * cos - self.eccentricity.0 + offset[LINEAR],
-            radius * sin - self.eccentricity.1 + offset[HYPOTHETICAL],
-        )
-    }
-}
-
-/// One segment being cut into pieces.
-struct Cut<'a> {
-    converter: &'a Converter,
-    path: &'a Path,
-    /// Machine minus program coordinates along the segment.
-    offset: [f64; AXES],
-    /// Halvings left.
-    splits: u32,
-    ends: Vec<PieceEnd>,
-}
-
-impl Cut<'_> {
-    /// Cuts the path from `start` (its parameter and machine position) to `t1` into pieces
-    /// within the tolerance, appending their ends; returns the last end.
-    fn refine(&mut self, start: (f64, [f64; AXES]), t1: f64, depth: u32) -> [f64; AXES] {
-        let (t0, from) = start;
-        let end = self
-            .converter
-            .to_machine(&self.path.at(t1), &self.offset, from[ROTARY]);
-        if depth >= MAX_DEPTH || self.splits == 0 || self.within((t0, &from), (t1, &end)) {
-            self.ends.push(PieceEnd {
-                t: t1,
-                machine: end,
-            });
-            return end;
-        }
-        self.splits -= 1;
-        let middle = (t0 + t1) / 2.0;
-        let reached = self.refine(start, middle, depth + 1);
-        self.refine((middle, reached), t1, depth + 1)
-    }
-
-    /// True when the straight machine move between two points of the path stays within the
-    /// tolerance of it, judged at a quarter, half and three quarters of the move (against the
-    /// path at the same fraction of its parameter, which is stricter than the distance to it).
-    fn within(&self, (t0, from): (f64, &[f64; AXES]), (t1, to): (f64, &[f64; AXES])) -> bool {
-        [0.25, 0.5, 0.75].iter().all(|&s| {
-            let machine = lerp(from, to, s);
-            let (x, y) = self.converter.to_cartesian(&machine, &self.offset);
-            let p = self.path.at(t0 + (t1 - t0) * s);
-            (x - p[LINEAR]).hypot(y - p[HYPOTHETICAL]) <= self.converter.tolerance
-        })
-    }
-}
-
-/// The feed of a piece covering `share` of its block, whose contour on the part is `length` mm
-/// long. The control keeps F along the contour while the piece moves X and C: the piece gets the
-/// time its share of the contour takes at F, as an inverse-time feed, so that the planner (which
-/// measures X Y Z travel) times it as the control moves it. G93's block time is shared out the
-/// same way; a G95 feed without a spindle speed stays as it is (the planner's rule for it).
-fn piece_feed(feed: Feed, share: f64, length: f64) -> Feed {
-    if share <= 0.0 {
-        return feed;
-    }
-    match feed {
-        Feed::InverseTime(f) => Feed::InverseTime(f / share),
-        _ => match feed.mm_per_min(length) {
-            Some(f) if f > 0.0 && length > 0.0 => Feed::InverseTime(f / (share * length)),
-            _ => feed,
-        },
+        let x = radius * cos - self.eccentricity.0 + offset[LINEAR];
+        let y = radius * sin - self.eccentricity.1 + offset[HYPOTHETICAL];
+        (x - p[LINEAR]).hypot(y - p[HYPOTHETICAL])
     }
 }

@@ -183,6 +183,12 @@ pub enum GCode {
     PathSmoothing,
     /// G08 on FANUC: look-ahead control on (P1) or off (P0).
     LookAhead,
+    /// G43.4: tool centre point control (RTCP), the length applied along the turned tool.
+    ToolCenterPoint,
+    /// G68.2: tilted working plane (feature coordinate system).
+    TiltedPlane,
+    /// G53.1: the rotary axes turn the tool normal to the tilted plane.
+    ToolAxisDirection,
 }
 
 impl GCode {
@@ -261,6 +267,9 @@ impl GCode {
             HighSpeedMode => "high-speed high-precision mode",
             PathSmoothing => "path smoothing / AI contour control",
             LookAhead => "look-ahead control",
+            ToolCenterPoint => "tool centre point control",
+            TiltedPlane => "tilted working plane",
+            ToolAxisDirection => "tool axis direction control",
         }
     }
 
@@ -274,7 +283,9 @@ impl GCode {
             InverseTimeFeed | FeedPerMinute | FeedPerRevolution => Group::FeedMode,
             Inch | Metric => Group::Units,
             CutterCompCancel | CutterCompLeft | CutterCompRight => Group::CutterComp,
-            LengthCompPlus | LengthCompMinus | LengthCompCancel => Group::LengthComp,
+            LengthCompPlus | LengthCompMinus | LengthCompCancel | ToolCenterPoint => {
+                Group::LengthComp
+            }
             CycleCancel | Cycle(_) => Group::Cycle,
             ReturnToInitialLevel | ReturnToRLevel => Group::CycleReturn,
             ScalingCancel | Scale => Group::Scaling,
@@ -285,14 +296,14 @@ impl GCode {
             ExactStopMode | AutomaticCornerOverride | TappingMode | ContinuousMode => {
                 Group::PathMode
             }
-            RotationCancel | Rotate => Group::Rotation,
+            RotationCancel | Rotate | TiltedPlane => Group::Rotation,
             PolarCancel | Polar => Group::Polar,
             PolarInterpolation | PolarInterpolationCancel => Group::PolarInterpolation,
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | Skip | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
             | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_) | Engrave
-            | HighSpeedMode | PathSmoothing | LookAhead => Group::NonModal,
+            | HighSpeedMode | PathSmoothing | LookAhead | ToolAxisDirection => Group::NonModal,
         }
     }
 }
@@ -475,6 +486,9 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         50 if profile.motion.smoothing_codes != SmoothingCodes::None => HighSpeedMode,
         51 if profile.motion.smoothing_codes != SmoothingCodes::None => PathSmoothing,
         80 if profile.motion.smoothing_codes == SmoothingCodes::Fanuc => LookAhead,
+        434 if profile.motion.five_axis => ToolCenterPoint,
+        682 if profile.motion.five_axis => TiltedPlane,
+        531 if profile.motion.five_axis => ToolAxisDirection,
         _ => return not_yet(tenths),
     };
     Known(known)
@@ -494,9 +508,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (270, None, "reference position return check"),
     (370, None, "automatic tool length measurement"),
     (371, None, "automatic tool length measurement II"),
-    (434, None, "tool centre point control"),
-    (531, None, "tool axis direction control"),
-    (682, None, "tilted working plane"),
     (1201, None, "machining condition selection"),
     (1870, None, "smoothness / accuracy setting"),
 ];

@@ -66,6 +66,11 @@ pub struct MotionRules {
     /// tolerance the path).
     #[serde(default)]
     pub smoothing_codes: SmoothingCodes,
+    /// The 5-axis codes exist: G43.4 tool centre point control, G68.2 tilted working plane and
+    /// G53.1 tool axis direction (Syntec spec 1.26, 1.32, 1.38; FANUC's Series 30i); they run
+    /// on a machine file with `[kinematics]`.
+    #[serde(default)]
+    pub five_axis: bool,
 }
 
 fn default_polar_interpolation_tolerance() -> f64 {

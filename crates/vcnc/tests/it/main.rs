@@ -15,6 +15,7 @@ mod compensation_property;
 mod corpus;
 mod corpus_tally;
 mod cycles;
+mod five_axis;
 mod frames;
 mod front_end;
 mod input;

@@ -188,6 +188,28 @@ impl Frames {
         self.set_frame(FrameSlot::Programmable, frame.map(Transform::Affine));
     }
 
+    /// SINUMERIK's swivel frame (CYCLE800), while one is set.
+    pub(crate) fn swivel(&self) -> Option<&Affine> {
+        match self.frame(FrameSlot::Swivel) {
+            Some(Transform::Affine(affine)) => Some(affine),
+            _ => None,
+        }
+    }
+
+    /// Sets or ends SINUMERIK's swivel frame.
+    pub(crate) fn set_swivel(&mut self, frame: Option<Affine>) {
+        self.set_frame(FrameSlot::Swivel, frame.map(Transform::Affine));
+    }
+
+    /// True when every general affine frame of the chain (SINUMERIK's programmable and swivel
+    /// frames) keeps an arc in the plane of axes `(a, b)` a machine arc ([`Affine::keeps_plane`]).
+    pub(crate) fn affine_frames_keep_plane(&self, (a, b): (usize, usize)) -> bool {
+        [self.programmable(), self.swivel()]
+            .into_iter()
+            .flatten()
+            .all(|f| f.keeps_plane((a, b)))
+    }
+
     /// Sets or ends G68's rotation.
     pub(crate) fn set_rotation(&mut self, rotation: Option<Rotation>) {
         self.set_frame(FrameSlot::Rotation, rotation.map(Transform::Rotate));

@@ -20,6 +20,9 @@ pub(crate) enum FrameSlot {
     /// SINUMERIK's programmable frame (`$P_PFRAME`): the first frame a program point meets, WCS to
     /// SZS (docs/SINUMERIK.md 5.1); the settable frame's translation is the shift after the chain.
     Programmable,
+    /// SINUMERIK's swivel frame (CYCLE800, `sinumerik/cycles/swivel.rs`): a system frame, after
+    /// the programmable one towards the machine.
+    Swivel,
     /// G51 scaling or G51.1 mirror (FANUC applies them before a rotation).
     Scaling,
     /// G68 coordinate rotation.

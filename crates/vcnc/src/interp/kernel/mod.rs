@@ -348,6 +348,12 @@ impl Kernel {
         &mut self.state
     }
 
+    /// The kernel's machine state and its output, for a change that starts or ends an output
+    /// stage (SINUMERIK's CYCLE800 and the kinematic transform).
+    pub(crate) fn state_and_output(&mut self) -> (&mut KernelState, &mut Output) {
+        (&mut self.state, &mut self.out)
+    }
+
     /// A segment (or frame) another interpreter made on this kernel's state, into the stream.
     pub(crate) fn push_item(&mut self, item: crate::motion::Item) {
         self.out.items.push(Ok(item));

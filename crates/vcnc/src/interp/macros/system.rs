@@ -349,6 +349,7 @@ fn modal_code(exec: &Executor, out: &Output, group: u32) -> Option<f64> {
         8 => match m.length_comp {
             LengthComp::Plus => 430.0,
             LengthComp::Minus => 440.0,
+            LengthComp::CenterPoint => 434.0,
             LengthComp::Off => 490.0,
         },
         9 => exec.cycle.as_ref().map_or(800.0, |c| cycle_code(c.kind())),

@@ -9,7 +9,7 @@ use super::gcodes::{self, FeedType, Function, OneBlock};
 use super::instructions::{frame_instruction, pole};
 use super::language::Argument;
 use super::motion::{self, unit};
-use super::predefined::{note_state, swivel, unknown_word, user_alarm, written};
+use super::predefined::{note_state, unknown_word, user_alarm, written};
 use super::spindle;
 use super::tools;
 use super::{axes, spindles};
@@ -26,7 +26,7 @@ use crate::syntax::sinumerik::{Block, Expr, ExprKind, UnaryOp, Value, Word};
 const UNLISTED_TOOLS: u32 = 1_000_000;
 
 /// Predefined procedures that are neither subprograms nor cycles (the language's own).
-const PREDEFINED: [&str; 4] = ["MSG", "SETAL", "STOPRE", "CYCLE800"];
+const PREDEFINED: [&str; 3] = ["MSG", "SETAL", "STOPRE"];
 
 use super::language::AxisLookup;
 
@@ -549,8 +549,7 @@ fn read<'a>(
             "MCALL" if matches!(word.value, Value::Bare) => words.mcall = Some(word.span),
             "SETAL" => return Err(user_alarm(front, kernel, word)?),
             // CYCLE832 sets the tolerance and path mode of high-speed milling: state for the
-            // planner of issue 22; CYCLE800 without a rotation resets the swivel vcnc does not
-            // have (docs/SINUMERIK.md 1).
+            // planner of issue 22 (CYCLE800 is a standard cycle, `cycles/swivel.rs`).
             // WRTPR writes to the control's printer; nothing moves.
             "WRTPR" => {}
             "CYCLE832" | "CPRECON" | "CPRECOF" => {
@@ -558,7 +557,6 @@ fn read<'a>(
             }
             // The blank of ShopMill programs: the simulation's stock (issue 21), no motion.
             "WORKPIECE" => {}
-            "CYCLE800" => swivel(front, kernel, word)?,
             // A name alone that is no keyword calls the subprogram of that name (`L140`,
             // `CHAMFER`).
             _ if matches!(word.value, Value::Bare) && gcodes::out_of_product(address).is_none() => {

@@ -478,12 +478,7 @@ fn through_point(
     advance(front, &full);
     if let Some((plane, direction)) = circle.machine_plane() {
         let (a, b, _) = plane.axes();
-        if kernel
-            .state()
-            .frames
-            .programmable()
-            .is_none_or(|f| f.keeps_plane((a, b)))
-        {
+        if kernel.state().frames.affine_frames_keep_plane((a, b)) {
             let (arc, element) = Arc {
                 centre: V2::new(circle.centre[a], circle.centre[b]),
                 direction,
@@ -678,11 +673,7 @@ fn direct(
 /// lie in G17/G18/G19 planes).
 fn keeps_plane(kernel: &Kernel, plane: Plane) -> bool {
     let (a, b, _) = plane.axes();
-    kernel
-        .state()
-        .frames
-        .programmable()
-        .is_none_or(|frame| frame.keeps_plane((a, b)))
+    kernel.state().frames.affine_frames_keep_plane((a, b))
 }
 
 /// The machine plane the frame turns the arc's plane onto, when that is another coordinate
@@ -690,7 +681,13 @@ fn keeps_plane(kernel: &Kernel, plane: Plane) -> bool {
 /// turns the other way there.
 fn turned_plane(kernel: &Kernel, plane: Plane) -> Option<(Plane, bool)> {
     let (a, b, _) = plane.axes();
-    let frame = kernel.state().frames.programmable()?;
+    let frames = &kernel.state().frames;
+    // Under CYCLE800's swivel frame the arc is cut in pieces: the image of the plane through
+    // both frames is not looked for.
+    if frames.swivel().is_some() {
+        return None;
+    }
+    let frame = frames.programmable()?;
     let ((c, _), reversed) = frame.plane_image((a, b))?;
     let onto = match c {
         0 => Plane::Xy,

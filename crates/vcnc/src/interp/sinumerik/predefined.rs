@@ -1,5 +1,4 @@
-//! Predefined procedures and what the front end says of words it does not run: SETAL,
-//! CYCLE800, the notes of commands kept as state, and the alarms of words outside the
+//! Predefined procedures and what the front end says of words it does not run: SETAL, the notes of commands kept as state, and the alarms of words outside the
 //! product, planned for issue 22, or unknown.
 //!
 //! Never: pass over a word silently; each one here runs, is noted once, or alarms naming it.
@@ -37,26 +36,6 @@ pub(super) fn user_alarm(
         word.span,
         format!("alarm {number}{text} (set by the program with SETAL)"),
     ))
-}
-
-/// CYCLE800: the swivel cycle. Without a rotation (all angles 0, or no parameters) it resets
-/// the swivel, which vcnc's 3-axis model never has; a rotation is issue 22's.
-pub(super) fn swivel(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Alarm> {
-    let arguments = match &word.value {
-        Value::Call(arguments) => arguments.as_slice(),
-        _ => &[],
-    };
-    // _A, _B, _C are the 8th to 10th parameters.
-    for argument in arguments.iter().skip(7).take(3).flatten() {
-        if front.value(kernel, argument)? != 0.0 {
-            return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
-                word.span,
-                "CYCLE800 with a rotation is not run yet (planned: issue 22, SINUMERIK cycles and swivel data records)",
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// The G functions a machine has at power-on that change nothing vcnc models: no note.

@@ -1,5 +1,6 @@
 //! SINUMERIK's standard cycles (CYCLE81 ... CYCLE89, CYCLE840, HOLES1, HOLES2, CYCLE801,
-//! CYCLE802, POCKET3, POCKET4, SLOT1, SLOT2, LONGHOLE, CYCLE61, CYCLE71, CYCLE76, CYCLE77)
+//! CYCLE802, POCKET3, POCKET4, SLOT1, SLOT2, LONGHOLE, CYCLE61, CYCLE71, CYCLE76, CYCLE77,
+//! CYCLE800)
 //! built into the front end: called by name like a subprogram, directly or through MCALL, when
 //! neither the program's directory nor `--lib` has a program of that name (a machine's own
 //! cycle wins).
@@ -10,7 +11,8 @@
 //! arcs and threads through the kernel, so the planner times them. A drilling cycle drills
 //! where it is called: the programmed position in the plane in force (G17: X Y, along Z). The
 //! cycles by kind: `drilling.rs`, `patterns.rs`, `pockets.rs` (with `rings.rs`, the closed
-//! paths that clear a level), `slots.rs`, `facing.rs`, `spigots.rs`.
+//! paths that clear a level), `slots.rs`, `facing.rs`, `spigots.rs`, and the swivel CYCLE800
+//! (`swivel.rs`).
 //!
 //! The parameter lists are the cycles manual's; the meanings vcnc had to infer are marked so
 //! here and in docs/SINUMERIK.md ("Standard cycles").
@@ -27,6 +29,7 @@ mod pockets;
 mod rings;
 mod slots;
 mod spigots;
+mod swivel;
 
 use params::{alarm, machining_type, too_many, Levels, Params};
 use place::Place;
@@ -39,10 +42,10 @@ use crate::source::Span;
 use std::collections::HashSet;
 
 /// The cycles vcnc runs itself.
-const BUILT_IN: [&str; 23] = [
+const BUILT_IN: [&str; 24] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
-    "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE71", "CYCLE76", "CYCLE77",
+    "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE71", "CYCLE76", "CYCLE77", "CYCLE800",
 ];
 
 /// True when `name` is a standard cycle vcnc runs.
@@ -121,6 +124,7 @@ fn run(front: &mut Sinumerik, kernel: &mut Kernel, call: &Call) -> Result<(), Al
             patterns::positions(&call.name, &params, from)
                 .and_then(|positions| patterns::visit(front, kernel, &positions))
         }
+        "CYCLE800" => swivel::run(front, kernel, &params),
         _ => run_here(front, kernel, call, &params),
     };
     // The feed programmed before the call is in force again after it.
