@@ -387,11 +387,47 @@ fn norm(p: Point3) -> f64 {
     p[0].hypot(p[1]).hypot(p[2])
 }
 
+/// Most straight pieces one circle in no machine plane is cut into (as the ISO spiral's): at 1 µm
+/// a circle of about 2 km radius; beyond, the block alarms rather than leave the tolerance.
+const MOST_CHORDS: f64 = 100_000.0;
+
+/// How many chords within `tolerance` of a circle of `radius` a `sweep` (radians, either sign)
+/// takes.
+///
+/// # Errors
+/// More than [`MOST_CHORDS`], at `span`.
+pub(crate) fn chord_count(
+    sweep: f64,
+    radius: f64,
+    tolerance: f64,
+    span: Span,
+) -> Result<usize, Alarm> {
+    // Chords of at most `tolerance` from the circle: 2 r (1 - cos(step / 2)) <= tolerance.
+    let step = 2.0
+        * (1.0 - tolerance / radius.max(EPSILON))
+            .clamp(-1.0, 1.0)
+            .acos();
+    let pieces = (sweep.abs() / step.max(1e-9)).ceil();
+    if pieces > MOST_CHORDS || pieces.is_nan() {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            span,
+            format!(
+                "this circle (radius {radius:.3} mm) in no machine plane would take {pieces} \
+                 straight pieces within {tolerance} mm; vcnc stops at {MOST_CHORDS} a block"
+            ),
+        )
+        .with_help("check the circle's points: a radius of kilometres is a typing error"));
+    }
+    Ok((pieces as usize).max(1))
+}
+
 /// The points of an arc (or helix) in its own plane's coordinates, for a frame that tilts that
 /// plane out of G17/G18/G19: straight pieces whose chords stay within `tolerance` of the
 /// circle. The radius runs linearly from the start's to the end's (the end is reached exactly)
 /// and the third axis linearly from `height.0` to `height.1`; `turns` full turns come beyond
 /// the first, an end on the start is a full circle.
+#[allow(clippy::too_many_arguments)] // the arc's words, its tolerance and where to alarm
 pub(crate) fn helix_points(
     start: V2,
     centre: V2,
@@ -400,7 +436,8 @@ pub(crate) fn helix_points(
     direction: ArcDirection,
     turns: u32,
     tolerance: f64,
-) -> Vec<(V2, f64)> {
+    span: Span,
+) -> Result<Vec<(V2, f64)>, Alarm> {
     let (r0, r1) = ((start - centre).length(), (end - centre).length());
     let a0 = (start.y - centre.y).atan2(start.x - centre.x);
     let a1 = (end.y - centre.y).atan2(end.x - centre.x);
@@ -417,12 +454,8 @@ pub(crate) fn helix_points(
         };
     }
     sweep += f64::from(turns) * tau * sweep.signum();
-    let radius = r0.max(r1).max(EPSILON);
-    // Chords of at most `tolerance` from the circle: 2 r (1 - cos(step / 2)) <= tolerance.
-    let step = 2.0 * (1.0 - tolerance / radius).clamp(-1.0, 1.0).acos();
-    // At most a million pieces: a tolerance far below the radius's precision must not hang.
-    let pieces = ((sweep.abs() / step.max(1e-6)).ceil() as usize).clamp(1, 1_000_000);
-    (1..=pieces)
+    let pieces = chord_count(sweep, r0.max(r1), tolerance, span)?;
+    Ok((1..=pieces)
         .map(|k| {
             if k == pieces {
                 return (end, height.1);
@@ -433,7 +466,7 @@ pub(crate) fn helix_points(
             let point = V2::new(centre.x + r * cos, centre.y + r * sin);
             (point, height.0 + (height.1 - height.0) * t)
         })
-        .collect()
+        .collect())
 }
 
 #[cfg(test)]
@@ -771,6 +804,17 @@ pub(super) mod tests {
     }
 
     #[test]
+    fn a_circle_of_kilometres_in_no_machine_plane_alarms() {
+        // At 1 µm, a quarter circle of 1 km (1e6 mm) radius takes chords of
+        // 2 acos(1 - 1e-9) = 8.944e-5 rad: (pi / 2) / 8.944e-5 = 17,562.4, so 17,563; half a
+        // circle of 1000 km takes about 1.1 million: too many.
+        let (half, quarter) = (std::f64::consts::PI, std::f64::consts::FRAC_PI_2);
+        assert_eq!(chord_count(quarter, 1.0e6, 0.001, SPAN).unwrap(), 17_563);
+        let alarm = chord_count(half, 1.0e9, 0.001, SPAN).unwrap_err();
+        assert_eq!(alarm.code, AlarmCode::WordNotAllowed);
+    }
+
+    #[test]
     fn a_quarter_helix_in_pieces_stays_on_its_circle_and_climbs_evenly() {
         // Quarter circle of radius 10 about the origin, (10,0) to (0,10) counter-clockwise,
         // climbing 0 to 5: every point at radius 10, the height proportional to the angle,
@@ -783,7 +827,9 @@ pub(super) mod tests {
             ArcDirection::CounterClockwise,
             0,
             0.001,
-        );
+            SPAN,
+        )
+        .unwrap();
         let step = 2.0 * (1.0f64 - 0.001 / 10.0).acos();
         assert_eq!(
             points.len(),
@@ -809,7 +855,9 @@ pub(super) mod tests {
             ArcDirection::Clockwise,
             1,
             0.01,
-        );
+            SPAN,
+        )
+        .unwrap();
         assert!(points[0].0.y < 0.0);
         let near_bottom = points
             .windows(2)

@@ -491,10 +491,7 @@ fn through_point(
             return Ok(Prepared::Direct(tag, Some(arc)));
         }
     }
-    // Chords of at most 1 µm from the circle: 2 r (1 - cos(step / 2)) <= tolerance.
-    let tolerance = 0.001_f64;
-    let step = 2.0 * (1.0 - tolerance / circle.radius).clamp(-1.0, 1.0).acos();
-    let pieces = ((circle.sweep / step.max(1e-6)).ceil() as usize).clamp(1, 100_000);
+    let pieces = arcs::chord_count(circle.sweep, circle.radius, 0.001, origin.span)?;
     let u: [f64; 3] = std::array::from_fn(|i| (start[i] - circle.centre[i]) / circle.radius);
     let n = circle.normal;
     let v = [
@@ -723,7 +720,8 @@ fn tilted_arc(kernel: &mut Kernel, tag: &Tag, arc: Arc) -> Result<(), Alarm> {
         arc.direction,
         tag.turns,
         0.001,
-    );
+        tag.origin.span,
+    )?;
     let last = points.len() - 1;
     for (k, (point, h)) in points.into_iter().enumerate() {
         let mut target = if k == last { tag.target } else { [None; AXES] };
