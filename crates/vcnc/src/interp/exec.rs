@@ -31,6 +31,8 @@ pub(crate) struct Executor {
     pub(crate) cycle: Option<super::cycles::Cycle>,
     /// Where the last G31 ended, program coordinates (FANUC #5061-#5066).
     pub(crate) skip_position: [f64; AXES],
+    /// The G06.2 curve whose blocks are being read.
+    pub(crate) nurbs: Option<Box<super::nurbs::NurbsInput>>,
 }
 
 /// What one block did to the flow of the program.
@@ -62,6 +64,7 @@ impl Executor {
             polar: None,
             cycle: None,
             skip_position: [0.0; AXES],
+            nurbs: None,
             modal,
         }
     }
@@ -72,6 +75,9 @@ impl Executor {
     /// The alarm that stops the program at this block.
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.apply_modal(cmd)?;
+        if super::nurbs::takes(self, cmd) {
+            return super::nurbs::block(self, cmd, out).map(|()| Flow::Next);
+        }
         if cmd.is_plain() && self.cycle.is_none() && !out.compensating() {
             return self.run_plain(cmd, out);
         }
@@ -388,7 +394,7 @@ impl Executor {
         Ok(())
     }
 
-    fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
+    pub(crate) fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
         let Some(f) = cmd.f() else { return Ok(()) };
         if f.number.value < 0.0 {
             return Err(Alarm::error(

@@ -27,6 +27,7 @@ mod kernel;
 mod length;
 mod macros;
 pub mod modal;
+mod nurbs;
 mod output;
 mod polar_coordinates;
 mod polar_interpolation;

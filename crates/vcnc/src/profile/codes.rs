@@ -181,6 +181,19 @@ pub enum GCode {
     PathSmoothing,
     /// G08 on FANUC: look-ahead control on (P1) or off (P0).
     LookAhead,
+    /// G06.2: NURBS interpolation, the curve given by the blocks that follow (K, X Y Z, R).
+    Nurbs,
+    /// G22: stored stroke check 2 on (a forbidden zone, X Y Z I J K or the machine file's).
+    StrokeCheckOn,
+    /// G23: stored stroke check 2 off.
+    StrokeCheckOff,
+    /// G27: reference position return check.
+    ReferenceCheck,
+    /// G37: automatic tool length measurement, Z in program coordinates (Syntec 1.22).
+    ToolMeasurement,
+    /// G37.1: automatic tool length measurement II, Z in machine coordinates, two touches
+    /// (Syntec 1.23).
+    ToolMeasurementTwice,
 }
 
 impl GCode {
@@ -258,6 +271,12 @@ impl GCode {
             HighSpeedMode => "high-speed high-precision mode",
             PathSmoothing => "path smoothing / AI contour control",
             LookAhead => "look-ahead control",
+            Nurbs => "NURBS interpolation",
+            StrokeCheckOn => "stored stroke check on",
+            StrokeCheckOff => "stored stroke check off",
+            ReferenceCheck => "reference position return check",
+            ToolMeasurement => "automatic tool length measurement",
+            ToolMeasurementTwice => "automatic tool length measurement II",
         }
     }
 
@@ -265,7 +284,7 @@ impl GCode {
     pub fn group(self) -> Group {
         use GCode::*;
         match self {
-            Rapid | Linear | ArcClockwise | ArcCounterClockwise | Thread => Group::Motion,
+            Rapid | Linear | ArcClockwise | ArcCounterClockwise | Thread | Nurbs => Group::Motion,
             PlaneXy | PlaneZx | PlaneYz => Group::Plane,
             Absolute | Incremental => Group::Distance,
             InverseTimeFeed | FeedPerMinute | FeedPerRevolution => Group::FeedMode,
@@ -289,7 +308,8 @@ impl GCode {
             Dwell | Skip | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
             | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_)
-            | HighSpeedMode | PathSmoothing | LookAhead => Group::NonModal,
+            | HighSpeedMode | PathSmoothing | LookAhead | StrokeCheckOn | StrokeCheckOff
+            | ReferenceCheck | ToolMeasurement | ToolMeasurementTwice => Group::NonModal,
         }
     }
 }
@@ -471,6 +491,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         50 if profile.motion.smoothing_codes != SmoothingCodes::None => HighSpeedMode,
         51 if profile.motion.smoothing_codes != SmoothingCodes::None => PathSmoothing,
         80 if profile.motion.smoothing_codes == SmoothingCodes::Fanuc => LookAhead,
+        // NURBS runs in the high-speed mode (Syntec spec 1.10): where that mode exists.
+        62 if profile.motion.smoothing_codes != SmoothingCodes::None => Nurbs,
         _ => return not_yet(tenths, profile),
     };
     Known(known)
@@ -481,7 +503,6 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
 const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (50, None, "high-speed high-precision mode"),
     (51, None, "path smoothing / AI contour control"),
-    (62, None, "NURBS interpolation"),
     (70, None, "hypothetical axis interpolation"),
     (71, None, "cylindrical interpolation"),
     (80, None, "look-ahead control"),

@@ -66,6 +66,15 @@ pub struct MotionRules {
     /// tolerance the path).
     #[serde(default)]
     pub smoothing_codes: SmoothingCodes,
+    /// G22/G23 stored stroke check 2, a forbidden zone switched by the program (Syntec 1.16).
+    #[serde(default)]
+    pub stored_stroke_check: bool,
+    /// G27 reference position return check (FANUC 0M A.25).
+    #[serde(default)]
+    pub reference_check: bool,
+    /// G37/G37.1 automatic tool length measurement against the tool setter (Syntec 1.22, 1.23).
+    #[serde(default)]
+    pub tool_length_measurement: bool,
 }
 
 fn default_polar_interpolation_tolerance() -> f64 {

@@ -25,6 +25,7 @@ mod macros;
 mod mangled;
 mod manual_rules;
 mod modal;
+mod nurbs;
 mod pipeline;
 mod plan_reference;
 mod planner;
