@@ -131,11 +131,12 @@ pub enum AlarmCode {
     /// 0.001-1000, fewer control points than the order, a first control point away from the
     /// start, or a block without K before the knots are complete (Syntec spec 1.10).
     NurbsDefinition,
-    /// Automatic tool length measurement (Syntec G37, G37.1) cannot measure: no Z (MAR-330), a
-    /// start not above the measuring position (MAR-333), no H number before (MAR-334), the
-    /// signal before the allowed distance (MAR-335) or never (MAR-336), or no tool setter in
-    /// the machine file's `[probe]`.
-    ToolMeasurement,
+    /// Probing: automatic tool length measurement (Syntec G37, G37.1) cannot measure: no Z
+    /// (MAR-330), a start not above the measuring position (MAR-333), no H number before
+    /// (MAR-334), the signal before the allowed distance (MAR-335) or never (MAR-336), or no tool
+    /// setter in the machine file's `[probe]`. As a warning: a G31 that touched none of the
+    /// machine file's targets and ran to its end point.
+    Probing,
     /// G27 reference position return check: an axis the block names is not at reference point
     /// 1 when the rapid ends (FANUC 0M alarm PS 092), or G27 under cutter compensation.
     ReferenceCheck,
@@ -256,7 +257,7 @@ impl AlarmCode {
             SmoothingCommand => "smoothing_command",
             Overtravel => "overtravel",
             NurbsDefinition => "nurbs_definition",
-            ToolMeasurement => "tool_measurement",
+            Probing => "probing",
             ReferenceCheck => "reference_check",
             StrokeCheck => "stroke_check",
             MacroSyntax => "macro_syntax",
@@ -324,7 +325,7 @@ impl AlarmCode {
             SmoothingCommand => "V072",
             Overtravel => "V073",
             NurbsDefinition => "V075",
-            ToolMeasurement => "V076",
+            Probing => "V076",
             ReferenceCheck => "V077",
             StrokeCheck => "V078",
             MacroSyntax => "V080",
@@ -393,7 +394,7 @@ impl AlarmCode {
             SmoothingCommand => "give the smoothing code its words (P, Q, E), and switch it on outside G61/G63/G93",
             Overtravel => "move the program's zero (work offset) or change the travel limits of the machine file",
             NurbsDefinition => "give G06.2 an order P2-P4, one K per control point and `order` K-only blocks after them, knots that never decrease",
-            ToolMeasurement => "select the H number first, start above the measuring position, and describe the tool setter under [probe] in the machine file",
+            Probing => "select the H number first, start above the measuring position, and describe the tool setter and targets under [probe] in the machine file",
             ReferenceCheck => "cancel compensation (G40, G49) and give G27 the reference point in program coordinates",
             StrokeCheck => "keep the path out of the forbidden zone, or switch the check off with G23",
             MacroSyntax => "check the brackets and keywords of the statement: the macro language is in docs/MACROS.md",
@@ -458,7 +459,7 @@ impl AlarmCode {
         AlarmCode::SmoothingCommand,
         AlarmCode::Overtravel,
         AlarmCode::NurbsDefinition,
-        AlarmCode::ToolMeasurement,
+        AlarmCode::Probing,
         AlarmCode::ReferenceCheck,
         AlarmCode::StrokeCheck,
         AlarmCode::MacroSyntax,

@@ -172,6 +172,8 @@ struct MachineFile {
     spindle: SpindleConfig,
     #[serde(default)]
     planner: PlannerFile,
+    #[serde(default)]
+    probe: crate::probe::ProbeConfig,
 }
 
 /// Why a machine file was rejected.
@@ -269,6 +271,8 @@ pub struct Machine {
     pub spindle: SpindleConfig,
     /// The planner's settings (`[planner]`): look-ahead, corners, event times.
     pub planner: PlannerConfig,
+    /// What a probe and the tool setter touch (`[probe]`).
+    pub probe: crate::probe::ProbeConfig,
     profile_overrides: toml::Table,
 }
 
@@ -312,6 +316,7 @@ impl Machine {
             .map(|t| (t.number, t))
             .collect();
         let planner = file.planner.resolve().map_err(MachineError::Invalid)?;
+        file.probe.check().map_err(MachineError::Invalid)?;
         Ok(Machine {
             name: file.name,
             profile,
@@ -326,6 +331,7 @@ impl Machine {
                 .map_err(MachineError::Invalid)?,
             spindle: file.spindle,
             planner,
+            probe: file.probe,
             profile_overrides: file.profile_overrides,
         })
     }

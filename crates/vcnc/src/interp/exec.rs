@@ -33,6 +33,8 @@ pub(crate) struct Executor {
     pub(crate) skip_position: [f64; AXES],
     /// The G06.2 curve whose blocks are being read.
     pub(crate) nurbs: Option<Box<super::nurbs::NurbsInput>>,
+    /// What G31 and the tool setter touch.
+    pub(crate) probe: std::sync::Arc<crate::probe::Probe>,
 }
 
 /// What one block did to the flow of the program.
@@ -65,6 +67,10 @@ impl Executor {
             cycle: None,
             skip_position: [0.0; AXES],
             nurbs: None,
+            probe: std::sync::Arc::new(crate::probe::Probe::new(
+                &machine.probe,
+                &machine.tool_offsets,
+            )),
             modal,
         }
     }
@@ -250,6 +256,20 @@ impl Executor {
             Some(GCode::Dwell) => true,
             Some(GCode::Skip) => {
                 super::skip::g31(self, cmd, out)?;
+                true
+            }
+            Some(GCode::ReferenceCheck) => {
+                super::reference_check::g27(self, cmd, non_modal_span(cmd), out)?;
+                true
+            }
+            Some(GCode::ToolMeasurement) => {
+                let kind = super::tool_measurement::Measurement::Window;
+                super::tool_measurement::run(self, cmd, non_modal_span(cmd), kind, out)?;
+                true
+            }
+            Some(GCode::ToolMeasurementTwice) => {
+                let kind = super::tool_measurement::Measurement::TwoTouches;
+                super::tool_measurement::run(self, cmd, non_modal_span(cmd), kind, out)?;
                 true
             }
             Some(GCode::CircleCutting(direction)) => {
@@ -610,6 +630,11 @@ fn refuse_presets_while_rotated(frames: &Frames, cmd: &Command) -> Result<(), Al
         ));
     }
     Ok(())
+}
+
+/// The span of the block's one-shot G code (the block's, if it has none).
+fn non_modal_span(cmd: &Command) -> crate::Span {
+    cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span)
 }
 
 fn has_center_words(cmd: &Command) -> bool {

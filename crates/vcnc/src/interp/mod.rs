@@ -33,6 +33,7 @@ mod polar_coordinates;
 mod polar_interpolation;
 mod position_offset;
 mod reference;
+mod reference_check;
 mod setup;
 pub mod sinumerik;
 mod skip;
@@ -40,6 +41,7 @@ mod smoothing;
 mod spindle;
 mod spiral;
 mod thread;
+mod tool_measurement;
 mod tools;
 
 use crate::alarm::{Alarm, AlarmCode};

@@ -33,6 +33,7 @@ mod plot;
 mod polar;
 mod polar_interpolation;
 mod position_offset;
+mod probing;
 mod readme;
 mod rotation;
 mod scaling;
