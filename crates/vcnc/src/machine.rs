@@ -174,6 +174,8 @@ struct MachineFile {
     planner: PlannerFile,
     #[serde(default)]
     probe: crate::probe::ProbeConfig,
+    #[serde(default)]
+    stroke_check: crate::interp::StrokeCheckConfig,
 }
 
 /// Why a machine file was rejected.
@@ -273,6 +275,8 @@ pub struct Machine {
     pub planner: PlannerConfig,
     /// What a probe and the tool setter touch (`[probe]`).
     pub probe: crate::probe::ProbeConfig,
+    /// The stored stroke check 2's parameters (`[stroke_check]`, G22).
+    pub stroke_check: crate::interp::StrokeCheckConfig,
     profile_overrides: toml::Table,
 }
 
@@ -332,6 +336,7 @@ impl Machine {
             spindle: file.spindle,
             planner,
             probe: file.probe,
+            stroke_check: file.stroke_check,
             profile_overrides: file.profile_overrides,
         })
     }

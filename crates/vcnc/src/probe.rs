@@ -291,7 +291,7 @@ fn plane_entry(a: [f64; 3], b: [f64; 3], point: [f64; 3], normal: [f64; 3]) -> O
 
 /// Where the segment `a`-`b` enters the box `lo`-`hi` (0 when it starts inside): the slabs'
 /// entries and exits, Kay and Kajiya's test.
-fn box_entry(a: [f64; 3], b: [f64; 3], lo: [f64; 3], hi: [f64; 3]) -> Option<f64> {
+pub(crate) fn box_entry(a: [f64; 3], b: [f64; 3], lo: [f64; 3], hi: [f64; 3]) -> Option<f64> {
     let (mut enter, mut exit) = (0.0_f64, 1.0_f64);
     for i in 0..3 {
         let d = b[i] - a[i];

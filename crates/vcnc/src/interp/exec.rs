@@ -35,6 +35,8 @@ pub(crate) struct Executor {
     pub(crate) nurbs: Option<Box<super::nurbs::NurbsInput>>,
     /// What G31 and the tool setter touch.
     pub(crate) probe: std::sync::Arc<crate::probe::Probe>,
+    /// The zone of stored stroke check 2 while G22 is in force.
+    pub(crate) stroke_zone: Option<super::stroke_check::StrokeZone>,
 }
 
 /// What one block did to the flow of the program.
@@ -71,6 +73,10 @@ impl Executor {
                 &machine.probe,
                 &machine.tool_offsets,
             )),
+            stroke_zone: machine
+                .stroke_check
+                .on_at_power_on
+                .then(|| super::stroke_check::StrokeZone::from_parameters(&machine.stroke_check)),
             modal,
         }
     }
@@ -80,6 +86,16 @@ impl Executor {
     /// # Errors
     /// The alarm that stops the program at this block.
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
+        let released = out.items.len();
+        let flow = self.run_block(cmd, out)?;
+        if let Some(zone) = &self.stroke_zone {
+            super::stroke_check::check_released(zone, out, released)?;
+        }
+        Ok(flow)
+    }
+
+    /// Runs one block, on the short path where it can.
+    fn run_block(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.apply_modal(cmd)?;
         if super::nurbs::takes(self, cmd) {
             return super::nurbs::block(self, cmd, out).map(|()| Flow::Next);
@@ -256,6 +272,14 @@ impl Executor {
             Some(GCode::Dwell) => true,
             Some(GCode::Skip) => {
                 super::skip::g31(self, cmd, out)?;
+                true
+            }
+            Some(GCode::StrokeCheckOn) => {
+                super::stroke_check::g22(self, cmd, non_modal_span(cmd))?;
+                true
+            }
+            Some(GCode::StrokeCheckOff) => {
+                super::stroke_check::g23(self);
                 true
             }
             Some(GCode::ReferenceCheck) => {

@@ -40,6 +40,7 @@ mod skip;
 mod smoothing;
 mod spindle;
 mod spiral;
+mod stroke_check;
 mod thread;
 mod tool_measurement;
 mod tools;
@@ -65,6 +66,7 @@ pub use macros::Limits;
 use output::Output;
 
 pub use modal::ModalState;
+pub use stroke_check::{AxisLimits, Forbidden, StrokeCheckConfig};
 
 /// Run-time switches of the operator's panel.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -493,6 +493,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         80 if profile.motion.smoothing_codes == SmoothingCodes::Fanuc => LookAhead,
         // NURBS runs in the high-speed mode (Syntec spec 1.10): where that mode exists.
         62 if profile.motion.smoothing_codes != SmoothingCodes::None => Nurbs,
+        220 if profile.motion.stored_stroke_check => StrokeCheckOn,
+        230 if profile.motion.stored_stroke_check => StrokeCheckOff,
         270 if profile.motion.reference_check => ReferenceCheck,
         370 if profile.motion.tool_length_measurement => ToolMeasurement,
         371 if profile.motion.tool_length_measurement => ToolMeasurementTwice,
@@ -509,8 +511,6 @@ const NOT_YET: &[(i32, Option<u32>, &str)] = &[
     (70, None, "hypothetical axis interpolation"),
     (71, None, "cylindrical interpolation"),
     (80, None, "look-ahead control"),
-    (220, None, "stored stroke check on"),
-    (230, None, "stored stroke check off"),
     (434, None, "tool centre point control"),
     (531, None, "tool axis direction control"),
     (682, None, "tilted working plane"),

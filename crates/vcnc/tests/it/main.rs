@@ -53,5 +53,6 @@ mod smoothing;
 mod spiral;
 mod stream;
 mod streaming;
+mod stroke_check;
 mod syntec_macro;
 mod thread;
