@@ -164,7 +164,7 @@ impl Executor {
         self.set_feed(cmd)?;
         self.auxiliary_before_motion(cmd, out)?;
         self.dwell(cmd, out)?;
-        let smoothing = self.smoothing_modes(cmd)?;
+        let smoothing = self.smoothing_modes(cmd, out)?;
         let length_changed = super::length::apply(self, cmd, out)?;
         super::compensation::before_motion(self, cmd, out)?;
         refuse_presets_while_rotated(&self.kernel.frames, cmd)?;
@@ -196,16 +196,30 @@ impl Executor {
         }
     }
 
-    /// G05, G05.1, G08: the high-speed and smoothing modes; the code, if the block has one.
-    fn smoothing_modes(&mut self, cmd: &Command) -> Result<Option<GWord>, Alarm> {
+    /// G05, G05.1, G08: the high-speed and smoothing modes, and the settings of their tolerance
+    /// (G187, G120.1); the code, if the block has one.
+    fn smoothing_modes(&mut self, cmd: &Command, out: &mut Output) -> Result<Option<GWord>, Alarm> {
         let smoothing = cmd.group(Group::NonModal).filter(|g| {
             matches!(
                 g.code,
-                GCode::HighSpeedMode | GCode::PathSmoothing | GCode::LookAhead
+                GCode::HighSpeedMode
+                    | GCode::PathSmoothing
+                    | GCode::LookAhead
+                    | GCode::SmoothnessSetting
+                    | GCode::MachiningConditions
             )
         });
-        if let Some(g) = smoothing {
-            super::smoothing::switch(self, cmd, g)?;
+        match smoothing {
+            Some(g)
+                if matches!(
+                    g.code,
+                    GCode::SmoothnessSetting | GCode::MachiningConditions
+                ) =>
+            {
+                super::smoothness::run(self, cmd, g, out)?;
+            }
+            Some(g) => super::smoothing::switch(self, cmd, g)?,
+            None => {}
         }
         Ok(smoothing)
     }

@@ -38,6 +38,7 @@ mod setup;
 pub mod sinumerik;
 mod skip;
 mod smoothing;
+mod smoothness;
 mod spindle;
 mod spiral;
 mod stroke_check;

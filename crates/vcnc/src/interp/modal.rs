@@ -264,7 +264,9 @@ impl ModalState {
             | StrokeCheckOff
             | ReferenceCheck
             | ToolMeasurement
-            | ToolMeasurementTwice => {}
+            | ToolMeasurementTwice
+            | SmoothnessSetting
+            | MachiningConditions => {}
         }
     }
 }

@@ -194,6 +194,10 @@ pub enum GCode {
     /// G37.1: automatic tool length measurement II, Z in machine coordinates, two touches
     /// (Syntec 1.23).
     ToolMeasurementTwice,
+    /// Haas G187: smoothness level (P) and corner rounding (E).
+    SmoothnessSetting,
+    /// Syntec G120.1: a machining-condition set of the control.
+    MachiningConditions,
 }
 
 impl GCode {
@@ -277,6 +281,8 @@ impl GCode {
             ReferenceCheck => "reference position return check",
             ToolMeasurement => "automatic tool length measurement",
             ToolMeasurementTwice => "automatic tool length measurement II",
+            SmoothnessSetting => "smoothness / accuracy setting",
+            MachiningConditions => "machining condition selection",
         }
     }
 
@@ -309,7 +315,8 @@ impl GCode {
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
             | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_)
             | HighSpeedMode | PathSmoothing | LookAhead | StrokeCheckOn | StrokeCheckOff
-            | ReferenceCheck | ToolMeasurement | ToolMeasurementTwice => Group::NonModal,
+            | ReferenceCheck | ToolMeasurement | ToolMeasurementTwice | SmoothnessSetting
+            | MachiningConditions => Group::NonModal,
         }
     }
 }
@@ -497,6 +504,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         230 if profile.motion.stored_stroke_check => StrokeCheckOff,
         270 if profile.motion.reference_check => ReferenceCheck,
         370 if profile.motion.tool_length_measurement => ToolMeasurement,
+        1870 if profile.motion.smoothness_setting => SmoothnessSetting,
+        1201 if profile.motion.machining_condition_sets => MachiningConditions,
         371 if profile.motion.tool_length_measurement => ToolMeasurementTwice,
         _ => return not_yet(tenths, profile),
     };
@@ -506,16 +515,11 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
 /// Codes the controls have that vcnc does not run yet: (code in tenths, the issue that adds it,
 /// what it does).
 const NOT_YET: &[(i32, Option<u32>, &str)] = &[
-    (50, None, "high-speed high-precision mode"),
-    (51, None, "path smoothing / AI contour control"),
     (70, None, "hypothetical axis interpolation"),
     (71, None, "cylindrical interpolation"),
-    (80, None, "look-ahead control"),
     (434, None, "tool centre point control"),
     (531, None, "tool axis direction control"),
     (682, None, "tilted working plane"),
-    (1201, None, "machining condition selection"),
-    (1870, None, "smoothness / accuracy setting"),
 ];
 
 /// Codes that exist only where a profile says so: (code, the profile's switch, issue, meaning).
@@ -809,9 +813,10 @@ mod tests {
         assert_eq!(classify_g(1340, &fanuc), GLookup::Unknown);
         assert_eq!(classify_g(650, &fanuc), GLookup::Known(GCode::MacroCall));
         assert_eq!(classify_g(50, &fanuc), GLookup::Known(GCode::HighSpeedMode));
+        // The 0M manual's table (spec A.16) has no G05.
         assert_eq!(
             classify_g(50, &Profile::builtin(ProfileName::Fanuc0m)),
-            GLookup::NotSupported(None)
+            GLookup::Unknown
         );
         assert_eq!(
             classify_g(121, &fanuc),

@@ -75,6 +75,12 @@ pub struct MotionRules {
     /// G37/G37.1 automatic tool length measurement against the tool setter (Syntec 1.22, 1.23).
     #[serde(default)]
     pub tool_length_measurement: bool,
+    /// Haas G187 smoothness and corner rounding setting.
+    #[serde(default)]
+    pub smoothness_setting: bool,
+    /// Syntec G120.1 machining-condition sets (listed in the code table, 000 L94-140).
+    #[serde(default)]
+    pub machining_condition_sets: bool,
 }
 
 fn default_polar_interpolation_tolerance() -> f64 {

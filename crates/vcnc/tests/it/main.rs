@@ -50,6 +50,7 @@ mod sinumerik_robust;
 mod sinumerik_syntax;
 mod skip;
 mod smoothing;
+mod smoothness;
 mod spiral;
 mod stream;
 mod streaming;
