@@ -42,6 +42,10 @@ const WEIGHTS: std::ops::RangeInclusive<f64> = 0.001..=1000.0;
 /// Halvings of one knot span at most: 2^16 chords bound the work a tiny tolerance can ask for.
 const MAX_DEPTH: u32 = 16;
 
+/// The finest chord tolerance, mm: a tenth of a micrometre, below any control's resolution, so
+/// that a zero tolerance in a machine file cannot ask for chords without end.
+const FINEST_CHORD: f64 = 1e-4;
+
 /// A curve being read, block by block.
 #[derive(Clone, Debug)]
 pub(crate) struct NurbsInput {
@@ -339,7 +343,7 @@ fn run_curve(exec: &mut Executor, input: &NurbsInput, out: &mut Output) -> Resul
     );
     // Half the tolerance for the chords, half for the planner's blends of their corners: the
     // path stays within the tolerance of the curve.
-    let half = 0.5 * tolerance;
+    let half = (0.5 * tolerance).max(FINEST_CHORD);
     let modes = MoveModes {
         path_mode: exec.modal.path_mode,
         exact_stop: false,
