@@ -271,9 +271,10 @@ impl Executor {
     }
 
     /// The one-shot codes of group 00 (G10, G92, G92.1, G52, G28, G29, G30, G53, G31, G04,
-    /// circle cutting, hole patterns): whether the axis words are theirs. They run only in a
-    /// block whose axis words no frame code took.
+    /// G22/G23, G27, G37/G37.1, circle cutting, hole patterns): whether the axis words are
+    /// theirs. They run only in a block whose axis words no frame code took.
     fn one_shot_codes(&mut self, cmd: &Command, out: &mut Output) -> Result<AxisWords, Alarm> {
+        use super::tool_measurement::Measurement::{TwoTouches, Window};
         let taken = match cmd.group(Group::NonModal).map(|g| g.code) {
             Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
             Some(GCode::SetCoordinates) => super::frames::coords::g92(self, cmd)?,
@@ -301,13 +302,11 @@ impl Executor {
                 true
             }
             Some(GCode::ToolMeasurement) => {
-                let kind = super::tool_measurement::Measurement::Window;
-                super::tool_measurement::run(self, cmd, non_modal_span(cmd), kind, out)?;
+                super::tool_measurement::run(self, cmd, non_modal_span(cmd), Window, out)?;
                 true
             }
             Some(GCode::ToolMeasurementTwice) => {
-                let kind = super::tool_measurement::Measurement::TwoTouches;
-                super::tool_measurement::run(self, cmd, non_modal_span(cmd), kind, out)?;
+                super::tool_measurement::run(self, cmd, non_modal_span(cmd), TwoTouches, out)?;
                 true
             }
             Some(GCode::CircleCutting(direction)) => {
