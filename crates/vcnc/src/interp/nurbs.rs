@@ -7,9 +7,9 @@
 //! The blocks (L750-772): `G06.2 P_ K_ X_ Y_ Z_ R_ F_` starts the curve with its first knot and
 //! control point, each following `K_ X_ Y_ Z_ R_` adds a knot and a control point, and `order`
 //! blocks of K alone close it (the example: P3, three control points, six knots). P is the order
-//! (2-4, default 4: L776), R the weight (0.001-1000, default 1: L780), X Y Z in G90 or G91
+//! (2-4, default 4: L774), R the weight (0.001-1000, default 1: L780), X Y Z in G90 or G91
 //! (incremental from the previous control point). The knot vector is clamped as the manual's U
-//! (L800): its first and last `order` knots are equal, so the curve starts on its first control
+//! (L802): its first and last `order` knots are equal, so the curve starts on its first control
 //! point and ends on its last.
 //!
 //! Choices where the manual is silent: the first control point must be where the tool stands
@@ -30,10 +30,10 @@ use crate::machine::{Axis, AXES};
 use crate::motion::Smoothing;
 use crate::source::Span;
 
-/// The orders the manual allows (L776).
+/// The orders the manual allows (L774).
 const ORDERS: std::ops::RangeInclusive<usize> = 2..=4;
 
-/// The order when P is not given (L776).
+/// The order when P is not given (L774).
 const DEFAULT_ORDER: usize = 4;
 
 /// The weights the manual allows (L780).
@@ -272,6 +272,14 @@ fn start(exec: &mut Executor, cmd: &Command) -> Result<NurbsInput, Alarm> {
         return Err(bad(
             order_span,
             format!("the NURBS order P{order} is outside P2 to P4"),
+        ));
+    }
+    // F is the curve's feed (L782); in G93 it would time each chord apart (and Syntec's
+    // high-speed mode, which NURBS runs in, refuses G93: spec 1.8 restriction 14).
+    if exec.modal.feed_mode == super::modal::FeedMode::InverseTime {
+        return Err(bad(
+            cmd.span,
+            "G06.2 does not run in inverse time feed (G93)".to_string(),
         ));
     }
     Ok(NurbsInput {

@@ -1,6 +1,6 @@
 //! G06.2 NURBS interpolation (Syntec spec 1.10, manual 000 L748-835): the chords vcnc passes on
 //! lie on and within the tolerance of the curve as the manual defines it, evaluated here on its
-//! own from the manual's basis functions (L806-813), not by de Boor's algorithm the library uses;
+//! own from the manual's basis functions (L811-815), not by de Boor's algorithm the library uses;
 //! the path turns smoothly; the planner times the curve as it times the same chords written as
 //! G01 lines; bad curves are alarms. Example 17 is asserted in seed_examples.toml.
 
@@ -13,7 +13,7 @@ fn syntec() -> Machine {
         .unwrap()
 }
 
-/// The manual's basis function N_{i,p}(u) (L806-813), 0/0 taken as 0.
+/// The manual's basis function N_{i,p}(u) (L811-815), 0/0 taken as 0.
 fn basis(knots: &[f64], i: usize, p: usize, u: f64) -> f64 {
     if p == 0 {
         return if knots[i] <= u && u < knots[i + 1] {
@@ -37,7 +37,7 @@ fn basis(knots: &[f64], i: usize, p: usize, u: f64) -> f64 {
     a + b
 }
 
-/// The manual's C(u) (L796): the weighted sum of the control points over the sum of weights.
+/// The manual's C(u) (L798): the weighted sum of the control points over the sum of weights.
 /// At the last knot every N_{i,0} is 0, so the curve's end is its last control point there.
 fn curve(order: usize, knots: &[f64], points: &[[f64; 3]], weights: &[f64], u: f64) -> [f64; 3] {
     if u >= knots[knots.len() - 1] {
@@ -281,7 +281,7 @@ fn the_planner_times_the_curve_as_fine_g01_chords_of_it() {
 
 #[test]
 fn incremental_control_points_give_the_same_curve() {
-    // G91: each control point from the one before (the manual: G90/G91 decide, L780).
+    // G91: each control point from the one before (the manual: G90/G91 decide, L786).
     let c = TestCurve::cubic();
     let absolute = chords(&c.program("G05 P10000"));
     let mut text = String::from("G90 G00 X0 Y0 Z0\nG05 P10000\nG91\n");
@@ -311,7 +311,7 @@ fn incremental_control_points_give_the_same_curve() {
 
 #[test]
 fn the_order_defaults_to_4_and_r_to_1() {
-    // L776, L780: without P and R the curve is a non-rational cubic; four control points and
+    // L774, L780: without P and R the curve is a non-rational cubic; four control points and
     // eight knots 0 0 0 0 1 1 1 1 make a Bezier curve: C(0.5) = (P0 + 3 P1 + 3 P2 + P3) / 8.
     let program =
         "G00 X0 Y0\nG06.2 K0 X0 Y0 F1000.\nK0 X0 Y8.\nK0 X8. Y8.\nK0 X8. Y0\nK1\nK1\nK1\nK1\nM30\n";
@@ -360,6 +360,8 @@ fn curves_that_cannot_be_made_are_alarms() {
         ("G06.2 P2 K0 X1. Y0 F100.\nK0 X5.\nK1\nK1\n", 2),
         // The program goes on before the last knot: the curve would be lost.
         ("G06.2 P2 K0 X0 Y0 F100.\nK0 X5.\nK1\nG01 X7.\n", 5),
+        // Inverse time feed would time each chord apart.
+        ("G93 G06.2 P2 K0 X0 Y0 F100.\nK0 X5.\nK1\nK1\n", 2),
         // A control point after the knots-only blocks.
         (
             "G06.2 P3 K0 X0 Y0 F100.\nK0 X5.\nK0 X6. Y1.\nK1\nK1 X3.\n",
