@@ -4,9 +4,9 @@
 //! (crate::checks, stroke limit 1).
 //!
 //! `G22 X_ Y_ Z_ I_ J_ K_` gives the limits in machine coordinates, X with I, Y with J, Z with K,
-//! either of a pair the larger (L1199); an axis the block does not name takes the machine file's
+//! either of a pair the larger (L1194); an axis the block does not name takes the machine file's
 //! `[stroke_check]` (the control's Pr2501-Pr2540), and a pair of equal values, or a parameter
-//! pair whose maximum is not above its minimum, leaves the axis unprotected (L1203, L1216). One
+//! pair whose maximum is not above its minimum, leaves the axis unprotected (L1195-1201, L1216). One
 //! of a pair alone is COR-109. `forbidden` (Pr2542) says whether the inside or the outside of the
 //! range is forbidden; `on_at_power_on` (Pr3838) whether the run starts in G22.
 //!
@@ -14,7 +14,7 @@
 //! rapids exactly, arcs through chords of a degree, whose sag is under 2e-4 of the radius): the
 //! first that would enter the forbidden zone is left out and stops the program with V078 at its
 //! block (the spec infers FANUC's check before the motion; the manual gives no alarm number). A
-//! G22 takes effect from the block after it (L1214) and reset does not cancel it (L1213).
+//! G22 takes effect from the block after it (L1215) and reset does not cancel it (L1214).
 
 use super::decode::Command;
 use super::exec::Executor;

@@ -6,18 +6,20 @@
 //! Z + D (a touch there is MAR-335) and on to Z (no touch by then is MAR-336), Z in program
 //! coordinates. The manual's figures are lost; vcnc's choice: Z is the lowest point of the
 //! measuring travel, as MAR-330 names it ("Z-axis lowest point setting error", L1515), so the
-//! window where the signal may come is Z + D down to Z (the spec infers Z + D to Z - D). G37.1 `[Z_] [R_] [F_] [P_] [Q_]` (L1579-1591): air blow on (M90), the return,
-//! Z at rapid to Z + R, air blow off (M91), Z toward Z (machine coordinates) until the touch,
-//! back 1 mm at rapid, a second touch at F50, and Z at rapid to the safe point Q (default the
-//! machine zero, reference point 1).
+//! window where the signal may come is Z + D down to Z (the spec infers Z + D to Z - D).
 //!
-//! The result (L1495, step 5): the length register of the H number in force gets the measured
-//! length, the control point's Z at the touch less the setter's face (so the tool of the machine
-//! file's length L touching the face measures L), its wear cleared: the register then holds what
-//! was measured (vcnc's choice; the manual says only "written to the tool length table"). The
-//! words left out take the machine file's `[probe.measurement]` (the control's Pr4055-Pr4059).
-//! The feed of the touches is F, or the default; a measuring feed not written in the block does
-//! not stay in force.
+//! G37.1 `[Z_] [R_] [F_] [P_] [Q_]` (L1579-1592): air blow on (M90), the return, Z at rapid to
+//! Z + R, air blow off (M91), Z toward Z (machine coordinates) until the touch, back 1 mm at
+//! rapid, a second touch at F50, and Z at rapid to the safe point Q (default the machine zero,
+//! taken as reference point 1).
+//!
+//! The result (L1495, L1591): the length register of the H number in force (the manual: the
+//! tool number H names, L1517) gets the measured length, the control point's Z at the touch
+//! less the setter's face (so the tool of the machine file's length L touching the face
+//! measures L), its wear cleared: the register then holds what was measured (vcnc's choice; the
+//! manual says only that the result is filled in). The words left out take the machine file's
+//! `[probe.measurement]` (the control's Pr4055-Pr4059). The feed of the touches is F, or the
+//! default; a measuring feed not written in the block does not stay in force.
 
 use super::decode::Command;
 use super::exec::Executor;
@@ -38,13 +40,13 @@ pub(crate) enum Measurement {
     TwoTouches,
 }
 
-/// The feed of G37.1's second touch, mm/min (L1589).
+/// The feed of G37.1's second touch, mm/min (L1587).
 const SLOW_TOUCH_FEED: f64 = 50.0;
 
-/// How far G37.1 backs off between the touches, mm (L1588).
+/// How far G37.1 backs off between the touches, mm (L1586).
 const BACK_OFF: f64 = 1.0;
 
-/// The air blow of G37.1 (L1580, L1584).
+/// The air blow of G37.1 (L1581, L1584).
 const AIR_BLOW_ON: u32 = 90;
 const AIR_BLOW_OFF: u32 = 91;
 
@@ -142,7 +144,7 @@ fn no_z(span: Span) -> Alarm {
 }
 
 /// The G30-style return of step 1: every axis at rapid to reference point `p`, when it is one
-/// of the machine's (L1489: none otherwise).
+/// of the machine's (L1491: none otherwise).
 fn return_to_reference(
     exec: &mut Executor,
     cmd: &Command,

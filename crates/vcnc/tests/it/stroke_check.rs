@@ -36,14 +36,14 @@ const ACROSS: &str = "G90 G00 Z-10.\nG01 X0 Y75. F500.\nX200.\nM30\n";
 
 #[test]
 fn a_move_into_the_inside_zone_is_left_out_with_its_alarm() {
-    // X Y Z are the positive limits and I J K the negative ones (L1157-1167).
+    // X Y Z are the positive limits and I J K the negative ones (L1159-1167).
     let program = format!("G22 X100. Y100. Z0 I50. J50. K-50.\n{ACROSS}");
     let run = ran(&program, &syntec(StrokeCheckConfig::default()));
     assert_eq!(
         outcome(&run),
         (Some((AlarmCode::StrokeCheck, 4)), vec![2, 3])
     );
-    // A pair may be given either way round (L1199).
+    // A pair may be given either way round (L1194).
     let swapped = program
         .replace("X100. Y100.", "X50. Y100.")
         .replace("I50.", "I100.");
@@ -57,7 +57,7 @@ fn a_move_into_the_inside_zone_is_left_out_with_its_alarm() {
 
 #[test]
 fn an_axis_whose_pair_is_equal_is_not_protected() {
-    // G22 X0. I0. leaves X free (L1203): the zone is every X with Y 50..100, Z -50..0, so a
+    // G22 X0. I0. leaves X free (L1199): the zone is every X with Y 50..100, Z -50..0, so a
     // move along Y at X500 that crosses Y75 enters it.
     let program = "G22 X0 I0 Y100. J50. Z0 K-50.\nG90 G00 X500. Y0 Z-10.\nG01 Y200. F500.\nM30\n";
     let run = ran(program, &syntec(StrokeCheckConfig::default()));
