@@ -105,12 +105,21 @@ impl Curve {
         if knots.iter().any(|k| !k.is_finite()) || knots.windows(2).any(|w| w[1] < w[0]) {
             return fail("the knots must never decrease".to_string());
         }
-        let (first, last) = (knots[0], knots[knots.len() - 1]);
-        let clamped = knots[..order].iter().all(|k| *k == first)
-            && knots[knots.len() - order..].iter().all(|k| *k == last);
-        if !clamped || last <= first {
+        // The manual's U (L802): the first and the last knot `order` times each, no more, so
+        // that the curve starts on its first control point and ends on its last.
+        let runs: Vec<usize> = knots.chunk_by(|a, b| a == b).map(<[f64]>::len).collect();
+        let ends_clamped = runs.len() >= 2 && runs[0] == order && runs[runs.len() - 1] == order;
+        if !ends_clamped {
             return fail(format!(
-                "the knots must start with {order} equal values and end with {order} larger equal values (the manual's U)"
+                "the knots must start with exactly {order} equal values and end with {order} larger equal values (the manual's U)"
+            ));
+        }
+        // An inner knot repeated `order` times breaks the curve in two (the manual is silent;
+        // a tool path cannot jump): refused.
+        if runs[1..runs.len() - 1].iter().any(|&run| run >= order) {
+            return fail(format!(
+                "an inner knot repeated {order} times breaks the curve: at most {} times",
+                order - 1
             ));
         }
         if let Some(w) = weights.iter().find(|w| !WEIGHTS.contains(*w)) {

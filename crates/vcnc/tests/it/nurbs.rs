@@ -360,6 +360,13 @@ fn curves_that_cannot_be_made_are_alarms() {
         ("G06.2 P2 K0 X1. Y0 F100.\nK0 X5.\nK1\nK1\n", 2),
         // The program goes on before the last knot: the curve would be lost.
         ("G06.2 P2 K0 X0 Y0 F100.\nK0 X5.\nK1\nG01 X7.\n", 5),
+        // An inner knot as often as the order: the curve would break in two.
+        (
+            "G06.2 P2 K0 X0 Y0 F100.\nK0 X5.\nK0.5 X5. Y5.\nK0.5 X9.\nK1\nK1\n",
+            2,
+        ),
+        // The first knot more often than the order: the curve would not start at the tool.
+        ("G06.2 P2 K0 X0 Y0 F100.\nK0 X5.\nK0 X5. Y5.\nK1\nK1\n", 2),
         // Inverse time feed would time each chord apart.
         ("G93 G06.2 P2 K0 X0 Y0 F100.\nK0 X5.\nK1\nK1\n", 2),
         // A control point after the knots-only blocks.
@@ -386,4 +393,70 @@ fn controls_without_the_high_speed_mode_have_no_g06_2() {
         .unwrap();
     let run = run(program.as_bytes(), &machine, Options::default());
     assert_eq!(run.error().map(|a| a.code), Some(AlarmCode::UnknownGCode));
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+
+    /// Any sequence of NURBS-like blocks either runs, with every chord end inside the box of the
+    /// control points (a NURBS curve lies in the convex hull of its points), or stops with
+    /// V075 (or a feed alarm), never a panic or another kind of alarm.
+    #[test]
+    fn any_nurbs_blocks_run_inside_the_hull_or_alarm(
+        order in 0..6u32,
+        points in proptest::collection::vec((-50..50i32, -50..50i32, 0..3u32), 1..7),
+        knots in proptest::collection::vec(0..4u32, 0..12),
+        clamped in proptest::bool::ANY,
+    ) {
+        // Half the cases get a clamped knot vector of the right length: curves that run.
+        let order_usize = order as usize;
+        let knots = if clamped && (2..=4).contains(&order_usize) && points.len() >= order_usize {
+            let mut inner: Vec<u32> = (0..points.len() - order_usize)
+                .map(|i| 1 + knots.get(i).copied().unwrap_or(1) % 3)
+                .collect();
+            inner.sort_unstable();
+            let mut all = vec![0; order_usize];
+            all.extend(inner);
+            all.extend(vec![4; order_usize]);
+            all
+        } else {
+            knots
+        };
+        let mut text = String::from("G90 G00 X0 Y0 Z0\n");
+        for (i, (x, y, w)) in points.iter().enumerate() {
+            let head = if i == 0 { format!("G06.2 P{order} F1000. ") } else { String::new() };
+            let (x, y) = if i == 0 { (0, 0) } else { (*x, *y) };
+            let k = knots.get(i).copied().unwrap_or(0);
+            text += &format!("{head}K{k} X{x}. Y{y}. R{}\n", [0.5, 1.0, 2.0][*w as usize]);
+        }
+        for k in knots.iter().skip(points.len()) {
+            text += &format!("K{k}\n");
+        }
+        text += "M30\n";
+        let run = run(text.as_bytes(), &syntec(), Options::default());
+        match run.error() {
+            Some(alarm) => proptest::prop_assert!(
+                matches!(alarm.code, AlarmCode::NurbsDefinition | AlarmCode::NoFeedRate),
+                "{alarm:?}\n{text}"
+            ),
+            None => {
+                let (mut low, mut high) = ([0.0f64; 2], [0.0f64; 2]);
+                for (x, y, _) in points.iter().skip(1) {
+                    low = [low[0].min(f64::from(*x)), low[1].min(f64::from(*y))];
+                    high = [high[0].max(f64::from(*x)), high[1].max(f64::from(*y))];
+                }
+                for segment in &run.segments {
+                    if let Some(motion) = segment.motion() {
+                        let p = motion.to.0;
+                        for i in 0..2 {
+                            proptest::prop_assert!(
+                                p[i] >= low[i] - 1e-9 && p[i] <= high[i] + 1e-9,
+                                "{p:?} outside {low:?}..{high:?}\n{text}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
