@@ -336,3 +336,57 @@ fn fanuc_0m_g27_passes_at_the_reference_point_and_alarms_elsewhere() {
         AlarmCode::UnknownGCode
     );
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+
+    /// A G31 between two points on either side of a random plane stops on the plane (the tip,
+    /// tool 0, is the control point): its end satisfies the plane's equation, lies on the
+    /// programmed segment, and #5061-#5063 hold it.
+    #[test]
+    fn g31_across_a_random_plane_stops_on_it(
+        normal in (-10..10i32, -10..10i32, 1..10i32),
+        offset in -20..20i32,
+        start in (-50..50i32, -50..50i32),
+        end in (-50..50i32, -50..50i32),
+    ) {
+        let n = [f64::from(normal.0), f64::from(normal.1), f64::from(normal.2)];
+        let p0 = [f64::from(start.0), f64::from(start.1), 100.0];
+        let p1 = [f64::from(end.0), f64::from(end.1), -100.0];
+        let point = [0.0, 0.0, f64::from(offset)];
+        let side = |p: [f64; 3]| (0..3).map(|i| (p[i] - point[i]) * n[i]).sum::<f64>();
+        // Z from 100 to -100 with |n.z| >= |n.x|/10: the start above the plane, the end below.
+        proptest::prop_assume!(side(p0) > 0.0 && side(p1) < 0.0);
+        let m = machine(
+            ProfileName::Fanuc,
+            ProbeConfig {
+                planes: vec![PlaneTarget {
+                    point: Point { x: point[0], y: point[1], z: point[2] },
+                    normal: Point { x: n[0], y: n[1], z: n[2] },
+                }],
+                ..ProbeConfig::default()
+            },
+        );
+        let program = format!(
+            "G90 G00 X{}. Y{}. Z100.\nG31 X{}. Y{}. Z-100. F500.\n#100=#5061\n#101=#5062\n#102=#5063\nM30\n",
+            start.0, start.1, end.0, end.1
+        );
+        let ran = run(program.as_bytes(), &m, Options::default());
+        proptest::prop_assert!(ran.alarms.is_empty(), "{:?}", ran.alarms);
+        let stop = ends_on_line(&ran, 2);
+        proptest::prop_assert_eq!(stop.len(), 1);
+        let q = stop[0];
+        let norm = n.iter().map(|v| v * v).sum::<f64>().sqrt();
+        proptest::prop_assert!(side(q).abs() / norm < 1e-9, "{q:?} off the plane");
+        // On the segment: the same share of the way on every axis.
+        let t = (100.0 - q[2]) / 200.0;
+        for i in 0..2 {
+            proptest::prop_assert!((p0[i] + t * (p1[i] - p0[i]) - q[i]).abs() < 1e-9);
+        }
+        let recorded = variables(&program, &m, &[100, 101, 102]);
+        for i in 0..3 {
+            let v = recorded[i].unwrap();
+            proptest::prop_assert!((v - q[i]).abs() < 1e-9, "#{} = {v}", 5061 + i);
+        }
+    }
+}
