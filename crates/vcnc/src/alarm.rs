@@ -134,6 +134,23 @@ pub enum AlarmCode {
     /// A move that would take an axis beyond the machine's travel (the machine file's `min` and
     /// `max`): the control's stored stroke limit 1 (FANUC OT0500/OT0501).
     Overtravel,
+    /// G06.2 NURBS interpolation given a curve that cannot be made: an order outside 2-4, knots
+    /// that decrease or do not start and end with `order` equal values, a weight outside
+    /// 0.001-1000, fewer control points than the order, a first control point away from the
+    /// start, or a block without K before the knots are complete (Syntec spec 1.10).
+    NurbsDefinition,
+    /// Probing: automatic tool length measurement (Syntec G37, G37.1) cannot measure: no Z
+    /// (MAR-330), a start not above the measuring position (MAR-333), no H number before
+    /// (MAR-334), the signal before the allowed distance (MAR-335) or never (MAR-336), or no tool
+    /// setter in the machine file's `[probe]`. As a warning: a G31 that touched none of the
+    /// machine file's targets and ran to its end point.
+    Probing,
+    /// G27 reference position return check: an axis the block names is not at reference point
+    /// 1 when the rapid ends (FANUC 0M alarm PS 092), or G27 under cutter compensation.
+    ReferenceCheck,
+    /// A move into the forbidden zone of the stored stroke check 2 (Syntec G22, spec 1.16), or a
+    /// G22 block whose limits do not pair (COR-109).
+    StrokeCheck,
     /// A macro statement or expression that cannot be read: an unclosed bracket, `IF` without
     /// GOTO or THEN, `#` without a number. FANUC alarms PS0114/PS0118-like "format error".
     MacroSyntax,
@@ -249,6 +266,10 @@ impl AlarmCode {
             Engraving => "engraving",
             SmoothingCommand => "smoothing_command",
             Overtravel => "overtravel",
+            NurbsDefinition => "nurbs_definition",
+            Probing => "probing",
+            ReferenceCheck => "reference_check",
+            StrokeCheck => "stroke_check",
             MacroSyntax => "macro_syntax",
             MacroArithmetic => "macro_arithmetic",
             BadVariable => "bad_variable",
@@ -315,6 +336,10 @@ impl AlarmCode {
             Engraving => "V125",
             SmoothingCommand => "V072",
             Overtravel => "V073",
+            NurbsDefinition => "V075",
+            Probing => "V076",
+            ReferenceCheck => "V077",
+            StrokeCheck => "V078",
             MacroSyntax => "V080",
             MacroArithmetic => "V081",
             BadVariable => "V082",
@@ -382,6 +407,10 @@ impl AlarmCode {
             Engraving => "give G47 P0 with the text as a comment, P32-126 for one character, J and E above zero, in G17",
             SmoothingCommand => "give the smoothing code its words (P, Q, E), and switch it on outside G61/G63/G93",
             Overtravel => "move the program's zero (work offset) or change the travel limits of the machine file",
+            NurbsDefinition => "give G06.2 an order P2-P4, one K per control point and `order` K-only blocks after them, knots that never decrease",
+            Probing => "select the H number first, start above the measuring position, and describe the tool setter and targets under [probe] in the machine file",
+            ReferenceCheck => "cancel compensation (G40, G49) and give G27 the reference point in program coordinates",
+            StrokeCheck => "keep the path out of the forbidden zone, or switch the check off with G23",
             MacroSyntax => "check the brackets and keywords of the statement: the macro language is in docs/MACROS.md",
             MacroArithmetic => "check the values of the variables the expression reads (shown under them)",
             BadVariable => "locals are #1-#33, commons #100-#499 and #500-#999; the system variables vcnc has are in docs/MACROS.md",
@@ -445,6 +474,10 @@ impl AlarmCode {
         AlarmCode::Engraving,
         AlarmCode::SmoothingCommand,
         AlarmCode::Overtravel,
+        AlarmCode::NurbsDefinition,
+        AlarmCode::Probing,
+        AlarmCode::ReferenceCheck,
+        AlarmCode::StrokeCheck,
         AlarmCode::MacroSyntax,
         AlarmCode::MacroArithmetic,
         AlarmCode::BadVariable,

@@ -50,6 +50,7 @@ pub mod motion;
 pub mod pipeline;
 pub mod plan;
 pub mod plot;
+pub mod probe;
 pub mod profile;
 pub mod program_scan;
 pub mod sim;

@@ -174,6 +174,10 @@ struct MachineFile {
     planner: PlannerFile,
     #[serde(default)]
     kinematics: Option<crate::kinematics::KinematicsFile>,
+    #[serde(default)]
+    probe: crate::probe::ProbeConfig,
+    #[serde(default)]
+    stroke_check: crate::interp::StrokeCheckConfig,
 }
 
 /// Why a machine file was rejected.
@@ -273,6 +277,10 @@ pub struct Machine {
     pub planner: PlannerConfig,
     /// How the rotary axes carry the tool and the part (`[kinematics]`), on a 5-axis machine.
     pub kinematics: Option<crate::kinematics::Kinematics>,
+    /// What a probe and the tool setter touch (`[probe]`).
+    pub probe: crate::probe::ProbeConfig,
+    /// The stored stroke check 2's parameters (`[stroke_check]`, G22).
+    pub stroke_check: crate::interp::StrokeCheckConfig,
     profile_overrides: toml::Table,
 }
 
@@ -322,6 +330,7 @@ impl Machine {
             .map(|k| k.resolve(&layout, limits))
             .transpose()
             .map_err(MachineError::Invalid)?;
+        file.probe.check().map_err(MachineError::Invalid)?;
         Ok(Machine {
             name: file.name,
             profile,
@@ -337,6 +346,8 @@ impl Machine {
             spindle: file.spindle,
             planner,
             kinematics,
+            probe: file.probe,
+            stroke_check: file.stroke_check,
             profile_overrides: file.profile_overrides,
         })
     }

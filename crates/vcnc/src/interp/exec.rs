@@ -33,6 +33,12 @@ pub(crate) struct Executor {
     pub(crate) cycle: Option<super::cycles::Cycle>,
     /// Where the last G31 ended, program coordinates (FANUC #5061-#5066).
     pub(crate) skip_position: [f64; AXES],
+    /// The G06.2 curve whose blocks are being read.
+    pub(crate) nurbs: Option<Box<super::nurbs::NurbsInput>>,
+    /// What G31 and the tool setter touch.
+    pub(crate) probe: std::sync::Arc<crate::probe::Probe>,
+    /// The zone of stored stroke check 2 while G22 is in force.
+    pub(crate) stroke_zone: Option<super::stroke_check::StrokeZone>,
 }
 
 /// What one block did to the flow of the program.
@@ -65,6 +71,15 @@ impl Executor {
             scaling: Default::default(),
             cycle: None,
             skip_position: [0.0; AXES],
+            nurbs: None,
+            probe: std::sync::Arc::new(crate::probe::Probe::new(
+                &machine.probe,
+                &machine.tool_offsets,
+            )),
+            stroke_zone: machine
+                .stroke_check
+                .on_at_power_on
+                .then(|| super::stroke_check::StrokeZone::from_parameters(&machine.stroke_check)),
             modal,
         }
     }
@@ -74,7 +89,20 @@ impl Executor {
     /// # Errors
     /// The alarm that stops the program at this block.
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
+        let released = out.items.len();
+        let flow = self.run_block(cmd, out)?;
+        if let Some(zone) = &self.stroke_zone {
+            super::stroke_check::check_released(zone, out, released)?;
+        }
+        Ok(flow)
+    }
+
+    /// Runs one block, on the short path where it can.
+    fn run_block(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         self.apply_modal(cmd)?;
+        if super::nurbs::takes(self, cmd) {
+            return super::nurbs::block(self, cmd, out).map(|()| Flow::Next);
+        }
         if cmd.is_plain() && self.cycle.is_none() && !out.compensating() {
             return self.run_plain(cmd, out);
         }
@@ -139,7 +167,7 @@ impl Executor {
         self.set_feed(cmd)?;
         self.auxiliary_before_motion(cmd, out)?;
         self.dwell(cmd, out)?;
-        let smoothing = self.smoothing_modes(cmd)?;
+        let smoothing = self.smoothing_modes(cmd, out)?;
         let length_changed = super::length::apply(self, cmd, out)?;
         super::compensation::before_motion(self, cmd, out)?;
         refuse_presets_while_rotated(&self.kernel.frames, cmd)?;
@@ -171,16 +199,30 @@ impl Executor {
         }
     }
 
-    /// G05, G05.1, G08: the high-speed and smoothing modes; the code, if the block has one.
-    fn smoothing_modes(&mut self, cmd: &Command) -> Result<Option<GWord>, Alarm> {
+    /// G05, G05.1, G08: the high-speed and smoothing modes, and the settings of their tolerance
+    /// (G187, G120.1); the code, if the block has one.
+    fn smoothing_modes(&mut self, cmd: &Command, out: &mut Output) -> Result<Option<GWord>, Alarm> {
         let smoothing = cmd.group(Group::NonModal).filter(|g| {
             matches!(
                 g.code,
-                GCode::HighSpeedMode | GCode::PathSmoothing | GCode::LookAhead
+                GCode::HighSpeedMode
+                    | GCode::PathSmoothing
+                    | GCode::LookAhead
+                    | GCode::SmoothnessSetting
+                    | GCode::MachiningConditions
             )
         });
-        if let Some(g) = smoothing {
-            super::smoothing::switch(self, cmd, g)?;
+        match smoothing {
+            Some(g)
+                if matches!(
+                    g.code,
+                    GCode::SmoothnessSetting | GCode::MachiningConditions
+                ) =>
+            {
+                super::smoothness::run(self, cmd, g, out)?;
+            }
+            Some(g) => super::smoothing::switch(self, cmd, g)?,
+            None => {}
         }
         Ok(smoothing)
     }
@@ -229,9 +271,10 @@ impl Executor {
     }
 
     /// The one-shot codes of group 00 (G10, G92, G92.1, G52, G28, G29, G30, G53, G31, G04,
-    /// circle cutting, hole patterns): whether the axis words are theirs. They run only in a
-    /// block whose axis words no frame code took.
+    /// G22/G23, G27, G37/G37.1, circle cutting, hole patterns): whether the axis words are
+    /// theirs. They run only in a block whose axis words no frame code took.
     fn one_shot_codes(&mut self, cmd: &Command, out: &mut Output) -> Result<AxisWords, Alarm> {
+        use super::tool_measurement::Measurement::{TwoTouches, Window};
         let taken = match cmd.group(Group::NonModal).map(|g| g.code) {
             Some(GCode::DataInput) => super::data_input::g10(self, cmd)?,
             Some(GCode::SetCoordinates) => super::frames::coords::g92(self, cmd)?,
@@ -248,6 +291,26 @@ impl Executor {
             }
             Some(GCode::Skip) => {
                 super::skip::g31(self, cmd, out)?;
+                true
+            }
+            Some(GCode::StrokeCheckOn) => {
+                super::stroke_check::g22(self, cmd, non_modal_span(cmd))?;
+                true
+            }
+            Some(GCode::StrokeCheckOff) => {
+                super::stroke_check::g23(self);
+                true
+            }
+            Some(GCode::ReferenceCheck) => {
+                super::reference_check::g27(self, cmd, non_modal_span(cmd), out)?;
+                true
+            }
+            Some(GCode::ToolMeasurement) => {
+                super::tool_measurement::run(self, cmd, non_modal_span(cmd), Window, out)?;
+                true
+            }
+            Some(GCode::ToolMeasurementTwice) => {
+                super::tool_measurement::run(self, cmd, non_modal_span(cmd), TwoTouches, out)?;
                 true
             }
             Some(GCode::CircleCutting(direction)) => {
@@ -402,7 +465,7 @@ impl Executor {
         Ok(())
     }
 
-    fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
+    pub(crate) fn set_feed(&mut self, cmd: &Command) -> Result<(), Alarm> {
         let Some(f) = cmd.f() else { return Ok(()) };
         if f.number.value < 0.0 {
             return Err(Alarm::error(
@@ -618,6 +681,11 @@ fn refuse_presets_while_rotated(frames: &Frames, cmd: &Command) -> Result<(), Al
         ));
     }
     Ok(())
+}
+
+/// The span of the block's one-shot G code (the block's, if it has none).
+fn non_modal_span(cmd: &Command) -> crate::Span {
+    cmd.group(Group::NonModal).map_or(cmd.span, |g| g.span)
 }
 
 fn has_center_words(cmd: &Command) -> bool {

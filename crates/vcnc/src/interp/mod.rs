@@ -28,21 +28,26 @@ mod kernel;
 mod length;
 mod macros;
 pub mod modal;
+mod nurbs;
 mod output;
 mod pieces;
 mod polar_coordinates;
 mod polar_interpolation;
 mod position_offset;
 mod reference;
+mod reference_check;
 mod setup;
 pub mod sinumerik;
 mod skip;
 mod smoothing;
+mod smoothness;
 mod spindle;
 mod spiral;
+mod stroke_check;
 mod thread;
 mod tilted_plane;
 mod tool_center;
+mod tool_measurement;
 mod tools;
 
 use crate::alarm::{Alarm, AlarmCode};
@@ -67,6 +72,7 @@ pub use macros::Limits;
 use output::Output;
 
 pub use modal::ModalState;
+pub use stroke_check::{AxisLimits, Forbidden, StrokeCheckConfig};
 
 /// Run-time switches of the operator's panel.
 #[derive(Clone, Debug, PartialEq, Eq)]

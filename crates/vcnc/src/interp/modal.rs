@@ -263,7 +263,17 @@ impl ModalState {
             | ToolAxisDirection
             | Rotate
             | PolarInterpolation
-            | PolarInterpolationCancel => {}
+            | PolarInterpolationCancel
+            // G06.2 is of group 01, but its curve ends with its last knot and the motion in
+            // force before it goes on (vcnc's choice, spec 1.10 is silent).
+            | Nurbs
+            | StrokeCheckOn
+            | StrokeCheckOff
+            | ReferenceCheck
+            | ToolMeasurement
+            | ToolMeasurementTwice
+            | SmoothnessSetting
+            | MachiningConditions => {}
         }
     }
 }

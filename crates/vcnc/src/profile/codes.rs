@@ -189,6 +189,23 @@ pub enum GCode {
     TiltedPlane,
     /// G53.1: the rotary axes turn the tool normal to the tilted plane.
     ToolAxisDirection,
+    /// G06.2: NURBS interpolation, the curve given by the blocks that follow (K, X Y Z, R).
+    Nurbs,
+    /// G22: stored stroke check 2 on (a forbidden zone, X Y Z I J K or the machine file's).
+    StrokeCheckOn,
+    /// G23: stored stroke check 2 off.
+    StrokeCheckOff,
+    /// G27: reference position return check.
+    ReferenceCheck,
+    /// G37: automatic tool length measurement, Z in program coordinates (Syntec 1.22).
+    ToolMeasurement,
+    /// G37.1: automatic tool length measurement II, Z in machine coordinates, two touches
+    /// (Syntec 1.23).
+    ToolMeasurementTwice,
+    /// Haas G187: smoothness level (P) and corner rounding (E).
+    SmoothnessSetting,
+    /// Syntec G120.1: a machining-condition set of the control.
+    MachiningConditions,
 }
 
 impl GCode {
@@ -270,6 +287,14 @@ impl GCode {
             ToolCenterPoint => "tool centre point control",
             TiltedPlane => "tilted working plane",
             ToolAxisDirection => "tool axis direction control",
+            Nurbs => "NURBS interpolation",
+            StrokeCheckOn => "stored stroke check on",
+            StrokeCheckOff => "stored stroke check off",
+            ReferenceCheck => "reference position return check",
+            ToolMeasurement => "automatic tool length measurement",
+            ToolMeasurementTwice => "automatic tool length measurement II",
+            SmoothnessSetting => "smoothness / accuracy setting",
+            MachiningConditions => "machining condition selection",
         }
     }
 
@@ -277,7 +302,7 @@ impl GCode {
     pub fn group(self) -> Group {
         use GCode::*;
         match self {
-            Rapid | Linear | ArcClockwise | ArcCounterClockwise | Thread => Group::Motion,
+            Rapid | Linear | ArcClockwise | ArcCounterClockwise | Thread | Nurbs => Group::Motion,
             PlaneXy | PlaneZx | PlaneYz => Group::Plane,
             Absolute | Incremental => Group::Distance,
             InverseTimeFeed | FeedPerMinute | FeedPerRevolution => Group::FeedMode,
@@ -303,7 +328,9 @@ impl GCode {
             Dwell | Skip | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
             | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_) | Engrave
-            | HighSpeedMode | PathSmoothing | LookAhead | ToolAxisDirection => Group::NonModal,
+            | HighSpeedMode | PathSmoothing | LookAhead | ToolAxisDirection | StrokeCheckOn
+            | StrokeCheckOff | ReferenceCheck | ToolMeasurement | ToolMeasurementTwice
+            | SmoothnessSetting | MachiningConditions => Group::NonModal,
         }
     }
 }
@@ -489,6 +516,15 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         434 if profile.motion.five_axis => ToolCenterPoint,
         682 if profile.motion.five_axis => TiltedPlane,
         531 if profile.motion.five_axis => ToolAxisDirection,
+        // NURBS runs in the high-speed mode (Syntec spec 1.10): where that mode exists.
+        62 if profile.motion.smoothing_codes != SmoothingCodes::None => Nurbs,
+        220 if profile.motion.stored_stroke_check => StrokeCheckOn,
+        230 if profile.motion.stored_stroke_check => StrokeCheckOff,
+        270 if profile.motion.reference_check => ReferenceCheck,
+        370 if profile.motion.tool_length_measurement => ToolMeasurement,
+        1870 if profile.motion.smoothness_setting => SmoothnessSetting,
+        1201 if profile.motion.machining_condition_sets => MachiningConditions,
+        371 if profile.motion.tool_length_measurement => ToolMeasurementTwice,
         _ => return not_yet(tenths),
     };
     Known(known)
@@ -497,19 +533,8 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
 /// Codes the controls have that vcnc does not run yet: (code in tenths, the issue that adds it,
 /// what it does).
 const NOT_YET: &[(i32, Option<u32>, &str)] = &[
-    (50, None, "high-speed high-precision mode"),
-    (51, None, "path smoothing / AI contour control"),
-    (62, None, "NURBS interpolation"),
     (70, None, "hypothetical axis interpolation"),
     (71, None, "cylindrical interpolation"),
-    (80, None, "look-ahead control"),
-    (220, None, "stored stroke check on"),
-    (230, None, "stored stroke check off"),
-    (270, None, "reference position return check"),
-    (370, None, "automatic tool length measurement"),
-    (371, None, "automatic tool length measurement II"),
-    (1201, None, "machining condition selection"),
-    (1870, None, "smoothness / accuracy setting"),
 ];
 
 /// A code vcnc does not run yet: (issue, meaning).
@@ -800,9 +825,10 @@ mod tests {
         assert_eq!(classify_g(1340, &fanuc), GLookup::Unknown);
         assert_eq!(classify_g(650, &fanuc), GLookup::Known(GCode::MacroCall));
         assert_eq!(classify_g(50, &fanuc), GLookup::Known(GCode::HighSpeedMode));
+        // The 0M manual's table (spec A.16) has no G05.
         assert_eq!(
             classify_g(50, &Profile::builtin(ProfileName::Fanuc0m)),
-            GLookup::NotSupported(None)
+            GLookup::Unknown
         );
         assert_eq!(
             classify_g(121, &fanuc),

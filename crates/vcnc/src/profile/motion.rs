@@ -71,6 +71,21 @@ pub struct MotionRules {
     /// on a machine file with `[kinematics]`.
     #[serde(default)]
     pub five_axis: bool,
+    /// G22/G23 stored stroke check 2, a forbidden zone switched by the program (Syntec 1.16).
+    #[serde(default)]
+    pub stored_stroke_check: bool,
+    /// G27 reference position return check (FANUC 0M A.25).
+    #[serde(default)]
+    pub reference_check: bool,
+    /// G37/G37.1 automatic tool length measurement against the tool setter (Syntec 1.22, 1.23).
+    #[serde(default)]
+    pub tool_length_measurement: bool,
+    /// Haas G187 smoothness and corner rounding setting.
+    #[serde(default)]
+    pub smoothness_setting: bool,
+    /// Syntec G120.1 machining-condition sets (listed in the code table, 000 L94-140).
+    #[serde(default)]
+    pub machining_condition_sets: bool,
 }
 
 fn default_polar_interpolation_tolerance() -> f64 {
