@@ -89,24 +89,37 @@ impl Executor {
     /// # Errors
     /// The alarm that stops the program at this block.
     pub(crate) fn run(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
+        self.apply_modal(cmd)?;
+        // The common block takes the short path without a second call; a NURBS curve and the
+        // stored stroke check, rare, are the other path's.
+        if cmd.is_plain()
+            && self.cycle.is_none()
+            && !out.compensating()
+            && self.nurbs.is_none()
+            && self.stroke_zone.is_none()
+            && !super::nurbs::starts(cmd)
+        {
+            return self.run_plain(cmd, out);
+        }
+        self.run_other(cmd, out)
+    }
+
+    /// Runs a block off the short path: a NURBS block, every stage of the block, and the stored
+    /// stroke check of the moves it made.
+    #[inline(never)]
+    fn run_other(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
         let released = out.items.len();
-        let flow = self.run_block(cmd, out)?;
+        let flow = if super::nurbs::takes(self, cmd) {
+            super::nurbs::block(self, cmd, out).map(|()| Flow::Next)?
+        } else if cmd.is_plain() && self.cycle.is_none() && !out.compensating() {
+            self.run_plain(cmd, out)?
+        } else {
+            self.run_stages(cmd, out)?
+        };
         if let Some(zone) = &self.stroke_zone {
             super::stroke_check::check_released(zone, out, released)?;
         }
         Ok(flow)
-    }
-
-    /// Runs one block, on the short path where it can.
-    fn run_block(&mut self, cmd: &Command, out: &mut Output) -> Result<Flow, Alarm> {
-        self.apply_modal(cmd)?;
-        if super::nurbs::takes(self, cmd) {
-            return super::nurbs::block(self, cmd, out).map(|()| Flow::Next);
-        }
-        if cmd.is_plain() && self.cycle.is_none() && !out.compensating() {
-            return self.run_plain(cmd, out);
-        }
-        self.run_stages(cmd, out)
     }
 
     /// The block of a CAM program (a motion code, axis and centre words, F) outside canned

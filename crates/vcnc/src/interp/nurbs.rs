@@ -216,10 +216,14 @@ pub(crate) fn distance_to_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 
 /// Whether the block starts a curve or belongs to the one being read.
 #[inline(always)]
 pub(crate) fn takes(exec: &Executor, cmd: &Command) -> bool {
-    exec.nurbs.is_some()
-        || cmd
-            .group(crate::profile::Group::Motion)
-            .is_some_and(|g| g.code == crate::profile::GCode::Nurbs)
+    exec.nurbs.is_some() || starts(cmd)
+}
+
+/// True when the block is a G06.2 block, the first of a curve.
+#[inline(always)]
+pub(crate) fn starts(cmd: &Command) -> bool {
+    cmd.group(crate::profile::Group::Motion)
+        .is_some_and(|g| g.code == crate::profile::GCode::Nurbs)
 }
 
 /// Runs a block of a NURBS curve: the G06.2 block, a control point, or a knot; the last knot
