@@ -168,11 +168,11 @@ pub(crate) fn junction(
     let tan_half = sin_half / cos_half;
     // A corner between two moves of a high-speed or smoothing mode is cut within that mode's
     // tolerance or rounding distance; any other within the machine's tolerance.
-    let (tolerance, distance) = match (prev.smoothing, next.smoothing) {
-        (Some(a), Some(b)) => smoothing_bounds(a, b),
-        _ => (config.corner_tolerance, f64::INFINITY),
-    };
     let shorter = lesser(prev.length, next.length);
+    let (tolerance, leg) = match (prev.smoothing, next.smoothing) {
+        (Some(a), Some(b)) => smoothing_bounds(a, b, shorter, config),
+        _ => (config.corner_tolerance, config.blend_length_share * shorter),
+    };
     // Infinite for vcnc's habits: the tolerance stays as it is.
     let tolerance = lesser(tolerance, config.corner_tolerance_length_share * shorter);
     let by_tolerance = if finite(tolerance) {
@@ -180,13 +180,6 @@ pub(crate) fn junction(
     } else {
         f64::INFINITY
     };
-    let mut leg = config.blend_length_share * shorter;
-    if finite(distance) {
-        leg = lesser(
-            leg,
-            lesser(distance, config.rounding_distance_share * shorter),
-        );
-    }
     let by_length = leg / tan_half;
     // The blend turns in the plane of the two moves: each axis that moves may carry the whole
     // normal acceleration somewhere on it.
@@ -222,15 +215,30 @@ pub(crate) fn junction(
 }
 
 /// The deviation and the leg (distance from the corner) that a corner between two smoothing
-/// modes may round with: each bound from the mode that gives it, the smaller where both do (so a
-/// G0 meeting a G1 under G641 takes the smaller of ADISPOS and ADIS, seed 002 L8334-8391).
-fn smoothing_bounds(a: Smoothing, b: Smoothing) -> (f64, f64) {
+/// modes may round with, `shorter` the shorter move's length: each bound from the mode that
+/// gives it, the smaller where both do (so a G0 meeting a G1 under G641 takes the smaller of
+/// ADISPOS and ADIS, seed 002 L8334-8391). Out of line: most corners have no smoothing.
+#[cold]
+#[inline(never)]
+fn smoothing_bounds(
+    a: Smoothing,
+    b: Smoothing,
+    shorter: f64,
+    config: &PlannerConfig,
+) -> (f64, f64) {
     let mut bounds = [f64::INFINITY; 2];
     for s in [a, b] {
         let i = usize::from(s.is_distance());
         bounds[i] = lesser(bounds[i], s.mm());
     }
-    (bounds[0], bounds[1])
+    let mut leg = config.blend_length_share * shorter;
+    if finite(bounds[1]) {
+        leg = lesser(
+            leg,
+            lesser(bounds[1], config.rounding_distance_share * shorter),
+        );
+    }
+    (bounds[0], leg)
 }
 
 /// The junction whose blend arc is a segment of its own (LinuxCNC's, tp.c and blendmath.c):

@@ -439,6 +439,9 @@ fn the_path_control_modes_order_the_time_of_a_part() {
     // CYCLE832() and a machining type of 0 deselect: G64 with the machine's tolerance.
     assert_eq!(time("G642\nCYCLE832()"), g64);
     assert_eq!(time("CYCLE832(0.05,1,1)\nCYCLE832(0.05,0,1)"), g64);
+    assert_eq!(time("CYCLE832(0.05,_OFF,1)\nCYCLE832(0,_OFF)"), g64);
+    assert_eq!(time("CYCLE832(0.05,_FINISH)"), cycle832);
+    assert_eq!(time("CYCLE832(0.05,_ROUGH,1)"), cycle832);
     let every_block: String = sinumerik_part("G64")
         .lines()
         .map(|l| {

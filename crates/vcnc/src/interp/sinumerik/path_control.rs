@@ -92,3 +92,17 @@ pub(super) fn distance(
     }
     Ok(())
 }
+
+/// The named machining types of CYCLE832 (`CYCLE832(0.01, _FINISH)`, `CYCLE832(0, _OFF)`), which
+/// the cycles' definitions give the control (**inferred** values: the units digit the cycle
+/// reads, docs/SINUMERIK.md 12).
+pub(super) fn constant(name: &str) -> Option<super::value::Value> {
+    let kind = match name {
+        "_OFF" => 0,
+        "_FINISH" => 1,
+        "_SEMIFIN" => 2,
+        "_ROUGH" => 3,
+        _ => return None,
+    };
+    Some(super::value::Value::Int(kind))
+}
