@@ -272,7 +272,10 @@ fn random_by_kind(comparisons: &[Comparison]) -> Vec<KindSummary> {
 /// speed wanders between 49 mm/s (0.1 mm in two of its 1.02 ms segment cycles) and 95 mm/s
 /// (its per-cycle trace) while vcnc holds 98 mm/s; chains of arcs at F4800, where vcnc is up
 /// to 3.5 % faster (next to a G2/G3 LinuxCNC's blend arcs mostly give up for parabolic blends,
-/// which vcnc does not model); one rapid tour 2.6 % faster.
+/// which vcnc does not model); one rapid tour 2.6 % faster. Tried on 2026-11-29: halving both
+/// motions' acceleration at every corner passed at speed without an arc of its own (LinuxCNC's
+/// parabolic blend, tc.c `tcGetOverallMaxAccel`) overshoots, arcs to +12.1 % (`arcs_06`): LinuxCNC
+/// must still make arc blends at many line-arc corners, so the fallback wants finding per corner.
 const RANDOM_WORST_TODAY: &[(&str, f64)] =
     &[("arcs", 0.0350), ("chords", 0.3279), ("rapids", 0.0258)];
 
