@@ -212,24 +212,45 @@ pub enum PathMode {
 }
 
 /// A high-speed or smoothing mode in force for a motion (Syntec G05 and G05.1, FANUC G05.1 Q1 and
-/// G08 P1): the control may leave the programmed path by up to this much to keep its speed
-/// through the corners. Kept in whole micrometres, so that it fits beside the path mode and
-/// costs a motion no space.
+/// G08 P1, SINUMERIK G641-G645): the control may leave the programmed path by up to this much to
+/// keep its speed through the corners, or (SINUMERIK G641's ADIS) start and end its rounding up
+/// to this far from the corner. Kept in whole micrometres, the top bit telling a rounding
+/// distance, so that it fits beside the path mode and costs a motion no space.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Smoothing(std::num::NonZeroU16);
 
+/// The bit of [`Smoothing`] that marks a rounding distance rather than a tolerance.
+const DISTANCE_BIT: u16 = 0x8000;
+
 impl Smoothing {
-    /// The tolerance `mm`, rounded to a micrometre and kept within 1 um to 65 mm.
+    /// The largest tolerance or distance kept, mm.
+    pub const MAX_MM: f64 = 32.767;
+
+    /// The tolerance `mm`, rounded to a micrometre and kept within 1 um to 32.767 mm.
     pub fn from_mm(mm: f64) -> Smoothing {
-        let micrometres = (mm * 1000.0).round().clamp(1.0, f64::from(u16::MAX));
+        let micrometres = (mm * 1000.0)
+            .round()
+            .clamp(1.0, f64::from(DISTANCE_BIT - 1));
         Smoothing(
             std::num::NonZeroU16::new(micrometres as u16).unwrap_or(std::num::NonZeroU16::MIN),
         )
     }
 
-    /// The tolerance, mm.
+    /// A rounding that starts at most `mm` before the corner and ends at most `mm` after it
+    /// (SINUMERIK G641 with ADIS or ADISPOS), kept as [`Smoothing::from_mm`] keeps a tolerance.
+    pub fn distance(mm: f64) -> Smoothing {
+        let bits = Smoothing::from_mm(mm).0.get() | DISTANCE_BIT;
+        Smoothing(std::num::NonZeroU16::new(bits).unwrap_or(std::num::NonZeroU16::MIN))
+    }
+
+    /// True for a rounding distance ([`Smoothing::distance`]), false for a tolerance.
+    pub fn is_distance(self) -> bool {
+        self.0.get() & DISTANCE_BIT != 0
+    }
+
+    /// The tolerance or the distance, mm.
     pub fn mm(self) -> f64 {
-        f64::from(self.0.get()) / 1000.0
+        f64::from(self.0.get() & !DISTANCE_BIT) / 1000.0
     }
 }
 

@@ -20,6 +20,13 @@ pub struct PlannerConfig {
     /// whose code gives no tolerance (Syntec G05 without E, its "TOL" parameter; FANUC G05.1 Q1
     /// and G08 P1); a tolerance the program gives (E) wins.
     pub smoothing_tolerance: f64,
+    /// Largest distance, mm, by which SINUMERIK's G642-G645 may round a corner when no CYCLE832
+    /// gives a tolerance: the axis tolerance of its machine data (MD33100 $MA_COMPRESS_POS_TOL,
+    /// seed 002 L8267-8270), one value for every axis.
+    pub rounding_tolerance: f64,
+    /// SINUMERIK G641's rounding distance (ADIS, ADISPOS) is cut to this share of the shorter
+    /// of the two blocks (seed 002 L8102-8424: "reduced automatically to max. 36 %").
+    pub rounding_distance_share: f64,
     /// Share of a segment's length, at each end, that a corner blend may use.
     pub blend_length_share: f64,
     /// The corner tolerance is at most this share of the shorter of the two segments' lengths
@@ -122,6 +129,8 @@ impl PlannerConfig {
                 look_ahead: 200,
                 corner_tolerance: 0.02,
                 smoothing_tolerance: 0.01,
+                rounding_tolerance: 0.1,
+                rounding_distance_share: 0.36,
                 blend_length_share: 0.5,
                 corner_tolerance_length_share: f64::INFINITY,
                 blend_arc_tangential_share: 0.0,
@@ -150,6 +159,8 @@ impl PlannerConfig {
                 look_ahead: 200,
                 corner_tolerance: f64::INFINITY,
                 smoothing_tolerance: 0.01,
+                rounding_tolerance: 0.1,
+                rounding_distance_share: 0.36,
                 blend_length_share: 0.5,
                 corner_tolerance_length_share: 0.25,
                 blend_arc_tangential_share: 0.5,
@@ -184,6 +195,8 @@ pub(crate) struct PlannerFile {
     look_ahead: Option<usize>,
     corner_tolerance: Option<f64>,
     smoothing_tolerance: Option<f64>,
+    rounding_tolerance: Option<f64>,
+    rounding_distance_share: Option<f64>,
     blend_length_share: Option<f64>,
     corner_tolerance_length_share: Option<f64>,
     blend_arc_tangential_share: Option<f64>,
@@ -211,6 +224,8 @@ impl PlannerFile {
         set(&mut c.look_ahead, self.look_ahead);
         set(&mut c.corner_tolerance, self.corner_tolerance);
         set(&mut c.smoothing_tolerance, self.smoothing_tolerance);
+        set(&mut c.rounding_tolerance, self.rounding_tolerance);
+        set(&mut c.rounding_distance_share, self.rounding_distance_share);
         set(&mut c.blend_length_share, self.blend_length_share);
         set(
             &mut c.corner_tolerance_length_share,
@@ -291,7 +306,15 @@ impl PlannerConfig {
             f64::INFINITY,
         )?;
         // Kept in whole micrometres on every motion (crate::motion::Smoothing).
-        within("smoothing_tolerance", self.smoothing_tolerance, 0.001, 65.0)?;
+        let most = crate::motion::Smoothing::MAX_MM;
+        within("smoothing_tolerance", self.smoothing_tolerance, 0.001, most)?;
+        within("rounding_tolerance", self.rounding_tolerance, 0.001, most)?;
+        within(
+            "rounding_distance_share",
+            self.rounding_distance_share,
+            0.0,
+            0.5,
+        )?;
         within("blend_length_share", self.blend_length_share, 0.0, 0.5)?;
         within(
             "corner_tolerance_length_share",

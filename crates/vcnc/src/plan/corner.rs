@@ -167,12 +167,12 @@ pub(crate) fn junction(
     }
     let tan_half = sin_half / cos_half;
     // A corner between two moves of a high-speed or smoothing mode is cut within that mode's
-    // tolerance; any other within the machine's.
-    let tolerance = match (prev.smoothing, next.smoothing) {
-        (Some(a), Some(b)) => a.mm().min(b.mm()),
-        _ => config.corner_tolerance,
-    };
+    // tolerance or rounding distance; any other within the machine's tolerance.
     let shorter = lesser(prev.length, next.length);
+    let (tolerance, leg) = match (prev.smoothing, next.smoothing) {
+        (Some(a), Some(b)) => smoothing_bounds(a, b, shorter, config),
+        _ => (config.corner_tolerance, config.blend_length_share * shorter),
+    };
     // Infinite for vcnc's habits: the tolerance stays as it is.
     let tolerance = lesser(tolerance, config.corner_tolerance_length_share * shorter);
     let by_tolerance = if finite(tolerance) {
@@ -180,7 +180,7 @@ pub(crate) fn junction(
     } else {
         f64::INFINITY
     };
-    let by_length = config.blend_length_share * shorter / tan_half;
+    let by_length = leg / tan_half;
     // The blend turns in the plane of the two moves: each axis that moves may carry the whole
     // normal acceleration somewhere on it.
     let mut acceleration = lesser(prev.turning, next.turning);
@@ -212,6 +212,33 @@ pub(crate) fn junction(
         arc_acceleration: 0.0,
         corner_stop: false,
     }
+}
+
+/// The deviation and the leg (distance from the corner) that a corner between two smoothing
+/// modes may round with, `shorter` the shorter move's length: each bound from the mode that
+/// gives it, the smaller where both do (so a G0 meeting a G1 under G641 takes the smaller of
+/// ADISPOS and ADIS, seed 002 L8334-8391). Out of line: most corners have no smoothing.
+#[cold]
+#[inline(never)]
+fn smoothing_bounds(
+    a: Smoothing,
+    b: Smoothing,
+    shorter: f64,
+    config: &PlannerConfig,
+) -> (f64, f64) {
+    let mut bounds = [f64::INFINITY; 2];
+    for s in [a, b] {
+        let i = usize::from(s.is_distance());
+        bounds[i] = lesser(bounds[i], s.mm());
+    }
+    let mut leg = config.blend_length_share * shorter;
+    if finite(bounds[1]) {
+        leg = lesser(
+            leg,
+            lesser(bounds[1], config.rounding_distance_share * shorter),
+        );
+    }
+    (bounds[0], leg)
 }
 
 /// The junction whose blend arc is a segment of its own (LinuxCNC's, tp.c and blendmath.c):
@@ -340,6 +367,33 @@ mod tests {
         let radius = 0.1 * c / (1.0 - c);
         let expected = (config.normal_acceleration_share * 1000.0 * radius).sqrt();
         assert!((v - expected).abs() < 1e-9, "{v} {expected}");
+    }
+
+    /// SINUMERIK G641 ADIS=0.5 at a right angle: the rounding starts 0.5 mm before the corner,
+    /// so its arc has the radius 0.5 / tan 45 = 0.5 mm; with 0.2 mm segments the leg is cut to
+    /// 0.36 * 0.2 = 0.072 mm. A neighbour rounding within 0.2 mm gives the smaller distance.
+    #[test]
+    fn a_rounding_distance_bounds_the_leg_of_the_arc() {
+        let config = PlannerConfig::default();
+        let normal = config.normal_acceleration_share * 1000.0;
+        let by = |a: Smoothing, b: Smoothing, length: f64| {
+            let mut u = handover([1.0, 0.0, 0.0], false);
+            let mut w = handover([0.0, 1.0, 0.0], false);
+            (u.smoothing, w.smoothing) = (Some(a), Some(b));
+            (u.length, w.length) = (length, length);
+            junction(&u, &w, &config).speed
+        };
+        let adis = Smoothing::distance(0.5);
+        let close = |v: f64, radius: f64| (v - (normal * radius).sqrt()).abs() < 1e-9;
+        assert!(close(by(adis, adis, 100.0), 0.5));
+        assert!(close(by(adis, adis, 0.2), 0.072));
+        assert!(close(by(adis, Smoothing::distance(0.2), 100.0), 0.2));
+        // A distance beside a tolerance: both bound the arc (0.01 mm: 0.0241 mm of radius).
+        let c = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(close(
+            by(adis, Smoothing::from_mm(0.01), 100.0),
+            0.01 * c / (1.0 - c)
+        ));
     }
 
     #[test]

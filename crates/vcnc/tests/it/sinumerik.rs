@@ -429,7 +429,7 @@ fn skipped_blocks_run_unless_their_level_is_on() {
 #[test]
 fn what_the_next_issue_adds_alarms_planned_with_its_number() {
     for (text, name) in [
-        ("G641 ADIS=0.1\nM30\n", "G641"),
+        ("FLIN\nM30\n", "FLIN"),
         // The standard cycles vcnc does not run yet (CYCLE81, POCKET3 ... run: sinumerik_cycles).
         ("CYCLE70(10,0,2,-5)\nM30\n", "CYCLE70"),
         ("CYCLE899(1,2,3)\nM30\n", "CYCLE899"),

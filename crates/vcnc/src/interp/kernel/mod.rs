@@ -266,6 +266,12 @@ impl Kernel {
         self.modes.exact_stop = exact_stop;
     }
 
+    /// The corner smoothing of the moves to come (a front end's rounding modes: SINUMERIK
+    /// G641-G645); none leaves the corners to the machine's `corner_tolerance`.
+    pub fn set_smoothing(&mut self, smoothing: Option<crate::motion::Smoothing>) {
+        self.modes.smoothing = smoothing;
+    }
+
     /// An event of the stream (spindle, coolant, tool, stop, auxiliary function) at this
     /// place of the program. Moves, dwells and the end have their own operations.
     pub fn event(&mut self, kind: SegmentKind, origin: Origin) {

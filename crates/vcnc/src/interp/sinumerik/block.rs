@@ -298,6 +298,9 @@ pub(super) fn run(
         PathMode::Continuous
     };
     kernel.set_path_mode(path_mode, exact_stop);
+    let rapid = front.modal.motion == gcodes::Motion::Rapid;
+    let planner = &kernel.state().setup.machine().planner;
+    kernel.set_smoothing(front.modal.path_control.smoothing(rapid, planner));
     super::compensation::before_motion(front, kernel, moved, origin.span)?;
     match suppress {
         Some(OneBlock::Reference | OneBlock::FixedPoint) => {
@@ -482,6 +485,7 @@ fn read<'a>(
             "AP" => words.ap = Some(axis_value(front, kernel, word)?),
             "RP" => words.rp = Some(axis_value(front, kernel, word)?),
             "ANG" => words.ang = Some((number(front, kernel, word)?, word.span)),
+            "ADIS" | "ADISPOS" => super::path_control::distance(front, kernel, word)?,
             "RND" => words.rnd = Some((number(front, kernel, word)?, word.span)),
             "CHF" => words.chf = Some((number(front, kernel, word)?, word.span)),
             "CHR" => words.chr = Some((number(front, kernel, word)?, word.span)),
@@ -543,16 +547,15 @@ fn read<'a>(
                 words.call = Some((format!("L{n}"), word.span));
             }
             // The message only shows on the control's screen; STOPRE only waits for the
-            // block preparation (vcnc prepares block by block).
-            "STOPRE" | "MSG" => {}
+            // block preparation (vcnc prepares block by block); SBLOF/SBLON only change how
+            // single-block mode stops, which vcnc has not.
+            "STOPRE" | "MSG" | "SBLOF" | "SBLON" => {}
             // MCALL with a call makes it modal; alone, it ends the modal call (PGAsl MCALL).
             "MCALL" if matches!(word.value, Value::Bare) => words.mcall = Some(word.span),
             "SETAL" => return Err(user_alarm(front, kernel, word)?),
-            // CYCLE832 sets the tolerance and path mode of high-speed milling: state for the
-            // planner of issue 22 (CYCLE800 is a standard cycle, `cycles/swivel.rs`).
             // WRTPR writes to the control's printer; nothing moves.
             "WRTPR" => {}
-            "CYCLE832" | "CPRECON" | "CPRECOF" => {
+            "CPRECON" | "CPRECOF" => {
                 note_state(front, address, word, &mut words.warnings);
             }
             // The blank of ShopMill programs: the simulation's stock (issue 21), no motion.
@@ -713,7 +716,10 @@ pub(super) fn apply_modal(
         }
         Function::Radius(function) => super::compensation::select(front, function),
         Function::ExactStop => front.modal.exact_stop = true,
-        Function::ContinuousPath => front.modal.exact_stop = false,
+        Function::ContinuousPath(rounding) => {
+            front.modal.exact_stop = false;
+            front.modal.path_control.rounding = rounding;
+        }
         Function::CuttingRate(constant, feed_type) => {
             front.spindle.constant_rate = constant.then_some(feed_mode(feed_type));
             apply_modal(front, kernel, Function::FeedType(feed_type), _span)?;

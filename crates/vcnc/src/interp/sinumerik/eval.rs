@@ -288,7 +288,11 @@ impl Evaluator<'_> {
         if !self.variables.is_defined(name) && self.env.is_axis(name) {
             return Ok(Value::Axis(name.to_string()));
         }
-        self.variables.read(name, &[], span)
+        // CYCLE832's machining types by name, where the program has no variable of that name
+        // (looked up only then: the common path pays nothing).
+        self.variables
+            .read(name, &[], span)
+            .or_else(|alarm| super::path_control::constant(name).ok_or(alarm))
     }
 
     fn arguments(

@@ -24,8 +24,8 @@ pub(super) enum Function {
     Settable(u32),
     /// G60 exact stop.
     ExactStop,
-    /// G64 continuous path.
-    ContinuousPath,
+    /// G64 continuous path, G641-G645 with their rounding.
+    ContinuousPath(super::path_control::Rounding),
     /// A frame instruction of group 3 (a block of its own; its axis words are the frame's).
     Frame(FrameOp),
     /// G110, G111, G112: the pole of polar coordinates.
@@ -205,6 +205,7 @@ pub(super) fn common(number: u32) -> Option<(Function, u8)> {
 /// named modal function.
 pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
     use super::compensation::RadiusFunction;
+    use super::path_control::Rounding;
     use crate::interp::comp::extension::Extension;
     use crate::interp::comp::polynomial::Continuity;
     use crate::interp::comp::smooth::{Direction, Shape};
@@ -260,9 +261,14 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G58" if m828d => Settable(5),
         "G59" if m828d => Settable(6),
         "G60" => ExactStop,
-        // G64 is the continuous path of vcnc's planner (its corner blending); the tolerances of
-        // G641-G645 come with issue 22.
-        "G64" => ContinuousPath,
+        // G64 slows at corners by the machine's corner tolerance; G641-G645 round them
+        // (path_control.rs).
+        "G64" => ContinuousPath(Rounding::None),
+        "G641" => ContinuousPath(Rounding::Distance),
+        "G642" => ContinuousPath(Rounding::Tolerance(2)),
+        "G643" => ContinuousPath(Rounding::Tolerance(3)),
+        "G644" => ContinuousPath(Rounding::Tolerance(4)),
+        "G645" => ContinuousPath(Rounding::Tolerance(5)),
         "G96" => CuttingRate(true, self::FeedType::PerRevolution),
         "G961" => CuttingRate(true, self::FeedType::PerMinute),
         "G97" => CuttingRate(false, self::FeedType::PerRevolution),
@@ -324,7 +330,7 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         // CUT2DF compensates in the frame's plane: with a frame that keeps the plane (the
         // only kind vcnc compensates under) that is CUT2D's (seed 002 L7854-7928).
         | "CUT2DF" => State,
-        "G641" | "G642" | "G643" | "G644" | "G645" | "FLIN" | "FCUB" => Planned,
+        "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
         "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
             OutOfProduct("turning (diameter programming)")
@@ -500,7 +506,8 @@ pub(super) fn member(modal: &super::Modal, group: u32) -> i32 {
             0 => 1,
             n => n as i32 + 1,
         },
-        10 => 1 + i32::from(!modal.exact_stop),
+        10 if modal.exact_stop => 1,
+        10 => modal.path_control.group_value(),
         13 => match (modal.inch, modal.inch_feeds) {
             (true, false) => 1,
             (false, false) => 2,
@@ -797,7 +804,8 @@ mod listing_tests {
         assert_eq!(row("G1").on_840d, Support::Runs);
         assert_eq!(row("SOFT").on_828d, Support::State);
         assert_eq!(row("G41").on_840d, Support::Runs);
-        assert_eq!(row("G641").on_840d, Support::Planned);
+        assert_eq!(row("G641").on_840d, Support::Runs);
+        assert_eq!(row("FLIN").on_840d, Support::Planned);
         assert!(matches!(row("DIAMON").on_840d, Support::OutOfProduct(_)));
         let range = row("G505 … G599");
         assert_eq!(

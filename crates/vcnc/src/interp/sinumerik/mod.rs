@@ -27,6 +27,7 @@ mod instructions;
 mod iso_mode;
 mod language;
 mod motion;
+mod path_control;
 mod polar;
 mod predefined;
 mod program;
@@ -189,6 +190,8 @@ pub(super) struct Modal {
     feed_type: FeedType,
     /// G60 (true) or a continuous-path mode.
     exact_stop: bool,
+    /// The rounding of the continuous path (G64, G641-G645) and its parameters.
+    path_control: path_control::PathControl,
     /// The settable frame: 0 for G500, 1..4 for G54..G57, 5.. beyond.
     settable: u32,
 }
@@ -258,6 +261,7 @@ impl Sinumerik {
                 inch_feeds: false,
                 feed_type: FeedType::PerMinute,
                 exact_stop: true,
+                path_control: path_control::PathControl::default(),
                 settable: 0,
             },
             programmed: [0.0; AXES],

@@ -1,6 +1,6 @@
 //! SINUMERIK's standard cycles (CYCLE81 ... CYCLE89, CYCLE840, HOLES1, HOLES2, CYCLE801,
 //! CYCLE802, POCKET3, POCKET4, SLOT1, SLOT2, LONGHOLE, CYCLE61, CYCLE71, CYCLE76, CYCLE77,
-//! CYCLE800)
+//! CYCLE800, and CYCLE832, the high-speed settings, in `high_speed.rs`)
 //! built into the front end: called by name like a subprogram, directly or through MCALL, when
 //! neither the program's directory nor `--lib` has a program of that name (a machine's own
 //! cycle wins).
@@ -22,6 +22,7 @@
 
 mod drilling;
 mod facing;
+mod high_speed;
 mod params;
 mod patterns;
 mod place;
@@ -42,10 +43,11 @@ use crate::source::Span;
 use std::collections::HashSet;
 
 /// The cycles vcnc runs itself.
-const BUILT_IN: [&str; 24] = [
+const BUILT_IN: [&str; 25] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
     "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE71", "CYCLE76", "CYCLE77", "CYCLE800",
+    "CYCLE832",
 ];
 
 /// True when `name` is a standard cycle vcnc runs.
@@ -119,6 +121,7 @@ fn run(front: &mut Sinumerik, kernel: &mut Kernel, call: &Call) -> Result<(), Al
     let params = Params::read(front, call)?;
     let saved_feed = kernel.feed_setting();
     let result = match call.name.as_str() {
+        "CYCLE832" => high_speed::settings(front, &params),
         "HOLES1" | "HOLES2" | "CYCLE801" | "CYCLE802" => {
             let from = Place::new(front, kernel).in_plane();
             patterns::positions(&call.name, &params, from)
