@@ -26,6 +26,9 @@ pub(crate) struct Args {
     /// below the deepest cut, up to Z0 when the cuts start above it and go below it).
     #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", value_parser = parse_stock, allow_hyphen_values = true)]
     stock: Option<[[f64; 3]; 2]>,
+    /// The default stock's top (without --stock).
+    #[arg(long, value_enum, default_value = "part-zero")]
+    stock_top: StockTop,
     /// Grid cell, mm (default 0.1, finer on a stock under 20 mm).
     #[arg(long, value_name = "MM")]
     resolution: Option<f64>,
@@ -46,6 +49,15 @@ pub(crate) struct Args {
     format: Format,
     #[command(flatten)]
     machine: MachineArgs,
+}
+
+/// Where the stock taken from the cut's extents has its top.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum StockTop {
+    /// Z0 when the cuts start above it and go below it, else the highest cutting point.
+    PartZero,
+    /// The depth the first cutting move reaches (the first pass faces the part).
+    FirstCut,
 }
 
 fn parse_stock(text: &str) -> Result<[[f64; 3]; 2], String> {
@@ -81,7 +93,10 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         None => {
             let mut extents = CutExtents::new();
             each_item(&source, &args.machine, |item, _| extents.add(item))?;
-            extents.stock()
+            match args.stock_top {
+                StockTop::PartZero => extents.stock(),
+                StockTop::FirstCut => extents.stock_below_first_cut(),
+            }
         }
     };
     let Some(stock) = stock else {

@@ -341,3 +341,29 @@ fn a_sinumerik_program_cuts_the_same_slot() {
         (1000.0 + std::f64::consts::PI * 25.0) * 2.0,
     );
 }
+
+#[test]
+fn the_stock_below_the_first_cut_has_its_top_at_that_cuts_depth() {
+    // A flat mill of radius 5 feeds down from Z2 to Z-0.5 at X0 Y0, faces to X50, then cuts a
+    // slot at Z-3 from X10 to X40. Extents X0..50, Y0, Z-3..2, widened by 5 + 1 mm in X and Y:
+    // X -6..56, Y -6..6, bottom Z-4. The usual top is Z0 (the cuts start above it and go
+    // below); the first feed across X is at Z-0.5, the top of the other rule.
+    let machine = machine_with_tools(FLAT_10);
+    let text = "T1 M6\nS5000 M3\nG0 X0 Y0 Z5.\nG1 Z2. F500.\nZ-0.5\nX50.\nG0 Z5.\n\
+                X10.\nG1 Z-3.\nX40.\nG0 Z5.\nM30\n";
+    let mut extents = vcnc::sim::CutExtents::new();
+    let mut stream = Pipeline::new(&machine).open_text(text, "first_cut.nc");
+    stream.for_each_timed(PlanOptions::default(), |items, _| {
+        for item in items.iter().flatten() {
+            extents.add(item);
+        }
+        true
+    });
+    let usual = extents.stock().unwrap();
+    let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() < 1e-9);
+    assert!(close(usual[0], [-6.0, -6.0, -4.0]), "{usual:?}");
+    assert!(close(usual[1], [56.0, 6.0, 0.0]), "{usual:?}");
+    let first = extents.stock_below_first_cut().unwrap();
+    assert!(close(first[0], usual[0]), "{first:?}");
+    assert!(close(first[1], [56.0, 6.0, -0.5]), "{first:?}");
+}
