@@ -7,11 +7,11 @@
 //! A run is two passes over the program when the stock is not given: [`CutExtents`] finds the
 //! cutting moves' extents for the default stock ([`CutExtents::stock`]), then [`Simulation`]
 //! cuts. Memory is the grid's, whatever the program's length. Other stocks (a cylinder, an
-//! STL) and the comparison with a design are to come: they replace [`HeightField::new`]'s
-//! full box and read the grid afterwards.
+//! STL) and the comparison with a design are in [`stock`].
 
 pub mod grid;
 pub mod mesh;
+pub mod stock;
 
 pub use grid::{Body, CutResult, HeightField};
 
@@ -189,8 +189,13 @@ pub struct Simulation {
 impl Simulation {
     /// A simulation of `stock` (`[min, max]`, part coordinates) in cells of `cell` mm.
     pub fn new(stock: [[f64; 3]; 2], cell: f64) -> Simulation {
+        Simulation::on(HeightField::new(stock, cell))
+    }
+
+    /// A simulation of a stock already in its grid (a cylinder, an STL: [`stock`]).
+    pub fn on(grid: HeightField) -> Simulation {
         Simulation {
-            grid: HeightField::new(stock, cell),
+            grid,
             follower: ToolFollower::new(),
             tools: Vec::new(),
             times: SimTimes::default(),
