@@ -1,5 +1,6 @@
-//! `vcnc sim`: 3-axis material removal on a box of stock, with a summary (removed volume by
-//! tool, cutting time against time in the air, events), an STL of the part and a shaded PNG.
+//! `vcnc sim`: 3-axis material removal on a box, a cylinder or an STL of stock, with a summary
+//! (removed volume by tool, cutting time against time in the air, events, the part against a
+//! design), an STL of the part and shaded or deviation PNGs.
 
 use super::plot::{each_item, outcome, ViewArg};
 use super::run::Format;
@@ -10,7 +11,8 @@ use clap::Args as ClapArgs;
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
-use vcnc::sim::{mesh, resolution, CutExtents, Simulation};
+use vcnc::sim::stock::{self, Cylinder, Mesh};
+use vcnc::sim::{mesh, resolution, CutExtents, HeightField, Simulation};
 use vcnc::Alarm;
 
 /// The most cells a grid may have: about 200 MB of heights.
@@ -24,8 +26,24 @@ pub(crate) struct Args {
     /// The stock box in program coordinates, mm: xmin,ymin,zmin,xmax,ymax,zmax (default: the
     /// cutting moves' extents, widened by the widest tool's radius and 1 mm, down to 1 mm
     /// below the deepest cut, up to Z0 when the cuts start above it and go below it).
-    #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", value_parser = parse_stock, allow_hyphen_values = true)]
-    stock: Option<[[f64; 3]; 2]>,
+    /// Or `cyl:X,Y,DIAMETER,Z0,Z1`, a cylinder standing on Z (bar stock held in a vice or chuck;
+    /// a height field cannot hold one lying down).
+    #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", value_parser = parse_stock, allow_hyphen_values = true, conflicts_with = "stock_stl")]
+    stock: Option<StockArg>,
+    /// The stock as a solid in an STL file (binary or ASCII), program coordinates, mm: its top
+    /// surface above each cell.
+    #[arg(long, value_name = "FILE")]
+    stock_stl: Option<PathBuf>,
+    /// The designed part (STL): report the largest gouge (cut below it) and excess (left above it)
+    /// with where they are.
+    #[arg(long, value_name = "FILE")]
+    design: Option<PathBuf>,
+    /// With --design: write a top view coloured by deviation (blue gouge, red excess).
+    #[arg(long, value_name = "FILE", requires = "design")]
+    design_png: Option<PathBuf>,
+    /// The default stock's top (without --stock).
+    #[arg(long, value_enum, default_value = "part-zero")]
+    stock_top: StockTop,
     /// Grid cell, mm (default 0.1, finer on a stock under 20 mm).
     #[arg(long, value_name = "MM")]
     resolution: Option<f64>,
@@ -48,18 +66,61 @@ pub(crate) struct Args {
     machine: MachineArgs,
 }
 
-fn parse_stock(text: &str) -> Result<[[f64; 3]; 2], String> {
-    let values: Vec<f64> = text
-        .split(',')
-        .map(|v| v.trim().parse::<f64>().map_err(|e| format!("`{v}`: {e}")))
-        .collect::<Result<_, _>>()?;
+/// Where the stock taken from the cut's extents has its top.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum StockTop {
+    /// Z0 when the cuts start above it and go below it, else the highest cutting point.
+    PartZero,
+    /// The depth the first cutting move reaches (the first pass faces the part).
+    FirstCut,
+}
+
+/// A stock given on the command line.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum StockArg {
+    Box([[f64; 3]; 2]),
+    Cylinder(Cylinder),
+}
+
+fn parse_stock(text: &str) -> Result<StockArg, String> {
+    if let Some(rest) = text.strip_prefix("cyl:") {
+        let values = numbers(rest)?;
+        let [x, y, d, z0, z1] = values[..] else {
+            return Err(format!(
+                "cyl: expected X,Y,DIAMETER,Z0,Z1, got {} numbers",
+                values.len()
+            ));
+        };
+        return if d > 0.0 && z0 < z1 {
+            Ok(StockArg::Cylinder(Cylinder {
+                center: [x, y],
+                diameter: d,
+                z: [z0, z1],
+            }))
+        } else {
+            Err("cyl: the diameter must be above 0 and Z0 below Z1".to_string())
+        };
+    }
+    box_stock(text).map(StockArg::Box)
+}
+
+fn numbers(text: &str) -> Result<Vec<f64>, String> {
+    text.split(',')
+        .map(|v| match v.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            Ok(_) => Err(format!("`{v}`: not a finite number")),
+            Err(e) => Err(format!("`{v}`: {e}")),
+        })
+        .collect()
+}
+
+fn box_stock(text: &str) -> Result<[[f64; 3]; 2], String> {
+    let values = numbers(text)?;
     let [x0, y0, z0, x1, y1, z1] = values[..] else {
         return Err(format!("expected six numbers, got {}", values.len()));
     };
     let stock = [[x0, y0, z0], [x1, y1, z1]];
-    if (0..3)
-        .all(|i| stock[0][i] < stock[1][i] && stock[0][i].is_finite() && stock[1][i].is_finite())
-    {
+    if (0..3).all(|i| stock[0][i] < stock[1][i]) {
         Ok(stock)
     } else {
         Err("each minimum must be below its maximum".to_string())
@@ -76,12 +137,37 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         });
     }
     let source = Source::read(&args.program)?;
-    let stock = match args.stock {
-        Some(stock) => Some(stock),
-        None => {
+    let read_mesh = |path: &PathBuf, option: &'static str| {
+        let bytes = std::fs::read(path).map_err(|e| SetupError::Option {
+            option,
+            value: format!("{}: {e}", path.display()),
+            expected: "a readable STL file",
+        })?;
+        Mesh::parse(&bytes).map_err(|why| SetupError::Option {
+            option,
+            value: format!("{}: {why}", path.display()),
+            expected: "a binary or ASCII STL file",
+        })
+    };
+    let stock_mesh = match &args.stock_stl {
+        Some(path) => Some(read_mesh(path, "--stock-stl")?),
+        None => None,
+    };
+    let design = match &args.design {
+        Some(path) => Some(read_mesh(path, "--design")?),
+        None => None,
+    };
+    let stock = match (args.stock, &stock_mesh) {
+        (Some(StockArg::Box(stock)), _) => Some(stock),
+        (Some(StockArg::Cylinder(c)), _) => Some(c.extents()),
+        (None, Some(mesh)) => Some(mesh.extents()),
+        (None, None) => {
             let mut extents = CutExtents::new();
             each_item(&source, &args.machine, |item, _| extents.add(item))?;
-            extents.stock()
+            match args.stock_top {
+                StockTop::PartZero => extents.stock(),
+                StockTop::FirstCut => extents.stock_below_first_cut(),
+            }
         }
     };
     let Some(stock) = stock else {
@@ -92,7 +178,11 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         return Ok(Outcome::Clean);
     };
     let cell = resolution(stock, args.resolution, MAX_CELLS);
-    let mut simulation = Simulation::new(stock, cell);
+    let mut simulation = Simulation::on(match (args.stock, &stock_mesh) {
+        (Some(StockArg::Cylinder(c)), _) => c.grid(cell),
+        (None, Some(mesh)) => stock::stl_grid(mesh, cell),
+        _ => HeightField::new(stock, cell),
+    });
     let (texts, mut alarms) = each_item(&source, &args.machine, |item, timing| {
         simulation.add(item, timing);
     })?;
@@ -109,12 +199,35 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         let bytes = mesh::picture(simulation.grid(), args.view.view(), args.width);
         std::fs::write(path, bytes).map_err(SetupError::Output)?;
     }
+    let deviation = design
+        .as_ref()
+        .map(|d| stock::deviation(simulation.grid(), d));
+    if let (Some(path), Some(deviation)) = (&args.design_png, &deviation) {
+        // White within a quarter cell (the grid's own uncertainty), full colour at 1 mm.
+        let bytes = deviation.picture(cell / 4.0, 1.0, args.width);
+        std::fs::write(path, bytes).map_err(SetupError::Output)?;
+    }
     let text = match args.format {
-        Format::Human => human(args, &simulation, stock, cell),
-        Format::Json => format!(
-            "{:#}\n",
-            to_json(args, &simulation, stock, cell, &texts, &alarms, &events)
-        ),
+        Format::Human => {
+            human(args, &simulation, stock, cell)
+                + &deviation.as_ref().map_or(String::new(), human_deviation)
+        }
+        Format::Json => {
+            let mut json = to_json(args, &simulation, stock, cell, &texts, &alarms, &events);
+            if let Some(deviation) = &deviation {
+                let extreme = |e: Option<stock::Extreme>| {
+                    e.map_or(
+                        serde_json::Value::Null,
+                        |e| json!({ "mm": e.amount, "at": e.at }),
+                    )
+                };
+                json["design"] = json!({
+                    "gouge": extreme(deviation.gouge),
+                    "excess": extreme(deviation.excess),
+                });
+            }
+            format!("{json:#}\n")
+        }
     };
     std::io::stdout()
         .write_all(text.as_bytes())
@@ -172,6 +285,17 @@ fn human(args: &Args, simulation: &Simulation, stock: [[f64; 3]; 2], cell: f64) 
         events.kept.len() - alarms
     );
     out
+}
+
+fn human_deviation(deviation: &stock::Deviation) -> String {
+    let line = |name: &str, e: Option<stock::Extreme>| match e {
+        Some(e) => format!(
+            "  {name:<17} {:>9.3} mm at X {:.3} Y {:.3} Z {:.3}\n",
+            e.amount, e.at[0], e.at[1], e.at[2]
+        ),
+        None => format!("  {name:<17} none\n"),
+    };
+    line("largest gouge", deviation.gouge) + &line("largest excess", deviation.excess)
 }
 
 fn to_json(

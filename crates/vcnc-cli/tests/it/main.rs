@@ -13,5 +13,6 @@ mod inputs;
 mod plot_sim;
 mod results;
 mod saved_programs;
+mod sim_corpus;
 mod state;
 mod traces;

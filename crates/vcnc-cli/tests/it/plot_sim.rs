@@ -162,3 +162,83 @@ fn the_readmes_sim_summary_is_what_sim_prints() {
     );
     assert_eq!(String::from_utf8(out.stdout).unwrap(), &readme[start..end]);
 }
+
+/// An ASCII STL of the box `[low, high]`: twelve triangles, outward.
+fn box_stl(low: [f64; 3], high: [f64; 3]) -> String {
+    let corner = |k: usize| {
+        [
+            if k & 1 == 0 { low[0] } else { high[0] },
+            if k & 2 == 0 { low[1] } else { high[1] },
+            if k & 4 == 0 { low[2] } else { high[2] },
+        ]
+    };
+    // Each face's corners (by bit index) counter-clockwise seen from outside.
+    let faces = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let mut text = String::from("solid box\n");
+    for f in faces {
+        for t in [[f[0], f[1], f[2]], [f[0], f[2], f[3]]] {
+            text.push_str("facet normal 0 0 0\nouter loop\n");
+            for k in t {
+                let [x, y, z] = corner(k);
+                text.push_str(&format!("vertex {x} {y} {z}\n"));
+            }
+            text.push_str("endloop\nendfacet\n");
+        }
+    }
+    text + "endsolid box\n"
+}
+
+#[test]
+fn sim_finds_a_planted_gouge_against_the_design_on_a_cylinder() {
+    // A 40 mm bar (Z -10..0) and a design that is the bar's square 20 x 20 core at full height:
+    // a 10 mm flat mill cuts 0.2 mm deep from X-5 to X5 at Y0, inside the core: a 0.2 mm gouge
+    // there. The removed volume is the slot's (10 * 10 + 25 pi) * 0.2 = 35.71 mm^3.
+    let design = temp_program(
+        "core.stl",
+        &box_stl([-10.0, -10.0, -10.0], [10.0, 10.0, 0.0]),
+    );
+    let program = temp_program(
+        "gouge.nc",
+        "G21 G90 G10 L12 P1 R5.\nT1 M6\nS5000 M3\nG0 X-5. Y0 Z5.\nG1 Z-0.2 F500.\nX5.\nG0 Z5.\nM30\n",
+    );
+    let png = temp_path("deviation.png");
+    let out = vcnc(&[
+        "sim",
+        "--stock",
+        "cyl:0,0,40,-10,0",
+        "--design",
+        &design,
+        "--design-png",
+        &png,
+        "--format",
+        "json",
+        &program,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let gouge = &json["design"]["gouge"];
+    assert!(
+        (gouge["mm"].as_f64().unwrap() - 0.2).abs() < 1e-3,
+        "{json:#}"
+    );
+    let x = gouge["at"][0].as_f64().unwrap();
+    assert!((-10.0..=10.0).contains(&x), "{json:#}");
+    let removed = json["removed_mm3"].as_f64().unwrap();
+    let expected = (100.0 + 25.0 * std::f64::consts::PI) * 0.2;
+    assert!(
+        (removed - expected).abs() < expected * 0.02,
+        "{removed} vs {expected}"
+    );
+    assert_eq!(&std::fs::read(&png).unwrap()[1..4], b"PNG");
+}

@@ -58,7 +58,7 @@ fn repository() -> PathBuf {
 
 /// The control a corpus program was written for (corpus/MANIFEST.md; the same rule as the
 /// library's corpus tests).
-fn corpus_profile(name: &str) -> &'static str {
+pub(crate) fn corpus_profile(name: &str) -> &'static str {
     if ["boreyko_", "kiely_", "ramos_", "werocketry_"]
         .iter()
         .any(|author| name.starts_with(author))

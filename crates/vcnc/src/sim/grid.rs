@@ -25,6 +25,8 @@ pub struct HeightField {
     bottom: f64,
     top: f64,
     heights: Vec<f32>,
+    /// The material the stock had, mm^3.
+    initial: f64,
 }
 
 /// What one straight move did to the stock.
@@ -57,14 +59,37 @@ impl HeightField {
             (((high[0] - low[0]) / cell).round() as usize).max(1),
             (((high[1] - low[1]) / cell).round() as usize).max(1),
         ];
-        HeightField {
+        let mut grid = HeightField {
             origin: [low[0], low[1]],
             cell,
             size,
             bottom: low[2],
             top: high[2],
             heights: vec![high[2] as f32; size[0] * size[1]],
+            initial: 0.0,
+        };
+        grid.initial = (grid.top - grid.bottom) * (size[0] * size[1]) as f64 * cell * cell;
+        grid
+    }
+
+    /// A stock of another shape inside the box `stock`: each cell full up to `top` of its
+    /// centre (clamped to the box), empty where `top` is `None` (a cylinder's corners, where
+    /// an STL has no triangle above).
+    pub fn shaped(
+        stock: [[f64; 3]; 2],
+        cell: f64,
+        top: impl Fn([f64; 2]) -> Option<f64>,
+    ) -> HeightField {
+        let mut grid = HeightField::new(stock, cell);
+        for j in 0..grid.size[1] {
+            for i in 0..grid.size[0] {
+                let h =
+                    top(grid.center(i, j)).map_or(grid.bottom, |h| h.clamp(grid.bottom, grid.top));
+                grid.heights[j * grid.size[0] + i] = h as f32;
+            }
         }
+        grid.initial = grid.volume();
+        grid
     }
 
     /// The cell size, mm.
@@ -112,7 +137,7 @@ impl HeightField {
 
     /// The material the stock had, mm^3.
     pub fn stock_volume(&self) -> f64 {
-        (self.top - self.bottom) * (self.size[0] * self.size[1]) as f64 * self.cell * self.cell
+        self.initial
     }
 
     /// Sweeps `tool` (along Z, its tip at the points) from `from` to `to` and removes what it

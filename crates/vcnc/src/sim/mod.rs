@@ -7,11 +7,11 @@
 //! A run is two passes over the program when the stock is not given: [`CutExtents`] finds the
 //! cutting moves' extents for the default stock ([`CutExtents::stock`]), then [`Simulation`]
 //! cuts. Memory is the grid's, whatever the program's length. Other stocks (a cylinder, an
-//! STL) and the comparison with a design are to come: they replace [`HeightField::new`]'s
-//! full box and read the grid afterwards.
+//! STL) and the comparison with a design are in [`stock`].
 
 pub mod grid;
 pub mod mesh;
+pub mod stock;
 
 pub use grid::{Body, CutResult, HeightField};
 
@@ -32,6 +32,8 @@ pub struct CutExtents {
     low: Option<[f64; 3]>,
     high: [f64; 3],
     widest: f64,
+    /// The lowest point of the first feed across X or Y: the depth the first pass reaches.
+    first_cut: Option<f64>,
 }
 
 impl CutExtents {
@@ -62,6 +64,15 @@ impl CutExtents {
         };
         grow(motion.from);
         motion.for_each_point(0.01, grow);
+        // The first pass is the first feed across X or Y: feeds along Z before it are approaches.
+        if self.first_cut.is_none() {
+            let (mut lowest, mut across) = (motion.from[2], false);
+            motion.for_each_point(0.01, |p| {
+                lowest = lowest.min(p[2]);
+                across |= (p[0] - motion.from[0]).hypot(p[1] - motion.from[1]) > 1e-9;
+            });
+            self.first_cut = across.then_some(lowest);
+        }
     }
 
     /// The default stock: the cutting moves' extents widened by the widest tool's radius and
@@ -82,6 +93,17 @@ impl CutExtents {
             [low[0] - margin, low[1] - margin, bottom],
             [high[0] + margin, high[1] + margin, top.max(bottom + 0.1)],
         ])
+    }
+
+    /// Issue 21's other rule: the default stock ([`CutExtents::stock`]) with its top lowered to
+    /// the depth the first pass (the first feed across X or Y) reaches, for programs whose first
+    /// pass faces the part: rapids down to that face are then no crash. Never raised.
+    /// `None` when the program cuts nothing.
+    pub fn stock_below_first_cut(&self) -> Option<[[f64; 3]; 2]> {
+        let [low, mut high] = self.stock()?;
+        let first = self.first_cut?;
+        high[2] = high[2].min(first).max(low[2] + 0.1);
+        Some([low, high])
     }
 }
 
@@ -167,8 +189,13 @@ pub struct Simulation {
 impl Simulation {
     /// A simulation of `stock` (`[min, max]`, part coordinates) in cells of `cell` mm.
     pub fn new(stock: [[f64; 3]; 2], cell: f64) -> Simulation {
+        Simulation::on(HeightField::new(stock, cell))
+    }
+
+    /// A simulation of a stock already in its grid (a cylinder, an STL: [`stock`]).
+    pub fn on(grid: HeightField) -> Simulation {
         Simulation {
-            grid: HeightField::new(stock, cell),
+            grid,
             follower: ToolFollower::new(),
             tools: Vec::new(),
             times: SimTimes::default(),

@@ -72,17 +72,7 @@ fn a_sinumerik_tool_change_carries_the_shape_too() {
 
 /// Runs `text` through the pipeline into a simulation of `stock` in cells of `cell` mm.
 fn simulate(text: &str, machine: &Machine, stock: [[f64; 3]; 2], cell: f64) -> Simulation {
-    let mut simulation = Simulation::new(stock, cell);
-    let mut stream = Pipeline::new(machine).open_text(text, "sim.nc");
-    stream.for_each_timed(PlanOptions::default(), |items, timings| {
-        for (item, timing) in items.iter().zip(timings) {
-            if let Ok(item) = item {
-                simulation.add(item, timing);
-            }
-        }
-        true
-    });
-    simulation
+    simulate_on(text, machine, vcnc::sim::HeightField::new(stock, cell))
 }
 
 const FLAT_10: &str = r#"
@@ -340,4 +330,125 @@ fn a_sinumerik_program_cuts_the_same_slot() {
         simulation.removed(),
         (1000.0 + std::f64::consts::PI * 25.0) * 2.0,
     );
+}
+
+#[test]
+fn the_stock_below_the_first_cut_has_its_top_at_that_cuts_depth() {
+    // A flat mill of radius 5 feeds down from Z2 to Z-0.5 at X0 Y0, faces to X50, then cuts a
+    // slot at Z-3 from X10 to X40. Extents X0..50, Y0, Z-3..2, widened by 5 + 1 mm in X and Y:
+    // X -6..56, Y -6..6, bottom Z-4. The usual top is Z0 (the cuts start above it and go
+    // below); the first feed across X is at Z-0.5, the top of the other rule.
+    let machine = machine_with_tools(FLAT_10);
+    let text = "T1 M6\nS5000 M3\nG0 X0 Y0 Z5.\nG1 Z2. F500.\nZ-0.5\nX50.\nG0 Z5.\n\
+                X10.\nG1 Z-3.\nX40.\nG0 Z5.\nM30\n";
+    let mut extents = vcnc::sim::CutExtents::new();
+    let mut stream = Pipeline::new(&machine).open_text(text, "first_cut.nc");
+    stream.for_each_timed(PlanOptions::default(), |items, _| {
+        for item in items.iter().flatten() {
+            extents.add(item);
+        }
+        true
+    });
+    let usual = extents.stock().unwrap();
+    let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() < 1e-9);
+    assert!(close(usual[0], [-6.0, -6.0, -4.0]), "{usual:?}");
+    assert!(close(usual[1], [56.0, 6.0, 0.0]), "{usual:?}");
+    let first = extents.stock_below_first_cut().unwrap();
+    assert!(close(first[0], usual[0]), "{first:?}");
+    assert!(close(first[1], [56.0, 6.0, -0.5]), "{first:?}");
+}
+
+/// The same program on a given grid.
+fn simulate_on(text: &str, machine: &Machine, grid: vcnc::sim::HeightField) -> Simulation {
+    let mut simulation = Simulation::on(grid);
+    let mut stream = Pipeline::new(machine).open_text(text, "sim.nc");
+    stream.for_each_timed(PlanOptions::default(), |items, timings| {
+        for (item, timing) in items.iter().zip(timings) {
+            if let Ok(item) = item {
+                simulation.add(item, timing);
+            }
+        }
+        true
+    });
+    simulation
+}
+
+#[test]
+fn a_cylinder_stock_faced_by_one_mm_loses_a_disc() {
+    // A 40 mm bar standing on Z from -20 to 0 holds pi 20^2 20 = 25132.7 mm^3. A 10 mm flat
+    // mill facing 1 mm deep over the whole square X -25..25 at 8 mm steps takes a disc
+    // pi 20^2 1 = 1256.6 mm^3 and nothing outside the bar.
+    let bar = vcnc::sim::stock::Cylinder {
+        center: [0.0, 0.0],
+        diameter: 40.0,
+        z: [-20.0, 0.0],
+    };
+    let grid = bar.grid(0.1);
+    let pi = std::f64::consts::PI;
+    assert_volume(grid.stock_volume(), pi * 400.0 * 20.0);
+    let mut text = String::from("T1 M6\nS5000 M3\nG0 X-30. Y-25. Z5.\nG1 Z-1. F1000.\n");
+    for (n, y) in (0..=7).map(|k| -25.0 + 8.0 * f64::from(k)).enumerate() {
+        let x = if n % 2 == 0 { 30.0 } else { -30.0 };
+        text.push_str(&format!("Y{y:.1}\nX{x:.1}\n"));
+    }
+    text.push_str("G0 Z5.\nM30\n");
+    let simulation = simulate_on(&text, &machine_with_tools(FLAT_10), grid);
+    assert_volume(simulation.removed(), pi * 400.0);
+    assert_eq!(simulation.events().kept, vec![]);
+}
+
+#[test]
+fn an_stl_stock_holds_what_its_mesh_encloses() {
+    // A 30 x 20 x 10 box written as STL by the mesh writer and read back as the stock: 6000
+    // mm^3, whatever the grid it is sampled into.
+    let grid = vcnc::sim::HeightField::new([[0.0, 0.0, -10.0], [30.0, 20.0, 0.0]], 0.5);
+    let mut bytes = Vec::new();
+    mesh::write_stl(&grid, &mut bytes).unwrap();
+    let stock = vcnc::sim::stock::Mesh::parse(&bytes).unwrap();
+    let sampled = vcnc::sim::stock::stl_grid(&stock, 0.1);
+    assert_volume(sampled.stock_volume(), 6000.0);
+    // The same box in ASCII.
+    let mut ascii = String::from("solid box\n");
+    mesh::for_each_triangle(&grid, |t| {
+        ascii.push_str("facet normal 0 0 0\nouter loop\n");
+        for p in t {
+            ascii.push_str(&format!("vertex {} {} {}\n", p[0], p[1], p[2]));
+        }
+        ascii.push_str("endloop\nendfacet\n");
+    });
+    ascii.push_str("endsolid box\n");
+    let stock = vcnc::sim::stock::Mesh::parse(ascii.as_bytes()).unwrap();
+    assert_volume(
+        vcnc::sim::stock::stl_grid(&stock, 0.1).stock_volume(),
+        6000.0,
+    );
+    assert!(vcnc::sim::stock::Mesh::parse(b"solid x\nvertex 1 2\n").is_err());
+    assert!(vcnc::sim::stock::Mesh::parse(&[0u8; 90]).is_err());
+}
+
+#[test]
+fn the_design_comparison_finds_a_planted_gouge() {
+    // The design is the uncut 40 x 20 x 10 block (top Z0); the program faces nothing but cuts a
+    // slot 0.2 mm deep with a 10 mm flat mill from X10 to X30 at Y10: a 0.2 mm gouge, in the
+    // slot (X 5..35, Y 5..15), and no excess (the rest of the top is untouched).
+    let block = [[0.0, 0.0, -10.0], [40.0, 20.0, 0.0]];
+    let mut bytes = Vec::new();
+    mesh::write_stl(&vcnc::sim::HeightField::new(block, 1.0), &mut bytes).unwrap();
+    let design = vcnc::sim::stock::Mesh::parse(&bytes).unwrap();
+    let text = "T1 M6\nS5000 M3\nG0 X10. Y10. Z5.\nG1 Z-0.2 F500.\nX30.\nG0 Z5.\nM30\n";
+    let simulation = simulate(text, &machine_with_tools(FLAT_10), block, 0.1);
+    let deviation = vcnc::sim::stock::deviation(simulation.grid(), &design);
+    let gouge = deviation.gouge.expect("a gouge");
+    assert!((gouge.amount - 0.2).abs() < 1e-4, "{gouge:?}");
+    let [x, y, z] = gouge.at;
+    assert!(
+        (5.0..=35.0).contains(&x) && (5.0..=15.0).contains(&y),
+        "{gouge:?}"
+    );
+    assert!(z.abs() < 1e-9, "{gouge:?}");
+    let excess = deviation.excess.expect("cells on the design");
+    assert!(excess.amount < 1e-4, "{excess:?}");
+    // The picture: a PNG, bluest in the slot.
+    let png = deviation.picture(0.025, 1.0, 400);
+    assert_eq!(&png[1..4], b"PNG");
 }
