@@ -46,6 +46,7 @@ mod sinumerik_examples;
 mod sinumerik_language;
 mod sinumerik_robust;
 mod sinumerik_syntax;
+mod sinumerik_work_area;
 mod skip;
 mod smoothing;
 mod spiral;
