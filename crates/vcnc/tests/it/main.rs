@@ -41,6 +41,7 @@ mod sinumerik;
 mod sinumerik_axes;
 mod sinumerik_compensation;
 mod sinumerik_corpus;
+mod sinumerik_corpus_plausible;
 mod sinumerik_cycles;
 mod sinumerik_examples;
 mod sinumerik_language;
