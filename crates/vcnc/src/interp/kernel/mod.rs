@@ -360,6 +360,30 @@ impl Kernel {
         (&mut self.state, &mut self.out)
     }
 
+    /// The number of items waiting to be handed out.
+    pub(crate) fn waiting(&self) -> usize {
+        self.out.items.len()
+    }
+
+    /// Runs `check` over the items made since `from` were waiting; when it cuts them and adds
+    /// its alarm (returns false), the alarm is taken back and returned: the caller stops.
+    pub(crate) fn check_waiting(
+        &mut self,
+        from: usize,
+        check: impl FnOnce(&mut Vec<crate::motion::StreamItem>, std::ops::Range<usize>) -> bool,
+    ) -> Option<Alarm> {
+        let end = self.out.items.len();
+        if check(&mut self.out.items, from.min(end)..end) {
+            return None;
+        }
+        let alarm = self.out.items.pop()?.err();
+        let len = self.out.items.len();
+        if let Some(held) = self.out.held.as_mut() {
+            *held = (*held).min(len);
+        }
+        alarm
+    }
+
     /// A segment (or frame) another interpreter made on this kernel's state, into the stream.
     pub(crate) fn push_item(&mut self, item: crate::motion::Item) {
         self.out.items.push(Ok(item));

@@ -210,13 +210,15 @@ pub(super) fn run(
         Function::SpeedLimit(max) => Some((*max, *w)),
         _ => None,
     });
-    if let Some((_, word)) = speed_limit {
+    if let Some((upper, _)) = speed_limit {
         if words.axes.iter().any(Option::is_some) {
-            return Err(Alarm::error(
-                AlarmCode::NotSupportedYet,
-                word.span,
-                "G25 and G26 with axes are not run yet (planned: issue 22, the working area)",
-            ));
+            // With axes, G25/G26 are the working area's limits, and the block does nothing else.
+            let unit = super::motion::unit(front);
+            let limits = words.axes.map(|a| a.map(|a| a.value * unit));
+            front
+                .work_area
+                .set(upper, limits, kernel.state().setup.machine());
+            return Ok(Step::Next);
         }
     }
     let speed_limit = speed_limit.map(|(max, _)| max);
@@ -426,6 +428,9 @@ fn read<'a>(
                     Value::Constant(n) => format!("G{}", n.value),
                     _ => word.address.to_string(),
                 };
+                if let "WALIMON" | "WALIMOF" = name.as_str() {
+                    front.work_area.switch(name == "WALIMON");
+                }
                 note_state(front, &name, word, &mut words.warnings);
             }
             words.functions.push((function, group, word));

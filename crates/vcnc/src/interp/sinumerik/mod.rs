@@ -36,6 +36,7 @@ mod spindles;
 mod tools;
 mod value;
 mod vars;
+mod work_area;
 
 /// The G functions by group with their support, for README.md's table (profile::codes).
 pub(crate) use gcodes::{listing as g_function_listing, Support as GFunctionSupport};
@@ -133,6 +134,8 @@ pub struct Sinumerik {
     radius_compensation: compensation::RadiusCompensation,
     /// The standard cycle a block called, run at its end, and the names that are built in.
     cycles: cycles::Calls,
+    /// G25/G26 with axes and WALIMON/WALIMOF: the working area (`work_area.rs`).
+    work_area: work_area::WorkArea,
 }
 
 /// One program level of the call stack.
@@ -250,6 +253,7 @@ impl Sinumerik {
             spare: None,
             radius_compensation: compensation::RadiusCompensation::default(),
             cycles: cycles::Calls::default(),
+            work_area: work_area::WorkArea::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
@@ -694,7 +698,9 @@ impl Sinumerik {
 
 impl FrontEnd for Sinumerik {
     fn step(&mut self, kernel: &mut Kernel) -> Result<Step, Alarm> {
+        let from = kernel.waiting();
         let step = self.next_step(kernel).map_err(with_sinumerik_help)?;
+        self.work_area.check(kernel, from)?;
         // Compensation counts the blocks without motion in its plane, and stops at a corner
         // it could not make.
         kernel.end_block()?;

@@ -1,0 +1,227 @@
+//! The toolpaths of the real SINUMERIK programs (../shared/corpus/sinumerik) checked for
+//! plausibility (issue 22, acceptance 1): each program that runs to its end on the machine of
+//! its author (`common::sinumerik_machines`) must make no rapid through material it cut.
+//!
+//! The rule, in machine coordinates (a frame or a rotation changes nothing physical):
+//! - The *top* is the highest Z at which a feed move travels in XY: the stock's highest level
+//!   the program cuts at (its face, or the first level of a pocket).
+//! - The *cut box* is the XY extent of the feed moves below the top: where material was cut.
+//! - A rapid after the first feed move (the moves before it start at the machine file's start
+//!   position, not the program's) is walked in steps of 0.5 mm. A point of it below the top and
+//!   inside the cut box, more than [`REACH`] from its rim (where an approach to a profile from
+//!   outside the stock lands), must be over ground already cleared: a feed move made before it passed within
+//!   [`REACH`] in XY at that point's Z or lower. So a rapid back into a pocket already cut (or
+//!   down a hole already drilled) passes; a rapid at a pocket's depth across material not yet
+//!   cut, or through the wall between two pockets, does not.
+//!
+//! Feed moves are walked along their chord (an arc's bulge is within [`REACH`] for the arcs
+//! of these programs, **choice**). Programs that stop before their end (a subprogram the corpus
+//! lacks, a function not run yet) are listed and not checked. Run with `-- --nocapture` for the
+//! table.
+
+use crate::common;
+use crate::common::sinumerik_machines::machine_for;
+use std::collections::HashMap;
+use vcnc::interp::sinumerik::Sinumerik;
+use vcnc::interp::{Kernel, Run};
+use vcnc::{FileId, Machine, Segment, SegmentKind};
+
+/// How near in XY a cut must have passed for a rapid's point to count as over cleared ground,
+/// mm: the radius of the smallest end mill of these programs, about (**choice**).
+const REACH: f64 = 3.0;
+
+/// The grid's cell, mm: cuts are kept per cell with the lowest Z they reached.
+const CELL: f64 = 1.0;
+
+/// The steps a move is walked in, mm, and the most points one move is walked at.
+const STEP: f64 = 0.5;
+const MAX_POINTS: usize = 4000;
+
+/// A move as the check needs it: rapid or not, from, to (machine X Y Z), its line.
+struct Path {
+    rapid: bool,
+    from: [f64; 3],
+    to: [f64; 3],
+    line: u32,
+}
+
+/// The moves of `segments`.
+fn paths(segments: &[Segment]) -> Vec<Path> {
+    segments
+        .iter()
+        .filter_map(|s| {
+            let rapid = match s.kind {
+                SegmentKind::Rapid { .. } => true,
+                SegmentKind::Line { .. } | SegmentKind::Arc { .. } => false,
+                _ => return None,
+            };
+            let m = s.motion()?;
+            let (f, t) = (m.from.0, m.to.0);
+            Some(Path {
+                rapid,
+                from: [f[0], f[1], f[2]],
+                to: [t[0], t[1], t[2]],
+                line: s.span.line,
+            })
+        })
+        .collect()
+}
+
+/// The points of `path` every [`STEP`] mm, both ends included.
+fn walk(path: &Path) -> impl Iterator<Item = [f64; 3]> + '_ {
+    let length = (0..3)
+        .map(|i| (path.to[i] - path.from[i]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let n = ((length / STEP).ceil() as usize).clamp(1, MAX_POINTS);
+    (0..=n).map(move |k| {
+        let t = k as f64 / n as f64;
+        std::array::from_fn(|i| path.from[i] + (path.to[i] - path.from[i]) * t)
+    })
+}
+
+fn cell(p: &[f64; 3]) -> (i64, i64) {
+    ((p[0] / CELL).floor() as i64, (p[1] / CELL).floor() as i64)
+}
+
+/// The lines of the rapids that pass through material (see the module's doc).
+fn rapids_through_material(paths: &[Path]) -> Vec<u32> {
+    const EPS: f64 = 1e-3;
+    let planar = |p: &&Path| !p.rapid && (p.to[0] - p.from[0]).hypot(p.to[1] - p.from[1]) > EPS;
+    let Some(top) = paths
+        .iter()
+        .filter(planar)
+        .map(|p| p.from[2].max(p.to[2]))
+        .reduce(f64::max)
+    else {
+        return Vec::new();
+    };
+    let mut low = [f64::INFINITY; 2];
+    let mut high = [f64::NEG_INFINITY; 2];
+    for p in paths.iter().filter(|p| !p.rapid) {
+        for q in [p.from, p.to] {
+            if q[2] < top - EPS {
+                for i in 0..2 {
+                    low[i] = low[i].min(q[i]);
+                    high[i] = high[i].max(q[i]);
+                }
+            }
+        }
+    }
+    // The rim of REACH inside the box is where an approach to a profile from outside lands.
+    let inside = |q: &[f64; 3]| (0..2).all(|i| q[i] > low[i] + REACH && q[i] < high[i] - REACH);
+    let reach = (REACH / CELL).ceil() as i64;
+    let mut cleared: HashMap<(i64, i64), f64> = HashMap::new();
+    let mut found = Vec::new();
+    // The moves before the first cut start where the machine file starts, not the program.
+    let first_cut = paths.iter().position(|p| !p.rapid).unwrap_or(paths.len());
+    for path in &paths[first_cut..] {
+        if !path.rapid {
+            for q in walk(path) {
+                let z = cleared.entry(cell(&q)).or_insert(f64::INFINITY);
+                *z = z.min(q[2]);
+            }
+            continue;
+        }
+        let through = walk(path).any(|q| {
+            if q[2] >= top - EPS || !inside(&q) {
+                return false;
+            }
+            let (cx, cy) = cell(&q);
+            let over_cleared = (-reach..=reach).any(|dx| {
+                (-reach..=reach).any(|dy| {
+                    cleared
+                        .get(&(cx + dx, cy + dy))
+                        .is_some_and(|&z| z <= q[2] + EPS)
+                })
+            });
+            !over_cleared
+        });
+        if through {
+            found.push(path.line);
+        }
+    }
+    found
+}
+
+/// Runs `text` on `machine` with the corpus in its library: its segments and whether it ended.
+fn run(text: &str, machine: &Machine, folder: Option<&std::path::Path>) -> (Vec<Segment>, bool) {
+    let mut front = Sinumerik::new(text.as_bytes(), FileId(0), machine);
+    if let Some(folder) = folder {
+        front = front.with_library(Box::new(common::sinumerik_machines::library(folder)));
+    }
+    let run = common::collect(Run::new(front, Kernel::new(machine)));
+    let ended = run.error().is_none()
+        && run
+            .segments
+            .iter()
+            .any(|s| matches!(s.kind, SegmentKind::End { .. }));
+    (run.segments, ended)
+}
+
+#[test]
+fn the_corpus_programs_that_end_rapid_through_no_material_they_cut() {
+    let Some(shared) = common::shared_dir() else {
+        return;
+    };
+    let folder = shared.join("corpus/sinumerik");
+    let mut checked = 0;
+    let mut table =
+        String::from("| program | ended | moves | rapids through material |\n|---|---|---:|---|\n");
+    let mut failures = Vec::new();
+    for path in common::corpus::sorted_files(&folder) {
+        let file = path.file_name().unwrap().to_string_lossy().into_owned();
+        let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
+        let machine = machine_for(&file);
+        let (segments, ended) = run(&text, &machine, Some(&folder));
+        let moves = paths(&segments);
+        let bad = if ended {
+            checked += 1;
+            rapids_through_material(&moves)
+        } else {
+            Vec::new()
+        };
+        table += &format!("| {file} | {ended} | {} | {bad:?} |\n", moves.len());
+        if !bad.is_empty() {
+            failures.push(format!("{file}: rapids through material at lines {bad:?}"));
+        }
+    }
+    println!("{table}");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert!(
+        checked >= 5,
+        "only {checked} corpus programs ran to their end\n{table}"
+    );
+}
+
+/// A face cut at Z0 along Y-5 (the top), then two pockets at Z-5, X0-20 and X40-60 by Y0-20,
+/// each round its outline and once along its middle, Y10: the text (18 lines, ending at X60
+/// Y0 Z-5) before the rapids the tests add.
+const TWO_POCKETS: &str = "G17 G90 G0 X-5 Y-5 Z0\nG1 X65 F100\nG0 Z5\nX0 Y0\n\
+G1 Z-5\nX20\nY20\nX0\nY10\nX20\nG0 Z5\nX40 Y10\nG1 Z-5\nX60\nY20\nX40\nY0\nX60\n";
+
+#[test]
+fn a_planted_rapid_across_the_wall_between_two_pockets_is_caught() {
+    let machine = common::sinumerik::machine();
+    // Up to Z-3, below the top Z0, to the middle line Y10 (along the box's rim X60), then back
+    // to the first pocket: X20 to X40 is the uncut wall (at X30 the nearest cut is 10 mm away,
+    // beyond REACH). Line 21.
+    let text = format!("{TWO_POCKETS}G0 Z-3\nY10\nX10\nM30\n");
+    let (segments, ended) = run(&text, &machine, None);
+    assert!(ended);
+    assert_eq!(rapids_through_material(&paths(&segments)), vec![21]);
+}
+
+#[test]
+fn a_rapid_inside_a_pocket_already_cut_or_above_the_stock_passes() {
+    let machine = common::sinumerik::machine();
+    // Along the second pocket's middle line, cut at Z-5; then above the top Z0 to the first
+    // pocket and down to Z-4 into it (cut at Z-5 there).
+    let text = format!("{TWO_POCKETS}G0 Z-3\nY10\nX40\nZ5\nX10\nZ-4\nM30\n");
+    let (segments, ended) = run(&text, &machine, None);
+    assert!(ended);
+    assert_eq!(
+        rapids_through_material(&paths(&segments)),
+        Vec::<u32>::new()
+    );
+}
