@@ -1,7 +1,7 @@
 //! The virtual probe: what a skip signal can touch on this machine. The machine file's `[probe]`
 //! describes the touch targets (a tool setter at a machine position, part or fixture surfaces as
 //! planes or boxes) and the defaults of Syntec's automatic tool length measurement (the
-//! control's Pr4055-Pr4059). The interpreter asks [`Probe::first_touch`] where a move of the
+//! control's Pr4055-Pr4059). The interpreter asks `Probe::first_touch` where a move of the
 //! tool's tip first meets a target: G31 stops there (interp/skip.rs), G37 and G37.1 measure
 //! against the tool setter alone (interp/tool_measurement.rs).
 //!
