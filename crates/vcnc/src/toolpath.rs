@@ -48,6 +48,9 @@ pub struct ToolMove {
     pub to: [f64; 3],
     /// The arc it follows, if it is one.
     pub arc: Option<ArcPath>,
+    /// A rapid with each axis at its own rate (dog-leg): where its axes come to rest on the way,
+    /// in order, before the end.
+    pub corners: [Option<[f64; 3]>; 2],
     /// The block.
     pub span: Span,
 }
@@ -95,9 +98,17 @@ pub struct ToolFollower {
     shift: Option<[f64; 3]>,
     tool: Option<Tool>,
     spindle: Option<SpindleState>,
+    /// The machine's per-axis rapids, when the follower knows its axes.
+    dog_leg: Option<crate::plan::DogLeg>,
 }
 
 impl ToolFollower {
+    /// Follows a per-axis (dog-leg) rapid of `machine` along the path its axes take, not the
+    /// straight line (see `plan::DogLeg`).
+    pub fn per_axis_rapids(&mut self, machine: &crate::machine::Machine) {
+        self.dog_leg = Some(crate::plan::DogLeg::new(machine));
+    }
+
     /// A follower at the start of a run.
     pub fn new() -> ToolFollower {
         ToolFollower::default()
@@ -140,8 +151,12 @@ impl ToolFollower {
 
     fn follow_segment(&mut self, segment: &Segment) -> Followed {
         let span = segment.span;
+        let mut dog_leg = false;
         let (motion, rapid, arc) = match &segment.kind {
-            SegmentKind::Rapid { motion, .. } => (motion, true, None),
+            SegmentKind::Rapid { motion, per_axis } => {
+                dog_leg = *per_axis;
+                (motion, true, None)
+            }
             SegmentKind::Line { motion, .. } => (motion, false, None),
             SegmentKind::Arc {
                 motion,
@@ -205,11 +220,20 @@ impl ToolFollower {
                 radius: (from[a] - center[a]).hypot(from[b] - center[b]),
             }
         });
+        let mut corners = [None; 2];
+        if let (true, Some(legs)) = (dog_leg, &self.dog_leg) {
+            let points = legs.corners(motion);
+            let inner = &points[..points.len().saturating_sub(1)];
+            for (corner, (_, at)) in corners.iter_mut().zip(inner) {
+                *corner = Some(part(at.xyz()));
+            }
+        }
         Followed::Move(ToolMove {
             rapid,
             from,
             to,
             arc,
+            corners,
             span,
         })
     }
@@ -220,6 +244,7 @@ impl ToolMove {
     /// arcs cut into chords that leave the arc by at most `tolerance` mm.
     pub fn for_each_point(&self, tolerance: f64, mut visit: impl FnMut([f64; 3])) {
         let Some(arc) = self.arc else {
+            self.corners.iter().flatten().for_each(|&p| visit(p));
             visit(self.to);
             return;
         };
@@ -256,6 +281,49 @@ fn arc_steps(radius: f64, sweep: f64, tolerance: f64) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A per-axis rapid of the default machine from (0,0,0) to (100,-30,5): Z comes to rest
+    /// first, then Y, then X: the points visited are the two corners, then the end.
+    #[test]
+    fn a_per_axis_rapid_is_followed_along_its_legs() {
+        use crate::motion::{MachinePos, Move, PathMode};
+        let machine = crate::machine::Machine::default();
+        let motion = Move {
+            from: MachinePos([0.0; 6]),
+            to: MachinePos([100.0, -30.0, 5.0, 0.0, 0.0, 0.0]),
+            path_mode: PathMode::ExactStop,
+            exact_stop: false,
+            smoothing: None,
+            frame: Default::default(),
+            offset: [0.0; 6],
+        };
+        let segment = Segment {
+            kind: SegmentKind::Rapid {
+                motion,
+                per_axis: true,
+            },
+            span: Span::default(),
+            sequence: None,
+        };
+        let mut follower = ToolFollower::new();
+        follower.per_axis_rapids(&machine);
+        let Followed::Move(tool_move) = follower.follow(&Item::Segment(segment)) else {
+            panic!("a move");
+        };
+        let mut points = Vec::new();
+        tool_move.for_each_point(0.01, |p| points.push(p));
+        assert_eq!(points.len(), 3, "{points:?}");
+        assert_eq!(points[0][2], 5.0);
+        assert!(points[0][0] > 0.0 && points[0][0] < 100.0, "{points:?}");
+        assert_eq!(points[1][1..], [-30.0, 5.0]);
+        assert_eq!(points[2], [100.0, -30.0, 5.0]);
+        // Without the machine's axes the follower takes the straight line.
+        let mut straight = ToolFollower::new();
+        let Followed::Move(line) = straight.follow(&Item::Segment(segment)) else {
+            panic!("a move");
+        };
+        assert_eq!(line.corners, [None, None]);
+    }
 
     #[test]
     fn arc_chords_stay_within_the_tolerance() {

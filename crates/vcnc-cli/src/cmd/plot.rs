@@ -58,6 +58,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     let png = is_png(&args.output)?;
     let source = Source::read(&args.program)?;
     let mut path = Toolpath::new();
+    path.per_axis_rapids(&args.machine.machine()?);
     let (texts, mut alarms) = each_item(&source, &args.machine, |item, _| path.add(item))?;
     if let Some((why, span, count)) = path.unfollowed() {
         alarms.push(Alarm::warning(

@@ -163,6 +163,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         (None, Some(mesh)) => Some(mesh.extents()),
         (None, None) => {
             let mut extents = CutExtents::new();
+            extents.per_axis_rapids(&args.machine.machine()?);
             each_item(&source, &args.machine, |item, _| extents.add(item))?;
             match args.stock_top {
                 StockTop::PartZero => extents.stock(),
@@ -183,6 +184,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
         (None, Some(mesh)) => stock::stl_grid(mesh, cell),
         _ => HeightField::new(stock, cell),
     });
+    simulation.per_axis_rapids(&args.machine.machine()?);
     let (texts, mut alarms) = each_item(&source, &args.machine, |item, timing| {
         simulation.add(item, timing);
     })?;

@@ -89,6 +89,11 @@ impl Toolpath {
         Toolpath::default()
     }
 
+    /// Draws `machine`'s per-axis (dog-leg) rapids along the path its axes take.
+    pub fn per_axis_rapids(&mut self, machine: &crate::machine::Machine) {
+        self.follower.per_axis_rapids(machine);
+    }
+
     /// Takes one item of the stream.
     pub fn add(&mut self, item: &Item) {
         match self.follower.follow(item) {

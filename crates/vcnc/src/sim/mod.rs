@@ -42,6 +42,11 @@ impl CutExtents {
         CutExtents::default()
     }
 
+    /// Follows `machine`'s per-axis (dog-leg) rapids along the path its axes take.
+    pub fn per_axis_rapids(&mut self, machine: &crate::machine::Machine) {
+        self.follower.per_axis_rapids(machine);
+    }
+
     /// Takes one item of the stream.
     pub fn add(&mut self, item: &Item) {
         let Followed::Move(motion) = self.follower.follow(item) else {
@@ -202,6 +207,12 @@ impl Simulation {
             events: SimEvents::default(),
             unfollowed: None,
         }
+    }
+
+    /// Follows `machine`'s per-axis (dog-leg) rapids along the path its axes take: a rapid
+    /// into the stock is found where the machine really goes.
+    pub fn per_axis_rapids(&mut self, machine: &crate::machine::Machine) {
+        self.follower.per_axis_rapids(machine);
     }
 
     /// Takes one item of the stream with its timing.
