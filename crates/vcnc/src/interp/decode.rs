@@ -74,7 +74,7 @@ pub(crate) struct Command {
     /// A subprogram call, return or interrupt code (M98, M99, M97, M198, M96): the macro
     /// layer runs it after the block's other words.
     subprogram: Option<(MCode, Value)>,
-    /// The text of the block's first comment, where the parser kept it (statements, G47).
+    /// The text of the first comment of a G47 block (Haas engraving).
     text: Option<Box<str>>,
     /// G65 or G66: the block is a macro call; the words from this index on are its arguments
     /// and were not decoded.
@@ -405,8 +405,8 @@ impl Command {
             && self.p().and_then(|p| p.number.whole()) == Some(1)
     }
 
-    /// The text of the block's first comment, where the parser kept it (blocks with statements,
-    /// G47 engraving).
+    /// The text of the first comment of a G47 block (Haas engraving; the macro layer puts the
+    /// serial number of G47 P1 in its place).
     pub(crate) fn text(&self) -> Option<&str> {
         self.text.as_deref()
     }
@@ -715,9 +715,6 @@ pub(crate) fn decode(
     out: &mut Command,
 ) -> Result<(), Alarm> {
     out.reset(block.span);
-    if let Some(text) = &block.message {
-        out.set_text(text);
-    }
     for (order, word) in block.words.iter().enumerate() {
         if word.number.value.abs() > profile.reading.max_word_value {
             return Err(word_out_of_range(word, profile));
@@ -747,6 +744,16 @@ pub(crate) fn decode(
             continue;
         }
         decode_other(word, order, profile, out)?;
+    }
+    // Only G47 reads the comment's text: a statement block's comment, kept for #3000, is not
+    // copied into its command every time it runs.
+    if let Some(text) = &block.message {
+        if out
+            .group(Group::NonModal)
+            .is_some_and(|g| g.code == GCode::Engrave)
+        {
+            out.set_text(text);
+        }
     }
     Ok(())
 }
