@@ -362,8 +362,9 @@ fn update_tangent(
     if target[a].is_none() && target[b].is_none() && matches!(element, Element::Line { .. }) {
         return;
     }
+    // A unit vector or zero (or NaN): its length need not be measured again.
     let tangent = element.end_tangent();
-    if tangent.length() > 0.0 {
+    if tangent.x.abs() + tangent.y.abs() > 0.0 {
         front.tangent = Some(tangent);
     }
 }

@@ -11,91 +11,92 @@
 
 use super::block::{Address, Block, Value, Word};
 use super::expr::{upper, Expr, ExprKind, UnaryOp};
-use super::scan::{is_blank, Scanner};
+use super::scan::{is_blank, Scanner, POWERS_OF_TEN};
 use crate::syntax::Number;
 
 /// Reads `scanner`'s line into `block` (emptied) if it is a plain one; false, and `block`
 /// holding some of its words, if it is not.
 pub(super) fn read_plain(scanner: &mut Scanner<'_>, block: &mut Block) -> bool {
-    skip_blanks(scanner);
-    if !block_number(scanner, block) {
+    // The line is read by index over its bytes, not through the scanner's general steps: a
+    // long CAM program's parsing is mostly this loop.
+    let text = scanner.text();
+    let mut at = skip_blanks(text, 0);
+    let Some(after_number) = block_number(text, at, block) else {
         return false;
-    }
+    };
+    at = after_number;
     loop {
-        skip_blanks(scanner);
-        let start = scanner.mark();
-        let word = match scanner.peek_byte() {
+        at = skip_blanks(text, at);
+        let start = at;
+        // Each word is made in its place in the block: a word is large, and moved through an
+        // Option it was copied twice.
+        let end = match text.get(at) {
             None | Some(b';') => return true,
             Some(b) if b.is_ascii_alphabetic() => {
-                let after = scanner.text().get(start + 1).copied();
-                if after.is_some_and(|b| b.is_ascii_alphabetic() || b == b'_') {
-                    named(scanner, start)
-                } else if after == Some(b'=') {
-                    // `F=FEED1`: a letter as a name.
-                    named(scanner, start)
+                let after = text.get(start + 1).copied();
+                if after.is_some_and(|b| b.is_ascii_alphabetic() || b == b'_' || b == b'=') {
+                    // `CR=..`, or `F=FEED1`: a letter as a name.
+                    named(scanner, text, start, &mut block.words)
                 } else {
-                    letter_constant(scanner, start)
+                    letter_constant(scanner, text, start, &mut block.words)
                 }
             }
             Some(_) => return false,
         };
-        let Some(word) = word else {
+        let Some(end) = end else {
             return false;
         };
-        if !ends_word(scanner) {
+        if !ends_word(text, end) {
             return false;
         }
-        block.words.push(word);
+        at = end;
     }
 }
 
-fn skip_blanks(scanner: &mut Scanner<'_>) {
-    while scanner.peek_byte().is_some_and(is_blank) {
-        scanner.bump();
-    }
-}
-
-/// `N123` (or none) at the position; false for what the general reader must see: a skip level,
-/// a main block `:`, `N` with `=`.
-fn block_number(scanner: &mut Scanner<'_>, block: &mut Block) -> bool {
-    match scanner.peek_byte() {
-        Some(b'N' | b'n') => {}
-        Some(b'/' | b':') => return false,
-        _ => return true,
-    }
-    let start = scanner.mark();
-    scanner.bump();
-    let mut number = 0u32;
-    while let Some(digit) = scanner.peek_byte().filter(u8::is_ascii_digit) {
-        let Some(n) = number
-            .checked_mul(10)
-            .and_then(|n| n.checked_add(u32::from(digit - b'0')))
-        else {
-            return false;
-        };
-        number = n;
-        scanner.bump();
-    }
-    if scanner.mark() == start + 1 {
-        // `N` and a letter: a name (`NOT`, a label), read as a word.
-        scanner.reset(start);
-        return true;
-    }
-    if scanner.peek_byte() == Some(b'=') {
-        return false;
-    }
-    block.number = Some(number);
-    true
-}
-
-/// After a word: blanks, then the end, a comment or the next word's letter, which must not
-/// be an operator that would go on with the word's expression (`CR=5 DIV 2`).
-fn ends_word(scanner: &mut Scanner<'_>) -> bool {
-    let text = scanner.text();
-    let mut at = scanner.mark();
+/// The position after the blanks from `at`.
+fn skip_blanks(text: &[u8], mut at: usize) -> usize {
     while text.get(at).copied().is_some_and(is_blank) {
         at += 1;
     }
+    at
+}
+
+/// `N123` (or none) at `at`: the position after it; None for what the general reader must
+/// see: a skip level, a main block `:`, `N` with `=`, a number too large.
+fn block_number(text: &[u8], at: usize, block: &mut Block) -> Option<usize> {
+    match text.get(at) {
+        Some(b'N' | b'n') => {}
+        Some(b'/' | b':') => return None,
+        _ => return Some(at),
+    }
+    let mut end = at + 1;
+    let mut number = 0u32;
+    while let Some(digit) = digit(text, end) {
+        number = number.checked_mul(10)?.checked_add(u32::from(digit))?;
+        end += 1;
+    }
+    if end == at + 1 {
+        // `N` and a letter: a name (`NOT`, a label), read as a word.
+        return Some(at);
+    }
+    if text.get(end) == Some(&b'=') {
+        return None;
+    }
+    block.number = Some(number);
+    Some(end)
+}
+
+/// The digit at `at`, if there is one.
+fn digit(text: &[u8], at: usize) -> Option<u8> {
+    text.get(at)
+        .map(|b| b.wrapping_sub(b'0'))
+        .filter(|d| *d < 10)
+}
+
+/// After a word ending at `at`: blanks, then the end, a comment or the next word's letter,
+/// which must not be an operator that would go on with the word's expression (`CR=5 DIV 2`).
+fn ends_word(text: &[u8], at: usize) -> bool {
+    let at = skip_blanks(text, at);
     match text.get(at) {
         None | Some(b';') => true,
         Some(b) if b.is_ascii_alphabetic() => {
@@ -106,15 +107,22 @@ fn ends_word(scanner: &mut Scanner<'_>) -> bool {
             ) {
                 return true;
             }
-            let end = at
-                + text[at..]
-                    .iter()
-                    .take_while(|b| b.is_ascii_alphanumeric() || **b == b'_')
-                    .count();
+            let end = name_end(text, at);
             !is_operator(&text[at..end])
         }
         Some(_) => false,
     }
+}
+
+/// The end of the letters, digits and `_` from `at`.
+fn name_end(text: &[u8], mut at: usize) -> usize {
+    while text
+        .get(at)
+        .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
+    {
+        at += 1;
+    }
+    at
 }
 
 /// The names that are operators between two values.
@@ -126,108 +134,139 @@ fn is_operator(name: &[u8]) -> bool {
 }
 
 /// A letter and a constant written against it (`X-1.5`, `G1`, `Y.5`), not a numeric
-/// extension (`R10=`, `X1=`: then the word's end is no plain one and the line is given up).
-fn letter_constant(scanner: &mut Scanner<'_>, start: usize) -> Option<Word> {
-    let letter = scanner.text()[start].to_ascii_uppercase();
-    scanner.bump();
-    let negative = scanner.take_sign();
-    let number_start = scanner.mark();
-    let value = number(scanner)?;
-    let decimal_point = scanner.text()[number_start..scanner.mark()].contains(&b'.');
-    Some(Word {
+/// extension (`R10=`, `X1=`: then the word's end is no plain one and the line is given up);
+/// the word pushed onto `words`, the position after it.
+fn letter_constant(
+    scanner: &Scanner<'_>,
+    text: &[u8],
+    start: usize,
+    words: &mut Vec<Word>,
+) -> Option<usize> {
+    let letter = text[start].to_ascii_uppercase();
+    let mut at = start + 1;
+    let negative = match text.get(at) {
+        Some(b'-') => {
+            at += 1;
+            true
+        }
+        Some(b'+') => {
+            at += 1;
+            false
+        }
+        _ => false,
+    };
+    let (value, decimal_point, end) = number(text, at)?;
+    words.push(Word {
         address: Address::of_letter(letter),
         value: Value::Constant(Number {
             value: if negative { -value } else { value },
             decimal_point,
             negative,
         }),
-        span: scanner.span(start..scanner.mark()),
-    })
+        span: scanner.span(start..end),
+    });
+    Some(end)
 }
 
-/// A decimal constant at the position (digits, or a point and digits); None for anything else
-/// or a constant the general reader would refuse.
-fn number(scanner: &mut Scanner<'_>) -> Option<f64> {
-    let text = scanner.text();
-    let at = scanner.mark();
-    let starts = match text.get(at) {
-        Some(b) if b.is_ascii_digit() => true,
-        Some(b'.') => text.get(at + 1).is_some_and(u8::is_ascii_digit),
-        _ => false,
-    };
-    if !starts {
+/// The decimal constant at `at` (digits, or a point and digits): its value, whether it has a
+/// point, and the position after it. None for anything else, and for what the general reader
+/// must read: an `EX` exponent, more than 15 digits (the value made here is then not the
+/// correctly rounded one), a second point.
+fn number(text: &[u8], at: usize) -> Option<(f64, bool, usize)> {
+    let mut whole = 0u64;
+    let mut end = at;
+    while let Some(d) = digit(text, end) {
+        whole = whole.wrapping_mul(10).wrapping_add(u64::from(d));
+        end += 1;
+    }
+    let point = text.get(end) == Some(&b'.');
+    let mut decimals = 0;
+    if point {
+        end += 1;
+        let from = end;
+        while let Some(d) = digit(text, end) {
+            whole = whole.wrapping_mul(10).wrapping_add(u64::from(d));
+            end += 1;
+        }
+        decimals = end - from;
+    }
+    let digits = end - at - usize::from(point);
+    if !(1..=15).contains(&digits) {
         return None;
     }
-    scanner.decimal().ok()
+    if text
+        .get(end..end + 2)
+        .is_some_and(|ex| ex.eq_ignore_ascii_case(b"EX"))
+    {
+        return None;
+    }
+    // Both exact in f64 (below 2^53 and a power of ten up to 1e15): the quotient is the
+    // correctly rounded value, as the standard parser's.
+    Some((whole as f64 / POWERS_OF_TEN[decimals], point, end))
 }
 
-/// A name, `=` and a number, a negated number or a variable's name (`CR=-11.7`, `F=FEED1`).
-fn named(scanner: &mut Scanner<'_>, start: usize) -> Option<Word> {
-    scanner.name_rest();
-    let name_end = scanner.mark();
-    let text = scanner.text();
+/// A name, `=` and a number, a negated number or a variable's name (`CR=-11.7`, `F=FEED1`);
+/// the word pushed onto `words`, the position after it.
+fn named(scanner: &Scanner<'_>, text: &[u8], start: usize, words: &mut Vec<Word>) -> Option<usize> {
+    let name_end = name_end(text, start + 1);
     // `==` compares; a blank before `=` and the forms with `(` or `[` are the general reader's.
     if text.get(name_end) != Some(&b'=') || text.get(name_end + 1) == Some(&b'=') {
         return None;
     }
     let address = Address::upper(&text[start..name_end]);
-    scanner.bump();
-    let value = value(scanner)?;
-    Some(Word {
+    let (value, end) = value(scanner, text, name_end + 1)?;
+    words.push(Word {
         address,
         value: Value::Expression(value),
-        span: scanner.span(start..scanner.mark()),
-    })
+        span: scanner.span(start..end),
+    });
+    Some(end)
 }
 
-/// The value after `=`: a number, `-` and a number, or a name without indices or arguments.
-fn value(scanner: &mut Scanner<'_>) -> Option<Expr> {
-    let start = scanner.mark();
-    let text = scanner.text();
+/// The value after `=` at `start`: a number, `-` and a number, or a name without indices or
+/// arguments; the expression and the position after it.
+fn value(scanner: &Scanner<'_>, text: &[u8], start: usize) -> Option<(Expr, usize)> {
     match text.get(start) {
         Some(b'-') => {
-            scanner.bump();
-            let from = scanner.mark();
-            let value = number(scanner)?;
+            let from = start + 1;
+            let (value, _, end) = number(text, from)?;
             let operand = Expr {
                 kind: ExprKind::Number(value),
-                span: scanner.span(from..scanner.mark()),
+                span: scanner.span(from..end),
             };
-            Some(Expr {
+            let negated = Expr {
                 kind: ExprKind::Unary(UnaryOp::Minus, Box::new(operand)),
-                span: scanner.span(start..scanner.mark()),
-            })
+                span: scanner.span(start..end),
+            };
+            Some((negated, end))
         }
         Some(b) if b.is_ascii_alphabetic() || *b == b'_' => {
             // An R parameter's name ends at its digits (`R1X2`), and NOT and B_NOT are
             // operators: the general reader's.
             let r_parameter = b.eq_ignore_ascii_case(&b'R')
                 && text.get(start + 1).is_some_and(u8::is_ascii_digit);
-            scanner.bump();
-            scanner.name_rest();
-            let name = &text[start..scanner.mark()];
+            let end = name_end(text, start + 1);
+            let name = &text[start..end];
             if r_parameter || is_operator(name) {
                 return None;
             }
             // A call or indices follow the name (`(` after blanks, `[` against it).
-            let mut after = scanner.mark();
-            while text.get(after).copied().is_some_and(is_blank) {
-                after += 1;
-            }
-            if text.get(after) == Some(&b'(') || text.get(scanner.mark()) == Some(&b'[') {
+            if text.get(skip_blanks(text, end)) == Some(&b'(') || text.get(end) == Some(&b'[') {
                 return None;
             }
-            Some(Expr {
+            let name = Expr {
                 kind: ExprKind::Name(upper(name)),
-                span: scanner.span(start..scanner.mark()),
-            })
+                span: scanner.span(start..end),
+            };
+            Some((name, end))
         }
         _ => {
-            let value = number(scanner)?;
-            Some(Expr {
+            let (value, _, end) = number(text, start)?;
+            let number = Expr {
                 kind: ExprKind::Number(value),
-                span: scanner.span(start..scanner.mark()),
-            })
+                span: scanner.span(start..end),
+            };
+            Some((number, end))
         }
     }
 }

@@ -384,7 +384,7 @@ fn short_decimal(text: &[u8]) -> Option<f64> {
 }
 
 /// The powers of ten an f64 holds exactly, up to the most decimals of a short number.
-const POWERS_OF_TEN: [f64; 16] = [
+pub(super) const POWERS_OF_TEN: [f64; 16] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
 ];
 
