@@ -66,6 +66,8 @@ pub(super) enum Motion {
     Thread,
     /// G331: tapping with the spindle in position control; G332: its retraction.
     Tap { retract: bool },
+    /// INVCW, INVCCW: along an involute of a base circle (involute.rs).
+    Involute { ccw: bool },
 }
 
 /// The one-block functions vcnc runs.
@@ -217,6 +219,8 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G2" => Motion(self::Motion::Clockwise),
         "G3" => Motion(self::Motion::CounterClockwise),
         "CIP" => Motion(self::Motion::ThroughPoint),
+        "INVCW" => Motion(self::Motion::Involute { ccw: false }),
+        "INVCCW" => Motion(self::Motion::Involute { ccw: true }),
         "CT" => Motion(self::Motion::Tangential),
         "G33" => Motion(self::Motion::Thread),
         "G331" => Motion(self::Motion::Tap { retract: false }),
@@ -340,7 +344,6 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         }
         "G34" | "G35" => OutOfProduct("turning (threads of variable lead)"),
         "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" => OutOfProduct("spline interpolation"),
-        "INVCW" | "INVCCW" => OutOfProduct("involute interpolation"),
         "OEMIPO1" | "OEMIPO2" => OutOfProduct("OEM interpolation"),
         "G931" | "G942" | "G952" | "G962" | "G972" | "G973" | "FPO" => {
             OutOfProduct("feed types of turning and grinding")
@@ -496,6 +499,8 @@ pub(super) fn member(modal: &super::Modal, group: u32) -> i32 {
             Motion::Thread => 10,
             Motion::Tap { retract: false } => 11,
             Motion::Tap { retract: true } => 12,
+            Motion::Involute { ccw: false } => 18,
+            Motion::Involute { ccw: true } => 19,
         },
         6 => match modal.plane {
             Plane::Xy => 1,

@@ -24,6 +24,7 @@ mod flow;
 mod frame;
 mod gcodes;
 mod instructions;
+mod involute;
 mod iso_mode;
 mod language;
 mod motion;

@@ -14,6 +14,7 @@ use super::arcs::{self, Tangential};
 use super::block::Words;
 use super::contour::{AngleStep, CornerKind, CornerSpec, Cut, LineBlock};
 use super::gcodes::{Motion, OneBlock};
+use super::involute;
 use super::polar::{PolarBlock, PolarMove, PolarValue};
 use super::Sinumerik;
 use crate::alarm::{Alarm, AlarmCode};
@@ -240,7 +241,8 @@ pub(super) fn prepare(
         || words.radius.is_some()
         || words.opening.is_some();
     let cip_data = motion == Motion::ThroughPoint && words.via.iter().any(Option::is_some);
-    if !(moves || cip_data || arc && has_arc_data) {
+    let involute_data = matches!(motion, Motion::Involute { .. }) && words.opening.is_some();
+    if !(moves || cip_data || involute_data || arc && has_arc_data) {
         return Ok(Prepared::None);
     }
     // With a rotation in the frame, every geometry axis goes to its programmed value
@@ -309,6 +311,9 @@ pub(super) fn prepare(
         }
         Motion::Thread | Motion::Tap { .. } => {
             return thread(front, words, target, origin);
+        }
+        Motion::Involute { ccw } => {
+            return involute(front, words, target, ccw, origin);
         }
     }
     let element = element.expect("every motion above makes an element");
@@ -511,6 +516,85 @@ fn through_point(
         })
         .collect();
     Ok(Prepared::Chords(tag, points))
+}
+
+/// INVCW, INVCCW (PGsl 9.8): the involute in the plane from p, its base circle's centre I J K
+/// from p (or absolute with AC), radius CR=, to the plane's end point or by AR=; the axis normal
+/// to the plane moves along in proportion (as in a helix). Cut into straight pieces within a
+/// micrometre, as a CIP circle in no machine plane.
+fn involute(
+    front: &mut Sinumerik,
+    words: &Words<'_>,
+    target: [Option<f64>; AXES],
+    ccw: bool,
+    origin: Origin,
+) -> Result<Prepared, Alarm> {
+    let name = if ccw { "INVCCW" } else { "INVCW" };
+    let (a, b, c) = front.modal.plane.axes();
+    let unit = unit(front);
+    let p = front.programmed;
+    let start = V2::new(p[a], p[b]);
+    let centre_of = |i: usize| match words.centre[i] {
+        Some(v) if v.absolute == Some(true) => v.value * unit,
+        Some(v) => p[i] + v.value * unit,
+        None => p[i],
+    };
+    let centre = V2::new(centre_of(a), centre_of(b));
+    let Some((radius, _)) = words.radius else {
+        return Err(Alarm::error(
+            AlarmCode::ArcWithoutCenter,
+            origin.span,
+            format!("{name} needs the base circle's radius CR="),
+        )
+        .with_help("write CR= and the base circle's centre I J K (from the start point)"));
+    };
+    let in_plane = target[a].is_some() || target[b].is_some();
+    let end = match (words.opening, in_plane) {
+        (Some(_), true) => {
+            return Err(Alarm::error(
+                AlarmCode::WordNotAllowed,
+                origin.span,
+                format!("{name} takes its end point or AR=, not both (PGsl 9.8)"),
+            ))
+        }
+        (Some((opening, _)), false) => involute::End::Opening(opening),
+        (None, true) => involute::End::Point(V2::new(
+            target[a].unwrap_or(start.x),
+            target[b].unwrap_or(start.y),
+        )),
+        (None, false) => {
+            return Err(Alarm::error(
+                AlarmCode::ArcEndNotOnCircle,
+                origin.span,
+                format!("{name} needs an end point in the plane or AR="),
+            ))
+        }
+    };
+    let path = involute::Involute::new(start, centre, radius * unit, end, ccw, origin.span)?;
+    let end = match end {
+        involute::End::Point(point) => point,
+        involute::End::Opening(_) => path.end(),
+    };
+    let normal_end = target[c].unwrap_or(p[c]);
+    let pieces = path.pieces(0.001, origin.span)?;
+    let points = (1..=pieces)
+        .map(|k| {
+            let u = k as f64 / pieces as f64;
+            let point = if k == pieces { end } else { path.point(u) };
+            let mut xyz = [0.0; 3];
+            xyz[a] = point.x;
+            xyz[b] = point.y;
+            xyz[c] = p[c] + u * (normal_end - p[c]);
+            xyz
+        })
+        .collect();
+    let mut full = target;
+    full[a] = Some(end.x);
+    full[b] = Some(end.y);
+    full[c] = Some(normal_end);
+    front.tangent = Some(path.end_tangent());
+    advance(front, &full);
+    Ok(Prepared::Chords(tag(full, origin, false, 0), points))
 }
 
 /// G33, G331, G332: the lead from I (X), J (Y) or K (Z), the one of the axis that moves most
