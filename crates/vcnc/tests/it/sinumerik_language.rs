@@ -1915,3 +1915,91 @@ fn a_call_without_its_program_or_with_half_a_block_part_is_a_syntax_alarm() {
         AlarmCode::MacroSyntax
     );
 }
+
+/// INVCCW in G18 (Z-X plane, Z the plane's first axis) with Y along: the base circle about
+/// Z0 X0 of radius 5 from Z10 X0 (K-10 from the start), one half turn of the polar angle out
+/// (AR=180), Y rising 8 on the way. t0 = sqrt 3 (t - atan t = 0.684853); half a turn more is
+/// 3.826446, t1 = 5.207522 (5.207522 - atan 5.207522 = 5.207522 - 1.381076), distance
+/// 5 sqrt(1 + t1^2) = 26.5133 on the ray opposite the start: Z-26.5133 X0 Y8. Every piece's end
+/// lies at distance 5 sqrt(1 + t^2) for a t between t0 and t1, and Y rises with the pieces.
+#[test]
+fn an_involute_in_g18_ends_half_a_turn_out_with_the_normal_axis_along() {
+    let text = "G18 G1 Z10 X0 F1000\nINVCCW K-10 I0 CR=5 AR=180 Y8\nM30\n";
+    let run = run_on(text, &machine());
+    let points = ends_of(&run, text);
+    let last = points.last().copied().unwrap();
+    assert!(close(last, [0.0, 8.0, -26.5133], 1e-3), "{last:?}");
+    let mut y = 0.0;
+    for p in &points[1..] {
+        let distance = p[0].hypot(p[2]);
+        assert!((5.0 - 1e-9..=26.514).contains(&distance), "{p:?}");
+        assert!(p[1] >= y - 1e-12);
+        y = p[1];
+    }
+    assert!(points.len() > 100, "{} pieces", points.len());
+}
+
+/// The involute's alarms (PGsl 9.8, L5765-5778): no CR=, the end point and AR= together, a
+/// start inside the base circle, an end point 0.5 mm off the involute through the start.
+#[test]
+fn involutes_the_control_refuses_alarm() {
+    for (text, code) in [
+        (
+            "G1 X10 F100\nINVCCW I-10 AR=90\n",
+            AlarmCode::ArcWithoutCenter,
+        ),
+        (
+            "G1 X10 F100\nINVCCW X20 I-10 CR=5 AR=90\n",
+            AlarmCode::WordNotAllowed,
+        ),
+        (
+            "G1 X3 F100\nINVCCW I-3 CR=5 AR=90\n",
+            AlarmCode::ArcEndNotOnCircle,
+        ),
+        (
+            "G1 X10 F100\nINVCCW X32.27 Y32.77 I-10 CR=5\n",
+            AlarmCode::ArcEndNotOnCircle,
+        ),
+    ] {
+        let run = run_on(text, &machine());
+        assert_eq!(run.error().map(|a| a.code), Some(code), "{text}");
+    }
+}
+
+/// Several feeds in one block (PGsl 7.10): F7=, F3=, ST=, SR= and FMA[3, X] act only on a
+/// digital input, which a simulation never sets: the block moves at F=20 (5 mm, 15 s), a note
+/// says so once; a negative value, an input bit outside 2-7 or an axis the machine lacks alarm.
+#[test]
+fn several_feeds_in_a_block_leave_the_move_at_its_f_and_check_their_values() {
+    let text = "G0 X100\nG1 X105 F=20 F7=5 F3=2.5 ST=1.5 SR=0.5\nFMA[3, X]=1000 F2=3\nM30\n";
+    let run = run_on(text, &machine());
+    assert_points(
+        &ends_of(&run, text),
+        &[[100.0, 0.0, 0.0], [105.0, 0.0, 0.0]],
+        text,
+    );
+    let feeds: Vec<vcnc::motion::Feed> = run
+        .segments
+        .iter()
+        .filter_map(|s| match &s.kind {
+            SegmentKind::Line { feed, .. } => Some(*feed),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(feeds, [vcnc::motion::Feed::PerMinute(20.0)]);
+    let notes = run
+        .alarms
+        .iter()
+        .filter(|a| a.code == AlarmCode::KeptAsState && a.message.contains("digital input"))
+        .count();
+    assert_eq!(notes, 1);
+    for (text, code) in [
+        ("G1 X5 F100 F7=-1\n", AlarmCode::ValueOutOfRange),
+        ("FMA[8, X]=100\n", AlarmCode::ValueOutOfRange),
+        ("FMA[3, Q]=100\n", AlarmCode::AxisNotOnMachine),
+        ("FMA[3]=100\n", AlarmCode::MacroSyntax),
+    ] {
+        let run = run_on(text, &machine());
+        assert_eq!(run.error().map(|a| a.code), Some(code), "{text}");
+    }
+}

@@ -118,7 +118,7 @@ pub(super) fn read_word(
 
 /// The axis an index or argument names, on the machine: an axis name, or an AXIS variable
 /// holding one (PGsl 1.3, axis variables stand for the axis they hold).
-fn axis_of(
+pub(super) fn axis_of(
     front: &mut Sinumerik,
     kernel: &Kernel,
     expr: &Expr,

@@ -12,7 +12,7 @@ use super::motion::{self, unit};
 use super::predefined::{note_state, unknown_word, user_alarm, written};
 use super::spindle;
 use super::tools;
-use super::{axes, spindles};
+use super::{axes, multi_feed, spindles};
 use super::{Sinumerik, Step};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::{Kernel, Origin};
@@ -408,7 +408,8 @@ fn read<'a>(
                 b'S' | b'M' | b'W' | b'L' | b'F' | b'P'
             )
             && (spindles::read_word(front, kernel, block, word, words)?
-                || axes::read_word(front, kernel, word, words)?)
+                || axes::read_word(front, kernel, word, words)?
+                || multi_feed::read_word(front, kernel, word, words)?)
         {
             continue;
         }

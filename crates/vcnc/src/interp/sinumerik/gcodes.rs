@@ -376,7 +376,7 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
         "GEOAX" | "TOFRAME" | "TOROT" | "TOFRAMEZ" | "TOFRAMEX" | "TOFRAMEY" => {
             "changing the geometry axes or the tool's orientation"
         }
-        "FPR" | "FPRAON" | "FPRAOF" | "FDA" | "FMA" | "FAD" => {
+        "FPR" | "FPRAON" | "FPRAOF" | "FDA" | "FAD" => {
             "feeds derived from another axis or spindle, the handwheel, synchronized actions or soft approach"
         }
         "LFON" | "LFOF" | "LIFTFAST" | "POLF" | "POLFMASK" | "POLFMLIN" | "DITS" | "DITE" => {

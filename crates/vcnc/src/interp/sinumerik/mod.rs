@@ -28,6 +28,7 @@ mod involute;
 mod iso_mode;
 mod language;
 mod motion;
+mod multi_feed;
 mod path_control;
 mod polar;
 mod predefined;
