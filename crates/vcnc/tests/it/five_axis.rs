@@ -512,3 +512,57 @@ proptest! {
         }
     }
 }
+
+/// SINUMERIK TOFRAME (PGsl 4.8) on the C-B head with B at 30: the frame's Z is the tool's
+/// direction, which the kinematics give as B's turn of (0, 0, 1) about Y: (sin 30, 0, cos 30)
+/// = (0.5, 0, 0.866025) up to the sign of the turn. G91 Z10 then moves the head 10 along it and
+/// X10 along the frame's X, (cos 30, 0, -sin 30) by the same sign: the machine's linear axes
+/// move those amounts (the tool keeps its direction, so the pivot moves as the tip). TOROTOF
+/// keeps the frame; TOFRAME with B back at 0 turns nothing: from X0 Y0 Z0, Z5 moves Z alone.
+#[test]
+fn sinumerik_toframe_retracts_along_a_tilted_tool() {
+    let machine = sinumerik_machine(HEAD_HEAD);
+    let kin = kinematics(&machine);
+    let program = "G0 X0 Y0 Z0 B30 C0\nTOFRAME\nG91 G0 Z10\nX10\nTOROTOF\nG90 G0 B0\nTOFRAME\nG0 X0 Y0 Z0\nG91 Z5\nM30\n";
+    let run = common::collect(vcnc::interp::sinumerik::run_str(program, &machine));
+    assert!(run.error().is_none(), "{:?}", run.error());
+    let mut joints = [0.0; 6];
+    joints[4] = 30.0;
+    let axis = kin.forward(&joints, 0.0).axis;
+    let s = 30f64.to_radians().sin().copysign(axis[0]);
+    assert_close(axis, [s, 0.0, 30f64.to_radians().cos()], 1e-9);
+    let start = end_of(&run, 1);
+    let retract = end_of(&run, 3);
+    let across = end_of(&run, 4);
+    let c = 30f64.to_radians().cos();
+    assert_close(
+        [
+            retract[0] - start[0],
+            retract[1] - start[1],
+            retract[2] - start[2],
+        ],
+        [10.0 * s, 0.0, 10.0 * c],
+        1e-9,
+    );
+    assert_close(
+        [
+            across[0] - retract[0],
+            across[1] - retract[1],
+            across[2] - retract[2],
+        ],
+        [10.0 * c, 0.0, -10.0 * s],
+        1e-9,
+    );
+    // B back at 0: the tool along Z again, the frame no turn: Z5 moves Z only.
+    let upright = end_of(&run, 8);
+    let last = end_of(&run, 9);
+    assert_close(
+        [
+            last[0] - upright[0],
+            last[1] - upright[1],
+            last[2] - upright[2],
+        ],
+        [0.0, 0.0, 5.0],
+        1e-9,
+    );
+}

@@ -171,6 +171,26 @@ impl ProgrammableFrame {
         Ok(())
     }
 
+    /// TOFRAME (`rotation_only` false): the frame cleared, then turned by `rotation`; TOROT
+    /// (true): the rotation replaced, translations, scale and mirror kept (PGsl 4.8).
+    ///
+    /// # Errors
+    /// [`FrameError::OutOfRange`] for a rotation that is not a number.
+    pub(crate) fn tool_frame(
+        &mut self,
+        rotation: Matrix,
+        rotation_only: bool,
+    ) -> Result<(), FrameError> {
+        if rotation.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(FrameError::OutOfRange { axis: 0 });
+        }
+        if !rotation_only {
+            *self = ProgrammableFrame::default();
+        }
+        self.rotation = rotation;
+        Ok(())
+    }
+
     /// AROT X Y Z: `R := R·Rz(z)·Ry(y)·Rx(x)`, a turn about the current zero and the already
     /// turned axes (rules 3 and 5).
     ///

@@ -119,6 +119,12 @@ pub(super) enum FrameOp {
     G58,
     /// 840D: the fine translation of the named axes.
     G59,
+    /// TOFRAME, TOROT and their X Y Z forms: the frame along the tool (`tool_frame.rs`);
+    /// TOROT keeps the frame's other components.
+    Tool {
+        applicate: super::tool_frame::Applicate,
+        rotation_only: bool,
+    },
 }
 
 /// The feed types of group 15 that vcnc runs.
@@ -145,6 +151,8 @@ pub(super) fn group(name: &str) -> Option<u8> {
         "G4" | "G63" | "G74" | "G75" | "G147" | "G148" | "G247" | "G248" | "G347" | "G348" => g(2),
         "G17" | "G18" | "G19" => g(6),
         "G40" | "G41" | "G42" => g(7),
+        "TOROTOF" | "TOROT" | "TOROTZ" | "TOROTY" | "TOROTX" | "TOFRAME" | "TOFRAMEZ"
+        | "TOFRAMEY" | "TOFRAMEX" => g(53),
         "G53" | "G153" | "SUPA" => g(9),
         "G60" | "G64" | "G641" | "G642" | "G643" | "G644" | "G645" => g(10),
         "G9" => g(11),
@@ -293,6 +301,22 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "MIRROR" => Frame(FrameOp::Mirror),
         "AMIRROR" => Frame(FrameOp::Amirror),
         "G58" => Frame(FrameOp::G58),
+        "TOFRAME" | "TOFRAMEZ" | "TOFRAMEY" | "TOFRAMEX" | "TOROT" | "TOROTZ" | "TOROTY"
+        | "TOROTX" => {
+            use super::tool_frame::Applicate;
+            let applicate = match name.as_bytes().last() {
+                Some(b'Y') => Applicate::Y,
+                Some(b'X') => Applicate::X,
+                _ => Applicate::Z,
+            };
+            Frame(FrameOp::Tool {
+                applicate,
+                rotation_only: name.starts_with("TOROT"),
+            })
+        }
+        // The tool frame's group back to its default: the frame it made stays (choice,
+        // docs/SINUMERIK.md 5.3).
+        "TOROTOF" => State,
         "G59" => Frame(FrameOp::G59),
         "G40" => Radius(RadiusFunction::Off),
         "G41" => Radius(RadiusFunction::Left),
@@ -373,9 +397,7 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
             "orientation transformations"
         }
         "SCC" => "turning (the transverse axis of a constant cutting rate)",
-        "GEOAX" | "TOFRAME" | "TOROT" | "TOFRAMEZ" | "TOFRAMEX" | "TOFRAMEY" => {
-            "changing the geometry axes or the tool's orientation"
-        }
+        "GEOAX" => "changing the geometry axes",
         "FPR" | "FPRAON" | "FPRAOF" | "FDA" | "FAD" => {
             "feeds derived from another axis or spindle, the handwheel, synchronized actions or soft approach"
         }

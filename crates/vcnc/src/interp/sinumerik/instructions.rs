@@ -64,6 +64,16 @@ pub(super) fn frame_instruction(
             frame.amirror(plain.map(|v| v.is_some()));
             Ok(())
         }
+        FrameOp::Tool {
+            applicate,
+            rotation_only,
+        } => {
+            let direction = super::tool_frame::tool_direction(kernel);
+            frame.tool_frame(
+                super::tool_frame::rotation(direction, applicate),
+                rotation_only,
+            )
+        }
     };
     result.map_err(|error| Alarm::error(AlarmCode::ValueOutOfRange, word.span, error.message()))?;
     kernel.set_programmable(front.frame.to_affine());

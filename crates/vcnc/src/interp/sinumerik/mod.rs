@@ -35,6 +35,7 @@ mod predefined;
 mod program;
 mod spindle;
 mod spindles;
+mod tool_frame;
 mod tools;
 mod value;
 mod vars;
