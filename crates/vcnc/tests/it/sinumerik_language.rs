@@ -2003,3 +2003,29 @@ fn several_feeds_in_a_block_leave_the_move_at_its_f_and_check_their_values() {
         assert_eq!(run.error().map(|a| a.code), Some(code), "{text}");
     }
 }
+
+/// Fast retraction (PGsl 9.14): LFON, DILF=, LFWP, ALF=, POLF[X]=, LFPOS and POLFMASK(X) act
+/// only on an NC stop or fast input during G33, which a run never raises: the thread moves as
+/// written (G18, Z from 5 to -25 at lead K2). ALF= outside 0-8 or not whole, a negative DILF=
+/// and POLF or POLFMASK of an axis the machine lacks alarm.
+#[test]
+fn fast_retraction_is_read_and_checked_and_moves_nothing() {
+    let text = "G18 G0 X10 Z5 S500 M3\nPOLF[X]=IC(20) LFPOS\nPOLFMASK(X)\n\
+                G33 Z-25 K2 LFON DILF=3 LFWP ALF=7\nLFOF\nM30\n";
+    let run = run_on(text, &machine());
+    assert_points(
+        &ends_of(&run, text),
+        &[[10.0, 0.0, 5.0], [10.0, 0.0, -25.0]],
+        text,
+    );
+    for (text, code) in [
+        ("ALF=9\n", AlarmCode::ValueOutOfRange),
+        ("ALF=1.5\n", AlarmCode::ValueOutOfRange),
+        ("DILF=-1\n", AlarmCode::ValueOutOfRange),
+        ("POLF[Q]=5\n", AlarmCode::AxisNotOnMachine),
+        ("POLFMASK(X, Q)\n", AlarmCode::AxisNotOnMachine),
+    ] {
+        let run = run_on(text, &machine());
+        assert_eq!(run.error().map(|a| a.code), Some(code), "{text}");
+    }
+}

@@ -529,6 +529,8 @@ fn read<'a>(
             "OVRRAP" | "OVRA" | "ACC" | "SETMS" => {
                 note_state(front, address, word, &mut words.warnings);
             }
+            "DILF" | "ALF" | "POLF" | "POLFMASK" | "POLFMLIN"
+                if super::lift_fast::read_word(front, kernel, word, words)? => {}
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
             "S" => words.speed = Some((number(front, kernel, word)?, word.span)),

@@ -151,6 +151,8 @@ pub(super) fn group(name: &str) -> Option<u8> {
         "G4" | "G63" | "G74" | "G75" | "G147" | "G148" | "G247" | "G248" | "G347" | "G348" => g(2),
         "G17" | "G18" | "G19" => g(6),
         "G40" | "G41" | "G42" => g(7),
+        "LFON" | "LFOF" => g(41),
+        "LFTXT" | "LFWP" | "LFPOS" => g(46),
         "TOROTOF" | "TOROT" | "TOROTZ" | "TOROTY" | "TOROTX" | "TOFRAME" | "TOFRAMEZ"
         | "TOFRAMEY" | "TOFRAMEX" => g(53),
         "G53" | "G153" | "SUPA" => g(9),
@@ -317,6 +319,8 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         // The tool frame's group back to its default: the frame it made stays (choice,
         // docs/SINUMERIK.md 5.3).
         "TOROTOF" => State,
+        // Fast retraction: acts on an NC stop or a fast input during G33 only (lift_fast.rs).
+        "LFON" | "LFOF" | "LFTXT" | "LFWP" | "LFPOS" => State,
         "G59" => Frame(FrameOp::G59),
         "G40" => Radius(RadiusFunction::Off),
         "G41" => Radius(RadiusFunction::Left),
@@ -401,7 +405,7 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
         "FPR" | "FPRAON" | "FPRAOF" | "FDA" | "FAD" => {
             "feeds derived from another axis or spindle, the handwheel, synchronized actions or soft approach"
         }
-        "LFON" | "LFOF" | "LIFTFAST" | "POLF" | "POLFMASK" | "POLFMLIN" | "DITS" | "DITE" => {
+        "LIFTFAST" | "DITS" | "DITE" => {
             "fast retraction and thread run-in or run-out of turning"
         }
         "VELOLIMA" | "ACCLIMA" | "JERKLIMA" | "EGONSYN" => {

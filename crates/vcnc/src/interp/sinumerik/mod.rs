@@ -27,6 +27,7 @@ mod instructions;
 mod involute;
 mod iso_mode;
 mod language;
+mod lift_fast;
 mod motion;
 mod multi_feed;
 mod path_control;
