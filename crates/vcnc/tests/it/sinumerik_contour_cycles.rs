@@ -9,7 +9,7 @@ use vcnc::AlarmCode;
 
 use crate::common::sinumerik::machine;
 use crate::sinumerik_cycles::{
-    assert_moves, cycle_alarm, error, moves, pocket_machine, run, Move, POCKET_START,
+    assert_moves, cycle_alarm, error, moves, moves_with, pocket_machine, run, Move, POCKET_START,
 };
 
 /// The moves of `text` on the pocket machine after the positioning before the cycle.
@@ -201,4 +201,119 @@ fn cycle79_alarms_give_their_numbers() {
         &machine(),
     );
     assert!(alarm.message.starts_with("cycle alarm 61000"), "{alarm:?}");
+}
+
+/// A square 40 × 40 from (0, 0) to (40, 40), clockwise from the middle of its bottom side,
+/// between the labels C1 and C1E after the program's end.
+const SQUARE: &str = "C1: G1 X20 Y0\nX0\nY40\nX40\nY0\nC1E: X20\n";
+
+#[test]
+fn cycle72_goes_round_a_square_left_of_it_with_a_straight_approach() {
+    // CYCLE72(KNAME "C1:C1E", RTP 10, RFP 0, SDIS 1, DP -5, MID 0, FAL 0, FALD 0, FFP1 400,
+    // FFD 100, VARI 1 (roughing, rapid between levels, up to RTP), RL 41, AS1 1 (straight,
+    // tangential, in the plane), LP1 10, FF3 300, AS2 1, LP2 10). Going clockwise round the
+    // square, left of it is outside: the tool centre 5 (the radius) outside each side, round
+    // each corner on the transition circle of radius 5 about it (G450). It starts at (20, -5)
+    // going -X: the way in starts 10 behind it at (30, -5), the way out ends 10 beyond the
+    // end (20, -5) at (10, -5). One level at Z-5.
+    let text = format!(
+        "{POCKET_START}CYCLE72(\"C1:C1E\",10,0,1,-5,0,0,0,400,100,1,41,1,10,300,1,10)\nM30\n{SQUARE}"
+    );
+    let segments = run(&text, &pocket_machine());
+    let got = moves(&segments)[1..].to_vec();
+    let z = -5.0;
+    let wanted = [
+        ('R', [30.0, -5.0, 10.0]),
+        ('R', [30.0, -5.0, 1.0]),
+        ('L', [30.0, -5.0, z]),
+        ('L', [20.0, -5.0, z]),
+        ('L', [0.0, -5.0, z]),
+        ('A', [-5.0, 0.0, z]),
+        ('L', [-5.0, 40.0, z]),
+        ('A', [0.0, 45.0, z]),
+        ('L', [40.0, 45.0, z]),
+        ('A', [45.0, 40.0, z]),
+        ('L', [45.0, 0.0, z]),
+        ('A', [40.0, -5.0, z]),
+        ('L', [20.0, -5.0, z]),
+        ('L', [10.0, -5.0, z]),
+        ('R', [10.0, -5.0, 10.0]),
+    ];
+    assert_moves(&got, &wanted);
+    // Down at FFD, the way in and the contour's five lines at FFP1, out at FF3.
+    assert_eq!(
+        crate::sinumerik_cycles::line_feeds(&segments),
+        [100.0, 400.0, 400.0, 400.0, 400.0, 400.0, 400.0, 300.0]
+    );
+    // The corners are arcs clockwise about the square's corners.
+    assert!(segments.iter().all(|s| !matches!(
+        s.kind,
+        vcnc::SegmentKind::Arc {
+            direction: vcnc::motion::ArcDirection::CounterClockwise,
+            ..
+        }
+    )));
+}
+
+#[test]
+fn cycle72_on_the_contour_follows_the_programmed_points() {
+    // The same square with RL 40: the tool centre on the contour, no corner arcs; the way in
+    // 10 behind (20, 0) along the first side's direction -X, at (30, 0); out to (10, 0).
+    let text = format!(
+        "{POCKET_START}CYCLE72(\"C1:C1E\",10,0,1,-5,0,0,0,400,100,1,40,1,10,300,1,10)\nM30\n{SQUARE}"
+    );
+    let got = cycle_moves(&text);
+    let z = -5.0;
+    let wanted = [
+        ('R', [30.0, 0.0, 10.0]),
+        ('R', [30.0, 0.0, 1.0]),
+        ('L', [30.0, 0.0, z]),
+        ('L', [20.0, 0.0, z]),
+        ('L', [0.0, 0.0, z]),
+        ('L', [0.0, 40.0, z]),
+        ('L', [40.0, 40.0, z]),
+        ('L', [40.0, 0.0, z]),
+        ('L', [20.0, 0.0, z]),
+        ('L', [10.0, 0.0, z]),
+        ('R', [10.0, 0.0, 10.0]),
+    ];
+    assert_moves(&got, &wanted);
+}
+
+/// An open contour in a subprogram: along X from (0, 0) to (30, 0), a quarter circle G3 of
+/// radius 10 about (30, 10) up to (40, 10), and up to (40, 30).
+const KONTUR: &str = "PROC KONTUR\nG1 X0 Y0\nX30\nG3 X40 Y10 CR=10\nG1 Y30\nM17\n";
+
+#[test]
+fn cycle72_mills_a_subprograms_contour_right_of_it_in_levels_with_circles_in_and_out() {
+    // CYCLE72(KNAME "KONTUR", RTP 10, RFP 0, SDIS 1, DP -5, MID 2.5, FAL 0.5, FALD 0, FFP1 400,
+    // FFD 100, VARI 101 (roughing, rapid between levels, up to RFP+SDIS at the contour's end),
+    // RL 42, AS1 2 (quarter circle) LP1 5, FF3 300, AS2 3 (semicircle) LP2 5). Right of the
+    // contour at 5 + 0.5: the line at Y-5.5 from X0 to X30, the arc about (30, 10) of radius
+    // 15.5 to (45.5, 10), the line at X45.5 up to Y30. The way in: the right normal of +X is
+    // -Y, the circle's centre 5 below the start (0, -5.5) at (0, -10.5), the way in starts a
+    // quarter before, at (-5, -10.5), clockwise. The way out: the right normal of +Y is +X,
+    // the centre (50.5, 30), the semicircle ends at (55.5, 30), clockwise. Levels -2.5, -5;
+    // between them up to RFP+SDIS 1, over to the way in, down to 1 above the cut level.
+    let text = format!(
+        "{POCKET_START}CYCLE72(\"KONTUR\",10,0,1,-5,2.5,0.5,0,400,100,101,42,2,5,300,3,5)\nM30\n"
+    );
+    let got = moves_with(&text, &[("KONTUR.SPF", KONTUR)], &pocket_machine())[1..].to_vec();
+    let mut wanted = vec![('R', [-5.0, -10.5, 10.0]), ('R', [-5.0, -10.5, 1.0])];
+    for z in [-2.5, -5.0] {
+        if z < -2.5 {
+            wanted.extend([('R', [-5.0, -10.5, 1.0]), ('R', [-5.0, -10.5, -1.5])]);
+        }
+        wanted.extend([
+            ('L', [-5.0, -10.5, z]),
+            ('A', [0.0, -5.5, z]),
+            ('L', [30.0, -5.5, z]),
+            ('A', [45.5, 10.0, z]),
+            ('L', [45.5, 30.0, z]),
+            ('A', [55.5, 30.0, z]),
+            ('R', [55.5, 30.0, 1.0]),
+        ]);
+    }
+    wanted.push(('R', [55.5, 30.0, 10.0]));
+    assert_moves(&got, &wanted);
 }

@@ -63,7 +63,7 @@ pub(crate) fn assert_moves(got: &[Move], wanted: &[Move]) {
 }
 
 /// The feed of every cutting line in order, mm/min.
-fn line_feeds(segments: &[Segment]) -> Vec<f64> {
+pub(crate) fn line_feeds(segments: &[Segment]) -> Vec<f64> {
     segments
         .iter()
         .filter_map(|s| match &s.kind {
@@ -670,15 +670,14 @@ fn cycle61_faces_the_rectangle_in_rows_from_outside_it() {
 }
 
 /// The moves of `text` with the subprograms of `library`.
-fn moves_with(text: &str, programs: &[(&str, &str)]) -> Vec<Move> {
+pub(crate) fn moves_with(text: &str, programs: &[(&str, &str)], machine: &Machine) -> Vec<Move> {
     let mut library = MemoryLibrary::new();
     for (k, (name, program)) in programs.iter().enumerate() {
         library.insert_named(name, FileId(k as u32 + 1), program);
     }
-    let machine = machine();
     let front_end =
-        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
-    let run = collect(Run::new(front_end, Kernel::new(&machine)));
+        Sinumerik::new(text.as_bytes(), FileId(0), machine).with_library(Box::new(library));
+    let run = collect(Run::new(front_end, Kernel::new(machine)));
     assert!(run.error().is_none(), "{:?}", run.alarms);
     moves(&run.segments)
 }
@@ -693,7 +692,7 @@ fn a_pattern_runs_a_modal_subprogram_at_each_position_before_the_next() {
         "PROC DRILL(REAL DEPTH)\nG1 Z=DEPTH\nG0 Z5\nM17\n",
         "PROC DRILL(REAL DEPTH)\nG1 Z=DEPTH\nG0 Z5\n",
     ] {
-        let got = moves_with(text, &[("DRILL.SPF", drill)]);
+        let got = moves_with(text, &[("DRILL.SPF", drill)], &machine());
         let mut wanted = vec![('R', [0.0, 0.0, 5.0])];
         for x in [10.0, 20.0, 30.0] {
             wanted.extend([

@@ -20,10 +20,12 @@
 //! Never: move an axis outside the plane and its tool axis, or leave the programmed position
 //! behind the machine's (the next block continues from where the cycle ends).
 
+mod contour_milling;
 mod drilling;
 mod facing;
 mod high_speed;
 mod multi_edge;
+mod named_contour;
 mod params;
 mod patterns;
 mod place;
@@ -44,11 +46,11 @@ use crate::source::Span;
 use std::collections::HashSet;
 
 /// The cycles vcnc runs itself.
-const BUILT_IN: [&str; 26] = [
+const BUILT_IN: [&str; 27] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
     "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE71", "CYCLE76", "CYCLE77", "CYCLE800",
-    "CYCLE832", "CYCLE79",
+    "CYCLE832", "CYCLE79", "CYCLE72",
 ];
 
 /// True when `name` is a standard cycle vcnc runs.
@@ -129,6 +131,7 @@ fn run(front: &mut Sinumerik, kernel: &mut Kernel, call: &Call) -> Result<(), Al
                 .and_then(|positions| patterns::visit(front, kernel, &positions))
         }
         "CYCLE800" => swivel::run(front, kernel, &params),
+        "CYCLE72" => contour_milling::run(front, kernel, &params),
         _ => run_here(front, kernel, call, &params),
     };
     // The feed programmed before the call is in force again after it.
