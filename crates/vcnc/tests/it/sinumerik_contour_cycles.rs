@@ -207,6 +207,23 @@ fn cycle79_alarms_give_their_numbers() {
 /// between the labels C1 and C1E after the program's end.
 const SQUARE: &str = "C1: G1 X20 Y0\nX0\nY40\nX40\nY0\nC1E: X20\n";
 
+/// The tool centre's way round [`SQUARE`] at `z`, 5 (the tool radius) left of it, outside,
+/// from (20, -5): along each side, round each corner clockwise on the transition circle of
+/// radius 5 about it (G450), from one side's normal to the next one's.
+fn square_outside(z: f64) -> [Move; 9] {
+    [
+        ('L', [0.0, -5.0, z]),
+        ('A', [-5.0, 0.0, z]),
+        ('L', [-5.0, 40.0, z]),
+        ('A', [0.0, 45.0, z]),
+        ('L', [40.0, 45.0, z]),
+        ('A', [45.0, 40.0, z]),
+        ('L', [45.0, 0.0, z]),
+        ('A', [40.0, -5.0, z]),
+        ('L', [20.0, -5.0, z]),
+    ]
+}
+
 #[test]
 fn cycle72_goes_round_a_square_left_of_it_with_a_straight_approach() {
     // CYCLE72(KNAME "C1:C1E", RTP 10, RFP 0, SDIS 1, DP -5, MID 0, FAL 0, FALD 0, FFP1 400,
@@ -227,18 +244,11 @@ fn cycle72_goes_round_a_square_left_of_it_with_a_straight_approach() {
         ('R', [30.0, -5.0, 1.0]),
         ('L', [30.0, -5.0, z]),
         ('L', [20.0, -5.0, z]),
-        ('L', [0.0, -5.0, z]),
-        ('A', [-5.0, 0.0, z]),
-        ('L', [-5.0, 40.0, z]),
-        ('A', [0.0, 45.0, z]),
-        ('L', [40.0, 45.0, z]),
-        ('A', [45.0, 40.0, z]),
-        ('L', [45.0, 0.0, z]),
-        ('A', [40.0, -5.0, z]),
-        ('L', [20.0, -5.0, z]),
-        ('L', [10.0, -5.0, z]),
-        ('R', [10.0, -5.0, 10.0]),
-    ];
+    ]
+    .into_iter()
+    .chain(square_outside(z))
+    .chain([('L', [10.0, -5.0, z]), ('R', [10.0, -5.0, 10.0])])
+    .collect::<Vec<_>>();
     assert_moves(&got, &wanted);
     // Down at FFD, the way in and the contour's five lines at FFP1, out at FF3.
     assert_eq!(
@@ -316,4 +326,132 @@ fn cycle72_mills_a_subprograms_contour_right_of_it_in_levels_with_circles_in_and
     }
     wanted.push(('R', [55.5, 30.0, 10.0]));
     assert_moves(&got, &wanted);
+}
+
+#[test]
+fn cycle72_in_space_goes_down_along_a_normal_way_in_and_back_at_ff3() {
+    // The square with RL 41, VARI 212 (finishing: no allowance FAL; FF3 between levels; up by
+    // SDIS at the contour's end), MID 2, DP -4 (levels -2, -4), AS1 14 (along the normal, in
+    // space) LP1 8, AS2 11 (straight and tangential, in space) with LP2 left out (LP1's 8).
+    // Left of -X is -Y: the way in starts 8 below the start (20, -5), at (20, -13), and goes
+    // down with the move, from the safety plane 1 to the level; the way out goes from the end
+    // (20, -5) 8 on along -X and up by SDIS, to (12, -5); that is SDIS above the level, so no
+    // lift; then at FF3 back to the way in, and down along it to the next level.
+    let text = format!(
+        "{POCKET_START}CYCLE72(\"C1:C1E\",10,0,1,-4,2,0.5,0,400,100,212,41,14,8,300,11)\nM30\n{SQUARE}"
+    );
+    let segments = run(&text, &pocket_machine());
+    let got = moves(&segments)[1..].to_vec();
+    let mut wanted = vec![('R', [20.0, -13.0, 10.0]), ('R', [20.0, -13.0, 1.0])];
+    for z in [-2.0, -4.0] {
+        if z < -2.0 {
+            wanted.push(('L', [20.0, -13.0, -1.0]));
+        }
+        // Down along the way in; round; out along the way out.
+        wanted.push(('L', [20.0, -5.0, z]));
+        wanted.extend(square_outside(z));
+        wanted.push(('L', [12.0, -5.0, z + 1.0]));
+    }
+    wanted.push(('R', [12.0, -5.0, 10.0]));
+    assert_moves(&got, &wanted);
+    // Per level: in at FFD, five lines at FFP1, out at FF3; between the levels FF3.
+    let level = [100.0, 400.0, 400.0, 400.0, 400.0, 400.0, 300.0];
+    let feeds = [&level[..], &[300.0], &level[..]].concat();
+    assert_eq!(crate::sinumerik_cycles::line_feeds(&segments), feeds);
+}
+
+#[test]
+fn cycle72_alarms_give_their_numbers() {
+    let cycle =
+        |parameters: &str| format!("{POCKET_START}CYCLE72(\"C1:C1E\",{parameters})\nM30\n{SQUARE}");
+    let cases = [
+        // The depth above the reference plane, RTP below it.
+        ("10,0,1,5,0,0,0,400,100,1,41,1,10", "cycle alarm 61101"),
+        ("-10,0,1,-5,0,0,0,400,100,1,41,1,10", "cycle alarm 61101"),
+        // VARI: units 3, tens 2, hundreds 4.
+        ("10,0,1,-5,0,0,0,400,100,3,41,1,10", "cycle alarm 61002"),
+        ("10,0,1,-5,0,0,0,400,100,21,41,1,10", "cycle alarm 61002"),
+        ("10,0,1,-5,0,0,0,400,100,401,41,1,10", "cycle alarm 61002"),
+        // FALD 2 above MID 1.
+        ("10,0,1,-5,1,0,2,400,100,1,41,1,10", "cycle alarm 61110"),
+    ];
+    for (parameters, number) in cases {
+        assert_eq!(cycle_alarm(&cycle(parameters)), number, "{parameters}");
+    }
+    // RL 41 without a tool edge: 61000; RL 40 needs none.
+    let no_tool = |rl: u32| {
+        format!(
+            "G0 X0 Y0 Z10\nF100\nCYCLE72(\"C1:C1E\",10,0,1,-5,0,0,0,400,100,1,{rl},1,10)\nM30\n{SQUARE}"
+        )
+    };
+    let alarm = error(&no_tool(41), &machine());
+    assert!(alarm.message.starts_with("cycle alarm 61000"), "{alarm:?}");
+    assert!(!run(&no_tool(40), &machine()).is_empty());
+    // RL, AS1 and AS2 that are none of their values: V007.
+    for parameters in [
+        "10,0,1,-5,0,0,0,400,100,1,43,1,10",
+        "10,0,1,-5,0,0,0,400,100,1,41,5,10",
+        "10,0,1,-5,0,0,0,400,100,1,41,0,10",
+        "10,0,1,-5,0,0,0,400,100,1,41,21,10",
+        "10,0,1,-5,0,0,0,400,100,1,41,1,10,300,7",
+    ] {
+        let alarm = error(&cycle(parameters), &pocket_machine());
+        assert_eq!(
+            alarm.code,
+            AlarmCode::ValueOutOfRange,
+            "{parameters}: {alarm:?}"
+        );
+    }
+}
+
+#[test]
+fn cycle72_names_what_is_wrong_with_its_contour() {
+    let code = |text: &str, programs: &[(&str, &str)]| {
+        let mut library = vcnc::interp::MemoryLibrary::new();
+        for (k, (name, program)) in programs.iter().enumerate() {
+            library.insert_named(name, vcnc::source::FileId(k as u32 + 1), program);
+        }
+        let machine = pocket_machine();
+        let front_end = vcnc::interp::sinumerik::Sinumerik::new(
+            text.as_bytes(),
+            vcnc::source::FileId(0),
+            &machine,
+        )
+        .with_library(Box::new(library));
+        let run = crate::common::collect(vcnc::interp::Run::new(
+            front_end,
+            vcnc::interp::Kernel::new(&machine),
+        ));
+        let alarm = run.error().cloned().expect("an alarm");
+        assert!(alarm.span.is_some(), "{alarm:?}");
+        alarm.code
+    };
+    let call = |kname: &str| {
+        format!("{POCKET_START}CYCLE72({kname},10,0,1,-5,0,0,0,400,100,1,41,1,10)\nM30\n")
+    };
+    // No KNAME, a label not in the program, a program not found.
+    assert_eq!(code(&call(""), &[]), AlarmCode::MissingValue);
+    assert_eq!(
+        code(&format!("{}{SQUARE}", call("\"C1:C9\"")), &[]),
+        AlarmCode::SequenceNotFound
+    );
+    assert_eq!(code(&call("\"NOWHERE\""), &[]), AlarmCode::ProgramNotFound);
+    // A contour with no element in the plane; one with a rounding (RND needs the blocks
+    // around it).
+    let empty = ("EMPTY.SPF", "G1 X0 Y0\nZ5\nM17\n");
+    assert_eq!(
+        code(&call("\"EMPTY\""), &[empty]),
+        AlarmCode::ContourDefinition
+    );
+    let round = ("ROUND.SPF", "G1 X0 Y0\nX10 RND=2\nY10\nM17\n");
+    assert_eq!(
+        code(&call("\"ROUND\""), &[round]),
+        AlarmCode::NotSupportedYet
+    );
+    // Left of a G3 quarter circle of radius 3 is its inside: the tool's radius 5 does not fit.
+    let small = ("SMALL.SPF", "G1 X0 Y0\nX10\nG3 X13 Y3 CR=3\nG1 Y10\nM17\n");
+    assert_eq!(
+        code(&call("\"SMALL\""), &[small]),
+        AlarmCode::CutterCompensation
+    );
 }

@@ -144,11 +144,12 @@ impl PathMilling {
         let feed = |index: usize| p.number(index).filter(|f| *f > 0.0);
         let approach = Way::read(p, 12, 13)?;
         let retraction = match p.or_zero(15).round() as i64 {
-            0 => Way {
-                size: p.length(16).unwrap_or(approach.size).abs(),
-                ..approach
-            },
+            0 => approach,
             _ => Way::read(p, 15, 16)?,
+        };
+        let retraction = Way {
+            size: p.length(16).unwrap_or(approach.size).abs(),
+            ..retraction
         };
         Ok(PathMilling {
             levels,
@@ -479,6 +480,10 @@ impl<'a> Pass<'a> {
 
     /// Back to the way in for the next level: in rapid, or at FF3 (VARI's tens 1).
     fn between(&mut self, entry: V2) -> Result<(), Alarm> {
+        let here = self.at.in_plane();
+        if (entry.x - here.0).hypot(entry.y - here.1) < 1e-9 {
+            return Ok(());
+        }
         if self.milling.linear_between {
             self.set_feed(self.milling.retract_feed);
             self.at.feed_to(self.kernel, point(entry), None)
