@@ -1,6 +1,6 @@
 //! SINUMERIK's standard cycles (CYCLE81 ... CYCLE89, CYCLE840, HOLES1, HOLES2, CYCLE801,
-//! CYCLE802, POCKET3, POCKET4, SLOT1, SLOT2, LONGHOLE, CYCLE61, CYCLE71, CYCLE76, CYCLE77,
-//! CYCLE79, CYCLE800, and CYCLE832, the high-speed settings, in `high_speed.rs`)
+//! CYCLE802, POCKET3, POCKET4, SLOT1, SLOT2, LONGHOLE, CYCLE61, CYCLE71, CYCLE72, CYCLE76,
+//! CYCLE77, CYCLE79, CYCLE800, and CYCLE832, the high-speed settings, in `high_speed.rs`)
 //! built into the front end: called by name like a subprogram, directly or through MCALL, when
 //! neither the program's directory nor `--lib` has a program of that name (a machine's own
 //! cycle wins).
@@ -11,8 +11,9 @@
 //! arcs and threads through the kernel, so the planner times them. A drilling cycle drills
 //! where it is called: the programmed position in the plane in force (G17: X Y, along Z). The
 //! cycles by kind: `drilling.rs`, `patterns.rs`, `pockets.rs` (with `rings.rs`, the closed
-//! paths that clear a level), `slots.rs`, `facing.rs`, `spigots.rs`, `multi_edge.rs`, and the
-//! swivel CYCLE800 (`swivel.rs`).
+//! paths that clear a level), `slots.rs`, `facing.rs`, `spigots.rs`, `multi_edge.rs`, path
+//! milling along a named contour (`contour_milling.rs`, `named_contour.rs`), and the swivel
+//! CYCLE800 (`swivel.rs`).
 //!
 //! The parameter lists are the cycles manual's; the meanings vcnc had to infer are marked so
 //! here and in docs/SINUMERIK.md ("Standard cycles").
