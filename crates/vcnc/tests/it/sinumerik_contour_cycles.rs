@@ -455,3 +455,30 @@ fn cycle72_names_what_is_wrong_with_its_contour() {
         AlarmCode::CutterCompensation
     );
 }
+
+/// Each parameter of a working CYCLE72 call replaced in turn by odd values (left out, zero,
+/// negative, tiny, huge) ends in moves or an alarm with a span: never a panic or a hang.
+#[test]
+fn cycle72_with_any_one_parameter_changed_ends_in_moves_or_an_alarm() {
+    const BASE: [&str; 16] = [
+        "10", "0", "1", "-5", "2", "0.5", "0", "400", "100", "101", "41", "2", "5", "300", "3", "5",
+    ];
+    const VALUES: [&str; 12] = [
+        "", "0", "1", "-1", "2", "-5", "10", "42", "0.001", "1000000", "-0.5", "113",
+    ];
+    let machine = pocket_machine();
+    for index in 0..BASE.len() {
+        for value in VALUES {
+            let mut parameters = BASE;
+            parameters[index] = value;
+            let text = format!(
+                "{POCKET_START}CYCLE72(\"C1:C1E\",{})\nM30\n{SQUARE}",
+                parameters.join(",")
+            );
+            let run = crate::common::collect(vcnc::interp::sinumerik::run_str(&text, &machine));
+            if let Some(alarm) = run.error() {
+                assert!(alarm.span.is_some(), "{text}\n{alarm:?}");
+            }
+        }
+    }
+}

@@ -15,6 +15,9 @@
 //!
 //! Never: cut a level before the tool has gone down to it at the way in, or leave the tool
 //! below the retraction plane at the end.
+//!
+//! The file's seam, should it grow: `ToolPath` (the tool centre's path, from the contour and
+//! the compensation's corners) above the moves (`Pass`).
 
 use super::named_contour;
 use super::pockets::tool_radius;
@@ -142,10 +145,10 @@ impl PathMilling {
             }
         };
         let feed = |index: usize| p.number(index).filter(|f| *f > 0.0);
-        let approach = Way::read(p, 12, 13)?;
+        let approach = Way::read(p, "AS1", 12, 13)?;
         let retraction = match p.or_zero(15).round() as i64 {
             0 => approach,
-            _ => Way::read(p, 15, 16)?,
+            _ => Way::read(p, "AS2", 15, 16)?,
         };
         let retraction = Way {
             size: p.length(16).unwrap_or(approach.size).abs(),
@@ -155,7 +158,8 @@ impl PathMilling {
             levels,
             step_down,
             offset,
-            bottom: levels.depth + bottom_allowance,
+            // An allowance deeper than the cut leaves one level at the reference plane.
+            bottom: (levels.depth + bottom_allowance).min(levels.reference),
             plane_feed: feed(8),
             depth_feed: feed(9),
             retract_feed: feed(14).or(feed(8)),
@@ -183,8 +187,8 @@ impl PathMilling {
 }
 
 impl Way {
-    /// AS at `shape` and LP at `size`: V007 for a way that is none.
-    fn read(p: &Params, shape: usize, size: usize) -> Result<Way, Alarm> {
+    /// AS1 or AS2 (`name`) at `shape` and LP1 or LP2 at `size`: V007 for a way that is none.
+    fn read(p: &Params, name: &str, shape: usize, size: usize) -> Result<Way, Alarm> {
         let written = p.or_zero(shape).round() as i64;
         let kind = match (written % 10, written / 10) {
             (1, 0..=1) => Shape::Tangent,
@@ -192,7 +196,6 @@ impl Way {
             (3, 0..=1) => Shape::Half,
             (4, 0..=1) => Shape::Normal,
             _ => {
-                let name = if shape == 12 { "AS1" } else { "AS2" };
                 return Err(out_of_range(
                     p,
                     name,
