@@ -482,3 +482,30 @@ fn cycle72_with_any_one_parameter_changed_ends_in_moves_or_an_alarm() {
         }
     }
 }
+
+#[test]
+fn cycle72_reads_variables_increments_and_centres_in_its_contour() {
+    // The contour between C2 and C2E: the start X=R1 (R1 = 2) Y0; G91 X10: a line to (12, 0);
+    // G3 X10 Y10 I0 J10: an arc counter-clockwise about (12, 0) + (0, 10) to (22, 10); G90 Y30:
+    // a line up to (22, 30). RL 40, AS1 1 LP1 5: the way in starts 5 behind the start along
+    // +X, at (-3, 0); the way out (AS2 as AS1, LP2 left out: 5) ends 5 on along +Y, at
+    // (22, 35). VARI 1: one level at -3, then up to RTP.
+    let text = format!(
+        "R1=2\n{POCKET_START}CYCLE72(\"C2:C2E\",10,0,1,-3,0,0,0,400,100,1,40,1,5)\nM30\n\
+         C2: G1 X=R1 Y0\nG91 X10\nG3 X10 Y10 I0 J10\nC2E: G90 G1 Y30\n"
+    );
+    let got = cycle_moves(&text);
+    let z = -3.0;
+    let wanted = [
+        ('R', [-3.0, 0.0, 10.0]),
+        ('R', [-3.0, 0.0, 1.0]),
+        ('L', [-3.0, 0.0, z]),
+        ('L', [2.0, 0.0, z]),
+        ('L', [12.0, 0.0, z]),
+        ('A', [22.0, 10.0, z]),
+        ('L', [22.0, 30.0, z]),
+        ('L', [22.0, 35.0, z]),
+        ('R', [22.0, 35.0, 10.0]),
+    ];
+    assert_moves(&got, &wanted);
+}
