@@ -43,6 +43,7 @@ mod sim;
 mod sinumerik;
 mod sinumerik_axes;
 mod sinumerik_compensation;
+mod sinumerik_contour_cycles;
 mod sinumerik_corpus;
 mod sinumerik_corpus_plausible;
 mod sinumerik_cycles;

@@ -1,6 +1,6 @@
 //! SINUMERIK's standard cycles (CYCLE81 ... CYCLE89, CYCLE840, HOLES1, HOLES2, CYCLE801,
-//! CYCLE802, POCKET3, POCKET4, SLOT1, SLOT2, LONGHOLE, CYCLE61, CYCLE71, CYCLE76, CYCLE77,
-//! CYCLE800, and CYCLE832, the high-speed settings, in `high_speed.rs`)
+//! CYCLE802, POCKET3, POCKET4, SLOT1, SLOT2, LONGHOLE, CYCLE61, CYCLE71, CYCLE72, CYCLE76,
+//! CYCLE77, CYCLE79, CYCLE800, and CYCLE832, the high-speed settings, in `high_speed.rs`)
 //! built into the front end: called by name like a subprogram, directly or through MCALL, when
 //! neither the program's directory nor `--lib` has a program of that name (a machine's own
 //! cycle wins).
@@ -11,8 +11,9 @@
 //! arcs and threads through the kernel, so the planner times them. A drilling cycle drills
 //! where it is called: the programmed position in the plane in force (G17: X Y, along Z). The
 //! cycles by kind: `drilling.rs`, `patterns.rs`, `pockets.rs` (with `rings.rs`, the closed
-//! paths that clear a level), `slots.rs`, `facing.rs`, `spigots.rs`, and the swivel CYCLE800
-//! (`swivel.rs`).
+//! paths that clear a level), `slots.rs`, `facing.rs`, `spigots.rs`, `multi_edge.rs`, path
+//! milling along a named contour (`contour_milling.rs`, `named_contour.rs`), and the swivel
+//! CYCLE800 (`swivel.rs`).
 //!
 //! The parameter lists are the cycles manual's; the meanings vcnc had to infer are marked so
 //! here and in docs/SINUMERIK.md ("Standard cycles").
@@ -20,9 +21,12 @@
 //! Never: move an axis outside the plane and its tool axis, or leave the programmed position
 //! behind the machine's (the next block continues from where the cycle ends).
 
+mod contour_milling;
 mod drilling;
 mod facing;
 mod high_speed;
+mod multi_edge;
+mod named_contour;
 mod params;
 mod patterns;
 mod place;
@@ -43,11 +47,11 @@ use crate::source::Span;
 use std::collections::HashSet;
 
 /// The cycles vcnc runs itself.
-const BUILT_IN: [&str; 25] = [
+const BUILT_IN: [&str; 27] = [
     "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
     "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801", "CYCLE802", "POCKET3", "POCKET4",
     "SLOT1", "SLOT2", "LONGHOLE", "CYCLE61", "CYCLE71", "CYCLE76", "CYCLE77", "CYCLE800",
-    "CYCLE832",
+    "CYCLE832", "CYCLE79", "CYCLE72",
 ];
 
 /// True when `name` is a standard cycle vcnc runs.
@@ -128,6 +132,7 @@ fn run(front: &mut Sinumerik, kernel: &mut Kernel, call: &Call) -> Result<(), Al
                 .and_then(|positions| patterns::visit(front, kernel, &positions))
         }
         "CYCLE800" => swivel::run(front, kernel, &params),
+        "CYCLE72" => contour_milling::run(front, kernel, &params),
         _ => run_here(front, kernel, call, &params),
     };
     // The feed programmed before the call is in force again after it.
@@ -164,6 +169,7 @@ fn run_here(
         "CYCLE71" => facing::classic(&mut at, kernel, params, radius),
         "CYCLE76" => spigots::rectangular(&mut at, kernel, params, radius),
         "CYCLE77" => spigots::circular(&mut at, kernel, params, radius),
+        "CYCLE79" => multi_edge::multi_edge(&mut at, kernel, params, radius),
         _ => unreachable!("BUILT_IN lists the cycles run_called runs"),
     };
     at.finish(front);

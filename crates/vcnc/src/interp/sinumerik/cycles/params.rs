@@ -6,6 +6,7 @@
 
 use super::super::language::Argument;
 use super::super::motion::unit;
+use super::super::value::Value;
 use super::super::Sinumerik;
 use super::{Call, MAX_DIVISIONS};
 use crate::alarm::{Alarm, AlarmCode};
@@ -38,6 +39,8 @@ pub(super) fn machining_type(p: &Params, vari: i64, values: &str) -> Alarm {
 pub(super) struct Params {
     name: String,
     values: Vec<Option<f64>>,
+    /// The parameters given as strings (a contour's name), by position.
+    texts: Vec<(usize, String)>,
     /// The factor of lengths: 25.4 under G70/G700.
     unit: f64,
     /// The call's span: where a cycle's alarm points.
@@ -48,17 +51,22 @@ impl Params {
     /// The arguments of `call`, each a number or left out.
     pub(super) fn read(front: &mut Sinumerik, call: &Call) -> Result<Params, Alarm> {
         let mut values = Vec::with_capacity(call.arguments.len());
-        for argument in &call.arguments {
+        let mut texts = Vec::new();
+        for (index, argument) in call.arguments.iter().enumerate() {
             let value = match argument {
                 Argument::Omitted => None,
-                Argument::Value(value) => value.as_f64(),
-                Argument::Place(place) => front.vars.get(place, call.span)?.as_f64(),
+                Argument::Value(value) => Some(value.clone()),
+                Argument::Place(place) => Some(front.vars.get(place, call.span)?),
             };
-            values.push(value);
+            if let Some(Value::Str(text)) = &value {
+                texts.push((index, text.clone()));
+            }
+            values.push(value.and_then(|v| v.as_f64()));
         }
         Ok(Params {
             name: call.name.clone(),
             values,
+            texts,
             unit: unit(front),
             span: call.span,
         })
@@ -82,6 +90,14 @@ impl Params {
     /// Parameter `index` as a length in mm, 0 when left out.
     pub(super) fn length_or_zero(&self, index: usize) -> f64 {
         self.length(index).unwrap_or(0.0)
+    }
+
+    /// Parameter `index` as a string, if given as one.
+    pub(super) fn text(&self, index: usize) -> Option<&str> {
+        self.texts
+            .iter()
+            .find(|(i, _)| *i == index)
+            .map(|(_, text)| text.as_str())
     }
 
     /// The cycle's name, for messages.
@@ -112,12 +128,22 @@ impl Levels {
     /// plane defined incorrectly" stands for a depth not below the reference plane and for a
     /// retraction plane below it.
     pub(super) fn read(params: &Params, relative: Option<usize>) -> Result<Levels, Alarm> {
-        let retraction = params.length_or_zero(0);
-        let reference = params.length_or_zero(1);
-        let clearance = params.length_or_zero(2).abs();
+        Levels::read_from(params, 0, relative)
+    }
+
+    /// RTP, RFP, SDIS, DP at `first..first + 4` (a cycle whose first parameter is something
+    /// else: CYCLE72's contour), DPR at `relative`, as [`Levels::read`].
+    pub(super) fn read_from(
+        params: &Params,
+        first: usize,
+        relative: Option<usize>,
+    ) -> Result<Levels, Alarm> {
+        let retraction = params.length_or_zero(first);
+        let reference = params.length_or_zero(first + 1);
+        let clearance = params.length_or_zero(first + 2).abs();
         let depth = match relative.and_then(|i| params.length(i)) {
             Some(below) if below != 0.0 => reference - below.abs(),
-            _ => params.length_or_zero(3),
+            _ => params.length_or_zero(first + 3),
         };
         if depth >= reference {
             return Err(alarm(
@@ -139,7 +165,7 @@ impl Levels {
                     params.name()
                 ),
             )
-            .with_help("the retraction plane (RTP, the first parameter) must be at or above the reference plane (RFP, the second)"));
+            .with_help("the retraction plane RTP must be at or above the reference plane RFP"));
         }
         Ok(Levels {
             retraction,

@@ -25,14 +25,14 @@ use crate::alarm::Alarm;
 use crate::interp::kernel::Kernel;
 
 /// Where the parameters after the spigot's size are.
-struct Layout {
-    pa: usize,
-    sta: Option<usize>,
-    mid: usize,
+pub(super) struct Layout {
+    pub(super) pa: usize,
+    pub(super) sta: Option<usize>,
+    pub(super) mid: usize,
 }
 
 /// The milling of a spigot and the offsets of its rings from the outline, outside in.
-fn milling(
+pub(super) fn milling(
     p: &Params,
     at: &Place,
     layout: &Layout,
@@ -91,7 +91,7 @@ fn milling(
 }
 
 /// Mills the spigot of `frame` with `ring(offset)` at each of `offsets`, going in at `entry`.
-fn mill(
+pub(super) fn mill(
     at: &mut Place,
     kernel: &mut Kernel,
     frame: Frame,
