@@ -41,7 +41,8 @@ pub(super) struct AxisFeeds {
 /// POS and POSA of a block: the axis and its value.
 pub(super) type Positioning = Vec<(usize, AxisValue)>;
 
-/// Reads FGROUP, FGREF, FL, FA, POS, POSA and WAITP; false for other words.
+/// Reads FGROUP, FGREF, FL, FA, POS, POSA and WAITP; false for other words. The caller has made
+/// sure no variable of the program has the word's name.
 pub(super) fn read_word(
     front: &mut Sinumerik,
     kernel: &Kernel,
@@ -49,9 +50,6 @@ pub(super) fn read_word(
     words: &mut Words<'_>,
 ) -> Result<bool, Alarm> {
     let address = &*word.address;
-    if front.is_variable(address) {
-        return Ok(false);
-    }
     match (address, &word.value) {
         // FGROUP alone, as FGROUP(), brings back the geometry axes.
         ("FGROUP", Value::Bare) => front.axis_feeds.group = None,

@@ -407,6 +407,7 @@ fn read<'a>(
                 address.as_bytes()[0],
                 b'S' | b'M' | b'W' | b'L' | b'F' | b'P'
             )
+            && !front.is_variable(address)
             && (spindles::read_word(front, kernel, block, word, words)?
                 || axes::read_word(front, kernel, word, words)?
                 || multi_feed::read_word(front, kernel, word, words)?)
@@ -530,7 +531,8 @@ fn read<'a>(
                 note_state(front, address, word, &mut words.warnings);
             }
             "DILF" | "ALF" | "POLF" | "POLFMASK" | "POLFMLIN"
-                if super::lift_fast::read_word(front, kernel, word, words)? => {}
+                if !front.is_variable(address)
+                    && super::lift_fast::read_word(front, kernel, word, words)? => {}
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
             "S" => words.speed = Some((number(front, kernel, word)?, word.span)),

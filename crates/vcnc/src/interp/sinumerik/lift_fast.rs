@@ -16,7 +16,8 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
 use crate::syntax::sinumerik::{Value, Word};
 
-/// Reads DILF=, ALF=, POLF[axis]=, POLFMASK(..) and POLFMLIN(..); false for other words.
+/// Reads DILF=, ALF=, POLF[axis]=, POLFMASK(..) and POLFMLIN(..); false for other words. The caller
+/// has made sure no variable of the program has the word's name.
 pub(super) fn read_word(
     front: &mut Sinumerik,
     kernel: &Kernel,
@@ -24,9 +25,6 @@ pub(super) fn read_word(
     words: &mut Words<'_>,
 ) -> Result<bool, Alarm> {
     let address = &*word.address;
-    if front.is_variable(address) {
-        return Ok(false);
-    }
     match (address, &word.value) {
         ("DILF" | "ALF", Value::Expression(expr)) => {
             let value = front.value(kernel, expr)?;

@@ -17,7 +17,8 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
 use crate::syntax::sinumerik::{Value, Word};
 
-/// Reads F2= to F7=, ST=, SR=, FMA[..], STA[..] and SRA[..]; false for other words.
+/// Reads F2= to F7=, ST=, SR=, FMA[..], STA[..] and SRA[..]; false for other words. The caller has
+/// made sure no variable of the program has the word's name.
 pub(super) fn read_word(
     front: &mut Sinumerik,
     kernel: &Kernel,
@@ -25,9 +26,6 @@ pub(super) fn read_word(
     words: &mut Words<'_>,
 ) -> Result<bool, Alarm> {
     let address = &*word.address;
-    if front.is_variable(address) {
-        return Ok(false);
-    }
     let (indices, expr) = match (address, &word.value) {
         ("F2" | "F3" | "F4" | "F5" | "F6" | "F7" | "ST" | "SR", Value::Expression(expr)) => {
             (&[][..], expr)

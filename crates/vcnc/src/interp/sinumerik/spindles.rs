@@ -87,7 +87,8 @@ impl Spindles {
 }
 
 /// Reads a word addressing a spindle by number; false for other words. Master-spindle words
-/// become the block's `S`, `M`, `LIMS`, `SVC` and `SPOS`.
+/// become the block's `S`, `M`, `LIMS`, `SVC` and `SPOS`. The caller has made sure no variable
+/// of the program has the word's name.
 pub(super) fn read_word(
     front: &mut Sinumerik,
     kernel: &Kernel,
@@ -96,9 +97,6 @@ pub(super) fn read_word(
     words: &mut Words<'_>,
 ) -> Result<bool, Alarm> {
     let address = &*word.address;
-    if front.is_variable(address) {
-        return Ok(false);
-    }
     let number_after = |letter: &str| {
         address
             .strip_prefix(letter)
