@@ -428,7 +428,10 @@
     const row = document.createElement('div');
     row.className = alarm.error ? 'error' : 'warning';
     row.textContent = `${alarm.code} ${alarm.name || ''}:${alarm.line || ''} ${alarm.message}`;
-    row.addEventListener('click', () => { if (alarm.file !== null) showLine(alarm.file, alarm.line); });
+    row.addEventListener('click', () => {
+      if (alarm.segment !== null) select(alarm.segment);
+      else if (alarm.file !== null) showLine(alarm.file, alarm.line);
+    });
     alarmList.append(row);
   }
   if (data.files.length) showLine(0, 1);

@@ -206,8 +206,10 @@ impl Scene {
         })
     }
 
-    /// The alarms, each placed at the lowest end of the first segment of its block (none when
-    /// its block made no move: a tool change, a stop before the first move).
+    /// The alarms, each with the first segment of its block (none when its block made no move:
+    /// a tool change, a stop before the first move) and a marker at that segment's lower end, or
+    /// its start when it does not descend (the simulator does not say where along its move an
+    /// event happened: the page highlights the whole move when the alarm is clicked).
     fn alarms_json(
         &self,
         alarms: &[Alarm],
@@ -215,22 +217,30 @@ impl Scene {
         file_index: &mut impl FnMut(FileId) -> usize,
     ) -> Vec<Value> {
         let alarms = &alarms[..alarms.len().min(MOST_ALARMS)];
-        let mut placed: HashMap<(FileId, u32), Option<[f64; 3]>> = alarms
+        let mut placed: HashMap<(FileId, u32), Option<usize>> = alarms
             .iter()
             .filter_map(|a| a.span)
             .map(|s| ((s.file, s.start), None))
             .collect();
-        for p in &self.pieces {
-            if let Some(at @ None) = placed.get_mut(&(p.span.file, p.span.start)) {
-                *at = Some(if p.to[2] <= p.from[2] { p.to } else { p.from });
+        for (index, p) in self.pieces.iter().enumerate() {
+            if let Some(first @ None) = placed.get_mut(&(p.span.file, p.span.start)) {
+                *first = Some(index);
             }
         }
         alarms
             .iter()
             .map(|alarm| {
-                let at = alarm
+                let segment = alarm
                     .span
                     .and_then(|s| placed.get(&(s.file, s.start)).copied().flatten());
+                let at = segment.map(|i| {
+                    let p = &self.pieces[i];
+                    if p.to[2] < p.from[2] - 1e-9 {
+                        p.to
+                    } else {
+                        p.from
+                    }
+                });
                 let (file, line) = alarm
                     .span
                     .map_or((None, None), |s| (Some(file_index(s.file)), Some(s.line)));
@@ -241,6 +251,7 @@ impl Scene {
                     "file": file,
                     "line": line,
                     "at": at.map(|p| p.map(|v| round(v, 1e4))),
+                    "segment": segment,
                     "name": alarm.span.map(|s| texts.name(s.file)),
                 })
             })
