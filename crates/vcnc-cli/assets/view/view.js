@@ -513,6 +513,11 @@
     webgl: !!gl,
   };
 
+  // `#t=SECONDS&segment=N` (N counted from 1) opens the page at that time with that segment
+  // selected: a view to link to or to take a picture of.
+  const asked = new URLSearchParams(location.hash.slice(1));
   fit();
-  setTime(endTime);
+  setTime(asked.has('t') ? Number(asked.get('t')) || 0 : endTime);
+  const chosen = Number(asked.get('segment'));
+  if (Number.isInteger(chosen) && chosen >= 1 && chosen <= count) select(chosen - 1);
 })();
