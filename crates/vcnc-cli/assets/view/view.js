@@ -251,7 +251,9 @@
 
   // ---- Drawing ----
 
-  const state = { time: endTime, selected: -1, tool: [0, 0, 0], slot: 0, showStock: true, showRapids: true };
+  // A stock nothing cut (no tool with a radius) would only hide the path: it starts hidden.
+  const uncut = !!stock && stock.heights.every((h) => h >= stock.top - 1e-6);
+  const state = { time: endTime, selected: -1, tool: [0, 0, 0], slot: 0, showStock: !uncut, showRapids: true };
   let pending = false;
   function draw() {
     if (!gl || pending) return;
@@ -456,6 +458,7 @@
     playing = requestAnimationFrame(step);
   });
   $('show-stock').disabled = !stock;
+  $('show-stock').checked = !!stock && state.showStock;
   $('show-stock').addEventListener('change', (e) => { state.showStock = e.target.checked; draw(); });
   $('show-rapids').addEventListener('change', (e) => { state.showRapids = e.target.checked; draw(); });
   $('reset').addEventListener('click', fit);
