@@ -52,7 +52,7 @@ pub(crate) fn run(args: &Args) -> Result<Outcome, SetupError> {
     });
     let mut scene = Scene::new(&machine);
     let (texts, mut alarms) = each_item(&source, &args.machine, |item, timing| {
-        scene.add(item, timing);
+        scene.add(item, timing, simulation.as_ref().map(Simulation::grid));
         if let Some(simulation) = &mut simulation {
             simulation.add(item, timing);
         }

@@ -33,6 +33,8 @@ struct Piece {
     from: [f64; 3],
     to: [f64; 3],
     arc: Option<ArcPath>,
+    /// For a rapid: where it first meets the stock as it was before the rapid, if it does.
+    contact: Option<[f64; 3]>,
 }
 
 /// A tool that moved, in the order tools first move.
@@ -65,8 +67,9 @@ impl Scene {
         }
     }
 
-    /// Takes one item of the stream with its timing.
-    pub(crate) fn add(&mut self, item: &Item, timing: &Timing) {
+    /// Takes one item of the stream with its timing; `stock` is the simulated stock before the
+    /// item cuts it, if there is one (a rapid's first contact with it is kept for its marker).
+    pub(crate) fn add(&mut self, item: &Item, timing: &Timing, stock: Option<&HeightField>) {
         let Followed::Move(motion) = self.follower.follow(item) else {
             return;
         };
@@ -80,7 +83,9 @@ impl Scene {
             from: motion.from,
             to: motion.to,
             arc: motion.arc,
+            contact: None,
         };
+        let start = self.pieces.len();
         match item {
             Item::Segment(segment) => match &segment.kind {
                 SegmentKind::Rapid {
@@ -93,6 +98,12 @@ impl Scene {
                 _ => self.pieces.push(piece),
             },
             _ => self.pieces.push(piece),
+        }
+        if let (true, Some(stock)) = (motion.rapid, stock) {
+            let radius = self.follower.tool().shape.radius();
+            for piece in &mut self.pieces[start..] {
+                piece.contact = first_contact(stock, piece.from, piece.to, radius);
+            }
         }
     }
 
@@ -207,9 +218,10 @@ impl Scene {
     }
 
     /// The alarms, each with the first segment of its block (none when its block made no move:
-    /// a tool change, a stop before the first move) and a marker at that segment's lower end, or
-    /// its start when it does not descend (the simulator does not say where along its move an
-    /// event happened: the page highlights the whole move when the alarm is clicked).
+    /// a tool change, a stop before the first move) and a marker: where a rapid first met the
+    /// stock, else the segment's lower end, or its start when it does not descend (the simulator
+    /// does not say where along a move an event happened: the page highlights the whole move
+    /// when the alarm is clicked).
     fn alarms_json(
         &self,
         alarms: &[Alarm],
@@ -235,10 +247,10 @@ impl Scene {
                     .and_then(|s| placed.get(&(s.file, s.start)).copied().flatten());
                 let at = segment.map(|i| {
                     let p = &self.pieces[i];
-                    if p.to[2] < p.from[2] - 1e-9 {
-                        p.to
-                    } else {
-                        p.from
+                    match p.contact {
+                        Some(contact) => contact,
+                        None if p.to[2] < p.from[2] - 1e-9 => p.to,
+                        None => p.from,
                     }
                 });
                 let (file, line) = alarm
@@ -315,6 +327,52 @@ fn stock_json(grid: &HeightField) -> Value {
         "bottom": bottom,
         "top": top,
         "heights": heights,
+    })
+}
+
+/// The first point along the straight move `from` to `to` where a tool of `radius` has its tip
+/// below `stock`'s surface, looking under its centre and eight points a cell inside its rim,
+/// every quarter radius (or cell) along; `None` when it stays above. A marker's place, not the
+/// simulation: a thin wall between two looks can be missed.
+fn first_contact(
+    stock: &HeightField,
+    from: [f64; 3],
+    to: [f64; 3],
+    radius: f64,
+) -> Option<[f64; 3]> {
+    let cell = stock.cell();
+    let rim = (radius - cell).max(0.0);
+    let length = (0..3)
+        .map(|k| (to[k] - from[k]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let steps = (length / (radius / 4.0).max(cell)).ceil().min(100_000.0) as usize;
+    let [nx, ny] = stock.size();
+    let origin = stock.origin();
+    let height = |x: f64, y: f64| {
+        let i = ((x - origin[0]) / cell).floor();
+        let j = ((y - origin[1]) / cell).floor();
+        let inside = i >= 0.0 && j >= 0.0 && (i as usize) < nx && (j as usize) < ny;
+        inside.then(|| stock.height(i as usize, j as usize))
+    };
+    (0..=steps).find_map(|step| {
+        let f = if steps == 0 {
+            1.0
+        } else {
+            step as f64 / steps as f64
+        };
+        let p: [f64; 3] = std::array::from_fn(|k| from[k] + f * (to[k] - from[k]));
+        let looks = (0..9).map(|n| match n {
+            0 => (p[0], p[1]),
+            _ => {
+                let angle = f64::from(n) * std::f64::consts::FRAC_PI_4;
+                (p[0] + rim * angle.cos(), p[1] + rim * angle.sin())
+            }
+        });
+        let touches = looks
+            .filter_map(|(x, y)| height(x, y))
+            .any(|h| p[2] < h - cell / 4.0);
+        touches.then_some(p)
     })
 }
 

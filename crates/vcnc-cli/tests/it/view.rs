@@ -137,7 +137,11 @@ fn the_page_places_a_rapid_into_the_stock_at_its_block() {
     // The default machine's tool 1 made 10 mm wide by G10; the slot along X is 3 mm deep and
     // the stock from the cut's extents reaches 1 mm beyond its sides (Y -6 to 6, Z0 at the
     // top): the rapid of line 7 leaves the slot's end sideways through the wall, 3 mm deep.
-    // Its marker is at the move's start (it does not descend).
+    // Its marker is where it first meets the wall, the page looking every 1.25 mm (a quarter
+    // of the radius) under the centre and at eight points a cell (0.06 mm: 200 cells across the
+    // 12 mm stock) inside the rim: at the start all eight are in the cut (4.94 mm from X50 Y0,
+    // where the slot ends); 1.25 mm on, the look at 45 degrees, X 53.49 Y 4.74, is 5.89 mm from
+    // X50 Y0 and beyond the slot's end, uncut, 3 mm above the tip.
     let program = temp_program(
         "view_crash.nc",
         "G21 G90 G10 L12 P1 R5.\nT1 M6\nS5000 M3\nG0 X0 Y0 Z5.\nG1 Z-3. F500.\nX50.\nG0 Y40.\nG0 Z5.\nM30\n",
@@ -149,7 +153,7 @@ fn the_page_places_a_rapid_into_the_stock_at_its_block() {
         .iter()
         .find(|a| a["line"] == 7 && a["at"].is_array())
         .unwrap_or_else(|| panic!("no alarm placed at line 7: {alarms:?}"));
-    assert_eq!(crash["at"], json!([50.0, 0.0, -3.0]), "{crash}");
+    assert_eq!(crash["at"], json!([50.0, 1.25, -3.0]), "{crash}");
     assert_eq!(crash["code"], "V110", "{crash}");
     assert_eq!(crash["error"], true);
 }
