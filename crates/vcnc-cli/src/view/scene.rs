@@ -217,8 +217,8 @@ impl Scene {
         })
     }
 
-    /// The alarms, each with the first segment of its block (none when its block made no move:
-    /// a tool change, a stop before the first move) and a marker: where a rapid first met the
+    /// The alarms, each with a segment of its block (none when its block made no move: a tool
+    /// change, a stop before the first move) and a marker: where a rapid first met the
     /// stock, else the segment's lower end, or its start when it does not descend (the simulator
     /// does not say where along a move an event happened: the page highlights the whole move
     /// when the alarm is clicked).
@@ -234,9 +234,14 @@ impl Scene {
             .filter_map(|a| a.span)
             .map(|s| ((s.file, s.start), None))
             .collect();
+        // The block's first segment that met the stock, else its first: a block run again
+        // (a loop, a subprogram) may hit on a later run.
         for (index, p) in self.pieces.iter().enumerate() {
-            if let Some(first @ None) = placed.get_mut(&(p.span.file, p.span.start)) {
-                *first = Some(index);
+            if let Some(first) = placed.get_mut(&(p.span.file, p.span.start)) {
+                let met = |i: usize| self.pieces[i].contact.is_some();
+                if first.is_none_or(|i| !met(i) && p.contact.is_some()) {
+                    *first = Some(index);
+                }
             }
         }
         alarms
