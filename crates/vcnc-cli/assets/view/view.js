@@ -165,7 +165,8 @@
   const rapidColour = unit(data.rapid_colour);
   const toolColour = (slot) => unit(data.tools[slot] ? data.tools[slot].colour : [0, 0, 0]);
 
-  function toolpathVertices(indices, colourOf) {
+  // `timed`: drawn faded while the slider is before the segment (the highlight never is).
+  function toolpathVertices(indices, colourOf, timed) {
     const out = [];
     for (const i of indices) {
       const s = segments[i], rapid = s[KIND] === 0;
@@ -174,14 +175,14 @@
       for (let k = first[i]; k + 1 < first[i + 1]; k++) {
         const a = points.subarray(k * 3, k * 3 + 3), b = points.subarray(k * 3 + 3, k * 3 + 6);
         const length = Math.hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
-        pushLine(out, a, b, colour, rapid ? along : -1, rapid ? along + length : -1, s[T]);
+        pushLine(out, a, b, colour, rapid ? along : -1, rapid ? along + length : -1, timed ? s[T] : -1);
         along += length;
       }
     }
     return out;
   }
   const all = Array.from({ length: count }, (_, i) => i);
-  const toolpath = lineBuffer(toolpathVertices(all, (s) => (s[KIND] === 0 ? rapidColour : toolColour(s[SLOT]))));
+  const toolpath = lineBuffer(toolpathVertices(all, (s) => (s[KIND] === 0 ? rapidColour : toolColour(s[SLOT])), true));
   let highlight = null;
 
   // Alarm markers: a small star of three lines, red for an error, orange for a warning.
@@ -385,6 +386,7 @@
   }
   function select(i) {
     state.selected = i;
+    if (highlight) gl.deleteBuffer(highlight.buffer);
     const info = $('info');
     if (i < 0) {
       info.textContent = 'Click a segment to see its block.';
@@ -403,7 +405,7 @@
     block.className = 'block';
     block.textContent = file ? (file.lines[s[LINE] - 1] || '') : '';
     info.append(place, block);
-    highlight = lineBuffer(toolpathVertices([i], () => [0, 0, 0]));
+    highlight = lineBuffer(toolpathVertices([i], () => [0, 0, 0], false));
     showLine(s[FILE], s[LINE]);
     draw();
   }
