@@ -40,6 +40,14 @@ impl Texts {
         self.files.path(file)
     }
 
+    /// The whole text of `file` (empty when it cannot be read any more): the viewer's program panel.
+    pub(crate) fn text(&self, file: FileId) -> Vec<u8> {
+        match (&self.main, file) {
+            (Some(text), FileId(0)) => text.to_vec(),
+            _ => std::fs::read(self.path(file)).unwrap_or_default(),
+        }
+    }
+
     /// The file name of `file` (without its folders), and up to `most` bytes of its text from
     /// `span`'s start to the line's end, escaped: a block as the summary names it.
     pub(crate) fn block(&self, span: Span, most: u64) -> (String, String) {

@@ -11,6 +11,7 @@ mod numbers;
 mod program;
 mod progress;
 mod setup;
+mod view;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -39,6 +40,9 @@ enum Command {
     /// Simulate 3-axis material removal on a box of stock: removed volume, cutting time,
     /// rapids into the stock and collisions; the part as STL and a shaded PNG.
     Sim(cmd::sim::Args),
+    /// Show the toolpath in 3D in a local page (served on 127.0.0.1, or --html FILE): the
+    /// planner's timeline, each segment's block, the simulated stock and its alarms.
+    View(cmd::view::Args),
 }
 
 fn main() -> ExitCode {
@@ -63,6 +67,7 @@ fn main() -> ExitCode {
         Command::Machine(args) => cmd::machine::run(&args),
         Command::Plot(args) => cmd::plot::run(&args),
         Command::Sim(args) => cmd::sim::run(&args),
+        Command::View(args) => cmd::view::run(&args),
     };
     match result {
         Ok(cmd::Outcome::Clean) => ExitCode::SUCCESS,

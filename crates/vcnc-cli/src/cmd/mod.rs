@@ -6,6 +6,7 @@ pub(crate) mod plot;
 pub(crate) mod run;
 pub(crate) mod sim;
 pub(crate) mod trace;
+pub(crate) mod view;
 
 use std::path::Path;
 

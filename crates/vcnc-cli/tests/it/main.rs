@@ -16,3 +16,4 @@ mod saved_programs;
 mod sim_corpus;
 mod state;
 mod traces;
+mod view;

@@ -200,7 +200,7 @@ impl Toolpath {
 
     fn colour(&self, tool: u32, rapid: bool) -> [u8; 3] {
         if rapid {
-            return [150, 150, 150];
+            return RAPID_COLOUR;
         }
         let slot = self.tools.iter().position(|&t| t == tool).unwrap_or(0);
         PALETTE[slot % PALETTE.len()]
@@ -247,8 +247,11 @@ impl Toolpath {
     }
 }
 
-/// Colours of the tools, in the order they first cut.
-const PALETTE: [[u8; 3]; 8] = [
+/// The colour of rapids (dashed).
+pub const RAPID_COLOUR: [u8; 3] = [150, 150, 150];
+
+/// The colours of cutting moves, one per tool in the order the tools first cut (then again).
+pub const PALETTE: [[u8; 3]; 8] = [
     [31, 119, 180],
     [214, 39, 40],
     [44, 160, 44],
