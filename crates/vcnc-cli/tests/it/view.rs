@@ -517,3 +517,58 @@ fn the_page_in_headless_chromium_loads_offline_picks_and_follows_the_timeline() 
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("bracket.png"), png).unwrap();
 }
+
+/// Issue 21, acceptance 4: `vcnc plot`'s SVG, rendered by a real SVG renderer (Chromium, opened
+/// as a file), has path pixels where the layout puts them. A 100 x 100 mm square (the last
+/// corner an arc) drawn 600 px wide from the top: 40 px margins and 520 px for the 100 mm of X,
+/// 5.2 px/mm, the top edge 20 px lower for the extents line. The edge Y0 lies at
+/// y = 40 + 20 + 100 * 5.2 = 580 px, X100 at x = 40 + 100 * 5.2 = 560 px; X50 is x = 300, Y25 is
+/// y = 580 - 25 * 5.2 = 450.
+#[test]
+fn the_plots_svg_renders_in_chromium_with_path_pixels_where_the_layout_puts_them() {
+    let Some((chromium, chromedriver)) = browser() else {
+        return;
+    };
+    let program = temp_program(
+        "svg-square.nc",
+        "G0 X0 Y0 Z5.\nG1 Z-1. F300.\nX100.\nY50.\nG3 X50. Y100. R50.\nG1 X0\nY0\nG0 Z5.\nM30\n",
+    );
+    let svg = temp_path("svg-square.svg");
+    let out = vcnc(&[
+        "plot", &program, "-o", &svg, "--view", "top", "--width", "600",
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let profile = PathBuf::from(temp_path("chromium-svg-profile"));
+    let _ = std::fs::remove_dir_all(&profile);
+    let driver = Driver::start(&chromium, &chromedriver, &profile);
+    let url = format!("file://{}", std::fs::canonicalize(&svg).unwrap().display());
+    driver.command("POST", "/url", Some(&json!({ "url": url })));
+    let screenshot = driver.command("GET", "/screenshot", None);
+    let bytes = base64(screenshot.as_str().unwrap());
+    let mut reader = png::Decoder::new(std::io::Cursor::new(&bytes))
+        .read_info()
+        .unwrap();
+    let mut buffer = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buffer).unwrap();
+    let channels = info.color_type.samples();
+    let pixel = |x: usize, y: usize| {
+        let i = (y * info.width as usize + x) * channels;
+        [buffer[i], buffer[i + 1], buffer[i + 2]]
+    };
+    let white = [255, 255, 255];
+    // On the edges Y0 (X50) and X100 (Y25), each within a pixel of where the layout says.
+    let near =
+        |x: usize, y: usize| (x - 1..=x + 1).any(|x| (y - 1..=y + 1).any(|y| pixel(x, y) != white));
+    assert!(near(300, 580), "no path at (300, 580)");
+    assert!(near(560, 450), "no path at (560, 450)");
+    // On the arc, 45 degrees round from X100 Y50 about X50 Y50: X Y 85.355 at x = 40 + 85.355
+    // * 5.2 = 483.8, y = 580 - 85.355 * 5.2 = 136.2.
+    assert!(near(484, 136), "no arc at (484, 136)");
+    // Inside the square and outside it: paper.
+    assert_eq!(pixel(300, 450), white);
+    assert_eq!(pixel(300, 570), white);
+    assert_eq!(pixel(580, 450), white);
+    let dir = target_dir();
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("svg-square.png"), bytes).unwrap();
+}
