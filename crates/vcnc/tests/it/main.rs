@@ -40,6 +40,7 @@ mod rotation;
 mod scaling;
 mod seed_examples;
 mod sim;
+mod sim_sinumerik_corpus;
 mod sinumerik;
 mod sinumerik_axes;
 mod sinumerik_compensation;
