@@ -37,22 +37,95 @@ const CELL: f64 = 1.0;
 const STEP: f64 = 0.5;
 const MAX_POINTS: usize = 4000;
 
-/// A move as the check needs it: rapid or not, from, to (machine X Y Z), its line.
+/// A move as the check needs it: rapid or not, from, to (machine X Y Z), its line, and the
+/// radius of the tool in the spindle (0 before the first change that gives one).
+#[derive(Clone, Copy)]
 struct Path {
     rapid: bool,
     from: [f64; 3],
     to: [f64; 3],
     line: u32,
+    radius: f64,
+}
+
+/// The moves of `segments` as the check walks them, one list per direction of the tool. On a
+/// machine with kinematics the points are the tool tip in the workpiece (the forward transform
+/// of the joints, tool length 0 as the corpus machines' tools have), turned so that the tool
+/// axis is +Z: each direction of a 3+2 program is checked as a 3-axis one, its top the highest
+/// level it cuts at. The moves that turn the rotary axes (CYCLE800's swivel) are left out:
+/// vcnc does not run the swivel's retract `_FR` before them (docs/KINEMATICS.md, Not yet).
+fn directions(segments: &[Segment], machine: &Machine) -> Vec<Vec<Path>> {
+    let Some(kinematics) = &machine.kinematics else {
+        return vec![paths(segments)];
+    };
+    let mut groups: Vec<([f64; 3], Vec<Path>)> = Vec::new();
+    for (path, s) in paths(segments).into_iter().zip(moves(segments)) {
+        let m = s.motion().expect("a move");
+        let (from, to) = (m.from.0, m.to.0);
+        if (3..from.len()).any(|i| (from[i] - to[i]).abs() > 1e-9) {
+            continue;
+        }
+        let pose = kinematics.forward(&to, 0.0);
+        let turned = |q: [f64; 3]| into_tool_frame(q, pose.axis);
+        let path = Path {
+            from: turned(kinematics.forward(&from, 0.0).tip),
+            to: turned(pose.tip),
+            ..path
+        };
+        let same = |a: &[f64; 3]| (0..3).all(|i| (a[i] - pose.axis[i]).abs() < 1e-6);
+        match groups.iter_mut().find(|(axis, _)| same(axis)) {
+            Some((_, group)) => group.push(path),
+            None => groups.push((pose.axis, vec![path])),
+        }
+    }
+    groups.into_iter().map(|(_, group)| group).collect()
+}
+
+/// `q` in a right-handed frame whose Z is `axis` (a unit vector).
+fn into_tool_frame(q: [f64; 3], axis: [f64; 3]) -> [f64; 3] {
+    let helper = if axis[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let v = cross(axis, helper);
+    let n = v.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let v = v.map(|c| c / n);
+    let u = cross(v, axis);
+    let dot = |a: [f64; 3]| a[0] * q[0] + a[1] * q[1] + a[2] * q[2];
+    [dot(u), dot(v), dot(axis)]
+}
+
+/// The segments that are moves, as [`paths`] keeps them.
+fn moves(segments: &[Segment]) -> impl Iterator<Item = &Segment> {
+    segments.iter().filter(|s| {
+        matches!(
+            s.kind,
+            SegmentKind::Rapid { .. } | SegmentKind::Line { .. } | SegmentKind::Arc { .. }
+        ) && s.motion().is_some()
+    })
 }
 
 /// The moves of `segments`.
 fn paths(segments: &[Segment]) -> Vec<Path> {
+    let mut radius = 0.0;
     segments
         .iter()
         .filter_map(|s| {
             let rapid = match s.kind {
                 SegmentKind::Rapid { .. } => true,
                 SegmentKind::Line { .. } | SegmentKind::Arc { .. } => false,
+                SegmentKind::ToolChange { geometry, .. } => {
+                    radius = geometry.map_or(0.0, |g| g.radius);
+                    return None;
+                }
                 _ => return None,
             };
             let m = s.motion()?;
@@ -62,6 +135,7 @@ fn paths(segments: &[Segment]) -> Vec<Path> {
                 from: [f[0], f[1], f[2]],
                 to: [t[0], t[1], t[2]],
                 line: s.span.line,
+                radius,
             })
         })
         .collect()
@@ -82,6 +156,36 @@ fn walk(path: &Path) -> impl Iterator<Item = [f64; 3]> + '_ {
 
 fn cell(p: &[f64; 3]) -> (i64, i64) {
     ((p[0] / CELL).floor() as i64, (p[1] / CELL).floor() as i64)
+}
+
+/// The coarse cells of the wide cutters' check, mm.
+const WIDE_CELL: f64 = 8.0;
+
+/// Whether `q` lies within the radius of a cut made at its Z or lower: `wide` keeps per
+/// [`WIDE_CELL`] the lowest Z a cut's centre reached there and the widest cutter that did
+/// (**choice**: the two may come from different cuts; a plausibility check, not a simulation).
+fn under_a_wide_cut(wide: &HashMap<(i64, i64), (f64, f64)>, widest: f64, q: &[f64; 3]) -> bool {
+    if widest <= REACH {
+        return false;
+    }
+    let n = (widest / WIDE_CELL).ceil() as i64 + 1;
+    let (cx, cy) = (
+        (q[0] / WIDE_CELL).floor() as i64,
+        (q[1] / WIDE_CELL).floor() as i64,
+    );
+    (-n..=n).any(|dx| {
+        (-n..=n).any(|dy| {
+            wide.get(&(cx + dx, cy + dy)).is_some_and(|&(z, radius)| {
+                // From q to the nearest point of the cell.
+                let gap = |c: i64, v: f64| {
+                    let (low, high) = (c as f64 * WIDE_CELL, (c + 1) as f64 * WIDE_CELL);
+                    (low - v).max(v - high).max(0.0)
+                };
+                let d = gap(cx + dx, q[0]).hypot(gap(cy + dy, q[1]));
+                z <= q[2] + 1e-3 && d <= radius
+            })
+        })
+    })
 }
 
 /// The lines of the rapids that pass through material (see the module's doc).
@@ -112,6 +216,9 @@ fn rapids_through_material(paths: &[Path]) -> Vec<u32> {
     let inside = |q: &[f64; 3]| (0..2).all(|i| q[i] > low[i] + REACH && q[i] < high[i] - REACH);
     let reach = (REACH / CELL).ceil() as i64;
     let mut cleared: HashMap<(i64, i64), f64> = HashMap::new();
+    // Cutters wider than REACH (a face mill's passes) clear their width: kept coarser.
+    let mut wide_cuts: HashMap<(i64, i64), (f64, f64)> = HashMap::new();
+    let mut widest: f64 = 0.0;
     let mut found = Vec::new();
     // The moves before the first cut start where the machine file starts, not the program.
     let first_cut = paths.iter().position(|p| !p.rapid).unwrap_or(paths.len());
@@ -120,7 +227,14 @@ fn rapids_through_material(paths: &[Path]) -> Vec<u32> {
             for q in walk(path) {
                 let z = cleared.entry(cell(&q)).or_insert(f64::INFINITY);
                 *z = z.min(q[2]);
+                let c = (
+                    (q[0] / WIDE_CELL).floor() as i64,
+                    (q[1] / WIDE_CELL).floor() as i64,
+                );
+                let wide = wide_cuts.entry(c).or_insert((f64::INFINITY, 0.0));
+                *wide = (wide.0.min(q[2]), wide.1.max(path.radius));
             }
+            widest = widest.max(path.radius);
             continue;
         }
         let through = walk(path).any(|q| {
@@ -135,7 +249,7 @@ fn rapids_through_material(paths: &[Path]) -> Vec<u32> {
                         .is_some_and(|&z| z <= q[2] + EPS)
                 })
             });
-            !over_cleared
+            !over_cleared && !under_a_wide_cut(&wide_cuts, widest, &q)
         });
         if through {
             found.push(path.line);
@@ -159,6 +273,18 @@ fn run(text: &str, machine: &Machine, folder: Option<&std::path::Path>) -> (Vec<
     (run.segments, ended)
 }
 
+/// Rapids the check finds, each looked at by hand: (file, lines).
+const LOOKED_AT: &[(&str, &[u32])] = &[
+    // N158 `G0 X0 Y0` and N159's POCKET4 over the first corner, N162 and N163 over the second:
+    // the first moves after N157's and N161's CYCLE800 turn the head and the table. The tip is
+    // held through the turn where N153 left it, at the retraction plane over the other
+    // corner: in N157's frame (origin the centroid of the corner N151 faced, workpiece X8.41
+    // Y8.41 Z41.58) that is Z-1.19, and N158 goes across at that height, 1.19 mm under the
+    // faced corner at its end. The control first retracts along the tool as `_FR` 4 says
+    // (its maximum in the tool's direction); vcnc does not run `_FR` yet (docs/KINEMATICS.md).
+    ("ncplot7py_user_siemens_program.MPF", &[68, 69, 73, 74]),
+];
+
 #[test]
 fn the_corpus_programs_that_end_rapid_through_no_material_they_cut() {
     let Some(shared) = common::shared_dir() else {
@@ -174,16 +300,29 @@ fn the_corpus_programs_that_end_rapid_through_no_material_they_cut() {
         let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
         let machine = machine_for(&file);
         let (segments, ended) = run(&text, &machine, Some(&folder));
-        let moves = paths(&segments);
-        let bad = if ended {
+        let groups = directions(&segments, &machine);
+        let moves: usize = groups.iter().map(Vec::len).sum();
+        let bad: Vec<u32> = if ended {
             checked += 1;
-            rapids_through_material(&moves)
+            let mut bad: Vec<u32> = groups
+                .iter()
+                .flat_map(|g| rapids_through_material(g))
+                .collect();
+            bad.sort_unstable();
+            bad.dedup();
+            bad
         } else {
             Vec::new()
         };
-        table += &format!("| {file} | {ended} | {} | {bad:?} |\n", moves.len());
-        if !bad.is_empty() {
-            failures.push(format!("{file}: rapids through material at lines {bad:?}"));
+        table += &format!("| {file} | {ended} | {moves} | {bad:?} |\n");
+        let looked_at = LOOKED_AT
+            .iter()
+            .find(|(f, _)| *f == file)
+            .map_or(&[][..], |(_, lines)| *lines);
+        if bad != looked_at {
+            failures.push(format!(
+                "{file}: rapids through material at lines {bad:?}, looked at {looked_at:?}"
+            ));
         }
     }
     println!("{table}");
