@@ -1,6 +1,7 @@
 //! The toolpaths of the real SINUMERIK programs (../shared/corpus/sinumerik) checked for
 //! plausibility (issue 22, acceptance 1): each program that runs to its end on the machine of
-//! its author (`common::sinumerik_machines`) must make no rapid through material it cut.
+//! its author (`common::sinumerik_machines`) must make no rapid through material it cut, and
+//! cut only inside its part's extents (the second half at the end of this file).
 //!
 //! The rule, in machine coordinates (a frame or a rotation changes nothing physical):
 //! - The *top* is the highest Z at which a feed move travels in XY: the stock's highest level
@@ -24,6 +25,7 @@ use crate::common::sinumerik_machines::machine_for;
 use std::collections::HashMap;
 use vcnc::interp::sinumerik::Sinumerik;
 use vcnc::interp::{Kernel, Run};
+use vcnc::machine::WorkOffsetId;
 use vcnc::{FileId, Machine, Segment, SegmentKind};
 
 /// How near in XY a cut must have passed for a rapid's point to count as over cleared ground,
@@ -285,21 +287,35 @@ const LOOKED_AT: &[(&str, &[u32])] = &[
     ("ncplot7py_user_siemens_program.MPF", &[68, 69, 73, 74]),
 ];
 
+/// A corpus program's run: its file, its machine, its segments, whether it ended.
+type CorpusRun = (String, Machine, Vec<Segment>, bool);
+
+/// Every corpus program run on its author's machine; None without ../shared.
+fn corpus_runs() -> Option<Vec<CorpusRun>> {
+    let folder = common::shared_dir()?.join("corpus/sinumerik");
+    let runs = common::corpus::sorted_files(&folder)
+        .iter()
+        .map(|path| {
+            let file = path.file_name().unwrap().to_string_lossy().into_owned();
+            let text = String::from_utf8_lossy(&std::fs::read(path).unwrap()).into_owned();
+            let machine = machine_for(&file);
+            let (segments, ended) = run(&text, &machine, Some(&folder));
+            (file, machine, segments, ended)
+        })
+        .collect();
+    Some(runs)
+}
+
 #[test]
 fn the_corpus_programs_that_end_rapid_through_no_material_they_cut() {
-    let Some(shared) = common::shared_dir() else {
+    let Some(runs) = corpus_runs() else {
         return;
     };
-    let folder = shared.join("corpus/sinumerik");
     let mut checked = 0;
     let mut table =
         String::from("| program | ended | moves | rapids through material |\n|---|---|---:|---|\n");
     let mut failures = Vec::new();
-    for path in common::corpus::sorted_files(&folder) {
-        let file = path.file_name().unwrap().to_string_lossy().into_owned();
-        let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
-        let machine = machine_for(&file);
-        let (segments, ended) = run(&text, &machine, Some(&folder));
+    for (file, machine, segments, ended) in runs {
         let groups = directions(&segments, &machine);
         let moves: usize = groups.iter().map(Vec::len).sum();
         let bad: Vec<u32> = if ended {
@@ -362,5 +378,201 @@ fn a_rapid_inside_a_pocket_already_cut_or_above_the_stock_passes() {
     assert_eq!(
         rapids_through_material(&paths(&segments)),
         Vec::<u32>::new()
+    );
+}
+
+// Cut inside the part (issue 22, acceptance 1): every feed move of a program that runs to its
+// end lies, where it is below the part's top (in the material's height), within the part's
+// extents plus the radius of the tool in the spindle. The extents are derived per program
+// from what the program itself says of its blank ([`PARTS`]); a program that says nothing
+// of one is named with the reason ([`NO_PART`]). Points are G54 coordinates: the machine's
+// less its G54 offset (the corpus tools have length 0), the tool tip through the kinematics
+// on a 5-axis machine. Feed moves are walked every [`STEP`] along their chord.
+
+/// A part's extents, G54 coordinates (mm): X, Y, Z from `min` to `max`; `max[2]` its top.
+/// `air`: the lines whose feed moves go beyond it, each looked at by hand (in the air beside
+/// the part, cutting nothing).
+struct Part {
+    min: [f64; 3],
+    max: [f64; 3],
+    air: &'static [u32],
+}
+
+/// The parts of the programs that run to their end, each derived in its comment.
+const PARTS: &[(&str, Part)] = &[
+    // No workpiece: a spindle warm-up in the air. Its "part" is the box it names, SUPA X-5
+    // Y-5 Z-4 inch from the machine zero (WARMUP_CYCLE.SPF N50-N80): X -127..0, Y -127..0,
+    // Z -101.6..0, machine coordinates (the Syil's G54 is zero).
+    (
+        "alloyx_DAILY.MPF",
+        Part {
+            min: [-127.0, -127.0, -101.6],
+            max: [0.0, 0.0, 0.0],
+            air: &[],
+        },
+    ),
+    (
+        "alloyx_WARMUP_CYCLE.SPF",
+        Part {
+            min: [-127.0, -127.0, -101.6],
+            max: [0.0, 0.0, 0.0],
+            air: &[],
+        },
+    ),
+    // ShopMill's blank N103 `WORKPIECE(,,,"BOX",64,0,50,-80,0,0,100.2,100.4)`: a box from
+    // X0 Y0 to X100.2 Y100.4, Z 0 to 50. The top at 50, not 0, is the cycles' geometry: N108
+    // faces from RFP 25.88 in a plane turned -15 degrees about X at Z50, and 25.88 is 100.4 sin
+    // 15 degrees less the 0.2 mm, the height of the top's far edge at Z50 in that plane
+    // (**reading**: WORKPIECE's 0 and 50 as the blank's Z range).
+    (
+        "ncplot7py_user_siemens_program.MPF",
+        Part {
+            min: [0.0, 0.0, 0.0],
+            max: [100.2, 100.4, 50.0],
+            // N108 and N109, CYCLE61 with the 63 mm face mill: each level starts and ends
+            // SDIS 5 beyond the rim plus the radius, as the facing cycle goes in from outside
+            // (5.00 mm past part + radius, measured). N151 and N153, CYCLE61 on the corners
+            // with the 16 mm mill: the rectangle they face in the turned plane (PA -24, LENG
+            // 20, WID 35) is larger than the corner it cuts off, so its passes run up to 31.6
+            // mm beside the blank, below its top, in the air.
+            air: &[9, 10, 59, 62],
+        },
+    ),
+];
+
+/// The programs that run to their end with no part to check against, and why.
+const NO_PART: &[(&str, &str)] = &[
+    ("dubovikov_case_test.MPF", "a test of its author's interpreter: one rapid, no feed move"),
+    (
+        "dubovikov_kanavka_vint_sector.MPF",
+        "a helical groove in a ring of outer radius 993.5 (R9) over a sector (R4, R7): the part is a ring sector the program does not bound in X, Y and Z",
+    ),
+    (
+        "elmoe_Bottle_opener.MPF",
+        "NX writes no blank (no WORKPIECE, no stock in its comments); its operations (facing PLANFLAECHE, adaptive roughing entering from outside the stock, wall profiling) give the part's shape, not the blank's",
+    ),
+    (
+        "elmoe_Keychain.MPF",
+        "NX writes no blank and no facing: its curve drives follow the keychain's outline, the part itself",
+    ),
+    (
+        "philip_CAM_TEST.MPF",
+        "a CAM test with no blank: an 8.5 mm drill traces a figure from Z49 to Z40 on a top the program does not give",
+    ),
+];
+
+/// The feed moves of `segments` as the extents check walks them: the tool tip in G54
+/// coordinates, with the radius of the tool in the spindle.
+fn feeds_in_g54(segments: &[Segment], machine: &Machine) -> Vec<Path> {
+    let g54 = machine
+        .work_offsets
+        .get(&WorkOffsetId::Standard(1))
+        .copied()
+        .unwrap_or_default();
+    paths(segments)
+        .into_iter()
+        .zip(moves(segments))
+        .filter(|(p, _)| !p.rapid)
+        .map(|(path, s)| {
+            let m = s.motion().expect("a move");
+            let tip = |joints: &[f64; vcnc::machine::AXES]| match &machine.kinematics {
+                Some(k) => k.forward(joints, 0.0).tip,
+                None => [joints[0], joints[1], joints[2]],
+            };
+            let g = |q: [f64; 3]| std::array::from_fn(|i| q[i] - g54[i]);
+            Path {
+                from: g(tip(&m.from.0)),
+                to: g(tip(&m.to.0)),
+                ..path
+            }
+        })
+        .collect()
+}
+
+/// The lines of the feed moves that cut outside `part` (see above).
+fn cuts_outside(feeds: &[Path], part: &Part) -> Vec<u32> {
+    const EPS: f64 = 1e-6;
+    let mut found: Vec<u32> = feeds
+        .iter()
+        .filter(|path| {
+            walk(path).any(|q| {
+                let r = path.radius + EPS;
+                q[2] < part.max[2] - EPS
+                    && ((0..2).any(|i| q[i] < part.min[i] - r || q[i] > part.max[i] + r)
+                        || q[2] < part.min[2] - r)
+            })
+        })
+        .map(|p| p.line)
+        .collect();
+    found.dedup();
+    found
+}
+
+#[test]
+fn the_corpus_programs_that_end_cut_inside_their_part() {
+    let Some(runs) = corpus_runs() else {
+        return;
+    };
+    let mut table =
+        String::from("| program | feed moves | part | cuts outside |\n|---|---:|---|---|\n");
+    let mut failures = Vec::new();
+    for (file, machine, segments, ended) in runs {
+        if !ended {
+            continue;
+        }
+        let feeds = feeds_in_g54(&segments, &machine);
+        let part = PARTS.iter().find(|(f, _)| *f == file).map(|(_, p)| p);
+        let none = NO_PART.iter().find(|(f, _)| *f == file);
+        match (part, none) {
+            (Some(part), None) => {
+                let outside = cuts_outside(&feeds, part);
+                table += &format!(
+                    "| {file} | {} | {:?} .. {:?} | {outside:?} |\n",
+                    feeds.len(),
+                    part.min,
+                    part.max
+                );
+                if outside != part.air {
+                    failures.push(format!(
+                        "{file}: cuts outside its part at lines {outside:?}, looked at {:?}",
+                        part.air
+                    ));
+                }
+            }
+            (None, Some((_, why))) => {
+                table += &format!("| {file} | {} | none: {why} | - |\n", feeds.len())
+            }
+            _ => failures.push(format!(
+                "{file} ends: give it a part or say why it has none"
+            )),
+        }
+    }
+    println!("{table}");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn a_planted_cut_beyond_the_part_is_caught() {
+    let machine = common::sinumerik::machine();
+    // TWO_POCKETS on a part X-5..65 by Y-5..25, Z -10..0, with no tool in the spindle (radius
+    // 0): inside. A cut to X70 Y10 at Z-2 (line 20), 5 beyond X65, is caught; one further out
+    // above the top (line 22, Z1) is in the air and passes.
+    let part = Part {
+        min: [-5.0, -5.0, -10.0],
+        max: [65.0, 25.0, 0.0],
+        air: &[],
+    };
+    let (segments, ended) = run(&format!("{TWO_POCKETS}M30\n"), &machine, None);
+    assert!(ended);
+    assert_eq!(
+        cuts_outside(&feeds_in_g54(&segments, &machine), &part),
+        Vec::<u32>::new()
+    );
+    let text = format!("{TWO_POCKETS}G1 Z-2\nX70 Y10\nG0 Z1\nG1 X80\nM30\n");
+    let (segments, ended) = run(&text, &machine, None);
+    assert!(ended);
+    assert_eq!(
+        cuts_outside(&feeds_in_g54(&segments, &machine), &part),
+        vec![20]
     );
 }
