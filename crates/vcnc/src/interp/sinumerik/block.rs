@@ -433,7 +433,10 @@ fn read<'a>(
                 if let "WALIMON" | "WALIMOF" = name.as_str() {
                     front.work_area.switch(name == "WALIMON");
                 }
-                note_state(front, &name, word, &mut words.warnings);
+                // WALCS0-WALCS10 select the WCS limits (work_area.rs): run, not kept as state.
+                if !front.work_area.select_cs(&name) {
+                    note_state(front, &name, word, &mut words.warnings);
+                }
             }
             words.functions.push((function, group, word));
             continue;

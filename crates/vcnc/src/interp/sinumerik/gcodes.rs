@@ -171,6 +171,8 @@ pub(super) fn group(name: &str) -> Option<u8> {
         | "CUT3DCCD" => g(22),
         "FFWOF" | "FFWON" => g(24),
         "WALIMON" | "WALIMOF" => g(28),
+        "WALCS0" | "WALCS1" | "WALCS2" | "WALCS3" | "WALCS4" | "WALCS5" | "WALCS6" | "WALCS7"
+        | "WALCS8" | "WALCS9" | "WALCS10" => g(60),
         "DIAMOF" | "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN"
         | "DIAMCYCOF" => g(29),
         "COMPOF" | "COMPON" | "COMPCURV" | "COMPCAD" => g(30),
@@ -358,7 +360,9 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "BRISK" | "SOFT" | "DRIVE"
         | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF" | "COMPOF" | "COMPON"
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
-        | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "TRAFOOF"
+        | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "TRAFOOF" | "WALCS0" | "WALCS1"
+        | "WALCS2" | "WALCS3" | "WALCS4" | "WALCS5" | "WALCS6" | "WALCS7" | "WALCS8" | "WALCS9"
+        | "WALCS10"
         // CUT2DF compensates in the frame's plane: with a frame that keeps the plane (the
         // only kind vcnc compensates under) that is CUT2D's (seed 002 L7854-7928).
         | "CUT2DF" => State,
@@ -478,7 +482,6 @@ pub(super) fn planned_call(name: &str) -> bool {
                 | "LONGHOLE"
                 | "HOLES1"
                 | "HOLES2"
-                | "WALCS1"
         )
 }
 

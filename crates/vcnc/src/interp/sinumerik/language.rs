@@ -8,6 +8,7 @@ use super::eval::{self, Environment};
 use super::frame::ProgrammableFrame;
 use super::value::{Type, Value};
 use super::vars::{Init, ParamType, Variables};
+use super::work_area::CsVariable;
 use super::{Modal, Sinumerik, ToolState};
 use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
@@ -117,6 +118,8 @@ pub(super) struct Machine<'a> {
     /// Settable frames the program wrote ($P_UIFR), for the kernel after the block's words.
     pub(super) frame_writes: &'a mut Vec<(u32, usize, f64)>,
     pub(super) modal: &'a Modal,
+    /// The working area's WCS groups ($P_WORKAREA_CS_...).
+    pub(super) work_area: &'a mut super::work_area::WorkArea,
 }
 
 /// The front end's variables, and the machine the evaluator reads, borrowed apart.
@@ -135,11 +138,27 @@ pub(super) fn split<'a>(
             tools: &mut front.tools,
             frame_writes: &mut front.frame_writes,
             modal: &front.modal,
+            work_area: &mut front.work_area,
         },
     )
 }
 
 impl Machine<'_> {
+    /// The group and the axis of `$P_WORKAREA_CS_...[group, axis]` (COORD_SYSTEM: the group
+    /// only, axis 0).
+    fn cs_indices(
+        &self,
+        variable: CsVariable,
+        indices: &[Value],
+        span: Span,
+    ) -> Result<(f64, usize), Alarm> {
+        let group = indices.first().and_then(Value::as_f64).unwrap_or(-1.0);
+        if variable == CsVariable::CoordSystem {
+            return Ok((group, 0));
+        }
+        Ok((group, self.axis(indices.get(1), span)?))
+    }
+
     /// The kernel index of an axis value (`X`, or an AXIS variable's value).
     fn axis(&self, value: Option<&Value>, span: Span) -> Result<usize, Alarm> {
         let name = match value {
@@ -239,6 +258,16 @@ impl Environment for Machine<'_> {
                 let id = super::block::settable_id(n as u32, false);
                 real(self.kernel.state().frames.work_offset(id)[axis])
             }
+            _ if CsVariable::named(name).is_some() => {
+                let variable = CsVariable::named(name).expect("just matched");
+                let at = self.cs_indices(variable, indices, span)?;
+                let value = self.work_area.read_cs(variable, at, span)?;
+                match variable {
+                    CsVariable::PlusEnable | CsVariable::MinusEnable => Ok(Value::Bool(value != 0.0)),
+                    CsVariable::CoordSystem => Ok(Value::Int(value as i32)),
+                    _ => real(value),
+                }
+            }
             _ if super::gcodes::out_of_product(name).is_some() => Err(Alarm::error(
                 AlarmCode::NotInProduct,
                 span,
@@ -324,6 +353,13 @@ impl Environment for Machine<'_> {
                 }
                 self.frame_writes.push((n as u32, axis, number(&value)?));
                 Ok(())
+            }
+            _ if CsVariable::named(name).is_some() => {
+                let variable = CsVariable::named(name).expect("just matched");
+                let (group, axis) = self.cs_indices(variable, indices, span)?;
+                let value = number(&value)?;
+                self.work_area
+                    .write_cs(variable, (group, axis), value, span)
             }
             _ if name.starts_with("$P_WORKAREA") || name.starts_with("$SA_WORKAREA") => {
                 Err(Alarm::error(

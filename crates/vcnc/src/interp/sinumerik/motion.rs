@@ -723,32 +723,65 @@ fn direct(
     let moved = match arc {
         None if tag.rapid => kernel.rapid_to(tag.target, tag.origin),
         None => kernel.feed_to(tag.target, tag.origin),
-        Some(arc) if !keeps_plane(kernel, arc.plane) => match turned_plane(kernel, arc.plane) {
-            Some((onto, reversed)) => kernel.arc_onto(
-                arc.plane,
-                onto,
-                reversed,
-                tag.target,
-                (arc.centre.x, arc.centre.y),
-                arc.direction,
-                tag.turns,
-                tag.origin,
-            ),
-            None => tilted_arc(kernel, tag, arc),
-        },
-        Some(arc) => kernel.arc_in(
+        Some(arc) => arc_through_frames(kernel, tag, arc),
+    };
+    if let Some((mode, feed)) = saved {
+        kernel.set_feed_in(mode, feed);
+    }
+    moved
+}
+
+/// An arc of `plane` (program coordinates) to `target` about `centre`, as the frames in force
+/// map it: an arc of the stream, or straight pieces where they tilt its plane. The cycles'
+/// arcs go this way too (under CYCLE800's swivel a pocket's circles are tilted).
+#[allow(clippy::too_many_arguments)] // the arc's own parts, as `Kernel::arc_in` takes them
+pub(super) fn arc_in_frames(
+    kernel: &mut Kernel,
+    plane: Plane,
+    target: [Option<f64>; AXES],
+    centre: (f64, f64),
+    direction: ArcDirection,
+    turns: u32,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    let tag = Tag {
+        origin,
+        target,
+        rapid: false,
+        turns,
+    };
+    let arc = Arc {
+        centre: V2::new(centre.0, centre.1),
+        direction,
+        plane,
+    };
+    arc_through_frames(kernel, &tag, arc)
+}
+
+fn arc_through_frames(kernel: &mut Kernel, tag: &Tag, arc: Arc) -> Result<(), Alarm> {
+    if keeps_plane(kernel, arc.plane) {
+        return kernel.arc_in(
             arc.plane,
             tag.target,
             (arc.centre.x, arc.centre.y),
             arc.direction,
             tag.turns,
             tag.origin,
-        ),
-    };
-    if let Some((mode, feed)) = saved {
-        kernel.set_feed_in(mode, feed);
+        );
     }
-    moved
+    match turned_plane(kernel, arc.plane) {
+        Some((onto, reversed)) => kernel.arc_onto(
+            arc.plane,
+            onto,
+            reversed,
+            tag.target,
+            (arc.centre.x, arc.centre.y),
+            arc.direction,
+            tag.turns,
+            tag.origin,
+        ),
+        None => tilted_arc(kernel, tag, arc),
+    }
 }
 
 /// True when the frame maps the arc's plane onto a machine plane as a circle (the stream's arcs

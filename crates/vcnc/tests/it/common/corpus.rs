@@ -231,12 +231,6 @@ pub const EXPECTED_ALARMS: &[(&str, AlarmCode, u32, &str)] = &[
         21,
         "calls the GROB routine G_ZP_WRITE, which is not in the corpus",
     ),
-    (
-        "ncplot7py_user_siemens_program.MPF",
-        AlarmCode::FiveAxis,
-        8,
-        "N107's CYCLE800 turns the rotary axes of swivel data record TC1, which no machine file describes",
-    ),
 ];
 
 /// The alarm and line a corpus program is expected to stop with, if any.

@@ -2,6 +2,7 @@
 //! it fits), and their subprograms by name: shared by the corpus tests (corpus.rs,
 //! corpus_tally.rs, sinumerik_corpus.rs) so that every one runs a program on the same machine.
 
+use vcnc::kinematics::{Kinematics, KinematicsKind, RotaryJoint, Solution, Vec3};
 use vcnc::machine::{AxisConfig, ToolEdge, WorkOffsetId};
 use vcnc::{Axis, FileId, Machine, ProfileName};
 
@@ -216,9 +217,18 @@ pub fn b_table_mill() -> Machine {
     machine
 }
 
-/// David Jennings' GROB G550 (5 axes: A and B), inch programs on a metric control: the tool
-/// named "52" a .250 in end mill (the program's tool list); R parameters to R199, since
-/// CYCLE189 writes R103 to R109 (the control's MD28050 is larger than the 100 default).
+/// David Jennings' GROB G550 (its header: `GROB G550 5 AXIS MILL`), inch programs on a metric
+/// control: the tool named "52" a .250 in end mill (the program's tool list); R parameters to
+/// R199, since CYCLE189 writes R103 to R109 (the control's MD28050 is larger than the 100
+/// default).
+///
+/// Kinematics (the swivel data record "TC_GROB" of its CYCLE800): the G550 swivels the part,
+/// not the spindle: a trunnion A (about X, through 230 degrees) carries the rotary table B
+/// (about Y with A at zero, a full turn), and the program's own closing lines bring both home
+/// (`G53 A=DC(0) B=DC(0)`, its work offset adjustment takes "A rotation" and "B rotation").
+/// Its one swivel, 91.064 degrees about Y (N26), is the table's B. The axes' lines through
+/// the machine's origin and the tool along Z are choices: the program's numbers do not depend
+/// on them.
 pub fn grob_g550() -> Machine {
     let mut machine = sinumerik(
         ProfileName::Sinumerik,
@@ -229,11 +239,40 @@ pub fn grob_g550() -> Machine {
     );
     machine.tools.push(tool(52, Some("52"), 0.25 * 25.4, false));
     machine.profile.sinumerik.as_mut().unwrap().r_parameters = 200;
+    machine.kinematics = Some(two_rotary(
+        KinematicsKind::TableTable,
+        [
+            (Axis::A, [1.0, 0.0, 0.0], (-115.0, 115.0)),
+            (Axis::B, [0.0, 1.0, 0.0], (-1.0e6, 1.0e6)),
+        ],
+    ));
     machine
 }
 
-/// The ShopMill program of ncplot7py: a mill with a swivel head (TC1: B and C), the tools by
-/// name.
+/// Kinematics of two rotary axes (axis, direction, travel in degrees), first the carrier,
+/// both lines through the origin, the tool along +Z.
+pub fn two_rotary(kind: KinematicsKind, joints: [(Axis, Vec3, (f64, f64)); 2]) -> Kinematics {
+    Kinematics {
+        kind,
+        joints: joints.map(|(axis, direction, limits)| RotaryJoint {
+            axis,
+            direction,
+            center: [0.0; 3],
+            limits,
+        }),
+        tool_axis: [0.0, 0.0, 1.0],
+        solution: Solution::Shortest,
+    }
+}
+
+/// The ShopMill program of ncplot7py: a 5-axis mill with a swivel head B and a rotary table C
+/// (a DMG DMU monoBLOCK with ShopMill is one), the tools by name. Why B-C: the program's
+/// swivels tilt the tool towards -Y (N107, -15 degrees about X), towards +-X (N120, N126: 7
+/// degrees about Y) and along a corner's diagonal (N150: 45 degrees about Z, then 54.365 about
+/// X): one tilting axis with a rotary table under it reaches them all; "TC1" is ShopMill's
+/// first swivel data record, and its calls turn the axes (`_DIR` 1, the plus solution of the
+/// head). B tilts from -120 to 30 degrees as such a head does; both lines through the origin
+/// and the tool along Z are choices: the program's numbers do not depend on them.
 pub fn shopmill_mill() -> Machine {
     let mut machine = sinumerik(
         ProfileName::Sinumerik,
@@ -251,6 +290,13 @@ pub fn shopmill_mill() -> Machine {
             ("DRILL 8.5", 8.5, true),
         ],
     );
+    machine.kinematics = Some(two_rotary(
+        KinematicsKind::HeadTable,
+        [
+            (Axis::B, [0.0, 1.0, 0.0], (-120.0, 30.0)),
+            (Axis::C, [0.0, 0.0, 1.0], (-1.0e6, 1.0e6)),
+        ],
+    ));
     machine
 }
 

@@ -140,7 +140,15 @@ impl Place {
             ArcDirection::CounterClockwise
         };
         let target = self.target(Some(point), height)?;
-        kernel.arc_in(self.plane, target, centre, direction, turns, self.origin)
+        super::super::motion::arc_in_frames(
+            kernel,
+            self.plane,
+            target,
+            centre,
+            direction,
+            turns,
+            self.origin,
+        )
     }
 
     /// A thread along the tool axis to `height`, `lead` mm per revolution.

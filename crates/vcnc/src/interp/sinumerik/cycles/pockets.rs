@@ -58,6 +58,8 @@ struct Layout {
     mida: usize,
     rad1: usize,
     dp1: usize,
+    /// SINUMERIK Operate's `_AMODE`, where the cycle's long form has it (ShopMill writes it).
+    amode: Option<usize>,
 }
 
 /// The radius of the edge in force: alarm 61000 without one (D0, no tool), 61117 when it is
@@ -112,6 +114,7 @@ const POCKET3: Layout = Layout {
     mida: 17,
     rad1: 21,
     dp1: 22,
+    amode: None,
 };
 
 /// POCKET4's places of the shared parameters.
@@ -126,7 +129,45 @@ const POCKET4: Layout = Layout {
     mida: 14,
     rad1: 17,
     dp1: 18,
+    amode: Some(22),
 };
+
+/// How SINUMERIK Operate's long form of a pocket cycle (the one ShopMill writes, 25
+/// parameters for POCKET4: `POCKET4(10,0,2,15,40,50,51.75,2,0.1,0.1,2000,2000,0,21,50,9,15,6,1,
+/// 0,1,2,10100,111,111)`) reads the parameters the short form gives in millimetres.
+///
+/// **Inferred** (the cycles manual's text for `_AMODE` is not among vcnc's sources, and no
+/// description of the Operate form was found): `_AMODE` of five digits (ten thousands 1)
+/// marks the long form; its hundreds digit 1 makes DP the depth below RFP (the incremental
+/// depth of ShopMill's dialogue, "Z1 inc."), 0 leaves it absolute; and the long form gives
+/// MIDA in percent of the cutter's diameter, as the dialogue does. The evidence is
+/// ncplot7py_user_siemens_program.MPF's own numbers: its finishing call N114 steps down MID 15,
+/// the DP of the pair, so DP 15 over RFP 0 is a depth of 15, not a bottom above the top (61101);
+/// its drilling calls give their incremental depth in DPR (`CYCLE81(20,0,5,,2,...)`), which
+/// POCKET4 lacks; its MIDA 50 for 16 and 8 mm cutters could only be percent (50 mm is alarm
+/// 61111), as CYCLE61's 80 in the same program; CYCLE61's `_AMODE` 11010 (hundreds 0) goes
+/// with an absolute DP 0 under RFP 25.88.
+#[derive(Clone, Copy, Default)]
+struct Operate {
+    relative_depth: bool,
+    infeed_percent: bool,
+}
+
+impl Operate {
+    fn read(p: &Params, layout: &Layout) -> Operate {
+        let Some(amode) = layout.amode.and_then(|i| p.number(i)) else {
+            return Operate::default();
+        };
+        let amode = amode.round() as i64;
+        if amode / 10_000 % 10 != 1 {
+            return Operate::default();
+        }
+        Operate {
+            relative_depth: amode / 100 % 10 == 1,
+            infeed_percent: true,
+        }
+    }
+}
 
 impl Milling {
     fn read(
@@ -135,7 +176,9 @@ impl Milling {
         layout: &Layout,
         radius: Option<f64>,
     ) -> Result<Milling, Alarm> {
-        let levels = Levels::read(p, None)?;
+        let operate = Operate::read(p, layout);
+        // DP read as the depth below RFP, in the place of the DPR the short form lacks.
+        let levels = Levels::read(p, operate.relative_depth.then_some(3))?;
         let tool_radius = tool_radius(p, radius)?;
         let vari = p.or_zero(layout.vari).round() as i64;
         let (units, tens) = (vari % 10, vari / 10 % 10);
@@ -159,7 +202,11 @@ impl Milling {
                 ),
             ));
         }
-        let step_over = match p.length_or_zero(layout.mida).abs() {
+        let mida = match operate.infeed_percent {
+            true => p.or_zero(layout.mida).abs() / 100.0 * 2.0 * tool_radius,
+            false => p.length_or_zero(layout.mida).abs(),
+        };
+        let step_over = match mida {
             0.0 => tool_radius,
             step if step > 2.0 * tool_radius => {
                 return Err(alarm(
@@ -430,9 +477,9 @@ fn same(a: (f64, f64), b: (f64, f64)) -> bool {
 }
 
 /// POCKET4(RTP, RFP, SDIS, DP, PRAD, PA, PO, MID, FAL, FALD, FFP1, FFD, CDIR, VARI, MIDA, AP1,
-/// AD, RAD1, DP1): a circular pocket of radius PRAD about (PA, PO), DP deep (absolute). AP1
-/// and AD (a pocket milled before) are read but not used: the cycle clears from the centre
-/// (choice).
+/// AD, RAD1, DP1): a circular pocket of radius PRAD about (PA, PO), DP deep (absolute; in
+/// Operate's long form as `_AMODE` says: [`Operate`]). AP1 and AD (a pocket milled before) are
+/// read but not used: the cycle clears from the centre (choice).
 pub(super) fn circular(
     at: &mut Place,
     kernel: &mut Kernel,
@@ -507,4 +554,98 @@ pub(super) fn rectangular(
         &[rings::rectangle(finish_a, finish_b, finish_corner)],
     )?;
     pocket.retract()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::machine::ToolEdge;
+    use crate::{Machine, ProfileName, SegmentKind};
+
+    /// The ends of the moves `text` makes after its first three (tool change and start), with
+    /// 'R' rapid, 'L' line, 'A' arc; and its alarm.
+    fn run(text: &str) -> (Vec<(char, [f64; 3])>, Option<crate::Alarm>) {
+        let mut machine = Machine::default()
+            .with_profile(ProfileName::Sinumerik)
+            .unwrap();
+        machine.tools.push(ToolEdge {
+            t: 1,
+            name: None,
+            d: 1,
+            tool_type: 120,
+            length: 0.0,
+            length2: 0.0,
+            length3: 0.0,
+            radius: 5.0,
+            teeth: Some(4),
+        });
+        let mut moves = Vec::new();
+        let mut alarm = None;
+        let start = "T1 M6 D1\nG17 G90 F500 S3000 M3\nG0 X0 Y0 Z10\n";
+        for item in crate::interp::sinumerik::run_str(&format!("{start}{text}\nM30\n"), &machine) {
+            match item {
+                Ok(crate::Item::Segment(s)) => {
+                    let kind = match s.kind {
+                        SegmentKind::Rapid { .. } => 'R',
+                        SegmentKind::Line { .. } => 'L',
+                        SegmentKind::Arc { .. } => 'A',
+                        _ => continue,
+                    };
+                    let to = s.motion().expect("a move").to.0;
+                    moves.push((kind, [to[0], to[1], to[2]]));
+                }
+                Err(a) => alarm = alarm.or(Some(a)),
+                _ => {}
+            }
+        }
+        (moves.split_off(1.min(moves.len())), alarm)
+    }
+
+    #[test]
+    fn shopmills_long_form_reads_dp_as_a_depth_by_its_amode() {
+        // ShopMill's POCKET4 with _AMODE 10100 (hundreds 1): DP 6 is 6 below RFP 0, so the
+        // finishing (VARI 12, G2) of a pocket of radius 15 with the 10 mm mill goes in at the
+        // centre at -3 and -6 (MID 3), out to 15 - 5 = 10, round in two halves, up by SDIS 1 and
+        // back over the centre; then up to RTP 2. Worked by hand as the short form's
+        // POCKET4(2,0,1,-6,15,0,0,3,0,0,800,300,2,12) (tests/it/sinumerik_cycles.rs).
+        let long = "POCKET4(2,0,1,6,15,0,0,3,0,0,800,300,2,12,50,0,0,0,0,0,1,2,10100,111,111)";
+        let (got, alarm) = run(long);
+        assert!(alarm.is_none(), "{alarm:?}");
+        let mut wanted = vec![('R', [0.0, 0.0, 1.0])];
+        for z in [-3.0, -6.0] {
+            wanted.extend([
+                ('L', [0.0, 0.0, z]),
+                ('L', [10.0, 0.0, z]),
+                ('A', [-10.0, 0.0, z]),
+                ('A', [10.0, 0.0, z]),
+                ('R', [10.0, 0.0, z + 1.0]),
+                ('R', [0.0, 0.0, z + 1.0]),
+            ]);
+        }
+        wanted.push(('R', [0.0, 0.0, 2.0]));
+        assert_eq!(got, wanted);
+        // Hundreds 0: DP 6 is absolute, above RFP 0: alarm 61101 as in the short form.
+        let absolute = long.replace("10100", "10000");
+        let alarm = run(&absolute)
+            .1
+            .expect("the depth 6 is above the reference plane 0");
+        assert!(alarm.message.contains("61101"), "{}", alarm.message);
+    }
+
+    #[test]
+    fn shopmills_long_form_gives_mida_in_percent_of_the_cutter() {
+        // Roughing (VARI 11) of radius 15 with the 10 mm mill, MIDA 50: 5 mm from ring to ring
+        // (50 % of 10), the rings of the short form with MIDA 5. In the short form 50 mm would
+        // be alarm 61111 (more than the diameter).
+        let long = run("POCKET4(2,0,1,6,15,0,0,3,0,0,800,300,2,11,50,0,0,0,0,0,1,2,10100,111,111)");
+        let short = run("POCKET4(2,0,1,-6,15,0,0,3,0,0,800,300,2,11,5)");
+        assert!(
+            long.1.is_none() && short.1.is_none(),
+            "{:?} {:?}",
+            long.1,
+            short.1
+        );
+        assert_eq!(long.0, short.0);
+        let alarm = run("POCKET4(2,0,1,-6,15,0,0,3,0,0,800,300,2,11,50)").1;
+        assert!(alarm.is_some_and(|a| a.message.contains("61111")));
+    }
 }
