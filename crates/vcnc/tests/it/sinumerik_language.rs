@@ -2029,3 +2029,29 @@ fn fast_retraction_is_read_and_checked_and_moves_nothing() {
         assert_eq!(run.error().map(|a| a.code), Some(code), "{text}");
     }
 }
+
+/// The dynamic response's machine data from the program (PGsl 14.7.3, L10640-10687): every
+/// group reads the machine file's limit in the control's unit (X's 2000 mm/s^2 is 2 m/s^2, Y's
+/// jerk 50000 mm/s^3 is 50 m/s^3) until the program writes it. X=R1*10 goes to X20; after
+/// `$MA_MAX_AX_ACCEL[2, X]=5` group 2 reads 5 (X5) while group 0 still reads 2. A group outside
+/// 0-4, an axis the machine lacks and a limit not above 0 alarm.
+#[test]
+fn the_dynamic_machine_data_read_the_machine_file_and_keep_what_is_written() {
+    let text = "R1=$MA_MAX_AX_ACCEL[2, X]\nG1 X=R1*10 F100\n$MA_MAX_AX_ACCEL[2, X]=5\n\
+                R2=$MA_MAX_AX_ACCEL[2, X]\nR3=$MA_MAX_AX_JERK[0, Y]\nR4=$MA_MAX_AX_ACCEL[0, X]\n\
+                G1 X=R2 Y=R3 Z=R4\nM30\n";
+    let run = run_on(text, &machine());
+    assert_points(
+        &ends_of(&run, text),
+        &[[20.0, 0.0, 0.0], [5.0, 50.0, 2.0]],
+        text,
+    );
+    for (text, code) in [
+        ("R1=$MA_MAX_AX_ACCEL[5, X]\n", AlarmCode::BadVariable),
+        ("R1=$MA_MAX_AX_ACCEL[1, Q]\n", AlarmCode::BadVariable),
+        ("$MA_MAX_AX_JERK[1, X]=0\n", AlarmCode::ValueOutOfRange),
+    ] {
+        let run = run_on(text, &machine());
+        assert_eq!(run.error().map(|a| a.code), Some(code), "{text}");
+    }
+}

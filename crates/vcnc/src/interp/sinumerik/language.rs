@@ -120,6 +120,8 @@ pub(super) struct Machine<'a> {
     pub(super) modal: &'a Modal,
     /// The working area's WCS groups ($P_WORKAREA_CS_...).
     pub(super) work_area: &'a mut super::work_area::WorkArea,
+    /// The dynamic response's machine data ($MA_MAX_AX_ACCEL[n, axis] ...).
+    pub(super) machine_data: &'a mut super::machine_data::MachineData,
 }
 
 /// The front end's variables, and the machine the evaluator reads, borrowed apart.
@@ -139,6 +141,7 @@ pub(super) fn split<'a>(
             frame_writes: &mut front.frame_writes,
             modal: &front.modal,
             work_area: &mut front.work_area,
+            machine_data: &mut front.machine_data,
         },
     )
 }
@@ -268,6 +271,12 @@ impl Environment for Machine<'_> {
                     _ => real(value),
                 }
             }
+            _ if super::machine_data::holds(name) => {
+                let group = indices.first().and_then(Value::as_f64);
+                let axis = self.axis(indices.get(1), span)?;
+                let config = self.kernel.state().setup.machine().axes[axis].as_ref();
+                real(self.machine_data.read(name, group, axis, config, span)?)
+            }
             _ if super::gcodes::out_of_product(name).is_some() => Err(Alarm::error(
                 AlarmCode::NotInProduct,
                 span,
@@ -367,6 +376,12 @@ impl Environment for Machine<'_> {
                     span,
                     format!("{name} is not run yet (planned: issue 22, the working area)"),
                 ))
+            }
+            _ if super::machine_data::holds(name) => {
+                let group = indices.first().and_then(Value::as_f64);
+                let axis = self.axis(indices.get(1), span)?;
+                let value = number(&value)?;
+                self.machine_data.write(name, group, axis, value, span)
             }
             _ if super::gcodes::out_of_product(name).is_some() => Err(Alarm::error(
                 AlarmCode::NotInProduct,

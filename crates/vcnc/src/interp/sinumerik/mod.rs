@@ -28,6 +28,7 @@ mod involute;
 mod iso_mode;
 mod language;
 mod lift_fast;
+mod machine_data;
 mod motion;
 mod multi_feed;
 mod path_control;
@@ -140,6 +141,8 @@ pub struct Sinumerik {
     cycles: cycles::Calls,
     /// G25/G26 with axes and WALIMON/WALIMOF: the working area (`work_area.rs`).
     work_area: work_area::WorkArea,
+    /// The dynamic response's machine data the program wrote ($MA_MAX_AX_ACCEL ...).
+    machine_data: machine_data::MachineData,
 }
 
 /// One program level of the call stack.
@@ -258,6 +261,7 @@ impl Sinumerik {
             radius_compensation: compensation::RadiusCompensation::default(),
             cycles: cycles::Calls::default(),
             work_area: work_area::WorkArea::default(),
+            machine_data: machine_data::MachineData::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
