@@ -17,6 +17,7 @@ mod circle_pocket;
 mod circular;
 mod comp;
 mod compensation;
+mod corner_override;
 mod cycles;
 mod data_input;
 mod decode;

@@ -10,6 +10,7 @@
 //! never reads program text or modal state; the executor starts and ends stages.
 
 use super::comp::Compensator;
+use super::corner_override::CornerStage;
 use super::kernel::BlockOrigin;
 use super::polar_interpolation::PolarStage;
 use super::tool_center::KinematicStage;
@@ -27,6 +28,8 @@ type Item = StreamItem;
 pub(crate) enum Stage {
     /// Cutter radius compensation; always the first stage.
     Compensation(Box<Compensator>),
+    /// G62's inner-corner override of the compensated path; always right behind compensation.
+    CornerOverride(Box<CornerStage>),
     /// G12.1 polar coordinate interpolation: Cartesian motion to machine X and C.
     PolarInterpolation(Box<PolarStage>),
     /// G43.4 or G53.1: tool tip motion in the workpiece to the joints of a 5-axis machine.
@@ -39,6 +42,8 @@ enum Ended {
     Polar(Plane, [f64; AXES]),
     /// The kinematic transform: the machine position (joints).
     Kinematics([f64; AXES]),
+    /// The inner-corner override: nothing.
+    CornerOverride,
 }
 
 /// The queue of what the blocks produced and nobody has taken yet: a few items for
@@ -138,6 +143,21 @@ impl Output {
         }
     }
 
+    /// The inner-corner override (G62) starts, right behind compensation.
+    pub(crate) fn start_corner_override(&mut self, stage: CornerStage) {
+        let at = usize::from(self.compensating());
+        self.stages
+            .insert(at, Stage::CornerOverride(Box::new(stage)));
+    }
+
+    /// The inner-corner override ends with compensation: what it holds is passed on.
+    fn end_corner_override(&mut self) {
+        let at = usize::from(self.compensating());
+        if matches!(self.stages.get(at), Some(Stage::CornerOverride(_))) {
+            self.end_transform(at);
+        }
+    }
+
     /// Whether polar coordinate interpolation (G12.1) is on.
     pub(crate) fn polar_interpolating(&self) -> bool {
         self.stages
@@ -199,6 +219,10 @@ impl Output {
                 Ended::Polar(plane, position)
             }
             Stage::Kinematics(stage) => Ended::Kinematics(stage.flush(items)),
+            Stage::CornerOverride(stage) => {
+                stage.flush(items);
+                Ended::CornerOverride
+            }
             Stage::Compensation(_) => return None,
         };
         self.settle();
@@ -242,12 +266,17 @@ impl Output {
     /// Moves what each transformation's input has released through it, in the chain's order.
     fn settle(&mut self) {
         let first = usize::from(self.compensating());
+        if let [Stage::Compensation(comp), Stage::CornerOverride(corner), ..] = &mut self.stages[..]
+        {
+            corner.set_offset(comp.offset());
+        }
         for at in first..self.stages.len() {
             if let Some((stage, behind)) = self.stages[at..].split_first_mut() {
                 let (items, _) = input_of(behind, &mut self.items, &mut self.held);
                 match stage {
                     Stage::PolarInterpolation(stage) => stage.settle(items),
                     Stage::Kinematics(stage) => stage.settle(items),
+                    Stage::CornerOverride(stage) => stage.settle(items),
                     Stage::Compensation(_) => {}
                 }
             }
@@ -291,6 +320,7 @@ impl Output {
         let (_, items, held) = self.entry();
         let finished = comp.finish(items, held);
         self.settle();
+        self.end_corner_override();
         finished
     }
 
@@ -369,6 +399,8 @@ impl Output {
             comp.abandon();
         }
         self.settle();
+        // What the corner override holds was released by compensation: it moves.
+        self.end_corner_override();
         self.items.push(Err(alarm));
     }
 
@@ -388,6 +420,7 @@ fn input_of<'a>(
     match stages.first_mut() {
         Some(Stage::PolarInterpolation(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::Kinematics(stage)) => (&mut stage.staged, &mut stage.held),
+        Some(Stage::CornerOverride(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::Compensation(_)) | None => (items, held),
     }
 }
