@@ -263,8 +263,12 @@ impl Executor {
             _ => {}
         }
         let polar_interpolation = cmd.group(Group::PolarInterpolation);
-        if let Some(g) = polar_interpolation {
-            super::polar_interpolation::switch(self, cmd, g, out)?;
+        match polar_interpolation {
+            Some(g) if g.code == GCode::CylindricalInterpolation => {
+                super::cylindrical::switch(self, cmd, g, out)?;
+            }
+            Some(g) => super::polar_interpolation::switch(self, cmd, g, out)?,
+            None => {}
         }
         match rotation {
             Some(GCode::Rotate) => super::frames::rotation::g68(self, cmd)?,

@@ -19,6 +19,7 @@ mod comp;
 mod compensation;
 mod corner_override;
 mod cycles;
+mod cylindrical;
 mod data_input;
 mod decode;
 mod engraving;
@@ -625,6 +626,9 @@ impl Core {
                 return self.fail(alarm);
             }
         }
+        if let Err(alarm) = cylindrical::prepare(&mut self.command, &self.out) {
+            return self.fail(alarm);
+        }
         // Only a block with a comment kept can be a G47 P1: one test for the others.
         let serial = self.command.text().is_some() && self.command.engraves_serial();
         if serial {
@@ -722,7 +726,10 @@ impl<B: BlockSource<Line = LineBlocks>> Iterator for Interpreter<B> {
                 continue;
             }
             if self.core.done {
-                if out.items.is_empty() && !out.polar_interpolating() {
+                if out.items.is_empty()
+                    && !out.polar_interpolating()
+                    && out.cylindrical_axes().is_none()
+                {
                     return None;
                 }
                 out.finish();

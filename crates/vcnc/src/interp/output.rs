@@ -5,12 +5,13 @@
 //! place. Cutter compensation (G41/G42) is the first stage when it is on: it holds a move until
 //! the next one shows where the corner is, so the items queued behind the held move wait too
 //! (`held`). The transformations of finished motion come after it, in order (G12.1 polar
-//! coordinate interpolation, the 5-axis kinematic transform, and whatever a dialect adds): each reads the released part of its own
+//! coordinate interpolation, G07.1 cylindrical interpolation, the 5-axis kinematic transform, and whatever a dialect adds): each reads the released part of its own
 //! input queue and writes into the next stage's input, the last into the output queue. A stage
 //! never reads program text or modal state; the executor starts and ends stages.
 
 use super::comp::Compensator;
 use super::corner_override::CornerStage;
+use super::cylindrical::CylindricalStage;
 use super::kernel::BlockOrigin;
 use super::polar_interpolation::PolarStage;
 use super::tool_center::KinematicStage;
@@ -32,6 +33,8 @@ pub(crate) enum Stage {
     CornerOverride(Box<CornerStage>),
     /// G12.1 polar coordinate interpolation: Cartesian motion to machine X and C.
     PolarInterpolation(Box<PolarStage>),
+    /// G07.1 cylindrical interpolation: the unrolled surface to the linear and rotary axes.
+    Cylindrical(Box<CylindricalStage>),
     /// G43.4 or G53.1: tool tip motion in the workpiece to the joints of a 5-axis machine.
     Kinematics(Box<KinematicStage>),
 }
@@ -44,6 +47,8 @@ enum Ended {
     Kinematics([f64; AXES]),
     /// The inner-corner override: nothing.
     CornerOverride,
+    /// G07.1 C0: the plane before G07.1 and the machine position.
+    Cylindrical(Plane, [f64; AXES]),
 }
 
 /// The queue of what the blocks produced and nobody has taken yet: a few items for
@@ -183,6 +188,33 @@ impl Output {
         }
     }
 
+    /// The rotary axis and the slot carrying its surface length while cylindrical
+    /// interpolation (G07.1) is on.
+    pub(crate) fn cylindrical_axes(&self) -> Option<(crate::machine::Axis, crate::machine::Axis)> {
+        self.stages.iter().find_map(|stage| match stage {
+            Stage::Cylindrical(stage) => Some(stage.axes()),
+            _ => None,
+        })
+    }
+
+    /// Cylindrical interpolation starts: a stage behind the others.
+    pub(crate) fn start_cylindrical_interpolation(&mut self, stage: CylindricalStage) {
+        self.stages.push(Stage::Cylindrical(Box::new(stage)));
+    }
+
+    /// Cylindrical interpolation ends: what it holds is converted. The plane before G07.1 and
+    /// the machine position where its last piece ended, if it was on.
+    pub(crate) fn end_cylindrical_interpolation(&mut self) -> Option<(Plane, [f64; AXES])> {
+        let at = self
+            .stages
+            .iter()
+            .position(|stage| matches!(stage, Stage::Cylindrical(_)))?;
+        match self.end_transform(at) {
+            Some(Ended::Cylindrical(plane, position)) => Some((plane, position)),
+            _ => None,
+        }
+    }
+
     /// The kinematic transform in force (G43.4, G53.1), to change it.
     pub(crate) fn kinematics_mut(&mut self) -> Option<&mut KinematicStage> {
         self.stages.iter_mut().find_map(|stage| match stage {
@@ -222,6 +254,10 @@ impl Output {
             Stage::CornerOverride(stage) => {
                 stage.flush(items);
                 Ended::CornerOverride
+            }
+            Stage::Cylindrical(stage) => {
+                let (plane, position) = stage.flush(items);
+                Ended::Cylindrical(plane, position)
             }
             Stage::Compensation(_) => return None,
         };
@@ -277,6 +313,7 @@ impl Output {
                     Stage::PolarInterpolation(stage) => stage.settle(items),
                     Stage::Kinematics(stage) => stage.settle(items),
                     Stage::CornerOverride(stage) => stage.settle(items),
+                    Stage::Cylindrical(stage) => stage.settle(items),
                     Stage::Compensation(_) => {}
                 }
             }
@@ -421,6 +458,7 @@ fn input_of<'a>(
         Some(Stage::PolarInterpolation(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::Kinematics(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::CornerOverride(stage)) => (&mut stage.staged, &mut stage.held),
+        Some(Stage::Cylindrical(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::Compensation(_)) | None => (items, held),
     }
 }

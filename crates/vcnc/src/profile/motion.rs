@@ -62,6 +62,11 @@ pub struct MotionRules {
     /// their servo cycle and give no such number).
     #[serde(default = "default_polar_interpolation_tolerance")]
     pub polar_interpolation_tolerance: f64,
+    /// G07.1 cylindrical interpolation exists (FANUC 0i/30i-M and Mitsubishi M70/M700, whose
+    /// manuals are not among the seeds; docs/DEVIATIONS.md); it cuts on the surface of a
+    /// cylinder turned by a rotary axis, within `polar_interpolation_tolerance`.
+    #[serde(default)]
+    pub cylindrical_interpolation: bool,
     /// Which high-speed and smoothing codes the control has (they change the timing, within a
     /// tolerance the path).
     #[serde(default)]

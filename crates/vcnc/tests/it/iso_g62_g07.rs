@@ -137,3 +137,135 @@ fn the_override_lengthens_the_pocket_by_the_time_worked_out() {
     let longer = overridden - plain;
     assert!((longer - 2.0).abs() < 0.01, "{plain} s -> {overridden} s");
 }
+
+/// The default machine on `profile` with a rotary C axis.
+fn with_c(profile: ProfileName) -> Machine {
+    let mut machine = crate::common::with_c_axis(profile);
+    set_radius(&mut machine, 1, 5.0);
+    machine
+}
+
+/// The machine positions (X, Y, Z, C) where each motion of `program` ends.
+fn ends(machine: &Machine, program: &str) -> Vec<[f64; 4]> {
+    let run = crate::common::run(program.as_bytes(), machine, vcnc::Options::default());
+    if let Some(alarm) = run.error() {
+        panic!("{alarm:?}\n{program}");
+    }
+    run.segments
+        .iter()
+        .filter_map(|s| s.motion())
+        .map(|m| {
+            let p = m.to.0;
+            [p[0], p[1], p[2], p[vcnc::Axis::C.index()]]
+        })
+        .collect()
+}
+
+fn close(a: f64, b: f64, tolerance: f64) -> bool {
+    (a - b).abs() <= tolerance
+}
+
+/// Degrees of C for `length` mm on a cylinder of radius 50: length * 180 / (50 pi).
+fn degrees(length: f64) -> f64 {
+    length * 180.0 / (50.0 * std::f64::consts::PI)
+}
+
+#[test]
+fn g07_1_turns_surface_lengths_into_degrees_of_c() {
+    // A slot round a cylinder of radius 50: 39.2699 mm along the surface is 39.2699 * 180 /
+    // (50 pi) = 45.000 degrees of C; the Z move goes with it in the same line. Y, the slot that
+    // carries C in the mode, stays where the machine had it.
+    let machine = with_c(ProfileName::Fanuc);
+    let program = "G90 G54 G00 X0 Y10. Z0 C0\nG07.1 C50.\nG01 Z-5. F100.\nC39.2699\nZ-20. C78.5398\nG07.1 C0\nG00 Z50.\nM30\n";
+    let ends = ends(&machine, program);
+    let expected = [
+        [0.0, 10.0, 0.0, 0.0],
+        [0.0, 10.0, -5.0, 0.0],
+        [0.0, 10.0, -5.0, 45.0],
+        [0.0, 10.0, -20.0, 90.0],
+        [0.0, 10.0, 50.0, 90.0],
+    ];
+    assert_eq!(ends.len(), expected.len(), "{ends:?}");
+    for (end, want) in ends.iter().zip(expected) {
+        assert!(
+            end.iter().zip(want).all(|(a, b)| close(*a, b, 1e-4)),
+            "{end:?} != {want:?}"
+        );
+    }
+}
+
+#[test]
+fn a_surface_line_keeps_f_along_the_surface() {
+    // `Z-20. C78.5398` from (Z -5, 39.2699 mm): 15 mm along Z and 39.2699 mm round, sqrt(15^2 +
+    // 39.2699^2) = 42.0372 mm on the surface at F100: the move takes 1 / (100 / 42.0372) min.
+    let machine = with_c(ProfileName::Fanuc);
+    let program = "G90 G54 G00 X0 Y10. Z0 C0\nG07.1 C50.\nG01 Z-5. F100.\nC39.2699\nZ-20. C78.5398\nG07.1 C0\nM30\n";
+    let run = crate::common::run(program.as_bytes(), &machine, vcnc::Options::default());
+    let last_cut = run
+        .segments
+        .iter()
+        .rev()
+        .find_map(|s| match s.kind {
+            vcnc::SegmentKind::Line { feed, .. } => Some(feed),
+            _ => None,
+        })
+        .unwrap();
+    let vcnc::motion::Feed::InverseTime(per_minute) = last_cut else {
+        panic!("{last_cut:?}");
+    };
+    assert!(close(per_minute, 100.0 / 42.0372, 1e-5), "{per_minute}");
+}
+
+#[test]
+fn a_surface_arc_becomes_pieces_on_its_circle() {
+    // G02 of radius 10 in the Z-C surface plane (G19: C in the first axis, Z in the second),
+    // from (C 0, Z 0) to (C 20, Z 0) round the centre (C 10, Z 0): every piece ends on that
+    // circle (C back to mm: degrees * 50 pi / 180) within the tolerance, and the last at C =
+    // degrees(20) = 22.918.
+    let machine = with_c(ProfileName::Fanuc);
+    let program = "G90 G54 G00 X0 Y0 Z0 C0\nG07.1 C50.\nG02 C20. Z0 R10. F200.\nG07.1 C0\nM30\n";
+    let ends = ends(&machine, program);
+    let cut = &ends[1..];
+    assert!(cut.len() > 10, "{} pieces", cut.len());
+    for end in cut {
+        let c_mm = end[3] * 50.0 * std::f64::consts::PI / 180.0;
+        let from_centre = (c_mm - 10.0).hypot(end[2]);
+        assert!(close(from_centre, 10.0, 0.002), "{end:?}: {from_centre}");
+        assert!(
+            end[2] >= -1e-9,
+            "G02 from C0 to C20 in G19 bulges to +Z: {end:?}"
+        );
+    }
+    let last = cut.last().unwrap();
+    assert!(close(last[3], degrees(20.0), 1e-6), "{last:?}");
+}
+
+#[test]
+fn cutter_compensation_offsets_the_slot_wall_on_the_surface() {
+    // G42 with a tool of radius 5 along +Z at C 0 in G19 (first axis C, second Z): travel
+    // (0, 1) in (C, Z) turned clockwise, the tool's right, is (1, 0), +C, so the centre runs at C = 5 mm =
+    // degrees(5) = 5.7296.
+    let machine = with_c(ProfileName::Fanuc);
+    let program = "G90 G54 G00 X0 Y0 Z-10. C0\nG07.1 C50.\nG01 G42 Z0 C0 D1 F100.\nZ30.\nG40 Z40. C0\nG07.1 C0\nM30\n";
+    let ends = ends(&machine, program);
+    let wall: Vec<_> = ends.iter().filter(|e| close(e[2], 30.0, 1e-6)).collect();
+    assert_eq!(wall.len(), 1, "{ends:?}");
+    assert!(close(wall[0][3], degrees(5.0), 1e-6), "{ends:?}");
+}
+
+#[test]
+fn g07_1_is_refused_without_a_rotary_axis_and_absent_on_fanuc_0m() {
+    let machine = on(ProfileName::Fanuc);
+    let trace = trace_on(&machine, "G07.1 C50.\nM30\n");
+    assert!(trace.contains("alarm"), "{trace}");
+    let fanuc0m = with_c(ProfileName::Fanuc0m);
+    let trace = trace_on(&fanuc0m, "G07.1 C50.\nM30\n");
+    assert!(trace.contains("alarm"), "{trace}");
+}
+
+#[test]
+fn g00_is_refused_in_cylindrical_interpolation() {
+    let machine = with_c(ProfileName::Mitsubishi);
+    let trace = trace_on(&machine, "G90 G00 Z0 C0\nG07.1 C50.\nG00 C10.\nM30\n");
+    assert!(trace.contains("alarm"), "{trace}");
+}
