@@ -7,6 +7,7 @@
 
 use super::decode::{Command, GWord, Value};
 use super::frames::Frames;
+use super::kernel::rollover_turn;
 use super::kernel::{same_place, KernelState};
 use super::modal::{FeedMode, LengthComp, ModalState, MotionMode};
 use super::Output;
@@ -530,6 +531,7 @@ impl Executor {
     #[inline(always)]
     fn cartesian_target(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.kernel.program_position();
+        let start = target;
         let incremental = self.modal.distance == super::modal::DistanceMode::Incremental;
         let mut place = |i: usize, v: f64| {
             target[i] = if incremental { target[i] + v } else { v };
@@ -543,8 +545,13 @@ impl Executor {
             }
         }
         if cmd.has_extra_axis_words() {
+            let rollover = self.kernel.setup.profile().motion.rotary_rollover;
             for (axis, value) in cmd.axis_words().filter(|(axis, _)| !axis.is_geometry()) {
-                place(axis.index(), self.axis_value(axis, value));
+                let (i, value) = (axis.index(), self.axis_value(axis, value));
+                match self.kernel.setup.is_rotary(axis) && !incremental {
+                    true => place(i, start[i] + rollover_turn(rollover, start[i], value)),
+                    false => place(i, value),
+                }
             }
         }
         target

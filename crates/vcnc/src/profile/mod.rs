@@ -34,7 +34,7 @@ pub use coordinates::{CoordinateRules, PolarIncrements, ScalingAxes};
 pub use cycles::{CycleRules, ShiftDirection};
 pub use dwell::{DwellP, DwellRules};
 pub use macros::{MacroArguments, MacroRules, ToolOffsetVariables};
-pub use motion::{MotionRules, RapidPath, SmoothingCodes};
+pub use motion::{MotionRules, RapidPath, RotaryRollover, SmoothingCodes};
 pub use reading::{ReadingRules, SameGroupRule};
 pub use sinumerik::{SinumerikSettings, Variant};
 pub use subprograms::SubprogramRules;
@@ -555,7 +555,7 @@ mod tests {
         }
         // Every field but name, description, power_on and sinumerik: each is set or has a
         // default in some profile, so the flat-key error finds them all.
-        assert_eq!(seen.len(), 77);
+        assert_eq!(seen.len(), 78);
     }
 
     #[test]

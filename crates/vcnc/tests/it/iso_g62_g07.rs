@@ -269,3 +269,36 @@ fn g00_is_refused_in_cylindrical_interpolation() {
     let trace = trace_on(&machine, "G90 G00 Z0 C0\nG07.1 C50.\nG00 C10.\nM30\n");
     assert!(trace.contains("alarm"), "{trace}");
 }
+
+/// The C angles where each move of `program` ends, on a machine whose rotary axes roll over by
+/// `rule`.
+fn c_ends(rule: vcnc::profile::RotaryRollover, program: &str) -> Vec<f64> {
+    let mut machine = with_c(ProfileName::Fanuc);
+    machine.profile.motion.rotary_rollover = rule;
+    ends(&machine, program).iter().map(|e| e[3]).collect()
+}
+
+#[test]
+fn a_rollover_axis_goes_the_shorter_way_in_g90() {
+    use vcnc::profile::RotaryRollover::Shortest;
+    // (`G00 C0` at C0 makes no move.) From 0: C350. is 10 degrees back (-10, not +350); then C20. is 30 on (to 20); C400. is
+    // 40 modulo 360, 20 on (to 40); C220. is exactly half a turn, taken positively (to 220).
+    let program = "G90 G00 C0\nC350.\nC20.\nC400.\nC220.\nM30\n";
+    assert_eq!(c_ends(Shortest, program), [-10.0, 20.0, 40.0, 220.0]);
+}
+
+#[test]
+fn a_rollover_axis_turns_the_way_of_the_sign_and_g91_by_the_amount() {
+    use vcnc::profile::RotaryRollover::{BySign, Off, Shortest};
+    // By sign from 0: C-90. turns negatively to 90 (by -270, to -270 on the continuous
+    // position); C45. turns positively to 45 (by +315: -270 + 315 = 45).
+    let program = "G90 G00 C0\nC-90.\nC45.\nM30\n";
+    assert_eq!(c_ends(BySign, program), [-270.0, 45.0]);
+    // G91 moves by the amount written, past a whole turn, whatever the rule.
+    let program = "G90 G00 C0\nG91 C400.\nC-30.\nM30\n";
+    for rule in [Off, Shortest, BySign] {
+        assert_eq!(c_ends(rule, program), [400.0, 370.0]);
+    }
+    // Without rollover G90 goes to the angle written.
+    assert_eq!(c_ends(Off, "G90 G00 C0\nC350.\nM30\n"), [350.0]);
+}
