@@ -7,13 +7,13 @@
 
 use super::decode::{Command, GWord, Value};
 use super::frames::Frames;
-use super::kernel::rollover_turn;
-use super::kernel::{same_place, KernelState};
+use super::kernel::{rollover_turn, same_place, KernelState};
 use super::modal::{FeedMode, LengthComp, ModalState, MotionMode};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, AXES};
 use crate::motion::{EndKind, Feed, Move, SegmentKind, StopKind};
+use crate::profile::RotaryRollover;
 use crate::profile::{GCode, Group};
 
 /// Everything the control remembers between blocks: the state every dialect shares, and the
@@ -548,7 +548,9 @@ impl Executor {
             let rollover = self.kernel.setup.profile().motion.rotary_rollover;
             for (axis, value) in cmd.axis_words().filter(|(axis, _)| !axis.is_geometry()) {
                 let (i, value) = (axis.index(), self.axis_value(axis, value));
-                match self.kernel.setup.is_rotary(axis) && !incremental {
+                // Without rollover the angle is placed as written (a sum would round it).
+                let rolls = rollover != RotaryRollover::Off && !incremental;
+                match rolls && self.kernel.setup.is_rotary(axis) {
                     true => place(i, start[i] + rollover_turn(rollover, start[i], value)),
                     false => place(i, value),
                 }

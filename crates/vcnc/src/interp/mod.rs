@@ -726,10 +726,8 @@ impl<B: BlockSource<Line = LineBlocks>> Iterator for Interpreter<B> {
                 continue;
             }
             if self.core.done {
-                if out.items.is_empty()
-                    && !out.polar_interpolating()
-                    && out.cylindrical_axes().is_none()
-                {
+                // A stage may still hold moves (the corner override its last one).
+                if out.items.is_empty() && !out.has_stages() {
                     return None;
                 }
                 out.finish();

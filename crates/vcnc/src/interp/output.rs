@@ -163,6 +163,11 @@ impl Output {
         }
     }
 
+    /// Whether any stage is on (and may hold items until it ends).
+    pub(crate) fn has_stages(&self) -> bool {
+        !self.stages.is_empty()
+    }
+
     /// Whether polar coordinate interpolation (G12.1) is on.
     pub(crate) fn polar_interpolating(&self) -> bool {
         self.stages

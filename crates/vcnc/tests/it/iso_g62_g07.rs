@@ -302,3 +302,16 @@ fn a_rollover_axis_turns_the_way_of_the_sign_and_g91_by_the_amount() {
     // Without rollover G90 goes to the angle written.
     assert_eq!(c_ends(Off, "G90 G00 C0\nC350.\nM30\n"), [350.0]);
 }
+
+#[test]
+fn a_program_ending_in_compensation_still_makes_its_last_moves() {
+    // The pocket without G40: M30 ends compensation (a reset), and the corner override lets the
+    // last side go (its end perpendicular at (50,5), no corner after it).
+    let machine = on(ProfileName::Fanuc0m);
+    let program = "G90 G17 G54\nG00 X50. Y20.\nG01 Z-1. F600.\nG41 X50. Y0 D1\nX100.\nY100.\nX0\nY0\nX50.\nM30\n";
+    let trace = trace_on(&machine, program);
+    assert!(
+        trace.ends_with("line X7 Y5 Z-1 F300\nline X50 Y5 Z-1 F600\nend M30"),
+        "{trace}"
+    );
+}
