@@ -3,6 +3,7 @@
 
 use super::comp::geometry::{Side, V2};
 use super::comp::Compensator;
+use super::corner_override::CornerStage;
 use super::decode::Command;
 use super::exec::Executor;
 use super::frames::Frames;
@@ -117,6 +118,9 @@ pub(crate) fn before_motion(
                     );
                     comp.set_reversed(reversed(&exec.kernel.frames, exec.modal.plane));
                     out.start_compensation(comp);
+                    if let Some(corner) = exec.kernel.setup.profile().compensation.corner_override {
+                        out.start_corner_override(CornerStage::new(corner, (a, b), setting));
+                    }
                 }
                 Some(comp) => change(exec, comp, left),
             }

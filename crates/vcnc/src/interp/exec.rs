@@ -7,12 +7,13 @@
 
 use super::decode::{Command, GWord, Value};
 use super::frames::Frames;
-use super::kernel::{same_place, KernelState};
+use super::kernel::{rollover_turn, same_place, KernelState};
 use super::modal::{FeedMode, LengthComp, ModalState, MotionMode};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, Machine, AXES};
 use crate::motion::{EndKind, Feed, Move, SegmentKind, StopKind};
+use crate::profile::RotaryRollover;
 use crate::profile::{GCode, Group};
 
 /// Everything the control remembers between blocks: the state every dialect shares, and the
@@ -263,8 +264,12 @@ impl Executor {
             _ => {}
         }
         let polar_interpolation = cmd.group(Group::PolarInterpolation);
-        if let Some(g) = polar_interpolation {
-            super::polar_interpolation::switch(self, cmd, g, out)?;
+        match polar_interpolation {
+            Some(g) if g.code == GCode::CylindricalInterpolation => {
+                super::cylindrical::switch(self, cmd, g, out)?;
+            }
+            Some(g) => super::polar_interpolation::switch(self, cmd, g, out)?,
+            None => {}
         }
         match rotation {
             Some(GCode::Rotate) => super::frames::rotation::g68(self, cmd)?,
@@ -526,6 +531,7 @@ impl Executor {
     #[inline(always)]
     fn cartesian_target(&self, cmd: &Command) -> [f64; AXES] {
         let mut target = self.kernel.program_position();
+        let start = target;
         let incremental = self.modal.distance == super::modal::DistanceMode::Incremental;
         let mut place = |i: usize, v: f64| {
             target[i] = if incremental { target[i] + v } else { v };
@@ -539,8 +545,15 @@ impl Executor {
             }
         }
         if cmd.has_extra_axis_words() {
+            let rollover = self.kernel.setup.profile().motion.rotary_rollover;
             for (axis, value) in cmd.axis_words().filter(|(axis, _)| !axis.is_geometry()) {
-                place(axis.index(), self.axis_value(axis, value));
+                let (i, value) = (axis.index(), self.axis_value(axis, value));
+                // Without rollover the angle is placed as written (a sum would round it).
+                let rolls = rollover != RotaryRollover::Off && !incremental;
+                match rolls && self.kernel.setup.is_rotary(axis) {
+                    true => place(i, start[i] + rollover_turn(rollover, start[i], value)),
+                    false => place(i, value),
+                }
             }
         }
         target

@@ -17,7 +17,9 @@ mod circle_pocket;
 mod circular;
 mod comp;
 mod compensation;
+mod corner_override;
 mod cycles;
+mod cylindrical;
 mod data_input;
 mod decode;
 mod engraving;
@@ -624,6 +626,9 @@ impl Core {
                 return self.fail(alarm);
             }
         }
+        if let Err(alarm) = cylindrical::prepare(&mut self.command, &self.out) {
+            return self.fail(alarm);
+        }
         // Only a block with a comment kept can be a G47 P1: one test for the others.
         let serial = self.command.text().is_some() && self.command.engraves_serial();
         if serial {
@@ -721,7 +726,8 @@ impl<B: BlockSource<Line = LineBlocks>> Iterator for Interpreter<B> {
                 continue;
             }
             if self.core.done {
-                if out.items.is_empty() && !out.polar_interpolating() {
+                // A stage may still hold moves (the corner override its last one).
+                if out.items.is_empty() && !out.has_stages() {
                     return None;
                 }
                 out.finish();

@@ -264,6 +264,7 @@ impl ModalState {
             | Rotate
             | PolarInterpolation
             | PolarInterpolationCancel
+            | CylindricalInterpolation
             // G06.2 is of group 01, but its curve ends with its last knot and the motion in
             // force before it goes on (vcnc's choice, spec 1.10 is silent).
             | Nurbs

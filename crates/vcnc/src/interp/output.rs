@@ -5,11 +5,13 @@
 //! place. Cutter compensation (G41/G42) is the first stage when it is on: it holds a move until
 //! the next one shows where the corner is, so the items queued behind the held move wait too
 //! (`held`). The transformations of finished motion come after it, in order (G12.1 polar
-//! coordinate interpolation, the 5-axis kinematic transform, and whatever a dialect adds): each reads the released part of its own
+//! coordinate interpolation, G07.1 cylindrical interpolation, the 5-axis kinematic transform, and whatever a dialect adds): each reads the released part of its own
 //! input queue and writes into the next stage's input, the last into the output queue. A stage
 //! never reads program text or modal state; the executor starts and ends stages.
 
 use super::comp::Compensator;
+use super::corner_override::CornerStage;
+use super::cylindrical::CylindricalStage;
 use super::kernel::BlockOrigin;
 use super::polar_interpolation::PolarStage;
 use super::tool_center::KinematicStage;
@@ -27,8 +29,12 @@ type Item = StreamItem;
 pub(crate) enum Stage {
     /// Cutter radius compensation; always the first stage.
     Compensation(Box<Compensator>),
+    /// G62's inner-corner override of the compensated path; always right behind compensation.
+    CornerOverride(Box<CornerStage>),
     /// G12.1 polar coordinate interpolation: Cartesian motion to machine X and C.
     PolarInterpolation(Box<PolarStage>),
+    /// G07.1 cylindrical interpolation: the unrolled surface to the linear and rotary axes.
+    Cylindrical(Box<CylindricalStage>),
     /// G43.4 or G53.1: tool tip motion in the workpiece to the joints of a 5-axis machine.
     Kinematics(Box<KinematicStage>),
 }
@@ -39,6 +45,10 @@ enum Ended {
     Polar(Plane, [f64; AXES]),
     /// The kinematic transform: the machine position (joints).
     Kinematics([f64; AXES]),
+    /// The inner-corner override: nothing.
+    CornerOverride,
+    /// G07.1 C0: the plane before G07.1 and the machine position.
+    Cylindrical(Plane, [f64; AXES]),
 }
 
 /// The queue of what the blocks produced and nobody has taken yet: a few items for
@@ -138,6 +148,26 @@ impl Output {
         }
     }
 
+    /// The inner-corner override (G62) starts, right behind compensation.
+    pub(crate) fn start_corner_override(&mut self, stage: CornerStage) {
+        let at = usize::from(self.compensating());
+        self.stages
+            .insert(at, Stage::CornerOverride(Box::new(stage)));
+    }
+
+    /// The inner-corner override ends with compensation: what it holds is passed on.
+    fn end_corner_override(&mut self) {
+        let at = usize::from(self.compensating());
+        if matches!(self.stages.get(at), Some(Stage::CornerOverride(_))) {
+            self.end_transform(at);
+        }
+    }
+
+    /// Whether any stage is on (and may hold items until it ends).
+    pub(crate) fn has_stages(&self) -> bool {
+        !self.stages.is_empty()
+    }
+
     /// Whether polar coordinate interpolation (G12.1) is on.
     pub(crate) fn polar_interpolating(&self) -> bool {
         self.stages
@@ -159,6 +189,33 @@ impl Output {
             .position(|stage| matches!(stage, Stage::PolarInterpolation(_)))?;
         match self.end_transform(at) {
             Some(Ended::Polar(plane, position)) => Some((plane, position)),
+            _ => None,
+        }
+    }
+
+    /// The rotary axis and the slot carrying its surface length while cylindrical
+    /// interpolation (G07.1) is on.
+    pub(crate) fn cylindrical_axes(&self) -> Option<(crate::machine::Axis, crate::machine::Axis)> {
+        self.stages.iter().find_map(|stage| match stage {
+            Stage::Cylindrical(stage) => Some(stage.axes()),
+            _ => None,
+        })
+    }
+
+    /// Cylindrical interpolation starts: a stage behind the others.
+    pub(crate) fn start_cylindrical_interpolation(&mut self, stage: CylindricalStage) {
+        self.stages.push(Stage::Cylindrical(Box::new(stage)));
+    }
+
+    /// Cylindrical interpolation ends: what it holds is converted. The plane before G07.1 and
+    /// the machine position where its last piece ended, if it was on.
+    pub(crate) fn end_cylindrical_interpolation(&mut self) -> Option<(Plane, [f64; AXES])> {
+        let at = self
+            .stages
+            .iter()
+            .position(|stage| matches!(stage, Stage::Cylindrical(_)))?;
+        match self.end_transform(at) {
+            Some(Ended::Cylindrical(plane, position)) => Some((plane, position)),
             _ => None,
         }
     }
@@ -199,6 +256,14 @@ impl Output {
                 Ended::Polar(plane, position)
             }
             Stage::Kinematics(stage) => Ended::Kinematics(stage.flush(items)),
+            Stage::CornerOverride(stage) => {
+                stage.flush(items);
+                Ended::CornerOverride
+            }
+            Stage::Cylindrical(stage) => {
+                let (plane, position) = stage.flush(items);
+                Ended::Cylindrical(plane, position)
+            }
             Stage::Compensation(_) => return None,
         };
         self.settle();
@@ -242,12 +307,18 @@ impl Output {
     /// Moves what each transformation's input has released through it, in the chain's order.
     fn settle(&mut self) {
         let first = usize::from(self.compensating());
+        if let [Stage::Compensation(comp), Stage::CornerOverride(corner), ..] = &mut self.stages[..]
+        {
+            corner.set_offset(comp.offset());
+        }
         for at in first..self.stages.len() {
             if let Some((stage, behind)) = self.stages[at..].split_first_mut() {
                 let (items, _) = input_of(behind, &mut self.items, &mut self.held);
                 match stage {
                     Stage::PolarInterpolation(stage) => stage.settle(items),
                     Stage::Kinematics(stage) => stage.settle(items),
+                    Stage::CornerOverride(stage) => stage.settle(items),
+                    Stage::Cylindrical(stage) => stage.settle(items),
                     Stage::Compensation(_) => {}
                 }
             }
@@ -291,6 +362,7 @@ impl Output {
         let (_, items, held) = self.entry();
         let finished = comp.finish(items, held);
         self.settle();
+        self.end_corner_override();
         finished
     }
 
@@ -369,6 +441,8 @@ impl Output {
             comp.abandon();
         }
         self.settle();
+        // What the corner override holds was released by compensation: it moves.
+        self.end_corner_override();
         self.items.push(Err(alarm));
     }
 
@@ -388,6 +462,8 @@ fn input_of<'a>(
     match stages.first_mut() {
         Some(Stage::PolarInterpolation(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::Kinematics(stage)) => (&mut stage.staged, &mut stage.held),
+        Some(Stage::CornerOverride(stage)) => (&mut stage.staged, &mut stage.held),
+        Some(Stage::Cylindrical(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::Compensation(_)) | None => (items, held),
     }
 }

@@ -129,6 +129,32 @@ pub(crate) fn lerp(from: &[f64; AXES], to: &[f64; AXES], t: f64) -> [f64; AXES] 
     std::array::from_fn(|i| from[i] + (to[i] - from[i]) * t)
 }
 
+/// Moves what a stage's input queue has released (the items before `held`, all of them when
+/// nothing is held) into `items`, each motion cut into pieces through `map` from `last` (updated
+/// to where the last piece ends); the hold then starts at the front of what stays.
+pub(crate) fn settle(
+    (staged, held): (&mut Vec<StreamItem>, &mut Option<usize>),
+    map: &impl PieceMap,
+    (last, tolerance): (&mut [f64; AXES], f64),
+    items: &mut Vec<StreamItem>,
+) {
+    let ready = held.unwrap_or(staged.len());
+    if ready == 0 {
+        return;
+    }
+    for item in staged.drain(..ready) {
+        match item {
+            Ok(crate::motion::Item::Segment(segment)) if segment.motion().is_some() => {
+                *last = cut(map, &segment, *last, tolerance, items);
+            }
+            other => items.push(other),
+        }
+    }
+    if let Some(held) = held.as_mut() {
+        *held = 0;
+    }
+}
+
 /// One piece's end and where it ends on its segment.
 struct PieceEnd {
     t: f64,

@@ -39,7 +39,7 @@ use super::pieces::{self, PieceMap};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
-use crate::motion::{Item, Plane, Segment, StreamItem};
+use crate::motion::{Plane, StreamItem};
 use crate::profile::{GCode, Group};
 
 /// The linear axis of the plane: the radius.
@@ -87,7 +87,7 @@ pub(crate) fn prepare(cmd: &mut Command) -> Result<(), Alarm> {
 /// The codes the mode allows: motion and the modes that do not move the coordinate system
 /// (spec 1.13.2 rule 3 lists G01, G02, G03, G04, G40-G42, G65-G67; G00, G90/G91, the feed,
 /// path and spindle modes change nothing in the plane and are accepted too).
-fn allowed_in_mode(code: GCode) -> bool {
+pub(super) fn allowed_in_mode(code: GCode) -> bool {
     match code.group() {
         Group::Motion
         | Group::Distance
@@ -275,21 +275,14 @@ pub(crate) struct PolarStage {
 impl PolarStage {
     /// Converts the items compensation has released and appends them to `items`.
     pub(crate) fn settle(&mut self, items: &mut Vec<StreamItem>) {
-        let ready = self.held.unwrap_or(self.staged.len());
-        if ready == 0 {
-            return;
-        }
-        for item in self.staged.drain(..ready) {
-            match item {
-                Ok(Item::Segment(segment)) if segment.motion().is_some() => {
-                    self.converter.convert(&segment, items);
-                }
-                other => items.push(other),
-            }
-        }
-        if let Some(held) = self.held.as_mut() {
-            *held = 0;
-        }
+        let mut last = self.converter.last;
+        pieces::settle(
+            (&mut self.staged, &mut self.held),
+            &self.converter,
+            (&mut last, self.converter.tolerance),
+            items,
+        );
+        self.converter.last = last;
     }
 
     /// The mode ends: everything staged is converted. Returns the plane before G12.1 and the
@@ -317,13 +310,6 @@ struct Converter {
 /// `degrees` brought into [-180, 180).
 fn wrap(degrees: f64) -> f64 {
     degrees - 360.0 * ((degrees + 180.0) / 360.0).floor()
-}
-
-impl Converter {
-    /// Appends the pieces of the Cartesian `segment` to `items`.
-    fn convert(&mut self, segment: &Segment, items: &mut Vec<StreamItem>) {
-        self.last = pieces::cut(self, segment, self.last, self.tolerance, items);
-    }
 }
 
 impl PieceMap for Converter {

@@ -176,6 +176,8 @@ pub enum GCode {
     PolarInterpolation,
     /// G13.1.
     PolarInterpolationCancel,
+    /// G07.1: cylindrical interpolation (a rotary axis as a length on a cylinder's surface).
+    CylindricalInterpolation,
     /// G05: high-speed high-precision (Syntec) or high-precision contour control (FANUC) on with
     /// P10000 (Syntec also E alone), off with P0.
     HighSpeedMode,
@@ -281,6 +283,7 @@ impl GCode {
             Rotate => "coordinate rotation",
             PolarInterpolation => "polar coordinate interpolation",
             PolarInterpolationCancel => "polar coordinate interpolation cancel",
+            CylindricalInterpolation => "cylindrical interpolation",
             HighSpeedMode => "high-speed high-precision mode",
             PathSmoothing => "path smoothing / AI contour control",
             LookAhead => "look-ahead control",
@@ -323,7 +326,11 @@ impl GCode {
             }
             RotationCancel | Rotate | TiltedPlane => Group::Rotation,
             PolarCancel | Polar => Group::Polar,
-            PolarInterpolation | PolarInterpolationCancel => Group::PolarInterpolation,
+            // G07.1 is a one-shot code that switches a mode like G12.1: in the same group, one
+            // of them per block.
+            PolarInterpolation | PolarInterpolationCancel | CylindricalInterpolation => {
+                Group::PolarInterpolation
+            }
             MirrorCancel | Mirror => Group::Mirror,
             Dwell | Skip | ExactStopOnce | DataInput | ReferenceReturn | ReturnFromReference
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
@@ -438,6 +445,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         }
         121 if profile.motion.polar_interpolation => PolarInterpolation,
         131 if profile.motion.polar_interpolation => PolarInterpolationCancel,
+        71 if profile.motion.cylindrical_interpolation => CylindricalInterpolation,
         150 => PolarCancel,
         160 => Polar,
         170 => PlaneXy,
@@ -532,10 +540,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
 
 /// Codes the controls have that vcnc does not run yet: (code in tenths, the issue that adds it,
 /// what it does).
-const NOT_YET: &[(i32, Option<u32>, &str)] = &[
-    (70, None, "hypothetical axis interpolation"),
-    (71, None, "cylindrical interpolation"),
-];
+const NOT_YET: &[(i32, Option<u32>, &str)] = &[(70, None, "hypothetical axis interpolation")];
 
 /// A code vcnc does not run yet: (issue, meaning).
 fn not_yet_on(tenths: i32) -> Option<(Option<u32>, &'static str)> {

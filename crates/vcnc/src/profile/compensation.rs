@@ -61,6 +61,34 @@ pub struct CompensationRules {
     /// L79); otherwise the block is made without it, as G28 is (FANUC family, spec A.22).
     #[serde(default)]
     pub g53_keeps_radius_compensation: bool,
+    /// G62 is the automatic corner override of the FANUC family, with these settings; `None`
+    /// where G62 means something else (Syntec's curved-surface cutting mode, spec 1.34) or the
+    /// control has no such function.
+    #[serde(default)]
+    pub corner_override: Option<CornerOverride>,
+}
+
+/// `corner_override`: the inner-corner feed override of G62 (FANUC's parameters 1710-1714; the
+/// FANUC 0M textbook, 001 L1533, says only that the feed is lowered at inner corners).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CornerOverride {
+    /// The override is on whenever G41/G42 is, G62 programmed or not (the FANUC 0M textbook,
+    /// 001 L1533); otherwise only in G62.
+    pub with_compensation: bool,
+    /// A corner of the tool-centre path whose inner angle is at most this, degrees, is
+    /// overridden (FANUC parameter 1711, 2 to 178).
+    pub inner_angle: f64,
+    /// The feed at an inner corner, percent of F (FANUC parameter 1712).
+    pub override_percent: f64,
+    /// Le: the distance before the corner the override starts at, mm (FANUC parameter 1714).
+    pub before_corner: f64,
+    /// Ls: the distance after the corner it ends at, mm (FANUC parameter 1713).
+    pub after_corner: f64,
+    /// On an arc with the tool inside it, the feed along the tool centre is F times the tool
+    /// centre's radius over the programmed radius, never below this percent of F (FANUC's inner
+    /// circular cutting feed change and its parameter 1710).
+    pub inner_arc_min_percent: f64,
 }
 
 fn default_cutter_comp_look_ahead() -> u32 {

@@ -29,12 +29,12 @@ pub use codes::{
     GCode, GLookup, Group, MCode, MLookup, PatternKind,
 };
 
-pub use compensation::{CompensationRules, ToolOffsetField, ToolOffsetL};
+pub use compensation::{CompensationRules, CornerOverride, ToolOffsetField, ToolOffsetL};
 pub use coordinates::{CoordinateRules, PolarIncrements, ScalingAxes};
 pub use cycles::{CycleRules, ShiftDirection};
 pub use dwell::{DwellP, DwellRules};
 pub use macros::{MacroArguments, MacroRules, ToolOffsetVariables};
-pub use motion::{MotionRules, RapidPath, SmoothingCodes};
+pub use motion::{MotionRules, RapidPath, RotaryRollover, SmoothingCodes};
 pub use reading::{ReadingRules, SameGroupRule};
 pub use sinumerik::{SinumerikSettings, Variant};
 pub use subprograms::SubprogramRules;
@@ -303,6 +303,32 @@ impl Profile {
         ] {
             check_range(&key(name), value, lower, upper)?;
         }
+        if let Some(corner) = &self.compensation.corner_override {
+            for (name, value, lower, upper) in [
+                ("inner_angle", corner.inner_angle, AtLeast(2.0), 178.0),
+                (
+                    "override_percent",
+                    corner.override_percent,
+                    Above(0.0),
+                    100.0,
+                ),
+                ("before_corner", corner.before_corner, AtLeast(0.0), 1000.0),
+                ("after_corner", corner.after_corner, AtLeast(0.0), 1000.0),
+                (
+                    "inner_arc_min_percent",
+                    corner.inner_arc_min_percent,
+                    AtLeast(0.0),
+                    100.0,
+                ),
+            ] {
+                check_range(
+                    &key(&format!("compensation.corner_override.{name}")),
+                    value,
+                    lower,
+                    upper,
+                )?;
+            }
+        }
         if let Some(feed) = self.motion.default_feed {
             check_range(&key("motion.default_feed"), feed, Above(0.0), 1e6)?;
         }
@@ -529,7 +555,7 @@ mod tests {
         }
         // Every field but name, description, power_on and sinumerik: each is set or has a
         // default in some profile, so the flat-key error finds them all.
-        assert_eq!(seen.len(), 75);
+        assert_eq!(seen.len(), 78);
     }
 
     #[test]

@@ -14,6 +14,21 @@ pub enum RapidPath {
     PerAxis,
 }
 
+/// How an absolute (G90) move of a rotary axis goes: FANUC's rollover parameters ROAx and RABx.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RotaryRollover {
+    /// No rollover: the axis goes to the angle written, as a linear axis would.
+    #[default]
+    Off,
+    /// The angle is taken modulo 360 and reached by the shorter way (ROAx = 1, RABx = 0); half
+    /// a turn goes the positive way.
+    Shortest,
+    /// The angle is taken modulo 360 and reached turning the way of its sign (ROAx = 1,
+    /// RABx = 1): `C-90.` turns negatively to 90.
+    BySign,
+}
+
 /// The high-speed and smoothing codes of a control.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -62,6 +77,16 @@ pub struct MotionRules {
     /// their servo cycle and give no such number).
     #[serde(default = "default_polar_interpolation_tolerance")]
     pub polar_interpolation_tolerance: f64,
+    /// G07.1 cylindrical interpolation exists (FANUC 0i/30i-M and Mitsubishi M70/M700, whose
+    /// manuals are not among the seeds; docs/DEVIATIONS.md); it cuts on the surface of a
+    /// cylinder turned by a rotary axis, within `polar_interpolation_tolerance`.
+    #[serde(default)]
+    pub cylindrical_interpolation: bool,
+    /// How G90 moves rotary axes: every rotary axis of the machine rolls over this way (G91
+    /// moves by the amount written either way). No manual of the seeds sets it: a machine
+    /// file does (`[profile_overrides.motion] rotary_rollover = "shortest"`).
+    #[serde(default)]
+    pub rotary_rollover: RotaryRollover,
     /// Which high-speed and smoothing codes the control has (they change the timing, within a
     /// tolerance the path).
     #[serde(default)]

@@ -15,7 +15,7 @@ fn first_alarm(program: &str) -> (AlarmCode, u32, String, String) {
 #[test]
 fn a_code_vcnc_does_not_run_is_named() {
     let alarm = interpret_str(
-        "G0 X1.\nG07.1 C10.\n",
+        "G0 X1.\nG07 C10.\n",
         &Machine::default(),
         Options::default(),
     )
@@ -24,7 +24,7 @@ fn a_code_vcnc_does_not_run_is_named() {
     assert_eq!(alarm.code, AlarmCode::NotSupportedYet);
     assert_eq!(
         alarm.message,
-        "G07.1 (cylindrical interpolation) is not supported yet"
+        "G07 (hypothetical axis interpolation) is not supported yet"
     );
     assert_eq!(alarm.help, None);
     assert_eq!(alarm.span.unwrap().line, 2);

@@ -169,7 +169,8 @@ fn a_groove_narrower_than_the_tool_is_interference() {
 /// partly in G91, the tool-centre points the example's header works out. At the 90-degree outer
 /// corner after the R12 arc the arc's circle is extended to meet the next path at (25.101, 37);
 /// the last element ends perpendicular because `G00 Z20.` has no motion in the plane; the lone
-/// `G40` moves the tool back onto the programmed point.
+/// `G40` moves the tool back onto the programmed point. The R12 arc has the tool inside it:
+/// FANUC 0M's automatic G62 (001 L1533) feeds its tool centre (radius 7) at 100 * 7 / 12.
 #[test]
 fn fanuc_0m_contour_example_o2127() {
     let Some(shared) = shared_dir() else {
@@ -194,7 +195,7 @@ fn fanuc_0m_contour_example_o2127() {
         line X52 Y7 Z-400.452 F100
         arc ccw xy X77 Y32 Z-400.452 C(52,32,-400.452) F100
         arc ccw xy X37 Y32 Z-400.452 C(57,32,-400.452) F100
-        arc cw xy X25.101 Y37 Z-400.452 C(30,32,-400.452) F100
+        arc cw xy X25.101 Y37 Z-400.452 C(30,32,-400.452) F58.3333
         line X7 Y37 Z-400.452 F100
         line X7 Y0 Z-400.452 F100
         rapid X7 Y0 Z-375.452

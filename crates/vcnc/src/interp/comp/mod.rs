@@ -681,6 +681,11 @@ impl Compensator {
         self.next = (setting != (self.side, self.radius)).then_some(setting);
     }
 
+    /// The tool's side and radius in force.
+    pub(crate) fn offset(&self) -> (Side, f64) {
+        (self.side, self.radius)
+    }
+
     /// G41 (true) or G42 in force.
     pub(crate) fn left(&self) -> bool {
         self.left

@@ -14,6 +14,25 @@ mod state;
 
 pub(crate) use state::{check_position, same_place, KernelState, MoveModes};
 
+use crate::profile::RotaryRollover;
+
+/// How far a rotary axis at `current` degrees turns for an absolute (G90) `programmed` angle
+/// under `rollover`: all the way to the angle without rollover; else to the angle modulo 360,
+/// the shorter way (half a turn positively) or the way of the angle's sign (FANUC's RABx).
+pub(crate) fn rollover_turn(rollover: RotaryRollover, current: f64, programmed: f64) -> f64 {
+    let difference = programmed - current;
+    match rollover {
+        RotaryRollover::Off => difference,
+        // Into (-180, 180]: a difference of exactly half a turn goes the positive way.
+        RotaryRollover::Shortest => difference - 360.0 * ((difference - 180.0) / 360.0).ceil(),
+        // `C-0.` is a negative zero: it turns negatively to 0, as its sign says.
+        RotaryRollover::BySign if programmed.is_sign_negative() => {
+            -(current - programmed.abs()).rem_euclid(360.0)
+        }
+        RotaryRollover::BySign => (programmed - current).rem_euclid(360.0),
+    }
+}
+
 use super::arc::{arc_center, in_plane, ArcSpec};
 use super::circular::ArcTo;
 use super::comp::geometry::{Side, V2};
