@@ -64,9 +64,21 @@ pub struct PlannerConfig {
     pub exact_stop_passes_tangents: bool,
     /// A stop between a rapid and a cutting move even in continuous mode.
     pub stop_between_rapid_and_feed: bool,
-    /// Least time per segment, s: caps the speed on very short segments (LinuxCNC: 1.02 servo
-    /// cycles).
+    /// Least time per segment, s: caps the speed on very short segments, and on what the
+    /// blends leave of a segment (LinuxCNC: 1.02 servo cycles, on a segment's length when it is
+    /// planned, after its blends).
     pub min_segment_seconds: f64,
+    /// The trajectory's cycle, s (LinuxCNC: its servo period, 0.001): a direction change
+    /// within one cycle is what [`PlannerConfig::kink_ratio`] weighs.
+    pub cycle_seconds: f64,
+    /// A corner whose direction change, made within one cycle at the slower segment's speed
+    /// (plus the acceleration of the next), asks no axis for more than this share of its
+    /// acceleration limit is passed as a tangent, both segments keeping 1 minus that share of
+    /// their acceleration; at a sharper corner the same pass at the speed that asks for
+    /// exactly this share competes with the blend arc, and the faster wins, the segments then
+    /// keeping 1 minus this share (LinuxCNC: `ARC_BLEND_KINK_RATIO` 0.1, tp.c
+    /// `tpSetupTangent` and `tpChooseBestBlend`). 0: never.
+    pub kink_ratio: f64,
     /// Highest path speed, mm/min, whatever the axes allow (LinuxCNC's
     /// `[TRAJ]MAX_LINEAR_VELOCITY`); infinite when only the axes limit it.
     pub max_path_rate: f64,
@@ -144,6 +156,8 @@ impl PlannerConfig {
                 exact_stop_passes_tangents: false,
                 stop_between_rapid_and_feed: true,
                 min_segment_seconds: 0.0,
+                cycle_seconds: 0.001,
+                kink_ratio: 0.0,
                 max_path_rate: f64::INFINITY,
                 tool_change_seconds: 4.0,
                 spindle_start_seconds: 1.0,
@@ -174,6 +188,8 @@ impl PlannerConfig {
                 exact_stop_passes_tangents: true,
                 stop_between_rapid_and_feed: true,
                 min_segment_seconds: 0.00102,
+                cycle_seconds: 0.001,
+                kink_ratio: 0.1,
                 max_path_rate: f64::INFINITY,
                 tool_change_seconds: 0.0,
                 spindle_start_seconds: 0.0,
@@ -210,6 +226,8 @@ pub(crate) struct PlannerFile {
     exact_stop_passes_tangents: Option<bool>,
     stop_between_rapid_and_feed: Option<bool>,
     min_segment_seconds: Option<f64>,
+    cycle_seconds: Option<f64>,
+    kink_ratio: Option<f64>,
     max_path_rate: Option<f64>,
     tool_change_seconds: Option<f64>,
     spindle_start_seconds: Option<f64>,
@@ -263,6 +281,8 @@ impl PlannerFile {
             self.stop_between_rapid_and_feed,
         );
         set(&mut c.min_segment_seconds, self.min_segment_seconds);
+        set(&mut c.cycle_seconds, self.cycle_seconds);
+        set(&mut c.kink_ratio, self.kink_ratio);
         set(&mut c.max_path_rate, self.max_path_rate);
         set(&mut c.tool_change_seconds, self.tool_change_seconds);
         set(&mut c.spindle_start_seconds, self.spindle_start_seconds);
@@ -361,6 +381,14 @@ impl PlannerConfig {
             1.0,
         )?;
         within("min_segment_seconds", self.min_segment_seconds, 0.0, 1.0)?;
+        within("cycle_seconds", self.cycle_seconds, 1e-6, 1.0)?;
+        // LinuxCNC bounds its ratio to 0.7071 (tp.c tpGetTangentKinkRatio).
+        within(
+            "kink_ratio",
+            self.kink_ratio,
+            0.0,
+            std::f64::consts::FRAC_1_SQRT_2,
+        )?;
         within("max_path_rate", self.max_path_rate, 1e-6, f64::INFINITY)?;
         for (name, value) in [
             ("tool_change_seconds", self.tool_change_seconds),

@@ -51,6 +51,8 @@ pub(crate) struct Handover {
     pub(crate) cruise: f64,
     /// Its turning acceleration (see [`Ends::turning`]), mm/s^2.
     turning: f64,
+    /// Its tangential acceleration, mm/s^2.
+    acceleration: f64,
     class: MotionClass,
     /// A straight move (a line or a rapid), whose rest a blend may take over.
     pub(crate) straight: bool,
@@ -68,12 +70,22 @@ impl Handover {
         motion: &Move,
         limits: &MotionLimits,
         ends: &Ends,
+        config: &PlannerConfig,
     ) -> Handover {
+        // LinuxCNC caps a segment's speed by one cycle over its length when it takes it in
+        // (tc.c `tcClampVelocityByLength`), by a little more once its blends are known
+        // (`PlannerConfig::min_segment_seconds`, in the look-ahead window).
+        let cruise = if config.min_segment_seconds > 0.0 {
+            lesser(limits.cruise, limits.length / config.cycle_seconds)
+        } else {
+            limits.cruise
+        };
         Handover {
             end: ends.end,
             length: limits.length,
-            cruise: limits.cruise,
+            cruise,
             turning: ends.turning,
+            acceleration: limits.path.acceleration,
             class,
             straight,
             exact_stop: motion.exact_stop
@@ -99,6 +111,9 @@ pub(crate) struct Junction {
     /// A stop at a corner the path could not blend (exact stop, a reversal), as opposed to a
     /// stop between kinds of motion.
     pub(crate) corner_stop: bool,
+    /// The factor both motions' acceleration is scaled by where a kink is passed as a tangent
+    /// (`PlannerConfig::kink_ratio`); 1: not scaled.
+    pub(crate) kink_factor: f64,
 }
 
 impl Junction {
@@ -108,6 +123,7 @@ impl Junction {
         arc: 0.0,
         arc_acceleration: 0.0,
         corner_stop: false,
+        kink_factor: 1.0,
     };
     const CORNER_STOP: Junction = Junction {
         corner_stop: true,
@@ -119,6 +135,7 @@ impl Junction {
         arc: 0.0,
         arc_acceleration: 0.0,
         corner_stop: false,
+        kink_factor: 1.0,
     };
 
     /// The machine comes to rest here.
@@ -152,11 +169,24 @@ pub(crate) fn junction(
     }
     let cos_turn = greater(-1.0, lesser(1.0, cos_turn));
     let tangent = cos_turn >= TANGENT_ANGLE.cos();
-    if prev.exact_stop && !(tangent && config.exact_stop_passes_tangents) {
+    // LinuxCNC's kinks: 0 when vcnc's habits weigh none.
+    let kink = if config.kink_ratio > 0.0 && !tangent {
+        kink_scale(prev, next, u, w, config)
+    } else {
+        0.0
+    };
+    let passed = tangent || kink < config.kink_ratio;
+    if prev.exact_stop && !(passed && config.exact_stop_passes_tangents) {
         return Junction::CORNER_STOP;
     }
     if tangent {
         return Junction::TANGENT;
+    }
+    if passed {
+        return Junction {
+            kink_factor: 1.0 - kink,
+            ..Junction::TANGENT
+        };
     }
     // A move without X Y Z travel (rotary only) has no direction: the product is 0, a right
     // angle, which blends only as much as a right angle would.
@@ -193,7 +223,7 @@ pub(crate) fn junction(
     // arc blends mostly give up (tp.c: tpCreateLineArcBlend and the like) for a parabolic one.
     if config.blend_arc_tangential_share > 0.0 && prev.straight && next.straight {
         let geometric = lesser(by_length, by_tolerance);
-        return blend_segment(
+        let arc = blend_segment(
             prev,
             next,
             (tan_half, turn),
@@ -201,6 +231,7 @@ pub(crate) fn junction(
             acceleration,
             config,
         );
+        return faster_than_kink(arc, prev, next, kink, config);
     }
     // No larger arc than the speed of the two segments needs: it would only cut more corner.
     let wanted = lesser(prev.cruise, next.cruise);
@@ -211,6 +242,7 @@ pub(crate) fn junction(
         arc: radius * turn,
         arc_acceleration: 0.0,
         corner_stop: false,
+        kink_factor: 1.0,
     }
 }
 
@@ -277,6 +309,65 @@ fn blend_segment(
         arc: radius * turn,
         arc_acceleration: config.blend_arc_tangential_share * acceleration,
         corner_stop: false,
+        kink_factor: 1.0,
+    }
+}
+
+/// LinuxCNC's measure of a kink (tp.c `tpSetupTangent`): the largest share of an axis's
+/// acceleration limit that turning from `u` to `w` within one cycle asks for, at the slower
+/// segment's speed plus one cycle of the next segment's acceleration; twice that next to an
+/// arc, which keeps only half its acceleration for its tangent. Every axis is taken to have the
+/// lower turning limit of the two motions (exact where the axes share one limit).
+#[cold]
+#[inline(never)]
+fn kink_scale(
+    prev: &Handover,
+    next: &Handover,
+    u: &[f64; 3],
+    w: &[f64; 3],
+    config: &PlannerConfig,
+) -> f64 {
+    let speed = lesser(prev.cruise, next.cruise);
+    let instant = speed / config.cycle_seconds + next.acceleration;
+    let largest = greater(
+        greater((w[0] - u[0]).abs(), (w[1] - u[1]).abs()),
+        (w[2] - u[2]).abs(),
+    );
+    let scale = instant * largest / lesser(prev.turning, next.turning);
+    if prev.straight && next.straight {
+        scale
+    } else {
+        scale / 0.5
+    }
+}
+
+/// `arc`, or the corner passed as a kink where that is faster (LinuxCNC's
+/// `tpChooseBestBlend`): at the speed whose kink asks for exactly `kink_ratio` (`kink` being
+/// the share the segments' speed asks for), both segments keeping 1 - `kink_ratio` of their
+/// acceleration. The arc's own speed is capped by one cycle along it (tc.c
+/// `tcClampVelocityByLength`).
+#[cold]
+#[inline(never)]
+fn faster_than_kink(
+    arc: Junction,
+    prev: &Handover,
+    next: &Handover,
+    kink: f64,
+    config: &PlannerConfig,
+) -> Junction {
+    if config.kink_ratio <= 0.0 {
+        return arc;
+    }
+    let kink_speed = lesser(prev.cruise, next.cruise) * config.kink_ratio / kink;
+    let arc_speed = lesser(arc.speed, arc.arc / config.cycle_seconds);
+    if kink_speed > arc_speed {
+        Junction {
+            speed: kink_speed,
+            kink_factor: 1.0 - config.kink_ratio,
+            ..Junction::TANGENT
+        }
+    } else {
+        arc
     }
 }
 
@@ -339,6 +430,7 @@ mod tests {
             length: 100.0,
             cruise: 100.0,
             turning: 1000.0,
+            acceleration: 1000.0,
             class: MotionClass::Cutting,
             straight: true,
             exact_stop,
@@ -458,6 +550,38 @@ mod tests {
         let (u, w) = ([s, -s, 0.0], [0.0, s, -s]);
         let expected = 1.0 / (2.0_f64 / 3.0).sqrt();
         assert!((in_plane_factor(&u, &w) - expected).abs() < 1e-12);
+    }
+
+    /// LinuxCNC's kinks (tp.c `tpSetupTangent`): at 100 mm/s, a 1 ms cycle and 1000 mm/s^2 a
+    /// turn by `a` radians from X asks an axis for (100 / 0.001 + 1000) sin a / 1000 = 101 sin a
+    /// of its limit. At a = 0.0005 that is 0.0505, below the ratio of 0.1: a tangent, both
+    /// motions keeping 1 - 0.0505 of their acceleration. At a = 0.002 it is 0.202: on 100 mm
+    /// lines the blend arc (100 mm/s) beats the kink speed 100 * 0.1 / 0.202 = 49.5 mm/s; on
+    /// 0.01 mm chords the arc, at most 0.01 mm long, is capped at 0.01 / 0.001 = 10 mm/s by its
+    /// one cycle, and the kink wins, keeping 0.9 of the acceleration.
+    #[test]
+    fn a_small_kink_is_passed_as_a_tangent_and_a_larger_one_where_faster_than_its_arc() {
+        let config = PlannerConfig::with_habits(super::super::config::PlannerHabits::Linuxcnc);
+        let x = handover([1.0, 0.0, 0.0], false);
+        let turned = |a: f64, length: f64| {
+            let mut w = handover([a.cos(), a.sin(), 0.0], false);
+            let mut u = x;
+            (u.length, w.length) = (length, length);
+            junction(&u, &w, &config)
+        };
+        let small = turned(0.0005, 100.0);
+        let share = 101.0 * 0.0005_f64.sin();
+        assert!(small.speed.is_infinite() && small.leg == 0.0);
+        assert!(
+            (small.kink_factor - (1.0 - share)).abs() < 1e-9,
+            "{small:?}"
+        );
+        let long = turned(0.002, 100.0);
+        assert!(long.arc > 0.0 && long.kink_factor == 1.0, "{long:?}");
+        let short = turned(0.002, 0.01);
+        let kink_speed = 100.0 * 0.1 / (101.0 * 0.002_f64.sin());
+        assert!((short.speed - kink_speed).abs() < 1e-6, "{short:?}");
+        assert_eq!((short.leg, short.kink_factor), (0.0, 0.9));
     }
 
     #[test]

@@ -108,8 +108,8 @@ pub(crate) struct MotionLimits {
     pub(crate) unblended_acceleration: f64,
     /// The feed could not be known (G95 without a spindle speed): timed at the axis limit.
     pub(crate) feed_unknown: bool,
-    /// The acceleration has been scaled for a stop at one of its ends.
-    pub(crate) stop_scaled: bool,
+    /// The factor the acceleration has been scaled by for its ends (1: not scaled).
+    pub(crate) acceleration_scale: f64,
 }
 
 /// What the junctions with a motion's neighbours need besides its limits: the unit tangents
@@ -328,13 +328,16 @@ impl FeedSpeeds {
 }
 
 impl MotionLimits {
-    /// Scales the acceleration for a stop at one end (see
-    /// `PlannerConfig::stop_acceleration_factor`); a second stop does not scale it again.
+    /// Scales the acceleration for one end: a stop (see
+    /// `PlannerConfig::stop_acceleration_factor`) or a kink (`PlannerConfig::kink_ratio`). The
+    /// two ends do not compound: the smaller factor holds (LinuxCNC's tc.c
+    /// `tcGetOverallMaxAccel` takes the larger of the two reductions).
     pub(crate) fn scale_acceleration(&mut self, factor: f64) {
-        if factor < 1.0 && !self.stop_scaled {
-            self.stop_scaled = true;
-            self.path.acceleration *= factor;
-            self.unblended_acceleration *= factor;
+        if factor < self.acceleration_scale {
+            let step = factor / self.acceleration_scale;
+            self.acceleration_scale = factor;
+            self.path.acceleration *= step;
+            self.unblended_acceleration *= step;
         }
     }
 }
@@ -384,7 +387,7 @@ fn unbounded_line(
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
     let limits = MotionLimits {
         length,
-        cruise: cap_short(cruise, length, config),
+        cruise,
         path: PathLimits {
             acceleration,
             jerk: caps.jerk,
@@ -396,7 +399,7 @@ fn unbounded_line(
             acceleration
         },
         feed_unknown: matches!(programmed, Some(None)),
-        stop_scaled: false,
+        acceleration_scale: 1.0,
     };
     let ends = Ends {
         start: direction,
@@ -404,16 +407,6 @@ fn unbounded_line(
         turning: caps.turning,
     };
     (limits, ends)
-}
-
-/// LinuxCNC spends at least a fixed time on a segment, whatever its length.
-#[inline(always)]
-fn cap_short(speed: f64, length: f64, config: &PlannerConfig) -> f64 {
-    if config.min_segment_seconds > 0.0 {
-        speed.min(length / config.min_segment_seconds)
-    } else {
-        speed
-    }
 }
 
 /// An arc's geometry, as [`arc`] takes it.
@@ -521,14 +514,14 @@ pub(crate) fn arc(
     };
     let limits = MotionLimits {
         length,
-        cruise: cap_short(cruise, length, config),
+        cruise,
         path: PathLimits {
             acceleration: acceleration * tangential_room,
             jerk: caps.jerk,
         },
         unblended_acceleration: acceleration * unblended_share * unblended_factor,
         feed_unknown: programmed.is_none(),
-        stop_scaled: false,
+        acceleration_scale: 1.0,
     };
     let ends = Ends {
         start: start_tangent,

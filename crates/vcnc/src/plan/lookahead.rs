@@ -77,10 +77,12 @@ pub(crate) struct Window {
     start_speed: f64,
     /// How the last motion that entered ends, for the junction with the next; None after a stop.
     last: Option<Handover>,
+    /// `PlannerConfig::min_segment_seconds`, for the motion before a stop.
+    min_segment_seconds: f64,
 }
 
 impl Window {
-    pub(crate) fn new(capacity: usize) -> Window {
+    pub(crate) fn new(capacity: usize, min_segment_seconds: f64) -> Window {
         let capacity = capacity.max(2);
         Window {
             ring: vec![Slot::Fixed(0.0); (capacity + 1).next_power_of_two()],
@@ -90,6 +92,7 @@ impl Window {
             ready: 0,
             start_speed: 0.0,
             last: None,
+            min_segment_seconds,
         }
     }
 
@@ -188,24 +191,27 @@ impl Window {
             if junction.arc_acceleration > 0.0 && junction.arc > 0.0 {
                 let prev = *prev;
                 let arc_cruise = self.push_blend(&prev, &junction, limits.path.jerk, config);
-                max_entry = lesser(arc_cruise, limits.cruise);
                 limits.length = greater(0.0, limits.length - junction.leg);
+                max_entry = lesser(arc_cruise, limits.cruise);
                 return self.push_planned(limits, handover, max_entry, 0.0, per_axis_seconds);
             }
-            max_entry = lesser(lesser(prev.cruise, junction.speed), limits.cruise);
+            let mut prev_cruise = prev.cruise;
             limits.length = greater(0.0, limits.length - junction.leg);
             lead_in = junction.arc;
-            // A factor of 1 scales nothing: only a stop at a corner scales the acceleration.
-            let stop_factor = config.stop_acceleration_factor;
-            if junction.corner_stop {
-                limits.scale_acceleration(stop_factor);
-            }
+            // A factor of 1 scales nothing: only a stop at a corner or a kink scales the
+            // acceleration.
+            let factor = if junction.corner_stop {
+                config.stop_acceleration_factor
+            } else {
+                junction.kink_factor
+            };
+            limits.scale_acceleration(factor);
             if let Some(prev) = self.last_planned() {
                 prev.limits.length = greater(0.0, prev.limits.length - junction.leg);
-                if junction.corner_stop {
-                    prev.limits.scale_acceleration(stop_factor);
-                }
+                prev.limits.scale_acceleration(factor);
+                prev_cruise = lesser(prev_cruise, prev.cap_trimmed(config.min_segment_seconds));
             }
+            max_entry = lesser(lesser(prev_cruise, junction.speed), limits.cruise);
         }
         self.push_planned(limits, handover, max_entry, lead_in, per_axis_seconds);
     }
@@ -246,12 +252,15 @@ impl Window {
         config: &PlannerConfig,
     ) -> f64 {
         let mut length = junction.arc;
+        let mut prev_cruise = prev.cruise;
         if let Some(last) = self.last_planned() {
             last.limits.length = greater(0.0, last.limits.length - junction.leg);
             let rest = last.limits.length;
             if prev.straight && rest < config.blend_consume_seconds * junction.speed {
                 length += rest;
                 last.limits.length = 0.0;
+            } else {
+                prev_cruise = lesser(prev_cruise, last.cap_trimmed(config.min_segment_seconds));
             }
         }
         // The least time per segment holds for the arc as for any segment.
@@ -266,12 +275,12 @@ impl Window {
             path: PathLimits { acceleration, jerk },
             unblended_acceleration: acceleration,
             feed_unknown: false,
-            stop_scaled: false,
+            acceleration_scale: 1.0,
         };
         self.push_slot(Slot::Blend(Planned {
             limits,
             lead_in: 0.0,
-            max_entry: lesser(prev.cruise, cruise),
+            max_entry: lesser(prev_cruise, cruise),
             backward: f64::NAN,
             entry: 0.0,
             exit: 0.0,
@@ -299,8 +308,10 @@ impl Window {
     /// window becomes final. The last motion did not blend into another, so it gets the
     /// unblended acceleration.
     pub(crate) fn stop(&mut self) {
+        let least = self.min_segment_seconds;
         if let Some(last) = self.last_planned() {
             last.limits.path.acceleration = last.limits.unblended_acceleration;
+            last.cap_trimmed(least);
         }
         self.plan(self.len);
         self.last = None;
@@ -377,6 +388,22 @@ impl Window {
     }
 }
 
+impl Planned {
+    /// Once its blends have cut it, a motion runs at no more than the least time per segment
+    /// allows over what is left (LinuxCNC caps a segment's speed by its length when it plans
+    /// it, after the blends: tp.c `tpComputeOptimalVelocity`), entry included; a motion the
+    /// blends left nothing of takes no time and caps nothing. Its cruise speed.
+    #[inline(always)]
+    fn cap_trimmed(&mut self, least_seconds: f64) -> f64 {
+        let limits = &mut self.limits;
+        if least_seconds > 0.0 && limits.length > 0.0 {
+            limits.cruise = lesser(limits.cruise, limits.length / least_seconds);
+            self.max_entry = lesser(self.max_entry, limits.cruise);
+        }
+        limits.cruise
+    }
+}
+
 impl Slot {
     #[inline(always)]
     fn planned(&mut self) -> Option<&mut Planned> {
@@ -424,7 +451,7 @@ mod tests {
         fn slots_leave_the_ring_in_the_order_they_came(
             takes in proptest::collection::vec(0_usize..40, 1..60),
         ) {
-            let mut window = Window::new(4);
+            let mut window = Window::new(4, 0.0);
             let (mut pushed, mut popped) = (0_u32, 0_u32);
             for take in takes {
                 // Events are final at once; a few between each round of taking.
