@@ -13,6 +13,10 @@ use serde::Deserialize;
 pub struct PlannerConfig {
     /// Segments in the look-ahead window (at least 2): the planner's only buffer.
     pub look_ahead: usize,
+    /// Whether the window releases its first half when full, or each motion as soon as
+    /// `look_ahead` - 1 motions follow it (LinuxCNC's optimizer plans each new segment back
+    /// over a fixed depth, and a segment beyond it keeps its speeds).
+    pub look_ahead_release: LookAheadRelease,
     /// Largest distance, mm, by which a blended corner in continuous mode (G64) may cut inside
     /// the programmed corner; infinite when only segment lengths bound the blend.
     pub corner_tolerance: f64,
@@ -92,6 +96,20 @@ pub struct PlannerConfig {
     pub spindle_orientation_seconds: f64,
 }
 
+/// When a motion leaves the look-ahead window with its speeds final.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LookAheadRelease {
+    /// The first half of the window when it is full: every motion planned with at least half a
+    /// window after it.
+    Half,
+    /// Each motion (of positive length) when the window's motions fill it: every motion planned
+    /// with the same number of motions after it (LinuxCNC: `ARC_BLEND_OPTIMIZATION_DEPTH` 50,
+    /// tp.c `tpRunOptimization`, a window of 52 with the motion itself and the newest, which it
+    /// plans as a stop).
+    Each,
+}
+
 /// How large a corner blend's arc is drawn (within the tolerance and the segments' lengths).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -139,6 +157,7 @@ impl PlannerConfig {
         match habits {
             PlannerHabits::Vcnc => PlannerConfig {
                 look_ahead: 200,
+                look_ahead_release: LookAheadRelease::Half,
                 corner_tolerance: 0.02,
                 smoothing_tolerance: 0.01,
                 rounding_tolerance: 0.1,
@@ -170,7 +189,8 @@ impl PlannerConfig {
             // arcs keep half the acceleration tangentially, spindle and tool change are instant
             // in its simulated machine.
             PlannerHabits::Linuxcnc => PlannerConfig {
-                look_ahead: 200,
+                look_ahead: 52,
+                look_ahead_release: LookAheadRelease::Each,
                 corner_tolerance: f64::INFINITY,
                 smoothing_tolerance: 0.01,
                 rounding_tolerance: 0.1,
@@ -209,6 +229,7 @@ const NORMAL_SHARE: f64 = 0.866_025_403_784_438_6;
 pub(crate) struct PlannerFile {
     habits: Option<PlannerHabits>,
     look_ahead: Option<usize>,
+    look_ahead_release: Option<LookAheadRelease>,
     corner_tolerance: Option<f64>,
     smoothing_tolerance: Option<f64>,
     rounding_tolerance: Option<f64>,
@@ -240,6 +261,7 @@ impl PlannerFile {
     pub(crate) fn resolve(&self) -> Result<PlannerConfig, String> {
         let mut c = PlannerConfig::with_habits(self.habits.unwrap_or(PlannerHabits::Vcnc));
         set(&mut c.look_ahead, self.look_ahead);
+        set(&mut c.look_ahead_release, self.look_ahead_release);
         set(&mut c.corner_tolerance, self.corner_tolerance);
         set(&mut c.smoothing_tolerance, self.smoothing_tolerance);
         set(&mut c.rounding_tolerance, self.rounding_tolerance);

@@ -19,7 +19,7 @@
 //! own between the two motions it joins, planned like any motion; it is no item of the stream,
 //! so its time goes to the motion after it ([`Slot::Blend`]).
 
-use super::config::PlannerConfig;
+use super::config::{LookAheadRelease, PlannerConfig};
 use super::corner::Junction;
 use super::corner::{junction, Handover};
 use super::limits::MotionLimits;
@@ -79,11 +79,16 @@ pub(crate) struct Window {
     last: Option<Handover>,
     /// `PlannerConfig::min_segment_seconds`, for the motion before a stop.
     min_segment_seconds: f64,
+    /// Each motion leaves as soon as the window holds `capacity` motions of positive length
+    /// (`LookAheadRelease::Each`), instead of the first half when it holds `capacity` slots.
+    release_each: bool,
+    /// Motions of positive length in the window that are not final yet, with `release_each`.
+    live: usize,
 }
 
 impl Window {
-    pub(crate) fn new(capacity: usize, min_segment_seconds: f64) -> Window {
-        let capacity = capacity.max(2);
+    pub(crate) fn new(config: &PlannerConfig) -> Window {
+        let capacity = config.look_ahead.max(2);
         Window {
             ring: vec![Slot::Fixed(0.0); (capacity + 1).next_power_of_two()],
             head: 0,
@@ -92,7 +97,9 @@ impl Window {
             ready: 0,
             start_speed: 0.0,
             last: None,
-            min_segment_seconds,
+            min_segment_seconds: config.min_segment_seconds,
+            release_each: config.look_ahead_release == LookAheadRelease::Each,
+            live: 0,
         }
     }
 
@@ -226,6 +233,7 @@ impl Window {
         per_axis_seconds: Option<f64>,
     ) {
         self.last = Some(handover);
+        self.live += 1;
         self.push_slot(Slot::Motion(Planned {
             limits,
             lead_in,
@@ -259,6 +267,8 @@ impl Window {
             if prev.straight && rest < config.blend_consume_seconds * junction.speed {
                 length += rest;
                 last.limits.length = 0.0;
+                // LinuxCNC takes the consumed line out of its queue.
+                self.live = self.live.saturating_sub(1);
             } else {
                 prev_cruise = lesser(prev_cruise, last.cap_trimmed(config.min_segment_seconds));
             }
@@ -277,6 +287,7 @@ impl Window {
             feed_unknown: false,
             acceleration_scale: 1.0,
         };
+        self.live += 1;
         self.push_slot(Slot::Blend(Planned {
             limits,
             lead_in: 0.0,
@@ -319,8 +330,26 @@ impl Window {
 
     #[inline(always)]
     fn release_if_full(&mut self) {
-        if self.len >= self.capacity && self.ready == 0 {
+        if self.release_each {
+            if self.live >= self.capacity && self.ready == 0 {
+                self.release_first_motion();
+            }
+        } else if self.len >= self.capacity && self.ready == 0 {
             self.plan(self.len / 2);
+        }
+    }
+
+    /// Plans the window and makes final everything up to its first motion of positive length.
+    #[cold]
+    fn release_first_motion(&mut self) {
+        let (first, second) = self.pieces();
+        let index = first
+            .iter_mut()
+            .chain(second.iter_mut())
+            .position(|slot| slot.planned().is_some_and(|p| p.limits.length > 0.0));
+        if let Some(index) = index {
+            self.live -= 1;
+            self.plan(index + 1);
         }
     }
 
@@ -329,6 +358,9 @@ impl Window {
         self.backward_pass();
         self.forward_pass(release);
         self.ready = release;
+        if release == self.len {
+            self.live = 0;
+        }
     }
 
     /// The highest entry speed of each motion from which the machine can still stop at the
@@ -451,7 +483,10 @@ mod tests {
         fn slots_leave_the_ring_in_the_order_they_came(
             takes in proptest::collection::vec(0_usize..40, 1..60),
         ) {
-            let mut window = Window::new(4, 0.0);
+            let mut window = Window::new(&PlannerConfig {
+                look_ahead: 4,
+                ..PlannerConfig::default()
+            });
             let (mut pushed, mut popped) = (0_u32, 0_u32);
             for take in takes {
                 // Events are final at once; a few between each round of taking.

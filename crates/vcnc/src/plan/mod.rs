@@ -197,7 +197,7 @@ impl Timeline {
             1.0
         };
         Timeline {
-            window: Window::new(config.look_ahead, config.min_segment_seconds),
+            window: Window::new(&config),
             axes: AxisLimits::new(machine, &config),
             config,
             feed_override,
