@@ -42,6 +42,10 @@ pub struct PlannerConfig {
     pub blend_arc_tangential_share: f64,
     /// How large a corner blend's arc is drawn.
     pub blend_radius: BlendRadius,
+    /// With `blend_arc_tangential_share`, corners next to a G2/G3 get a blend arc of their own
+    /// too, bounded as LinuxCNC bounds it by the arcs' sweeps and sides (blendmath.c); without,
+    /// they are blended as vcnc's habits blend them.
+    pub blend_next_to_arcs: bool,
     /// The acceleration a corner blend may turn with.
     pub blend_turning: BlendTurning,
     /// What is left of a line between two blends, when the blend speed crosses it in less than
@@ -166,6 +170,7 @@ impl PlannerConfig {
                 corner_tolerance_length_share: f64::INFINITY,
                 blend_arc_tangential_share: 0.0,
                 blend_radius: BlendRadius::Least,
+                blend_next_to_arcs: false,
                 blend_turning: BlendTurning::LowestAxis,
                 blend_consume_seconds: 0.0,
                 normal_acceleration_share: NORMAL_SHARE,
@@ -199,6 +204,7 @@ impl PlannerConfig {
                 corner_tolerance_length_share: 0.25,
                 blend_arc_tangential_share: 0.5,
                 blend_radius: BlendRadius::ParabolicTime,
+                blend_next_to_arcs: true,
                 blend_turning: BlendTurning::InPlane,
                 blend_consume_seconds: 0.004,
                 normal_acceleration_share: NORMAL_SHARE,
@@ -238,6 +244,7 @@ pub(crate) struct PlannerFile {
     corner_tolerance_length_share: Option<f64>,
     blend_arc_tangential_share: Option<f64>,
     blend_radius: Option<BlendRadius>,
+    blend_next_to_arcs: Option<bool>,
     blend_turning: Option<BlendTurning>,
     blend_consume_seconds: Option<f64>,
     normal_acceleration_share: Option<f64>,
@@ -276,6 +283,7 @@ impl PlannerFile {
             self.blend_arc_tangential_share,
         );
         set(&mut c.blend_radius, self.blend_radius);
+        set(&mut c.blend_next_to_arcs, self.blend_next_to_arcs);
         set(&mut c.blend_turning, self.blend_turning);
         set(&mut c.blend_consume_seconds, self.blend_consume_seconds);
         set(

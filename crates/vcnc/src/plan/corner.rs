@@ -20,7 +20,7 @@
 //! runs what a blend leaves of a short line as part of the arc after it.
 
 use super::config::{BlendRadius, BlendTurning, PlannerConfig};
-use super::limits::{Ends, MotionLimits};
+use super::limits::{Bend, Ends, MotionLimits};
 use super::{finite, greater, lesser};
 use crate::motion::{Move, PathMode, Smoothing};
 
@@ -53,6 +53,8 @@ pub(crate) struct Handover {
     turning: f64,
     /// Its tangential acceleration, mm/s^2.
     acceleration: f64,
+    /// An arc's shape; None for a straight move.
+    bend: Option<Bend>,
     class: MotionClass,
     /// A straight move (a line or a rapid), whose rest a blend may take over.
     pub(crate) straight: bool,
@@ -86,6 +88,7 @@ impl Handover {
             cruise,
             turning: ends.turning,
             acceleration: limits.path.acceleration,
+            bend: ends.bend,
             class,
             straight,
             exact_stop: motion.exact_stop
@@ -233,6 +236,19 @@ pub(crate) fn junction(
         );
         return faster_than_kink(arc, prev, next, kink, config);
     }
+    if config.blend_arc_tangential_share > 0.0 && config.blend_next_to_arcs {
+        let corner = Corner {
+            u,
+            w,
+            turn,
+            tolerance,
+            acceleration,
+            kink,
+        };
+        if let Some(junction) = arc_blend(prev, next, &corner, config) {
+            return junction;
+        }
+    }
     // No larger arc than the speed of the two segments needs: it would only cut more corner.
     let wanted = lesser(prev.cruise, next.cruise);
     let radius = lesser(lesser(by_length, by_tolerance), wanted * wanted / normal);
@@ -311,6 +327,98 @@ fn blend_segment(
         corner_stop: false,
         kink_factor: 1.0,
     }
+}
+
+/// A corner next to an arc, as [`arc_blend`] takes it.
+struct Corner<'a> {
+    /// Unit tangents at the end of the previous motion and at the start of the next.
+    u: &'a [f64; 3],
+    w: &'a [f64; 3],
+    /// The angle the path turns by, radians.
+    turn: f64,
+    /// The largest distance the blend may leave the corner by, mm.
+    tolerance: f64,
+    /// The acceleration the blend may turn with.
+    acceleration: f64,
+    /// The share of an axis's acceleration the corner's kink asks for ([`kink_scale`]).
+    kink: f64,
+}
+
+/// LinuxCNC's blend arc at a corner where a G2/G3 meets a line or another arc (blendmath.c
+/// `blendInit3FromLineArc`, `...ArcLine`, `...ArcArc`): an arc may give up at most a third of
+/// its sweep to a blend after it (two thirds to one before it), and no more than the corner's
+/// half angle where the blend lies on the arc's outer side (a convex corner), where the arc's
+/// secant, not its tangent, bounds the blend: the leg is half that chord and the half angle
+/// shrinks by a quarter of the sweep given up. Between two arcs a half angle below 15 degrees
+/// makes no blend arc (None: the corner is blended as vcnc's habits blend it). The arc is then
+/// the line-line one of that half angle and legs, a segment of its own ([`blend_segment`]),
+/// or the kink where that is faster. Not modelled: LinuxCNC's checks of the fitted arc
+/// (`blendArcArcPostProcess`, `checkTangentAngle`), whose failures end in a parabolic blend.
+#[cold]
+#[inline(never)]
+fn arc_blend(
+    prev: &Handover,
+    next: &Handover,
+    corner: &Corner<'_>,
+    config: &PlannerConfig,
+) -> Option<Junction> {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let half = FRAC_PI_2 - 0.5 * corner.turn;
+    let mut theta = half;
+    // What a move may give up to the blend, mm; `share` the part of an arc's sweep.
+    let mut leg_of = |motion: &Handover, tangent: &[f64; 3], other: &[f64; 3], before: bool| {
+        let Some(bend) = motion.bend else {
+            return config.blend_length_share * motion.length;
+        };
+        let inward = cross(&bend.curl, tangent);
+        let toward = dot(&inward, other);
+        // The blend on the arc's outer side: the next move heads inward of the arc before
+        // it, or the previous one comes from outward of the arc after it.
+        let convex = if before { toward > 0.0 } else { toward <= 0.0 };
+        let share = if before { 2.0 / 3.0 } else { 1.0 / 3.0 };
+        let bound = if convex { half } else { FRAC_PI_2 };
+        let phi = lesser(share * bend.sweep, bound);
+        if convex {
+            theta = lesser(theta, half - 0.25 * phi);
+            (0.25 * phi).sin() * bend.radius
+        } else {
+            phi * bend.radius
+        }
+    };
+    let first = leg_of(prev, corner.u, corner.w, true);
+    let second = leg_of(next, corner.w, corner.u, false);
+    let both_arcs = prev.bend.is_some() && next.bend.is_some();
+    if theta <= 1e-9 || (both_arcs && theta < PI / 12.0) {
+        return None;
+    }
+    let (sin, cos) = theta.sin_cos();
+    let by_length = lesser(first, second) * sin / cos;
+    let by_tolerance = if finite(corner.tolerance) {
+        corner.tolerance * sin / (1.0 - sin)
+    } else {
+        f64::INFINITY
+    };
+    let arc = blend_segment(
+        prev,
+        next,
+        (cos / sin, PI - 2.0 * theta),
+        lesser(by_length, by_tolerance),
+        corner.acceleration,
+        config,
+    );
+    Some(faster_than_kink(arc, prev, next, corner.kink, config))
+}
+
+fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// LinuxCNC's measure of a kink (tp.c `tpSetupTangent`): the largest share of an axis's
@@ -431,6 +539,7 @@ mod tests {
             cruise: 100.0,
             turning: 1000.0,
             acceleration: 1000.0,
+            bend: None,
             class: MotionClass::Cutting,
             straight: true,
             exact_stop,
@@ -582,6 +691,44 @@ mod tests {
         let kink_speed = 100.0 * 0.1 / (101.0 * 0.002_f64.sin());
         assert!((short.speed - kink_speed).abs() < 1e-6, "{short:?}");
         assert_eq!((short.leg, short.kink_factor), (0.0, 0.9));
+    }
+
+    /// arcs_11 (tests/data/plan/lcnc/random), lines 18-19: a G3 of R 8.58 sweeping 72.9
+    /// degrees meets a G2 of R 27.5 (116 degrees) with a turn of 46.4 degrees, at 500 mm/s^2.
+    /// The corner lies on the first arc's outer side: it may give up 2/3 of its sweep, at most
+    /// the half angle 66.8 degrees, so 48.6 degrees, of which the blend takes half the chord,
+    /// 8.58 sin(12.2 deg) = 1.81 mm, with the half angle cut by 12.2 degrees to 54.7: a radius
+    /// of 1.81 tan 54.7 = 2.55 mm and a speed of sqrt(0.866 * 500 * 2.55) = 33.2 mm/s, which
+    /// LinuxCNC holds for 72 cycles across that corner (lcnc-time's trace: 33.18 mm/s).
+    #[test]
+    fn a_blend_next_to_an_arc_is_bounded_by_the_arcs_sweep_and_side() {
+        let config = PlannerConfig::with_habits(super::super::config::PlannerHabits::Linuxcnc);
+        let unit = |x: f64, y: f64| {
+            let n = x.hypot(y);
+            [x / n, y / n, 0.0]
+        };
+        let bend = |sign: f64, radius: f64, from: [f64; 2], to: [f64; 2]| {
+            let sweep = (from[0] * to[0] + from[1] * to[1]) / (radius * radius);
+            Bend {
+                curl: [0.0, 0.0, sign],
+                radius,
+                sweep: sweep.acos(),
+            }
+        };
+        // Radius vectors (end or start minus centre) from the program's I J.
+        let (r1_start, r1_end) = ([8.5264, 0.9686], [76.8965 - 75.3238, 8.9354 - 0.4995]);
+        let (r2_start, r2_end) = ([16.1414, -22.2763], [33.648 - 60.7551, 26.523 - 31.2117]);
+        let mut first = handover(unit(-r1_end[1], r1_end[0]), false);
+        first.bend = Some(bend(1.0, 8.5811, r1_start, r1_end));
+        let mut second = handover(unit(r2_start[1], -r2_start[0]), false);
+        second.bend = Some(bend(-1.0, 27.511, r2_start, r2_end));
+        for h in [&mut first, &mut second] {
+            (h.straight, h.turning, h.acceleration, h.cruise) = (false, 500.0, 500.0, 80.0);
+            h.length = 200.0;
+        }
+        let j = junction(&first, &second, &config);
+        assert!((j.speed - 33.2).abs() < 0.1, "{j:?}");
+        assert!(j.arc_acceleration > 0.0);
     }
 
     #[test]

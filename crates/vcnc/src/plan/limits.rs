@@ -124,6 +124,19 @@ pub(crate) struct Ends {
     /// Acceleration available for turning (corner blends): the lowest limit of the axes that
     /// move, mm/s^2.
     pub(crate) turning: f64,
+    /// An arc's shape, for LinuxCNC's blends next to it; None for a straight move.
+    pub(crate) bend: Option<Bend>,
+}
+
+/// An arc's shape as a corner blend next to it sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bend {
+    /// The unit normal of the arc's plane whose cross product with a tangent points at the
+    /// centre (the plane's normal axis, negated for a clockwise arc).
+    pub(crate) curl: [f64; 3],
+    pub(crate) radius: f64,
+    /// The angle the arc sweeps, radians.
+    pub(crate) sweep: f64,
 }
 
 /// What the axes allow along a motion: the caps their limits put on the path.
@@ -405,6 +418,7 @@ fn unbounded_line(
         start: direction,
         end: direction,
         turning: caps.turning,
+        bend: None,
     };
     (limits, ends)
 }
@@ -527,6 +541,15 @@ pub(crate) fn arc(
         start: start_tangent,
         end: end_tangent,
         turning: caps.turning,
+        bend: Some(Bend {
+            curl: {
+                let mut curl = [0.0; 3];
+                curl[n] = sign;
+                curl
+            },
+            radius,
+            sweep,
+        }),
     };
     bounded((limits, ends))
 }
