@@ -59,6 +59,11 @@ pub struct PlannerConfig {
     /// The acceleration of a continuous-mode segment that ends without a blend into the next
     /// motion (before an event or the program end) is multiplied by this (LinuxCNC: 0.5).
     pub unblended_acceleration_factor: f64,
+    /// The last motion before a stop enters no faster than it can stop from within this share
+    /// of its length (LinuxCNC: 0.5; its optimizer plans the newest segment as if a blend might
+    /// still take half of it, tp.c `tpCalculateOptimizationInitialVel`, and the program's end
+    /// or a wait leaves it so).
+    pub last_stop_length_share: f64,
     /// The largest share of the acceleration limit an arc may use tangentially when it ends
     /// without a next motion (LinuxCNC: 0.5, the share it gives an arc before it knows the next
     /// move); 1 leaves arcs to the normal-share rule alone.
@@ -176,6 +181,7 @@ impl PlannerConfig {
                 normal_acceleration_share: NORMAL_SHARE,
                 unblended_acceleration_factor: 1.0,
                 unblended_arc_tangential_share: 1.0,
+                last_stop_length_share: 1.0,
                 stop_acceleration_factor: 1.0,
                 exact_stop_passes_tangents: false,
                 stop_between_rapid_and_feed: true,
@@ -210,6 +216,7 @@ impl PlannerConfig {
                 normal_acceleration_share: NORMAL_SHARE,
                 unblended_acceleration_factor: 0.5,
                 unblended_arc_tangential_share: 0.5,
+                last_stop_length_share: 0.5,
                 stop_acceleration_factor: 0.9,
                 exact_stop_passes_tangents: true,
                 stop_between_rapid_and_feed: true,
@@ -250,6 +257,7 @@ pub(crate) struct PlannerFile {
     normal_acceleration_share: Option<f64>,
     unblended_acceleration_factor: Option<f64>,
     unblended_arc_tangential_share: Option<f64>,
+    last_stop_length_share: Option<f64>,
     stop_acceleration_factor: Option<f64>,
     exact_stop_passes_tangents: Option<bool>,
     stop_between_rapid_and_feed: Option<bool>,
@@ -298,6 +306,7 @@ impl PlannerFile {
             &mut c.unblended_arc_tangential_share,
             self.unblended_arc_tangential_share,
         );
+        set(&mut c.last_stop_length_share, self.last_stop_length_share);
         set(
             &mut c.stop_acceleration_factor,
             self.stop_acceleration_factor,
@@ -401,6 +410,12 @@ impl PlannerConfig {
         within(
             "unblended_arc_tangential_share",
             self.unblended_arc_tangential_share,
+            0.01,
+            1.0,
+        )?;
+        within(
+            "last_stop_length_share",
+            self.last_stop_length_share,
             0.01,
             1.0,
         )?;

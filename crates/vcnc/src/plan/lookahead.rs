@@ -79,6 +79,8 @@ pub(crate) struct Window {
     last: Option<Handover>,
     /// `PlannerConfig::min_segment_seconds`, for the motion before a stop.
     min_segment_seconds: f64,
+    /// `PlannerConfig::last_stop_length_share`, for the motion before a stop.
+    last_stop_length_share: f64,
     /// Each motion leaves as soon as the window holds `capacity` motions of positive length
     /// (`LookAheadRelease::Each`), instead of the first half when it holds `capacity` slots.
     release_each: bool,
@@ -98,6 +100,7 @@ impl Window {
             start_speed: 0.0,
             last: None,
             min_segment_seconds: config.min_segment_seconds,
+            last_stop_length_share: config.last_stop_length_share,
             release_each: config.look_ahead_release == LookAheadRelease::Each,
             live: 0,
         }
@@ -319,10 +322,14 @@ impl Window {
     /// window becomes final. The last motion did not blend into another, so it gets the
     /// unblended acceleration.
     pub(crate) fn stop(&mut self) {
-        let least = self.min_segment_seconds;
+        let (least, share) = (self.min_segment_seconds, self.last_stop_length_share);
         if let Some(last) = self.last_planned() {
             last.limits.path.acceleration = last.limits.unblended_acceleration;
             last.cap_trimmed(least);
+            if share < 1.0 {
+                let room = 2.0 * last.limits.path.acceleration * share * last.limits.length;
+                last.max_entry = lesser(last.max_entry, room.sqrt());
+            }
         }
         self.plan(self.len);
         self.last = None;
