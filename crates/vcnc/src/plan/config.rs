@@ -72,6 +72,10 @@ pub struct PlannerConfig {
     /// corner too sharp to blend) is multiplied by this (LinuxCNC: 0.9, measured with
     /// lcnc-time; it matches its `ARC_BLEND_KINK_RATIO` of 0.1).
     pub stop_acceleration_factor: f64,
+    /// The machine stops, without scaling either move's acceleration, where the path turns back
+    /// to within this angle, degrees (LinuxCNC: 2, tp.c `tpSetupTangent`'s sharp corner); 0:
+    /// only an exact reversal stops.
+    pub reversal_stop_degrees: f64,
     /// Exact stop (G61) keeps moving through tangent block ends (LinuxCNC's "exact path"),
     /// instead of stopping at every block end.
     pub exact_stop_passes_tangents: bool,
@@ -183,6 +187,7 @@ impl PlannerConfig {
                 unblended_arc_tangential_share: 1.0,
                 last_stop_length_share: 1.0,
                 stop_acceleration_factor: 1.0,
+                reversal_stop_degrees: 0.0,
                 exact_stop_passes_tangents: false,
                 stop_between_rapid_and_feed: true,
                 min_segment_seconds: 0.0,
@@ -218,6 +223,7 @@ impl PlannerConfig {
                 unblended_arc_tangential_share: 0.5,
                 last_stop_length_share: 0.5,
                 stop_acceleration_factor: 0.9,
+                reversal_stop_degrees: 2.0,
                 exact_stop_passes_tangents: true,
                 stop_between_rapid_and_feed: true,
                 min_segment_seconds: 0.00102,
@@ -259,6 +265,7 @@ pub(crate) struct PlannerFile {
     unblended_arc_tangential_share: Option<f64>,
     last_stop_length_share: Option<f64>,
     stop_acceleration_factor: Option<f64>,
+    reversal_stop_degrees: Option<f64>,
     exact_stop_passes_tangents: Option<bool>,
     stop_between_rapid_and_feed: Option<bool>,
     min_segment_seconds: Option<f64>,
@@ -311,6 +318,7 @@ impl PlannerFile {
             &mut c.stop_acceleration_factor,
             self.stop_acceleration_factor,
         );
+        set(&mut c.reversal_stop_degrees, self.reversal_stop_degrees);
         set(
             &mut c.exact_stop_passes_tangents,
             self.exact_stop_passes_tangents,
@@ -424,6 +432,12 @@ impl PlannerConfig {
             self.stop_acceleration_factor,
             0.01,
             1.0,
+        )?;
+        within(
+            "reversal_stop_degrees",
+            self.reversal_stop_degrees,
+            0.0,
+            90.0,
         )?;
         within("min_segment_seconds", self.min_segment_seconds, 0.0, 1.0)?;
         within("cycle_seconds", self.cycle_seconds, 1e-6, 1.0)?;

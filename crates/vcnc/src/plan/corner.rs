@@ -171,6 +171,13 @@ pub(crate) fn junction(
         return Junction::STOP;
     }
     let cos_turn = greater(-1.0, lesser(1.0, cos_turn));
+    // LinuxCNC stops where the path nearly turns back (tp.c `tpSetupTangent`: |u + w|^2 below
+    // the square of the angle), with no scaled acceleration, exact stop or not.
+    if config.reversal_stop_degrees > 0.0
+        && 2.0 * (1.0 + cos_turn) < config.reversal_stop_degrees.to_radians().powi(2)
+    {
+        return Junction::STOP;
+    }
     let tangent = cos_turn >= TANGENT_ANGLE.cos();
     // LinuxCNC's kinks: 0 when vcnc's habits weigh none.
     let kink = if config.kink_ratio > 0.0 && !tangent {
