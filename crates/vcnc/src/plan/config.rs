@@ -203,7 +203,10 @@ impl PlannerConfig {
             // but a quarter of the segments' lengths, blends may use half of each segment and
             // are arcs of their own with half the acceleration along them (tc.c, blendmath.c),
             // arcs keep half the acceleration tangentially, spindle and tool change are instant
-            // in its simulated machine.
+            // in its simulated machine. Besides (tp.c): near-tangent kinks pass at speed, a
+            // segment's speed is capped over what its blends leave of it, each segment is planned
+            // with 50 after it, blends next to arcs are bounded by the arcs, the last segment is
+            // entered as if a blend could still take half of it, near reversals stop.
             PlannerHabits::Linuxcnc => PlannerConfig {
                 look_ahead: 52,
                 look_ahead_release: LookAheadRelease::Each,
