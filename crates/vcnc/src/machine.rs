@@ -672,7 +672,7 @@ mod tests {
             .replace("look_ahead = 200\n", "")
             .replace("corner_tolerance = 0.02\n", "");
         let machine = Machine::from_toml(&text).unwrap();
-        assert_eq!(machine.planner.look_ahead, 200);
+        assert_eq!(machine.planner.look_ahead, 52);
         assert!(machine.planner.corner_tolerance.is_infinite());
         // Written in the file, so it wins over the preset's 0.5.
         assert_eq!(machine.planner.unblended_acceleration_factor, 1.0);

@@ -20,7 +20,7 @@
 //! runs what a blend leaves of a short line as part of the arc after it.
 
 use super::config::{BlendRadius, BlendTurning, PlannerConfig};
-use super::limits::{Ends, MotionLimits};
+use super::limits::{Bend, Ends, MotionLimits};
 use super::{finite, greater, lesser};
 use crate::motion::{Move, PathMode, Smoothing};
 
@@ -51,6 +51,10 @@ pub(crate) struct Handover {
     pub(crate) cruise: f64,
     /// Its turning acceleration (see [`Ends::turning`]), mm/s^2.
     turning: f64,
+    /// Its tangential acceleration, mm/s^2.
+    acceleration: f64,
+    /// An arc's shape; None for a straight move.
+    bend: Option<Bend>,
     class: MotionClass,
     /// A straight move (a line or a rapid), whose rest a blend may take over.
     pub(crate) straight: bool,
@@ -68,12 +72,23 @@ impl Handover {
         motion: &Move,
         limits: &MotionLimits,
         ends: &Ends,
+        config: &PlannerConfig,
     ) -> Handover {
+        // LinuxCNC caps a segment's speed by one cycle over its length when it takes it in
+        // (tc.c `tcClampVelocityByLength`), by a little more once its blends are known
+        // (`PlannerConfig::min_segment_seconds`, in the look-ahead window).
+        let cruise = if config.min_segment_seconds > 0.0 {
+            lesser(limits.cruise, limits.length / config.cycle_seconds)
+        } else {
+            limits.cruise
+        };
         Handover {
             end: ends.end,
             length: limits.length,
-            cruise: limits.cruise,
+            cruise,
             turning: ends.turning,
+            acceleration: limits.path.acceleration,
+            bend: ends.bend,
             class,
             straight,
             exact_stop: motion.exact_stop
@@ -99,6 +114,9 @@ pub(crate) struct Junction {
     /// A stop at a corner the path could not blend (exact stop, a reversal), as opposed to a
     /// stop between kinds of motion.
     pub(crate) corner_stop: bool,
+    /// The factor both motions' acceleration is scaled by where a kink is passed as a tangent
+    /// (`PlannerConfig::kink_ratio`); 1: not scaled.
+    pub(crate) kink_factor: f64,
 }
 
 impl Junction {
@@ -108,6 +126,7 @@ impl Junction {
         arc: 0.0,
         arc_acceleration: 0.0,
         corner_stop: false,
+        kink_factor: 1.0,
     };
     const CORNER_STOP: Junction = Junction {
         corner_stop: true,
@@ -119,6 +138,7 @@ impl Junction {
         arc: 0.0,
         arc_acceleration: 0.0,
         corner_stop: false,
+        kink_factor: 1.0,
     };
 
     /// The machine comes to rest here.
@@ -151,12 +171,32 @@ pub(crate) fn junction(
         return Junction::STOP;
     }
     let cos_turn = greater(-1.0, lesser(1.0, cos_turn));
+    // LinuxCNC stops where the path nearly turns back (tp.c `tpSetupTangent`: |u + w|^2 below
+    // the square of the angle), with no scaled acceleration, exact stop or not.
+    if config.reversal_stop_degrees > 0.0
+        && 2.0 * (1.0 + cos_turn) < config.reversal_stop_degrees.to_radians().powi(2)
+    {
+        return Junction::STOP;
+    }
     let tangent = cos_turn >= TANGENT_ANGLE.cos();
-    if prev.exact_stop && !(tangent && config.exact_stop_passes_tangents) {
+    // LinuxCNC's kinks: 0 when vcnc's habits weigh none.
+    let kink = if config.kink_ratio > 0.0 && !tangent {
+        kink_scale(prev, next, u, w, config)
+    } else {
+        0.0
+    };
+    let passed = tangent || kink < config.kink_ratio;
+    if prev.exact_stop && !(passed && config.exact_stop_passes_tangents) {
         return Junction::CORNER_STOP;
     }
     if tangent {
         return Junction::TANGENT;
+    }
+    if passed {
+        return Junction {
+            kink_factor: 1.0 - kink,
+            ..Junction::TANGENT
+        };
     }
     // A move without X Y Z travel (rotary only) has no direction: the product is 0, a right
     // angle, which blends only as much as a right angle would.
@@ -193,7 +233,7 @@ pub(crate) fn junction(
     // arc blends mostly give up (tp.c: tpCreateLineArcBlend and the like) for a parabolic one.
     if config.blend_arc_tangential_share > 0.0 && prev.straight && next.straight {
         let geometric = lesser(by_length, by_tolerance);
-        return blend_segment(
+        let arc = blend_segment(
             prev,
             next,
             (tan_half, turn),
@@ -201,6 +241,20 @@ pub(crate) fn junction(
             acceleration,
             config,
         );
+        return faster_than_kink(arc, prev, next, kink, config);
+    }
+    if config.blend_arc_tangential_share > 0.0 && config.blend_next_to_arcs {
+        let corner = Corner {
+            u,
+            w,
+            turn,
+            tolerance,
+            acceleration,
+            kink,
+        };
+        if let Some(junction) = arc_blend(prev, next, &corner, config) {
+            return junction;
+        }
     }
     // No larger arc than the speed of the two segments needs: it would only cut more corner.
     let wanted = lesser(prev.cruise, next.cruise);
@@ -211,6 +265,7 @@ pub(crate) fn junction(
         arc: radius * turn,
         arc_acceleration: 0.0,
         corner_stop: false,
+        kink_factor: 1.0,
     }
 }
 
@@ -277,6 +332,157 @@ fn blend_segment(
         arc: radius * turn,
         arc_acceleration: config.blend_arc_tangential_share * acceleration,
         corner_stop: false,
+        kink_factor: 1.0,
+    }
+}
+
+/// A corner next to an arc, as [`arc_blend`] takes it.
+struct Corner<'a> {
+    /// Unit tangents at the end of the previous motion and at the start of the next.
+    u: &'a [f64; 3],
+    w: &'a [f64; 3],
+    /// The angle the path turns by, radians.
+    turn: f64,
+    /// The largest distance the blend may leave the corner by, mm.
+    tolerance: f64,
+    /// The acceleration the blend may turn with.
+    acceleration: f64,
+    /// The share of an axis's acceleration the corner's kink asks for ([`kink_scale`]).
+    kink: f64,
+}
+
+/// LinuxCNC's blend arc at a corner where a G2/G3 meets a line or another arc (blendmath.c
+/// `blendInit3FromLineArc`, `...ArcLine`, `...ArcArc`): an arc may give up at most a third of
+/// its sweep to a blend after it (two thirds to one before it), and no more than the corner's
+/// half angle where the blend lies on the arc's outer side (a convex corner), where the arc's
+/// secant, not its tangent, bounds the blend: the leg is half that chord and the half angle
+/// shrinks by a quarter of the sweep given up. Between two arcs a half angle below 15 degrees
+/// makes no blend arc (None: the corner is blended as vcnc's habits blend it). The arc is then
+/// the line-line one of that half angle and legs, a segment of its own ([`blend_segment`]),
+/// or the kink where that is faster. Not modelled: LinuxCNC's checks of the fitted arc
+/// (`blendArcArcPostProcess`, `checkTangentAngle`), whose failures end in a parabolic blend.
+#[cold]
+#[inline(never)]
+fn arc_blend(
+    prev: &Handover,
+    next: &Handover,
+    corner: &Corner<'_>,
+    config: &PlannerConfig,
+) -> Option<Junction> {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let half = FRAC_PI_2 - 0.5 * corner.turn;
+    let mut theta = half;
+    // What a move may give up to the blend, mm; `share` the part of an arc's sweep.
+    let mut leg_of = |motion: &Handover, tangent: &[f64; 3], other: &[f64; 3], before: bool| {
+        let Some(bend) = motion.bend else {
+            return config.blend_length_share * motion.length;
+        };
+        let inward = cross(&bend.curl, tangent);
+        let toward = dot(&inward, other);
+        // The blend on the arc's outer side: the next move heads inward of the arc before
+        // it, or the previous one comes from outward of the arc after it.
+        let convex = if before { toward > 0.0 } else { toward <= 0.0 };
+        let share = if before { 2.0 / 3.0 } else { 1.0 / 3.0 };
+        let bound = if convex { half } else { FRAC_PI_2 };
+        let phi = lesser(share * bend.sweep, bound);
+        if convex {
+            theta = lesser(theta, half - 0.25 * phi);
+            (0.25 * phi).sin() * bend.radius
+        } else {
+            phi * bend.radius
+        }
+    };
+    let first = leg_of(prev, corner.u, corner.w, true);
+    let second = leg_of(next, corner.w, corner.u, false);
+    let both_arcs = prev.bend.is_some() && next.bend.is_some();
+    if theta <= 1e-9 || (both_arcs && theta < PI / 12.0) {
+        return None;
+    }
+    let (sin, cos) = theta.sin_cos();
+    let by_length = lesser(first, second) * sin / cos;
+    let by_tolerance = if finite(corner.tolerance) {
+        corner.tolerance * sin / (1.0 - sin)
+    } else {
+        f64::INFINITY
+    };
+    let arc = blend_segment(
+        prev,
+        next,
+        (cos / sin, PI - 2.0 * theta),
+        lesser(by_length, by_tolerance),
+        corner.acceleration,
+        config,
+    );
+    Some(faster_than_kink(arc, prev, next, corner.kink, config))
+}
+
+fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// LinuxCNC's measure of a kink (tp.c `tpSetupTangent`): the largest share of an axis's
+/// acceleration limit that turning from `u` to `w` within one cycle asks for, at the slower
+/// segment's speed plus one cycle of the next segment's acceleration; twice that next to an
+/// arc, which keeps only half its acceleration for its tangent. Every axis is taken to have the
+/// lower turning limit of the two motions (exact where the axes share one limit).
+#[cold]
+#[inline(never)]
+fn kink_scale(
+    prev: &Handover,
+    next: &Handover,
+    u: &[f64; 3],
+    w: &[f64; 3],
+    config: &PlannerConfig,
+) -> f64 {
+    let speed = lesser(prev.cruise, next.cruise);
+    let instant = speed / config.cycle_seconds + next.acceleration;
+    let largest = greater(
+        greater((w[0] - u[0]).abs(), (w[1] - u[1]).abs()),
+        (w[2] - u[2]).abs(),
+    );
+    let scale = instant * largest / lesser(prev.turning, next.turning);
+    if prev.straight && next.straight {
+        scale
+    } else {
+        scale / 0.5
+    }
+}
+
+/// `arc`, or the corner passed as a kink where that is faster (LinuxCNC's
+/// `tpChooseBestBlend`): at the speed whose kink asks for exactly `kink_ratio` (`kink` being
+/// the share the segments' speed asks for), both segments keeping 1 - `kink_ratio` of their
+/// acceleration. The arc's own speed is capped by one cycle along it (tc.c
+/// `tcClampVelocityByLength`).
+#[cold]
+#[inline(never)]
+fn faster_than_kink(
+    arc: Junction,
+    prev: &Handover,
+    next: &Handover,
+    kink: f64,
+    config: &PlannerConfig,
+) -> Junction {
+    if config.kink_ratio <= 0.0 {
+        return arc;
+    }
+    let kink_speed = lesser(prev.cruise, next.cruise) * config.kink_ratio / kink;
+    let arc_speed = lesser(arc.speed, arc.arc / config.cycle_seconds);
+    if kink_speed > arc_speed {
+        Junction {
+            speed: kink_speed,
+            kink_factor: 1.0 - config.kink_ratio,
+            ..Junction::TANGENT
+        }
+    } else {
+        arc
     }
 }
 
@@ -339,6 +545,8 @@ mod tests {
             length: 100.0,
             cruise: 100.0,
             turning: 1000.0,
+            acceleration: 1000.0,
+            bend: None,
             class: MotionClass::Cutting,
             straight: true,
             exact_stop,
@@ -458,6 +666,76 @@ mod tests {
         let (u, w) = ([s, -s, 0.0], [0.0, s, -s]);
         let expected = 1.0 / (2.0_f64 / 3.0).sqrt();
         assert!((in_plane_factor(&u, &w) - expected).abs() < 1e-12);
+    }
+
+    /// LinuxCNC's kinks (tp.c `tpSetupTangent`): at 100 mm/s, a 1 ms cycle and 1000 mm/s^2 a
+    /// turn by `a` radians from X asks an axis for (100 / 0.001 + 1000) sin a / 1000 = 101 sin a
+    /// of its limit. At a = 0.0005 that is 0.0505, below the ratio of 0.1: a tangent, both
+    /// motions keeping 1 - 0.0505 of their acceleration. At a = 0.002 it is 0.202: on 100 mm
+    /// lines the blend arc (100 mm/s) beats the kink speed 100 * 0.1 / 0.202 = 49.5 mm/s; on
+    /// 0.01 mm chords the arc, at most 0.01 mm long, is capped at 0.01 / 0.001 = 10 mm/s by its
+    /// one cycle, and the kink wins, keeping 0.9 of the acceleration.
+    #[test]
+    fn a_small_kink_is_passed_as_a_tangent_and_a_larger_one_where_faster_than_its_arc() {
+        let config = PlannerConfig::with_habits(super::super::config::PlannerHabits::Linuxcnc);
+        let x = handover([1.0, 0.0, 0.0], false);
+        let turned = |a: f64, length: f64| {
+            let mut w = handover([a.cos(), a.sin(), 0.0], false);
+            let mut u = x;
+            (u.length, w.length) = (length, length);
+            junction(&u, &w, &config)
+        };
+        let small = turned(0.0005, 100.0);
+        let share = 101.0 * 0.0005_f64.sin();
+        assert!(small.speed.is_infinite() && small.leg == 0.0);
+        assert!(
+            (small.kink_factor - (1.0 - share)).abs() < 1e-9,
+            "{small:?}"
+        );
+        let long = turned(0.002, 100.0);
+        assert!(long.arc > 0.0 && long.kink_factor == 1.0, "{long:?}");
+        let short = turned(0.002, 0.01);
+        let kink_speed = 100.0 * 0.1 / (101.0 * 0.002_f64.sin());
+        assert!((short.speed - kink_speed).abs() < 1e-6, "{short:?}");
+        assert_eq!((short.leg, short.kink_factor), (0.0, 0.9));
+    }
+
+    /// arcs_11 (tests/data/plan/lcnc/random), lines 18-19: a G3 of R 8.58 sweeping 72.9
+    /// degrees meets a G2 of R 27.5 (116 degrees) with a turn of 46.4 degrees, at 500 mm/s^2.
+    /// The corner lies on the first arc's outer side: it may give up 2/3 of its sweep, at most
+    /// the half angle 66.8 degrees, so 48.6 degrees, of which the blend takes half the chord,
+    /// 8.58 sin(12.2 deg) = 1.81 mm, with the half angle cut by 12.2 degrees to 54.7: a radius
+    /// of 1.81 tan 54.7 = 2.55 mm and a speed of sqrt(0.866 * 500 * 2.55) = 33.2 mm/s, which
+    /// LinuxCNC holds for 72 cycles across that corner (lcnc-time's trace: 33.18 mm/s).
+    #[test]
+    fn a_blend_next_to_an_arc_is_bounded_by_the_arcs_sweep_and_side() {
+        let config = PlannerConfig::with_habits(super::super::config::PlannerHabits::Linuxcnc);
+        let unit = |x: f64, y: f64| {
+            let n = x.hypot(y);
+            [x / n, y / n, 0.0]
+        };
+        let bend = |sign: f64, radius: f64, from: [f64; 2], to: [f64; 2]| {
+            let sweep = (from[0] * to[0] + from[1] * to[1]) / (radius * radius);
+            Bend {
+                curl: [0.0, 0.0, sign],
+                radius,
+                sweep: sweep.acos(),
+            }
+        };
+        // Radius vectors (end or start minus centre) from the program's I J.
+        let (r1_start, r1_end) = ([8.5264, 0.9686], [76.8965 - 75.3238, 8.9354 - 0.4995]);
+        let (r2_start, r2_end) = ([16.1414, -22.2763], [33.648 - 60.7551, 26.523 - 31.2117]);
+        let mut first = handover(unit(-r1_end[1], r1_end[0]), false);
+        first.bend = Some(bend(1.0, 8.5811, r1_start, r1_end));
+        let mut second = handover(unit(r2_start[1], -r2_start[0]), false);
+        second.bend = Some(bend(-1.0, 27.511, r2_start, r2_end));
+        for h in [&mut first, &mut second] {
+            (h.straight, h.turning, h.acceleration, h.cruise) = (false, 500.0, 500.0, 80.0);
+            h.length = 200.0;
+        }
+        let j = junction(&first, &second, &config);
+        assert!((j.speed - 33.2).abs() < 0.1, "{j:?}");
+        assert!(j.arc_acceleration > 0.0);
     }
 
     #[test]

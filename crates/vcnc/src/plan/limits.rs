@@ -108,8 +108,8 @@ pub(crate) struct MotionLimits {
     pub(crate) unblended_acceleration: f64,
     /// The feed could not be known (G95 without a spindle speed): timed at the axis limit.
     pub(crate) feed_unknown: bool,
-    /// The acceleration has been scaled for a stop at one of its ends.
-    pub(crate) stop_scaled: bool,
+    /// The factor the acceleration has been scaled by for its ends (1: not scaled).
+    pub(crate) acceleration_scale: f64,
 }
 
 /// What the junctions with a motion's neighbours need besides its limits: the unit tangents
@@ -124,6 +124,19 @@ pub(crate) struct Ends {
     /// Acceleration available for turning (corner blends): the lowest limit of the axes that
     /// move, mm/s^2.
     pub(crate) turning: f64,
+    /// An arc's shape, for LinuxCNC's blends next to it; None for a straight move.
+    pub(crate) bend: Option<Bend>,
+}
+
+/// An arc's shape as a corner blend next to it sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bend {
+    /// The unit normal of the arc's plane whose cross product with a tangent points at the
+    /// centre (the plane's normal axis, negated for a clockwise arc).
+    pub(crate) curl: [f64; 3],
+    pub(crate) radius: f64,
+    /// The angle the arc sweeps, radians.
+    pub(crate) sweep: f64,
 }
 
 /// What the axes allow along a motion: the caps their limits put on the path.
@@ -328,13 +341,16 @@ impl FeedSpeeds {
 }
 
 impl MotionLimits {
-    /// Scales the acceleration for a stop at one end (see
-    /// `PlannerConfig::stop_acceleration_factor`); a second stop does not scale it again.
+    /// Scales the acceleration for one end: a stop (see
+    /// `PlannerConfig::stop_acceleration_factor`) or a kink (`PlannerConfig::kink_ratio`). The
+    /// two ends do not compound: the smaller factor holds (LinuxCNC's tc.c
+    /// `tcGetOverallMaxAccel` takes the larger of the two reductions).
     pub(crate) fn scale_acceleration(&mut self, factor: f64) {
-        if factor < 1.0 && !self.stop_scaled {
-            self.stop_scaled = true;
-            self.path.acceleration *= factor;
-            self.unblended_acceleration *= factor;
+        if factor < self.acceleration_scale {
+            let step = factor / self.acceleration_scale;
+            self.acceleration_scale = factor;
+            self.path.acceleration *= step;
+            self.unblended_acceleration *= step;
         }
     }
 }
@@ -384,7 +400,7 @@ fn unbounded_line(
     let continuous = motion.path_mode == PathMode::Continuous && !motion.exact_stop;
     let limits = MotionLimits {
         length,
-        cruise: cap_short(cruise, length, config),
+        cruise,
         path: PathLimits {
             acceleration,
             jerk: caps.jerk,
@@ -396,24 +412,15 @@ fn unbounded_line(
             acceleration
         },
         feed_unknown: matches!(programmed, Some(None)),
-        stop_scaled: false,
+        acceleration_scale: 1.0,
     };
     let ends = Ends {
         start: direction,
         end: direction,
         turning: caps.turning,
+        bend: None,
     };
     (limits, ends)
-}
-
-/// LinuxCNC spends at least a fixed time on a segment, whatever its length.
-#[inline(always)]
-fn cap_short(speed: f64, length: f64, config: &PlannerConfig) -> f64 {
-    if config.min_segment_seconds > 0.0 {
-        speed.min(length / config.min_segment_seconds)
-    } else {
-        speed
-    }
 }
 
 /// An arc's geometry, as [`arc`] takes it.
@@ -521,19 +528,28 @@ pub(crate) fn arc(
     };
     let limits = MotionLimits {
         length,
-        cruise: cap_short(cruise, length, config),
+        cruise,
         path: PathLimits {
             acceleration: acceleration * tangential_room,
             jerk: caps.jerk,
         },
         unblended_acceleration: acceleration * unblended_share * unblended_factor,
         feed_unknown: programmed.is_none(),
-        stop_scaled: false,
+        acceleration_scale: 1.0,
     };
     let ends = Ends {
         start: start_tangent,
         end: end_tangent,
         turning: caps.turning,
+        bend: Some(Bend {
+            curl: {
+                let mut curl = [0.0; 3];
+                curl[n] = sign;
+                curl
+            },
+            radius,
+            sweep,
+        }),
     };
     bounded((limits, ends))
 }

@@ -19,7 +19,7 @@
 //! own between the two motions it joins, planned like any motion; it is no item of the stream,
 //! so its time goes to the motion after it ([`Slot::Blend`]).
 
-use super::config::PlannerConfig;
+use super::config::{LookAheadRelease, PlannerConfig};
 use super::corner::Junction;
 use super::corner::{junction, Handover};
 use super::limits::MotionLimits;
@@ -77,11 +77,20 @@ pub(crate) struct Window {
     start_speed: f64,
     /// How the last motion that entered ends, for the junction with the next; None after a stop.
     last: Option<Handover>,
+    /// `PlannerConfig::min_segment_seconds`, for the motion before a stop.
+    min_segment_seconds: f64,
+    /// `PlannerConfig::last_stop_length_share`, for the motion before a stop.
+    last_stop_length_share: f64,
+    /// Each motion leaves as soon as the window holds `capacity` motions of positive length
+    /// (`LookAheadRelease::Each`), instead of the first half when it holds `capacity` slots.
+    release_each: bool,
+    /// Motions of positive length in the window that are not final yet, with `release_each`.
+    live: usize,
 }
 
 impl Window {
-    pub(crate) fn new(capacity: usize) -> Window {
-        let capacity = capacity.max(2);
+    pub(crate) fn new(config: &PlannerConfig) -> Window {
+        let capacity = config.look_ahead.max(2);
         Window {
             ring: vec![Slot::Fixed(0.0); (capacity + 1).next_power_of_two()],
             head: 0,
@@ -90,6 +99,10 @@ impl Window {
             ready: 0,
             start_speed: 0.0,
             last: None,
+            min_segment_seconds: config.min_segment_seconds,
+            last_stop_length_share: config.last_stop_length_share,
+            release_each: config.look_ahead_release == LookAheadRelease::Each,
+            live: 0,
         }
     }
 
@@ -188,24 +201,27 @@ impl Window {
             if junction.arc_acceleration > 0.0 && junction.arc > 0.0 {
                 let prev = *prev;
                 let arc_cruise = self.push_blend(&prev, &junction, limits.path.jerk, config);
-                max_entry = lesser(arc_cruise, limits.cruise);
                 limits.length = greater(0.0, limits.length - junction.leg);
+                max_entry = lesser(arc_cruise, limits.cruise);
                 return self.push_planned(limits, handover, max_entry, 0.0, per_axis_seconds);
             }
-            max_entry = lesser(lesser(prev.cruise, junction.speed), limits.cruise);
+            let mut prev_cruise = prev.cruise;
             limits.length = greater(0.0, limits.length - junction.leg);
             lead_in = junction.arc;
-            // A factor of 1 scales nothing: only a stop at a corner scales the acceleration.
-            let stop_factor = config.stop_acceleration_factor;
-            if junction.corner_stop {
-                limits.scale_acceleration(stop_factor);
-            }
+            // A factor of 1 scales nothing: only a stop at a corner or a kink scales the
+            // acceleration.
+            let factor = if junction.corner_stop {
+                config.stop_acceleration_factor
+            } else {
+                junction.kink_factor
+            };
+            limits.scale_acceleration(factor);
             if let Some(prev) = self.last_planned() {
                 prev.limits.length = greater(0.0, prev.limits.length - junction.leg);
-                if junction.corner_stop {
-                    prev.limits.scale_acceleration(stop_factor);
-                }
+                prev.limits.scale_acceleration(factor);
+                prev_cruise = lesser(prev_cruise, prev.cap_trimmed(config.min_segment_seconds));
             }
+            max_entry = lesser(lesser(prev_cruise, junction.speed), limits.cruise);
         }
         self.push_planned(limits, handover, max_entry, lead_in, per_axis_seconds);
     }
@@ -220,6 +236,7 @@ impl Window {
         per_axis_seconds: Option<f64>,
     ) {
         self.last = Some(handover);
+        self.live += 1;
         self.push_slot(Slot::Motion(Planned {
             limits,
             lead_in,
@@ -246,12 +263,17 @@ impl Window {
         config: &PlannerConfig,
     ) -> f64 {
         let mut length = junction.arc;
+        let mut prev_cruise = prev.cruise;
         if let Some(last) = self.last_planned() {
             last.limits.length = greater(0.0, last.limits.length - junction.leg);
             let rest = last.limits.length;
             if prev.straight && rest < config.blend_consume_seconds * junction.speed {
                 length += rest;
                 last.limits.length = 0.0;
+                // LinuxCNC takes the consumed line out of its queue.
+                self.live = self.live.saturating_sub(1);
+            } else {
+                prev_cruise = lesser(prev_cruise, last.cap_trimmed(config.min_segment_seconds));
             }
         }
         // The least time per segment holds for the arc as for any segment.
@@ -266,12 +288,13 @@ impl Window {
             path: PathLimits { acceleration, jerk },
             unblended_acceleration: acceleration,
             feed_unknown: false,
-            stop_scaled: false,
+            acceleration_scale: 1.0,
         };
+        self.live += 1;
         self.push_slot(Slot::Blend(Planned {
             limits,
             lead_in: 0.0,
-            max_entry: lesser(prev.cruise, cruise),
+            max_entry: lesser(prev_cruise, cruise),
             backward: f64::NAN,
             entry: 0.0,
             exit: 0.0,
@@ -299,8 +322,14 @@ impl Window {
     /// window becomes final. The last motion did not blend into another, so it gets the
     /// unblended acceleration.
     pub(crate) fn stop(&mut self) {
+        let (least, share) = (self.min_segment_seconds, self.last_stop_length_share);
         if let Some(last) = self.last_planned() {
             last.limits.path.acceleration = last.limits.unblended_acceleration;
+            last.cap_trimmed(least);
+            if share < 1.0 {
+                let room = 2.0 * last.limits.path.acceleration * share * last.limits.length;
+                last.max_entry = lesser(last.max_entry, room.sqrt());
+            }
         }
         self.plan(self.len);
         self.last = None;
@@ -308,8 +337,26 @@ impl Window {
 
     #[inline(always)]
     fn release_if_full(&mut self) {
-        if self.len >= self.capacity && self.ready == 0 {
+        if self.release_each {
+            if self.live >= self.capacity && self.ready == 0 {
+                self.release_first_motion();
+            }
+        } else if self.len >= self.capacity && self.ready == 0 {
             self.plan(self.len / 2);
+        }
+    }
+
+    /// Plans the window and makes final everything up to its first motion of positive length.
+    #[cold]
+    fn release_first_motion(&mut self) {
+        let (first, second) = self.pieces();
+        let index = first
+            .iter_mut()
+            .chain(second.iter_mut())
+            .position(|slot| slot.planned().is_some_and(|p| p.limits.length > 0.0));
+        if let Some(index) = index {
+            self.live -= 1;
+            self.plan(index + 1);
         }
     }
 
@@ -318,6 +365,9 @@ impl Window {
         self.backward_pass();
         self.forward_pass(release);
         self.ready = release;
+        if release == self.len {
+            self.live = 0;
+        }
     }
 
     /// The highest entry speed of each motion from which the machine can still stop at the
@@ -377,6 +427,22 @@ impl Window {
     }
 }
 
+impl Planned {
+    /// Once its blends have cut it, a motion runs at no more than the least time per segment
+    /// allows over what is left (LinuxCNC caps a segment's speed by its length when it plans
+    /// it, after the blends: tp.c `tpComputeOptimalVelocity`), entry included; a motion the
+    /// blends left nothing of takes no time and caps nothing. Its cruise speed.
+    #[inline(always)]
+    fn cap_trimmed(&mut self, least_seconds: f64) -> f64 {
+        let limits = &mut self.limits;
+        if least_seconds > 0.0 && limits.length > 0.0 {
+            limits.cruise = lesser(limits.cruise, limits.length / least_seconds);
+            self.max_entry = lesser(self.max_entry, limits.cruise);
+        }
+        limits.cruise
+    }
+}
+
 impl Slot {
     #[inline(always)]
     fn planned(&mut self) -> Option<&mut Planned> {
@@ -424,7 +490,10 @@ mod tests {
         fn slots_leave_the_ring_in_the_order_they_came(
             takes in proptest::collection::vec(0_usize..40, 1..60),
         ) {
-            let mut window = Window::new(4);
+            let mut window = Window::new(&PlannerConfig {
+                look_ahead: 4,
+                ..PlannerConfig::default()
+            });
             let (mut pushed, mut popped) = (0_u32, 0_u32);
             for take in takes {
                 // Events are final at once; a few between each round of taking.

@@ -197,7 +197,7 @@ impl Timeline {
             1.0
         };
         Timeline {
-            window: Window::new(config.look_ahead),
+            window: Window::new(&config),
             axes: AxisLimits::new(machine, &config),
             config,
             feed_override,
@@ -281,7 +281,7 @@ impl Timeline {
             }
         };
         if limits.length > 0.0 {
-            let handover = Handover::new(class, straight, motion, &limits, &ends);
+            let handover = Handover::new(class, straight, motion, &limits, &ends, config);
             self.window
                 .push_motion(limits, handover, &ends.start, per_axis_seconds, config);
         } else {

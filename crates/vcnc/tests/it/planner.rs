@@ -205,7 +205,12 @@ fn short_chords_in_linuxcnc_habits_run_as_their_blend_arcs_with_half_the_acceler
     };
     let t = chords(&linuxcnc);
     let speed = (NORMAL_SHARE * 1000.0 * 10.0_f64).sqrt();
-    let expected = std::f64::consts::TAU * 10.0 / speed + speed / 500.0;
+    let ideal = std::f64::consts::TAU * 10.0 / speed + speed / 500.0;
+    // LinuxCNC itself (lcnc-time, 2026-11-29, its time per line summed over the chords) takes
+    // 0.870 s, 1 % above the ideal: it enters the last chord as if a blend could still take
+    // half of it, so it slows down sooner (`last_stop_length_share`).
+    let expected = 0.870;
+    assert!(t > ideal, "{t} s, ideal {ideal} s");
     assert!(
         (t - expected).abs() <= 0.005 * expected,
         "{t} s, {expected} s"
