@@ -699,9 +699,62 @@ impl Segment {
 
     /// Path length in mm (arcs along the helix), 0 for events.
     pub fn length(&self) -> f64 {
-        match &self.kind {
+        match self.kind.path() {
+            Some((motion, None)) => motion.from.distance_xyz(&motion.to),
+            Some((motion, Some(arc))) => arc_length(
+                motion,
+                &arc.center,
+                arc.direction,
+                arc.plane,
+                arc.extra_turns,
+            ),
+            None => 0.0,
+        }
+    }
+}
+
+/// An arc's geometry beside its move: what [`SegmentKind::path`] gives of an arc.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArcGeometry {
+    /// Centre, machine coordinates (its normal-axis value is the start's).
+    pub center: MachinePos,
+    /// Direction.
+    pub direction: ArcDirection,
+    /// Plane.
+    pub plane: Plane,
+    /// Full turns beyond the first.
+    pub extra_turns: u32,
+}
+
+impl ArcGeometry {
+    /// The swept angle of the arc of `motion` in radians (positive), extra turns included.
+    pub fn sweep(&self, motion: &Move) -> f64 {
+        arc_sweep(
+            motion,
+            &self.center,
+            self.direction,
+            self.plane,
+            self.extra_turns,
+        )
+    }
+
+    /// [`ArcGeometry::sweep`] signed: positive counter-clockwise, negative clockwise.
+    pub fn signed_sweep(&self, motion: &Move) -> f64 {
+        let sweep = self.sweep(motion);
+        match self.direction {
+            ArcDirection::CounterClockwise => sweep,
+            ArcDirection::Clockwise => -sweep,
+        }
+    }
+}
+
+impl SegmentKind {
+    /// The move of a rapid, line or arc, with an arc's geometry; `None` for events. One match
+    /// for the consumers that follow the path (checks, plots, simulation).
+    pub fn path(&self) -> Option<(&Move, Option<ArcGeometry>)> {
+        match self {
             SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => {
-                motion.from.distance_xyz(&motion.to)
+                Some((motion, None))
             }
             SegmentKind::Arc {
                 motion,
@@ -710,8 +763,16 @@ impl Segment {
                 plane,
                 extra_turns,
                 ..
-            } => arc_length(motion, center, *direction, *plane, *extra_turns),
-            _ => 0.0,
+            } => Some((
+                motion,
+                Some(ArcGeometry {
+                    center: *center,
+                    direction: *direction,
+                    plane: *plane,
+                    extra_turns: *extra_turns,
+                }),
+            )),
+            _ => None,
         }
     }
 }

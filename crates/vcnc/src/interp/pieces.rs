@@ -9,9 +9,7 @@
 //! moves of the segment's own kind, each timed by its share of the contour.
 
 use crate::machine::AXES;
-use crate::motion::{
-    arc_sweep, ArcDirection, Feed, MachinePos, Move, PathMode, Segment, SegmentKind, StreamItem,
-};
+use crate::motion::{Feed, MachinePos, Move, PathMode, Segment, SegmentKind, StreamItem};
 
 /// Halvings of a segment at most: a piece is never shorter than 2^-30 of its segment.
 const MAX_DEPTH: u32 = 30;
@@ -56,43 +54,24 @@ pub(crate) enum Path {
 
 impl Path {
     pub(crate) fn of(segment: &Segment) -> Option<Path> {
-        match &segment.kind {
-            SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => {
-                Some(Path::Straight {
-                    from: motion.from.0,
-                    to: motion.to.0,
-                })
-            }
-            SegmentKind::Arc {
-                motion,
-                center,
-                direction,
-                plane,
-                extra_turns,
-                ..
-            } => {
-                let (a, b, _) = plane.axes();
-                let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
-                let sweep = match direction {
-                    ArcDirection::CounterClockwise => sweep,
-                    ArcDirection::Clockwise => -sweep,
-                };
-                let (from, to) = (motion.from.0, motion.to.0);
-                let center = (center.0[a], center.0[b]);
-                let start = (from[a] - center.0, from[b] - center.1);
-                let end = (to[a] - center.0, to[b] - center.1);
-                Some(Path::Arc {
-                    from,
-                    to,
-                    axes: (a, b),
-                    center,
-                    start_angle: start.1.atan2(start.0),
-                    sweep,
-                    radius: (start.0.hypot(start.1), end.0.hypot(end.1)),
-                })
-            }
-            _ => None,
-        }
+        let (motion, arc) = segment.kind.path()?;
+        let (from, to) = (motion.from.0, motion.to.0);
+        let Some(arc) = arc else {
+            return Some(Path::Straight { from, to });
+        };
+        let (a, b, _) = arc.plane.axes();
+        let center = (arc.center.0[a], arc.center.0[b]);
+        let start = (from[a] - center.0, from[b] - center.1);
+        let end = (to[a] - center.0, to[b] - center.1);
+        Some(Path::Arc {
+            from,
+            to,
+            axes: (a, b),
+            center,
+            start_angle: start.1.atan2(start.0),
+            sweep: arc.signed_sweep(motion),
+            radius: (start.0.hypot(start.1), end.0.hypot(end.1)),
+        })
     }
 
     /// The point at `t`: exactly the start at 0 and the end at 1.

@@ -21,7 +21,7 @@ use super::exec::Executor;
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::Axis;
-use crate::motion::{arc_sweep, Item, Move, Segment, SegmentKind};
+use crate::motion::{Item, Move, Segment};
 use crate::source::Span;
 use serde::Deserialize;
 
@@ -113,23 +113,14 @@ impl StrokeZone {
 
     /// Whether a move enters the zone along its path.
     fn entered_by(&self, segment: &Segment) -> bool {
-        match &segment.kind {
-            SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => {
-                self.entry(motion.from.xyz(), motion.to.xyz()).is_some()
-            }
-            SegmentKind::Arc {
-                motion,
-                center,
-                direction,
-                plane,
-                extra_turns,
-                ..
-            } => {
-                let sweep = arc_sweep(motion, center, *direction, *plane, *extra_turns);
-                let points = arc_chords(motion, center.xyz(), *direction, *plane, sweep);
+        match segment.kind.path() {
+            Some((motion, None)) => self.entry(motion.from.xyz(), motion.to.xyz()).is_some(),
+            Some((motion, Some(arc))) => {
+                let sweep = arc.sweep(motion);
+                let points = arc_chords(motion, arc.center.xyz(), arc.direction, arc.plane, sweep);
                 points.windows(2).any(|w| self.entry(w[0], w[1]).is_some())
             }
-            _ => false,
+            None => false,
         }
     }
 }

@@ -38,7 +38,7 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::checks::{ReleasedCheck, TravelCheck};
 use crate::interp::kernel::Kernel;
 use crate::machine::{Machine, AXES};
-use crate::motion::{ArcDirection, Item, Segment, SegmentKind, StreamItem, WorkTransform};
+use crate::motion::{ArcDirection, Item, Segment, StreamItem, WorkTransform};
 
 /// One working-area limitation group of the WCS (`$P_WORKAREA_CS_...[n, axis]`).
 #[derive(Clone, Copy, Debug)]
@@ -340,22 +340,12 @@ fn points<'a>(
     segment: &'a Segment,
     back: &'a WorkTransform,
 ) -> impl Iterator<Item = [f64; AXES]> + 'a {
-    let (motion, arc) = match &segment.kind {
-        SegmentKind::Rapid { motion, .. } | SegmentKind::Line { motion, .. } => {
-            (Some(motion), None)
-        }
-        SegmentKind::Arc {
-            motion,
-            center,
-            direction,
-            plane,
-            extra_turns,
-            ..
-        } => (
+    let (motion, arc) = match segment.kind.path() {
+        Some((motion, arc)) => (
             Some(motion),
-            Some((center.0, *direction, *plane, *extra_turns)),
+            arc.map(|arc| (arc.center.0, arc.direction, arc.plane, arc.extra_turns)),
         ),
-        _ => (None, None),
+        None => (None, None),
     };
     let ends = motion
         .into_iter()
