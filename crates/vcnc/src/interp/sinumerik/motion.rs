@@ -306,14 +306,24 @@ pub(super) fn prepare(
                 }
             }
         }
-        Motion::ThroughPoint => {
-            return through_point(front, kernel, words, target, origin);
-        }
-        Motion::Thread | Motion::Tap { .. } => {
-            return thread(front, words, target, origin);
-        }
-        Motion::Involute { ccw } => {
-            return involute(front, words, target, ccw, origin);
+        Motion::ThroughPoint | Motion::Thread | Motion::Tap { .. } | Motion::Involute { .. } => {
+            // These paths are moved straight to the kernel, past the contour's corners.
+            if let Some(span) = corner
+                .map(|c| c.span)
+                .or(front.rounding_modal.then_some(origin.span))
+            {
+                return Err(Alarm::error(
+                    AlarmCode::NotSupportedYet,
+                    span,
+                    "a chamfer or rounding (CHF, CHR, RND, RNDM) at the end of a CIP, involute or thread block is not run yet",
+                )
+                .with_help("end the block without it, or make the corner on a G1, G2 or G3 block"));
+            }
+            return match motion {
+                Motion::ThroughPoint => through_point(front, kernel, words, target, origin),
+                Motion::Involute { ccw } => involute(front, words, target, ccw, origin),
+                _ => thread(front, words, target, origin),
+            };
         }
     }
     let element = element.expect("every motion above makes an element");
