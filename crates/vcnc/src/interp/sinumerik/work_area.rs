@@ -341,57 +341,47 @@ fn points<'a>(
     back: &'a WorkTransform,
 ) -> impl Iterator<Item = [f64; AXES]> + 'a {
     let (motion, arc) = match segment.kind.path() {
-        Some((motion, arc)) => (
-            Some(motion),
-            arc.map(|arc| (arc.center.0, arc.direction, arc.plane, arc.extra_turns)),
-        ),
+        Some((motion, arc)) => (Some(motion), arc),
         None => (None, None),
     };
     let ends = motion
         .into_iter()
         .flat_map(move |m| [back.to_machine(&m.from.0), back.to_machine(&m.to.0)]);
-    let along = motion
-        .zip(arc)
-        .into_iter()
-        .flat_map(move |(m, (c, direction, plane, turns))| {
-            let (a, b, h) = plane.axes();
-            let angle = |p: &[f64; AXES]| (p[b] - c[b]).atan2(p[a] - c[a]);
-            let (start, end) = (angle(&m.from.0), angle(&m.to.0));
-            let radius = (m.from.0[a] - c[a]).hypot(m.from.0[b] - c[b]);
-            let ccw = direction == ArcDirection::CounterClockwise;
-            let tau = std::f64::consts::TAU;
-            let mut sweep = if ccw { end - start } else { start - end }.rem_euclid(tau);
-            if sweep < 1e-12 {
-                sweep = tau;
-            }
-            sweep += tau * f64::from(turns);
-            let rise = m.to.0[h] - m.from.0[h];
-            let at = move |t: f64| {
-                let phi = if ccw { start + t } else { start - t };
-                let mut p = m.to.0;
-                p[a] = c[a] + radius * phi.cos();
-                p[b] = c[b] + radius * phi.sin();
-                p[h] = m.from.0[h] + rise * t / sweep;
-                back.to_machine(&p)
-            };
-            // Where program coordinate i of the flat circle turns: d/dphi (u_i cos + v_i sin) = 0.
-            let mut ts: Vec<f64> = (0..3)
-                .flat_map(|i| {
-                    let (u, v) = (back.linear[i][a], back.linear[i][b]);
-                    let phi = v.atan2(u);
-                    [phi, phi + std::f64::consts::PI]
-                })
-                .flat_map(|phi| {
-                    let t = if ccw { phi - start } else { start - phi }.rem_euclid(tau);
-                    (0..=turns).map(move |k| t + tau * f64::from(k))
-                })
-                .filter(|t| *t <= sweep)
-                .collect();
-            if rise.abs() > 1e-9 {
-                let steps = (sweep.to_degrees().ceil() as usize).min(36_000);
-                ts.extend((1..steps).map(|k| sweep * k as f64 / steps as f64));
-            }
-            ts.into_iter().map(at)
-        });
+    let along = motion.zip(arc).into_iter().flat_map(move |(m, arc)| {
+        let c = arc.center.0;
+        let (a, b, h) = arc.plane.axes();
+        let start = (m.from.0[b] - c[b]).atan2(m.from.0[a] - c[a]);
+        let radius = (m.from.0[a] - c[a]).hypot(m.from.0[b] - c[b]);
+        let ccw = arc.direction == ArcDirection::CounterClockwise;
+        let tau = std::f64::consts::TAU;
+        let sweep = arc.sweep(m);
+        let rise = m.to.0[h] - m.from.0[h];
+        let at = move |t: f64| {
+            let phi = if ccw { start + t } else { start - t };
+            let mut p = m.to.0;
+            p[a] = c[a] + radius * phi.cos();
+            p[b] = c[b] + radius * phi.sin();
+            p[h] = m.from.0[h] + rise * t / sweep;
+            back.to_machine(&p)
+        };
+        // Where program coordinate i of the flat circle turns: d/dphi (u_i cos + v_i sin) = 0.
+        let mut ts: Vec<f64> = (0..3)
+            .flat_map(|i| {
+                let (u, v) = (back.linear[i][a], back.linear[i][b]);
+                let phi = v.atan2(u);
+                [phi, phi + std::f64::consts::PI]
+            })
+            .flat_map(|phi| {
+                let t = if ccw { phi - start } else { start - phi }.rem_euclid(tau);
+                (0..=arc.extra_turns).map(move |k| t + tau * f64::from(k))
+            })
+            .filter(|t| *t <= sweep)
+            .collect();
+        if rise.abs() > 1e-9 {
+            let steps = (sweep.to_degrees().ceil() as usize).min(36_000);
+            ts.extend((1..steps).map(|k| sweep * k as f64 / steps as f64));
+        }
+        ts.into_iter().map(at)
+    });
     ends.chain(along)
 }
