@@ -147,6 +147,19 @@ pub(super) fn run(
     block: &Block,
     span: Span,
 ) -> Result<Step, Alarm> {
+    if let Some(plain) = &block.plain {
+        if let Some(step) = super::plain_block::run(front, kernel, plain, block.number, span) {
+            return step;
+        }
+        // The general way, from the words the line reads as.
+        let mut general = front.general_block.take().unwrap_or_default();
+        general.number = block.number;
+        general.words.clear();
+        plain.to_words(&mut general.words);
+        let step = run(front, kernel, &general, span);
+        front.general_block = Some(general);
+        return step;
+    }
     let origin = Origin {
         span,
         sequence: block.number,

@@ -32,6 +32,7 @@ mod machine_data;
 mod motion;
 mod multi_feed;
 mod path_control;
+mod plain_block;
 mod polar;
 mod predefined;
 mod program;
@@ -54,7 +55,7 @@ use crate::machine::{Machine, ToolEdge, AXES};
 use crate::motion::{EndKind, Plane};
 use crate::profile::{SinumerikSettings, Variant};
 use crate::source::{FileId, Span};
-use crate::syntax::sinumerik::{is_header, parse_block_into, Block};
+use crate::syntax::sinumerik::{is_header, parse_line_into, Block};
 use gcodes::{FeedType, Motion};
 use program::{Fetched, Program};
 use std::io::Read;
@@ -135,6 +136,9 @@ pub struct Sinumerik {
     /// A block to read the next line into, with the room of the last one's words (boxed:
     /// swapped with a line's block parsed ahead, it moves as a pointer).
     spare: Option<Box<Block>>,
+    /// The words of a decoded plain line that runs the general way (`plain_block.rs`), their
+    /// room kept from block to block.
+    general_block: Option<Block>,
     /// Tool radius compensation: G40/G41/G42 and how it approaches and turns corners.
     radius_compensation: compensation::RadiusCompensation,
     /// The standard cycle a block called, run at its end, and the names that are built in.
@@ -258,6 +262,7 @@ impl Sinumerik {
             arc_tolerance: machine.profile.motion.arc_radius_tolerance,
             jumps: 0,
             spare: None,
+            general_block: None,
             radius_compensation: compensation::RadiusCompensation::default(),
             cycles: cycles::Calls::default(),
             work_area: work_area::WorkArea::default(),
@@ -633,7 +638,7 @@ impl Sinumerik {
             let mut block = self.spare.take().unwrap_or_default();
             if !text.take_block(index, &mut block) {
                 let bytes = text.line(index).map_or(&b""[..], |l| l.bytes);
-                parse_block_into(bytes, file, number, base, &mut block);
+                parse_line_into(bytes, file, number, base, &mut block);
             }
             self.level().next = index + 1;
             let step = self.run_line(kernel, &block, program, index);
@@ -658,7 +663,8 @@ impl Sinumerik {
         program: usize,
         index: usize,
     ) -> Result<Option<Step>, Alarm> {
-        if block.words.is_empty() && block.statement.is_none() && block.alarm.is_none() {
+        let no_words = block.words.is_empty() && block.plain.is_none();
+        if no_words && block.statement.is_none() && block.alarm.is_none() {
             return Ok(None);
         }
         let span = self.programs[program].line_span(index);
@@ -678,7 +684,7 @@ impl Sinumerik {
         if let Some(alarm) = &block.alarm {
             return Err(alarm.clone());
         }
-        let step = if block.words.is_empty() {
+        let step = if no_words {
             Step::Next
         } else {
             block::run(self, kernel, block, span)?

@@ -11,7 +11,7 @@
 //! (docs/SINUMERIK.md 6.4 rule 3).
 
 use super::arcs::{self, Tangential};
-use super::block::Words;
+use super::block::{AxisValue, Words};
 use super::contour::{AngleStep, CornerKind, CornerSpec, Cut, LineBlock};
 use super::gcodes::{Motion, OneBlock};
 use super::involute;
@@ -23,6 +23,7 @@ use crate::interp::kernel::{Kernel, Origin};
 use crate::interp::modal::DistanceMode;
 use crate::machine::{WorkOffsetId, AXES};
 use crate::motion::{ArcDirection, Plane, SpindleState};
+use crate::source::Span;
 
 /// What the contour state machine keeps of a block: where it goes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -72,6 +73,27 @@ impl Arc {
     }
 }
 
+/// What an arc's centre comes from: I J K, CR=, AR=, and whether AP= or RP= make it polar.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct ArcWords {
+    pub(super) centre: [Option<AxisValue>; 3],
+    pub(super) radius: Option<(f64, Span)>,
+    pub(super) opening: Option<(f64, Span)>,
+    pub(super) polar: bool,
+}
+
+impl Words<'_> {
+    /// The block's words that make an arc.
+    fn arc_words(&self) -> ArcWords {
+        ArcWords {
+            centre: self.centre,
+            radius: self.radius,
+            opening: self.opening,
+            polar: self.ap.is_some() || self.rp.is_some(),
+        }
+    }
+}
+
 /// The direction of an element's arc.
 fn direction(ccw: bool) -> ArcDirection {
     if ccw {
@@ -104,10 +126,10 @@ fn distance_mode(front: &Sinumerik) -> DistanceMode {
 }
 
 /// The block's end point in the work system, per axis (None: not programmed).
-fn end_point(front: &Sinumerik, words: &Words<'_>) -> [Option<f64>; AXES] {
+fn end_point(front: &Sinumerik, axes: &[Option<AxisValue>; AXES]) -> [Option<f64>; AXES] {
     let unit = unit(front);
     std::array::from_fn(|i| {
-        let v = words.axes[i]?;
+        let v = axes[i]?;
         let scale = front.axes.scale(i, unit);
         Some(if v.absolute.unwrap_or(front.modal.absolute) {
             v.value * scale
@@ -118,7 +140,7 @@ fn end_point(front: &Sinumerik, words: &Words<'_>) -> [Option<f64>; AXES] {
 }
 
 /// A polar word's value as the polar module reads it.
-fn polar_value(value: Option<super::block::AxisValue>, scale: f64) -> Option<PolarValue> {
+fn polar_value(value: Option<AxisValue>, scale: f64) -> Option<PolarValue> {
     let v = value?;
     Some(match v.absolute {
         None => PolarValue::Plain(v.value * scale),
@@ -148,7 +170,7 @@ pub(super) fn prepare(
         .map(|(f, _)| f * unit)
         .filter(|f| *f > 0.0)
         .or(front.corner_feed_modal);
-    let mut target = end_point(front, words);
+    let mut target = end_point(front, &words.axes);
     let motion = front.modal.motion;
     let arc = matches!(motion, Motion::Clockwise | Motion::CounterClockwise);
     // Polar end points (AP=, RP=) in the plane.
@@ -267,27 +289,10 @@ pub(super) fn prepare(
     let element;
     let mut direct_arc = None;
     match motion {
-        Motion::Rapid | Motion::Line => {
-            let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
-            element = Some(Element::Line { start, end });
-        }
-        Motion::Clockwise | Motion::CounterClockwise => {
-            let direction = if motion == Motion::Clockwise {
-                ArcDirection::Clockwise
-            } else {
-                ArcDirection::CounterClockwise
-            };
-            let (centre, end) = arc_geometry(front, words, &target, direction, origin)?;
-            target[a] = Some(end.x);
-            target[b] = Some(end.y);
-            let (arc, arc_element) = Arc {
-                centre,
-                direction,
-                plane,
-            }
-            .with_element(start, end);
-            element = Some(arc_element);
-            direct_arc = Some(arc);
+        Motion::Rapid | Motion::Line | Motion::Clockwise | Motion::CounterClockwise => {
+            let (path, arc) = line_or_arc(front, &words.arc_words(), &mut target, origin)?;
+            element = Some(path);
+            direct_arc = arc;
         }
         Motion::Tangential => {
             let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
@@ -341,6 +346,66 @@ pub(super) fn prepare(
         0
     };
     Ok(Prepared::Cuts { cuts, held })
+}
+
+/// Prepares a plain block's motion (`plain_block.rs`): G0, G1, G2 or G3 in force, axis words,
+/// an arc's I J K or CR=, and no corner held, pending or programmed: what [`prepare`] does with
+/// such a block, without the words that are not there.
+pub(super) fn prepare_plain(
+    front: &mut Sinumerik,
+    axes: &[Option<AxisValue>; AXES],
+    arc_words: &ArcWords,
+    origin: Origin,
+) -> Result<Prepared, Alarm> {
+    front.corner_feed = front.corner_feed_modal;
+    let mut target = end_point(front, axes);
+    let motion = front.modal.motion;
+    let arc = matches!(motion, Motion::Clockwise | Motion::CounterClockwise);
+    let has_arc_data = arc_words.centre.iter().any(Option::is_some) || arc_words.radius.is_some();
+    if !(target.iter().any(Option::is_some) || arc && has_arc_data) {
+        return Ok(Prepared::None);
+    }
+    if front.frame.has_rotation() {
+        for (t, p) in target.iter_mut().zip(front.programmed).take(3) {
+            t.get_or_insert(p);
+        }
+    }
+    let (element, direct_arc) = line_or_arc(front, arc_words, &mut target, origin)?;
+    let tag = tag(target, origin, motion == Motion::Rapid, 0);
+    update_tangent(front, &element, &target, front.modal.plane);
+    advance(front, &target);
+    Ok(Prepared::Direct(tag, direct_arc))
+}
+
+/// The path of G0, G1, G2 or G3 (the motion in force) from p to `target`, whose plane's axes an
+/// arc sets to its end.
+fn line_or_arc(
+    front: &Sinumerik,
+    arc_words: &ArcWords,
+    target: &mut [Option<f64>; AXES],
+    origin: Origin,
+) -> Result<(Element, Option<Arc>), Alarm> {
+    let plane = front.modal.plane;
+    let (a, b, _) = plane.axes();
+    let start = in_plane(plane, &front.programmed);
+    let direction = match front.modal.motion {
+        Motion::Clockwise => ArcDirection::Clockwise,
+        Motion::CounterClockwise => ArcDirection::CounterClockwise,
+        _ => {
+            let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
+            return Ok((Element::Line { start, end }, None));
+        }
+    };
+    let (centre, end) = arc_geometry(front, arc_words, target, direction, origin)?;
+    target[a] = Some(end.x);
+    target[b] = Some(end.y);
+    let (arc, element) = Arc {
+        centre,
+        direction,
+        plane,
+    }
+    .with_element(start, end);
+    Ok((element, Some(arc)))
 }
 
 /// True when `cut` is the block of `origin` (not the held one, not a corner).
@@ -411,7 +476,7 @@ fn corner_spec(words: &Words<'_>) -> Result<Option<CornerSpec>, Alarm> {
 /// unless `=AC(..)`), CR=, or AR= with the end or the centre; a polar arc turns about the pole.
 fn arc_geometry(
     front: &Sinumerik,
-    words: &Words<'_>,
+    words: &ArcWords,
     target: &[Option<f64>; AXES],
     direction: ArcDirection,
     origin: super::Origin,
@@ -433,7 +498,7 @@ fn arc_geometry(
     let end_written = target[a].is_some() || target[b].is_some();
     let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
     // A polar arc: the pole is its centre (PGsl 9.6.5).
-    if words.ap.is_some() || words.rp.is_some() {
+    if words.polar {
         return Ok((front.polar.pole_in(plane), end));
     }
     let centre_given = ca.is_some() || cb.is_some();

@@ -274,7 +274,14 @@ mod tests {
             if crate::syntax::sinumerik::is_header(&bytes) {
                 // A header is no block: nothing to compare.
             } else if !program.take_block(index, &mut block) {
-                *block = crate::syntax::sinumerik::parse_block(&bytes, FileId(0), number, base);
+                // As the interpreter reads a line (plain ones kept decoded).
+                crate::syntax::sinumerik::parse_line_into(
+                    &bytes,
+                    FileId(0),
+                    number,
+                    base,
+                    &mut block,
+                );
             }
             lines.push((number, base, bytes, block));
         }

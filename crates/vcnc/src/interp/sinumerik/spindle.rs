@@ -175,26 +175,16 @@ pub(super) fn feed(
     words: &Words<'_>,
     mode: FeedMode,
 ) -> Result<(), Alarm> {
-    let unit = if front.modal.inch && front.modal.inch_feeds {
-        25.4
-    } else {
-        1.0
-    };
+    let unit = feed_unit(front);
     if let Some(percent) = words.override_percent {
         front.feed_override = percent / 100.0;
     }
     let factor = front.feed_override;
     if let Some((f, span)) = words.feed {
-        check_feed(f, span)?;
-        front.block_feed_restore = None;
-        front.tooth_feed = None;
-        front.programmed_feed = Some(f * unit);
+        program_feed(front, f, span)?;
     }
     if words.feed.is_some() || words.override_percent.is_some() {
-        // OVR scales the programmed feed as the panel's override would (PGsl 7.5).
-        if let Some(f) = front.programmed_feed.filter(|_| front.tooth_feed.is_none()) {
-            kernel.set_feed_in(mode, Some(f * factor));
-        }
+        apply_feed(front, kernel, mode);
     }
     if let Some((fz, span)) = words.fz {
         check_feed(fz, span)?;
@@ -233,6 +223,32 @@ pub(super) fn feed(
 }
 
 /// After a block with FB: the modal feed again.
+/// The factor of F: 25.4 under G700 (inch feeds).
+fn feed_unit(front: &Sinumerik) -> f64 {
+    if front.modal.inch && front.modal.inch_feeds {
+        25.4
+    } else {
+        1.0
+    }
+}
+
+/// F programmed: the feed of the blocks to come, no longer per tooth nor for one block.
+pub(super) fn program_feed(front: &mut Sinumerik, f: f64, span: Span) -> Result<(), Alarm> {
+    check_feed(f, span)?;
+    front.block_feed_restore = None;
+    front.tooth_feed = None;
+    front.programmed_feed = Some(f * feed_unit(front));
+    Ok(())
+}
+
+/// The programmed feed, under the override, to the kernel (not while FZ sets it).
+pub(super) fn apply_feed(front: &Sinumerik, kernel: &mut Kernel, mode: FeedMode) {
+    // OVR scales the programmed feed as the panel's override would (PGsl 7.5).
+    if let Some(f) = front.programmed_feed.filter(|_| front.tooth_feed.is_none()) {
+        kernel.set_feed_in(mode, Some(f * front.feed_override));
+    }
+}
+
 pub(super) fn restore_feed(front: &mut Sinumerik, kernel: &mut Kernel, mode: FeedMode) {
     if let Some(feed) = front.block_feed_restore.take() {
         kernel.set_feed_in(mode, feed);

@@ -11,7 +11,7 @@
 
 use super::control::{self, Place};
 use super::expr::{self, Expr};
-use super::plain;
+use super::plain::{self, PlainWords};
 use super::scan::{unexpected, Scanner};
 use super::statement::{Name, Spanned, Statement};
 use crate::alarm::{Alarm, AlarmCode};
@@ -27,8 +27,10 @@ pub struct Block {
     pub number: Option<u32>,
     /// A jump label ending in `:` at the start of the block.
     pub label: Option<Box<str>>,
-    /// The block's words, in order.
+    /// The block's words, in order; empty when the line is kept decoded in `plain`.
     pub words: Vec<Word>,
+    /// A plain line's words, decoded ([`parse_line_into`]); its words are then not in `words`.
+    pub plain: Option<PlainWords>,
     /// The block's statement: a control structure or declaration (IF, WHILE, DEF ...) after the
     /// number and label, or a jump or synchronized action after the words.
     pub statement: Option<Statement>,
@@ -212,6 +214,16 @@ pub fn parse_block(text: &[u8], file: FileId, line: u32, base: u32) -> Block {
 /// Reads the block on `text` (as [`parse_block`]) into `block`, whatever it held: its words'
 /// room is kept, so that a block read into line after line does not allocate for them.
 pub fn parse_block_into(text: &[u8], file: FileId, line: u32, base: u32, block: &mut Block) {
+    parse_line_into(text, file, line, base, block);
+    if let Some(plain) = block.plain.take() {
+        plain.to_words(&mut block.words);
+    }
+}
+
+/// Reads the block on `text` into `block` as [`parse_block_into`] does, but keeps a plain line
+/// decoded in `block.plain` (its `words` then empty): what a program's lines are read with, for
+/// the interpreter to run the common ones without making their words.
+pub fn parse_line_into(text: &[u8], file: FileId, line: u32, base: u32, block: &mut Block) {
     block.skip = None;
     block.number = None;
     block.label = None;
@@ -220,11 +232,11 @@ pub fn parse_block_into(text: &[u8], file: FileId, line: u32, base: u32, block: 
     block.alarm = None;
     // Most lines of a long program are plain ones (plain.rs); any other is read the general
     // way from its start.
-    if plain::read_plain(&mut Scanner::new(text, file, line, base), block) {
+    if plain::read_plain(text, file, line, base, block) {
         return;
     }
+    block.plain = None;
     block.number = None;
-    block.words.clear();
     read_general(text, file, line, base, block);
 }
 
@@ -539,7 +551,8 @@ mod tests {
         let mut general = Block::default();
         read_general(text, FileId(3), 7, 100, &mut general);
         // Read into a block that held another line, as the front end reads.
-        let mut fast = parse_block(b"N1 G0 X1 CR=2 F=A", FileId(3), 7, 100);
+        let mut fast = Block::default();
+        parse_line_into(b"N1 G0 X1 CR=2 F=A", FileId(3), 7, 100, &mut fast);
         parse_block_into(text, FileId(3), 7, 100, &mut fast);
         (general, fast)
     }
@@ -563,11 +576,13 @@ mod tests {
             );
         }
         let mut block = Block::default();
-        assert!(plain::read_plain(
-            &mut Scanner::new(b"N170 G1 X54.808 Y30.491 Z-1.288 F=FEED1", FileId(0), 1, 0),
-            &mut block,
-        ));
-        assert_eq!(block.words.len(), 5);
+        let line = b"N170 G1 X54.808 Y30.491 Z-1.288 F=FEED1";
+        assert!(plain::read_plain(line, FileId(0), 1, 0, &mut block));
+        assert_eq!(block.plain.as_ref().map(|p| p.words().len()), Some(5));
+        assert_eq!(
+            block.plain.as_ref().and_then(|p| p.feed_name()),
+            Some("FEED1")
+        );
     }
 
     proptest::proptest! {
@@ -584,6 +599,7 @@ mod tests {
                     "$P", "$P=1", "(", "[", "1EX3", "X1EX3", "X1EX", "X1.5EX-2", "EX",
                     "X99999999999999999999", "'H1F'", "\"s\"", "F='H1F'", "F=\"s\"", "X.", "X.5.",
                     "_A=1", "A_=1", "AB1=2", "ENDLABEL:", "X1e5", "\u{e9}", "F=$A", "F=_A",
+                    "F=-3", "F=3.5", "CR=A", "Cr=2", "F=b_2",
                 ]),
                 0..8,
             ),

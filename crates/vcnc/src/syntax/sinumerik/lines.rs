@@ -6,7 +6,7 @@
 //! Each line keeps its text and place beside its block, so that the interpreter sees exactly
 //! what it would have read itself. Never: skip or join lines (line numbers are the program's).
 
-use super::block::{parse_block_into, Block};
+use super::block::{parse_line_into, Block};
 use crate::source::FileId;
 use crate::syntax::blocks::LineParser;
 use crate::syntax::lines::LineSource;
@@ -81,9 +81,9 @@ impl LineParser for SinumerikParser {
         out.text.clear();
         out.text.extend_from_slice(line.text);
         if is_header(&out.text) {
-            parse_block_into(b"", self.file, out.number, out.base, &mut out.block);
+            parse_line_into(b"", self.file, out.number, out.base, &mut out.block);
         } else {
-            parse_block_into(&out.text, self.file, out.number, out.base, &mut out.block);
+            parse_line_into(&out.text, self.file, out.number, out.base, &mut out.block);
         }
         Ok(true)
     }

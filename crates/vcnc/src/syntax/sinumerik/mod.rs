@@ -14,9 +14,10 @@ mod plain;
 mod scan;
 mod statement;
 
-pub use block::{parse_block, parse_block_into, Address, Block, Value, Word};
+pub use block::{parse_block, parse_block_into, parse_line_into, Address, Block, Value, Word};
 pub use expr::{BinaryOp, Expr, ExprKind, UnaryOp};
 pub use lines::{is_header, ParsedLine, SinumerikParser};
+pub use plain::{PlainKind, PlainWord, PlainWords};
 pub use statement::{
     Case, CaseBranch, DataType, Definition, External, Initializer, Jump, JumpKind, JumpTarget,
     Macro, Name, Parameter, Procedure, Scope, Spanned, Statement, StatementKind, Variable,

@@ -1,44 +1,197 @@
 //! The common SINUMERIK line read by a short path: what a CAM post writes block after block,
 //! `N170 G1 X54.808 Y30.491 Z-1.288 F=FEED1` or `N160 G2 X51.4 Y26.2 CR=-11.7 F=FEED2`.
 //!
-//! A block number, then words that are a letter and a constant (`X-1.5`, `G1`) or a name, `=`
-//! and a number or a variable's name (`CR=-11.7`, `F=FEED1`), then the end or a `;` comment.
+//! A block number, then words that are a letter and a constant (`X-1.5`, `G1`) or `CR=` and `F=`
+//! with a number or a variable's name (`CR=-11.7`, `F=FEED1`), then the end or a `;` comment.
 //! Anything else (a blank inside a word, a skip level, a label, a keyword, an operator, a call,
-//! an index, a string) gives the line up, and `block.rs` reads it the general way. What this
-//! path reads is to the bit what the general one reads (a differential test in `block.rs`).
+//! an index, a string, another name) gives the line up, and `block.rs` reads it the general way.
+//!
+//! Such a line is kept decoded ([`PlainWords`]: a few numbers, nothing to allocate or drop),
+//! and the interpreter runs the common ones from it directly; [`PlainWords::to_words`] makes the
+//! words the general reader makes of the line, to the bit (a differential test in `block.rs`).
 //!
 //! Never: raise an alarm (a line that would is given up) or read past the line.
 
 use super::block::{Address, Block, Value, Word};
-use super::expr::{upper, Expr, ExprKind, UnaryOp};
-use super::scan::{is_blank, Scanner, POWERS_OF_TEN};
+use super::expr::{Expr, ExprKind, UnaryOp};
+use super::scan::{is_blank, POWERS_OF_TEN};
+use crate::source::{FileId, Span};
 use crate::syntax::Number;
 
-/// Reads `scanner`'s line into `block` (emptied) if it is a plain one; false, and `block`
-/// holding some of its words, if it is not.
-pub(super) fn read_plain(scanner: &mut Scanner<'_>, block: &mut Block) -> bool {
+/// A plain line's words, decoded.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PlainWords {
+    words: [PlainWord; PlainWords::MAX],
+    len: u8,
+    /// The variable's name of an `F=NAME` word, upper case.
+    name: Option<Address>,
+    file: FileId,
+    line: u32,
+    base: u32,
+}
+
+/// One word of a plain line.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlainWord {
+    /// What it says.
+    pub kind: PlainKind,
+    /// Its bytes in the line.
+    start: u16,
+    end: u16,
+}
+
+/// The words a plain line holds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PlainKind {
+    /// A letter, upper case, and the constant written against it (`X-1.5`, `G1`).
+    Letter(u8, Number),
+    /// `CR=` and a number, with whether it was written negated (`CR=-11.7`).
+    Radius(f64, bool),
+    /// `F=` and a number, with whether it was written negated.
+    Feed(f64, bool),
+    /// `F=` and a variable's name ([`PlainWords::feed_name`]).
+    FeedName,
+}
+
+impl Default for PlainWord {
+    fn default() -> PlainWord {
+        PlainWord {
+            kind: PlainKind::FeedName,
+            start: 0,
+            end: 0,
+        }
+    }
+}
+
+impl PlainWords {
+    /// The most words a plain line holds (a CAM line has up to about six).
+    pub const MAX: usize = 8;
+
+    /// The words, in their order.
+    pub fn words(&self) -> &[PlainWord] {
+        &self.words[..usize::from(self.len)]
+    }
+
+    /// The variable's name of the `F=NAME` word, upper case.
+    pub fn feed_name(&self) -> Option<&str> {
+        self.name.as_deref()
+    }
+
+    /// Where `word` was written.
+    pub fn span(&self, word: &PlainWord) -> Span {
+        self.span_of(usize::from(word.start), usize::from(word.end))
+    }
+
+    fn span_of(&self, start: usize, end: usize) -> Span {
+        // The offsets fit in 16 bits (the reader gives longer lines up).
+        let at = |i: usize| self.base.saturating_add(i as u32);
+        Span::new(self.file, self.line, at(start)..at(end))
+    }
+
+    /// Appends the words the general reader makes of the line.
+    pub fn to_words(&self, out: &mut Vec<Word>) {
+        for word in self.words() {
+            let (start, end) = (usize::from(word.start), usize::from(word.end));
+            let span = self.span_of(start, end);
+            let (address, value) = match word.kind {
+                PlainKind::Letter(letter, number) => {
+                    (Address::of_letter(letter), Value::Constant(number))
+                }
+                PlainKind::Radius(value, negated) => (
+                    Address::new("CR"),
+                    Value::Expression(self.number(start + 3, end, value, negated)),
+                ),
+                PlainKind::Feed(value, negated) => (
+                    Address::of_letter(b'F'),
+                    Value::Expression(self.number(start + 2, end, value, negated)),
+                ),
+                PlainKind::FeedName => {
+                    let name = self.name.as_deref().unwrap_or_default();
+                    let expr = Expr {
+                        kind: ExprKind::Name(name.into()),
+                        span: self.span_of(start + 2, end),
+                    };
+                    (Address::of_letter(b'F'), Value::Expression(expr))
+                }
+            };
+            out.push(Word {
+                address,
+                value,
+                span,
+            });
+        }
+    }
+
+    /// The expression of a number from `from` to `end`, negated by a `-` at `from`.
+    fn number(&self, from: usize, end: usize, value: f64, negated: bool) -> Expr {
+        if !negated {
+            return Expr {
+                kind: ExprKind::Number(value),
+                span: self.span_of(from, end),
+            };
+        }
+        let operand = Expr {
+            kind: ExprKind::Number(value),
+            span: self.span_of(from + 1, end),
+        };
+        Expr {
+            kind: ExprKind::Unary(UnaryOp::Minus, Box::new(operand)),
+            span: self.span_of(from, end),
+        }
+    }
+
+    fn push(&mut self, kind: PlainKind, start: usize, end: usize) -> Option<()> {
+        let slot = self.words.get_mut(usize::from(self.len))?;
+        *slot = PlainWord {
+            kind,
+            start: u16::try_from(start).ok()?,
+            end: u16::try_from(end).ok()?,
+        };
+        self.len += 1;
+        Some(())
+    }
+}
+
+/// Reads line `text` (line `line` of `file`, at byte `base`) into `block.plain` if it is a
+/// plain one, with the block number in `block.number`; false, and `block` to be emptied, if not.
+pub(super) fn read_plain(
+    text: &[u8],
+    file: FileId,
+    line: u32,
+    base: u32,
+    block: &mut Block,
+) -> bool {
     // The line is read by index over its bytes, not through the scanner's general steps: a
     // long CAM program's parsing is mostly this loop.
-    let text = scanner.text();
     let mut at = skip_blanks(text, 0);
     let Some(after_number) = block_number(text, at, block) else {
         return false;
     };
     at = after_number;
+    let plain = block.plain.get_or_insert_with(PlainWords::default);
+    plain.len = 0;
+    plain.name = None;
+    plain.file = file;
+    plain.line = line;
+    plain.base = base;
     loop {
         at = skip_blanks(text, at);
         let start = at;
-        // Each word is made in its place in the block: a word is large, and moved through an
-        // Option it was copied twice.
         let end = match text.get(at) {
-            None | Some(b';') => return true,
+            None | Some(b';') => {
+                // A line without words (a comment, a number alone) is no block to run.
+                if plain.len == 0 {
+                    block.plain = None;
+                }
+                return true;
+            }
             Some(b) if b.is_ascii_alphabetic() => {
                 let after = text.get(start + 1).copied();
                 if after.is_some_and(|b| b.is_ascii_alphabetic() || b == b'_' || b == b'=') {
                     // `CR=..`, or `F=FEED1`: a letter as a name.
-                    named(scanner, text, start, &mut block.words)
+                    named(text, start, plain)
                 } else {
-                    letter_constant(scanner, text, start, &mut block.words)
+                    letter_constant(text, start, plain)
                 }
             }
             Some(_) => return false,
@@ -135,13 +288,8 @@ fn is_operator(name: &[u8]) -> bool {
 
 /// A letter and a constant written against it (`X-1.5`, `G1`, `Y.5`), not a numeric
 /// extension (`R10=`, `X1=`: then the word's end is no plain one and the line is given up);
-/// the word pushed onto `words`, the position after it.
-fn letter_constant(
-    scanner: &Scanner<'_>,
-    text: &[u8],
-    start: usize,
-    words: &mut Vec<Word>,
-) -> Option<usize> {
+/// the word kept in `plain`, the position after it.
+fn letter_constant(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
     let letter = text[start].to_ascii_uppercase();
     let mut at = start + 1;
     let negative = match text.get(at) {
@@ -156,15 +304,12 @@ fn letter_constant(
         _ => false,
     };
     let (value, decimal_point, end) = number(text, at)?;
-    words.push(Word {
-        address: Address::of_letter(letter),
-        value: Value::Constant(Number {
-            value: if negative { -value } else { value },
-            decimal_point,
-            negative,
-        }),
-        span: scanner.span(start..end),
-    });
+    let number = Number {
+        value: if negative { -value } else { value },
+        decimal_point,
+        negative,
+    };
+    plain.push(PlainKind::Letter(letter, number), start, end)?;
     Some(end)
 }
 
@@ -205,68 +350,59 @@ fn number(text: &[u8], at: usize) -> Option<(f64, bool, usize)> {
     Some((whole as f64 / POWERS_OF_TEN[decimals], point, end))
 }
 
-/// A name, `=` and a number, a negated number or a variable's name (`CR=-11.7`, `F=FEED1`);
-/// the word pushed onto `words`, the position after it.
-fn named(scanner: &Scanner<'_>, text: &[u8], start: usize, words: &mut Vec<Word>) -> Option<usize> {
-    let name_end = name_end(text, start + 1);
+/// `CR=` or `F=` and a number, a negated number or (after `F=`) a variable's name (`CR=-11.7`,
+/// `F=FEED1`); the word kept in `plain`, the position after it. Any other name is the general
+/// reader's.
+fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
+    let equals = name_end(text, start + 1);
     // `==` compares; a blank before `=` and the forms with `(` or `[` are the general reader's.
-    if text.get(name_end) != Some(&b'=') || text.get(name_end + 1) == Some(&b'=') {
+    if text.get(equals) != Some(&b'=') || text.get(equals + 1) == Some(&b'=') {
         return None;
     }
-    let address = Address::upper(&text[start..name_end]);
-    let (value, end) = value(scanner, text, name_end + 1)?;
-    words.push(Word {
-        address,
-        value: Value::Expression(value),
-        span: scanner.span(start..end),
-    });
-    Some(end)
-}
-
-/// The value after `=` at `start`: a number, `-` and a number, or a name without indices or
-/// arguments; the expression and the position after it.
-fn value(scanner: &Scanner<'_>, text: &[u8], start: usize) -> Option<(Expr, usize)> {
-    match text.get(start) {
+    let name = &text[start..equals];
+    let radius = name.eq_ignore_ascii_case(b"CR");
+    if !radius && !name.eq_ignore_ascii_case(b"F") {
+        return None;
+    }
+    let from = equals + 1;
+    match text.get(from) {
         Some(b'-') => {
-            let from = start + 1;
-            let (value, _, end) = number(text, from)?;
-            let operand = Expr {
-                kind: ExprKind::Number(value),
-                span: scanner.span(from..end),
+            let (value, _, end) = number(text, from + 1)?;
+            let kind = if radius {
+                PlainKind::Radius(value, true)
+            } else {
+                PlainKind::Feed(value, true)
             };
-            let negated = Expr {
-                kind: ExprKind::Unary(UnaryOp::Minus, Box::new(operand)),
-                span: scanner.span(start..end),
-            };
-            Some((negated, end))
+            plain.push(kind, start, end)?;
+            Some(end)
         }
         Some(b) if b.is_ascii_alphabetic() || *b == b'_' => {
             // An R parameter's name ends at its digits (`R1X2`), and NOT and B_NOT are
-            // operators: the general reader's.
-            let r_parameter = b.eq_ignore_ascii_case(&b'R')
-                && text.get(start + 1).is_some_and(u8::is_ascii_digit);
-            let end = name_end(text, start + 1);
-            let name = &text[start..end];
-            if r_parameter || is_operator(name) {
+            // operators: the general reader's; a radius from a variable too.
+            let r_parameter =
+                b.eq_ignore_ascii_case(&b'R') && text.get(from + 1).is_some_and(u8::is_ascii_digit);
+            let end = name_end(text, from + 1);
+            let variable = &text[from..end];
+            if radius || r_parameter || is_operator(variable) || plain.name.is_some() {
                 return None;
             }
             // A call or indices follow the name (`(` after blanks, `[` against it).
             if text.get(skip_blanks(text, end)) == Some(&b'(') || text.get(end) == Some(&b'[') {
                 return None;
             }
-            let name = Expr {
-                kind: ExprKind::Name(upper(name)),
-                span: scanner.span(start..end),
-            };
-            Some((name, end))
+            plain.name = Some(Address::upper(variable));
+            plain.push(PlainKind::FeedName, start, end)?;
+            Some(end)
         }
         _ => {
-            let (value, _, end) = number(text, start)?;
-            let number = Expr {
-                kind: ExprKind::Number(value),
-                span: scanner.span(start..end),
+            let (value, _, end) = number(text, from)?;
+            let kind = if radius {
+                PlainKind::Radius(value, false)
+            } else {
+                PlainKind::Feed(value, false)
             };
-            Some((number, end))
+            plain.push(kind, start, end)?;
+            Some(end)
         }
     }
 }
