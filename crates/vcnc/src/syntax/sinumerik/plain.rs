@@ -161,13 +161,27 @@ pub(super) fn read_plain(
     base: u32,
     block: &mut Block,
 ) -> bool {
-    // The line is read by index over its bytes, not through the scanner's general steps: a
-    // long CAM program's parsing is mostly this loop.
-    let mut at = skip_blanks(text, 0);
-    let Some(after_number) = block_number(text, at, block) else {
+    // The line is read as a shrinking slice, by patterns, not through the scanner's general
+    // steps: a long CAM program's parsing is mostly this loop. A word's place in the line is
+    // the line's length less the length of what is left.
+    if text.len() > usize::from(u16::MAX) {
         return false;
-    };
-    at = after_number;
+    }
+    let at = |rest: &[u8]| text.len() - rest.len();
+    let mut rest = skip_blanks(text);
+    match rest {
+        [b'N' | b'n', after @ ..] => match block_number(after) {
+            Some((Some(number), after_number)) => {
+                block.number = Some(number);
+                rest = after_number;
+            }
+            // `N` and a letter: a name (`NOT`, a label), read as a word.
+            Some((None, _)) => {}
+            None => return false,
+        },
+        [b'/' | b':', ..] => return false,
+        _ => {}
+    }
     let plain = block.plain.get_or_insert_with(PlainWords::default);
     plain.len = 0;
     plain.name = None;
@@ -175,96 +189,84 @@ pub(super) fn read_plain(
     plain.line = line;
     plain.base = base;
     loop {
-        at = skip_blanks(text, at);
-        let start = at;
-        let end = match text.get(at) {
-            None | Some(b';') => {
+        rest = skip_blanks(rest);
+        let (letter, after) = match rest {
+            [] | [b';', ..] => {
                 // A line without words (a comment, a number alone) is no block to run.
                 if plain.len == 0 {
                     block.plain = None;
                 }
                 return true;
             }
-            Some(b) if b.is_ascii_alphabetic() => {
-                let after = text.get(start + 1).copied();
-                if after.is_some_and(|b| b.is_ascii_alphabetic() || b == b'_' || b == b'=') {
-                    // `CR=..`, or `F=FEED1`: a letter as a name.
-                    named(text, start, plain)
-                } else {
-                    letter_constant(text, start, plain)
-                }
+            [letter, after @ ..] if letter.is_ascii_alphabetic() => (*letter, after),
+            _ => return false,
+        };
+        let start = at(rest);
+        let end = match after {
+            // `CR=..`, or `F=FEED1`: a letter as a name.
+            [b, ..] if b.is_ascii_alphabetic() || *b == b'_' || *b == b'=' => {
+                named(text, start, plain)
             }
-            Some(_) => return false,
+            _ => letter_constant(letter, after, start, plain).map(at),
         };
         let Some(end) = end else {
             return false;
         };
-        if !ends_word(text, end) {
-            return false;
+        // What follows a word: blanks, then the end, a comment or the next word's letter,
+        // which must not be an operator going on with the word's value (`CR=5 DIV 2`).
+        rest = skip_blanks(&text[end..]);
+        match rest {
+            [] | [b';', ..] => {}
+            // Every operator is a name whose second byte is a letter or `_`: a letter before a
+            // digit, a sign or a point starts a word (most next words are axes and feeds).
+            [b, n, ..]
+                if (n.is_ascii_alphabetic() || *n == b'_')
+                    && matches!(
+                        b.to_ascii_uppercase(),
+                        b'O' | b'X' | b'A' | b'B' | b'D' | b'M' | b'N'
+                    ) =>
+            {
+                let from = at(rest);
+                if is_operator(&text[from..name_end(text, from)]) {
+                    return false;
+                }
+            }
+            [b, ..] if b.is_ascii_alphabetic() => {}
+            _ => return false,
         }
-        at = end;
     }
 }
 
-/// The position after the blanks from `at`.
-fn skip_blanks(text: &[u8], mut at: usize) -> usize {
-    while text.get(at).copied().is_some_and(is_blank) {
-        at += 1;
+/// `bytes` from its first byte that is not a blank.
+fn skip_blanks(mut bytes: &[u8]) -> &[u8] {
+    while let [first, rest @ ..] = bytes {
+        if !is_blank(*first) {
+            break;
+        }
+        bytes = rest;
     }
-    at
+    bytes
 }
 
-/// `N123` (or none) at `at`: the position after it; None for what the general reader must
-/// see: a skip level, a main block `:`, `N` with `=`, a number too large.
-fn block_number(text: &[u8], at: usize, block: &mut Block) -> Option<usize> {
-    match text.get(at) {
-        Some(b'N' | b'n') => {}
-        Some(b'/' | b':') => return None,
-        _ => return Some(at),
-    }
-    let mut end = at + 1;
+/// The digits of a block number after `N`: the number (None when no digit follows: a name) and
+/// the bytes after it; None for what the general reader must see: `N` with `=`, a number too
+/// large.
+fn block_number(bytes: &[u8]) -> Option<(Option<u32>, &[u8])> {
     let mut number = 0u32;
-    while let Some(digit) = digit(text, end) {
-        number = number.checked_mul(10)?.checked_add(u32::from(digit))?;
-        end += 1;
+    let mut rest = bytes;
+    while let [digit @ b'0'..=b'9', after @ ..] = rest {
+        number = number
+            .checked_mul(10)?
+            .checked_add(u32::from(digit - b'0'))?;
+        rest = after;
     }
-    if end == at + 1 {
-        // `N` and a letter: a name (`NOT`, a label), read as a word.
-        return Some(at);
+    if rest.len() == bytes.len() {
+        return Some((None, bytes));
     }
-    if text.get(end) == Some(&b'=') {
+    if rest.first() == Some(&b'=') {
         return None;
     }
-    block.number = Some(number);
-    Some(end)
-}
-
-/// The digit at `at`, if there is one.
-fn digit(text: &[u8], at: usize) -> Option<u8> {
-    text.get(at)
-        .map(|b| b.wrapping_sub(b'0'))
-        .filter(|d| *d < 10)
-}
-
-/// After a word ending at `at`: blanks, then the end, a comment or the next word's letter,
-/// which must not be an operator that would go on with the word's expression (`CR=5 DIV 2`).
-fn ends_word(text: &[u8], at: usize) -> bool {
-    let at = skip_blanks(text, at);
-    match text.get(at) {
-        None | Some(b';') => true,
-        Some(b) if b.is_ascii_alphabetic() => {
-            // Most next words are axes and feeds: no operator starts with their letter.
-            if !matches!(
-                b.to_ascii_uppercase(),
-                b'O' | b'X' | b'A' | b'B' | b'D' | b'M' | b'N'
-            ) {
-                return true;
-            }
-            let end = name_end(text, at);
-            !is_operator(&text[at..end])
-        }
-        Some(_) => false,
-    }
+    Some((Some(number), rest))
 }
 
 /// The end of the letters, digits and `_` from `at`.
@@ -286,68 +288,71 @@ fn is_operator(name: &[u8]) -> bool {
     (2..=5).contains(&name.len()) && OPERATORS.iter().any(|op| name.eq_ignore_ascii_case(op))
 }
 
-/// A letter and a constant written against it (`X-1.5`, `G1`, `Y.5`), not a numeric
-/// extension (`R10=`, `X1=`: then the word's end is no plain one and the line is given up);
-/// the word kept in `plain`, the position after it.
-fn letter_constant(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
-    let letter = text[start].to_ascii_uppercase();
-    let mut at = start + 1;
-    let negative = match text.get(at) {
-        Some(b'-') => {
-            at += 1;
-            true
-        }
-        Some(b'+') => {
-            at += 1;
-            false
-        }
-        _ => false,
+/// A letter and a constant written against it (`X-1.5`, `G1`, `Y.5`), `after` the bytes after
+/// the letter, not a numeric extension (`R10=`, `X1=`: then the word's end is no plain one and
+/// the line is given up); the word kept in `plain`, the bytes after it.
+fn letter_constant<'a>(
+    letter: u8,
+    after: &'a [u8],
+    start: usize,
+    plain: &mut PlainWords,
+) -> Option<&'a [u8]> {
+    let (negative, unsigned) = match after {
+        [b'-', rest @ ..] => (true, rest),
+        [b'+', rest @ ..] => (false, rest),
+        _ => (false, after),
     };
-    let (value, decimal_point, end) = number(text, at)?;
+    let (value, decimal_point, rest) = unsigned_decimal(unsigned)?;
     let number = Number {
         value: if negative { -value } else { value },
         decimal_point,
         negative,
     };
-    plain.push(PlainKind::Letter(letter, number), start, end)?;
-    Some(end)
+    // The word's end: the letter's place, the letter, and what was read after it.
+    let end = start + 1 + after.len() - rest.len();
+    plain.push(
+        PlainKind::Letter(letter.to_ascii_uppercase(), number),
+        start,
+        end,
+    )?;
+    Some(rest)
 }
 
-/// The decimal constant at `at` (digits, or a point and digits): its value, whether it has a
-/// point, and the position after it. None for anything else, and for what the general reader
-/// must read: an `EX` exponent, more than 15 digits (the value made here is then not the
-/// correctly rounded one), a second point.
-fn number(text: &[u8], at: usize) -> Option<(f64, bool, usize)> {
-    let mut whole = 0u64;
-    let mut end = at;
-    while let Some(d) = digit(text, end) {
-        whole = whole.wrapping_mul(10).wrapping_add(u64::from(d));
-        end += 1;
-    }
-    let point = text.get(end) == Some(&b'.');
-    let mut decimals = 0;
-    if point {
-        end += 1;
-        let from = end;
-        while let Some(d) = digit(text, end) {
-            whole = whole.wrapping_mul(10).wrapping_add(u64::from(d));
-            end += 1;
+/// The decimal constant at the start of `bytes` (digits, or a point and digits): its value,
+/// whether it has a point, and the bytes after it. None for anything else, and for what the
+/// general reader must read: an `EX` exponent, more than 15 digits (the value made here is then
+/// not the correctly rounded one).
+fn unsigned_decimal(bytes: &[u8]) -> Option<(f64, bool, &[u8])> {
+    // One loop over digits and the point: the point is rare enough per byte that testing for it
+    // only on bytes that are not digits costs less than a second loop for the fraction.
+    let mut mantissa = 0u64;
+    let mut length = 0;
+    let mut point = None;
+    while let Some(&byte) = bytes.get(length) {
+        let digit = u64::from(byte).wrapping_sub(u64::from(b'0'));
+        if digit <= 9 {
+            // Wrapping: past 15 digits the number is refused below.
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(digit);
+        } else if byte == b'.' && point.is_none() {
+            point = Some(length);
+        } else {
+            break;
         }
-        decimals = end - from;
+        length += 1;
     }
-    let digits = end - at - usize::from(point);
+    let digits = length - usize::from(point.is_some());
     if !(1..=15).contains(&digits) {
         return None;
     }
-    if text
-        .get(end..end + 2)
-        .is_some_and(|ex| ex.eq_ignore_ascii_case(b"EX"))
-    {
+    let rest = &bytes[length..];
+    if let [b'E' | b'e', b'X' | b'x', ..] = rest {
         return None;
     }
+    let fraction = point.map_or(0, |point| length - point - 1);
     // Both exact in f64 (below 2^53 and a power of ten up to 1e15): the quotient is the
     // correctly rounded value, as the standard parser's.
-    Some((whole as f64 / POWERS_OF_TEN[decimals], point, end))
+    let value = mantissa as i64 as f64 / POWERS_OF_TEN[fraction & 15];
+    Some((value, point.is_some(), rest))
 }
 
 /// `CR=` or `F=` and a number, a negated number or (after `F=`) a variable's name (`CR=-11.7`,
@@ -367,7 +372,8 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
     let from = equals + 1;
     match text.get(from) {
         Some(b'-') => {
-            let (value, _, end) = number(text, from + 1)?;
+            let (value, _, rest) = unsigned_decimal(&text[from + 1..])?;
+            let end = text.len() - rest.len();
             let kind = if radius {
                 PlainKind::Radius(value, true)
             } else {
@@ -387,7 +393,7 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
                 return None;
             }
             // A call or indices follow the name (`(` after blanks, `[` against it).
-            if text.get(skip_blanks(text, end)) == Some(&b'(') || text.get(end) == Some(&b'[') {
+            if skip_blanks(&text[end..]).first() == Some(&b'(') || text.get(end) == Some(&b'[') {
                 return None;
             }
             plain.name = Some(Address::upper(variable));
@@ -395,7 +401,8 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
             Some(end)
         }
         _ => {
-            let (value, _, end) = number(text, from)?;
+            let (value, _, rest) = unsigned_decimal(&text[from..])?;
+            let end = text.len() - rest.len();
             let kind = if radius {
                 PlainKind::Radius(value, false)
             } else {
