@@ -50,7 +50,11 @@ pub(super) fn run(
     {
         return None;
     }
-    let decoded = decode(front, plain)?;
+    // Filled in place: returned through an Option it was copied a block.
+    let mut decoded = Decoded::default();
+    if !decode(front, plain, &mut decoded) {
+        return None;
+    }
     let motion = decoded.motion.unwrap_or(front.modal.motion);
     if !matches!(
         motion,
@@ -65,11 +69,10 @@ pub(super) fn run(
     Some(run_decoded(front, kernel, &decoded, origin))
 }
 
-/// The words of `plain` sorted as `block::read` sorts them; None for a word that read would
-/// take another way or reject (a letter that is no axis of the machine, a G function that is no
-/// motion, a feed variable that is not a number).
-fn decode(front: &Sinumerik, plain: &PlainWords) -> Option<Decoded> {
-    let mut decoded = Decoded::default();
+/// The words of `plain` sorted into `decoded` as `block::read` sorts them; false for a word
+/// that read would take another way or reject (a letter that is no axis of the machine, a G
+/// function that is no motion, a feed variable that is not a number).
+fn decode(front: &Sinumerik, plain: &PlainWords, decoded: &mut Decoded) -> bool {
     for word in plain.words() {
         match word.kind {
             PlainKind::Letter(letter, number) => {
@@ -96,39 +99,41 @@ fn decode(front: &Sinumerik, plain: &PlainWords) -> Option<Decoded> {
                             Some((Function::Motion(m), _)) if decoded.motion.is_none() => {
                                 decoded.motion = Some(m);
                             }
-                            _ => return None,
+                            _ => return false,
                         }
                     }
-                    _ => return None,
+                    _ => return false,
                 }
             }
             // As `block::number` reads a literal: the evaluator's INT makes -0 a 0.
             PlainKind::Radius(value, negated) => {
                 if front.axes.lookup("CR") != AxisLookup::NotAnAxis {
-                    return None;
+                    return false;
                 }
                 let value = if negated { 0.0 - value } else { value + 0.0 };
                 decoded.arc.radius = Some((value, plain.span(word)));
             }
             // An axis named F would take `F=` (as `block::read` looks axes up first).
             PlainKind::Feed(..) | PlainKind::FeedName if front.axes.by_letter(b'F').is_some() => {
-                return None;
+                return false;
             }
             PlainKind::Feed(value, negated) => {
                 let value = if negated { 0.0 - value } else { value + 0.0 };
                 decoded.feed = Some((value, plain.span(word)));
             }
             PlainKind::FeedName => {
-                let name = plain.feed_name()?;
-                if matches!(name, "TRUE" | "FALSE") {
-                    return None;
-                }
-                let value = front.vars.scalar(name)?.as_f64()?;
+                let value = plain
+                    .feed_name()
+                    .filter(|name| !matches!(*name, "TRUE" | "FALSE"))
+                    .and_then(|name| front.vars.scalar(name)?.as_f64());
+                let Some(value) = value else {
+                    return false;
+                };
                 decoded.feed = Some((value, plain.span(word)));
             }
         }
     }
-    Some(decoded)
+    true
 }
 
 /// `block::run`'s steps for a plain block.

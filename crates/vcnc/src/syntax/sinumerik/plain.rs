@@ -188,8 +188,8 @@ pub(super) fn read_plain(
     plain.file = file;
     plain.line = line;
     plain.base = base;
+    rest = skip_blanks(rest);
     loop {
-        rest = skip_blanks(rest);
         let (letter, after) = match rest {
             [] | [b';', ..] => {
                 // A line without words (a comment, a number alone) is no block to run.
