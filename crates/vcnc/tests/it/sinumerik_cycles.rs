@@ -1042,3 +1042,24 @@ fn arbitrary_parameters_end_in_moves_or_an_alarm() {
         }
     }
 }
+
+#[test]
+fn a_cycle_called_under_g41_or_g42_is_an_alarm_at_its_call() {
+    // Found by the fuzz target: G41 starting in the block of a position pattern fed the pattern's
+    // moves to a compensator still waiting for its first element. The cycles move the tool's
+    // centre, and vcnc runs them with G40.
+    let mut machine = machine();
+    machine.tools.push(mill(1, "MILL", 1, 0.0, 5.0));
+    for text in [
+        "T1 D1 M6\nOFFN=20 G41 HOLES2(,,5,,,6)\nM30\n",
+        "T1 D1 M6\nG17 G90 F100 S1000 M3\nG0 X0 Y0 Z10\nG41 G1 X10 Y10\nCYCLE81(10,0,2,-5)\nM30\n",
+        "T1 D1 M6\nG17 G90 F100 S1000 M3\nG0 X0 Y0 Z10\nG42 G1 X10 Y10\nMCALL CYCLE81(10,0,2,-5)\nX20\nM30\n",
+    ] {
+        let alarm = error(text, &machine);
+        assert_eq!(alarm.code, AlarmCode::CutterCompensation, "{text}: {alarm:?}");
+        assert!(alarm.message.contains("G41 or G42"), "{alarm:?}");
+    }
+    // After G40 the same cycle runs.
+    let text = "T1 D1 M6\nG17 G90 F100 S1000 M3\nG0 X0 Y0 Z10\nG41 G1 X10 Y10\nG40 G1 X0 Y0\nCYCLE81(10,0,2,-5)\nM30\n";
+    assert!(collect(run_str(text, &machine)).error().is_none());
+}

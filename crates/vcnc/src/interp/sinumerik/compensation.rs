@@ -103,6 +103,13 @@ pub(super) struct RadiusCompensation {
     on: Option<(Plane, (Side, f64))>,
 }
 
+impl RadiusCompensation {
+    /// G41 or G42 is in force.
+    pub(super) fn is_selected(&self) -> bool {
+        self.left.is_some()
+    }
+}
+
 impl Default for RadiusCompensation {
     /// The power-on state: G40, NORM, G450, OFFN=0 (group defaults, seed 002 L7176, L7295).
     fn default() -> Self {

@@ -41,7 +41,7 @@ use place::Place;
 
 use super::language::Argument;
 use super::Sinumerik;
-use crate::alarm::Alarm;
+use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
 use crate::source::Span;
 use std::collections::HashSet;
@@ -122,6 +122,19 @@ pub(super) fn run_called(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(
 
 /// Runs cycle `call` once at the programmed position.
 fn run(front: &mut Sinumerik, kernel: &mut Kernel, call: &Call) -> Result<(), Alarm> {
+    // The cycles move the tool's centre (and CYCLE72 compensates by its own RL): vcnc runs them
+    // with G40, as their documentation programs them (a choice: docs/SINUMERIK.md 12).
+    if call.name != "CYCLE832" && front.radius_compensation.is_selected() {
+        return Err(Alarm::error(
+            AlarmCode::CutterCompensation,
+            call.span,
+            format!(
+                "{} is not run under G41 or G42: the standard cycles move the tool's centre",
+                call.name
+            ),
+        )
+        .with_help("cancel the radius compensation with G40 before the cycle call"));
+    }
     let params = Params::read(front, call)?;
     let saved_feed = kernel.feed_setting();
     let result = match call.name.as_str() {
