@@ -158,6 +158,7 @@ pub(super) fn run(
     for warning in words.warnings.drain(..) {
         kernel.warn(warning);
     }
+    super::dynamics::before_motion(front, kernel, &words, origin)?;
     // A block held for its corner moves with the feed it was read with.
     let feed_before = kernel.feed_setting();
     // G functions take their new members before any value of the block is read.
@@ -412,6 +413,9 @@ fn read<'a>(
                 || axes::read_word(front, kernel, word, words)?
                 || multi_feed::read_word(front, kernel, word, words)?)
         {
+            continue;
+        }
+        if address.len() > 2 && super::dynamics::read_word(front, kernel, word)? {
             continue;
         }
         if let Some(what) = gcodes::other_unit(address, &word.value) {

@@ -19,6 +19,7 @@ mod compensation;
 mod contour;
 mod control;
 mod cycles;
+mod dynamics;
 mod eval;
 mod flow;
 mod frame;
@@ -143,6 +144,8 @@ pub struct Sinumerik {
     work_area: work_area::WorkArea,
     /// The dynamic response's machine data the program wrote ($MA_MAX_AX_ACCEL ...).
     machine_data: machine_data::MachineData,
+    /// VELOLIMA, ACCLIMA, JERKLIMA and the electronic gears (`dynamics.rs`).
+    dynamics: dynamics::Dynamics,
 }
 
 /// One program level of the call stack.
@@ -262,6 +265,7 @@ impl Sinumerik {
             cycles: cycles::Calls::default(),
             work_area: work_area::WorkArea::default(),
             machine_data: machine_data::MachineData::default(),
+            dynamics: dynamics::Dynamics::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),

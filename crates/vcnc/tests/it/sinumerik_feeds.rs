@@ -1,0 +1,176 @@
+//! SINUMERIK feeds and dynamics beyond the path's own (docs/SINUMERIK.md 10.5-10.7), with the
+//! figures worked out by hand: the axes' dynamic limits VELOLIMA, ACCLIMA, JERKLIMA and the
+//! electronic gear EGON/EGOFS (PGsl 14.7.2, L10555-10623); revolutional feeds derived from
+//! another spindle or a rotary axis, FPR, FPRAON, FPRAOF (PGsl 7.5, L3169-3311); the
+//! handwheel's override of a positioning axis, FDA (PGsl 7.8, L3443-3593).
+
+use vcnc::interp::sinumerik::run_str;
+use vcnc::machine::AxisKind;
+use vcnc::plan::{PlanOptions, Planner, TimedItem};
+use vcnc::{Alarm, AlarmCode, Axis, Machine, ProfileName, Segment, SegmentKind};
+
+use crate::common::collect;
+use crate::common::plan::Limits;
+
+/// A SINUMERIK machine whose X, Y, Z and the linear axis AX4 (the 4th slot) all go up to
+/// `speed` mm/s at `acceleration` mm/s^2, without a jerk limit.
+fn machine_with_ax4(speed: f64, acceleration: f64) -> Machine {
+    let limits = Limits {
+        speed,
+        acceleration,
+        ..Limits::default()
+    };
+    let mut machine = crate::common::plan::machine(&limits)
+        .with_profile(ProfileName::Sinumerik)
+        .expect("the test machine fits the SINUMERIK profile");
+    let config = machine.axes[0].clone().expect("X");
+    let axis = machine
+        .add_axis("ax4", Some(AxisKind::Linear), config)
+        .expect("AX4 fits the machine");
+    assert_eq!(axis, Axis::A);
+    machine
+}
+
+/// The segments of a program that must run to its end.
+fn run(text: &str, machine: &Machine) -> Vec<Segment> {
+    let run = collect(run_str(text, machine));
+    assert!(run.error().is_none(), "{text}\n{:#?}", run.alarms);
+    run.segments
+}
+
+fn error(text: &str, machine: &Machine) -> Alarm {
+    collect(run_str(text, machine))
+        .error()
+        .cloned()
+        .unwrap_or_else(|| panic!("no error in\n{text}"))
+}
+
+/// The program's time as the planner makes it, seconds.
+fn seconds(text: &str, machine: &Machine) -> f64 {
+    let mut end = 0.0;
+    for item in Planner::new(run_str(text, machine), machine, PlanOptions::default()) {
+        match item {
+            Ok(TimedItem::Segment(timed)) => end = timed.t + timed.dt,
+            Ok(TimedItem::Frame(_) | TimedItem::Warning(_)) => {}
+            Err(alarm) => panic!("{text}: {alarm}"),
+        }
+    }
+    end
+}
+
+/// The axis-limit events: axis, velocity, acceleration, jerk (fractions).
+fn limit_events(segments: &[Segment]) -> Vec<(Axis, [f64; 3])> {
+    segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::AxisLimits {
+                axis,
+                velocity,
+                acceleration,
+                jerk,
+            } => Some((axis, [velocity, acceleration, jerk])),
+            _ => None,
+        })
+        .collect()
+}
+
+fn close(actual: f64, expected: f64) -> bool {
+    (actual - expected).abs() <= 1e-9 * expected.abs().max(1.0)
+}
+
+#[test]
+fn velolima_acclima_jerklima_correct_the_axis_limits_in_the_stream() {
+    // b/80: 75 %, 50 %, 50 % of the machine data; each correction is an event with all three.
+    let machine = machine_with_ax4(100.0, 1000.0);
+    let segments = run(
+        "VELOLIMA[AX4]=75\nACCLIMA[AX4]=50\nJERKLIMA[AX4]=50\nM30\n",
+        &machine,
+    );
+    assert_eq!(
+        limit_events(&segments),
+        vec![
+            (Axis::A, [0.75, 1.0, 1.0]),
+            (Axis::A, [0.75, 0.5, 1.0]),
+            (Axis::A, [0.75, 0.5, 0.5]),
+        ]
+    );
+    // Several corrections of one axis in a block make one event.
+    let segments = run("VELOLIMA[AX4]=75 ACCLIMA[AX4]=50\nM30\n", &machine);
+    assert_eq!(limit_events(&segments), vec![(Axis::A, [0.75, 0.5, 1.0])]);
+}
+
+#[test]
+fn acclima_50_makes_a_short_move_of_the_axis_take_sqrt_2_as_long() {
+    // 10 mm at 1000 mm/s^2 never reaches 100 mm/s: accelerate half way, brake half way,
+    // t = 2 sqrt(d / a) = 2 sqrt(10 / 1000) = 0.2 s (peak 100 mm/s, just at the limit).
+    // ACCLIMA 50 %: a = 500, t = 2 sqrt(10 / 500) = 0.28284 s, sqrt(2) as long.
+    let machine = machine_with_ax4(200.0, 1000.0);
+    let plain = seconds("G0 AX4=10\nM30\n", &machine);
+    let reduced = seconds("ACCLIMA[AX4]=50\nG0 AX4=10\nM30\n", &machine);
+    assert!(close(plain, 0.2), "{plain}");
+    assert!(close(reduced, 2.0 * (10.0_f64 / 500.0).sqrt()), "{reduced}");
+    // X keeps its own limits.
+    let x = seconds("ACCLIMA[AX4]=50\nG0 X10\nM30\n", &machine);
+    assert!(close(x, 0.2), "{x}");
+}
+
+#[test]
+fn velolima_50_makes_a_long_move_cruise_at_half_speed() {
+    // 100 mm at up to 100 mm/s, 1000 mm/s^2: t = d / v + v / a = 1 + 0.1 = 1.1 s.
+    // VELOLIMA 50 %: v = 50 mm/s, t = 2 + 0.05 = 2.05 s; at 100 % again: 1.1 s.
+    let machine = machine_with_ax4(100.0, 1000.0);
+    let plain = seconds("G0 AX4=100\nM30\n", &machine);
+    let reduced = seconds("VELOLIMA[AX4]=50\nG0 AX4=100\nM30\n", &machine);
+    let restored = seconds(
+        "VELOLIMA[AX4]=50\nVELOLIMA[AX4]=100\nG0 AX4=100\nM30\n",
+        &machine,
+    );
+    assert!(close(plain, 1.1), "{plain}");
+    assert!(close(reduced, 2.05), "{reduced}");
+    assert!(close(restored, 1.1), "{restored}");
+    // A feed move of AX4 too: F6000 is 100 mm/s, capped at 50.
+    let feed = seconds("VELOLIMA[AX4]=50\nG1 AX4=100 F6000\nM30\n", &machine);
+    assert!(close(feed, 2.05), "{feed}");
+}
+
+#[test]
+fn a_correction_of_an_axis_the_machine_lacks_or_out_of_range_is_an_alarm() {
+    let machine = machine_with_ax4(100.0, 1000.0);
+    let alarm = error("ACCLIMA[AX5]=50\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::AxisNotOnMachine, "{alarm}");
+    let alarm = error("VELOLIMA[AX4]=0\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::ValueOutOfRange, "{alarm}");
+    let alarm = error("JERKLIMA[AX4]=250\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::ValueOutOfRange, "{alarm}");
+}
+
+#[test]
+fn egon_couples_and_a_move_of_the_coupled_axes_is_outside_the_product() {
+    // b/81: the gear is state; moving the follower or its leader stops with V022, other
+    // axes move, and EGOFS frees both.
+    let machine = machine_with_ax4(100.0, 1000.0);
+    let couple = "ACCLIMA[AX4]=70\nVELOLIMA[AX4]=50\nEGON(AX4,\"FINE\",X,1,2)\n";
+    for moving in ["G0 X10", "G0 AX4=5", "POS[AX4]=5"] {
+        let alarm = error(&format!("{couple}{moving}\n"), &machine);
+        assert_eq!(alarm.code, AlarmCode::NotInProduct, "{moving}: {alarm}");
+        assert!(alarm.message.contains("AX4"), "{alarm}");
+    }
+    let segments = run(
+        &format!("{couple}G0 Y10\nEGOFS(AX4)\nG0 X10 AX4=5\nM30\n"),
+        &machine,
+    );
+    let ends: Vec<[f64; 6]> = segments
+        .iter()
+        .filter_map(Segment::motion)
+        .map(|m| m.to.0)
+        .collect();
+    assert_eq!(
+        ends,
+        vec![
+            [0.0, 10.0, 0.0, 0.0, 0.0, 0.0],
+            [10.0, 10.0, 0.0, 5.0, 0.0, 0.0]
+        ]
+    );
+    // EGOFS with a leader ends that leader's part: the coupling to X is gone.
+    run(&format!("{couple}EGOFS(AX4,X)\nG0 X10\nM30\n"), &machine);
+}
