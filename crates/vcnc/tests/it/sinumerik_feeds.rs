@@ -174,3 +174,107 @@ fn egon_couples_and_a_move_of_the_coupled_axes_is_outside_the_product() {
     // EGOFS with a leader ends that leader's part: the coupling to X is gone.
     run(&format!("{couple}EGOFS(AX4,X)\nG0 X10\nM30\n"), &machine);
 }
+
+/// The SINUMERIK default machine with rotary axis A and `spindles` spindles.
+fn machine_with_a(spindles: u32) -> Machine {
+    let mut machine = crate::common::sinumerik::machine();
+    machine.axes[Axis::A.index()] = Some(crate::common::rotary_axis());
+    machine.spindle.count = spindles;
+    machine
+}
+
+/// The feed of every cutting move, mm/min (None where it cannot be known).
+fn feeds(segments: &[Segment]) -> Vec<Option<f64>> {
+    segments
+        .iter()
+        .filter_map(|s| match &s.kind {
+            SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => {
+                Some(feed.mm_per_min(s.length()))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn fpr_of_another_spindle_makes_g95_feeds_per_its_revolution() {
+    // Master spindle S100, spindle 2 at 400 rpm. G95 F0.5: 0.5 x 100 = 50 mm/min; after
+    // FPR(S2) 0.5 x 400 = 200; S2=800 in force from the next block: 400; FPR(SPI(1)) brings
+    // the master spindle back: 50.
+    let machine = machine_with_a(2);
+    let segments = run(
+        "S100 M3\nS2=400 M2=3\nG95 G1 X10 F0.5\nFPR(S2)\nX20\nS2=800\nX30\nFPR(SPI(1))\nX40\nM30\n",
+        &machine,
+    );
+    assert_eq!(
+        feeds(&segments),
+        vec![Some(50.0), Some(200.0), Some(400.0), Some(50.0)]
+    );
+}
+
+#[test]
+fn fpr_of_a_rotary_axis_takes_its_fa_as_its_speed_and_the_planner_times_it() {
+    // FA[A]=720 deg/min is 2 rev/min: G95 F100 is 200 mm/min. 100 mm at 200 mm/min
+    // (v = 3.3333 mm/s) on the default machine's X (2000 mm/s^2, 50000 mm/s^3): the speed
+    // is reached at a peak acceleration sqrt(v j) = 408 mm/s^2, below the limit, so each
+    // ramp is a pure jerk one of 2 sqrt(v / j) = 0.016330 s covering half its time at v:
+    // t = d / v + 2 sqrt(v / j) = 30 + 0.016330 = 30.016330 s.
+    let machine = machine_with_a(1);
+    let program = "FA[A]=720\nFPR(A)\nG95 G1 X100 F100\nM30\n";
+    assert_eq!(feeds(&run(program, &machine)), vec![Some(200.0)]);
+    let t = seconds(program, &machine);
+    let v = 100.0 / 30.0;
+    assert!(
+        (t - (30.0 + 2.0 * (v / 50000.0_f64).sqrt())).abs() < 1e-6,
+        "{t}"
+    );
+    // Without an FA, A has no speed: the feed is unknown, as G95 without S.
+    let segments = run("FPR(A)\nS100 M3\nG95 G1 X10 F1\nM30\n", &machine);
+    assert_eq!(feeds(&segments), vec![None]);
+}
+
+#[test]
+fn fpr_of_a_linear_axis_or_a_missing_spindle_is_an_alarm() {
+    let machine = machine_with_a(2);
+    let alarm = error("FPR(Y)\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::WordNotAllowed, "{alarm}");
+    let alarm = error("FPR(S3)\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::AxisNotOnMachine, "{alarm}");
+    let alarm = error("FPRAON(X,S3)\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::AxisNotOnMachine, "{alarm}");
+}
+
+#[test]
+fn fpraon_makes_a_positioning_axis_fa_per_revolution_until_fpraof() {
+    // S20: FA[X]=5 with FPRAON(X) is 5 x 20 = 100 mm/min; with FPRAON(X,S2) and S2=30,
+    // 150 mm/min; after FPRAOF(X) FA is 5 mm/min again.
+    let machine = machine_with_a(2);
+    let segments = run(
+        "S20 M3\nS2=30\nFPRAON(X)\nPOS[X]=10 FA[X]=5\nFPRAON(X,S2)\nPOS[X]=20\nFPRAOF(X)\nPOS[X]=21\nM30\n",
+        &machine,
+    );
+    assert_eq!(feeds(&segments), vec![Some(100.0), Some(150.0), Some(5.0)]);
+}
+
+#[test]
+fn fda_zero_moves_the_axis_at_its_fa_with_a_note_and_fda_sets_one_block_feed() {
+    let machine = machine_with_a(1);
+    let run = collect(run_str(
+        "FA[X]=300\nPOS[X]=90 FDA[X]=0\nPOS[X]=100 FDA[X]=200\nPOS[X]=110\nM30\n",
+        &machine,
+    ));
+    assert!(run.error().is_none(), "{:?}", run.alarms);
+    assert_eq!(
+        feeds(&run.segments),
+        vec![Some(300.0), Some(200.0), Some(300.0)]
+    );
+    assert!(
+        run.alarms.iter().any(|a| a.code == AlarmCode::KeptAsState
+            && a.message.contains("FDA[X]=0")
+            && a.message.contains("handwheel")),
+        "{:?}",
+        run.alarms
+    );
+    let alarm = error("FDA[X]=100\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::WordNotAllowed, "{alarm}");
+}

@@ -158,7 +158,6 @@ pub(super) fn run(
     for warning in words.warnings.drain(..) {
         kernel.warn(warning);
     }
-    super::dynamics::before_motion(front, kernel, &words, origin)?;
     // A block held for its corner moves with the feed it was read with.
     let feed_before = kernel.feed_setting();
     // G functions take their new members before any value of the block is read.
@@ -285,6 +284,8 @@ pub(super) fn run(
         spindle::feed(front, kernel, &words, mode)?;
         spindle::spindle(front, kernel, &words, &limits, origin)?;
     }
+    super::dynamics::before_motion(front, kernel, &words, origin)?;
+    super::feed_source::before_motion(front, kernel, &words, origin)?;
     for &(code, span) in &words.m {
         auxiliary(kernel, code, Origin { span, ..origin });
     }
@@ -415,7 +416,10 @@ fn read<'a>(
         {
             continue;
         }
-        if address.len() > 2 && super::dynamics::read_word(front, kernel, word)? {
+        if address.len() > 2
+            && (super::dynamics::read_word(front, kernel, word)?
+                || super::feed_source::read_word(front, kernel, word)?)
+        {
             continue;
         }
         if let Some(what) = gcodes::other_unit(address, &word.value) {

@@ -21,6 +21,7 @@ mod control;
 mod cycles;
 mod dynamics;
 mod eval;
+mod feed_source;
 mod flow;
 mod frame;
 mod gcodes;
@@ -146,6 +147,8 @@ pub struct Sinumerik {
     machine_data: machine_data::MachineData,
     /// VELOLIMA, ACCLIMA, JERKLIMA and the electronic gears (`dynamics.rs`).
     dynamics: dynamics::Dynamics,
+    /// FPR, FPRAON and FDA: what feeds per revolution are per (`feed_source.rs`).
+    feed_sources: feed_source::FeedSources,
 }
 
 /// One program level of the call stack.
@@ -266,6 +269,7 @@ impl Sinumerik {
             work_area: work_area::WorkArea::default(),
             machine_data: machine_data::MachineData::default(),
             dynamics: dynamics::Dynamics::default(),
+            feed_sources: feed_source::FeedSources::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),

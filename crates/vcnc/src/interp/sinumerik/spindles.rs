@@ -64,7 +64,7 @@ impl Spindles {
     }
 
     /// Spindle `n` of `word`, or the alarm of a spindle the machine lacks.
-    fn check(&self, n: f64, word: &Word) -> Result<u32, Alarm> {
+    pub(super) fn check(&self, n: f64, word: &Word) -> Result<u32, Alarm> {
         if n.fract() == 0.0 && n >= 1.0 && n <= f64::from(self.count) {
             return Ok(n as u32);
         }
@@ -79,6 +79,14 @@ impl Spindles {
             ),
         )
         .with_help("declare the machine's spindles in the machine file's [spindle] count (spindle 1 is the master spindle)"))
+    }
+
+    /// S<n>= of spindle `n` (2 and up), rpm; 0 before any.
+    pub(super) fn programmed_speed(&self, n: u32) -> f64 {
+        self.others
+            .get((n as usize).saturating_sub(2))
+            .and_then(|other| other.speed)
+            .unwrap_or(0.0)
     }
 
     fn other(&mut self, n: u32) -> &mut OtherSpindle {
