@@ -278,3 +278,109 @@ fn fda_zero_moves_the_axis_at_its_fa_with_a_note_and_fda_sets_one_block_feed() {
     let alarm = error("FDA[X]=100\n", &machine);
     assert_eq!(alarm.code, AlarmCode::WordNotAllowed, "{alarm}");
 }
+
+/// The master spindle's events: speed (rounded to 0.01 rpm) and state.
+fn spindle_events(segments: &[Segment]) -> Vec<(f64, vcnc::motion::SpindleState)> {
+    segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Spindle { speed, state } => Some(((speed * 100.0).round() / 100.0, state)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The tools of examples A-26 and A-27 (PGsl 6.2, L1994-2073): T2 "WZ2" D1 r 5, T8 "WZ8" D1 r 9
+/// and D4 r 7, named and sized by the program as the manual's blocks do.
+const TOOLS: &str = "$TC_TP2[2]=\"WZ2\"\n$TC_DP6[2,1]=5.0\n$TC_TP2[8]=\"WZ8\"\n$TC_DP6[8,1]=9.0\n$TC_DP6[8,4]=7.0\n";
+
+fn machine_with_spindles(spindles: u32, toolholders: u32, cutting_edge_default: i32) -> Machine {
+    let mut machine = crate::common::sinumerik::machine();
+    machine.spindle.count = spindles;
+    let settings = machine.profile.sinumerik.as_mut().expect("SINUMERIK");
+    settings.toolholder_management = toolholders;
+    settings.cutting_edge_default = cutting_edge_default;
+    machine
+}
+
+#[test]
+fn setms_makes_another_spindle_the_master_of_s_m_and_svc() {
+    // Ex. A-27 (L2037-2073), S = SVC 1000 / (2 pi r): 100 at r 5 is 3183.10 on spindle 1;
+    // SETMS(3) gives the stream spindle 3 (stopped); 150 and 200 at r 5 are 4774.65 and
+    // 6366.20 (T="WZ8" only preselects: WZ2's D1 stays, the speed again); M6 with D4 (MD20270
+    // = 4, r 7) and SVC=50: 1136.82; D1 (r 9): 884.19. SVC[1]=300 at r 9 turns spindle 1 at
+    // 5305.16, which $P_S[1] reads.
+    use vcnc::motion::SpindleState::{Clockwise, CounterClockwise, Stopped};
+    let machine = machine_with_spindles(3, 0, 4);
+    let program = format!(
+        "{TOOLS}$TC_MPP1[9998,1]=2\n$TC_MPP5[9998,1]=1\n$TC_MPP1[9998,2]=2\n$TC_MPP5[9998,2]=3\n\
+         SETMS(1)\nT=\"WZ2\" M6 D1\nG1 G94 F1000 M3 SVC=100\nSETMS (3)\nM4 SVC=150\nT=\"WZ8\"\n\
+         M4 SVC=200\nM6\nSVC=50\nD1\nSVC[1]=300\nG0 X=$P_S[1]/10 Y=$P_S[3]/10\nM30\n"
+    );
+    let segments = run(&program, &machine);
+    assert_eq!(
+        spindle_events(&segments),
+        vec![
+            (3183.10, Clockwise),
+            (0.0, Stopped),
+            (4774.65, CounterClockwise),
+            (4774.65, CounterClockwise),
+            (6366.20, CounterClockwise),
+            (1136.82, CounterClockwise),
+            (884.19, CounterClockwise),
+        ]
+    );
+    let end = segments
+        .iter()
+        .rev()
+        .find_map(Segment::motion)
+        .unwrap()
+        .to
+        .0;
+    assert!((end[0] - 530.516477).abs() < 1e-6, "{end:?}");
+    assert!((end[1] - 88.419413).abs() < 1e-6, "{end:?}");
+}
+
+#[test]
+fn under_toolholders_svc_turns_the_spindle_of_the_active_offsets_toolholder() {
+    // Ex. A-26 (L1994-2024), MD20124 = 2, MD20270 = -2: toolholder 1 on spindle 3, 4 on 6.
+    // S3 = 100000 / (2 pi 5) = 3183.10 at N120 (read by $P_S[3] there), 1591.55 after the
+    // change to WZ8 (WZ2's offset stays), then D4 (r 7) in toolholder 4: S6 = 300000 /
+    // (2 pi 7) = 6820.93. The master spindle 1 never turns: no spindle event.
+    let machine = machine_with_spindles(6, 2, -2);
+    let program = format!(
+        "$TC_MPP1[9998,1]=2\n$TC_MPP5[9998,1]=1\n$TC_MPP_SP[9998,1]=3\n\
+         $TC_MPP1[9998,2]=2\n$TC_MPP5[9998,2]=4\n$TC_MPP_SP[9998,2]=6\n{TOOLS}\
+         SETMTH(1)\nT=\"WZ2\" M6 D1\nG1 G94 F1000 M3=3 SVC=100\nG0 X=$P_S[3]/10\n\
+         SETMTH(4)\nT=\"WZ8\"\nM6\nSVC=50\nG0 X=$P_S[3]/10\nD4\nSVC=300\nG0 X=$P_S[6]/10\nM30\n"
+    );
+    let segments = run(&program, &machine);
+    assert_eq!(spindle_events(&segments), vec![]);
+    let xs: Vec<f64> = segments
+        .iter()
+        .filter_map(Segment::motion)
+        .map(|m| m.to.0[0])
+        .collect();
+    let expected = [318.309886, 159.154943, 682.092613];
+    assert!(
+        xs.len() == 3 && xs.iter().zip(expected).all(|(&x, e)| (x - e).abs() < 1e-6),
+        "{xs:?}"
+    );
+}
+
+#[test]
+fn setms_on_one_spindle_is_a_note_and_a_missing_spindle_an_alarm() {
+    // One spindle: SETMS(2) is accepted and ignored, S addresses spindle 1.
+    let machine = machine_with_spindles(1, 0, 1);
+    let segments = run("SETMS(2)\nS300 M3\nM30\n", &machine);
+    assert_eq!(
+        spindle_events(&segments),
+        vec![(300.0, vcnc::motion::SpindleState::Clockwise)]
+    );
+    let machine = machine_with_spindles(3, 0, 1);
+    let alarm = error("SETMS(4)\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::AxisNotOnMachine, "{alarm}");
+    // A real magazine's data stays outside the product.
+    let alarm = error("$TC_MPP1[1,1]=1\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::NotInProduct, "{alarm}");
+}

@@ -286,6 +286,7 @@ pub(super) fn run(
     }
     super::dynamics::before_motion(front, kernel, &words, origin)?;
     super::feed_source::before_motion(front, kernel, &words, origin)?;
+    super::toolholder::before_motion(front, kernel, origin);
     for &(code, span) in &words.m {
         auxiliary(kernel, code, Origin { span, ..origin });
     }
@@ -418,7 +419,8 @@ fn read<'a>(
         }
         if address.len() > 2
             && (super::dynamics::read_word(front, kernel, word)?
-                || super::feed_source::read_word(front, kernel, word)?)
+                || super::feed_source::read_word(front, kernel, word)?
+                || super::toolholder::read_word(front, kernel, word)?)
         {
             continue;
         }
