@@ -144,8 +144,9 @@ fn gear(
         *gear = Some(leaders);
         return Ok(());
     }
-    // EGOFS with leaders ends their part of the coupling; alone, all of it (PGsl, electronic
-    // gear: the selective form keeps the other leaders).
+    // EGOFS with leaders ends their part of the coupling; alone, all of it. The Fundamentals
+    // manual shows EGON only (L10609-10617): the selective form is vcnc's reading of the
+    // electronic gear's own description (a choice, docs/SINUMERIK.md 10.5).
     *gear = match *gear {
         Some(mut left) if leaders != [false; AXES] => {
             for (kept, ended) in left.iter_mut().zip(leaders) {
@@ -175,10 +176,10 @@ pub(super) fn before_motion(
 ) -> Result<(), Alarm> {
     let dynamics = &mut front.dynamics;
     if dynamics.changed != [false; AXES] {
-        for axis in 0..AXES {
-            if std::mem::take(&mut dynamics.changed[axis]) {
-                let [velocity, acceleration, jerk] = dynamics.percent[axis].map(|p| p / 100.0);
-                let axis = Axis::from_index(axis).unwrap_or(Axis::X);
+        for axis in Axis::ALL {
+            if std::mem::take(&mut dynamics.changed[axis.index()]) {
+                let [velocity, acceleration, jerk] =
+                    dynamics.percent[axis.index()].map(|p| p / 100.0);
                 let kind = SegmentKind::AxisLimits {
                     axis,
                     velocity,
