@@ -658,6 +658,19 @@ pub enum SegmentKind {
         /// On or off.
         on: bool,
     },
+    /// An axis's dynamic limits from here on, as fractions of the machine file's (SINUMERIK
+    /// VELOLIMA, ACCLIMA, JERKLIMA): the planner times the following motions with them. It
+    /// takes no time and does not stop the motion.
+    AxisLimits {
+        /// The axis.
+        axis: crate::axis::Axis,
+        /// Of its highest speed (rapid and feed), 1 for the machine file's.
+        velocity: f64,
+        /// Of its acceleration.
+        acceleration: f64,
+        /// Of its jerk.
+        jerk: f64,
+    },
     /// M00/M01.
     Stop {
         /// Which stop.

@@ -67,21 +67,36 @@ impl AxisLimits {
                     .map_or(f64::INFINITY, |axis| positive_or_infinite(f(axis)) * scale)
             })
         };
-        let feed = field(|a| a.max_feed, 1.0 / 60.0);
-        let rapid = field(|a| a.rapid, 1.0 / 60.0);
-        let acceleration = field(|a| a.acceleration, 1.0);
-        let jerk = field(|a| a.jerk, 1.0);
+        let span = (0..AXES)
+            .rev()
+            .find(|&i| machine.axes[i].is_some())
+            .map_or(0, |i| i + 1);
+        AxisLimits::with(
+            [
+                field(|a| a.max_feed, 1.0 / 60.0),
+                field(|a| a.rapid, 1.0 / 60.0),
+                field(|a| a.acceleration, 1.0),
+                field(|a| a.jerk, 1.0),
+            ],
+            positive_or_infinite(config.max_path_rate) / 60.0,
+            span,
+        )
+    }
+
+    /// The limits of feed, rapid, acceleration and jerk per axis, with what follows from them.
+    fn with(
+        [feed, rapid, acceleration, jerk]: [[f64; AXES]; 4],
+        path_speed: f64,
+        span: usize,
+    ) -> AxisLimits {
         let same_on_xyz = |values: &[f64; AXES]| values[1] == values[0] && values[2] == values[0];
         AxisLimits {
             feed,
             rapid,
             acceleration,
             jerk,
-            path_speed: positive_or_infinite(config.max_path_rate) / 60.0,
-            span: (0..AXES)
-                .rev()
-                .find(|&i| machine.axes[i].is_some())
-                .map_or(0, |i| i + 1),
+            path_speed,
+            span,
             uniform_xyz: same_on_xyz(&acceleration) && same_on_xyz(&jerk),
             inverse: Inverses {
                 feed: reciprocals(&feed),
@@ -90,6 +105,23 @@ impl AxisLimits {
                 jerk: reciprocals(&jerk),
             },
         }
+    }
+
+    /// These limits with each axis's speeds, acceleration and jerk scaled by its `factors`
+    /// (velocity, acceleration, jerk; SINUMERIK VELOLIMA, ACCLIMA, JERKLIMA).
+    pub(crate) fn scaled(&self, factors: &[[f64; 3]; AXES]) -> AxisLimits {
+        let scale =
+            |values: &[f64; AXES], k: usize| std::array::from_fn(|i| values[i] * factors[i][k]);
+        AxisLimits::with(
+            [
+                scale(&self.feed, 0),
+                scale(&self.rapid, 0),
+                scale(&self.acceleration, 1),
+                scale(&self.jerk, 2),
+            ],
+            self.path_speed,
+            self.span,
+        )
     }
 }
 

@@ -177,6 +177,10 @@ impl TimedSegment {
 pub struct Timeline {
     window: Window,
     axes: AxisLimits,
+    /// The machine file's limits, and each axis's factors of them in force (velocity,
+    /// acceleration, jerk: [`SegmentKind::AxisLimits`]); `axes` is the two together.
+    machine_axes: AxisLimits,
+    axis_factors: [[f64; 3]; crate::machine::AXES],
     config: PlannerConfig,
     feed_override: f64,
     events: EventClock,
@@ -199,6 +203,8 @@ impl Timeline {
         Timeline {
             window: Window::new(&config),
             axes: AxisLimits::new(machine, &config),
+            machine_axes: AxisLimits::new(machine, &config),
+            axis_factors: [[1.0; 3]; crate::machine::AXES],
             config,
             feed_override,
             events: EventClock::default(),
@@ -272,6 +278,18 @@ impl Timeline {
                 } else {
                     (motion, limits, (MotionClass::Rapid, true), None)
                 }
+            }
+            SegmentKind::AxisLimits {
+                axis,
+                velocity,
+                acceleration,
+                jerk,
+            } => {
+                // New limits hold for the motions after them, without a stop between.
+                self.axis_factors[axis.index()] = [*velocity, *acceleration, *jerk];
+                self.axes = self.machine_axes.scaled(&self.axis_factors);
+                self.window.push_timeless();
+                return;
             }
             _ => {
                 // The machine stops before an event; the end of the program too.

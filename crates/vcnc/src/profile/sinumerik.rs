@@ -36,6 +36,16 @@ pub struct SinumerikSettings {
     /// M6 changes (milling machines with a magazine).
     #[serde(default)]
     pub t_changes_tool: bool,
+    /// Which edge a tool change leaves active when the block names no D (MD20270
+    /// `$MC_CUTTING_EDGE_DEFAULT`): n > 0 Dn, 0 none, -1 the same D number, -2 the old tool's
+    /// offset until a D is programmed.
+    #[serde(default = "default_cutting_edge")]
+    pub cutting_edge_default: i32,
+    /// MD20124 `$MC_TOOL_MANAGEMENT_TOOLHOLDER`: above 1, the toolholders decide the tool
+    /// change and SVC acts on the spindle of the active offset's toolholder; 0: each spindle
+    /// is its own toolholder.
+    #[serde(default)]
+    pub toolholder_management: u32,
     /// The number of settable frames G505.. beyond G54..G57 (MD28080; 840D only).
     #[serde(default = "default_user_frames")]
     pub user_frames: u32,
@@ -50,6 +60,10 @@ pub struct SinumerikSettings {
 
 fn default_r_parameters() -> u32 {
     100
+}
+
+fn default_cutting_edge() -> i32 {
+    1
 }
 
 fn default_true() -> bool {

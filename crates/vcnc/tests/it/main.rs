@@ -50,6 +50,7 @@ mod sinumerik_corpus;
 mod sinumerik_corpus_plausible;
 mod sinumerik_cycles;
 mod sinumerik_examples;
+mod sinumerik_feeds;
 mod sinumerik_language;
 mod sinumerik_robust;
 mod sinumerik_syntax;

@@ -273,6 +273,12 @@ impl Kernel {
         self.state.feed = value;
     }
 
+    /// The speed per-revolution feeds are per from here on, rev/min, when it is not the
+    /// spindle's (SINUMERIK FPR); None: the spindle's again.
+    pub(crate) fn set_revolution_speed(&mut self, rpm: Option<f64>) {
+        self.state.revolution_speed = rpm;
+    }
+
     /// How F reads now and its value: what a front end restores around a move of an earlier
     /// block's.
     pub fn feed_setting(&self) -> (FeedMode, Option<f64>) {

@@ -32,6 +32,9 @@ pub(crate) struct KernelState {
     pub(crate) feed: Option<f64>,
     /// S and how the spindle turns.
     pub(crate) spindle: Spindle,
+    /// The speed per-revolution feeds are per when it is not the spindle's (SINUMERIK FPR:
+    /// another spindle or a rotary axis), rev/min; None: the spindle's.
+    pub(crate) revolution_speed: Option<f64>,
     /// The tool offset registers, the H and D numbers in force, the tools selected and in use.
     pub(crate) tools: ToolMemory,
 }
@@ -71,6 +74,7 @@ impl KernelState {
             position: setup.machine().start,
             feed: setup.profile().motion.default_feed,
             spindle: Spindle::new(),
+            revolution_speed: None,
             tools: ToolMemory::new(tool_offsets),
             setup,
         }
@@ -221,10 +225,13 @@ impl KernelState {
         };
         Ok(match mode {
             FeedMode::PerMinute => Feed::PerMinute(f),
-            FeedMode::PerRevolution => Feed::PerRevolution {
-                per_revolution: f,
-                rpm: (self.spindle.speed() > 0.0).then_some(self.spindle.speed()),
-            },
+            FeedMode::PerRevolution => {
+                let rpm = self.revolution_speed.unwrap_or(self.spindle.speed());
+                Feed::PerRevolution {
+                    per_revolution: f,
+                    rpm: (rpm > 0.0).then_some(rpm),
+                }
+            }
             FeedMode::InverseTime => Feed::InverseTime(f),
         })
     }

@@ -38,6 +38,13 @@ pub(super) struct AxisFeeds {
     positioning_feed: [Option<f64>; AXES],
 }
 
+impl AxisFeeds {
+    /// FA of `axis`: its positioning feed, mm/min or deg/min.
+    pub(super) fn positioning_feed(&self, axis: usize) -> Option<f64> {
+        self.positioning_feed[axis]
+    }
+}
+
 /// POS and POSA of a block: the axis and its value.
 pub(super) type Positioning = Vec<(usize, AxisValue)>;
 
@@ -230,7 +237,7 @@ pub(super) fn position(
         let rapid = kernel.state().setup.machine().axes[axis]
             .as_ref()
             .map_or(f64::INFINITY, |a| a.rapid);
-        let speed = match front.axis_feeds.positioning_feed[axis] {
+        let speed = match super::feed_source::positioning_feed(front, kernel, axis, origin) {
             Some(feed) if feed > 0.0 => {
                 any_feed = true;
                 feed

@@ -297,6 +297,9 @@ pub(super) fn run(
         spindle::feed(front, kernel, &words, mode)?;
         spindle::spindle(front, kernel, &words, &limits, origin)?;
     }
+    super::dynamics::before_motion(front, kernel, &words, origin)?;
+    super::feed_source::before_motion(front, kernel, &words, origin)?;
+    super::toolholder::before_motion(front, kernel, origin);
     for &(code, span) in &words.m {
         auxiliary(kernel, code, Origin { span, ..origin });
     }
@@ -424,6 +427,13 @@ fn read<'a>(
             && (spindles::read_word(front, kernel, block, word, words)?
                 || axes::read_word(front, kernel, word, words)?
                 || multi_feed::read_word(front, kernel, word, words)?)
+        {
+            continue;
+        }
+        if address.len() > 2
+            && (super::dynamics::read_word(front, kernel, word)?
+                || super::feed_source::read_word(front, kernel, word)?
+                || super::toolholder::read_word(front, kernel, word)?)
         {
             continue;
         }

@@ -122,6 +122,8 @@ pub(super) struct Machine<'a> {
     pub(super) work_area: &'a mut super::work_area::WorkArea,
     /// The dynamic response's machine data ($MA_MAX_AX_ACCEL[n, axis] ...).
     pub(super) machine_data: &'a mut super::machine_data::MachineData,
+    /// The spindles by number ($P_S[n]).
+    pub(super) spindles: &'a super::spindles::Spindles,
 }
 
 /// The front end's variables, and the machine the evaluator reads, borrowed apart.
@@ -142,6 +144,7 @@ pub(super) fn split<'a>(
             modal: &front.modal,
             work_area: &mut front.work_area,
             machine_data: &mut front.machine_data,
+            spindles: &front.spindles,
         },
     )
 }
@@ -215,7 +218,13 @@ impl Environment for Machine<'_> {
             "$P_TOOL" => Ok(Value::Int(self.tool.edge as i32)),
             "$P_TOOLP" => Ok(Value::Int(self.tool.selected.unwrap_or(0) as i32)),
             "$P_F" => real(self.kernel.state().feed.unwrap_or(0.0)),
-            "$P_S" => real(self.kernel.state().spindle.speed()),
+            // $P_S[n]: spindle n's programmed speed; without n (or n the master) the master's.
+            "$P_S" => match indices.first().and_then(Value::as_f64) {
+                Some(n) if n >= 1.0 && n.fract() == 0.0 && n != f64::from(self.spindles.master()) => {
+                    real(self.spindles.programmed_speed(n as u32))
+                }
+                _ => real(self.kernel.state().spindle.speed()),
+            },
             "$P_GG" => {
                 let group = indices.first().and_then(Value::as_f64).unwrap_or(0.0) as u32;
                 Ok(Value::Int(super::gcodes::member(self.modal, group)))
@@ -321,17 +330,7 @@ impl Environment for Machine<'_> {
                 let edge = match self.tools.iter_mut().position(|e| e.t == t && e.d == d) {
                     Some(i) => &mut self.tools[i],
                     None => {
-                        self.tools.push(ToolEdge {
-                            t,
-                            name: None,
-                            d,
-                            tool_type: 120,
-                            length: 0.0,
-                            length2: 0.0,
-                            length3: 0.0,
-                            radius: 0.0,
-                            teeth: None,
-                        });
+                        self.tools.push(super::toolholder::program_edge(t, d));
                         self.tools.last_mut().expect("just pushed")
                     }
                 };

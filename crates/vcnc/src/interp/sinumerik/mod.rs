@@ -19,7 +19,9 @@ mod compensation;
 mod contour;
 mod control;
 mod cycles;
+mod dynamics;
 mod eval;
+mod feed_source;
 mod flow;
 mod frame;
 mod gcodes;
@@ -39,6 +41,7 @@ mod program;
 mod spindle;
 mod spindles;
 mod tool_frame;
+mod toolholder;
 mod tools;
 mod value;
 mod vars;
@@ -147,6 +150,12 @@ pub struct Sinumerik {
     work_area: work_area::WorkArea,
     /// The dynamic response's machine data the program wrote ($MA_MAX_AX_ACCEL ...).
     machine_data: machine_data::MachineData,
+    /// VELOLIMA, ACCLIMA, JERKLIMA and the electronic gears (`dynamics.rs`).
+    dynamics: dynamics::Dynamics,
+    /// FPR, FPRAON and FDA: what feeds per revolution are per (`feed_source.rs`).
+    feed_sources: feed_source::FeedSources,
+    /// The toolholders, their spindles and SETMTH (`toolholder.rs`).
+    toolholders: toolholder::Toolholders,
 }
 
 /// One program level of the call stack.
@@ -217,6 +226,9 @@ pub(super) struct ToolState {
     in_spindle: Option<u32>,
     /// D: 0 is no offset.
     edge: u32,
+    /// The tool whose edge D names: the one in the spindle, or after a change under MD20270
+    /// = -2 the old one until a D is programmed.
+    offset_tool: Option<u32>,
 }
 
 impl Sinumerik {
@@ -267,6 +279,9 @@ impl Sinumerik {
             cycles: cycles::Calls::default(),
             work_area: work_area::WorkArea::default(),
             machine_data: machine_data::MachineData::default(),
+            dynamics: dynamics::Dynamics::default(),
+            feed_sources: feed_source::FeedSources::default(),
+            toolholders: toolholder::Toolholders::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
@@ -476,7 +491,7 @@ impl Sinumerik {
 
     /// The edge in force: the tool in the spindle's edge D (none for D0 or no tool).
     fn edge(&self) -> Option<&ToolEdge> {
-        let tool = self.tool.in_spindle?;
+        let tool = self.tool.offset_tool?;
         (self.tool.edge != 0).then_some(())?;
         self.tools
             .iter()

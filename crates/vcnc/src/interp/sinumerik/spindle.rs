@@ -122,6 +122,14 @@ pub(super) fn spindle(
         }
         None => None,
     };
+    // Under toolholders SVC may turn another spindle than the master (toolholder.rs).
+    let rpm = match (rpm, speed, super::toolholder::svc_spindle(front)) {
+        (Some(r), None, Some(n)) => {
+            front.spindles.set_speed(n, r.min(max_rpm));
+            None
+        }
+        (rpm, ..) => rpm,
+    };
     let clamped = rpm.map(|r| front.spindle.clamp(r, max_rpm));
     if let Some(r) = clamped {
         front.spindle.rpm = r;

@@ -28,6 +28,8 @@ pub(super) struct OtherSpindle {
     state: Option<SpindleState>,
     /// SVC[n]: the cutting rate, m/min.
     rate: Option<f64>,
+    /// SVC[n] was programmed in the block being run: its speed is still to be computed.
+    rate_pending: bool,
     /// LIMS[n], G25 S<n>=, G26 S<n>=.
     lims: Option<f64>,
     min: Option<f64>,
@@ -41,21 +43,25 @@ pub(super) struct OtherSpindle {
 #[derive(Clone, Debug)]
 pub(super) struct Spindles {
     count: u32,
+    /// SETMS: the master spindle's number (1 at power-on).
+    master: u32,
     /// The master spindle's angle after its last SPOS, degrees (0 to 360).
     master_angle: f64,
     /// FA[S1]: the master spindle's positioning speed, deg/min.
     master_positioning_speed: Option<f64>,
-    /// Spindle angles of the others after SPOS, by number - 2.
+    /// Spindle angles of the others after SPOS, by number - 1 (the master's unused).
     angles: Vec<f64>,
+    /// The others' state, by number - 1 (the master's is the kernel's while it is master).
     others: Vec<OtherSpindle>,
 }
 
 impl Spindles {
     /// The `count` spindles of the machine file.
     pub(super) fn new(count: u32) -> Spindles {
-        let others = count.saturating_sub(1) as usize;
+        let others = count.max(1) as usize;
         Spindles {
             count,
+            master: 1,
             master_angle: 0.0,
             master_positioning_speed: None,
             angles: vec![0.0; others],
@@ -64,7 +70,7 @@ impl Spindles {
     }
 
     /// Spindle `n` of `word`, or the alarm of a spindle the machine lacks.
-    fn check(&self, n: f64, word: &Word) -> Result<u32, Alarm> {
+    pub(super) fn check(&self, n: f64, word: &Word) -> Result<u32, Alarm> {
         if n.fract() == 0.0 && n >= 1.0 && n <= f64::from(self.count) {
             return Ok(n as u32);
         }
@@ -81,8 +87,69 @@ impl Spindles {
         .with_help("declare the machine's spindles in the machine file's [spindle] count (spindle 1 is the master spindle)"))
     }
 
+    /// S<n>= of spindle `n` (2 and up), rpm; 0 before any.
+    pub(super) fn programmed_speed(&self, n: u32) -> f64 {
+        self.others
+            .get((n as usize).saturating_sub(1))
+            .and_then(|other| other.speed)
+            .unwrap_or(0.0)
+    }
+
+    /// Spindle `n` (2 and up) turns at `rpm`: SVC of a toolholder's spindle.
+    pub(super) fn set_speed(&mut self, n: u32, rpm: f64) {
+        self.other(n).speed = Some(rpm);
+    }
+
     fn other(&mut self, n: u32) -> &mut OtherSpindle {
-        &mut self.others[n as usize - 2]
+        &mut self.others[n as usize - 1]
+    }
+
+    /// How many spindles the machine has.
+    pub(super) fn count(&self) -> u32 {
+        self.count
+    }
+
+    /// The master spindle's number (SETMS).
+    pub(super) fn master(&self) -> u32 {
+        self.master
+    }
+
+    /// The spindles whose SVC[n] of this block waits for the radius, with their rates; their
+    /// wait ends.
+    pub(super) fn take_pending_rates(&mut self) -> Vec<(u32, f64)> {
+        let mut pending = Vec::new();
+        for (i, other) in self.others.iter_mut().enumerate() {
+            if std::mem::take(&mut other.rate_pending) {
+                pending.extend(other.rate.map(|rate| (i as u32 + 1, rate)));
+            }
+        }
+        pending
+    }
+
+    /// SETMS(n): spindle `n` becomes the master; the old master keeps turning as the kernel's
+    /// spindle turned (`speed`, `state`). Gives the new master's speed and state for the
+    /// kernel.
+    pub(super) fn switch_master(
+        &mut self,
+        n: u32,
+        speed: f64,
+        state: SpindleState,
+    ) -> (f64, SpindleState) {
+        let old = self.master;
+        let (old_angle, old_feed) = (self.master_angle, self.master_positioning_speed);
+        let kept = self.other(old);
+        kept.speed = Some(speed);
+        kept.state = Some(state);
+        kept.positioning_speed = old_feed;
+        self.angles[old as usize - 1] = old_angle;
+        self.master = n;
+        self.master_angle = self.angles[n as usize - 1];
+        let new = self.other(n).clone();
+        self.master_positioning_speed = new.positioning_speed;
+        (
+            new.speed.unwrap_or(0.0),
+            new.state.unwrap_or(SpindleState::Stopped),
+        )
     }
 }
 
@@ -106,7 +173,7 @@ pub(super) fn read_word(
     match (address, &word.value) {
         ("SPOS" | "SPOSA", _) => {
             let (n, angle) = position(front, kernel, word)?;
-            if n == 1 {
+            if n == front.spindles.master {
                 words.spos = Some((angle, word.span));
             }
         }
@@ -123,11 +190,18 @@ pub(super) fn read_word(
             if value < 0.0 {
                 return Err(negative(word));
             }
+            let master = front.spindles.master;
             match (n, address) {
-                (1, "LIMS") => words.lims = Some((value, word.span)),
-                (1, _) => words.svc = Some((value, word.span)),
+                (n, "LIMS") if n == master => words.lims = Some((value, word.span)),
+                (n, _) if n == master => words.svc = Some((value, word.span)),
                 (n, "LIMS") => front.spindles.other(n).lims = Some(value),
-                (n, _) => front.spindles.other(n).rate = Some(value),
+                (n, _) => {
+                    // Its speed comes from the active offset's radius once the block's tool
+                    // and D are in (PGsl 6.2 ex. 3: SVC[3]=100 M6 T1 D1).
+                    let other = front.spindles.other(n);
+                    other.rate = Some(value);
+                    other.rate_pending = true;
+                }
             }
         }
         ("FA", Value::Indexed(indices, Some(expr))) if named_spindle(indices).is_some() => {
@@ -141,16 +215,21 @@ pub(super) fn read_word(
             if speed < 0.0 {
                 return Err(negative(word));
             }
-            match n {
-                1 => front.spindles.master_positioning_speed = Some(speed),
-                n => front.spindles.other(n).positioning_speed = Some(speed),
+            if n == front.spindles.master {
+                front.spindles.master_positioning_speed = Some(speed);
+            } else {
+                front.spindles.other(n).positioning_speed = Some(speed);
             }
         }
-        // S0= is the master spindle's speed, as S1= is (PGsl 6.1).
-        _ if number_after("S") == Some(0) => {
+        // S0= is the master spindle's speed, as S<master>= is (PGsl 6.1).
+        _ if number_after("S").is_some_and(|n| n == 0 || n == front.spindles.master) => {
             words.speed = Some((block::number(front, kernel, word)?, word.span));
         }
-        _ if number_after("S").is_some_and(|n| n >= 2) => {
+        _ if number_after("M") == Some(front.spindles.master) && front.spindles.master != 1 => {
+            let code = block::whole(front, kernel, word)?;
+            words.m.push((code, word.span));
+        }
+        _ if number_after("S").is_some_and(|n| n >= 1) => {
             let n = front
                 .spindles
                 .check(f64::from(number_after("S").unwrap_or(0)), word)?;
@@ -176,7 +255,7 @@ pub(super) fn read_word(
                 None => other.speed = Some(speed),
             }
         }
-        _ if number_after("M").is_some_and(|n| n >= 2) => {
+        _ if number_after("M").is_some_and(|n| n >= 1 && n != front.spindles.master) => {
             let n = front
                 .spindles
                 .check(f64::from(number_after("M").unwrap_or(0)), word)?;
@@ -220,11 +299,11 @@ pub(super) fn read_word(
 fn position(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(u32, f64), Alarm> {
     let (n, expr) = match &word.value {
         Value::Indexed(indices, Some(expr)) => (spindle_index(front, kernel, indices, word)?, expr),
-        Value::Expression(expr) => (1, expr),
+        Value::Expression(expr) => (front.spindles.master, expr),
         Value::Constant(c) => {
             let angle = c.value.rem_euclid(360.0);
             front.spindles.master_angle = angle;
-            return Ok((1, angle));
+            return Ok((front.spindles.master, angle));
         }
         _ => {
             return Err(Alarm::error(
@@ -248,9 +327,10 @@ fn position(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(u32,
         _ => (false, front.value(kernel, expr)?),
     };
     let spindles = &mut front.spindles;
-    let angle = match n {
-        1 => &mut spindles.master_angle,
-        n => &mut spindles.angles[n as usize - 2],
+    let angle = if n == spindles.master {
+        &mut spindles.master_angle
+    } else {
+        &mut spindles.angles[n as usize - 1]
     };
     *angle = if incremental { *angle + value } else { value }.rem_euclid(360.0);
     Ok((n, *angle))

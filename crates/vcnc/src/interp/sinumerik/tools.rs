@@ -150,9 +150,18 @@ pub(super) fn change(
             .with_help("select the tool with T before M6"));
         };
         front.tool.in_spindle = Some(t);
-        // A change activates the new tool's first edge unless the block says D (MD20270).
+        super::toolholder::load(front, t);
+        // A change activates an edge of the new tool unless the block says D (MD20270: D1
+        // by default; -2 keeps the old tool's offset until a D, ex. A-26).
         if words.edge.is_none() {
-            front.tool.edge = 1;
+            match front.settings.cutting_edge_default {
+                -2 => {}
+                -1 => front.tool.offset_tool = Some(t),
+                n => {
+                    front.tool.edge = n.max(0) as u32;
+                    front.tool.offset_tool = Some(t);
+                }
+            }
         }
         let geometry = front
             .tools
@@ -174,6 +183,7 @@ pub(super) fn change(
     }
     if let Some((d, span)) = words.edge {
         front.tool.edge = d;
+        front.tool.offset_tool = front.tool.in_spindle;
         // An edge of no tool gives no offset; said once (docs/SINUMERIK.md 9).
         if d != 0
             && front.tool.in_spindle.is_none()
