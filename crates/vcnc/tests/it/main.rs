@@ -52,6 +52,7 @@ mod sinumerik_cycles;
 mod sinumerik_examples;
 mod sinumerik_feeds;
 mod sinumerik_language;
+mod sinumerik_plain_blocks;
 mod sinumerik_robust;
 mod sinumerik_syntax;
 mod sinumerik_work_area;

@@ -148,8 +148,10 @@ pub(super) fn run(
     span: Span,
 ) -> Result<Step, Alarm> {
     if let Some(plain) = &block.plain {
-        if let Some(step) = super::plain_block::run(front, kernel, plain, block.number, span) {
-            return step;
+        if front.plain_blocks {
+            if let Some(step) = super::plain_block::run(front, kernel, plain, block.number, span) {
+                return step;
+            }
         }
         // The general way, from the words the line reads as.
         let mut general = front.general_block.take().unwrap_or_default();
@@ -297,8 +299,8 @@ pub(super) fn run(
         spindle::feed(front, kernel, &words, mode)?;
         spindle::spindle(front, kernel, &words, &limits, origin)?;
     }
-    super::dynamics::before_motion(front, kernel, &words, origin)?;
-    super::feed_source::before_motion(front, kernel, &words, origin)?;
+    super::dynamics::before_motion(front, kernel, &words.axes, &words.positioning, origin)?;
+    super::feed_source::before_motion(front, kernel, &words.positioning, origin)?;
     super::toolholder::before_motion(front, kernel, origin);
     for &(code, span) in &words.m {
         auxiliary(kernel, code, Origin { span, ..origin });

@@ -12,7 +12,8 @@
 //! Never: move an axis the gear would move as though it were free, or accept a correction of an
 //! axis the machine lacks.
 
-use super::block::Words;
+use super::axes::Positioning;
+use super::block::AxisValue;
 use super::predefined::written;
 use super::Sinumerik;
 use crate::alarm::{Alarm, AlarmCode};
@@ -171,7 +172,8 @@ fn is_axis_variable(front: &mut Sinumerik, kernel: &Kernel, expr: &Expr) -> bool
 pub(super) fn before_motion(
     front: &mut Sinumerik,
     kernel: &mut Kernel,
-    words: &Words<'_>,
+    axes: &[Option<AxisValue>; AXES],
+    positioning: &Positioning,
     origin: Origin,
 ) -> Result<(), Alarm> {
     let dynamics = &mut front.dynamics;
@@ -193,9 +195,7 @@ pub(super) fn before_motion(
     if front.dynamics.gears == [None; AXES] {
         return Ok(());
     }
-    let moved = |axis: usize| {
-        words.axes[axis].is_some() || words.positioning.iter().any(|&(a, _)| a == axis)
-    };
+    let moved = |axis: usize| axes[axis].is_some() || positioning.iter().any(|&(a, _)| a == axis);
     for (following, gear) in front.dynamics.gears.iter().enumerate() {
         let Some(leaders) = gear else { continue };
         let driven = moved(following) || (0..AXES).any(|a| leaders[a] && moved(a));

@@ -13,7 +13,7 @@
 //!
 //! Never: derive a feed from a spindle or an axis the machine lacks, or from a linear axis.
 
-use super::block::Words;
+use super::axes::Positioning;
 use super::predefined::written;
 use super::Sinumerik;
 use crate::alarm::{Alarm, AlarmCode};
@@ -190,13 +190,13 @@ fn speed(front: &Sinumerik, kernel: &Kernel, source: Source) -> f64 {
 pub(super) fn before_motion(
     front: &mut Sinumerik,
     kernel: &mut Kernel,
-    words: &Words<'_>,
+    positioning: &Positioning,
     origin: Origin,
 ) -> Result<(), Alarm> {
     let sources = &mut front.feed_sources;
     sources.handwheel = std::mem::take(&mut sources.handwheel_read);
     for (axis, feed) in sources.handwheel.iter().enumerate() {
-        if feed.is_some() && !words.positioning.iter().any(|&(a, _)| a == axis) {
+        if feed.is_some() && !positioning.iter().any(|&(a, _)| a == axis) {
             let name = front.axes.name(axis);
             return Err(Alarm::error(
                 AlarmCode::WordNotAllowed,

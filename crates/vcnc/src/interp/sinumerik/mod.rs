@@ -142,6 +142,8 @@ pub struct Sinumerik {
     /// The words of a decoded plain line that runs the general way (`plain_block.rs`), their
     /// room kept from block to block.
     general_block: Option<Block>,
+    /// Plain blocks run by the short path (off only in the differential tests).
+    plain_blocks: bool,
     /// Tool radius compensation: G40/G41/G42 and how it approaches and turns corners.
     radius_compensation: compensation::RadiusCompensation,
     /// The standard cycle a block called, run at its end, and the names that are built in.
@@ -275,6 +277,7 @@ impl Sinumerik {
             jumps: 0,
             spare: None,
             general_block: None,
+            plain_blocks: true,
             radius_compensation: compensation::RadiusCompensation::default(),
             cycles: cycles::Calls::default(),
             work_area: work_area::WorkArea::default(),
@@ -337,6 +340,14 @@ impl Sinumerik {
     /// Where called programs come from.
     pub fn with_library(mut self, library: Box<dyn ProgramLibrary>) -> Sinumerik {
         self.library = Some(library);
+        self
+    }
+
+    /// Every block run the general way, the plain CAM blocks too (`plain_block.rs` runs those by
+    /// a short path): what the differential tests compare the short path with.
+    #[doc(hidden)]
+    pub fn without_plain_blocks(mut self) -> Sinumerik {
+        self.plain_blocks = false;
         self
     }
 

@@ -12,11 +12,12 @@
 //!
 //! Never: change anything before it knows it takes the block.
 
+use super::axes::Positioning;
 use super::block::{feed_mode, AxisValue};
 use super::gcodes::{self, Function, Motion};
 use super::language::AxisLookup;
 use super::motion::{self, ArcWords, Prepared};
-use super::{compensation, spindle, Sinumerik, Step};
+use super::{compensation, dynamics, feed_source, spindle, toolholder, Sinumerik, Step};
 use crate::alarm::Alarm;
 use crate::interp::kernel::{Kernel, Origin};
 use crate::machine::AXES;
@@ -161,6 +162,11 @@ fn run_decoded(
         spindle::program_feed(front, f, span)?;
         spindle::apply_feed(front, kernel, mode);
     }
+    // A plain block has no positioning axes.
+    let positioning = Positioning::new();
+    dynamics::before_motion(front, kernel, &decoded.axes, &positioning, origin)?;
+    feed_source::before_motion(front, kernel, &positioning, origin)?;
+    toolholder::before_motion(front, kernel, origin);
     let path_mode = if front.modal.exact_stop {
         PathMode::ExactStop
     } else {
