@@ -37,6 +37,7 @@ mod predefined;
 mod program;
 mod spindle;
 mod spindles;
+mod threads;
 mod tool_frame;
 mod tools;
 mod value;
@@ -143,6 +144,8 @@ pub struct Sinumerik {
     work_area: work_area::WorkArea,
     /// The dynamic response's machine data the program wrote ($MA_MAX_AX_ACCEL ...).
     machine_data: machine_data::MachineData,
+    /// DITS and DITE: the thread's run-in and run-out paths (SD42010, `threads.rs`).
+    thread_ramps: threads::ThreadRamps,
 }
 
 /// One program level of the call stack.
@@ -262,6 +265,7 @@ impl Sinumerik {
             cycles: cycles::Calls::default(),
             work_area: work_area::WorkArea::default(),
             machine_data: machine_data::MachineData::default(),
+            thread_ramps: threads::ThreadRamps::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),

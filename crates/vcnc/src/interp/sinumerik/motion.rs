@@ -306,7 +306,11 @@ pub(super) fn prepare(
                 }
             }
         }
-        Motion::ThroughPoint | Motion::Thread | Motion::Tap { .. } | Motion::Involute { .. } => {
+        Motion::ThroughPoint
+        | Motion::Thread
+        | Motion::VariableThread { .. }
+        | Motion::Tap { .. }
+        | Motion::Involute { .. } => {
             // These paths are moved straight to the kernel, past the contour's corners.
             if let Some(span) = corner
                 .map(|c| c.span)
@@ -656,10 +660,19 @@ fn thread(
         }),
         _ => None,
     };
+    // G34/G35: the lead that gives the block its time (threads.rs); F is their lead change.
+    let change = words.feed.map(|(f, span)| (f * unit(front), span));
+    let lead = super::threads::mean_lead(
+        front.modal.motion,
+        value,
+        change,
+        travel[dominant],
+        origin.span,
+    )?;
     let per_revolution = if travel[dominant] > 0.0 {
-        value.abs() * path / travel[dominant]
+        lead * path / travel[dominant]
     } else {
-        value.abs()
+        lead
     };
     let tag = tag(target, origin, false, 0);
     advance(front, &target);

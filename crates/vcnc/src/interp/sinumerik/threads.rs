@@ -1,0 +1,172 @@
+//! Threads beyond G33's constant lead (docs/SINUMERIK.md 10.5): G34 and G35, whose lead grows or
+//! shrinks linearly with the spindle's revolutions (PGsl 9.11, seed 002 L6317-6381), and the run-in
+//! and run-out paths DITS= and DITE= (PGsl 9.10.2, L6260-6315), the setting data SD42010
+//! `$SC_THREAD_RAMP_DISP[0, 1]`.
+//!
+//! A G34/G35 block reaches the kernel as G33's does: one line at a feed per revolution, here the
+//! lead that gives the block its true time at a constant spindle speed (the mean of its start
+//! and end leads, [`mean_lead`]). DITS and DITE are kept as the setting data the control writes;
+//! the planner ramps the thread with the axes' own acceleration (docs/SINUMERIK.md 10.5 says
+//! why).
+//!
+//! Never: run a thread whose lead would reach zero or turn back before its end point, or take a
+//! ramp path the control refuses (below -1).
+
+use super::block::number;
+use super::gcodes::Motion;
+use super::Sinumerik;
+use crate::alarm::{Alarm, AlarmCode};
+use crate::interp::kernel::Kernel;
+use crate::source::Span;
+use crate::syntax::sinumerik::Word;
+
+/// SD42010 `$SC_THREAD_RAMP_DISP`: the thread's run-in ([0], DITS) and run-out ([1], DITE)
+/// paths, mm. -1 ramps with the axes' configured acceleration, 0 with a step in speed, n > 0
+/// within n mm (PGsl 9.10.2, the meanings inferred in spec part B 1.10.2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct ThreadRamps {
+    pub(super) run_in: f64,
+    pub(super) run_out: f64,
+}
+
+impl Default for ThreadRamps {
+    /// -1 in both: the setting data's value before a program writes it (choice: the manual
+    /// gives no default; -1 is the axes' own acceleration, what a thread does without DITS).
+    fn default() -> ThreadRamps {
+        ThreadRamps {
+            run_in: -1.0,
+            run_out: -1.0,
+        }
+    }
+}
+
+/// Reads DITS= or DITE= into the setting data (modal: they stay for the following threads).
+///
+/// # Errors
+/// [`AlarmCode::ValueOutOfRange`] for a path below -1 or between -1 and 0.
+pub(super) fn ramp_word(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<(), Alarm> {
+    let value = number(front, kernel, word)?;
+    // The range is -1, 0 and positive paths (L6278): -0.5 means nothing.
+    if value.is_nan() || (value < 0.0 && value != -1.0) {
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            word.span,
+            format!(
+                "{}={value}: a thread's run-in or run-out path is -1 (the axes' acceleration), 0 (no ramp) or a path in mm",
+                word.address
+            ),
+        ));
+    }
+    // A path is a length in the unit in force (L6316); -1 and 0 are codes, not lengths.
+    let value = if value > 0.0 {
+        value * super::motion::unit(front)
+    } else {
+        value
+    };
+    if &*word.address == "DITS" {
+        front.thread_ramps.run_in = value;
+    } else {
+        front.thread_ramps.run_out = value;
+    }
+    Ok(())
+}
+
+/// The lead along the thread's leading axis that times the block: `start` itself for G33, and
+/// for G34 (`increasing`) or G35 the mean of the start and end leads, with `change` (F,
+/// mm/rev^2) over `length` mm of the leading axis.
+///
+/// With k(n) = ka +- F n after n revolutions the axis has gone L(n) = ka n +- F n^2 / 2, so the
+/// end lead is ke = sqrt(ka^2 +- 2 F L) (the manual's F = |ke^2 - ka^2| / 2L) and the block
+/// takes |ke - ka| / F revolutions: L over those is (ka + ke) / 2 per revolution.
+///
+/// # Errors
+/// [`AlarmCode::MissingValue`] without F; [`AlarmCode::ValueOutOfRange`] for a negative F, or a
+/// G35 whose lead reaches zero before the end point.
+pub(super) fn mean_lead(
+    motion: Motion,
+    start: f64,
+    change: Option<(f64, Span)>,
+    length: f64,
+    span: Span,
+) -> Result<f64, Alarm> {
+    let Motion::VariableThread { increasing } = motion else {
+        return Ok(start.abs());
+    };
+    let name = if increasing { "G34" } else { "G35" };
+    let Some((change, change_span)) = change else {
+        return Err(Alarm::error(
+            AlarmCode::MissingValue,
+            span,
+            format!("{name} needs the lead's change in F (mm/rev^2)"),
+        )
+        .with_help(format!(
+            "{name} Z-50 K2 F0.1: the lead starts at K and changes by F each revolution"
+        )));
+    };
+    if change.is_nan() || change < 0.0 {
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            change_span,
+            format!("F{change}: {name}'s lead change is a size; G34 increases the lead, G35 decreases it"),
+        ));
+    }
+    let start = start.abs();
+    let signed = if increasing { change } else { -change };
+    let end_squared = start * start + 2.0 * signed * length;
+    // The manual gives no alarm number for a lead run out (choice: the range alarm).
+    if end_squared <= 0.0 {
+        let reach = start * start / (2.0 * change);
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            span,
+            format!(
+                "{name}: the lead {start} falling by F{change} per revolution reaches 0 after {reach:.3} mm, before the thread's {length:.3} mm"
+            ),
+        )
+        .with_help("a smaller F, a larger start lead or a shorter thread"));
+    }
+    Ok((start + end_squared.sqrt()) / 2.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn span() -> Span {
+        Span::default()
+    }
+
+    #[test]
+    fn a_constant_thread_keeps_its_lead() {
+        assert_eq!(mean_lead(Motion::Thread, -2.5, None, 40.0, span()), Ok(2.5));
+    }
+
+    #[test]
+    fn g34_times_the_block_by_the_mean_of_its_leads() {
+        // ka 2, F 0.1, 30 mm: ke = sqrt(4 + 6) = 3.1623, mean 2.5811.
+        let lead = mean_lead(
+            Motion::VariableThread { increasing: true },
+            2.0,
+            Some((0.1, span())),
+            30.0,
+            span(),
+        )
+        .unwrap();
+        assert!((lead - (2.0 + 10f64.sqrt()) / 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn g35_whose_lead_runs_out_is_an_alarm() {
+        // ka 2, F 0.1: the lead is 0 after 4 / 0.2 = 20 mm.
+        let alarm = mean_lead(
+            Motion::VariableThread { increasing: false },
+            2.0,
+            Some((0.1, span())),
+            20.0,
+            span(),
+        )
+        .unwrap_err();
+        assert_eq!(alarm.code, AlarmCode::ValueOutOfRange);
+        assert!(alarm.message.contains("20.000 mm"), "{}", alarm.message);
+    }
+}

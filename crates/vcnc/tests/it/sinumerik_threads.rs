@@ -1,0 +1,170 @@
+//! SINUMERIK threads beyond G33 and the turning and grinding words around them, with leads,
+//! feeds, times and speeds worked out by hand: G34/G35 (PGsl 9.11, seed 002 L6317-6381), the
+//! run-in and run-out paths DITS/DITE (PGsl 9.10.2, L6260-6315) and `$AC_LIFTFAST` (PGsl 9.14,
+//! L6594-6747). docs/SINUMERIK.md 10.6 and 10.7 are the model.
+
+use vcnc::interp::sinumerik::run_str;
+use vcnc::plan::{PlanOptions, Planner, TimedItem};
+use vcnc::{Alarm, AlarmCode, Machine, ProfileName, Segment, SegmentKind};
+
+use crate::common::collect;
+use crate::common::plan::{machine as limited_machine, Limits};
+use crate::common::sinumerik::machine;
+
+/// The segments of a program that must run to its end.
+fn run(text: &str) -> Vec<Segment> {
+    let run = collect(run_str(text, &machine()));
+    assert!(run.error().is_none(), "{text}\n{:#?}", run.alarms);
+    run.segments
+}
+
+fn error(text: &str) -> Alarm {
+    let run = collect(run_str(text, &machine()));
+    run.error()
+        .cloned()
+        .unwrap_or_else(|| panic!("no error in\n{text}"))
+}
+
+/// The path speed of every feed motion, mm/min.
+fn feeds(segments: &[Segment]) -> Vec<f64> {
+    segments
+        .iter()
+        .filter_map(|s| match &s.kind {
+            SegmentKind::Line { feed, .. } | SegmentKind::Arc { feed, .. } => {
+                feed.mm_per_min(s.length())
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The end points of the moves, X Y Z.
+fn ends(segments: &[Segment]) -> Vec<[f64; 3]> {
+    segments
+        .iter()
+        .filter_map(Segment::motion)
+        .map(|m| [m.to.0[0], m.to.0[1], m.to.0[2]])
+        .collect()
+}
+
+fn assert_close(actual: f64, expected: f64, tolerance: f64) {
+    assert!(
+        (actual - expected).abs() <= tolerance,
+        "{actual} is not {expected} (within {tolerance})"
+    );
+}
+
+#[test]
+fn g35_cuts_at_the_mean_of_its_start_and_end_leads() {
+    // ka = 2, F = 0.05, 30 mm: ke^2 = 4 - 2 * 0.05 * 30 = 1, ke = 1; (2 + 1) / 2 = 1.5 mm/rev at
+    // 100 rpm is 150 mm/min (20 revolutions, 12 s, for 30 mm).
+    let segments = run("M3 S100\nG0 X10 Z0\nG35 Z-30 K2 F0.05\nG0 X20\nM30\n");
+    assert_eq!(
+        ends(&segments),
+        vec![[10.0, 0.0, 0.0], [10.0, 0.0, -30.0], [20.0, 0.0, -30.0]]
+    );
+    assert_eq!(feeds(&segments).len(), 1);
+    assert_close(feeds(&segments)[0], 150.0, 1e-9);
+}
+
+#[test]
+fn g34_cuts_at_the_mean_of_its_start_and_end_leads() {
+    // ka = 1, F = 0.05, 30 mm: ke^2 = 1 + 3 = 4, ke = 2; mean 1.5 mm/rev, 150 mm/min at 100 rpm.
+    let segments = run("M3 S100\nG0 X10 Z0\nG34 Z-30 K1 F0.05\nM30\n");
+    assert_close(feeds(&segments)[0], 150.0, 1e-9);
+}
+
+#[test]
+fn a_taper_thread_of_variable_lead_takes_its_lead_along_the_leading_axis() {
+    // Z leads (30 mm against X's 4): the mean lead 1.5 along Z becomes 1.5 * 30.2655 / 30 along
+    // the path, sqrt(4^2 + 30^2) = 30.2655 mm; at 100 rpm 151.3275 mm/min, 20 revolutions still.
+    let segments = run("M3 S100\nG0 X10 Z0\nG35 X14 Z-30 K2 F0.05\nM30\n");
+    let path = (16.0f64 + 900.0).sqrt();
+    assert_close(feeds(&segments)[0], 150.0 * path / 30.0, 1e-9);
+}
+
+#[test]
+fn the_planner_times_a_g35_block_by_its_revolutions() {
+    // 20 revolutions at 100 rpm (above) take 12 s; at 1e6 mm/s^2 the ramps to 2.5 mm/s add
+    // under a microsecond.
+    let mut machine = limited_machine(&Limits {
+        acceleration: 1.0e6,
+        ..Limits::default()
+    })
+    .with_profile(ProfileName::Sinumerik)
+    .unwrap();
+    machine.start = [10.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let seconds = thread_seconds("M3 S100\nG35 Z-30 K2 F0.05\nM30\n", &machine);
+    assert_close(seconds, 12.0, 1e-3);
+}
+
+/// The time of the program's feed motions, seconds, as the planner gives it.
+fn thread_seconds(text: &str, machine: &Machine) -> f64 {
+    Planner::new(run_str(text, machine), machine, PlanOptions::default())
+        .map(|item| match item {
+            Ok(TimedItem::Segment(timed)) => match timed.segment.kind {
+                SegmentKind::Line { .. } => timed.dt,
+                _ => 0.0,
+            },
+            Ok(_) => 0.0,
+            Err(alarm) => panic!("{alarm:?}"),
+        })
+        .sum()
+}
+
+#[test]
+fn g35_whose_lead_runs_out_before_the_end_point_is_an_alarm() {
+    // ka = 2, F = 0.05: the lead is 0 after 2^2 / (2 * 0.05) = 40 mm, short of 50.
+    let alarm = error("M3 S100\nG35 Z-50 K2 F0.05\nM30\n");
+    assert_eq!(alarm.code, AlarmCode::ValueOutOfRange);
+    assert!(alarm.message.contains("G35"), "{}", alarm.message);
+    assert!(alarm.message.contains("40.000 mm"), "{}", alarm.message);
+}
+
+#[test]
+fn g34_without_its_lead_change_is_an_alarm() {
+    let alarm = error("M3 S100\nG34 Z-50 K2\nM30\n");
+    assert_eq!(alarm.code, AlarmCode::MissingValue);
+    assert!(alarm.message.contains("G34"), "{}", alarm.message);
+}
+
+#[test]
+fn the_f_of_a_g35_block_is_not_the_path_feed() {
+    // F0.05 is the lead change; the G1 after the thread keeps F200 (mm/min, G94).
+    let segments = run("M3 S100\nG1 X10 F200\nG35 Z-30 K2 F0.05\nG1 X20\nM30\n");
+    let feeds = feeds(&segments);
+    assert_eq!(feeds.len(), 3);
+    assert_close(feeds[0], 200.0, 1e-9);
+    assert_close(feeds[2], 200.0, 1e-9);
+}
+
+#[test]
+fn p_gg_reads_g34_and_g35_as_members_16_and_17() {
+    // The tables' numbers of group 1 (sinumerik-tables.md: G34 16, G35 17), made positions.
+    let segments = run(
+        "M3 S100\nG34 Z-1 K1 F0.01\nR1=$P_GG[1]\nG35 Z-2 K1 F0.01\nR2=$P_GG[1]\nG1 X=R1 Y=R2 F100\nM30\n",
+    );
+    assert_eq!(ends(&segments).last(), Some(&[16.0, 17.0, -2.0]));
+}
+
+#[test]
+fn dits_and_dite_leave_the_thread_at_its_lead_times_the_speed() {
+    // b/33's blocks: 5 mm/rev at 500 rpm is 2500 mm/min over Z100 -> Z50, whatever the ramps.
+    let segments = run(
+        "G90 G0 Z100 X10 SOFT M3 S500\nG33 Z50 K5 SF=180 DITS=1 DITE=3\nG0 X20\nDITS=-1 DITE=0\nM30\n",
+    );
+    assert_eq!(
+        ends(&segments),
+        vec![[10.0, 0.0, 100.0], [10.0, 0.0, 50.0], [20.0, 0.0, 50.0]]
+    );
+    assert_eq!(feeds(&segments), vec![2500.0]);
+}
+
+#[test]
+fn a_ramp_path_below_minus_one_or_between_minus_one_and_zero_is_an_alarm() {
+    for word in ["DITS=-2", "DITE=-0.5"] {
+        let alarm = error(&format!("M3 S100\nG33 Z-10 K1 {word}\nM30\n"));
+        assert_eq!(alarm.code, AlarmCode::ValueOutOfRange, "{word}");
+        assert!(alarm.message.contains(&word[..4]), "{}", alarm.message);
+    }
+}
