@@ -168,3 +168,42 @@ fn a_ramp_path_below_minus_one_or_between_minus_one_and_zero_is_an_alarm() {
         assert!(alarm.message.contains(&word[..4]), "{}", alarm.message);
     }
 }
+
+#[test]
+fn a_thread_block_without_its_lead_keeps_the_last_threads() {
+    // N2 leaves K out (b/42's N71): K2 at 300 rpm stays 600 mm/min.
+    let segments = run("M3 S300\nG33 Z-10 K2\nG33 Z-20\nM30\n");
+    assert_eq!(feeds(&segments), vec![600.0, 600.0]);
+}
+
+#[test]
+fn ac_liftfast_reads_zero_as_no_retraction_happens() {
+    // 0 + 7: the flag read into a position.
+    let segments = run("$AC_LIFTFAST=0\nR1=$AC_LIFTFAST+7\nG0 X=R1\nM30\n");
+    assert_eq!(ends(&segments), vec![[7.0, 0.0, 0.0]]);
+}
+
+#[test]
+fn a_thread_guarded_by_ac_liftfast_runs_once() {
+    // b/42's loop: without an interruption the jump back is not taken; the thread's two blocks
+    // move once (Z5, X10, Z30, then X15 Z55).
+    let segments = run(
+        "M3 S500 G90 G18\nAGAIN:\n$AC_LIFTFAST=0\nG0 Z5\nX10\nG33 Z30 K5 LFON DILF=10 LFWP ALF=7\nG33 Z55 X15\nG1\nIF $AC_LIFTFAST GOTOB AGAIN\nM30\n",
+    );
+    assert_eq!(
+        ends(&segments),
+        vec![
+            [0.0, 0.0, 5.0],
+            [10.0, 0.0, 5.0],
+            [10.0, 0.0, 30.0],
+            [15.0, 0.0, 55.0]
+        ]
+    );
+}
+
+#[test]
+fn ac_liftfast_set_to_anything_but_zero_is_an_alarm() {
+    let alarm = error("$AC_LIFTFAST=1\nM30\n");
+    assert_eq!(alarm.code, AlarmCode::ValueOutOfRange);
+    assert!(alarm.message.contains("$AC_LIFTFAST"), "{}", alarm.message);
+}

@@ -216,6 +216,7 @@ impl Environment for Machine<'_> {
             "$P_TOOLP" => Ok(Value::Int(self.tool.selected.unwrap_or(0) as i32)),
             "$P_F" => real(self.kernel.state().feed.unwrap_or(0.0)),
             "$P_S" => real(self.kernel.state().spindle.speed()),
+            super::lift_fast::FLAG => Ok(super::lift_fast::read_flag()),
             "$P_GG" => {
                 let group = indices.first().and_then(Value::as_f64).unwrap_or(0.0) as u32;
                 Ok(Value::Int(super::gcodes::member(self.modal, group)))
@@ -307,6 +308,7 @@ impl Environment for Machine<'_> {
             })
         };
         match name {
+            super::lift_fast::FLAG => super::lift_fast::write_flag(value.as_f64(), span),
             // The tool table's edge data (PGsl 5; $TC_DP1 type, 3-5 lengths, 6 radius).
             "$TC_DP1" | "$TC_DP3" | "$TC_DP4" | "$TC_DP5" | "$TC_DP6" | "$TC_DPNT" => {
                 let whole = |v: Option<&Value>| v.and_then(Value::as_f64).map(|x| x as u32);

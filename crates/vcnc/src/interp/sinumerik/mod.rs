@@ -144,8 +144,8 @@ pub struct Sinumerik {
     work_area: work_area::WorkArea,
     /// The dynamic response's machine data the program wrote ($MA_MAX_AX_ACCEL ...).
     machine_data: machine_data::MachineData,
-    /// DITS and DITE: the thread's run-in and run-out paths (SD42010, `threads.rs`).
-    thread_ramps: threads::ThreadRamps,
+    /// DITS and DITE (SD42010) and the last thread's lead (`threads.rs`).
+    threads: threads::Threads,
 }
 
 /// One program level of the call stack.
@@ -265,7 +265,7 @@ impl Sinumerik {
             cycles: cycles::Calls::default(),
             work_area: work_area::WorkArea::default(),
             machine_data: machine_data::MachineData::default(),
-            thread_ramps: threads::ThreadRamps::default(),
+            threads: threads::Threads::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),

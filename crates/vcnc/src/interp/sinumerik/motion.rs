@@ -634,7 +634,8 @@ fn thread(
     let path = travel.iter().map(|t| t * t).sum::<f64>().sqrt();
     let lead_word =
         words.centre[dominant].or_else(|| words.centre.iter().flatten().next().copied());
-    let Some(lead) = lead_word else {
+    let written = lead_word.map(|lead| lead.value * unit(front));
+    let Some(value) = front.threads.lead(written) else {
         return Err(Alarm::error(
             AlarmCode::NoFeedRate,
             origin.span,
@@ -644,7 +645,6 @@ fn thread(
             "give the lead (mm per revolution) with the axis that moves most: G33 Z-50 K1.5",
         ));
     };
-    let value = lead.value * unit(front);
     if value == 0.0 {
         return Err(Alarm::error(
             AlarmCode::ValueOutOfRange,

@@ -20,23 +20,39 @@ use crate::interp::kernel::Kernel;
 use crate::source::Span;
 use crate::syntax::sinumerik::Word;
 
-/// SD42010 `$SC_THREAD_RAMP_DISP`: the thread's run-in ([0], DITS) and run-out ([1], DITE)
-/// paths, mm. -1 ramps with the axes' configured acceleration, 0 with a step in speed, n > 0
-/// within n mm (PGsl 9.10.2, the meanings inferred in spec part B 1.10.2).
+/// What the threads keep from block to block: SD42010 `$SC_THREAD_RAMP_DISP`, the run-in ([0],
+/// DITS) and run-out ([1], DITE) paths in mm (-1 ramps with the axes' configured acceleration,
+/// 0 with a step in speed, n > 0 within n mm: PGsl 9.10.2, the meanings inferred in spec part B
+/// 1.10.2), and the lead of the last thread block.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct ThreadRamps {
+pub(super) struct Threads {
     pub(super) run_in: f64,
     pub(super) run_out: f64,
+    lead: Option<f64>,
 }
 
-impl Default for ThreadRamps {
-    /// -1 in both: the setting data's value before a program writes it (choice: the manual
+impl Default for Threads {
+    /// -1 in both paths: the setting data's value before a program writes it (choice: the manual
     /// gives no default; -1 is the axes' own acceleration, what a thread does without DITS).
-    fn default() -> ThreadRamps {
-        ThreadRamps {
+    fn default() -> Threads {
+        Threads {
             run_in: -1.0,
             run_out: -1.0,
+            lead: None,
         }
+    }
+}
+
+impl Threads {
+    /// The lead of a thread block: the one `written` in it, else the last thread block's. A thread
+    /// chain's next block may leave the lead out (b/42's N71 `G33 Z55 X15` after N70's K5, seed
+    /// 002 L6706, L6713; choice: the manual does not say how long the lead is kept, vcnc keeps it to
+    /// the program's end).
+    pub(super) fn lead(&mut self, written: Option<f64>) -> Option<f64> {
+        if written.is_some() {
+            self.lead = written;
+        }
+        self.lead
     }
 }
 
@@ -64,9 +80,9 @@ pub(super) fn ramp_word(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> 
         value
     };
     if &*word.address == "DITS" {
-        front.thread_ramps.run_in = value;
+        front.threads.run_in = value;
     } else {
-        front.thread_ramps.run_out = value;
+        front.threads.run_out = value;
     }
     Ok(())
 }
