@@ -1,9 +1,11 @@
 //! SINUMERIK threads beyond G33 and the turning and grinding words around them, with leads,
 //! feeds, times and speeds worked out by hand: G34/G35 (PGsl 9.11, seed 002 L6317-6381), the
-//! run-in and run-out paths DITS/DITE (PGsl 9.10.2, L6260-6315) and `$AC_LIFTFAST` (PGsl 9.14,
-//! L6594-6747). docs/SINUMERIK.md 10.6 and 10.7 are the model.
+//! run-in and run-out paths DITS/DITE (PGsl 9.10.2, L6260-6315), `$AC_LIFTFAST` (PGsl 9.14,
+//! L6594-6747) and the grinding wheel's peripheral speed GWPSON/GWPSOF (PGsl 6.4, L2329-2401).
+//! docs/SINUMERIK.md 10.5 to 10.7 are the model.
 
 use vcnc::interp::sinumerik::run_str;
+use vcnc::machine::ToolEdge;
 use vcnc::plan::{PlanOptions, Planner, TimedItem};
 use vcnc::{Alarm, AlarmCode, Machine, ProfileName, Segment, SegmentKind};
 
@@ -206,4 +208,146 @@ fn ac_liftfast_set_to_anything_but_zero_is_an_alarm() {
     let alarm = error("$AC_LIFTFAST=1\nM30\n");
     assert_eq!(alarm.code, AlarmCode::ValueOutOfRange);
     assert!(alarm.message.contains("$AC_LIFTFAST"), "{}", alarm.message);
+}
+
+/// The SINUMERIK test machine with two spindles, T changing the tool at once, and the tools
+/// `(t, type, radius)`.
+fn grinder(tools: &[(u32, u32, f64)]) -> Machine {
+    let mut machine = machine();
+    machine.spindle.count = 2;
+    if let Some(settings) = machine.profile.sinumerik.as_mut() {
+        settings.t_changes_tool = true;
+    }
+    for &(t, tool_type, radius) in tools {
+        machine.tools.push(ToolEdge {
+            t,
+            name: None,
+            d: 1,
+            tool_type,
+            length: 0.0,
+            length2: 0.0,
+            length3: 0.0,
+            radius,
+            teeth: None,
+        });
+    }
+    machine
+}
+
+/// The master spindle's speeds at its events, rpm.
+fn speeds(text: &str, machine: &Machine) -> Vec<f64> {
+    let run = collect(run_str(text, machine));
+    assert!(run.error().is_none(), "{text}\n{:#?}", run.alarms);
+    run.segments
+        .iter()
+        .filter_map(|s| match s.kind {
+            SegmentKind::Spindle { speed, .. } => Some(speed),
+            _ => None,
+        })
+        .collect()
+}
+
+fn grinder_error(text: &str, machine: &Machine) -> Alarm {
+    let run = collect(run_str(text, machine));
+    run.error()
+        .cloned()
+        .unwrap_or_else(|| panic!("no error in\n{text}"))
+}
+
+#[test]
+fn s_under_gwps_is_the_wheels_peripheral_speed() {
+    // 30 m/s on a wheel of radius 100 mm ($TC_DP6, $TC_TPG9 = 6): 30 * 60000 / (2 pi 100) =
+    // 2864.789 rpm; after GWPSOF, S1200 is rpm again.
+    let machine = grinder(&[(1, 400, 100.0)]);
+    let speeds = speeds(
+        "$TC_TPG1[1]=1\n$TC_TPG9[1]=6\nT1 D1\nM3 S500\nGWPSON\nS30\nGWPSOF\nS1200\nM30\n",
+        &machine,
+    );
+    assert_eq!(speeds.len(), 3, "{speeds:?}");
+    assert_close(speeds[0], 500.0, 1e-9);
+    assert_close(
+        speeds[1],
+        1_800_000.0 / (2.0 * std::f64::consts::PI * 100.0),
+        1e-9,
+    );
+    assert_close(speeds[2], 1200.0, 1e-9);
+}
+
+#[test]
+fn tpg9_names_the_edge_parameter_that_is_the_wheels_radius() {
+    // $TC_TPG9 = 3: the radius is length 1, $TC_DP3 = 250 mm; 25 m/s is 25 * 60000 /
+    // (2 pi 250) = 954.930 rpm. G4 S2 stays two revolutions (no speed event).
+    let machine = grinder(&[(1, 401, 5.0)]);
+    let speeds = speeds(
+        "$TC_DP3[1,1]=250\n$TC_TPG1[1]=1\n$TC_TPG9[1]=3\nT1 D1\nM3 S100\nGWPSON(1)\nS1=25\nG4 S2\nM30\n",
+        &machine,
+    );
+    assert_eq!(speeds.len(), 2, "{speeds:?}");
+    assert_close(
+        speeds[1],
+        1_500_000.0 / (2.0 * std::f64::consts::PI * 250.0),
+        1e-9,
+    );
+}
+
+#[test]
+fn p_gwps_says_where_gwps_is_on() {
+    // $P_GWPS[2] TRUE (1) after GWPSON(5) with T5 on spindle 2, FALSE (0) after GWPSOF(5).
+    let machine = grinder(&[(5, 410, 80.0)]);
+    let run = collect(run_str(
+        "$TC_TPG1[5]=2\n$TC_TPG9[5]=6\nGWPSON(5)\nR1=$P_GWPS[2]\nR2=$P_GWPS[1]\nGWPSOF(5)\nR3=$P_GWPS[2]\nG0 X=R1 Y=R2 Z=R3+7\nM30\n",
+        &machine,
+    ));
+    assert!(run.error().is_none(), "{:#?}", run.alarms);
+    assert_eq!(ends(&run.segments), vec![[1.0, 0.0, 7.0]]);
+}
+
+#[test]
+fn gwps_refuses_a_tool_that_is_no_grinding_wheel() {
+    // A milling tool (type 120) and a wheel "without GWPS" (type 403, PGsl 5.5.4).
+    for tool_type in [120, 403] {
+        let machine = grinder(&[(1, tool_type, 50.0)]);
+        let alarm = grinder_error(
+            "$TC_TPG1[1]=1\n$TC_TPG9[1]=6\nT1 D1\nGWPSON\nM30\n",
+            &machine,
+        );
+        assert_eq!(alarm.code, AlarmCode::WordNotAllowed, "{tool_type}");
+        assert!(
+            alarm.message.contains(&format!("type {tool_type}")),
+            "{}",
+            alarm.message
+        );
+    }
+}
+
+#[test]
+fn gwps_without_the_grinding_data_is_an_alarm() {
+    // No $TC_TPG1: no spindle; $TC_TPG1 but no $TC_TPG9: no radius parameter.
+    let machine = grinder(&[(1, 400, 50.0)]);
+    let alarm = grinder_error("T1 D1\nGWPSON\nM30\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::BadDataInput);
+    assert!(alarm.message.contains("$TC_TPG1[1]"), "{}", alarm.message);
+    let alarm = grinder_error("$TC_TPG1[1]=1\nT1 D1\nGWPSON\nM30\n", &machine);
+    assert_eq!(alarm.code, AlarmCode::BadDataInput);
+    assert!(alarm.message.contains("$TC_TPG9[1]"), "{}", alarm.message);
+}
+
+#[test]
+fn a_second_tools_gwps_on_a_spindle_waits_for_gwpsof() {
+    // T1 and T2 both on spindle 1 (PGsl 6.4, L2387: deselect first).
+    let machine = grinder(&[(1, 400, 50.0), (2, 400, 60.0)]);
+    let preset = "$TC_TPG1[1]=1\n$TC_TPG9[1]=6\n$TC_TPG1[2]=1\n$TC_TPG9[2]=6\n";
+    let alarm = grinder_error(&format!("{preset}GWPSON(1)\nGWPSON(2)\nM30\n"), &machine);
+    assert_eq!(alarm.code, AlarmCode::WordNotAllowed);
+    assert!(
+        alarm
+            .help
+            .as_deref()
+            .is_some_and(|h| h.contains("GWPSOF(1)")),
+        "{alarm:?}"
+    );
+    speeds(
+        &format!("{preset}GWPSON(1)\nGWPSOF(1)\nGWPSON(2)\nM30\n"),
+        &machine,
+    );
 }

@@ -405,6 +405,14 @@ fn read<'a>(
             }
         }
         let address = &*word.address;
+        // S as a grinding wheel's peripheral speed where GWPS is on (grinding.rs).
+        if front.grinding.any_active()
+            && address.starts_with('S')
+            && !front.is_variable(address)
+            && super::grinding::read_speed(front, kernel, block, word, words)?
+        {
+            continue;
+        }
         // Spindles by number, the feed group and positioning axes: names of two letters or more.
         if address.len() > 1
             && matches!(
@@ -536,6 +544,9 @@ fn read<'a>(
             "SF" => {}
             "OVRRAP" | "OVRA" | "ACC" | "SETMS" => {
                 note_state(front, address, word, &mut words.warnings);
+            }
+            "GWPSON" | "GWPSOF" if !front.is_variable(address) => {
+                super::grinding::switch(front, kernel, word)?
             }
             "DITS" | "DITE" if !front.is_variable(address) => {
                 super::threads::ramp_word(front, kernel, word)?

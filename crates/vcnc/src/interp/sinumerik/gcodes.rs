@@ -403,7 +403,7 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
         "COUPON" | "COUPOF" | "COUPDEF" | "COUPDEL" | "TRAILON" | "TRAILOF" | "LEADON"
         | "LEADOF" | "EGON" | "EGOFS" => "axis couplings",
         "WAITM" | "WAITMC" | "WAITE" | "SETM" | "CLEARM" | "START" | "INIT" => "several channels",
-        "GWPSON" | "GWPSOF" | "PUNCHACC" | "SPOF" | "SON" | "PON" => "grinding and punching",
+        "PUNCHACC" | "SPOF" | "SON" | "PON" => "punching",
         "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIEULER" | "ORIRPY" => {
             "orientation transformations"
         }

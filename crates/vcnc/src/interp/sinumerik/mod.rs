@@ -23,6 +23,7 @@ mod eval;
 mod flow;
 mod frame;
 mod gcodes;
+mod grinding;
 mod instructions;
 mod involute;
 mod iso_mode;
@@ -146,6 +147,8 @@ pub struct Sinumerik {
     machine_data: machine_data::MachineData,
     /// DITS and DITE (SD42010) and the last thread's lead (`threads.rs`).
     threads: threads::Threads,
+    /// The grinding tools' data and GWPS by spindle (`grinding.rs`).
+    grinding: grinding::Grinding,
 }
 
 /// One program level of the call stack.
@@ -266,6 +269,7 @@ impl Sinumerik {
             work_area: work_area::WorkArea::default(),
             machine_data: machine_data::MachineData::default(),
             threads: threads::Threads::default(),
+            grinding: grinding::Grinding::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),

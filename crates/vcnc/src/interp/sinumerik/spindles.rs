@@ -84,6 +84,18 @@ impl Spindles {
     fn other(&mut self, n: u32) -> &mut OtherSpindle {
         &mut self.others[n as usize - 2]
     }
+
+    /// Spindle `n`'s speed, rpm, set by other than its S word (GWPS: grinding.rs); `n` is a
+    /// spindle of the machine other than the master.
+    pub(super) fn set_speed(&mut self, n: u32, rpm: f64) {
+        self.other(n).speed = Some(rpm);
+    }
+
+    /// Spindle `n`'s speed (n 2 or more), for the tests of what sets it.
+    #[cfg(test)]
+    pub(super) fn speed(&self, n: u32) -> Option<f64> {
+        self.others.get(n as usize - 2)?.speed
+    }
 }
 
 /// Reads a word addressing a spindle by number; false for other words. Master-spindle words
