@@ -316,8 +316,6 @@ fn speed(metres_per_second: f64, radius: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::interp::front_end::{FrontEnd, Step};
-    use crate::source::FileId;
 
     /// The front end after running `text` to its end on a machine with two spindles and the
     /// grinding wheels T1 (r 200 mm, spindle 1) and T5 (r 150 mm, spindle 2).
@@ -340,16 +338,7 @@ mod tests {
             });
         }
         let preset = "$TC_TPG1[1]=1\n$TC_TPG9[1]=6\n$TC_TPG1[5]=2\n$TC_TPG9[5]=6\n";
-        let text = format!("{preset}{text}");
-        let mut front = Sinumerik::new(text.as_bytes(), FileId(0), &machine);
-        let mut kernel = Kernel::new(&machine);
-        loop {
-            match front.step(&mut kernel) {
-                Ok(Step::End) => return front,
-                Ok(Step::Next) => {}
-                Err(alarm) => panic!("{alarm:?}"),
-            }
-        }
+        super::super::threads::run_to_end(&format!("{preset}{text}"), &machine)
     }
 
     #[test]

@@ -144,9 +144,39 @@ pub(super) fn mean_lead(
     Ok((start + end_squared.sqrt()) / 2.0)
 }
 
+/// The front end after running `text` to its end on `machine`, for the tests of the state it
+/// keeps (here and in grinding.rs).
+#[cfg(test)]
+pub(super) fn run_to_end(text: &str, machine: &crate::Machine) -> Sinumerik {
+    use crate::interp::front_end::{FrontEnd, Step};
+    let mut front = Sinumerik::new(text.as_bytes(), crate::source::FileId(0), machine);
+    let mut kernel = Kernel::new(machine);
+    loop {
+        match front.step(&mut kernel) {
+            Ok(Step::End) => return front,
+            Ok(Step::Next) => {}
+            Err(alarm) => panic!("{alarm:?}"),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn dits_and_dite_are_kept_as_sd42010_in_the_unit_in_force() {
+        // -1 before any write; DITS=1 DITE=3 in mm; under G70 DITE=0.5 is 12.7 mm, DITS=-1 a code.
+        let machine = crate::Machine::default()
+            .with_profile(crate::ProfileName::Sinumerik)
+            .expect("the default machine fits the SINUMERIK profile");
+        assert_eq!(run_to_end("M30\n", &machine).threads, Threads::default());
+        let front = run_to_end("M3 S100\nG33 Z-5 K1 DITS=1 DITE=3\nM30\n", &machine);
+        assert_eq!((front.threads.run_in, front.threads.run_out), (1.0, 3.0));
+        let front = run_to_end("G70\nDITS=-1 DITE=0.5\nM30\n", &machine);
+        assert_eq!(front.threads.run_in, -1.0);
+        assert!((front.threads.run_out - 12.7).abs() < 1e-12);
+    }
 
     fn span() -> Span {
         Span::default()
