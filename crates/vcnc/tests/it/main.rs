@@ -55,6 +55,7 @@ mod sinumerik_language;
 mod sinumerik_plain_blocks;
 mod sinumerik_robust;
 mod sinumerik_syntax;
+mod sinumerik_threads;
 mod sinumerik_work_area;
 mod skip;
 mod smoothing;

@@ -295,6 +295,10 @@ pub(super) fn run(
     // The tool first: SVC and FZ in its block read the new edge, and the spindle starts with
     // the new tool in it (docs/SINUMERIK.md 3.2 steps 6-8).
     tools::change(front, kernel, &words, origin)?;
+    // G34 and G35 read F as the lead's change, not as the path feed (threads.rs).
+    if matches!(front.modal.motion, gcodes::Motion::VariableThread { .. }) {
+        words.feed = None;
+    }
     if !dwell {
         spindle::feed(front, kernel, &words, mode)?;
         spindle::spindle(front, kernel, &words, &limits, origin)?;
@@ -419,6 +423,14 @@ fn read<'a>(
             }
         }
         let address = &*word.address;
+        // S as a grinding wheel's peripheral speed where GWPS is on (grinding.rs).
+        if front.grinding.any_active()
+            && address.starts_with('S')
+            && !front.is_variable(address)
+            && super::grinding::read_speed(front, kernel, block, word, words)?
+        {
+            continue;
+        }
         // Spindles by number, the feed group and positioning axes: names of two letters or more.
         if address.len() > 1
             && matches!(
@@ -557,6 +569,12 @@ fn read<'a>(
             "SF" => {}
             "OVRRAP" | "OVRA" | "ACC" | "SETMS" => {
                 note_state(front, address, word, &mut words.warnings);
+            }
+            "GWPSON" | "GWPSOF" if !front.is_variable(address) => {
+                super::grinding::switch(front, kernel, word)?
+            }
+            "DITS" | "DITE" if !front.is_variable(address) => {
+                super::threads::ramp_word(front, kernel, word)?
             }
             "DILF" | "ALF" | "POLF" | "POLFMASK" | "POLFMLIN"
                 if !front.is_variable(address)

@@ -64,6 +64,8 @@ pub(super) enum Motion {
     Tangential,
     /// G33: a thread of constant lead, the axes tied to the spindle.
     Thread,
+    /// G34 (increasing) and G35: a thread whose lead changes linearly (threads.rs).
+    VariableThread { increasing: bool },
     /// G331: tapping with the spindle in position control; G332: its retraction.
     Tap { retract: bool },
     /// INVCW, INVCCW: along an involute of a base circle (involute.rs).
@@ -235,6 +237,8 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "INVCCW" => Motion(self::Motion::Involute { ccw: true }),
         "CT" => Motion(self::Motion::Tangential),
         "G33" => Motion(self::Motion::Thread),
+        "G34" => Motion(self::Motion::VariableThread { increasing: true }),
+        "G35" => Motion(self::Motion::VariableThread { increasing: false }),
         "G331" => Motion(self::Motion::Tap { retract: false }),
         "G332" => Motion(self::Motion::Tap { retract: true }),
         "G63" => OneBlock(self::OneBlock::FloatingTap),
@@ -374,7 +378,6 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "CUT3DC" | "CUT3DF" | "CUT3DFS" | "CUT3DFF" | "CUT3DCC" | "CUT3DCCD" => {
             OutOfProduct("5-axis 3D tool radius compensation")
         }
-        "G34" | "G35" => OutOfProduct("turning (threads of variable lead)"),
         "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" => OutOfProduct("spline interpolation"),
         "OEMIPO1" | "OEMIPO2" => OutOfProduct("OEM interpolation"),
         "G931" | "G942" | "G952" | "G962" | "G972" | "G973" | "FPO" => {
@@ -400,7 +403,7 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
         "COUPON" | "COUPOF" | "COUPDEF" | "COUPDEL" | "TRAILON" | "TRAILOF" | "LEADON"
         | "LEADOF" | "EGON" | "EGOFS" => "axis couplings",
         "WAITM" | "WAITMC" | "WAITE" | "SETM" | "CLEARM" | "START" | "INIT" => "several channels",
-        "GWPSON" | "GWPSOF" | "PUNCHACC" | "SPOF" | "SON" | "PON" => "grinding and punching",
+        "PUNCHACC" | "SPOF" | "SON" | "PON" => "punching",
         "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIEULER" | "ORIRPY" => {
             "orientation transformations"
         }
@@ -409,9 +412,7 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
         "FPR" | "FPRAON" | "FPRAOF" | "FDA" | "FAD" => {
             "feeds derived from another axis or spindle, the handwheel, synchronized actions or soft approach"
         }
-        "LIFTFAST" | "DITS" | "DITE" => {
-            "fast retraction and thread run-in or run-out of turning"
-        }
+        "LIFTFAST" => "fast retraction outside a thread",
         "VELOLIMA" | "ACCLIMA" | "JERKLIMA" | "EGONSYN" => {
             "the axes' dynamic limits and electronic gears"
         }
@@ -526,6 +527,8 @@ pub(super) fn member(modal: &super::Modal, group: u32) -> i32 {
             Motion::ThroughPoint => 5,
             Motion::Tangential => 15,
             Motion::Thread => 10,
+            Motion::VariableThread { increasing: true } => 16,
+            Motion::VariableThread { increasing: false } => 17,
             Motion::Tap { retract: false } => 11,
             Motion::Tap { retract: true } => 12,
             Motion::Involute { ccw: false } => 18,

@@ -124,6 +124,8 @@ pub(super) struct Machine<'a> {
     pub(super) machine_data: &'a mut super::machine_data::MachineData,
     /// The spindles by number ($P_S[n]).
     pub(super) spindles: &'a super::spindles::Spindles,
+    /// The grinding tools' data and GWPS ($TC_TPG1, $P_GWPS ...).
+    pub(super) grinding: &'a mut super::grinding::Grinding,
 }
 
 /// The front end's variables, and the machine the evaluator reads, borrowed apart.
@@ -145,6 +147,7 @@ pub(super) fn split<'a>(
             work_area: &mut front.work_area,
             machine_data: &mut front.machine_data,
             spindles: &front.spindles,
+            grinding: &mut front.grinding,
         },
     )
 }
@@ -225,6 +228,8 @@ impl Environment for Machine<'_> {
                 }
                 _ => real(self.kernel.state().spindle.speed()),
             },
+            super::lift_fast::FLAG => Ok(super::lift_fast::read_flag()),
+            _ if super::grinding::Grinding::holds(name) => self.grinding.read(name, indices, span),
             "$P_GG" => {
                 let group = indices.first().and_then(Value::as_f64).unwrap_or(0.0) as u32;
                 Ok(Value::Int(super::gcodes::member(self.modal, group)))
@@ -316,6 +321,10 @@ impl Environment for Machine<'_> {
             })
         };
         match name {
+            super::lift_fast::FLAG => super::lift_fast::write_flag(value.as_f64(), span),
+            _ if super::grinding::Grinding::holds(name) => {
+                self.grinding.write(name, indices, &value, span)
+            }
             // The tool table's edge data (PGsl 5; $TC_DP1 type, 3-5 lengths, 6 radius).
             "$TC_DP1" | "$TC_DP3" | "$TC_DP4" | "$TC_DP5" | "$TC_DP6" | "$TC_DPNT" => {
                 let whole = |v: Option<&Value>| v.and_then(Value::as_f64).map(|x| x as u32);

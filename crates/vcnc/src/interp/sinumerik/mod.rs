@@ -25,6 +25,7 @@ mod feed_source;
 mod flow;
 mod frame;
 mod gcodes;
+mod grinding;
 mod instructions;
 mod involute;
 mod iso_mode;
@@ -40,6 +41,7 @@ mod predefined;
 mod program;
 mod spindle;
 mod spindles;
+mod threads;
 mod tool_frame;
 mod toolholder;
 mod tools;
@@ -158,6 +160,10 @@ pub struct Sinumerik {
     feed_sources: feed_source::FeedSources,
     /// The toolholders, their spindles and SETMTH (`toolholder.rs`).
     toolholders: toolholder::Toolholders,
+    /// DITS and DITE (SD42010) and the last thread's lead (`threads.rs`).
+    threads: threads::Threads,
+    /// The grinding tools' data and GWPS by spindle (`grinding.rs`).
+    grinding: grinding::Grinding,
 }
 
 /// One program level of the call stack.
@@ -285,6 +291,8 @@ impl Sinumerik {
             dynamics: dynamics::Dynamics::default(),
             feed_sources: feed_source::FeedSources::default(),
             toolholders: toolholder::Toolholders::default(),
+            threads: threads::Threads::default(),
+            grinding: grinding::Grinding::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),

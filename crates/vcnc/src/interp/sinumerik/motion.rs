@@ -311,7 +311,11 @@ pub(super) fn prepare(
                 }
             }
         }
-        Motion::ThroughPoint | Motion::Thread | Motion::Tap { .. } | Motion::Involute { .. } => {
+        Motion::ThroughPoint
+        | Motion::Thread
+        | Motion::VariableThread { .. }
+        | Motion::Tap { .. }
+        | Motion::Involute { .. } => {
             // These paths are moved straight to the kernel, past the contour's corners.
             if let Some(span) = corner
                 .map(|c| c.span)
@@ -695,7 +699,8 @@ fn thread(
     let path = travel.iter().map(|t| t * t).sum::<f64>().sqrt();
     let lead_word =
         words.centre[dominant].or_else(|| words.centre.iter().flatten().next().copied());
-    let Some(lead) = lead_word else {
+    let written = lead_word.map(|lead| lead.value * unit(front));
+    let Some(value) = front.threads.lead(written) else {
         return Err(Alarm::error(
             AlarmCode::NoFeedRate,
             origin.span,
@@ -705,7 +710,6 @@ fn thread(
             "give the lead (mm per revolution) with the axis that moves most: G33 Z-50 K1.5",
         ));
     };
-    let value = lead.value * unit(front);
     if value == 0.0 {
         return Err(Alarm::error(
             AlarmCode::ValueOutOfRange,
@@ -721,10 +725,19 @@ fn thread(
         }),
         _ => None,
     };
+    // G34/G35: the lead that gives the block its time (threads.rs); F is their lead change.
+    let change = words.feed.map(|(f, span)| (f * unit(front), span));
+    let lead = super::threads::mean_lead(
+        front.modal.motion,
+        value,
+        change,
+        travel[dominant],
+        origin.span,
+    )?;
     let per_revolution = if travel[dominant] > 0.0 {
-        value.abs() * path / travel[dominant]
+        lead * path / travel[dominant]
     } else {
-        value.abs()
+        lead
     };
     let tag = tag(target, origin, false, 0);
     advance(front, &target);

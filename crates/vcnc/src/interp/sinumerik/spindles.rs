@@ -95,7 +95,8 @@ impl Spindles {
             .unwrap_or(0.0)
     }
 
-    /// Spindle `n` (2 and up) turns at `rpm`: SVC of a toolholder's spindle.
+    /// Spindle `n` turns at `rpm`, set by other than its S word: SVC of a toolholder's spindle,
+    /// GWPS (grinding.rs).
     pub(super) fn set_speed(&mut self, n: u32, rpm: f64) {
         self.other(n).speed = Some(rpm);
     }
@@ -150,6 +151,12 @@ impl Spindles {
             new.speed.unwrap_or(0.0),
             new.state.unwrap_or(SpindleState::Stopped),
         )
+    }
+
+    /// Spindle `n`'s speed (n 2 or more), for the tests of what sets it.
+    #[cfg(test)]
+    pub(super) fn speed(&self, n: u32) -> Option<f64> {
+        self.others.get(n as usize - 1)?.speed
     }
 }
 

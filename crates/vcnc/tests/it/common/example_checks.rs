@@ -68,6 +68,8 @@ pub struct Expected {
     pub feeds: Option<Vec<f64>>,
     /// Total dwell, seconds.
     pub dwell_seconds: Option<f64>,
+    /// The master spindle's speed at each of its events (S, M3, M4, M5), rpm, in order.
+    pub speeds: Option<Vec<f64>>,
     /// Tolerance of positions, mm (0.001 when not given).
     pub tolerance: Option<f64>,
 }
@@ -177,13 +179,22 @@ impl Expected {
                     _ => None,
                 })
                 .collect();
-            let same = actual.len() == expected.len()
-                && actual
-                    .iter()
-                    .zip(expected)
-                    .all(|(a, e)| a.is_some_and(|a| close(a, *e, 1e-6 * e.abs().max(1.0))));
-            if !same {
+            if !same_values(&actual, expected) {
                 failures.push(format!("feeds {actual:?}, expected {expected:?} mm/min"));
+            }
+        }
+        if let Some(expected) = &self.speeds {
+            let actual: Vec<Option<f64>> = segments
+                .iter()
+                .filter_map(|s| match s.kind {
+                    SegmentKind::Spindle { speed, .. } => Some(Some(speed)),
+                    _ => None,
+                })
+                .collect();
+            if !same_values(&actual, expected) {
+                failures.push(format!(
+                    "spindle speeds {actual:?}, expected {expected:?} rpm"
+                ));
             }
         }
         if let Some(expected) = self.dwell_seconds {
@@ -200,4 +211,13 @@ impl Expected {
         }
         failures
     }
+}
+
+/// The same number of values, each within a millionth of the expected one (of 1 near 0).
+fn same_values(actual: &[Option<f64>], expected: &[f64]) -> bool {
+    actual.len() == expected.len()
+        && actual
+            .iter()
+            .zip(expected)
+            .all(|(a, e)| a.is_some_and(|a| close(a, *e, 1e-6 * e.abs().max(1.0))))
 }
