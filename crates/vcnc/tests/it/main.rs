@@ -53,6 +53,7 @@ mod sinumerik_examples;
 mod sinumerik_language;
 mod sinumerik_robust;
 mod sinumerik_syntax;
+mod sinumerik_turning;
 mod sinumerik_work_area;
 mod skip;
 mod smoothing;

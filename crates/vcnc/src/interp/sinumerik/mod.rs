@@ -18,11 +18,14 @@ mod block;
 mod compensation;
 mod contour;
 mod control;
+mod cutting_rate;
 mod cycles;
+mod diameter;
 mod eval;
 mod flow;
 mod frame;
 mod gcodes;
+mod geo_axes;
 mod instructions;
 mod involute;
 mod iso_mode;
@@ -143,6 +146,12 @@ pub struct Sinumerik {
     work_area: work_area::WorkArea,
     /// The dynamic response's machine data the program wrote ($MA_MAX_AX_ACCEL ...).
     machine_data: machine_data::MachineData,
+    /// DIAMON, DIAM90, DIAMONA[ax] ...: the axes programmed in diameter (`diameter.rs`).
+    diameter: diameter::Diameter,
+    /// GEOAX: the channel axes behind the geometry axes (`geo_axes.rs`).
+    geo_axes: geo_axes::GeometryAxes,
+    /// SCC: the constant cutting rate's reference axis (`cutting_rate.rs`).
+    speed_reference: cutting_rate::ReferenceAxis,
 }
 
 /// One program level of the call stack.
@@ -262,6 +271,9 @@ impl Sinumerik {
             cycles: cycles::Calls::default(),
             work_area: work_area::WorkArea::default(),
             machine_data: machine_data::MachineData::default(),
+            diameter: diameter::Diameter::default(),
+            geo_axes: geo_axes::GeometryAxes::default(),
+            speed_reference: cutting_rate::ReferenceAxis::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
