@@ -162,6 +162,45 @@ fn an_axis_of_its_own_follows_the_channel_after_diamchana_and_diamchan() {
 }
 
 #[test]
+fn a_lathe_whose_machine_data_power_on_in_diamon_reads_diameters() {
+    // PGsl 8.3.6: the power-on member of group 29 is the machine manufacturer's (lathes are
+    // usually DIAMON); MD20150 in the machine file's power_on.
+    let mut lathe = machine();
+    let settings = lathe
+        .profile
+        .sinumerik
+        .as_mut()
+        .expect("SINUMERIK settings");
+    settings.power_on.push("DIAMON".into());
+    let segments = run("G0 X40", &lathe);
+    assert_points(&ends(&segments), &[[20.0, 0.0, 0.0]]);
+}
+
+#[test]
+fn the_work_position_of_a_diameter_axis_reads_as_a_diameter() {
+    // L4547-4549: $P_EP[X] and $AA_IW[X] read a diameter under DIAMON and DIAM90; radius 20
+    // reads 40, which Z (a radius axis) then goes to. Under DIAMOF it reads 20 again.
+    let text = "DIAMON\nG0 X40\nR1=$P_EP[X]\nR2=$AA_IW[X]\nG0 Z=R1\nDIAM90\nR3=$P_EP[X]\n\
+                DIAMOF\nR4=$P_EP[X]\nG0 Y=R2+R3+R4";
+    let segments = run(text, &machine());
+    assert_points(
+        &ends(&segments),
+        &[[20.0, 0.0, 0.0], [20.0, 0.0, 40.0], [20.0, 100.0, 40.0]],
+    );
+}
+
+#[test]
+fn p_gg_29_reads_the_member_of_group_29_in_force() {
+    // sinumerik-tables.md group 29: DIAMOF 1, DIAMON 2, DIAM90 3, DIAMCYCOF 4. Each read goes
+    // to X as ten times its value; DIAMCYCOF keeps DIAM90's halving of absolute values.
+    let text = "R1=$P_GG[29]\nDIAMON\nR2=$P_GG[29]\nDIAM90\nR3=$P_GG[29]\nDIAMCYCOF\n\
+                R4=$P_GG[29]\nG0 X=R1*1000+R2*100+R3*10+R4";
+    let segments = run(text, &machine());
+    // 1234 as written under DIAM90 (absolute: a diameter) is radius 617.
+    assert_points(&ends(&segments), &[[617.0, 0.0, 0.0]]);
+}
+
+#[test]
 fn positioning_axes_take_the_diameter_programming_too() {
     // L4748-4752: POS and POSA are among the commands diameter programming acts on.
     let segments = run("DIAMON\nPOS[X]=60 FA[X]=1000", &machine());

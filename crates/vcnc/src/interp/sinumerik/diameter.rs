@@ -18,7 +18,9 @@
 //! which admits an axis to axis-specific diameter programming, is not modelled: any linear axis
 //! is admitted, a rotary one alarms (L4606-4610: "a rotary axis cannot be a transverse axis").
 //! DIAMCYCOF and DIACYCOFA[ax] are accepted and change nothing: the cycles vcnc runs compute in
-//! radius anyway, and the blocks keep the mode in force (L4543-4545).
+//! radius anyway, and the blocks keep the mode in force (L4543-4545). `$P_EP` and `$AA_IW` read
+//! a diameter axis's work position as a diameter (L4547-4549); `$AA_IM`, the machine's, stays
+//! a radius.
 //!
 //! Never: halve a value twice (a DAC/RAC word is out of the mode's reach), or halve a rotary
 //! axis.
@@ -96,6 +98,9 @@ enum AxisMode {
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Diameter {
     channel: Dimension,
+    /// The member of group 29 last programmed, as `$P_GG[29]` reads it: DIAMOF 1, DIAMON 2,
+    /// DIAM90 3, DIAMCYCOF 4 (sinumerik-tables.md, group 29).
+    member: i32,
     axes: [AxisMode; AXES],
     /// Axes an axis-specific command named: those DIAMCHAN gives the channel's mode.
     admitted: [bool; AXES],
@@ -110,6 +115,7 @@ impl Default for Diameter {
         axes[TRANSVERSE] = AxisMode::Channel;
         Diameter {
             channel: Dimension::Radius,
+            member: 1,
             axes,
             admitted: [false; AXES],
         }
@@ -125,10 +131,31 @@ impl Diameter {
         }
     }
 
+    /// The factor of the work position's readout (`$P_EP`, `$AA_IW`): 2 while the axis is
+    /// programmed in diameter, DIAM90 included (L4547-4549, L4740-4744).
+    pub(super) fn readout(&self, axis: usize) -> f64 {
+        match self.dimension(axis) {
+            Dimension::Radius => 1.0,
+            Dimension::Diameter | Dimension::DiameterAbsolute => 2.0,
+        }
+    }
+
+    /// The member of group 29 in force (`$P_GG[29]`).
+    pub(super) fn group_member(&self) -> i32 {
+        self.member
+    }
+
     /// A command of the channel (no axis).
     fn apply(&mut self, command: Command, span: Span) -> Result<(), Alarm> {
         match command {
-            Command::Channel(dimension) => self.channel = dimension,
+            Command::Channel(dimension) => {
+                self.channel = dimension;
+                self.member = match dimension {
+                    Dimension::Radius => 1,
+                    Dimension::Diameter => 2,
+                    Dimension::DiameterAbsolute => 3,
+                };
+            }
             Command::AllToChannel => {
                 for (mode, admitted) in self.axes.iter_mut().zip(self.admitted) {
                     if admitted {
@@ -136,7 +163,7 @@ impl Diameter {
                     }
                 }
             }
-            Command::CyclesInRadius => {}
+            Command::CyclesInRadius => self.member = 4,
             Command::Axis(_) | Command::AxisToChannel => {
                 return Err(Alarm::error(
                     AlarmCode::MissingValue,
