@@ -150,6 +150,14 @@ fn dac_dic_rac_ric_give_one_value_its_dimension() {
 }
 
 #[test]
+fn dac_halves_its_value_on_a_machine_that_never_saw_diameter_programming() {
+    // L4670-4681: DAC is a diameter for its word whatever the modes: X=DAC(10) is radius 5;
+    // RIC(3) a radius increment, 8.
+    let segments = run("F100\nG1 X=DAC(10)\nX=RIC(3)", &machine());
+    assert_points(&ends(&segments), &[[5.0, 0.0, 0.0], [8.0, 0.0, 0.0]]);
+}
+
+#[test]
 fn an_axis_of_its_own_follows_the_channel_after_diamchana_and_diamchan() {
     // DIAMONA[Y]: Y100 -> 50 whatever the channel; DIAMCHANA[Y] under DIAMOF: Y100 as written;
     // DIAM90A[Y] then DIAMCHAN under DIAMON: Y100 -> 50 again, and G91 Y10 -> +5.

@@ -226,9 +226,7 @@ pub(super) fn run(
     }
     let speed_limit = speed_limit.map(|(max, _)| max);
     super::geo_axes::check_block(front, &words, span)?;
-    if !super::diameter::all_radius(front) {
-        super::diameter::convert(front, &mut words);
-    }
+    super::diameter::convert(front, &mut words);
     let dwell = one_block.iter().any(|(f, _)| *f == OneBlock::Dwell);
     let suppress = one_block.iter().find_map(|&(f, _)| match f {
         OneBlock::SuppressFrames

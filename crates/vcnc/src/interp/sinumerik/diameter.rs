@@ -249,6 +249,20 @@ pub(super) fn value_form(name: &str) -> Option<(bool, Option<bool>)> {
 /// programming in force (or its own DAC/DIC) makes a diameter halved. Runs after the block's G
 /// functions (G90/G91, DIAMON in the block act on its values).
 pub(super) fn convert(front: &Sinumerik, words: &mut Words<'_>) {
+    let common =
+        front.diameter.channel == Dimension::Radius && !front.diameter.admitted.contains(&true);
+    let written = |v: &Option<AxisValue>| v.is_some_and(|v| v.diameter == Some(true));
+    if common
+        && !words.axes.iter().any(written)
+        && !words.centre.iter().chain(&words.via).any(written)
+        && !words
+            .positioning
+            .iter()
+            .any(|(_, v)| v.diameter == Some(true))
+    {
+        // Nothing is a diameter: the common block of a mill.
+        return;
+    }
     let absolute = front.modal.absolute;
     let diameter = &front.diameter;
     let rotary = front.axes.rotary();
@@ -283,11 +297,6 @@ pub(super) fn convert(front: &Sinumerik, words: &mut Words<'_>) {
     for (axis, value) in words.positioning.iter_mut() {
         halve(value, *axis, false);
     }
-}
-
-/// True when no axis can be a diameter in this block: the common case, skipped cheaply.
-pub(super) fn all_radius(front: &Sinumerik) -> bool {
-    front.diameter.channel == Dimension::Radius && !front.diameter.admitted.contains(&true)
 }
 
 #[cfg(test)]
