@@ -209,6 +209,28 @@ fn p_gg_29_reads_the_member_of_group_29_in_force() {
 }
 
 #[test]
+fn a_proc_with_save_gives_back_the_diameter_programming_it_was_called_with() {
+    // PGAsl SAVE: the G functions in force at the call come back at its return; group 29 is
+    // one. The PROC's DIAMON reads X40 as radius 20; back in DIAMOF, X40 is 40.
+    use vcnc::interp::sinumerik::Sinumerik;
+    use vcnc::interp::{Kernel, MemoryLibrary, Run};
+    use vcnc::FileId;
+    let mut library = MemoryLibrary::new();
+    library.insert_named(
+        "LATHE1",
+        FileId(1),
+        "PROC LATHE1 SAVE\nDIAMON\nG0 X40\nM17\n",
+    );
+    let machine = machine();
+    let text = "LATHE1\nG0 X40\nM30\n";
+    let front_end =
+        Sinumerik::new(text.as_bytes(), FileId(0), &machine).with_library(Box::new(library));
+    let run = collect(Run::new(front_end, Kernel::new(&machine)));
+    assert!(run.error().is_none(), "{:?}", run.alarms);
+    assert_points(&ends(&run.segments), &[[20.0, 0.0, 0.0], [40.0, 0.0, 0.0]]);
+}
+
+#[test]
 fn positioning_axes_take_the_diameter_programming_too() {
     // L4748-4752: POS and POSA are among the commands diameter programming acts on.
     let segments = run("DIAMON\nPOS[X]=60 FA[X]=1000", &machine());

@@ -175,6 +175,8 @@ struct Level {
 struct Saved {
     modal: Modal,
     frame: frame::ProgrammableFrame,
+    /// Group 29 and the axes' own diameter programming.
+    diameter: diameter::Diameter,
 }
 
 /// A modal subprogram call (MCALL): called after every block with motion of the level that
@@ -431,6 +433,7 @@ impl Sinumerik {
                     let saved = Saved {
                         modal: self.modal,
                         frame: self.frame,
+                        diameter: self.diameter,
                     };
                     self.level().saved = Some(saved);
                 }
@@ -540,6 +543,7 @@ impl Sinumerik {
         kernel.set_plane(self.modal.plane);
         kernel.select_work_offset(block::settable_id(settable, self.is_828d()));
         self.frame = saved.frame;
+        self.diameter = saved.diameter;
         kernel.set_programmable(self.frame.to_affine());
         tools::apply_length(self, kernel);
     }
