@@ -248,7 +248,7 @@ fn sinumerik_programs_run_and_name_the_commands_still_planned() {
     // What is outside the product counts as not supported too, not as the program's fault.
     let program = temp_program(
         "TURN.MPF",
-        "DIAMON
+        "TRACYL(20)
 G0 X10
 M30
 ",

@@ -56,6 +56,7 @@ mod sinumerik_plain_blocks;
 mod sinumerik_robust;
 mod sinumerik_syntax;
 mod sinumerik_threads;
+mod sinumerik_turning;
 mod sinumerik_work_area;
 mod skip;
 mod smoothing;

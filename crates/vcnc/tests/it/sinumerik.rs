@@ -447,7 +447,7 @@ fn what_the_next_issue_adds_alarms_planned_with_its_number() {
 fn what_is_outside_the_product_alarms_with_what_it_belongs_to() {
     for (text, what) in [
         ("TRACYL(20)\nM30\n", "kinematic transformations"),
-        ("DIAMON\nM30\n", "turning"),
+        ("G962 S100\nM30\n", "turning"),
         ("COUPON(C2,C1,1)\nM30\n", "couplings"),
     ] {
         let alarm = error(text, &machine());

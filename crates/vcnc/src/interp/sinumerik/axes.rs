@@ -169,24 +169,23 @@ fn positive(value: f64, word: &Word) -> Result<f64, Alarm> {
     Ok(value)
 }
 
-/// A positioning value, with `AC(..)`, `IC(..)` (and DC, ACP, ACN: absolute, as on the path).
+/// A positioning value, with `AC(..)`, `IC(..)` (and DC, ACP, ACN: absolute, as on the path;
+/// DAC, DIC, RAC, RIC: `diameter.rs`).
 fn axis_value(front: &mut Sinumerik, kernel: &Kernel, expr: &Expr) -> Result<AxisValue, Alarm> {
     if let ExprKind::Call(name, args) = &expr.kind {
-        let absolute = match &**name {
-            "AC" | "DC" | "ACP" | "ACN" => Some(true),
-            "IC" => Some(false),
-            _ => None,
-        };
-        if let (Some(absolute), [Some(arg)]) = (absolute, args.as_slice()) {
+        let form = super::diameter::value_form(name);
+        if let (Some((absolute, diameter)), [Some(arg)]) = (form, args.as_slice()) {
             return Ok(AxisValue {
                 value: front.value(kernel, arg)?,
                 absolute: Some(absolute),
+                diameter,
             });
         }
     }
     Ok(AxisValue {
         value: front.value(kernel, expr)?,
         absolute: None,
+        diameter: None,
     })
 }
 

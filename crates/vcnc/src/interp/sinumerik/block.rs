@@ -37,6 +37,9 @@ pub(super) struct AxisValue {
     pub(super) value: f64,
     /// Some(true) for AC, Some(false) for IC.
     pub(super) absolute: Option<bool>,
+    /// Some(true) for DAC, DIC (a diameter), Some(false) for RAC, RIC, whatever the diameter
+    /// programming in force (`diameter.rs`).
+    pub(super) diameter: Option<bool>,
 }
 
 /// The words of one block, sorted by what they do.
@@ -237,6 +240,8 @@ pub(super) fn run(
         }
     }
     let speed_limit = speed_limit.map(|(max, _)| max);
+    super::geo_axes::check_block(front, &words, span)?;
+    super::diameter::convert(front, &mut words);
     let dwell = one_block.iter().any(|(f, _)| *f == OneBlock::Dwell);
     let suppress = one_block.iter().find_map(|&(f, _)| match f {
         OneBlock::SuppressFrames
@@ -580,6 +585,10 @@ fn read<'a>(
                 if !front.is_variable(address)
                     && super::lift_fast::read_word(front, kernel, word, words)? => {}
             "RPL" => words.rpl = Some((number(front, kernel, word)?, word.span)),
+            // Diameter programming of an axis, the cutting rate's reference axis, GEOAX.
+            _ if super::diameter::axis_word(front, word)?
+                || super::cutting_rate::read_word(front, word)?
+                || super::geo_axes::read_word(front, kernel, word)? => {}
             "F" => words.feed = Some((number(front, kernel, word)?, word.span)),
             "S" => words.speed = Some((number(front, kernel, word)?, word.span)),
             "T" => {
@@ -667,6 +676,7 @@ fn letter_constant<'a>(
     let plain = AxisValue {
         value,
         absolute: None,
+        diameter: None,
     };
     if let Some(axis) = front.axes.by_letter(letter) {
         words.axes[axis] = Some(plain);
@@ -759,6 +769,8 @@ pub(super) fn apply_modal(
             front.modal.inch_feeds = feeds;
         }
         Function::FeedType(feed_type) => {
+            // G93/G94/G95 end G96/G961, keeping the speed (group 15; PGsl 6.3, L2254-2255).
+            front.spindle.constant_rate = None;
             // A change of feed type leaves no feed in force (docs/SINUMERIK.md 4.1).
             if feed_type != front.modal.feed_type {
                 front.modal.feed_type = feed_type;
@@ -777,9 +789,10 @@ pub(super) fn apply_modal(
             front.modal.path_control.rounding = rounding;
         }
         Function::CuttingRate(constant, feed_type) => {
-            front.spindle.constant_rate = constant.then_some(feed_mode(feed_type));
             apply_modal(front, kernel, Function::FeedType(feed_type), _span)?;
+            front.spindle.constant_rate = constant.then_some(feed_mode(feed_type));
         }
+        Function::Diameter(command) => super::diameter::apply(front, command, _span)?,
         Function::Frame(_)
         | Function::Pole(_)
         | Function::SpeedLimit(_)
@@ -863,14 +876,7 @@ fn axis_value(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Axi
         ..
     }) = &word.value
     {
-        // DC, ACP and ACN position a rotary axis absolutely by the shortest way or in a
-        // direction; vcnc's rotary axes do not roll over, so they are absolute (a choice).
-        let absolute = match &**name {
-            "AC" | "DC" | "ACP" | "ACN" => Some(true),
-            "IC" => Some(false),
-            _ => None,
-        };
-        if let Some(absolute) = absolute {
+        if let Some((absolute, diameter)) = super::diameter::value_form(name) {
             let [Some(arg)] = args.as_slice() else {
                 return Err(Alarm::error(
                     AlarmCode::MacroSyntax,
@@ -881,12 +887,14 @@ fn axis_value(front: &mut Sinumerik, kernel: &Kernel, word: &Word) -> Result<Axi
             return Ok(AxisValue {
                 value: front.value(kernel, arg)?,
                 absolute: Some(absolute),
+                diameter,
             });
         }
     }
     Ok(AxisValue {
         value: number(front, kernel, word)?,
         absolute: None,
+        diameter: None,
     })
 }
 

@@ -43,6 +43,8 @@ pub(super) enum Function {
     Planned,
     /// G291: the blocks after it, to the next G290, are ISO dialect.
     IsoMode,
+    /// DIAMON, DIAMOF, DIAM90 ... (group 29 and the axis-specific forms): `diameter.rs`.
+    Diameter(super::diameter::Command),
     /// Outside the product: the name says what it belongs to.
     OutOfProduct(&'static str),
 }
@@ -227,6 +229,9 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
     use crate::interp::comp::smooth::{Direction, Shape};
     use crate::interp::comp::transition::{Approach, OuterCorner};
     use Function::*;
+    if let Some(command) = super::diameter::command(name) {
+        return Some(Diameter(command));
+    }
     let f = match name {
         "G0" => Motion(self::Motion::Rapid),
         "G1" => Motion(self::Motion::Line),
@@ -362,7 +367,7 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         "G461" => Radius(RadiusFunction::Extension(Extension::Circle)),
         "G462" => Radius(RadiusFunction::Extension(Extension::Line)),
         "G601" | "G602" | "G603" | "CFC" | "CFTCP" | "CFIN" | "BRISK" | "SOFT" | "DRIVE"
-        | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "DIAMOF" | "COMPOF" | "COMPON"
+        | "CUT2D" | "FFWOF" | "FFWON" | "WALIMON" | "WALIMOF" | "COMPOF" | "COMPON"
         | "COMPCURV" | "COMPCAD" | "FNORM" | "RTLION" | "RTLIOF" | "DYNNORM" | "DYNPOS"
         | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "G290" | "TRAFOOF" | "WALCS0" | "WALCS1"
         | "WALCS2" | "WALCS3" | "WALCS4" | "WALCS5" | "WALCS6" | "WALCS7" | "WALCS8" | "WALCS9"
@@ -372,9 +377,6 @@ pub(super) fn function(name: &str, m828d: bool) -> Option<Function> {
         | "CUT2DF" => State,
         "FLIN" | "FCUB" => Planned,
         "G291" => IsoMode,
-        "DIAMON" | "DIAM90" | "DIAMONA" | "DIAM90A" | "DIAMCHANA" | "DIAMCHAN" | "DIAMCYCOF" => {
-            OutOfProduct("turning (diameter programming)")
-        }
         "CUT3DC" | "CUT3DF" | "CUT3DFS" | "CUT3DFF" | "CUT3DCC" | "CUT3DCCD" => {
             OutOfProduct("5-axis 3D tool radius compensation")
         }
@@ -407,8 +409,6 @@ pub(super) fn out_of_product(name: &str) -> Option<&'static str> {
         "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIEULER" | "ORIRPY" => {
             "orientation transformations"
         }
-        "SCC" => "turning (the transverse axis of a constant cutting rate)",
-        "GEOAX" => "changing the geometry axes",
         "FPR" | "FPRAON" | "FPRAOF" | "FDA" | "FAD" => {
             "feeds derived from another axis or spindle, the handwheel, synchronized actions or soft approach"
         }
@@ -745,6 +745,8 @@ const LISTED: &[(&str, &str)] = &[
     ("DIAMCHANA", "Axis takes the channel's diameter programming status"),
     ("DIAMCHAN", "All axes take the channel's diameter programming status"),
     ("DIAMCYCOF", "Diameter programming OFF during cycles"),
+    ("DIAMOFA", "Axis-specific diameter programming OFF"),
+    ("DIACYCOFA", "Axis-specific diameter programming OFF during cycles"),
     ("COMPOF", "NC block compression OFF"),
     ("COMPON", "Compressor function COMPON ON"),
     ("COMPCURV", "Compressor function COMPCURV ON"),
@@ -843,7 +845,8 @@ mod listing_tests {
         assert_eq!(row("G41").on_840d, Support::Runs);
         assert_eq!(row("G641").on_840d, Support::Runs);
         assert_eq!(row("FLIN").on_840d, Support::Planned);
-        assert!(matches!(row("DIAMON").on_840d, Support::OutOfProduct(_)));
+        assert_eq!(row("DIAMON").on_840d, Support::Runs);
+        assert!(matches!(row("G34").on_840d, Support::OutOfProduct(_)));
         let range = row("G505 … G599");
         assert_eq!(
             (range.on_840d, range.on_828d),

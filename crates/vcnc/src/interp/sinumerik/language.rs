@@ -111,6 +111,8 @@ impl ChannelAxes {
 pub(super) struct Machine<'a> {
     pub(super) kernel: &'a Kernel,
     pub(super) programmed: &'a [f64; AXES],
+    /// Diameter programming: the work positions of a diameter axis read as diameters.
+    pub(super) diameter: &'a super::diameter::Diameter,
     pub(super) axes: &'a ChannelAxes,
     pub(super) frame: &'a ProgrammableFrame,
     pub(super) tool: &'a ToolState,
@@ -138,6 +140,7 @@ pub(super) fn split<'a>(
         Machine {
             kernel,
             programmed: &front.programmed,
+            diameter: &front.diameter,
             axes: &front.axes,
             frame: &front.frame,
             tool: &front.tool,
@@ -212,7 +215,8 @@ impl Environment for Machine<'_> {
                 let axis = self.axis(indices.first(), span)?;
                 let value = match name {
                     "$AA_IM" => self.kernel.position().0[axis],
-                    "$AA_IW" => self.kernel.program_position()[axis],
+                    "$AA_IW" => self.kernel.program_position()[axis] * self.diameter.readout(axis),
+                    "$P_EP" => self.programmed[axis] * self.diameter.readout(axis),
                     _ => self.programmed[axis],
                 };
                 real(value)
@@ -232,6 +236,9 @@ impl Environment for Machine<'_> {
             _ if super::grinding::Grinding::holds(name) => self.grinding.read(name, indices, span),
             "$P_GG" => {
                 let group = indices.first().and_then(Value::as_f64).unwrap_or(0.0) as u32;
+                if group == 29 {
+                    return Ok(Value::Int(self.diameter.group_member()));
+                }
                 Ok(Value::Int(super::gcodes::member(self.modal, group)))
             }
             "$TC_DP1" | "$TC_DP3" | "$TC_DP4" | "$TC_DP5" | "$TC_DP6" => {

@@ -18,13 +18,16 @@ mod block;
 mod compensation;
 mod contour;
 mod control;
+mod cutting_rate;
 mod cycles;
+mod diameter;
 mod dynamics;
 mod eval;
 mod feed_source;
 mod flow;
 mod frame;
 mod gcodes;
+mod geo_axes;
 mod grinding;
 mod instructions;
 mod involute;
@@ -164,6 +167,12 @@ pub struct Sinumerik {
     threads: threads::Threads,
     /// The grinding tools' data and GWPS by spindle (`grinding.rs`).
     grinding: grinding::Grinding,
+    /// DIAMON, DIAM90, DIAMONA[ax] ...: the axes programmed in diameter (`diameter.rs`).
+    diameter: diameter::Diameter,
+    /// GEOAX: the channel axes behind the geometry axes (`geo_axes.rs`).
+    geo_axes: geo_axes::GeometryAxes,
+    /// SCC: the constant cutting rate's reference axis (`cutting_rate.rs`).
+    speed_reference: cutting_rate::ReferenceAxis,
 }
 
 /// One program level of the call stack.
@@ -187,6 +196,8 @@ struct Level {
 struct Saved {
     modal: Modal,
     frame: frame::ProgrammableFrame,
+    /// Group 29 and the axes' own diameter programming.
+    diameter: diameter::Diameter,
 }
 
 /// A modal subprogram call (MCALL): called after every block with motion of the level that
@@ -293,6 +304,9 @@ impl Sinumerik {
             toolholders: toolholder::Toolholders::default(),
             threads: threads::Threads::default(),
             grinding: grinding::Grinding::default(),
+            diameter: diameter::Diameter::default(),
+            geo_axes: geo_axes::GeometryAxes::default(),
+            speed_reference: cutting_rate::ReferenceAxis::default(),
             library: None,
             vars: vars::Variables::new(settings.r_parameters as usize),
             tools: machine.tools.clone(),
@@ -458,6 +472,7 @@ impl Sinumerik {
                     let saved = Saved {
                         modal: self.modal,
                         frame: self.frame,
+                        diameter: self.diameter,
                     };
                     self.level().saved = Some(saved);
                 }
@@ -567,6 +582,7 @@ impl Sinumerik {
         kernel.set_plane(self.modal.plane);
         kernel.select_work_offset(block::settable_id(settable, self.is_828d()));
         self.frame = saved.frame;
+        self.diameter = saved.diameter;
         kernel.set_programmable(self.frame.to_affine());
         tools::apply_length(self, kernel);
     }

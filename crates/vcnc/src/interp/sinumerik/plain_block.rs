@@ -1,6 +1,7 @@
 //! The common CAM block run from its decoded words (`syntax/sinumerik/plain.rs`): G0, G1, G2 or
 //! G3 with axis words, I J K or `CR=`, and F, while nothing else is pending: no corner held or
-//! programmed, no frame written, no modal call. Most blocks of a long CAM program are such
+//! programmed, no frame written, no modal call, no diameter programming, the geometry axes of
+//! power-on. Most blocks of a long CAM program are such
 //! blocks; running them without making their words and sorting them by name is most of the
 //! SINUMERIK front end's speed (issue 20).
 //!
@@ -17,7 +18,7 @@ use super::block::{feed_mode, AxisValue};
 use super::gcodes::{self, Function, Motion};
 use super::language::AxisLookup;
 use super::motion::{self, ArcWords, Prepared};
-use super::{compensation, dynamics, feed_source, spindle, toolholder, Sinumerik, Step};
+use super::{compensation, diameter, dynamics, feed_source, spindle, toolholder, Sinumerik, Step};
 use crate::alarm::Alarm;
 use crate::interp::kernel::{Kernel, Origin};
 use crate::machine::AXES;
@@ -48,6 +49,8 @@ pub(super) fn run(
         || front.contour.is_holding()
         || front.rounding_modal
         || front.modal_call.is_some()
+        || !diameter::is_off(front)
+        || !front.geo_axes.as_at_power_on()
     {
         return None;
     }
@@ -80,6 +83,7 @@ fn decode(front: &Sinumerik, plain: &PlainWords, decoded: &mut Decoded) -> bool 
                 let value = AxisValue {
                     value: number.value,
                     absolute: None,
+                    diameter: None,
                 };
                 if let Some(axis) = front.axes.by_letter(letter) {
                     decoded.axes[axis] = Some(value);

@@ -120,6 +120,19 @@ pub(super) fn spindle(
             }
             Some(front.spindle.rate.unwrap_or(0.0) * 1000.0 / (std::f64::consts::TAU * radius))
         }
+        // G96/G961: the speed where the tool stands, so that the spindle starts at it and the
+        // block's own cut turns at it (cutting_rate.rs).
+        None if front.spindle.constant_rate.is_some()
+            && !front.spindle.from_svc
+            && (words.speed.is_some() || words.lims.is_some() || state.is_some()) =>
+        {
+            let radius = super::cutting_rate::reference_radius(front);
+            front
+                .spindle
+                .rate
+                .zip(radius)
+                .map(|(rate, radius)| super::cutting_rate::speed(rate, radius))
+        }
         None => None,
     };
     // Under toolholders SVC may turn another spindle than the master (toolholder.rs).
@@ -140,8 +153,9 @@ pub(super) fn spindle(
     Ok(())
 }
 
-/// Under G96/G961: the speed of the cutting rate at the transverse axis X of the block's end
-/// (the control follows it continuously; vcnc per block, a choice), after the block's S.
+/// Under G96/G961: the speed of the cutting rate at the reference axis (SCC, the transverse
+/// axis X by default) of the block's end (the control follows it continuously; vcnc per
+/// block, a choice), after the block's S.
 pub(super) fn constant_rate(front: &mut Sinumerik, kernel: &mut Kernel, origin: Origin) {
     if front.spindle.constant_rate.is_none() || front.spindle.from_svc {
         return;
@@ -149,14 +163,14 @@ pub(super) fn constant_rate(front: &mut Sinumerik, kernel: &mut Kernel, origin: 
     let Some(rate) = front.spindle.rate else {
         return;
     };
-    let radius = front.programmed[0].abs();
-    let max_rpm = kernel.state().setup.machine().spindle.max_rpm;
-    let rpm = if radius > 1e-9 {
-        rate * 1000.0 / (std::f64::consts::TAU * radius)
-    } else {
-        f64::INFINITY
+    // The reference axis's radius (SCC, GEOAX: cutting_rate.rs); none: the speed stays.
+    let Some(radius) = super::cutting_rate::reference_radius(front) else {
+        return;
     };
-    let rpm = front.spindle.clamp(rpm, max_rpm);
+    let max_rpm = kernel.state().setup.machine().spindle.max_rpm;
+    let rpm = front
+        .spindle
+        .clamp(super::cutting_rate::speed(rate, radius), max_rpm);
     if (rpm - front.spindle.rpm).abs() > 1e-9 {
         front.spindle.rpm = rpm;
         kernel.spindle(Some(rpm), None, origin);
