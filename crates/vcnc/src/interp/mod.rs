@@ -26,6 +26,7 @@ mod engraving;
 mod exec;
 mod frames;
 mod front_end;
+mod hypothetical;
 mod kernel;
 mod length;
 mod macros;
@@ -627,6 +628,9 @@ impl Core {
             }
         }
         if let Err(alarm) = cylindrical::prepare(&mut self.command, &self.out) {
+            return self.fail(alarm);
+        }
+        if let Err(alarm) = hypothetical::prepare(&self.command, &self.out) {
             return self.fail(alarm);
         }
         // Only a block with a comment kept can be a G47 P1: one test for the others.
