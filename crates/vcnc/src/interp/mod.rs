@@ -264,9 +264,11 @@ impl<B: BlockSource<Line = LineBlocks>> Interpreter<B> {
         self
     }
 
-    /// The persistent common variables (#500-#999) as a previous run left them.
+    /// The persistent common variables (#500-#999, Syntec's #401-#999) as a previous run left
+    /// them.
     pub fn with_persistent_variables(mut self, values: &PersistentVariables) -> Interpreter<B> {
-        self.core.macros.vars.load_persistent(values);
+        let ranges = macros::vars::Ranges::of(&self.core.exec.kernel.setup.profile().macros);
+        self.core.macros.vars.load_persistent(values, &ranges);
         self
     }
 

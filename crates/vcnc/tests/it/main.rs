@@ -63,4 +63,5 @@ mod stream;
 mod streaming;
 mod stroke_check;
 mod syntec_macro;
+mod syntec_numbers;
 mod thread;

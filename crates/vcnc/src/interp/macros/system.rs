@@ -51,7 +51,7 @@ fn unknown(number: u32, span: Span) -> Alarm {
         span,
         format!("#{number} is not a variable of this control"),
     )
-    .with_help("locals are #1-#33, commons #100-#499 and #500-#999; see the system variable list in docs/MACROS.md")
+    .with_help("locals are #1-#33, commons #100-#499 and #500-#999 (Syntec: locals #1-#400, persistent #401-#999); see the system variable list in docs/MACROS.md")
 }
 
 /// The axis index of `number - base` when it is 0..AXES.
