@@ -22,6 +22,7 @@ mod input;
 mod interrupt;
 mod iso_g07;
 mod iso_g62_g07;
+mod iso_rollover_readout;
 mod lcnc_traces;
 mod macro_alarms;
 mod macros;
