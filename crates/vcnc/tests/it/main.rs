@@ -20,6 +20,7 @@ mod frames;
 mod front_end;
 mod input;
 mod interrupt;
+mod iso_f2_retract;
 mod iso_g07;
 mod iso_g62_g07;
 mod iso_rollover_readout;
