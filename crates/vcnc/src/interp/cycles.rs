@@ -47,6 +47,9 @@ pub(crate) struct Cycle {
     q: Option<f64>,
     /// P, seconds: the dwell at the bottom.
     p: f64,
+    /// Syntec's `F2=` in the feed's unit, where the fast drilling mode uses it: G81 retracts at
+    /// this feed instead of at rapid.
+    retract_feed: Option<f64>,
 }
 
 impl Cycle {
@@ -106,6 +109,7 @@ pub(crate) fn apply_codes(exec: &mut Executor, cmd: &Command) -> Result<(), Alar
                     z: None,
                     q: None,
                     p: 0.0,
+                    retract_feed: None,
                 });
             }
         },
@@ -551,14 +555,17 @@ fn store(exec: &Executor, cycle: &mut Cycle, cmd: &Command) -> Result<(), Alarm>
         cycle.p = super::auxiliary::p_seconds(rule, p)?;
     }
     if let Some(f2) = cmd.retract_feed() {
-        // Syntec's retract feed works only in its fast drilling mode (Pr4008 = 1); in the
-        // normal mode vcnc runs, the retract stays a rapid. It must still be whole (COR-045).
+        // Syntec's retract feed works only in its fast drilling mode (Pr4008 = 1, the profile's
+        // `cycles.fast_drilling`); in the normal mode the retract stays a rapid, and so does it
+        // for F2 <= 0 (spec 1.44, L3585-3610). It must be whole either way (COR-045).
         if f2.number.value.fract() != 0.0 {
             return Err(
                 Alarm::error(AlarmCode::CycleData, f2.span, "F2= must be a whole number")
                     .with_help("Syntec alarm COR-045"),
             );
         }
+        let used = exec.kernel.setup.profile().cycles.fast_drilling && f2.number.value > 0.0;
+        cycle.retract_feed = used.then(|| f2.number.value * exec.modal.units.to_mm());
     }
     Ok(())
 }
@@ -587,7 +594,10 @@ impl Hole<'_> {
         match cycle.kind {
             CycleKind::Drill => {
                 self.feed_to(bottom)?;
-                self.rapid_to(back)
+                match cycle.retract_feed {
+                    Some(feed) => self.feed_to_at(back, feed),
+                    None => self.rapid_to(back),
+                }
             }
             CycleKind::DrillDwell => {
                 self.feed_to(bottom)?;
@@ -802,6 +812,14 @@ impl Hole<'_> {
         let motion = self.exec.move_to(to, self.cmd, self.out)?;
         self.out.push(self.cmd, SegmentKind::Line { motion, feed });
         Ok(())
+    }
+
+    /// A feed move to `level` at `feed` (the feed in force comes back after it).
+    fn feed_to_at(&mut self, level: f64, feed: f64) -> Result<(), Alarm> {
+        let in_force = self.exec.kernel.feed.replace(feed);
+        let moved = self.feed_to(level);
+        self.exec.kernel.feed = in_force;
+        moved
     }
 
     /// Where the tool is, with the drilling axis at `level` (program coordinates).

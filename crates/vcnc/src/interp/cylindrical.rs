@@ -23,7 +23,7 @@
 
 use super::decode::{Command, GWord};
 use super::exec::Executor;
-use super::pieces::{self, PieceMap};
+use super::pieces::{PieceMap, PieceQueue};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::machine::{Axis, AXES};
@@ -187,17 +187,8 @@ fn start(
         map.length(machine[map.rotary] - offset[map.rotary]) + offset[map.carried];
     let plane = std::mem::replace(&mut exec.modal.plane, plane);
     out.start_cylindrical_interpolation(CylindricalStage {
-        staged: Vec::new(),
-        held: None,
+        pieces: PieceQueue::new(map, machine, exec.kernel.setup.profile()),
         plane,
-        last: machine,
-        tolerance: exec
-            .kernel
-            .setup
-            .profile()
-            .motion
-            .polar_interpolation_tolerance,
-        map,
     });
     Ok(())
 }
@@ -213,47 +204,35 @@ fn cancel(exec: &mut Executor, out: &mut Output) {
 /// The stage between cutter compensation and the output queue while G07.1 is on.
 #[derive(Clone, Debug)]
 pub(crate) struct CylindricalStage {
-    /// Surface items, as the executor and compensation queue them.
-    pub(crate) staged: Vec<StreamItem>,
-    /// Items from this index on wait for compensation to know where a move ends.
-    pub(crate) held: Option<usize>,
+    /// Surface items, as the executor and compensation queue them, and the map that cuts them.
+    pub(crate) pieces: PieceQueue<SurfaceMap>,
     /// The plane before G07.1.
     plane: Plane,
-    /// The machine position where the last piece ended.
-    last: [f64; AXES],
-    /// Largest distance between a piece and the surface path, mm.
-    tolerance: f64,
-    map: SurfaceMap,
 }
 
 impl CylindricalStage {
     /// The rotary axis and the slot that carries its surface length.
     pub(crate) fn axes(&self) -> (Axis, Axis) {
-        (Axis::ALL[self.map.rotary], Axis::ALL[self.map.carried])
+        let map = &self.pieces.map;
+        (Axis::ALL[map.rotary], Axis::ALL[map.carried])
     }
 
     /// Converts the items compensation has released and appends them to `items`.
     pub(crate) fn settle(&mut self, items: &mut Vec<StreamItem>) {
-        pieces::settle(
-            (&mut self.staged, &mut self.held),
-            &self.map,
-            (&mut self.last, self.tolerance),
-            items,
-        );
+        self.pieces.settle(items);
     }
 
     /// The mode ends: everything staged is converted. Returns the plane before G07.1 and the
     /// machine position where the last piece ended.
     pub(crate) fn flush(mut self, items: &mut Vec<StreamItem>) -> (Plane, [f64; AXES]) {
-        self.held = None;
-        self.settle(items);
-        (self.plane, self.last)
+        let last = self.pieces.flush(items);
+        (self.plane, last)
     }
 }
 
 /// The unrolled surface to the machine's axes.
 #[derive(Clone, Copy, Debug)]
-struct SurfaceMap {
+pub(crate) struct SurfaceMap {
     /// The rotary axis's slot.
     rotary: usize,
     /// The slot that carries the surface length while the mode is on.

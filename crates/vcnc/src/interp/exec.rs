@@ -289,7 +289,7 @@ impl Executor {
     }
 
     /// The one-shot codes of group 00 (G10, G92, G92.1, G52, G28, G29, G30, G53, G31, G04,
-    /// G22/G23, G27, G37/G37.1, circle cutting, hole patterns): whether the axis words are
+    /// G07, G22/G23, G27, G37/G37.1, circle cutting, hole patterns): whether the axis words are
     /// theirs. They run only in a block whose axis words no frame code took.
     fn one_shot_codes(&mut self, cmd: &Command, out: &mut Output) -> Result<AxisWords, Alarm> {
         use super::tool_measurement::Measurement::{TwoTouches, Window};
@@ -317,6 +317,10 @@ impl Executor {
             }
             Some(GCode::StrokeCheckOff) => {
                 super::stroke_check::g23(self);
+                true
+            }
+            Some(GCode::HypotheticalAxis) => {
+                super::hypothetical::g07(self, cmd, non_modal_span(cmd), out)?;
                 true
             }
             Some(GCode::ReferenceCheck) => {

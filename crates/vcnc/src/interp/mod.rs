@@ -26,6 +26,7 @@ mod engraving;
 mod exec;
 mod frames;
 mod front_end;
+mod hypothetical;
 mod kernel;
 mod length;
 mod macros;
@@ -263,9 +264,11 @@ impl<B: BlockSource<Line = LineBlocks>> Interpreter<B> {
         self
     }
 
-    /// The persistent common variables (#500-#999) as a previous run left them.
+    /// The persistent common variables (#500-#999, Syntec's #401-#999) as a previous run left
+    /// them.
     pub fn with_persistent_variables(mut self, values: &PersistentVariables) -> Interpreter<B> {
-        self.core.macros.vars.load_persistent(values);
+        let ranges = macros::vars::Ranges::of(&self.core.exec.kernel.setup.profile().macros);
+        self.core.macros.vars.load_persistent(values, &ranges);
         self
     }
 
@@ -627,6 +630,9 @@ impl Core {
             }
         }
         if let Err(alarm) = cylindrical::prepare(&mut self.command, &self.out) {
+            return self.fail(alarm);
+        }
+        if let Err(alarm) = hypothetical::prepare(&self.command, &self.out) {
             return self.fail(alarm);
         }
         // Only a block with a comment kept can be a G47 P1: one test for the others.

@@ -270,6 +270,7 @@ impl ModalState {
             | Nurbs
             | StrokeCheckOn
             | StrokeCheckOff
+            | HypotheticalAxis
             | ReferenceCheck
             | ToolMeasurement
             | ToolMeasurementTwice

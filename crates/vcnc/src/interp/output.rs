@@ -5,13 +5,14 @@
 //! place. Cutter compensation (G41/G42) is the first stage when it is on: it holds a move until
 //! the next one shows where the corner is, so the items queued behind the held move wait too
 //! (`held`). The transformations of finished motion come after it, in order (G12.1 polar
-//! coordinate interpolation, G07.1 cylindrical interpolation, the 5-axis kinematic transform, and whatever a dialect adds): each reads the released part of its own
+//! coordinate interpolation, G07.1 cylindrical interpolation, the 5-axis kinematic transform, and whatever a dialect adds; G07's hypothetical axes last): each reads the released part of its own
 //! input queue and writes into the next stage's input, the last into the output queue. A stage
 //! never reads program text or modal state; the executor starts and ends stages.
 
 use super::comp::Compensator;
 use super::corner_override::CornerStage;
 use super::cylindrical::CylindricalStage;
+use super::hypothetical::HypotheticalStage;
 use super::kernel::BlockOrigin;
 use super::polar_interpolation::PolarStage;
 use super::tool_center::KinematicStage;
@@ -37,6 +38,8 @@ pub(crate) enum Stage {
     Cylindrical(Box<CylindricalStage>),
     /// G43.4 or G53.1: tool tip motion in the workpiece to the joints of a 5-axis machine.
     Kinematics(Box<KinematicStage>),
+    /// G07: the hypothetical axes held where they stand; always the last stage.
+    Hypothetical(Box<HypotheticalStage>),
 }
 
 /// What a transformation stage leaves when it ends: where the machine is.
@@ -49,6 +52,8 @@ enum Ended {
     CornerOverride,
     /// G07.1 C0: the plane before G07.1 and the machine position.
     Cylindrical(Plane, [f64; AXES]),
+    /// G07 α1 for the last hypothetical axis: nothing.
+    Hypothetical,
 }
 
 /// The queue of what the blocks produced and nobody has taken yet: a few items for
@@ -220,6 +225,39 @@ impl Output {
         }
     }
 
+    /// Whether an axis is hypothetical (G07).
+    pub(crate) fn hypothetical(&self) -> bool {
+        matches!(self.stages.last(), Some(Stage::Hypothetical(_)))
+    }
+
+    /// The machine position of each hypothetical axis, while one is (G07).
+    pub(crate) fn frozen_axes(&self) -> Option<[Option<f64>; AXES]> {
+        match self.stages.last() {
+            Some(Stage::Hypothetical(stage)) => Some(stage.frozen()),
+            _ => None,
+        }
+    }
+
+    /// The hypothetical axes' stage, to change which axes it holds.
+    pub(crate) fn hypothetical_mut(&mut self) -> Option<&mut HypotheticalStage> {
+        match self.stages.last_mut() {
+            Some(Stage::Hypothetical(stage)) => Some(stage),
+            _ => None,
+        }
+    }
+
+    /// An axis becomes hypothetical: the stage goes behind the others.
+    pub(crate) fn start_hypothetical(&mut self, stage: HypotheticalStage) {
+        self.stages.push(Stage::Hypothetical(Box::new(stage)));
+    }
+
+    /// No axis is hypothetical any more: what the stage holds is converted.
+    pub(crate) fn end_hypothetical(&mut self) {
+        if self.hypothetical() {
+            self.end_transform(self.stages.len() - 1);
+        }
+    }
+
     /// The kinematic transform in force (G43.4, G53.1), to change it.
     pub(crate) fn kinematics_mut(&mut self) -> Option<&mut KinematicStage> {
         self.stages.iter_mut().find_map(|stage| match stage {
@@ -263,6 +301,10 @@ impl Output {
             Stage::Cylindrical(stage) => {
                 let (plane, position) = stage.flush(items);
                 Ended::Cylindrical(plane, position)
+            }
+            Stage::Hypothetical(mut stage) => {
+                stage.pieces.flush(items);
+                Ended::Hypothetical
             }
             Stage::Compensation(_) => return None,
         };
@@ -319,6 +361,7 @@ impl Output {
                     Stage::Kinematics(stage) => stage.settle(items),
                     Stage::CornerOverride(stage) => stage.settle(items),
                     Stage::Cylindrical(stage) => stage.settle(items),
+                    Stage::Hypothetical(stage) => stage.pieces.settle(items),
                     Stage::Compensation(_) => {}
                 }
             }
@@ -463,7 +506,8 @@ fn input_of<'a>(
         Some(Stage::PolarInterpolation(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::Kinematics(stage)) => (&mut stage.staged, &mut stage.held),
         Some(Stage::CornerOverride(stage)) => (&mut stage.staged, &mut stage.held),
-        Some(Stage::Cylindrical(stage)) => (&mut stage.staged, &mut stage.held),
+        Some(Stage::Cylindrical(stage)) => (&mut stage.pieces.staged, &mut stage.pieces.held),
+        Some(Stage::Hypothetical(stage)) => (&mut stage.pieces.staged, &mut stage.pieces.held),
         Some(Stage::Compensation(_)) | None => (items, held),
     }
 }

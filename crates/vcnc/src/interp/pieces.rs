@@ -1,6 +1,7 @@
 //! Motion cut into straight machine pieces that follow a path within a tolerance: what the
 //! output stages that map finished motion non-linearly share (G12.1 polar coordinate
-//! interpolation, `polar_interpolation.rs`; the 5-axis kinematic transform, `tool_center.rs`).
+//! interpolation, `polar_interpolation.rs`; the 5-axis kinematic transform, `tool_center.rs`;
+//! G07.1 and G07 through [`PieceQueue`]).
 //!
 //! A stage describes its map by [`PieceMap`]: the machine position of a point of the path, and
 //! how far a machine position puts the tool from a point of the path. [`cut`] halves a segment
@@ -10,6 +11,7 @@
 
 use crate::machine::AXES;
 use crate::motion::{Feed, MachinePos, Move, PathMode, Segment, SegmentKind, StreamItem};
+use crate::profile::Profile;
 
 /// Halvings of a segment at most: a piece is never shorter than 2^-30 of its segment.
 const MAX_DEPTH: u32 = 30;
@@ -131,6 +133,52 @@ pub(crate) fn settle(
     }
     if let Some(held) = held.as_mut() {
         *held = 0;
+    }
+}
+
+/// The input queue of a stage that cuts motion through a [`PieceMap`] and nothing else (G07.1,
+/// G07), with where its last piece ended.
+#[derive(Clone, Debug)]
+pub(crate) struct PieceQueue<M> {
+    /// Items as the stage's input gives them.
+    pub(crate) staged: Vec<StreamItem>,
+    /// Items from this index on wait for compensation to know where a move ends.
+    pub(crate) held: Option<usize>,
+    /// The machine position where the last piece ended.
+    pub(crate) last: [f64; AXES],
+    /// Largest distance between a piece and the path, mm.
+    pub(crate) tolerance: f64,
+    pub(crate) map: M,
+}
+
+impl<M: PieceMap> PieceQueue<M> {
+    /// An empty queue whose first piece starts at the machine position `last`, the pieces
+    /// within the profile's `polar_interpolation_tolerance`.
+    pub(crate) fn new(map: M, last: [f64; AXES], profile: &Profile) -> PieceQueue<M> {
+        PieceQueue {
+            staged: Vec::new(),
+            held: None,
+            last,
+            tolerance: profile.motion.polar_interpolation_tolerance,
+            map,
+        }
+    }
+
+    /// Converts the items released and appends them to `items`.
+    pub(crate) fn settle(&mut self, items: &mut Vec<StreamItem>) {
+        settle(
+            (&mut self.staged, &mut self.held),
+            &self.map,
+            (&mut self.last, self.tolerance),
+            items,
+        );
+    }
+
+    /// The stage ends: everything staged is converted. Returns where the last piece ended.
+    pub(crate) fn flush(&mut self, items: &mut Vec<StreamItem>) -> [f64; AXES] {
+        self.held = None;
+        self.settle(items);
+        self.last
     }
 }
 

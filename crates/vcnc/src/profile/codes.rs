@@ -178,6 +178,8 @@ pub enum GCode {
     PolarInterpolationCancel,
     /// G07.1: cylindrical interpolation (a rotary axis as a length on a cylinder's surface).
     CylindricalInterpolation,
+    /// G07: hypothetical axis interpolation (`G07 α0` makes α hypothetical, `G07 α1` real).
+    HypotheticalAxis,
     /// G05: high-speed high-precision (Syntec) or high-precision contour control (FANUC) on with
     /// P10000 (Syntec also E alone), off with P0.
     HighSpeedMode,
@@ -284,6 +286,7 @@ impl GCode {
             PolarInterpolation => "polar coordinate interpolation",
             PolarInterpolationCancel => "polar coordinate interpolation cancel",
             CylindricalInterpolation => "cylindrical interpolation",
+            HypotheticalAxis => "hypothetical axis interpolation",
             HighSpeedMode => "high-speed high-precision mode",
             PathSmoothing => "path smoothing / AI contour control",
             LookAhead => "look-ahead control",
@@ -336,8 +339,8 @@ impl GCode {
             | NthReferenceReturn | LocalCoordinates | MachineCoordinates | SetCoordinates
             | PresetCoordinates | PositionOffset(_) | Pattern(_) | CircleCutting(_) | Engrave
             | HighSpeedMode | PathSmoothing | LookAhead | ToolAxisDirection | StrokeCheckOn
-            | StrokeCheckOff | ReferenceCheck | ToolMeasurement | ToolMeasurementTwice
-            | SmoothnessSetting | MachiningConditions => Group::NonModal,
+            | StrokeCheckOff | HypotheticalAxis | ReferenceCheck | ToolMeasurement
+            | ToolMeasurementTwice | SmoothnessSetting | MachiningConditions => Group::NonModal,
         }
     }
 }
@@ -446,6 +449,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         121 if profile.motion.polar_interpolation => PolarInterpolation,
         131 if profile.motion.polar_interpolation => PolarInterpolationCancel,
         71 if profile.motion.cylindrical_interpolation => CylindricalInterpolation,
+        70 if profile.motion.hypothetical_axis_interpolation => HypotheticalAxis,
         150 => PolarCancel,
         160 => Polar,
         170 => PlaneXy,
@@ -540,7 +544,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
 
 /// Codes the controls have that vcnc does not run yet: (code in tenths, the issue that adds it,
 /// what it does).
-const NOT_YET: &[(i32, Option<u32>, &str)] = &[(70, None, "hypothetical axis interpolation")];
+const NOT_YET: &[(i32, Option<u32>, &str)] = &[];
 
 /// A code vcnc does not run yet: (issue, meaning).
 fn not_yet_on(tenths: i32) -> Option<(Option<u32>, &'static str)> {

@@ -41,6 +41,11 @@ pub struct CycleRules {
     /// Syntec's hole patterns G134, G135, G136, G137.1.
     #[serde(default)]
     pub hole_patterns: bool,
+    /// Syntec's fast drilling mode (parameter Pr4008 = 1): G81 retracts at its `F2=` feed
+    /// (spec 1.44). Off (the normal drilling mode, every built-in profile), the retract is a
+    /// rapid; a machine file turns it on.
+    #[serde(default)]
+    pub fast_drilling: bool,
 }
 
 fn default_peck_distance() -> f64 {

@@ -52,6 +52,23 @@ pub struct MacroRules {
     /// Extra common variables kept between runs (Haas: #10000-#10999), first and last.
     #[serde(default)]
     pub extended_common_variables: Option<(u32, u32)>,
+    /// Local variables are #1 to this, a set per macro call level (FANUC: 33; Syntec: 400,
+    /// syntec-macro handbook 02-variables 2.1). From 33 to 400.
+    #[serde(default = "default_last_local_variable")]
+    pub last_local_variable: u32,
+    /// Persistent variables are this to #999 (FANUC: 500; Syntec: 401, its "axis group user
+    /// memory", handbook 2.6); the numbers from #100 between the locals and these are commons.
+    /// From 401 to 500.
+    #[serde(default = "default_first_persistent_variable")]
+    pub first_persistent_variable: u32,
+}
+
+fn default_last_local_variable() -> u32 {
+    33
+}
+
+fn default_first_persistent_variable() -> u32 {
+    500
 }
 
 fn default_macro_call_depth() -> u32 {

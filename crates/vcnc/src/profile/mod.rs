@@ -379,6 +379,18 @@ impl Profile {
                 100,
             ),
             ("macros.loop_numbers", self.macros.loop_numbers, 1, 999),
+            (
+                "macros.last_local_variable",
+                self.macros.last_local_variable,
+                33,
+                400,
+            ),
+            (
+                "macros.first_persistent_variable",
+                self.macros.first_persistent_variable,
+                401,
+                500,
+            ),
         ] {
             check_range(
                 &key(name),
@@ -555,7 +567,7 @@ mod tests {
         }
         // Every field but name, description, power_on and sinumerik: each is set or has a
         // default in some profile, so the flat-key error finds them all.
-        assert_eq!(seen.len(), 78);
+        assert_eq!(seen.len(), 82);
     }
 
     #[test]

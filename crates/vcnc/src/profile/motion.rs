@@ -82,6 +82,11 @@ pub struct MotionRules {
     /// cylinder turned by a rotary axis, within `polar_interpolation_tolerance`.
     #[serde(default)]
     pub cylindrical_interpolation: bool,
+    /// G07 hypothetical axis interpolation exists (FANUC 0i/15i/16i-M and Mitsubishi M70/M700,
+    /// whose manuals are not among the seeds; docs/DEVIATIONS.md): an axis made hypothetical
+    /// takes part in the interpolation but does not move.
+    #[serde(default)]
+    pub hypothetical_axis_interpolation: bool,
     /// How G90 moves rotary axes: every rotary axis of the machine rolls over this way (G91
     /// moves by the amount written either way). No manual of the seeds sets it: a machine
     /// file does (`[profile_overrides.motion] rotary_rollover = "shortest"`).

@@ -15,6 +15,9 @@ use crate::source::Span;
 pub enum Op {
     /// Pushes a constant.
     Number(f64),
+    /// Pushes a whole number written without a decimal point in a Syntec `%@MACRO` program: a
+    /// Long, which stays whole in arithmetic with another Long (`1/2` is 0, `1./2` is 0.5).
+    Long(f64),
     /// Pushes the value of variable `#n` (a number written after `#`).
     Variable(u32),
     /// Pops a number n and pushes the value of `#n` (`#[expr]`).
@@ -72,6 +75,19 @@ pub enum BinaryOp {
 }
 
 impl BinaryOp {
+    /// True for `+`, `-`, `*`, `/` and MOD, whose result has the type of their operands in a
+    /// Syntec program (two Longs give a Long).
+    pub fn is_arithmetic(self) -> bool {
+        matches!(
+            self,
+            BinaryOp::Add
+                | BinaryOp::Subtract
+                | BinaryOp::Multiply
+                | BinaryOp::Divide
+                | BinaryOp::Modulo
+        )
+    }
+
     /// True for the comparisons, whose vacant-operand rule differs from arithmetic.
     pub fn is_comparison(self) -> bool {
         matches!(

@@ -4,6 +4,11 @@
 //! FANUC's rules for it: a vacant operand counts as 0 in arithmetic and functions, and in GT,
 //! GE, LT and LE; EQ and NE tell vacant from 0. A lone variable keeps its vacancy (`#2 = #1`
 //! leaves #2 vacant when #1 is, and `X#1` is then omitted), and so does its negation.
+//!
+//! A Syntec `%@MACRO` program types its numbers: one written without a decimal point is a Long
+//! (`Op::Long`), and two Longs divide to a whole number (`1/2` is 0). A value read from a
+//! variable is a real (the local variables are Double: syntec-macro handbook 02-variables 2.1;
+//! the public variables `@n` keep the type written, which vcnc does not track).
 
 use super::MacroValue;
 use crate::alarm::{Alarm, AlarmCode};
@@ -85,11 +90,19 @@ fn with_values(
 /// The evaluation proper: the postfix code on a stack.
 fn run(code: &[Instruction], variables: &mut dyn VariableReader) -> Result<MacroValue, Alarm> {
     let mut stack = [None; STACK];
+    // Whether each operand is a Syntec Long; only `Op::Long` and arithmetic between two Longs
+    // make one.
+    let mut long = [false; STACK];
     let mut depth = 0usize;
     for instruction in code {
         let span = instruction.span;
+        let mut is_long = false;
         let value = match instruction.op {
             Op::Number(n) => Some(n),
+            Op::Long(n) => {
+                is_long = true;
+                Some(n)
+            }
             Op::Variable(n) => variables.read(n, span)?,
             Op::Indirect => {
                 depth -= 1;
@@ -98,11 +111,17 @@ fn run(code: &[Instruction], variables: &mut dyn VariableReader) -> Result<Macro
             }
             Op::Negate => {
                 depth -= 1;
+                is_long = long[depth];
                 stack[depth].map(|v| -v)
             }
             Op::Binary(op) => {
                 depth -= 2;
-                binary(op, stack[depth], stack[depth + 1], span)?
+                let (a, b) = (stack[depth], stack[depth + 1]);
+                is_long = long[depth] && long[depth + 1] && op.is_arithmetic();
+                match op {
+                    BinaryOp::Divide if is_long => whole_quotient(a, b, span)?,
+                    _ => binary(op, a, b, span)?,
+                }
             }
             Op::Function(f) => {
                 depth -= 1;
@@ -141,6 +160,7 @@ fn run(code: &[Instruction], variables: &mut dyn VariableReader) -> Result<Macro
             ));
         }
         stack[depth] = value;
+        long[depth] = is_long;
         depth += 1;
     }
     Ok(if depth == 1 { stack[0] } else { None })
@@ -217,6 +237,13 @@ fn binary(op: BinaryOp, a: MacroValue, b: MacroValue, span: Span) -> Result<Macr
         BinaryOp::LessOrEqual => truth(x <= y),
         BinaryOp::Equal | BinaryOp::NotEqual => unreachable!("handled above"),
     })
+}
+
+/// Two Syntec Longs divided: the quotient's fraction dropped, toward zero (`7/2` is 3, `-7/2`
+/// is -3). The handbook (02-variables 3.4) gives the rule, not the direction for negative
+/// numbers: vcnc takes C's, in which the control is written.
+fn whole_quotient(a: MacroValue, b: MacroValue, span: Span) -> Result<MacroValue, Alarm> {
+    Ok(binary(BinaryOp::Divide, a, b, span)?.map(f64::trunc))
 }
 
 /// EQ: both vacant, or both set and equal. The controls compare with a small tolerance (they

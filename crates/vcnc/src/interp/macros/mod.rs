@@ -35,7 +35,7 @@ use programs::{Position, Program, ProgramLibrary, StoredProgram};
 use std::collections::HashMap;
 use std::sync::Arc;
 use system::{Counters, WriteEffect};
-use vars::{Kind, Locals, Variables};
+use vars::{Kind, Locals, Ranges, Variables};
 
 /// A macro value: `None` is vacant.
 pub(crate) type MacroValue = Option<f64>;
@@ -199,14 +199,8 @@ fn alarm(code: AlarmCode, span: Span, message: impl Into<String>) -> Alarm {
 impl Core {
     /// What kind of variable `#number` is on this profile.
     fn variable_kind(&self, number: u32) -> Kind {
-        let extended = self
-            .exec
-            .kernel
-            .setup
-            .profile()
-            .macros
-            .extended_common_variables;
-        Variables::kind(number, extended)
+        let ranges = Ranges::of(&self.exec.kernel.setup.profile().macros);
+        Variables::kind(number, &ranges)
     }
 
     /// The value of `#number`.

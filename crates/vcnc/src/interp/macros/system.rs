@@ -14,9 +14,9 @@ use crate::interp::modal::{
     CycleReturn, DistanceMode, FeedMode, LengthComp, MotionMode, SpindleMode, Units,
 };
 use crate::interp::Output;
-use crate::machine::{WorkOffsetId, AXES};
+use crate::machine::{Axis, WorkOffsetId, AXES};
 use crate::motion::{ArcDirection, PathMode, Plane};
-use crate::profile::{CycleKind, ToolOffsetVariables};
+use crate::profile::{CycleKind, RotaryRollover, ToolOffsetVariables};
 use crate::source::Span;
 
 /// What writing a system variable asks of the interpreter besides storing a value.
@@ -51,7 +51,7 @@ fn unknown(number: u32, span: Span) -> Alarm {
         span,
         format!("#{number} is not a variable of this control"),
     )
-    .with_help("locals are #1-#33, commons #100-#499 and #500-#999; see the system variable list in docs/MACROS.md")
+    .with_help("locals are #1-#33, commons #100-#499 and #500-#999 (Syntec: locals #1-#400, persistent #401-#999); see the system variable list in docs/MACROS.md")
 }
 
 /// The axis index of `number - base` when it is 0..AXES.
@@ -215,14 +215,16 @@ pub(crate) fn read(
         }
         5001..=5006 => {
             let program = exec.kernel.program_position();
-            axis_of(number, 5001).and_then(|a| length(program[a]))
+            axis_of(number, 5001).and_then(|a| position(exec, a, program[a]))
         }
-        5021..=5026 => axis_of(number, 5021).and_then(|a| length(exec.kernel.position[a])),
+        5021..=5026 => {
+            axis_of(number, 5021).and_then(|a| position(exec, a, exec.kernel.position[a]))
+        }
         5041..=5046 => {
             let program = exec.kernel.program_position();
-            axis_of(number, 5041).and_then(|a| length(program[a]))
+            axis_of(number, 5041).and_then(|a| position(exec, a, program[a]))
         }
-        5061..=5066 => axis_of(number, 5061).and_then(|a| length(exec.skip_position[a])),
+        5061..=5066 => axis_of(number, 5061).and_then(|a| position(exec, a, exec.skip_position[a])),
         // Servo deviations: no servo lag.
         5101..=5106 => Some(0.0),
         5081..=5086 => {
@@ -235,6 +237,24 @@ pub(crate) fn read(
         }
         _ => return Err(unknown(number, span)),
     })
+}
+
+/// Axis `a` of a position as a program reads it: a length in the program's unit, a rotary
+/// axis in degrees, within one turn (0 to 360) when the machine rolls its rotary axes over.
+/// FANUC rounds the absolute and machine coordinates of a roll-over axis to one rotation
+/// (B-63534EN 20.2.1, its example: `G90 A-150.` from 0 reads 210); the motion stream keeps the
+/// continuous position, which is what the axis travelled.
+fn position(exec: &Executor, a: usize, value: f64) -> MacroValue {
+    let setup = &exec.kernel.setup;
+    if !setup.machine().layout.is_rotary(Axis::ALL[a]) {
+        return Some(value / exec.modal.units.to_mm());
+    }
+    if setup.profile().motion.rotary_rollover == RotaryRollover::Off {
+        return Some(value);
+    }
+    let turn = value.rem_euclid(360.0);
+    // A hair below a whole turn (a position of -1e-13) is the turn's start.
+    Some(if 360.0 - turn < 1e-9 { 0.0 } else { turn })
 }
 
 /// Writes system variable `number`.

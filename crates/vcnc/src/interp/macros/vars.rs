@@ -1,6 +1,12 @@
 //! The variable store: local variables (one level per macro call), common variables (cleared
 //! at reset) and persistent common variables (kept between runs by the caller).
 //!
+//! The ranges are the profile's (`macros.last_local_variable`, `first_persistent_variable`):
+//! FANUC's locals #1-#33, commons #100-#499, persistent #500-#999; Syntec's locals #1-#400 and
+//! persistent #401-#999 (its "axis group user memory"), with no commons among the `#`
+//! variables (its public variables `@n` are those). Locals past #33 live in a block of their
+//! own per level, made when the first of them is written, so a FANUC call level stays small.
+//!
 //! System variables (#1000 and up: positions, offsets, modal information, alarms) are not
 //! stored here: `system.rs` reads and writes them from the executor's state.
 
@@ -9,10 +15,57 @@ use super::MacroValue;
 /// Local variables #1-#33 of one level.
 pub(crate) type Locals = [MacroValue; 33];
 
-/// The first and last persistent common variable (#500-#999 on the FANUC family).
-pub(crate) const PERSISTENT_FIRST: u32 = 500;
-/// See [`PERSISTENT_FIRST`].
+/// The first local past #33.
+const UPPER_LOCAL_FIRST: u32 = 34;
+/// The last local a profile can have (Syntec's #400).
+pub(crate) const LAST_LOCAL_MOST: u32 = 400;
+/// How many locals past #33 a level can hold.
+const UPPER_LOCALS: usize = (LAST_LOCAL_MOST - UPPER_LOCAL_FIRST + 1) as usize;
+/// Locals #34-#400 of one level.
+type UpperLocals = [MacroValue; UPPER_LOCALS];
+
+/// The first persistent variable a profile can have (Syntec's #401; FANUC's is #500).
+pub(crate) const PERSISTENT_FIRST_LEAST: u32 = 401;
+/// The last persistent common variable.
 pub(crate) const PERSISTENT_LAST: u32 = 999;
+
+/// The local, common and persistent variable numbers of a profile.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Ranges {
+    /// Locals are #1 to this.
+    pub(crate) last_local: u32,
+    /// Persistent variables are this to #999; commons are #100-#499 below it and above the
+    /// locals.
+    pub(crate) first_persistent: u32,
+    /// The profile's extra common range (Haas #10000-#10999), first and last.
+    pub(crate) extended: Option<(u32, u32)>,
+}
+
+impl Ranges {
+    /// The ranges of `rules`.
+    pub(crate) fn of(rules: &crate::profile::MacroRules) -> Ranges {
+        Ranges {
+            last_local: rules.last_local_variable,
+            first_persistent: rules.first_persistent_variable,
+            extended: rules.extended_common_variables,
+        }
+    }
+}
+
+/// One call level's locals.
+#[derive(Clone, Debug)]
+struct Level {
+    /// #1-#33 (the arguments and the FANUC locals).
+    first: Locals,
+    /// #34 and up, where the profile has them, once one is written.
+    upper: Option<Box<UpperLocals>>,
+}
+
+impl Level {
+    fn new(first: Locals) -> Level {
+        Level { first, upper: None }
+    }
+}
 
 /// Where a variable number belongs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -21,9 +74,11 @@ pub(crate) enum Kind {
     Vacant,
     /// #1-#33.
     Local(usize),
+    /// #34 and up to the profile's last local (Syntec's #400).
+    UpperLocal(usize),
     /// #100-#499 (cleared at reset).
     Common(usize),
-    /// #500-#999 (kept in the machine's state).
+    /// #500-#999, Syntec's #401-#999 (kept in the machine's state).
     Persistent(usize),
     /// Extra common variables a profile has (Haas #10000-#10999 style numbers).
     Extended,
@@ -35,9 +90,10 @@ pub(crate) enum Kind {
 #[derive(Clone, Debug)]
 pub(crate) struct Variables {
     /// Level 0 is the main program; G65 and G66 push a level, their return pops it.
-    locals: Vec<Locals>,
+    locals: Vec<Level>,
     commons: Box<[MacroValue; 400]>,
-    persistent: Box<[MacroValue; 500]>,
+    /// From [`PERSISTENT_FIRST_LEAST`] to [`PERSISTENT_LAST`].
+    persistent: Box<[MacroValue; (PERSISTENT_LAST - PERSISTENT_FIRST_LEAST + 1) as usize]>,
     /// Counts writes to the persistent variables, so the caller knows when to save them.
     persistent_writes: u64,
     extended: std::collections::BTreeMap<u32, MacroValue>,
@@ -48,9 +104,9 @@ pub(crate) struct Variables {
 impl Default for Variables {
     fn default() -> Variables {
         Variables {
-            locals: vec![[None; 33]],
+            locals: vec![Level::new([None; 33])],
             commons: Box::new([None; 400]),
-            persistent: Box::new([None; 500]),
+            persistent: Box::new([None; (PERSISTENT_LAST - PERSISTENT_FIRST_LEAST + 1) as usize]),
             persistent_writes: 0,
             extended: std::collections::BTreeMap::new(),
             public: std::collections::BTreeMap::new(),
@@ -59,16 +115,24 @@ impl Default for Variables {
 }
 
 impl Variables {
-    /// Where `#number` belongs; `extended` is the profile's extra common range.
-    pub(crate) fn kind(number: u32, extended: Option<(u32, u32)>) -> Kind {
+    /// Where `#number` belongs on a profile with the variables `ranges`.
+    pub(crate) fn kind(number: u32, ranges: &Ranges) -> Kind {
         match number {
             0 => Kind::Vacant,
             1..=33 => Kind::Local(number as usize - 1),
-            100..=499 => Kind::Common(number as usize - 100),
-            PERSISTENT_FIRST..=PERSISTENT_LAST => {
-                Kind::Persistent((number - PERSISTENT_FIRST) as usize)
+            n if n <= ranges.last_local.min(LAST_LOCAL_MOST) => {
+                Kind::UpperLocal((n - UPPER_LOCAL_FIRST) as usize)
             }
-            n if extended.is_some_and(|(first, last)| (first..=last).contains(&n)) => {
+            n if n >= ranges.first_persistent.max(PERSISTENT_FIRST_LEAST)
+                && n <= PERSISTENT_LAST =>
+            {
+                Kind::Persistent((n - PERSISTENT_FIRST_LEAST) as usize)
+            }
+            100..=499 => Kind::Common(number as usize - 100),
+            n if ranges
+                .extended
+                .is_some_and(|(first, last)| (first..=last).contains(&n)) =>
+            {
                 Kind::Extended
             }
             _ => Kind::System,
@@ -79,7 +143,12 @@ impl Variables {
     #[inline]
     pub(crate) fn get(&self, number: u32, kind: Kind) -> MacroValue {
         match kind {
-            Kind::Local(i) => self.locals.last().and_then(|l| l[i]),
+            Kind::Local(i) => self.locals.last().and_then(|l| l.first[i]),
+            Kind::UpperLocal(i) => self
+                .locals
+                .last()
+                .and_then(|l| l.upper.as_ref())
+                .and_then(|upper| upper[i]),
             Kind::Common(i) => self.commons[i],
             Kind::Persistent(i) => self.persistent[i],
             Kind::Extended => self.extended.get(&number).copied().flatten(),
@@ -93,7 +162,15 @@ impl Variables {
         match kind {
             Kind::Local(i) => {
                 if let Some(level) = self.locals.last_mut() {
-                    level[i] = value;
+                    level.first[i] = value;
+                }
+            }
+            Kind::UpperLocal(i) => {
+                if let Some(level) = self.locals.last_mut() {
+                    let upper = level
+                        .upper
+                        .get_or_insert_with(|| Box::new([None; UPPER_LOCALS]));
+                    upper[i] = value;
                 }
             }
             Kind::Common(i) => self.commons[i] = value,
@@ -125,7 +202,7 @@ impl Variables {
 
     /// A macro call: a new level of locals holding the arguments.
     pub(crate) fn push_level(&mut self, arguments: Locals) {
-        self.locals.push(arguments);
+        self.locals.push(Level::new(arguments));
     }
 
     /// The end of a macro call: back to the caller's locals.
@@ -138,14 +215,19 @@ impl Variables {
     /// Replaces the locals of the current level (a repeated G65 starts from its arguments).
     pub(crate) fn reset_level(&mut self, arguments: Locals) {
         if let Some(level) = self.locals.last_mut() {
-            *level = arguments;
+            *level = Level::new(arguments);
         }
     }
 
-    /// Loads persistent values (#500-#999 and the profile's extended ones) saved by a run.
-    pub(crate) fn load_persistent(&mut self, values: &PersistentVariables) {
+    /// Loads persistent values (#500-#999, or the profile's range, and extended ones) saved by
+    /// a run; a number of neither kind on the profile `ranges` is kept as an extended one.
+    pub(crate) fn load_persistent(&mut self, values: &PersistentVariables, ranges: &Ranges) {
         for (&number, &value) in &values.values {
-            match Variables::kind(number, Some((number, number))) {
+            let ranges = Ranges {
+                extended: Some((number, number)),
+                ..*ranges
+            };
+            match Variables::kind(number, &ranges) {
                 Kind::Persistent(i) => self.persistent[i] = Some(value),
                 Kind::Extended => {
                     self.extended.insert(number, Some(value));
@@ -160,7 +242,7 @@ impl Variables {
         let mut values = std::collections::BTreeMap::new();
         for (i, v) in self.persistent.iter().enumerate() {
             if let Some(v) = v {
-                values.insert(PERSISTENT_FIRST + i as u32, *v);
+                values.insert(PERSISTENT_FIRST_LEAST + i as u32, *v);
             }
         }
         for (&n, v) in &self.extended {

@@ -544,6 +544,14 @@ impl Reader<'_, '_> {
             .find(|b| !matches!(b, b' ' | b'\t'))
             .is_some_and(|&b| b == b'(' || b == b'[');
         block.alarms.push(match self.format {
+            // IEC 61131-3 has DIV; Syntec's macro language does not (syntec-macro handbook
+            // 02-variables 3.4): its `/` divides two whole numbers to a whole number.
+            Format::Macro if name == "DIV" => Alarm::error(
+                AlarmCode::MacroSyntax,
+                span,
+                "`DIV` is not an operator of a %@MACRO program",
+            )
+            .with_help("divide with `/`: two numbers without a decimal point give a whole quotient (`7/2` is 3), `7./2` gives 3.5"),
             Format::Macro if called => {
                 Alarm::not_supported(span, &format!("the macro function `{name}`"), None)
             }

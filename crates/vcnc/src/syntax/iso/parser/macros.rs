@@ -205,6 +205,7 @@ impl Reader<'_, '_> {
         let Some(&tables) = self.levels().get(level) else {
             return self.unary(block, depth);
         };
+        let left = block.code.len();
         self.binary(block, depth, level + 1)?;
         loop {
             self.skip_blanks();
@@ -221,8 +222,40 @@ impl Reader<'_, '_> {
             }
             let at = self.pos;
             self.pos += length;
+            let right = block.code.len();
             self.binary(block, depth, level + 1)?;
+            if op == BinaryOp::Modulo && self.format == Format::Macro {
+                self.refuse_real_modulo(block, left, right)?;
+            }
             self.emit(block, Op::Binary(op), at, at + length);
+        }
+    }
+
+    /// Syntec's MOD takes Longs only: a number written with a decimal point as its operand is
+    /// alarm COR-054 on the control (syntec-macro handbook 02-variables 3.5). Only a number
+    /// written so is seen here; a variable's type is not known before the run.
+    fn refuse_real_modulo(&self, block: &mut Block, left: usize, right: usize) -> Read {
+        let operands = [&block.code[left..right], &block.code[right..]];
+        let real = operands.iter().find_map(|operand| match operand {
+            [Instruction {
+                op: Op::Number(_),
+                span,
+            }] => Some(*span),
+            _ => None,
+        });
+        match real {
+            Some(span) => {
+                block.alarms.push(
+                    Alarm::error(
+                        AlarmCode::MacroSyntax,
+                        span,
+                        "MOD takes whole numbers (Long) in a %@MACRO program: this number has a decimal point",
+                    )
+                    .with_help("write it without the decimal point (`10 MOD 3`); the control raises COR-054"),
+                );
+                Err(Failed)
+            }
+            None => Ok(()),
         }
     }
 
@@ -275,7 +308,7 @@ impl Reader<'_, '_> {
                 if block.code.len() == before + 1 {
                     let span = self.span(start, self.pos);
                     let last = &mut block.code[before];
-                    if let Op::Number(n) = last.op {
+                    if let Op::Number(n) | Op::Long(n) = last.op {
                         if let Some(number) = whole_variable_number(n) {
                             last.op = match bank {
                                 VariableBank::Macro => Op::Variable(number),
@@ -295,7 +328,16 @@ impl Reader<'_, '_> {
             }
             Some(b'0'..=b'9' | b'.') => {
                 let number = self.expression_number(block)?;
-                self.emit(block, Op::Number(number), start, self.pos);
+                // Syntec types a number by its decimal point: without one it is a Long
+                // (syntec-macro handbook 02-variables 3.4, 3.9; docs/MACROS.md).
+                let long =
+                    self.format == Format::Macro && !self.text[start..self.pos].contains(&b'.');
+                let op = if long {
+                    Op::Long(number)
+                } else {
+                    Op::Number(number)
+                };
+                self.emit(block, op, start, self.pos);
                 Ok(())
             }
             Some(b) if b.is_ascii_alphabetic() => match self.format {
@@ -811,7 +853,7 @@ pub(super) mod tests {
         expr.of(code)
             .iter()
             .map(|i| match i.op {
-                Op::Number(n) => format!("{n}"),
+                Op::Number(n) | Op::Long(n) => format!("{n}"),
                 Op::Variable(n) => format!("#{n}"),
                 Op::Indirect => "#[]".into(),
                 Op::Public(n) => format!("@{n}"),
