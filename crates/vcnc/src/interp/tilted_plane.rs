@@ -174,12 +174,7 @@ pub(crate) fn g53_1(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Res
     let kinematics = tool_center::kinematics(&exec.kernel, g.span, "G53.1")?;
     let linear = plane.linear();
     let normal = [linear[0][2], linear[1][2], linear[2][2]];
-    let [first, second] = kinematics.rotary_axes();
-    let current = [
-        exec.kernel.position[first.index()],
-        exec.kernel.position[second.index()],
-    ];
-    let Some(angles) = kinematics.angles_for(normal, current) else {
+    let Some(target) = kinematics.orient(normal, &exec.kernel.position) else {
         return Err(Alarm::error(
             AlarmCode::FiveAxis,
             g.span,
@@ -190,9 +185,6 @@ pub(crate) fn g53_1(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Res
         )
         .with_help("the direction is beyond the rotary axes' travel: check G68.2's angles and the axes' limits"));
     };
-    let mut target = exec.kernel.position;
-    target[first.index()] = angles[0];
-    target[second.index()] = angles[1];
     // With the transform on, the rotary move keeps the tip where it is; off, the linear axes stay
     // and only the rotary axes turn (then the transform starts at the new angles).
     exec.rapid_to(target, cmd, out)?;

@@ -38,6 +38,7 @@ mod position_offset;
 mod probing;
 mod readme;
 mod rotation;
+mod rtcp_four_axis;
 mod scaling;
 mod seed_examples;
 mod sim;
