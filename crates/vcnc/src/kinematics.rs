@@ -454,16 +454,16 @@ fn turn_about(p: Vec3, center: Vec3, axis: Vec3, degrees: f64) -> Vec3 {
     add(center, rotate(sub(p, center), axis, degrees))
 }
 
-fn unit(v: Vec3) -> Option<Vec3> {
+pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
     let n = norm(v);
     (n.is_finite() && n > DEGENERATE).then(|| scale(v, 1.0 / n))
 }
 
-fn dot(a: Vec3, b: Vec3) -> f64 {
+pub(crate) fn dot(a: Vec3, b: Vec3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
+pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -471,7 +471,7 @@ fn cross(a: Vec3, b: Vec3) -> Vec3 {
     ]
 }
 
-fn norm(v: Vec3) -> f64 {
+pub(crate) fn norm(v: Vec3) -> f64 {
     dot(v, v).sqrt()
 }
 
@@ -479,7 +479,7 @@ fn add(a: Vec3, b: Vec3) -> Vec3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
+pub(crate) fn sub(a: Vec3, b: Vec3) -> Vec3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 

@@ -40,6 +40,8 @@ pub(crate) struct Executor {
     pub(crate) probe: std::sync::Arc<crate::probe::Probe>,
     /// The zone of stored stroke check 2 while G22 is in force.
     pub(crate) stroke_zone: Option<super::stroke_check::StrokeZone>,
+    /// A FANUC G68.2 P2/P3 plane whose blocks are being read.
+    pub(crate) plane_parts: super::tilted_plane::PlaneParts,
 }
 
 /// What one block did to the flow of the program.
@@ -73,6 +75,7 @@ impl Executor {
             cycle: None,
             skip_position: [0.0; AXES],
             nurbs: None,
+            plane_parts: Default::default(),
             probe: std::sync::Arc::new(crate::probe::Probe::new(
                 &machine.probe,
                 &machine.tool_offsets,

@@ -96,6 +96,10 @@ pub struct MotionRules {
     /// on a machine file with `[kinematics]`.
     #[serde(default)]
     pub five_axis: bool,
+    /// G68.2's FANUC forms besides the Euler angles: P1 roll-pitch-yaw (Q the order), P2 three
+    /// points, P3 two vectors (FANUC Series 30i; Syntec's manual gives the Euler form only).
+    #[serde(default)]
+    pub tilted_plane_forms: bool,
     /// G22/G23 stored stroke check 2, a forbidden zone switched by the program (Syntec 1.16).
     #[serde(default)]
     pub stored_stroke_check: bool,

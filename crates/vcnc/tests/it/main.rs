@@ -64,3 +64,4 @@ mod streaming;
 mod stroke_check;
 mod syntec_macro;
 mod thread;
+mod tilted_plane_forms;
