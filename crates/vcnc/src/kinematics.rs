@@ -216,6 +216,11 @@ impl Kinematics {
         self.joints.iter().map(|j| j.axis).collect()
     }
 
+    /// Whether every rotary axis sits in the head (the table does not turn).
+    pub fn all_in_head(&self) -> bool {
+        (0..self.joints.len()).all(|i| self.kind.in_head(i))
+    }
+
     /// The tip's offset from the control point and the tool axis in machine coordinates, for a
     /// tool `length` long (from the tip to the control point along the tool) and the head's
     /// axes at their angles in `joints`: applied from the tool outwards.

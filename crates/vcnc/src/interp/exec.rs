@@ -602,8 +602,9 @@ impl Executor {
         }
     }
 
-    /// The machine position the block's axis words name (with G45-G48 and G16 applied); the
-    /// length vector follows the compensation when the block moves Z or changed it.
+    /// The machine position the block's axis words name (with G45-G48 and G16 applied, and
+    /// G43.5's tool direction); the length vector follows the compensation when the block moves
+    /// Z or changed it.
     // Inlined, like `move_to`: out of line, the target and the move were copied between frames.
     #[inline(always)]
     pub(crate) fn block_target(
@@ -631,7 +632,8 @@ impl Executor {
             self.polar = Some(point);
         }
         let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;
-        Ok(self.machine_target(&target, moves_z))
+        let machine = self.machine_target(&target, moves_z);
+        super::tool_center::tool_direction(self, cmd, machine, out)
     }
 
     /// A cutting line to a machine position at the feed in force, recorded in the stream; with

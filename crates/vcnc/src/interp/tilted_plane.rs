@@ -215,7 +215,8 @@ fn gather(exec: &mut Executor, cmd: &Command, form: u8) -> Result<Option<Plane>,
         };
     }
     let (point, written) = work_point(exec, cmd);
-    let vector = std::array::from_fn(|i| cmd.center(i).map_or(0.0, |v| exec.length(&v)));
+    // A direction's length does not matter: I J K as written, not as lengths.
+    let vector = std::array::from_fn(|i| cmd.center(i).map_or(0.0, |v| v.number.value));
     let turn = cmd.r().map_or(0.0, |v| exec.kernel.setup.angle(&v));
     exec.plane_parts.parts[q] = Some(PlanePart {
         point: written.then_some(point),

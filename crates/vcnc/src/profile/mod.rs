@@ -555,7 +555,7 @@ mod tests {
         }
         // Every field but name, description, power_on and sinumerik: each is set or has a
         // default in some profile, so the flat-key error finds them all.
-        assert_eq!(seen.len(), 79);
+        assert_eq!(seen.len(), 80);
     }
 
     #[test]

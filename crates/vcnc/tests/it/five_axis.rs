@@ -47,7 +47,7 @@ const TABLE_TABLE: &str = "[kinematics]\ntype = \"table_table\"\nrotary = [\n\
     { axis = \"b\", direction = [0.0, 1.0, 0.0], center = [10.0, 0.0, -150.0] },\n\
     { axis = \"c\", direction = [0.0, 0.0, 1.0], center = [10.0, 5.0, -150.0] },\n]\n";
 /// An A-C table (trunnion A about X carrying C), centres at the origin's 100 below.
-const A_C_TABLE: &str = "[kinematics]\ntype = \"table_table\"\nrotary = [\n\
+pub(crate) const A_C_TABLE: &str = "[kinematics]\ntype = \"table_table\"\nrotary = [\n\
     { axis = \"a\", direction = [1.0, 0.0, 0.0], center = [0.0, 0.0, -100.0] },\n\
     { axis = \"c\", direction = [0.0, 0.0, 1.0], center = [0.0, 0.0, -100.0] },\n]\n";
 /// A C-B head: C about Z carrying a B fork about Y, pivot 120 above the spindle nose, C's line

@@ -65,3 +65,4 @@ mod stroke_check;
 mod syntec_macro;
 mod thread;
 mod tilted_plane_forms;
+mod tool_direction;
