@@ -36,7 +36,8 @@
 //!   Z direction is kept and X squared to it (choice: Z is the tool's direction).
 //!
 //! The plane of a P2 or P3 comes into force at its last block (Q3, Q2); until then the frame in
-//! force stays. Choice: other blocks between them are not refused.
+//! force stays; G69 drops the blocks given so far. Choice: other blocks between them are not
+//! refused.
 
 use super::arc::{arc_center, in_plane, ArcSpec};
 use super::decode::Command;
@@ -281,6 +282,8 @@ fn gather(exec: &mut Executor, cmd: &Command, form: u8) -> Result<Option<Plane>,
 /// kinematic transform G53.1 kept on ends.
 pub(crate) fn g69(exec: &mut Executor, out: &mut Output) {
     super::frames::rotation::g69(&mut exec.kernel.frames);
+    // A P2/P3 plane left half given is dropped with it.
+    exec.plane_parts = PlaneParts::default();
     tool_center::release(&mut exec.kernel, Keeper::ToolAxis, out);
 }
 

@@ -142,6 +142,11 @@ fn forms_a_control_lacks_or_planes_that_are_no_planes_are_alarms() {
             AlarmCode::FiveAxis,
         ),
         ("G68.2 P3 Q2 I0 J0 K1.\nM30\n", AlarmCode::FiveAxis),
+        // G69 drops a plane half given.
+        (
+            "G68.2 P3 Q1 X0 Y0 Z0 I1. J0 K0\nG69\nG68.2 P3 Q2 I0 J0 K1.\nM30\n",
+            AlarmCode::FiveAxis,
+        ),
         (
             "G68.2 P3 Q1 X0 Y0 Z0 I0 J0 K0\nG68.2 P3 Q2 I0 J0 K1.\nM30\n",
             AlarmCode::FiveAxis,
