@@ -1,4 +1,4 @@
-//! A 5-axis machine's kinematics: where the tool tip is and how the tool points, in the
+//! A 4- or 5-axis machine's kinematics: where the tool tip is and how the tool points, in the
 //! workpiece, for a position of the joints (the forward transform), and the joints for a tip and
 //! a tool direction (the inverse). Read from the machine file's `[kinematics]` table
 //! (docs/KINEMATICS.md).
@@ -13,8 +13,9 @@
 //! zero, so work offsets keep their meaning.
 //!
 //! The transforms are pure functions of their arguments: no state, no alarms (the callers turn a
-//! direction that cannot be reached into their alarm). Table-table (A-C, B-C), head-head and
-//! head-table machines with two rotary axes are what the machine file describes.
+//! direction that cannot be reached into their alarm). One rotary axis on the table or in the
+//! head (4-axis), and table-table (A-C, B-C), head-head and head-table machines with two rotary
+//! axes are what the machine file describes.
 
 use crate::axis::{Axis, AxisLayout, AXES};
 use serde::Deserialize;
@@ -22,10 +23,14 @@ use serde::Deserialize;
 /// A vector or point of X Y Z.
 pub type Vec3 = [f64; 3];
 
-/// Where the two rotary axes are.
+/// Where the rotary axes are.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum KinematicsKind {
+    /// One rotary axis, on the table (a 4-axis machine: an A or B trunnion, or a rotary C).
+    Table,
+    /// One rotary axis, in the head (a 4-axis machine with a tilting head).
+    Head,
     /// Both on the table: the first carries the second (a trunnion A or B carrying a rotary C).
     TableTable,
     /// Both in the head: the first carries the second (a C head carrying an A or B fork).
@@ -70,14 +75,15 @@ pub struct ToolPose {
     pub axis: Vec3,
 }
 
-/// A machine's kinematics: two rotary axes, where they sit and how the tool points at zero.
+/// A machine's kinematics: one or two rotary axes, where they sit and how the tool points at
+/// zero.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Kinematics {
     /// Head or table axes.
     pub kind: KinematicsKind,
     /// The rotary axes from the machine's base outwards (the first carries the second; on a
-    /// head-table machine the head's first).
-    pub joints: [RotaryJoint; 2],
+    /// head-table machine the head's first): as many as `kind` says.
+    pub joints: Vec<RotaryJoint>,
     /// Unit vector from the tip towards the spindle with every axis at zero.
     pub tool_axis: Vec3,
     /// Which joint solution the inverse takes.
@@ -121,12 +127,15 @@ impl KinematicsFile {
         layout: &AxisLayout,
         limits: impl Fn(Axis) -> Option<(f64, f64)>,
     ) -> Result<Kinematics, String> {
-        let [first, second] = <[RotaryFile; 2]>::try_from(self.rotary).map_err(|rotary| {
-            format!(
-                "kinematics.rotary: expected two rotary axes, found {}",
-                rotary.len()
-            )
-        })?;
+        let expected = self.kind.rotary_count();
+        if self.rotary.len() != expected {
+            return Err(format!(
+                "kinematics.rotary: type `{}` expects {expected} rotary {}, found {}",
+                self.kind.name(),
+                if expected == 1 { "axis" } else { "axes" },
+                self.rotary.len()
+            ));
+        }
         let joint = |entry: RotaryFile| -> Result<RotaryJoint, String> {
             let key = format!("kinematics.rotary `{}`", entry.axis);
             let (axis, limits) = layout
@@ -146,12 +155,18 @@ impl KinematicsFile {
                 limits,
             })
         };
-        let joints = [joint(first)?, joint(second)?];
-        if joints[0].axis == joints[1].axis {
-            return Err("kinematics.rotary: the two rotary axes must differ".into());
-        }
-        if norm(cross(joints[0].direction, joints[1].direction)) < 1e-6 {
-            return Err("kinematics.rotary: the two axes must not be parallel".into());
+        let joints = self
+            .rotary
+            .into_iter()
+            .map(joint)
+            .collect::<Result<Vec<_>, _>>()?;
+        if let [first, second] = joints.as_slice() {
+            if first.axis == second.axis {
+                return Err("kinematics.rotary: the two rotary axes must differ".into());
+            }
+            if norm(cross(first.direction, second.direction)) < 1e-6 {
+                return Err("kinematics.rotary: the two axes must not be parallel".into());
+            }
         }
         let tool_axis = unit(self.tool_axis)
             .ok_or_else(|| "kinematics.tool_axis must be a non-zero vector".to_string())?;
@@ -164,49 +179,73 @@ impl KinematicsFile {
     }
 }
 
-impl Kinematics {
-    /// The two rotary axes, from the base outwards.
-    pub fn rotary_axes(&self) -> [Axis; 2] {
-        self.joints.map(|j| j.axis)
-    }
-
-    /// Which joints sit in the head (the others carry the part).
-    fn in_head(&self) -> [bool; 2] {
-        match self.kind {
-            KinematicsKind::TableTable => [false, false],
-            KinematicsKind::HeadHead => [true, true],
-            KinematicsKind::HeadTable => [true, false],
+impl KinematicsKind {
+    /// How many rotary axes a machine of this kind has.
+    pub fn rotary_count(self) -> usize {
+        match self {
+            KinematicsKind::Table | KinematicsKind::Head => 1,
+            _ => 2,
         }
     }
 
-    /// The angles of the two rotary axes in `joints`, degrees.
-    fn angles(&self, joints: &[f64; AXES]) -> [f64; 2] {
-        self.joints.map(|j| joints[j.axis.index()])
+    /// The name the machine file gives it.
+    fn name(self) -> &'static str {
+        match self {
+            KinematicsKind::Table => "table",
+            KinematicsKind::Head => "head",
+            KinematicsKind::TableTable => "table_table",
+            KinematicsKind::HeadHead => "head_head",
+            KinematicsKind::HeadTable => "head_table",
+        }
+    }
+
+    /// Whether the `index`th rotary axis (from the base) sits in the head; the others carry
+    /// the part.
+    fn in_head(self, index: usize) -> bool {
+        match self {
+            KinematicsKind::Table | KinematicsKind::TableTable => false,
+            KinematicsKind::Head | KinematicsKind::HeadHead => true,
+            KinematicsKind::HeadTable => index == 0,
+        }
+    }
+}
+
+impl Kinematics {
+    /// The rotary axes, from the base outwards.
+    pub fn rotary_axes(&self) -> Vec<Axis> {
+        self.joints.iter().map(|j| j.axis).collect()
+    }
+
+    /// Whether every rotary axis sits in the head (the table does not turn).
+    pub fn all_in_head(&self) -> bool {
+        (0..self.joints.len()).all(|i| self.kind.in_head(i))
     }
 
     /// The tip's offset from the control point and the tool axis in machine coordinates, for a
-    /// tool `length` long (from the tip to the control point along the tool) and the head at
-    /// `angles`: the head's axes applied from the tool outwards.
-    fn head(&self, angles: [f64; 2], length: f64) -> (Vec3, Vec3) {
+    /// tool `length` long (from the tip to the control point along the tool) and the head's
+    /// axes at their angles in `joints`: applied from the tool outwards.
+    fn head(&self, joints: &[f64; AXES], length: f64) -> (Vec3, Vec3) {
         let mut tip = scale(self.tool_axis, -length);
         let mut axis = self.tool_axis;
         for (i, joint) in self.joints.iter().enumerate().rev() {
-            if self.in_head()[i] {
-                tip = turn_about(tip, joint.center, joint.direction, angles[i]);
-                axis = rotate(axis, joint.direction, angles[i]);
+            if self.kind.in_head(i) {
+                let angle = joints[joint.axis.index()];
+                tip = turn_about(tip, joint.center, joint.direction, angle);
+                axis = rotate(axis, joint.direction, angle);
             }
         }
         (tip, axis)
     }
 
-    /// Where the table's axes at `angles` carry a workpiece point (or, `about_centre` false, a
-    /// direction): from the part towards the base.
-    fn table_to_machine(&self, mut p: Vec3, angles: [f64; 2], about_centre: bool) -> Vec3 {
+    /// Where the table's axes at their angles in `joints` carry a workpiece point (or,
+    /// `about_centre` false, a direction): from the part towards the base.
+    fn table_to_machine(&self, mut p: Vec3, joints: &[f64; AXES], about_centre: bool) -> Vec3 {
         for (i, joint) in self.joints.iter().enumerate().rev() {
-            if !self.in_head()[i] {
+            if !self.kind.in_head(i) {
+                let angle = joints[joint.axis.index()];
                 p = match about_centre {
-                    true => turn_about(p, joint.center, joint.direction, angles[i]),
-                    false => rotate(p, joint.direction, angles[i]),
+                    true => turn_about(p, joint.center, joint.direction, angle),
+                    false => rotate(p, joint.direction, angle),
                 };
             }
         }
@@ -214,12 +253,13 @@ impl Kinematics {
     }
 
     /// [`Kinematics::table_to_machine`] undone: a machine point (or direction) in the part.
-    fn machine_to_table(&self, mut p: Vec3, angles: [f64; 2], about_centre: bool) -> Vec3 {
+    fn machine_to_table(&self, mut p: Vec3, joints: &[f64; AXES], about_centre: bool) -> Vec3 {
         for (i, joint) in self.joints.iter().enumerate() {
-            if !self.in_head()[i] {
+            if !self.kind.in_head(i) {
+                let angle = joints[joint.axis.index()];
                 p = match about_centre {
-                    true => turn_about(p, joint.center, joint.direction, -angles[i]),
-                    false => rotate(p, joint.direction, -angles[i]),
+                    true => turn_about(p, joint.center, joint.direction, -angle),
+                    false => rotate(p, joint.direction, -angle),
                 };
             }
         }
@@ -229,12 +269,11 @@ impl Kinematics {
     /// The forward transform: the tool tip and axis in the workpiece for the machine at
     /// `joints`, with a tool `length` long.
     pub fn forward(&self, joints: &[f64; AXES], length: f64) -> ToolPose {
-        let angles = self.angles(joints);
-        let (offset, axis) = self.head(angles, length);
+        let (offset, axis) = self.head(joints, length);
         let control = [joints[0], joints[1], joints[2]];
         ToolPose {
-            tip: self.machine_to_table(add(control, offset), angles, true),
-            axis: self.machine_to_table(axis, angles, false),
+            tip: self.machine_to_table(add(control, offset), joints, true),
+            axis: self.machine_to_table(axis, joints, false),
         }
     }
 
@@ -242,26 +281,59 @@ impl Kinematics {
     /// with its tip at `tip` (workpiece coordinates), the rotary axes at their angles in
     /// `joints` (whose other axes are kept).
     pub fn joints_for_tip(&self, tip: Vec3, joints: &[f64; AXES], length: f64) -> [f64; AXES] {
-        let angles = self.angles(joints);
-        let (offset, _) = self.head(angles, length);
-        let control = sub(self.table_to_machine(tip, angles, true), offset);
+        let (offset, _) = self.head(joints, length);
+        let control = sub(self.table_to_machine(tip, joints, true), offset);
         let mut out = *joints;
         out[..3].copy_from_slice(&control);
         out
     }
 
-    /// The inverse for a tool direction: the angles of the two rotary axes that point the tool
-    /// along `direction` (workpiece coordinates), chosen by [`Kinematics::solution`] among the
-    /// solutions within the axes' limits, next to `current`. `None` when no position of the
-    /// axes gives that direction.
-    pub fn angles_for(&self, direction: Vec3, current: [f64; 2]) -> Option<[f64; 2]> {
+    /// The inverse for a tool direction: `joints` with the rotary axes turned so that the tool
+    /// points along `direction` (workpiece coordinates), chosen by [`Kinematics::solution`]
+    /// among the solutions within the axes' limits, next to the angles `joints` holds. `None`
+    /// when no position of the axes gives that direction (with one rotary axis, any direction
+    /// off the cone the tool sweeps about it).
+    pub fn orient(&self, direction: Vec3, joints: &[f64; AXES]) -> Option<[f64; AXES]> {
+        let direction = unit(direction)?;
+        let current = |i: usize| joints[self.joints[i].axis.index()];
+        let angles = match self.joints.len() {
+            1 => vec![self.angle_for(direction, current(0))?],
+            _ => self
+                .angles_for(direction, [current(0), current(1)])?
+                .to_vec(),
+        };
+        let mut out = *joints;
+        for (joint, angle) in self.joints.iter().zip(angles) {
+            out[joint.axis.index()] = angle;
+        }
+        Some(out)
+    }
+
+    /// One rotary axis: the tool turned about it sweeps a cone, and a direction on that cone is
+    /// reached by one angle (the axis's own direction by any: it stays at `current`).
+    fn angle_for(&self, direction: Vec3, current: f64) -> Option<f64> {
+        let joint = &self.joints[0];
+        let a = joint.direction;
+        // Rounding may leave a reachable direction a hair off the cone; anything more is out of
+        // reach, as for two axes (`two_cone_meeting`).
+        if (dot(direction, a) - dot(self.tool_axis, a)).abs() > 1e-9 {
+            return None;
+        }
+        // A table axis turns the tool, seen from the part, by minus its angle.
+        let sign = if self.kind.in_head(0) { 1.0 } else { -1.0 };
+        let raw = angle_about(a, self.tool_axis, direction).map_or(current, |v| v * sign);
+        nearest_turn(raw, current, joint.limits)
+    }
+
+    /// Two rotary axes: their angles for `direction`, next to `current`.
+    fn angles_for(&self, direction: Vec3, current: [f64; 2]) -> Option<[f64; 2]> {
         let direction = unit(direction)?;
         // The chain as two turns of the tool axis: direction = R_outer(φo) R_inner(φi) k0. A table
         // axis turns the tool (seen from the part) by minus its angle, the base's last.
         let ([outer, inner], signs) = match self.kind {
-            KinematicsKind::TableTable => ([1, 0], [-1.0, -1.0]),
             KinematicsKind::HeadHead => ([0, 1], [1.0, 1.0]),
             KinematicsKind::HeadTable => ([1, 0], [-1.0, 1.0]),
+            _ => ([1, 0], [-1.0, -1.0]),
         };
         let (a, b) = (self.joints[outer].direction, self.joints[inner].direction);
         let mut best: Option<([f64; 2], f64)> = None;
@@ -292,18 +364,21 @@ impl Kinematics {
 
     /// Each angle of `raw` taken whole turns towards `current`, within its axis's limits.
     fn nearest(&self, raw: [f64; 2], current: [f64; 2]) -> Option<[f64; 2]> {
-        let mut out = [0.0; 2];
-        for i in 0..2 {
-            let (min, max) = self.joints[i].limits;
-            let near = current[i] + wrap(raw[i] - current[i]);
-            // The nearest equivalent first, then a turn either way if the limits refuse it.
-            out[i] = [near, near - 360.0, near + 360.0]
-                .into_iter()
-                .filter(|a| (min - 1e-9..=max + 1e-9).contains(a))
-                .min_by(|x, y| (x - current[i]).abs().total_cmp(&(y - current[i]).abs()))?;
-        }
-        Some(out)
+        Some([
+            nearest_turn(raw[0], current[0], self.joints[0].limits)?,
+            nearest_turn(raw[1], current[1], self.joints[1].limits)?,
+        ])
     }
+}
+
+/// `raw` taken whole turns towards `current`, within `(min, max)`.
+fn nearest_turn(raw: f64, current: f64, (min, max): (f64, f64)) -> Option<f64> {
+    let near = current + wrap(raw - current);
+    // The nearest equivalent first, then a turn either way if the limits refuse it.
+    [near, near - 360.0, near + 360.0]
+        .into_iter()
+        .filter(|a| (min - 1e-9..=max + 1e-9).contains(a))
+        .min_by(|x, y| (x - current).abs().total_cmp(&(y - current).abs()))
 }
 
 /// The unit vectors `z` with `z·b = k·b` and `z·a = d·a`: where the cone `k` sweeps about `b`
@@ -384,16 +459,16 @@ fn turn_about(p: Vec3, center: Vec3, axis: Vec3, degrees: f64) -> Vec3 {
     add(center, rotate(sub(p, center), axis, degrees))
 }
 
-fn unit(v: Vec3) -> Option<Vec3> {
+pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
     let n = norm(v);
     (n.is_finite() && n > DEGENERATE).then(|| scale(v, 1.0 / n))
 }
 
-fn dot(a: Vec3, b: Vec3) -> f64 {
+pub(crate) fn dot(a: Vec3, b: Vec3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
+pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -401,7 +476,7 @@ fn cross(a: Vec3, b: Vec3) -> Vec3 {
     ]
 }
 
-fn norm(v: Vec3) -> f64 {
+pub(crate) fn norm(v: Vec3) -> f64 {
     dot(v, v).sqrt()
 }
 
@@ -409,7 +484,7 @@ fn add(a: Vec3, b: Vec3) -> Vec3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
+pub(crate) fn sub(a: Vec3, b: Vec3) -> Vec3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
@@ -426,12 +501,14 @@ mod tests {
     fn machine(kind: KinematicsKind, joints: [(Axis, Vec3, Vec3); 2]) -> Kinematics {
         Kinematics {
             kind,
-            joints: joints.map(|(axis, direction, center)| RotaryJoint {
-                axis,
-                direction,
-                center,
-                limits: FREE,
-            }),
+            joints: joints
+                .map(|(axis, direction, center)| RotaryJoint {
+                    axis,
+                    direction,
+                    center,
+                    limits: FREE,
+                })
+                .into(),
             tool_axis: [0.0, 0.0, 1.0],
             solution: Solution::Shortest,
         }
@@ -560,5 +637,92 @@ mod tests {
         assert!(table.angles_for([0.0, -1.0, 1.0], [0.0, 0.0]).is_none());
         let angles = table.angles_for([0.0, 1.0, 1.0], [0.0, 0.0]).unwrap();
         assert!((angles[0] - 45.0).abs() < 1e-9 && angles[1].abs() < 1e-9);
+    }
+
+    /// A 4-axis machine: one rotary axis.
+    fn one_axis(kind: KinematicsKind, axis: Axis, direction: Vec3, center: Vec3) -> Kinematics {
+        Kinematics {
+            kind,
+            joints: vec![RotaryJoint {
+                axis,
+                direction,
+                center,
+                limits: FREE,
+            }],
+            tool_axis: [0.0, 0.0, 1.0],
+            solution: Solution::Shortest,
+        }
+    }
+
+    fn with_a(x: f64, y: f64, z: f64, a: f64) -> [f64; AXES] {
+        [x, y, z, a, 0.0, 0.0]
+    }
+
+    #[test]
+    fn an_a_table_alone_carries_the_part_round_its_line() {
+        // A about X through (0, 0, -100) at 90: the machine point (0, 0, 0), 100 above the line,
+        // is the part point turned back by -90: R_x(-90) (0, 0, 100) = (0, 100, 0), about the
+        // line (0, 100, -100); the tool (+Z) is R_x(-90) z = +Y in the part.
+        let table = one_axis(
+            KinematicsKind::Table,
+            Axis::A,
+            [1.0, 0.0, 0.0],
+            [0.0, 0.0, -100.0],
+        );
+        let pose = table.forward(&with_a(0.0, 0.0, 0.0, 90.0), 0.0);
+        assert!(close(pose.tip, [0.0, 100.0, -100.0]), "{pose:?}");
+        assert!(close(pose.axis, [0.0, 1.0, 0.0]), "{pose:?}");
+        let back = table.joints_for_tip(pose.tip, &with_a(5.0, 5.0, 5.0, 90.0), 0.0);
+        assert!(close([back[0], back[1], back[2]], [0.0; 3]), "{back:?}");
+    }
+
+    #[test]
+    fn one_rotary_axis_reaches_the_directions_on_its_cone_only() {
+        // The A table shows the part the tool as R_x(-A) z = (0, sin A, cos A): (0, 1, 1) is
+        // A = 45, (0, -1, 1) A = -45, and anything with an X part is out of reach.
+        let mut table = one_axis(KinematicsKind::Table, Axis::A, [1.0, 0.0, 0.0], [0.0; 3]);
+        let at_zero = with_a(0.0, 0.0, 0.0, 0.0);
+        let a = table.orient([0.0, 1.0, 1.0], &at_zero).unwrap()[3];
+        assert!((a - 45.0).abs() < 1e-9, "{a}");
+        let a = table.orient([0.0, -1.0, 1.0], &at_zero).unwrap()[3];
+        assert!((a + 45.0).abs() < 1e-9, "{a}");
+        assert!(table.orient([1.0, 0.0, 1.0], &at_zero).is_none());
+        // The limits refuse -45: no other angle gives that direction.
+        table.joints[0].limits = (-30.0, 120.0);
+        assert!(table.orient([0.0, -1.0, 1.0], &at_zero).is_none());
+        // A whole turn away is nearer from 350: 405 is the same direction as 45.
+        table.joints[0].limits = FREE;
+        let a = table
+            .orient([0.0, 1.0, 1.0], &with_a(0.0, 0.0, 0.0, 350.0))
+            .unwrap()[3];
+        assert!((a - 405.0).abs() < 1e-9, "{a}");
+    }
+
+    #[test]
+    fn a_rotary_table_alone_keeps_its_angle_for_the_tool_along_it() {
+        // A C table turns the part about the tool: +Z in the part at any C, and C stays put.
+        let table = one_axis(KinematicsKind::Table, Axis::C, [0.0, 0.0, 1.0], [0.0; 3]);
+        let joints = [0.0, 0.0, 0.0, 0.0, 0.0, 123.0];
+        assert_eq!(table.orient([0.0, 0.0, 2.0], &joints).unwrap()[5], 123.0);
+        assert!(table.orient([0.0, 1.0, 1.0], &joints).is_none());
+    }
+
+    #[test]
+    fn a_tilting_head_alone_turns_the_tool_its_own_way() {
+        // B head through the pivot 100 above the nose, a 50 mm tool: at B = 90 the tool points
+        // along R_y(90) z = +X from the tip, so the tip is 150 along -X from the pivot, and the
+        // inverse for +X is B = 90 (a head axis turns the tool by plus its angle).
+        let head = one_axis(
+            KinematicsKind::Head,
+            Axis::B,
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 100.0],
+        );
+        let pose = head.forward(&at(0.0, 0.0, 0.0, 90.0, 0.0), 50.0);
+        assert!(close(pose.tip, [-150.0, 0.0, 100.0]), "{pose:?}");
+        let b = head
+            .orient([1.0, 0.0, 0.0], &at(0.0, 0.0, 0.0, 0.0, 0.0))
+            .unwrap()[4];
+        assert!((b - 90.0).abs() < 1e-9, "{b}");
     }
 }

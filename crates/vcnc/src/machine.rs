@@ -637,6 +637,20 @@ mod tests {
     }
 
     #[test]
+    fn a_four_axis_kinematics_table_has_one_rotary_axis() {
+        let axes = "[axes.a]\nmin = -120.0\nmax = 120.0\nrapid = 9000.0\nmax_feed = 5000.0\n\n";
+        let table = "[kinematics]\ntype = \"table\"\nrotary = [\n\
+                     { axis = \"a\", direction = [1.0, 0.0, 0.0], center = [0.0, 0.0, -50.0] },\n]\n";
+        let text = DEFAULT_MACHINE_TOML.replace("[start]", &format!("{axes}{table}\n[start]"));
+        let machine = Machine::from_toml(&text).expect("valid");
+        let kinematics = machine.kinematics.expect("read");
+        assert_eq!(kinematics.rotary_axes(), [Axis::A]);
+        let two = text.replace("type = \"table\"", "type = \"table_table\"");
+        let error = Machine::from_toml(&two).unwrap_err().to_string();
+        assert!(error.contains("expects 2 rotary axes, found 1"), "{error}");
+    }
+
+    #[test]
     fn work_offset_keys_name_every_register() {
         assert_eq!(WorkOffsetId::parse("G54"), Some(WorkOffsetId::Standard(1)));
         assert_eq!(

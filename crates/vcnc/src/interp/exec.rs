@@ -40,6 +40,8 @@ pub(crate) struct Executor {
     pub(crate) probe: std::sync::Arc<crate::probe::Probe>,
     /// The zone of stored stroke check 2 while G22 is in force.
     pub(crate) stroke_zone: Option<super::stroke_check::StrokeZone>,
+    /// A FANUC G68.2 P2/P3 plane whose blocks are being read.
+    pub(crate) plane_parts: super::tilted_plane::PlaneParts,
 }
 
 /// What one block did to the flow of the program.
@@ -73,6 +75,7 @@ impl Executor {
             cycle: None,
             skip_position: [0.0; AXES],
             nurbs: None,
+            plane_parts: Default::default(),
             probe: std::sync::Arc::new(crate::probe::Probe::new(
                 &machine.probe,
                 &machine.tool_offsets,
@@ -603,8 +606,9 @@ impl Executor {
         }
     }
 
-    /// The machine position the block's axis words name (with G45-G48 and G16 applied); the
-    /// length vector follows the compensation when the block moves Z or changed it.
+    /// The machine position the block's axis words name (with G45-G48 and G16 applied, and
+    /// G43.5's tool direction); the length vector follows the compensation when the block moves
+    /// Z or changed it.
     // Inlined, like `move_to`: out of line, the target and the move were copied between frames.
     #[inline(always)]
     pub(crate) fn block_target(
@@ -632,7 +636,8 @@ impl Executor {
             self.polar = Some(point);
         }
         let moves_z = cmd.axis(Axis::Z.index()).is_some() || length_changed;
-        Ok(self.machine_target(&target, moves_z))
+        let machine = self.machine_target(&target, moves_z);
+        super::tool_center::tool_direction(self, cmd, machine, out)
     }
 
     /// A cutting line to a machine position at the feed in force, recorded in the stream; with

@@ -215,7 +215,7 @@ impl ModalState {
             LengthCompPlus => self.length_comp = LengthComp::Plus,
             LengthCompMinus => self.length_comp = LengthComp::Minus,
             LengthCompCancel => self.length_comp = LengthComp::Off,
-            ToolCenterPoint => self.length_comp = LengthComp::CenterPoint,
+            ToolCenterPoint | ToolCenterPointType2 => self.length_comp = LengthComp::CenterPoint,
             ReturnToInitialLevel => self.cycle_return = CycleReturn::InitialLevel,
             ReturnToRLevel => self.cycle_return = CycleReturn::RLevel,
             ConstantSurfaceSpeed => self.spindle_mode = SpindleMode::SurfaceSpeed,

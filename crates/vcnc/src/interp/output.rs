@@ -258,6 +258,14 @@ impl Output {
         }
     }
 
+    /// The kinematic transform in force (G43.4, G43.5, G53.1).
+    pub(crate) fn kinematics(&self) -> Option<&KinematicStage> {
+        self.stages.iter().find_map(|stage| match stage {
+            Stage::Kinematics(stage) => Some(&**stage),
+            _ => None,
+        })
+    }
+
     /// The kinematic transform in force (G43.4, G53.1), to change it.
     pub(crate) fn kinematics_mut(&mut self) -> Option<&mut KinematicStage> {
         self.stages.iter_mut().find_map(|stage| match stage {

@@ -16,6 +16,28 @@
 //!
 //! A G02/G03 in the feature plane is a circle in a tilted plane, which the machine's arcs (in
 //! G17/G18/G19) cannot carry: it becomes chords, computed in the feature system.
+//!
+//! FANUC's Series 30i has more forms, chosen by P (profile `motion.tilted_plane_forms`; the
+//! Syntec manual gives the Euler form only, so P there is refused). The seed manuals do not
+//! describe them: the forms and their words follow FANUC's 30i documentation as the Mazak
+//! (FANUC-compatible) and LinuxCNC tilted-work-plane documents restate it, and the choices where
+//! those leave a reading open are marked below.
+//!
+//! - P0 (or none): the Euler angles above.
+//! - P1: roll-pitch-yaw, I about X, J about Y, K about Z, turned in the order Q names (Q123, the
+//!   default, X then Y then Z; any order of the three digits). Choice: each turn is about the
+//!   work system's own (fixed) axes, the classic roll-pitch-yaw, so Q123 is Rz(K) Ry(J) Rx(I);
+//!   one restatement multiplies the other way round (about the turned axes).
+//! - P2: three points, one block each: Q1, Q2, Q3 give X Y Z. Q1 to Q2 is the feature +X, Q3
+//!   lies on the +Y side of the feature XY plane. An optional Q0 block before them gives the
+//!   origin (X Y Z; without it the origin is the Q1 point) and R, a turn about the feature Z.
+//! - P3: two vectors: Q1 gives the origin (X Y Z), the feature X direction (I J K) and R; Q2 the
+//!   feature Z direction (I J K). FANUC refuses vectors further than 5 degrees from square; the
+//!   Z direction is kept and X squared to it (choice: Z is the tool's direction).
+//!
+//! The plane of a P2 or P3 comes into force at its last block (Q3, Q2); until then the frame in
+//! force stays; G69 drops the blocks given so far. Choice: other blocks between them are not
+//! refused.
 
 use super::arc::{arc_center, in_plane, ArcSpec};
 use super::decode::Command;
@@ -24,8 +46,8 @@ use super::frames::{Affine, FrameSlot, Transform};
 use super::tool_center::{self, Keeper};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::kinematics::successive_turns;
-use crate::machine::{Axis, AXES};
+use crate::kinematics::{cross, dot, norm, sub, successive_turns, unit, Vec3};
+use crate::machine::AXES;
 use crate::motion::{ArcDirection, Feed, Move, PathMode, SegmentKind};
 use crate::profile::{GCode, Group};
 
@@ -37,27 +59,231 @@ pub(crate) fn euler_zxz(i: f64, j: f64, k: f64) -> [[f64; 3]; 3] {
     successive_turns(&[(z, i), (x, j), (z, k)])
 }
 
-/// G68.2: the feature coordinate system from the block's X Y Z and I J K.
+/// The rotation of roll-pitch-yaw angles (degrees) `[about X, about Y, about Z]` turned in
+/// `order` (axis indices, the first turn first), each about the fixed axes: the later turns
+/// multiply from the left.
+pub(crate) fn roll_pitch_yaw(order: [usize; 3], angles: [f64; 3]) -> [[f64; 3]; 3] {
+    let unit = |i: usize| std::array::from_fn(|k| if k == i { 1.0 } else { 0.0 });
+    // Turns about fixed axes in one order are turns about the moved axes in the other.
+    let turns = order.map(|i| (unit(i), angles[i]));
+    successive_turns(&[turns[2], turns[1], turns[0]])
+}
+
+/// The rotation whose columns are the feature X, Y and Z: X along `x` squared to `z`, turned
+/// `turn` degrees about Z; `None` when the two are (nearly) parallel or either is zero.
+fn from_x_and_z(x: Vec3, z: Vec3, turn: f64) -> Option<[[f64; 3]; 3]> {
+    let z = unit(z)?;
+    let along = dot(x, z);
+    let x = unit(std::array::from_fn(|i| x[i] - along * z[i]))?;
+    let y = cross(z, x);
+    let axes = successive_turns(&[([0.0, 0.0, 1.0], turn)]);
+    let columns = [x, y, z];
+    // Turning the feature system about its own Z: the columns times Rz(turn).
+    Some(std::array::from_fn(|row| {
+        std::array::from_fn(|col| (0..3).map(|k| columns[k][row] * axes[k][col]).sum())
+    }))
+}
+
+/// The block's X Y Z in work coordinates (0 for a word left out), and whether it had any.
+fn work_point(exec: &Executor, cmd: &Command) -> (Vec3, bool) {
+    let point = std::array::from_fn(|i| cmd.axis(i).map_or(0.0, |v| exec.length(&v)));
+    (point, (0..3).any(|i| cmd.axis(i).is_some()))
+}
+
+/// G68.2: the feature coordinate system from the block (the Euler form, or FANUC's P1-P3).
 ///
 /// # Errors
-/// None today; kept fallible like the other coordinate codes.
+/// [`AlarmCode::ValueOutOfRange`] for a P or Q the control does not have;
+/// [`AlarmCode::FiveAxis`] for points or vectors that make no plane, or a P2/P3 block out of
+/// its order.
 pub(crate) fn g68_2(exec: &mut Executor, cmd: &Command) -> Result<(), Alarm> {
-    let origin: [f64; AXES] = std::array::from_fn(|i| match Axis::from_index(i) {
-        Some(axis) if axis.is_geometry() => cmd.axis(i).map_or(0.0, |v| exec.axis_value(axis, &v)),
-        _ => 0.0,
-    });
+    let form = plane_form(exec, cmd)?;
     let angle = |i: usize| cmd.center(i).map_or(0.0, |v| exec.kernel.setup.angle(&v));
-    let rotation = euler_zxz(angle(0), angle(1), angle(2));
+    let angles = [angle(0), angle(1), angle(2)];
+    let (rotation, origin) = match form {
+        0 => (
+            euler_zxz(angles[0], angles[1], angles[2]),
+            work_point(exec, cmd).0,
+        ),
+        1 => (
+            roll_pitch_yaw(rotation_order(cmd)?, angles),
+            work_point(exec, cmd).0,
+        ),
+        _ => match gather(exec, cmd, form)? {
+            Some(plane) => plane,
+            None => return Ok(()),
+        },
+    };
+    let origin: [f64; AXES] = std::array::from_fn(|i| origin.get(i).copied().unwrap_or(0.0));
     // A rotation matrix always inverts and the origin is a checked program value.
     let frame = Affine::new(rotation, origin).map(Transform::Affine);
     exec.kernel.frames.set_frame(FrameSlot::Rotation, frame);
     Ok(())
 }
 
+/// The form G68.2's P selects (0 without P).
+fn plane_form(exec: &Executor, cmd: &Command) -> Result<u8, Alarm> {
+    let Some(p) = cmd.word(b'P') else {
+        return Ok(0);
+    };
+    let forms = exec.kernel.setup.profile().motion.tilted_plane_forms;
+    let value = p.number.value;
+    match value {
+        0.0 => Ok(0),
+        1.0 | 2.0 | 3.0 if forms => Ok(value as u8),
+        _ => Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            p.span,
+            format!("G68.2 P{value} is not a form of this control's tilted working plane"),
+        )
+        .with_help(if forms {
+            "P0 Euler angles, P1 roll-pitch-yaw, P2 three points, P3 two vectors"
+        } else {
+            "this control's G68.2 takes the Euler angles I J K only (X Y Z I J K, no P)"
+        })),
+    }
+}
+
+/// P1's Q: the order of the three turns as axis indices (Q123 when Q is left out).
+fn rotation_order(cmd: &Command) -> Result<[usize; 3], Alarm> {
+    let Some(q) = cmd.word(b'Q') else {
+        return Ok([0, 1, 2]);
+    };
+    let digits = q.number.value;
+    let order = [100.0, 10.0, 1.0].map(|place| ((digits / place).floor() % 10.0) as usize);
+    let permutation = digits.fract() == 0.0
+        && (100.0..=321.0).contains(&digits)
+        && order.iter().all(|d| (1..=3).contains(d))
+        && order[0] != order[1]
+        && order[1] != order[2]
+        && order[0] != order[2];
+    if !permutation {
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            q.span,
+            format!("G68.2 P1 Q{digits}: Q names the order of the turns about X (1), Y (2), Z (3)"),
+        )
+        .with_help("give the three digits once each: Q123, Q132, Q213, Q231, Q312 or Q321"));
+    }
+    Ok(order.map(|d| d - 1))
+}
+
+/// A feature system: its rotation (columns the feature X Y Z) and origin, work coordinates.
+type Plane = ([[f64; 3]; 3], Vec3);
+
+/// The blocks of a FANUC G68.2 P2 (three points) or P3 (two vectors) read so far.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PlaneParts {
+    /// The form (2 or 3) the blocks so far belong to.
+    form: u8,
+    /// Each block by its Q: X Y Z (work coordinates, if written), I J K, R.
+    parts: [Option<PlanePart>; 4],
+}
+
+/// One block of a P2/P3 definition.
+#[derive(Clone, Copy, Debug)]
+struct PlanePart {
+    point: Option<Vec3>,
+    vector: Vec3,
+    turn: f64,
+}
+
+/// A P2/P3 block: kept, and at the form's last block the plane (rotation, origin).
+fn gather(exec: &mut Executor, cmd: &Command, form: u8) -> Result<Option<Plane>, Alarm> {
+    let span = cmd.group(Group::Rotation).map_or(cmd.span, |g| g.span);
+    let last = if form == 2 { 3 } else { 2 };
+    let first = if form == 2 { 0 } else { 1 };
+    let q = cmd.word(b'Q').map(|q| q.number.value);
+    let Some(q) = q.filter(|q| q.fract() == 0.0 && (first as f64..=last as f64).contains(q)) else {
+        return Err(Alarm::error(
+            AlarmCode::ValueOutOfRange,
+            span,
+            format!(
+                "G68.2 P{form} needs Q{first} to Q{last}: which part of the plane the block gives"
+            ),
+        )
+        .with_help(if form == 2 {
+            "G68.2 P2: Q0 origin and R (optional), Q1, Q2, Q3 the three points"
+        } else {
+            "G68.2 P3: Q1 origin, X direction (I J K) and R; Q2 the Z direction (I J K)"
+        }));
+    };
+    let q = q as usize;
+    if exec.plane_parts.form != form {
+        exec.plane_parts = PlaneParts {
+            form,
+            ..PlaneParts::default()
+        };
+    }
+    let (point, written) = work_point(exec, cmd);
+    // A direction's length does not matter: I J K as written, not as lengths.
+    let vector = std::array::from_fn(|i| cmd.center(i).map_or(0.0, |v| v.number.value));
+    let turn = cmd.r().map_or(0.0, |v| exec.kernel.setup.angle(&v));
+    exec.plane_parts.parts[q] = Some(PlanePart {
+        point: written.then_some(point),
+        vector,
+        turn,
+    });
+    if q != last {
+        return Ok(None);
+    }
+    let parts = std::mem::take(&mut exec.plane_parts).parts;
+    let missing = |what: &str| {
+        Alarm::error(
+            AlarmCode::FiveAxis,
+            span,
+            format!("G68.2 P{form} Q{last} without {what} before it"),
+        )
+        .with_help("give the plane's blocks in order, each with G68.2 and its P and Q")
+    };
+    let no_plane = |what: &str| {
+        Alarm::error(AlarmCode::FiveAxis, span, format!("G68.2 P{form}: {what}"))
+            .with_help("the blocks' points or vectors must span a plane")
+    };
+    if form == 2 {
+        let [origin, Some(p1), Some(p2), Some(p3)] = parts else {
+            return Err(missing("Q1 and Q2"));
+        };
+        let (p1, p2, p3) = (p1.point.unwrap_or_default(), p2.point, p3.point);
+        let (p2, p3) = (p2.unwrap_or_default(), p3.unwrap_or_default());
+        let x = sub(p2, p1);
+        let z = cross(x, sub(p3, p1));
+        // Choice: a plane of points closer than 1 µm to one line is no plane (FANUC sets a
+        // limit by parameter).
+        if norm(x) < 1e-3 || norm(z) < 1e-3 * norm(x) {
+            return Err(no_plane("the three points lie on one line"));
+        }
+        let turn = origin.map_or(0.0, |o| o.turn);
+        let centre = origin.and_then(|o| o.point).unwrap_or(p1);
+        let rotation = from_x_and_z(x, z, turn).ok_or_else(|| no_plane("no plane"))?;
+        return Ok(Some((rotation, centre)));
+    }
+    let [_, Some(first), Some(second), _] = parts else {
+        return Err(missing("Q1"));
+    };
+    let (x, z) = (first.vector, second.vector);
+    let (lx, lz) = (norm(x), norm(z));
+    if lx < 1e-9 || lz < 1e-9 {
+        return Err(no_plane("a direction is the zero vector"));
+    }
+    // FANUC's limit: the two directions within 5 degrees of square.
+    let cos = dot(x, z) / (lx * lz);
+    if cos.abs() > 5f64.to_radians().sin() {
+        return Err(no_plane(&format!(
+            "the X and Z directions are {:.3} degrees apart, not within 5 of square",
+            cos.clamp(-1.0, 1.0).acos().to_degrees()
+        )));
+    }
+    let rotation = from_x_and_z(x, z, first.turn).ok_or_else(|| no_plane("no plane"))?;
+    Ok(Some((rotation, first.point.unwrap_or_default())))
+}
+
 /// G69: no rotation or tilted plane from here on; the tool keeps its direction, but the
 /// kinematic transform G53.1 kept on ends.
 pub(crate) fn g69(exec: &mut Executor, out: &mut Output) {
     super::frames::rotation::g69(&mut exec.kernel.frames);
+    // A P2/P3 plane left half given is dropped with it.
+    exec.plane_parts = PlaneParts::default();
     tool_center::release(&mut exec.kernel, Keeper::ToolAxis, out);
 }
 
@@ -174,12 +400,7 @@ pub(crate) fn g53_1(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Res
     let kinematics = tool_center::kinematics(&exec.kernel, g.span, "G53.1")?;
     let linear = plane.linear();
     let normal = [linear[0][2], linear[1][2], linear[2][2]];
-    let [first, second] = kinematics.rotary_axes();
-    let current = [
-        exec.kernel.position[first.index()],
-        exec.kernel.position[second.index()],
-    ];
-    let Some(angles) = kinematics.angles_for(normal, current) else {
+    let Some(target) = kinematics.orient(normal, &exec.kernel.position) else {
         return Err(Alarm::error(
             AlarmCode::FiveAxis,
             g.span,
@@ -190,9 +411,6 @@ pub(crate) fn g53_1(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Res
         )
         .with_help("the direction is beyond the rotary axes' travel: check G68.2's angles and the axes' limits"));
     };
-    let mut target = exec.kernel.position;
-    target[first.index()] = angles[0];
-    target[second.index()] = angles[1];
     // With the transform on, the rotary move keeps the tip where it is; off, the linear axes stay
     // and only the rotary axes turn (then the transform starts at the new angles).
     exec.rapid_to(target, cmd, out)?;

@@ -21,6 +21,20 @@
 //!
 //! Restrictions the manual lists and vcnc alarms: no G41/G42 with it (rule 1), a positive tool
 //! length (rule 3); a machine file without `[kinematics]` cannot run it.
+//!
+//! G43.5 (FANUC Series 30i, tool centre point control type 2; profile
+//! `motion.tool_center_point_type2`) is the same transform, but a G00/G01 block gives the tool
+//! direction at its end by I J K in the program system instead of the rotary positions: the
+//! control solves the angles ([`tool_direction`]). FANUC's rules kept: I J K all left out keep
+//! the direction, one or two left out are 0, a block of I J K alone turns the tool about its
+//! tip; I J K in the G43.5 block itself only on a machine whose rotary axes are all in the head
+//! (FANUC PS5421). The solution rule: of the angles that give the direction, the ones reached
+//! with the least rotary travel from where the axes are, each angle taken whole turns to the
+//! nearest (FANUC: a shortcut move, never more than 180 degrees), whatever the machine file's
+//! `solution` (which is G53.1's); a tie goes to the first of the two. Choices: the rotary axes
+//! run linearly along the block as under G43.4 (the tool direction between the ends is the
+//! joints'); rotary axis words with I J K, G02/G03 with I J K and Q (the tool's inclination)
+//! are refused.
 
 use super::decode::Command;
 use super::exec::Executor;
@@ -28,7 +42,7 @@ use super::kernel::KernelState;
 use super::pieces::{self, PieceMap};
 use super::Output;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::kinematics::Kinematics;
+use crate::kinematics::{Kinematics, Solution};
 use crate::machine::AXES;
 use crate::motion::{Item, StreamItem};
 use crate::profile::{GCode, Group};
@@ -57,6 +71,8 @@ pub(crate) struct KinematicStage {
     tolerance: f64,
     center_point: bool,
     tool_axis: bool,
+    /// G43.5: blocks give the tool direction by I J K.
+    by_direction: bool,
 }
 
 /// Tip coordinates to joints.
@@ -201,6 +217,7 @@ pub(crate) fn start(
         tolerance: state.setup.machine().planner.smoothing_tolerance,
         center_point: false,
         tool_axis: false,
+        by_direction: false,
     };
     stage.keep(keeper);
     out.start_kinematics(stage);
@@ -229,15 +246,19 @@ pub(crate) fn switch(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Re
     let Some(g) = cmd.group(Group::LengthComp) else {
         return Ok(());
     };
-    if g.code != GCode::ToolCenterPoint {
-        release(&mut exec.kernel, Keeper::CenterPoint, out);
-        return Ok(());
-    }
+    let name = match g.code {
+        GCode::ToolCenterPoint => "G43.4",
+        GCode::ToolCenterPointType2 => "G43.5",
+        _ => {
+            release(&mut exec.kernel, Keeper::CenterPoint, out);
+            return Ok(());
+        }
+    };
     if out.compensating() {
         return Err(Alarm::error(
             AlarmCode::WordNotAllowed,
             g.span,
-            "G43.4 cannot be commanded while cutter compensation (G41/G42) is on",
+            format!("{name} cannot be commanded while cutter compensation (G41/G42) is on"),
         )
         .with_help("cancel compensation with G40 first: the two cannot be used together"));
     }
@@ -246,18 +267,128 @@ pub(crate) fn switch(exec: &mut Executor, cmd: &Command, out: &mut Output) -> Re
             AlarmCode::FiveAxis,
             g.span,
             format!(
-                "G43.4 with a negative tool length ({})",
+                "{name} with a negative tool length ({})",
                 exec.active_length()
             ),
         )
         .with_help("tool centre point control needs a positive tool length (spec 1.26 rule 3)"));
     }
-    start(
-        &mut exec.kernel,
-        (g.span, "G43.4"),
-        Keeper::CenterPoint,
-        out,
-    )
+    let by_direction = g.code == GCode::ToolCenterPointType2;
+    if by_direction {
+        refuse_type2_words(exec, cmd, g.span)?;
+    }
+    start(&mut exec.kernel, (g.span, name), Keeper::CenterPoint, out)?;
+    if let Some(stage) = out.kinematics_mut() {
+        stage.by_direction = by_direction;
+    }
+    Ok(())
+}
+
+/// The words G43.5's own block may not have: Q (the tool's inclination, not simulated) and,
+/// on a machine with a table axis, I J K (FANUC PS5421).
+fn refuse_type2_words(exec: &Executor, cmd: &Command, span: Span) -> Result<(), Alarm> {
+    if let Some(q) = cmd.word(b'Q') {
+        return Err(Alarm::error(
+            AlarmCode::NotSupportedYet,
+            q.span,
+            "G43.5 Q (the tool's inclination towards the direction of motion) is not simulated",
+        )
+        .with_help("give the inclined tool direction by I J K in the motion blocks instead"));
+    }
+    let kinematics = kinematics(&exec.kernel, span, "G43.5")?;
+    if cmd.has_center_words() && !kinematics.all_in_head() {
+        return Err(Alarm::error(
+            AlarmCode::WordNotAllowed,
+            span,
+            "PS5421: I J K in the G43.5 block on a machine whose table turns",
+        )
+        .with_help("give the tool direction in the motion blocks after G43.5 (FANUC: only a head-only machine takes it in the G43.5 block)"));
+    }
+    Ok(())
+}
+
+/// G43.5's motion block: the rotary angles of `target` solved for the tool direction its I J K
+/// give (program system), when the transform is on by G43.5 and the block has them.
+///
+/// # Errors
+/// [`AlarmCode::WordNotAllowed`] for rotary axis words beside I J K, or I J K in a G02/G03;
+/// [`AlarmCode::FiveAxis`] for a zero direction or one the rotary axes cannot reach.
+// Inlined into the short path of a CAM line, which pays for the one test of I J K.
+#[inline(always)]
+pub(crate) fn tool_direction(
+    exec: &Executor,
+    cmd: &Command,
+    target: [f64; AXES],
+    out: &Output,
+) -> Result<[f64; AXES], Alarm> {
+    if !cmd.has_center_words() {
+        return Ok(target);
+    }
+    solve_direction(exec, cmd, target, out)
+}
+
+/// [`tool_direction`] for a block with I J K.
+#[inline(never)]
+fn solve_direction(
+    exec: &Executor,
+    cmd: &Command,
+    target: [f64; AXES],
+    out: &Output,
+) -> Result<[f64; AXES], Alarm> {
+    if !out.kinematics().is_some_and(|stage| stage.by_direction) {
+        return Ok(target);
+    }
+    let span = cmd.span;
+    let refuse = |message: &str, help: &str| {
+        Err(
+            Alarm::error(AlarmCode::WordNotAllowed, span, message.to_string())
+                .with_help(help.to_string()),
+        )
+    };
+    if matches!(exec.modal.motion, super::modal::MotionMode::Arc(_)) {
+        return refuse(
+            "I J K in a G02/G03 under G43.5: they give the tool direction, not the centre",
+            "give the arc by R (FANUC: only R in tool centre point control type 2)",
+        );
+    }
+    if cmd.has_extra_axis_words() {
+        return refuse(
+            "rotary axis words beside I J K under G43.5",
+            "give the tool direction by I J K alone: the control solves the rotary axes",
+        );
+    }
+    let ijk: [f64; 3] = std::array::from_fn(|i| cmd.center(i).map_or(0.0, |v| v.number.value));
+    let direction = program_direction(exec, ijk);
+    let mut kinematics = kinematics(&exec.kernel, span, "G43.5")?;
+    kinematics.solution = Solution::Shortest;
+    kinematics.orient(direction, &target).ok_or_else(|| {
+        Alarm::error(
+            AlarmCode::FiveAxis,
+            span,
+            format!(
+                "G43.5: the rotary axes cannot point the tool along I{} J{} K{}",
+                ijk[0], ijk[1], ijk[2]
+            ),
+        )
+        .with_help("the direction is zero or beyond the rotary axes' reach and travel")
+    })
+}
+
+/// A direction of the program system in the workpiece: through the frames (G68, G68.2), as the
+/// difference of two points they carry.
+fn program_direction(exec: &Executor, ijk: [f64; 3]) -> [f64; 3] {
+    let frames = &exec.kernel.frames;
+    let from = exec.kernel.program_position();
+    let mut ahead = from;
+    for (p, d) in ahead.iter_mut().zip(ijk) {
+        *p += d;
+    }
+    let length = frames.length_vector();
+    let (a, b) = (
+        frames.to_machine(&from, length),
+        frames.to_machine(&ahead, length),
+    );
+    std::array::from_fn(|i| b[i] - a[i])
 }
 
 /// G41/G42 while G43.4 is on: refused (spec 1.26 rule 1).

@@ -189,6 +189,9 @@ pub enum GCode {
     LookAhead,
     /// G43.4: tool centre point control (RTCP), the length applied along the turned tool.
     ToolCenterPoint,
+    /// G43.5: tool centre point control type 2, the tool direction given by I J K and the rotary
+    /// positions solved by the control (FANUC Series 30i).
+    ToolCenterPointType2,
     /// G68.2: tilted working plane (feature coordinate system).
     TiltedPlane,
     /// G53.1: the rotary axes turn the tool normal to the tilted plane.
@@ -291,6 +294,7 @@ impl GCode {
             PathSmoothing => "path smoothing / AI contour control",
             LookAhead => "look-ahead control",
             ToolCenterPoint => "tool centre point control",
+            ToolCenterPointType2 => "tool centre point control by tool direction",
             TiltedPlane => "tilted working plane",
             ToolAxisDirection => "tool axis direction control",
             Nurbs => "NURBS interpolation",
@@ -314,9 +318,8 @@ impl GCode {
             InverseTimeFeed | FeedPerMinute | FeedPerRevolution => Group::FeedMode,
             Inch | Metric => Group::Units,
             CutterCompCancel | CutterCompLeft | CutterCompRight => Group::CutterComp,
-            LengthCompPlus | LengthCompMinus | LengthCompCancel | ToolCenterPoint => {
-                Group::LengthComp
-            }
+            LengthCompPlus | LengthCompMinus | LengthCompCancel | ToolCenterPoint
+            | ToolCenterPointType2 => Group::LengthComp,
             CycleCancel | Cycle(_) => Group::Cycle,
             ReturnToInitialLevel | ReturnToRLevel => Group::CycleReturn,
             ScalingCancel | Scale => Group::Scaling,
@@ -526,6 +529,7 @@ pub fn classify_g(tenths: i32, profile: &Profile) -> GLookup {
         51 if profile.motion.smoothing_codes != SmoothingCodes::None => PathSmoothing,
         80 if profile.motion.smoothing_codes == SmoothingCodes::Fanuc => LookAhead,
         434 if profile.motion.five_axis => ToolCenterPoint,
+        435 if profile.motion.tool_center_point_type2 => ToolCenterPointType2,
         682 if profile.motion.five_axis => TiltedPlane,
         531 if profile.motion.five_axis => ToolAxisDirection,
         // NURBS runs in the high-speed mode (Syntec spec 1.10): where that mode exists.

@@ -567,7 +567,7 @@ mod tests {
         }
         // Every field but name, description, power_on and sinumerik: each is set or has a
         // default in some profile, so the flat-key error finds them all.
-        assert_eq!(seen.len(), 82);
+        assert_eq!(seen.len(), 84);
     }
 
     #[test]

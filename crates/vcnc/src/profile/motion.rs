@@ -101,6 +101,15 @@ pub struct MotionRules {
     /// on a machine file with `[kinematics]`.
     #[serde(default)]
     pub five_axis: bool,
+    /// G68.2's FANUC forms besides the Euler angles: P1 roll-pitch-yaw (Q the order), P2 three
+    /// points, P3 two vectors (FANUC Series 30i; Syntec's manual gives the Euler form only).
+    #[serde(default)]
+    pub tilted_plane_forms: bool,
+    /// G43.5 tool centre point control type 2: the tool direction by I J K in the program
+    /// system, the rotary positions solved by the control (FANUC Series 30i; not in Syntec's
+    /// manual).
+    #[serde(default)]
+    pub tool_center_point_type2: bool,
     /// G22/G23 stored stroke check 2, a forbidden zone switched by the program (Syntec 1.16).
     #[serde(default)]
     pub stored_stroke_check: bool,

@@ -254,12 +254,14 @@ pub fn grob_g550() -> Machine {
 pub fn two_rotary(kind: KinematicsKind, joints: [(Axis, Vec3, (f64, f64)); 2]) -> Kinematics {
     Kinematics {
         kind,
-        joints: joints.map(|(axis, direction, limits)| RotaryJoint {
-            axis,
-            direction,
-            center: [0.0; 3],
-            limits,
-        }),
+        joints: joints
+            .map(|(axis, direction, limits)| RotaryJoint {
+                axis,
+                direction,
+                center: [0.0; 3],
+                limits,
+            })
+            .into(),
         tool_axis: [0.0, 0.0, 1.0],
         solution: Solution::Shortest,
     }

@@ -105,22 +105,19 @@ fn turn_rotary_axes(
     // Choice: _DIR +1 / -1 takes the solution whose first rotary axis turns the plus / minus
     // way (the swivel data record's reference axis is the machine file's first rotary axis).
     kinematics.solution = solution;
-    let [first, second] = kinematics.rotary_axes();
-    let mut target = kernel.position().0;
-    let current = [target[first.index()], target[second.index()]];
-    let angles = kinematics.angles_for(normal, current).ok_or_else(|| {
-        Alarm::error(
-            AlarmCode::FiveAxis,
-            p.span,
-            format!(
-                "CYCLE800: the rotary axes cannot point the tool along ({:.6}, {:.6}, {:.6})",
-                normal[0], normal[1], normal[2]
-            ),
-        )
-        .with_help("check the angles against the rotary axes' travel in the machine file")
-    })?;
-    target[first.index()] = angles[0];
-    target[second.index()] = angles[1];
+    let target = kinematics
+        .orient(normal, &kernel.position().0)
+        .ok_or_else(|| {
+            Alarm::error(
+                AlarmCode::FiveAxis,
+                p.span,
+                format!(
+                    "CYCLE800: the rotary axes cannot point the tool along ({:.6}, {:.6}, {:.6})",
+                    normal[0], normal[1], normal[2]
+                ),
+            )
+            .with_help("check the angles against the rotary axes' travel in the machine file")
+        })?;
     kernel.rapid_to_machine(target, Origin::at(p.span))?;
     let (state, out) = kernel.state_and_output();
     tool_center::start(state, (p.span, "CYCLE800"), Keeper::ToolAxis, out)
