@@ -194,6 +194,14 @@ pub(super) fn before_motion(
     origin: Origin,
 ) -> Result<(), Alarm> {
     let sources = &mut front.feed_sources;
+    // The common block: no source but the master spindle, no FDA.
+    if sources.path.is_none()
+        && sources.applied.is_none()
+        && sources.handwheel_read == [None; AXES]
+        && sources.handwheel == [None; AXES]
+    {
+        return Ok(());
+    }
     sources.handwheel = std::mem::take(&mut sources.handwheel_read);
     for (axis, feed) in sources.handwheel.iter().enumerate() {
         if feed.is_some() && !positioning.iter().any(|&(a, _)| a == axis) {

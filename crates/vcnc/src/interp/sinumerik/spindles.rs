@@ -115,6 +115,11 @@ impl Spindles {
         self.master
     }
 
+    /// True when an SVC waits for its spindle's speed ([`Spindles::take_pending_rates`]).
+    pub(super) fn any_rate_pending(&self) -> bool {
+        self.others.iter().any(|other| other.rate_pending)
+    }
+
     /// The spindles whose SVC[n] of this block waits for the radius, with their rates; their
     /// wait ends.
     pub(super) fn take_pending_rates(&mut self) -> Vec<(u32, f64)> {

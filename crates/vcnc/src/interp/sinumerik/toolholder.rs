@@ -211,6 +211,10 @@ pub(super) fn svc_spindle(front: &Sinumerik) -> Option<u32> {
 /// offset's radius, and SETMS makes its spindle the master: the kernel's spindle (S, M3, G95
 /// and the stream's spindle events) is then that one, the old master turning on as it did.
 pub(super) fn before_motion(front: &mut Sinumerik, kernel: &mut Kernel, origin: Origin) {
+    // The common block: no SVC waiting for its spindle, no new master.
+    if front.toolholders.new_master.is_none() && !front.spindles.any_rate_pending() {
+        return;
+    }
     let radius = front.edge().map_or(0.0, |e| e.radius);
     let max_rpm = kernel.state().setup.machine().spindle.max_rpm;
     for (n, rate) in front.spindles.take_pending_rates() {
