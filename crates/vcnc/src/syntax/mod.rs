@@ -7,6 +7,7 @@
 //! the next block.
 
 pub mod blocks;
+mod decimal;
 pub mod expr;
 pub mod iso;
 pub mod lines;

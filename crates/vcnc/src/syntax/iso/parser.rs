@@ -12,9 +12,10 @@ pub(super) mod structured;
 use super::LineBlocks;
 use crate::alarm::{Alarm, AlarmCode};
 use crate::source::{FileId, Span};
+use crate::syntax::decimal::POWERS_OF_TEN;
 use crate::syntax::lines::{Line, Unread};
 use crate::syntax::{BlockKind, Number, Word};
-use plain::{fast_number, read_plain_line, read_plain_line_in, POWERS_OF_TEN};
+use plain::{fast_number, read_plain_line, read_plain_line_in};
 
 /// How a text is read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

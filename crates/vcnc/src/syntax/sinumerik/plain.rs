@@ -14,8 +14,9 @@
 
 use super::block::{Address, Block, Value, Word};
 use super::expr::{Expr, ExprKind, UnaryOp};
-use super::scan::{is_blank, POWERS_OF_TEN};
+use super::scan::is_blank;
 use crate::source::{FileId, Span};
+use crate::syntax::decimal::{self, Decimal};
 use crate::syntax::Number;
 
 /// A plain line's words, decoded.
@@ -302,12 +303,8 @@ fn letter_constant<'a>(
         [b'+', rest @ ..] => (false, rest),
         _ => (false, after),
     };
-    let (value, decimal_point, rest) = unsigned_decimal(unsigned)?;
-    let number = Number {
-        value: if negative { -value } else { value },
-        decimal_point,
-        negative,
-    };
+    let (decimal, rest) = unsigned_decimal(unsigned)?;
+    let number = decimal.number(negative);
     // The word's end: the letter's place, the letter, and what was read after it.
     let end = start + 1 + after.len() - rest.len();
     plain.push(
@@ -318,41 +315,15 @@ fn letter_constant<'a>(
     Some(rest)
 }
 
-/// The decimal constant at the start of `bytes` (digits, or a point and digits): its value,
-/// whether it has a point, and the bytes after it. None for anything else, and for what the
-/// general reader must read: an `EX` exponent, more than 15 digits (the value made here is then
-/// not the correctly rounded one).
-fn unsigned_decimal(bytes: &[u8]) -> Option<(f64, bool, &[u8])> {
-    // One loop over digits and the point: the point is rare enough per byte that testing for it
-    // only on bytes that are not digits costs less than a second loop for the fraction.
-    let mut mantissa = 0u64;
-    let mut length = 0;
-    let mut point = None;
-    while let Some(&byte) = bytes.get(length) {
-        let digit = u64::from(byte).wrapping_sub(u64::from(b'0'));
-        if digit <= 9 {
-            // Wrapping: past 15 digits the number is refused below.
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(digit);
-        } else if byte == b'.' && point.is_none() {
-            point = Some(length);
-        } else {
-            break;
-        }
-        length += 1;
+/// The decimal constant at the start of `bytes` (digits, or a point and digits), as the ISO
+/// reader's short path reads it: the decimal and the bytes after it. None for anything else,
+/// and for what the general reader must read: an `EX` exponent, more than 15 digits.
+fn unsigned_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
+    let (decimal, rest) = decimal::unsigned_decimal(bytes)?;
+    match rest {
+        [b'E' | b'e', b'X' | b'x', ..] => None,
+        _ => Some((decimal, rest)),
     }
-    let digits = length - usize::from(point.is_some());
-    if !(1..=15).contains(&digits) {
-        return None;
-    }
-    let rest = &bytes[length..];
-    if let [b'E' | b'e', b'X' | b'x', ..] = rest {
-        return None;
-    }
-    let fraction = point.map_or(0, |point| length - point - 1);
-    // Both exact in f64 (below 2^53 and a power of ten up to 1e15): the quotient is the
-    // correctly rounded value, as the standard parser's.
-    let value = mantissa as i64 as f64 / POWERS_OF_TEN[fraction & 15];
-    Some((value, point.is_some(), rest))
 }
 
 /// `CR=` or `F=` and a number, a negated number or (after `F=`) a variable's name (`CR=-11.7`,
@@ -372,7 +343,8 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
     let from = equals + 1;
     match text.get(from) {
         Some(b'-') => {
-            let (value, _, rest) = unsigned_decimal(&text[from + 1..])?;
+            let (decimal, rest) = unsigned_decimal(&text[from + 1..])?;
+            let value = decimal.number(false).value;
             let end = text.len() - rest.len();
             let kind = if radius {
                 PlainKind::Radius(value, true)
@@ -401,7 +373,8 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
             Some(end)
         }
         _ => {
-            let (value, _, rest) = unsigned_decimal(&text[from..])?;
+            let (decimal, rest) = unsigned_decimal(&text[from..])?;
+            let value = decimal.number(false).value;
             let end = text.len() - rest.len();
             let kind = if radius {
                 PlainKind::Radius(value, false)

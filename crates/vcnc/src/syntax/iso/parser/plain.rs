@@ -15,14 +15,9 @@
 
 use super::super::LineBlocks;
 use crate::source::{FileId, Span};
+use crate::syntax::decimal::{unsigned_decimal, Decimal, MAX_DIGITS};
 use crate::syntax::lines::{Line, Unread};
 use crate::syntax::{Number, Word};
-
-/// The most digits the fast path reads in one number. Below 10^15 every mantissa is an integer
-/// that f64 holds exactly, and so is every power of ten it is divided by (up to 10^22): one
-/// division then rounds once, correctly, as the general reader's does. Longer numbers, rare in a
-/// program, take the general reader.
-const MAX_DIGITS: usize = 15;
 
 /// The longest line the fast path reads: two bytes a word at the least (`X1Y2`), so a plain
 /// line holds at most [`super::super::MAX_WORDS_PER_BLOCK`] words; a longer line (none of a
@@ -203,12 +198,6 @@ pub(super) fn fast_number(bytes: &[u8], negative: bool) -> Option<(Number, usize
     Some((decimal.number(negative), bytes.len() - rest.len()))
 }
 
-/// The powers of ten that are exact in f64.
-pub(super) const POWERS_OF_TEN: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-];
-
 /// The blanks the reader skips between words (a line end is never inside a line), `\r` among
 /// them when `CARRIAGE_RETURN`.
 #[inline(always)]
@@ -259,37 +248,6 @@ fn signed_number<const WINDOWED: bool>(bytes: &[u8]) -> Option<(Number, &[u8])> 
         unsigned_decimal(unsigned)?
     };
     Some((decimal.number(negative), rest))
-}
-
-/// A decimal number as its digits read it: `12.50` is 1250 with two fraction digits.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Decimal {
-    /// The digits as one integer, below 10^[`MAX_DIGITS`].
-    mantissa: u64,
-    /// How many of the digits stand after the point (at most [`MAX_DIGITS`]).
-    fraction_digits: usize,
-    /// The number has a decimal point (`X25.` and `X25` differ on most profiles).
-    decimal_point: bool,
-}
-
-impl Decimal {
-    /// The value, correctly rounded: both operands of the division are exact (see
-    /// [`MAX_DIGITS`]), so it rounds once.
-    #[inline(always)]
-    fn number(self, negative: bool) -> Number {
-        // Below 2^53 the mantissa converts exactly either way; from i64 it takes one
-        // instruction on x86-64, from u64 six.
-        let mantissa = self.mantissa as i64 as f64;
-        // `fraction_digits` is at most MAX_DIGITS (15): the mask changes nothing and spares
-        // the bounds check.
-        debug_assert!(self.fraction_digits <= MAX_DIGITS);
-        let magnitude = mantissa / POWERS_OF_TEN[self.fraction_digits & 15];
-        Number {
-            value: if negative { -magnitude } else { magnitude },
-            decimal_point: self.decimal_point,
-            negative,
-        }
-    }
 }
 
 /// [`unsigned_decimal`] where `bytes` runs on far enough after the number: its digits are read
@@ -359,40 +317,6 @@ fn digit_run(mut mantissa: u64, bytes: &[u8; RUN]) -> (u64, usize) {
         mantissa = mantissa.wrapping_mul(10).wrapping_add(digit);
     }
     (mantissa, RUN)
-}
-
-/// `digits [. [digits]]` or `. digits` at the start of `bytes`, with one to [`MAX_DIGITS`]
-/// digits; the decimal and the bytes after it.
-#[inline(always)]
-fn unsigned_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
-    // One loop over digits and point: the point is rare enough per byte that testing for it
-    // only on bytes that are not digits costs less than a second loop for the fraction.
-    let mut mantissa = 0u64;
-    let mut length = 0;
-    let mut point = None;
-    while let Some(&byte) = bytes.get(length) {
-        // Widened before the subtraction, the digit needs no second widening to be added.
-        let digit = u64::from(byte).wrapping_sub(u64::from(b'0'));
-        if digit <= 9 {
-            // Wrapping: past MAX_DIGITS digits the number is refused below.
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(digit);
-        } else if byte == b'.' && point.is_none() {
-            point = Some(length);
-        } else {
-            break;
-        }
-        length += 1;
-    }
-    let digits = length - usize::from(point.is_some());
-    if digits == 0 || digits > MAX_DIGITS {
-        return None;
-    }
-    let decimal = Decimal {
-        mantissa,
-        fraction_digits: point.map_or(0, |point| length - point - 1),
-        decimal_point: point.is_some(),
-    };
-    Some((decimal, &bytes[length..]))
 }
 
 #[cfg(test)]
