@@ -1063,3 +1063,28 @@ fn a_cycle_called_under_g41_or_g42_is_an_alarm_at_its_call() {
     let text = "T1 D1 M6\nG17 G90 F100 S1000 M3\nG0 X0 Y0 Z10\nG41 G1 X10 Y10\nG40 G1 X0 Y0\nCYCLE81(10,0,2,-5)\nM30\n";
     assert!(collect(run_str(text, &machine)).error().is_none());
 }
+
+#[test]
+fn cycle832_alarms_for_its_machining_type_and_tolerance() {
+    // _TOLM's units digit is 0 to 3 (deselect, finishing, semi-finishing, roughing): 4 is the
+    // cycles' 61002, a fraction too.
+    assert_eq!(
+        cycle_alarm(&format!("{START}CYCLE832(0.05,4,1)\nM30\n")),
+        "cycle alarm 61002"
+    );
+    assert_eq!(
+        cycle_alarm(&format!("{START}CYCLE832(0.05,1.5,1)\nM30\n")),
+        "cycle alarm 61002"
+    );
+    // A tolerance beyond what the path smoothing takes (32.767 mm) is out of range.
+    let alarm = error(&format!("{START}CYCLE832(40,1,1)\nM30\n"), &machine());
+    assert_eq!(alarm.code, AlarmCode::ValueOutOfRange, "{alarm:?}");
+    // Within range, and deselected, it runs.
+    for text in ["CYCLE832(0.05,3,1)", "CYCLE832(0.05,0,1)", "CYCLE832()"] {
+        let text = format!("{START}{text}\nG1 X20\nM30\n");
+        assert!(
+            collect(run_str(&text, &machine())).error().is_none(),
+            "{text}"
+        );
+    }
+}
