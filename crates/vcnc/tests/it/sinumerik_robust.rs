@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use vcnc::interp::sinumerik::Sinumerik;
 use vcnc::interp::{DirectoryLibrary, Kernel, LookupError, ProgramLibrary, ProgramText, Run};
-use vcnc::{Alarm, Axis, FileId, Machine, ProfileName};
+use vcnc::{Alarm, AlarmCode, Axis, FileId, Machine, ProfileName};
 
 /// Lines a run may read before it stops with the limit alarm (the fuzz target's value).
 const ITERATIONS: u64 = 20_000;
@@ -688,6 +688,29 @@ fn alarms_whose_code_helps_in_iso_terms_get_a_sinumerik_help_line() {
             "`{}`: help `{}` names {expected}",
             text.escape_debug(),
             error.help_line()
+        );
+    }
+}
+
+/// Findings of the fuzz target (2026-11-29): a cycle called as G41 starts (the cycles run with
+/// G40), and a compensated start-up block whose next corner cannot be made (a chamfer inside an
+/// offset larger than it): each stops with its alarm, and nothing is left half-held (a debug
+/// assertion of the compensator fired on the program's end).
+#[test]
+fn fuzz_findings_of_the_compensator_stop_with_their_alarm() {
+    for (text, code) in [
+        ("OFFN=20G41HOLES2(,,5,,,6)", AlarmCode::CutterCompensation),
+        (
+            "OFFN=5G41Y1F4\nX10CHF=2\nY12",
+            AlarmCode::CutterCompensation,
+        ),
+    ] {
+        // The 840D's library answers HOLES2 with the input itself: that run stops at the depth.
+        let alarms = check_stops(text);
+        assert!(
+            alarms.iter().any(|a| a.is_error() && a.code == code),
+            "`{}`: {alarms:?}",
+            text.escape_debug()
         );
     }
 }

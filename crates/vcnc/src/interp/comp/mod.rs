@@ -364,7 +364,9 @@ impl Compensator {
                     self.tool
                 }
                 Err(alarm) if self.rules.extension == Extension::None || pending.start_up => {
-                    return Err(alarm)
+                    // The run stops here; the pending element stays with the items held for it.
+                    self.pending = Some(pending);
+                    return Err(alarm);
                 }
                 Err(alarm) => {
                     // The first element skipped (the approach), or else perhaps the last one
