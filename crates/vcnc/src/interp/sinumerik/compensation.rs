@@ -70,6 +70,16 @@ struct SmoothWords {
     slow: Option<(f64, Option<bool>)>,
 }
 
+impl SmoothWords {
+    fn is_empty(&self) -> bool {
+        self.shape.is_none()
+            && self.retreat.is_none()
+            && self.distance.is_none()
+            && self.clearance.is_none()
+            && self.slow.is_none()
+    }
+}
+
 /// The blocks without motion in the compensation plane after which the element waiting for
 /// its corner ends perpendicular to itself: MD20250 $MC_CUTCOM_MAXNUM_DUMMY_BLOCKS (seed 002
 /// L7150-7155 names the machine data, not its value; 3 is vcnc's choice).
@@ -259,7 +269,26 @@ fn rules(front: &Sinumerik, kernel: &Kernel, plane: Plane) -> Rules {
 ///
 /// # Errors
 /// G41/G42 starting in a circle block; a change of plane while compensating.
+#[inline]
 pub(super) fn before_motion(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    moves: bool,
+    span: Span,
+) -> Result<(), Alarm> {
+    // The common block: G40 in force and left alone, no approach or retraction words.
+    let state = &front.radius_compensation;
+    if state.left.is_none() && state.on.is_none() && !state.kept && state.smooth.is_empty() {
+        return Ok(());
+    }
+    switch_or_keep(front, kernel, moves, span)
+}
+
+/// [`before_motion`] for a block with compensation in force, selected or deselected, or with
+/// smooth approach words.
+// Out of line: the check before it is inlined into every block's step.
+#[inline(never)]
+fn switch_or_keep(
     front: &mut Sinumerik,
     kernel: &mut Kernel,
     moves: bool,
@@ -523,6 +552,7 @@ fn smooth_moves(
 ///
 /// # Errors
 /// Interference where the last element ends; a line without a feed.
+#[inline]
 pub(super) fn after_motion(
     front: &mut Sinumerik,
     kernel: &mut Kernel,

@@ -169,7 +169,26 @@ fn is_axis_variable(front: &mut Sinumerik, kernel: &Kernel, expr: &Expr) -> bool
 
 /// Before the block's motion: the corrections it made go into the stream; a block that moves a
 /// coupled axis stops with V022.
+#[inline]
 pub(super) fn before_motion(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    axes: &[Option<AxisValue>; AXES],
+    positioning: &Positioning,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    // The common block: no correction programmed, no gear in force.
+    let dynamics = &front.dynamics;
+    if !dynamics.changed.contains(&true) && dynamics.gears.iter().all(Option::is_none) {
+        return Ok(());
+    }
+    announce_and_check(front, kernel, axes, positioning, origin)
+}
+
+/// [`before_motion`] for a block with corrections to announce or an axis coupled.
+// Out of line: the check before it is inlined into every block's step.
+#[inline(never)]
+fn announce_and_check(
     front: &mut Sinumerik,
     kernel: &mut Kernel,
     axes: &[Option<AxisValue>; AXES],

@@ -187,21 +187,36 @@ fn speed(front: &Sinumerik, kernel: &Kernel, source: Source) -> f64 {
 ///
 /// # Errors
 /// FDA without a positioning word of its axis in the block.
+#[inline]
 pub(super) fn before_motion(
     front: &mut Sinumerik,
     kernel: &mut Kernel,
     positioning: &Positioning,
     origin: Origin,
 ) -> Result<(), Alarm> {
-    let sources = &mut front.feed_sources;
+    let sources = &front.feed_sources;
     // The common block: no source but the master spindle, no FDA.
+    // (`iter().all`: comparing with `[None; AXES]` compares each value too.)
     if sources.path.is_none()
         && sources.applied.is_none()
-        && sources.handwheel_read == [None; AXES]
-        && sources.handwheel == [None; AXES]
+        && sources.handwheel_read.iter().all(Option::is_none)
+        && sources.handwheel.iter().all(Option::is_none)
     {
         return Ok(());
     }
+    apply(front, kernel, positioning, origin)
+}
+
+/// [`before_motion`] for a block with another feed source or FDA words.
+// Out of line: the check before it is inlined into every block's step.
+#[inline(never)]
+fn apply(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    positioning: &Positioning,
+    origin: Origin,
+) -> Result<(), Alarm> {
+    let sources = &mut front.feed_sources;
     sources.handwheel = std::mem::take(&mut sources.handwheel_read);
     for (axis, feed) in sources.handwheel.iter().enumerate() {
         if feed.is_some() && !positioning.iter().any(|&(a, _)| a == axis) {

@@ -125,8 +125,9 @@ pub struct Sinumerik {
     rounding_modal: bool,
     /// The block the corner being cut follows, for its segments' origin.
     corner_origin: Option<Origin>,
-    /// The direction the path left the last block's end in the plane (CT's tangent).
-    tangent: Option<crate::interp::comp::geometry::V2>,
+    /// The element whose end direction is the path's at the last block's end in the plane
+    /// (CT's tangent): kept whole, the direction is worked out only when CT asks for it.
+    tangent: Option<motion::Tangent>,
     /// The profile's arc tolerance.
     arc_tolerance: f64,
     /// Tools called by names the tool table lacks, and the numbers they run under.

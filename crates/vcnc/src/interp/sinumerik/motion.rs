@@ -18,7 +18,7 @@ use super::involute;
 use super::polar::{PolarBlock, PolarMove, PolarValue};
 use super::Sinumerik;
 use crate::alarm::{Alarm, AlarmCode};
-use crate::interp::comp::geometry::{Element, V2};
+use crate::interp::comp::geometry::{Element, EPSILON, V2};
 use crate::interp::kernel::{Kernel, Origin};
 use crate::interp::modal::DistanceMode;
 use crate::machine::{WorkOffsetId, AXES};
@@ -33,6 +33,24 @@ pub(super) struct Tag {
     target: [Option<f64>; AXES],
     rapid: bool,
     turns: u32,
+}
+
+/// The path's direction in the plane at the last block's end (CT's tangent).
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Tangent {
+    /// The direction at the end of this element, worked out when CT asks (most blocks are
+    /// never followed by CT).
+    EndOf(Element),
+    Direction(V2),
+}
+
+impl Tangent {
+    pub(super) fn direction(self) -> V2 {
+        match self {
+            Tangent::EndOf(element) => element.end_tangent(),
+            Tangent::Direction(direction) => direction,
+        }
+    }
 }
 
 /// A block's motion, prepared.
@@ -296,7 +314,7 @@ pub(super) fn prepare(
         }
         Motion::Tangential => {
             let end = V2::new(target[a].unwrap_or(start.x), target[b].unwrap_or(start.y));
-            let tangent = front.tangent.unwrap_or_default();
+            let tangent = front.tangent.map(Tangent::direction).unwrap_or_default();
             match arcs::tangential_arc(start, end, tangent, origin.span)? {
                 Tangential::Line => element = Some(Element::Line { start, end }),
                 Tangential::Arc { centre, direction } => {
@@ -446,11 +464,30 @@ fn update_tangent(
     if target[a].is_none() && target[b].is_none() && matches!(element, Element::Line { .. }) {
         return;
     }
-    // A unit vector or zero (or NaN): its length need not be measured again.
-    let tangent = element.end_tangent();
-    if tangent.x.abs() + tangent.y.abs() > 0.0 {
-        front.tangent = Some(tangent);
+    // The element is kept when its end has a direction: a line at least EPSILON long in the
+    // plane (`V2::unit`), told without measuring it where the sum of its legs decides (the
+    // length lies between that sum and the sum over the square root of 2; NaN measures).
+    let has_direction = match *element {
+        Element::Line { start, end } => {
+            let legs = (end.x - start.x).abs() + (end.y - start.y).abs();
+            if (EPSILON * std::f64::consts::SQRT_2..1e300).contains(&legs) {
+                true
+            } else if legs < EPSILON {
+                false
+            } else {
+                nonzero(element.end_tangent())
+            }
+        }
+        Element::Arc { .. } => nonzero(element.end_tangent()),
+    };
+    if has_direction {
+        front.tangent = Some(Tangent::EndOf(*element));
     }
+}
+
+/// A unit vector or zero (or NaN): true for the unit vector.
+fn nonzero(v: V2) -> bool {
+    v.x.abs() + v.y.abs() > 0.0
 }
 
 /// The chamfer or rounding a block programs at its end.
@@ -671,7 +708,7 @@ fn involute(
     full[a] = Some(end.x);
     full[b] = Some(end.y);
     full[c] = Some(normal_end);
-    front.tangent = Some(path.end_tangent());
+    front.tangent = Some(Tangent::Direction(path.end_tangent()));
     advance(front, &full);
     Ok(Prepared::Chords(tag(full, origin, false, 0), points))
 }

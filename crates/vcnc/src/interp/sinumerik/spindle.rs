@@ -156,6 +156,7 @@ pub(super) fn spindle(
 /// Under G96/G961: the speed of the cutting rate at the reference axis (SCC, the transverse
 /// axis X by default) of the block's end (the control follows it continuously; vcnc per
 /// block, a choice), after the block's S.
+#[inline]
 pub(super) fn constant_rate(front: &mut Sinumerik, kernel: &mut Kernel, origin: Origin) {
     if front.spindle.constant_rate.is_none() || front.spindle.from_svc {
         return;
@@ -264,6 +265,7 @@ pub(super) fn program_feed(front: &mut Sinumerik, f: f64, span: Span) -> Result<
 }
 
 /// The programmed feed, under the override, to the kernel (not while FZ sets it).
+#[inline]
 pub(super) fn apply_feed(front: &Sinumerik, kernel: &mut Kernel, mode: FeedMode) {
     // OVR scales the programmed feed as the panel's override would (PGsl 7.5).
     if let Some(f) = front.programmed_feed.filter(|_| front.tooth_feed.is_none()) {
@@ -271,6 +273,7 @@ pub(super) fn apply_feed(front: &Sinumerik, kernel: &mut Kernel, mode: FeedMode)
     }
 }
 
+#[inline]
 pub(super) fn restore_feed(front: &mut Sinumerik, kernel: &mut Kernel, mode: FeedMode) {
     if let Some(feed) = front.block_feed_restore.take() {
         kernel.set_feed_in(mode, feed);

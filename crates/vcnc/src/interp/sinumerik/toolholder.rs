@@ -210,11 +210,19 @@ pub(super) fn svc_spindle(front: &Sinumerik) -> Option<u32> {
 /// At the block's end, before its motion: SVC[n] of the block turns spindle n at the active
 /// offset's radius, and SETMS makes its spindle the master: the kernel's spindle (S, M3, G95
 /// and the stream's spindle events) is then that one, the old master turning on as it did.
+#[inline]
 pub(super) fn before_motion(front: &mut Sinumerik, kernel: &mut Kernel, origin: Origin) {
     // The common block: no SVC waiting for its spindle, no new master.
     if front.toolholders.new_master.is_none() && !front.spindles.any_rate_pending() {
         return;
     }
+    apply(front, kernel, origin);
+}
+
+/// [`before_motion`] for a block with an SVC[n] waiting or a new master spindle.
+// Out of line: the check before it is inlined into every block's step.
+#[inline(never)]
+fn apply(front: &mut Sinumerik, kernel: &mut Kernel, origin: Origin) {
     let radius = front.edge().map_or(0.0, |e| e.radius);
     let max_rpm = kernel.state().setup.machine().spindle.max_rpm;
     for (n, rate) in front.spindles.take_pending_rates() {

@@ -242,7 +242,19 @@ impl WorkArea {
 
     /// The moves the kernel made since it had `from` items waiting, checked against the area:
     /// the first that leaves it is cut with the rest and becomes alarm 10730.
+    #[inline]
     pub(super) fn check(&mut self, kernel: &mut Kernel, from: usize) -> Result<(), Alarm> {
+        // The common block: no limit of the working area in force.
+        if self.cs_active == 0 && (self.off || self.check.is_none()) {
+            return Ok(());
+        }
+        self.check_moves(kernel, from)
+    }
+
+    /// [`WorkArea::check`] with a limitation in force.
+    // Out of line: the check before it is inlined into every block's step.
+    #[inline(never)]
+    fn check_moves(&mut self, kernel: &mut Kernel, from: usize) -> Result<(), Alarm> {
         self.check_cs(kernel, from)?;
         if self.off {
             return Ok(());

@@ -108,7 +108,19 @@ impl Calls {
 
 /// Runs the cycle the block called, if it called one, or goes on with a pattern whose
 /// subprogram has returned.
+#[inline]
 pub(super) fn run_called(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> {
+    // The common block: no cycle called, no pattern going on.
+    if front.cycles.waiting.is_none() && front.cycles.pattern.is_none() {
+        return Ok(());
+    }
+    run_waiting(front, kernel)
+}
+
+/// [`run_called`] with a cycle called or a pattern going on.
+// Out of line: the check before it is inlined into every block's step.
+#[inline(never)]
+fn run_waiting(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> {
     let Some(call) = front.cycles.waiting.take() else {
         return resume_pattern(front, kernel);
     };
