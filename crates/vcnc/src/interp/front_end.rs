@@ -90,18 +90,25 @@ impl<F: FrontEnd> Run<F> {
     ) -> bool {
         out.extend(self.ready.drain(..));
         let mut checked = out.len();
+        // The kernel queues straight into `out`: no item is moved twice.
+        self.kernel.lend(out);
         let mut steps = 0;
-        while !self.done && out.len() < at_least && steps < STEPS_PER_BATCH {
-            self.step();
-            self.kernel.release(out);
-            steps += 1;
-            if out.len() > checked {
-                if !check.check_released(out, checked..out.len()) {
+        loop {
+            let (items, released) = self.kernel.released();
+            if released > checked {
+                if !check.check_released(items, checked..released) {
+                    self.kernel.cut_by_check();
                     self.done = true;
                 }
-                checked = out.len();
+                checked = released;
             }
+            if self.done || released >= at_least || steps >= STEPS_PER_BATCH {
+                break;
+            }
+            self.step();
+            steps += 1;
         }
+        self.kernel.give_back(out);
         // Once the program is over, everything it made is in `out`.
         !self.done
     }

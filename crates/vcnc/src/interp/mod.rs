@@ -342,11 +342,7 @@ impl<B: BlockSource<Line = LineBlocks>> Interpreter<B> {
         // What the iterator released and nobody took comes first (empty unless a caller mixes
         // `next` with batches).
         out.extend(self.ready.drain(..));
-        let leftover_at = out.len();
-        let leftover = std::mem::take(&mut self.core.out.items);
-        out.extend(leftover);
-        self.core.out.held = self.core.out.held.map(|h| h + leftover_at);
-        std::mem::swap(&mut self.core.out.items, out);
+        self.core.out.lend(out);
         // Items before `checked` have passed the check (those of `out` passed it before).
         let mut checked = base;
         // A macro loop may run long without moving: the caller gets control back now and then
@@ -380,20 +376,14 @@ impl<B: BlockSource<Line = LineBlocks>> Interpreter<B> {
     /// nothing more will come.
     #[inline(always)]
     fn return_batch(&mut self, out: &mut Vec<StreamItem>) -> bool {
-        std::mem::swap(&mut self.core.out.items, out);
-        if let Some(held) = self.core.out.held {
-            // What waits for compensation stays here.
-            self.core.out.items = out.split_off(held);
-            self.core.out.held = Some(0);
-        }
+        self.core.out.give_back(out);
         !(self.core.done && out.is_empty() && self.core.out.items.is_empty())
     }
 
     /// A check cut the queue at an item and added its alarm: nothing after it runs. What
     /// compensation or G12.1 held is dropped with the cut (those blocks never moved).
     fn stop_checked(&mut self) {
-        self.core.out.held = None;
-        self.core.out.reset_stages();
+        self.core.out.cut_by_check();
         self.core.done = true;
     }
 

@@ -381,6 +381,33 @@ impl Output {
         self.held.unwrap_or(self.items.len())
     }
 
+    /// Makes the caller's batch `out` the queue, its items first and what the queue held
+    /// after them: the blocks then queue their items straight into it, and no item is moved
+    /// twice. [`Output::give_back`] ends the loan.
+    pub(super) fn lend(&mut self, out: &mut Vec<Item>) {
+        let base = out.len();
+        out.append(&mut self.items);
+        self.held = self.held.map(|h| h + base);
+        std::mem::swap(&mut self.items, out);
+    }
+
+    /// Ends [`Output::lend`]: `out` gets the items that can be handed out, what waits for
+    /// compensation stays queued.
+    pub(super) fn give_back(&mut self, out: &mut Vec<Item>) {
+        std::mem::swap(&mut self.items, out);
+        if let Some(held) = self.held {
+            self.items = out.split_off(held);
+            self.held = Some(0);
+        }
+    }
+
+    /// A check cut the queue at an item and added its alarm: what compensation or G12.1 held
+    /// is dropped with the cut (those blocks never moved), and the whole queue is released.
+    pub(super) fn cut_by_check(&mut self) {
+        self.held = None;
+        self.reset_stages();
+    }
+
     /// Nothing waits any more: the program is over.
     pub(super) fn finish(&mut self) {
         if let Some(mut comp) = self.take_compensation() {

@@ -490,6 +490,28 @@ impl Kernel {
         self.out.finish();
     }
 
+    /// The queue becomes the caller's batch `out` until [`Kernel::give_back`]
+    /// ([`Output::lend`]).
+    pub(super) fn lend(&mut self, out: &mut Vec<crate::motion::StreamItem>) {
+        self.out.lend(out);
+    }
+
+    /// Ends [`Kernel::lend`]: `out` gets what can be handed out.
+    pub(super) fn give_back(&mut self, out: &mut Vec<crate::motion::StreamItem>) {
+        self.out.give_back(out);
+    }
+
+    /// The queue, with how many of its first items can be handed out.
+    pub(super) fn released(&mut self) -> (&mut Vec<crate::motion::StreamItem>, usize) {
+        let released = self.out.releasable();
+        (&mut self.out.items, released)
+    }
+
+    /// A check cut the queue ([`Output::cut_by_check`]).
+    pub(super) fn cut_by_check(&mut self) {
+        self.out.cut_by_check();
+    }
+
     /// Cutter radius compensation starts in `plane`, on the side and at the radius of
     /// `setting`, from the tool's position now, under a dialect's `rules`; `left` says G41 (or
     /// its dialect's equal). `look_ahead` blocks without motion in the plane end the element
