@@ -561,6 +561,16 @@ pub(super) fn after_motion(
     if front.radius_compensation.left.is_some() || front.radius_compensation.on.is_none() {
         return Ok(());
     }
+    end_compensation(front, kernel, origin)
+}
+
+/// [`after_motion`] in the block that deselected the compensation.
+#[inline(never)]
+fn end_compensation(
+    front: &mut Sinumerik,
+    kernel: &mut Kernel,
+    origin: Origin,
+) -> Result<(), Alarm> {
     front.radius_compensation.on = None;
     kernel.end_compensation(front.modal.motion == Motion::Rapid, origin)
 }

@@ -686,13 +686,14 @@ impl Sinumerik {
                 continue;
             }
             let (file, number, base) = (text.file, line.number, line.base);
+            let span = Span::new(file, number, base..base + line.bytes.len() as u32);
             let mut block = self.spare.take().unwrap_or_default();
             if !text.take_block(index, &mut block) {
                 let bytes = text.line(index).map_or(&b""[..], |l| l.bytes);
                 parse_line_into(bytes, file, number, base, &mut block);
             }
             self.level().next = index + 1;
-            let step = self.run_line(kernel, &block, program, index);
+            let step = self.run_line(kernel, &block, (program, index), span);
             // The block's room goes to the next line.
             self.spare = Some(block);
             let step = step?;
@@ -705,20 +706,19 @@ impl Sinumerik {
         }
     }
 
-    /// Runs the block of line `index` of `program`; None when it is skipped or has nothing to
-    /// run.
+    /// Runs the block of line `index` of `program`, written at `span`; None when it is skipped
+    /// or has nothing to run.
     fn run_line(
         &mut self,
         kernel: &mut Kernel,
         block: &Block,
-        program: usize,
-        index: usize,
+        (program, index): (usize, usize),
+        span: Span,
     ) -> Result<Option<Step>, Alarm> {
         let no_words = block.words.is_empty() && block.plain.is_none();
         if no_words && block.statement.is_none() && block.alarm.is_none() {
             return Ok(None);
         }
-        let span = self.programs[program].line_span(index);
         // The 828D has the skip levels /0 to /7 only (docs/SINUMERIK.md 9).
         if let Some(level @ 8..) = block.skip.filter(|_| self.is_828d()) {
             return Err(Alarm::error(

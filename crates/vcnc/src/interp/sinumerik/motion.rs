@@ -53,6 +53,16 @@ impl Tangent {
     }
 }
 
+/// A plain block's move ([`prepare_plain`]), made by [`Direct::make`].
+pub(super) struct Direct(Tag, Option<Arc>);
+
+impl Direct {
+    /// Moves the block.
+    pub(super) fn make(&self, front: &Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> {
+        direct(front, kernel, &self.0, self.1)
+    }
+}
+
 /// A block's motion, prepared.
 pub(super) enum Prepared {
     /// Nothing moves.
@@ -378,14 +388,14 @@ pub(super) fn prepare_plain(
     axes: &[Option<AxisValue>; AXES],
     arc_words: &ArcWords,
     origin: Origin,
-) -> Result<Prepared, Alarm> {
+) -> Result<Option<Direct>, Alarm> {
     front.corner_feed = front.corner_feed_modal;
     let mut target = end_point(front, axes);
     let motion = front.modal.motion;
     let arc = matches!(motion, Motion::Clockwise | Motion::CounterClockwise);
     let has_arc_data = arc_words.centre.iter().any(Option::is_some) || arc_words.radius.is_some();
     if !(target.iter().any(Option::is_some) || arc && has_arc_data) {
-        return Ok(Prepared::None);
+        return Ok(None);
     }
     if front.frame.has_rotation() {
         for (t, p) in target.iter_mut().zip(front.programmed).take(3) {
@@ -396,7 +406,7 @@ pub(super) fn prepare_plain(
     let tag = tag(target, origin, motion == Motion::Rapid, 0);
     update_tangent(front, &element, &target, front.modal.plane);
     advance(front, &target);
-    Ok(Prepared::Direct(tag, direct_arc))
+    Ok(Some(Direct(tag, direct_arc)))
 }
 
 /// The path of G0, G1, G2 or G3 (the motion in force) from p to `target`, whose plane's axes an

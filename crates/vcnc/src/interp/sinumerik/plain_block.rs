@@ -17,7 +17,7 @@ use super::axes::Positioning;
 use super::block::{feed_mode, AxisValue};
 use super::gcodes::{self, Function, Motion};
 use super::language::AxisLookup;
-use super::motion::{self, ArcWords, Prepared};
+use super::motion::{self, ArcWords};
 use super::{compensation, diameter, dynamics, feed_source, spindle, toolholder, Sinumerik, Step};
 use crate::alarm::Alarm;
 use crate::interp::kernel::{Kernel, Origin};
@@ -96,7 +96,9 @@ fn decode(front: &Sinumerik, plain: &PlainWords, decoded: &mut Decoded) -> bool 
                     b'F' => decoded.feed = Some((number.value, plain.span(word))),
                     b'G' => {
                         let g = number.value;
-                        let common = (g.fract() == 0.0 && (0.0..100.0).contains(&g))
+                        // Whole numbers below 100 only (`g as u32` truncates; f64::fract
+                        // is a call of libm's trunc).
+                        let common = ((0.0..100.0).contains(&g) && f64::from(g as u32) == g)
                             .then(|| gcodes::common(g as u32))
                             .flatten();
                         // A second motion is the general way's alarm.
@@ -152,7 +154,7 @@ fn run_decoded(
         front.modal.motion = motion;
     }
     let prepared = motion::prepare_plain(front, &decoded.axes, &decoded.arc, origin)?;
-    let moved = !matches!(prepared, Prepared::None);
+    let moved = prepared.is_some();
     if moved {
         front.idle_blocks = 0;
     } else {
@@ -181,7 +183,9 @@ fn run_decoded(
     let planner = &kernel.state().setup.machine().planner;
     kernel.set_smoothing(front.modal.path_control.smoothing(rapid, planner));
     compensation::before_motion(front, kernel, moved, origin.span)?;
-    prepared.finish(front, kernel)?;
+    if let Some(direct) = &prepared {
+        direct.make(front, kernel)?;
+    }
     compensation::after_motion(front, kernel, origin)?;
     spindle::constant_rate(front, kernel, origin);
     spindle::restore_feed(front, kernel, mode);

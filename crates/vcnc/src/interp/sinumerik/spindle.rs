@@ -161,6 +161,12 @@ pub(super) fn constant_rate(front: &mut Sinumerik, kernel: &mut Kernel, origin: 
     if front.spindle.constant_rate.is_none() || front.spindle.from_svc {
         return;
     }
+    follow_rate(front, kernel, origin);
+}
+
+/// [`constant_rate`] under G96 or G961.
+#[inline(never)]
+fn follow_rate(front: &mut Sinumerik, kernel: &mut Kernel, origin: Origin) {
     let Some(rate) = front.spindle.rate else {
         return;
     };
