@@ -144,6 +144,8 @@ impl Kernel {
 
     /// Machine coordinates of a program-coordinate target; axes without a value stay where they
     /// are.
+    // Inlined: every move a front end makes on the kernel passes through it.
+    #[inline]
     fn machine_target(&self, target: [Option<f64>; AXES]) -> [f64; AXES] {
         let here = self.state.program_position();
         let program = std::array::from_fn(|i| target[i].unwrap_or(here[i]));

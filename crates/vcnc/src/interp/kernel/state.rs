@@ -105,7 +105,16 @@ impl KernelState {
         }
         let feed = self.cutting_feed(feed_mode, block)?;
         let motion = self.move_to(to, block, modes, out)?;
-        out.push(block, SegmentKind::Line { motion, feed });
+        // Built where it is queued when no stage is on: through `Output::push` the kind was
+        // built on the stack and copied over.
+        match out.direct() {
+            Some(items) => items.push(Ok(crate::motion::Item::Segment(crate::motion::Segment {
+                kind: SegmentKind::Line { motion, feed },
+                span: block.span(),
+                sequence: block.sequence(),
+            }))),
+            None => out.push(block, SegmentKind::Line { motion, feed }),
+        }
         Ok(())
     }
 
