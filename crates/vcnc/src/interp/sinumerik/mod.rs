@@ -678,21 +678,23 @@ impl Sinumerik {
             let (program, index) = self.next_line();
             self.fetch(program, index)?;
             let text = &mut self.programs[program];
-            let Some(line) = text.line(index) else {
+            let file = text.file;
+            let mut block = self.spare.take().unwrap_or_default();
+            let Some((line, parsed)) = text.take_line(index, &mut block) else {
+                self.spare = Some(block);
                 return self.end_of_text(kernel);
             };
-            if is_header(line.bytes) {
-                self.level().next = index + 1;
-                continue;
-            }
-            let (file, number, base) = (text.file, line.number, line.base);
+            let header = is_header(line.bytes);
+            let (number, base) = (line.number, line.base);
             let span = Span::new(file, number, base..base + line.bytes.len() as u32);
-            let mut block = self.spare.take().unwrap_or_default();
-            if !text.take_block(index, &mut block) {
-                let bytes = text.line(index).map_or(&b""[..], |l| l.bytes);
-                parse_line_into(bytes, file, number, base, &mut block);
+            if !parsed && !header {
+                parse_line_into(line.bytes, file, number, base, &mut block);
             }
             self.level().next = index + 1;
+            if header {
+                self.spare = Some(block);
+                continue;
+            }
             let step = self.run_line(kernel, &block, (program, index), span);
             // The block's room goes to the next line.
             self.spare = Some(block);

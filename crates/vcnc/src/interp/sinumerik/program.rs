@@ -9,7 +9,7 @@
 //!
 //! A streamed main program is read and parsed on the interpreter's thread as it runs, or on a
 //! thread of its own a few hundred lines ahead ([`BackgroundParser`](crate::syntax::blocks::BackgroundParser)): each line then comes
-//! with its block, which [`Program::take_block`] hands over.
+//! with its block, which [`Program::take_line`] hands over.
 //!
 //! Never: read a program's file twice unless it jumps, or load a subprogram before it is
 //! called.
@@ -129,22 +129,28 @@ impl Program {
         Ok(Fetched::Ready)
     }
 
-    /// Swaps the block of line `index`, read with the line, into `block`, when the line came so
-    /// (the current line of a streamed text); false when it must be parsed from the line's text.
-    pub(super) fn take_block(&mut self, index: usize, block: &mut Box<Block>) -> bool {
+    /// Line `index` (at hand: [`Program::fetch`]), as [`Program::line`] gives it, with its block
+    /// in `block` when it was parsed ahead (true; `block`'s room goes to the line).
+    pub(super) fn take_line(
+        &mut self,
+        index: usize,
+        block: &mut Box<Block>,
+    ) -> Option<(Line<'_>, bool)> {
+        let streamed = matches!(&self.text, Text::Streamed(s) if s.index == Some(index));
+        if !streamed {
+            return Some((self.line(index)?, false));
+        }
         let Text::Streamed(stream) = &mut self.text else {
-            return false;
+            return None;
         };
-        if stream.index != Some(index) {
-            return false;
-        }
-        match stream.lines.line_mut() {
-            Some(line) => {
-                std::mem::swap(&mut line.block, block);
-                true
-            }
-            None => false,
-        }
+        let line = stream.lines.line_mut()?;
+        std::mem::swap(&mut line.block, block);
+        let line = Line {
+            number: index as u32 + 1,
+            base: line.base,
+            bytes: &line.text,
+        };
+        Some((line, true))
     }
 
     /// The number of lines (of a streamed text: the lines read so far).
@@ -266,14 +272,15 @@ mod tests {
         let mut lines = Vec::new();
         for index in 0.. {
             assert_eq!(program.fetch(index).unwrap(), Fetched::Ready);
-            let Some(line) = program.line(index) else {
+            let mut block = Box::<Block>::default();
+            let Some((line, parsed)) = program.take_line(index, &mut block) else {
                 break;
             };
             let (number, base, bytes) = (line.number, line.base, line.bytes.to_vec());
-            let mut block = Box::<Block>::default();
             if crate::syntax::sinumerik::is_header(&bytes) {
                 // A header is no block: nothing to compare.
-            } else if !program.take_block(index, &mut block) {
+                block = Box::default();
+            } else if !parsed {
                 // As the interpreter reads a line (plain ones kept decoded).
                 crate::syntax::sinumerik::parse_line_into(
                     &bytes,
