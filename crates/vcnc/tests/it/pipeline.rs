@@ -170,6 +170,40 @@ fn an_overtravel_cuts_the_stream_at_the_same_item() {
 }
 
 #[test]
+fn a_sinumerik_overtravel_under_compensation_cuts_the_stream_where_it_leaves_the_travel() {
+    // G41 holds each move until the next one shows its corner: the move of N50 beyond X 1000
+    // (the default machine's travel) is released by N60, inside the batch the interpreter
+    // queues into; the stream must stop at N50's move with the moves before it, in every
+    // layout, as the unchecked run puts them before its first move beyond the travel.
+    let mut machine = Machine::default();
+    machine
+        .tools
+        .push(crate::common::sinumerik::mill(1, "MILL", 1, 0.0, 5.0));
+    let mut text = String::from("N10 G0 X0 Y0 Z5 T1 M6 D1\nN20 G1 G41 X20 Y20 F1000\nN30 Y40\n");
+    text.push_str("N40 X40\nN50 X1200\nN60 Y20\nN70 X20\nN80 G40 X0 Y0\nM30\n");
+    let unchecked: Vec<_> = vcnc::interp::sinumerik::run_str(&text, &machine).collect();
+    let beyond = |item: &vcnc::StreamItem| matches!(item, Ok(vcnc::Item::Segment(s)) if s.motion().is_some_and(|m| m.to.0[0] > 1000.0));
+    let first_beyond = unchecked
+        .iter()
+        .position(beyond)
+        .expect("a move beyond X 1000");
+    let moves_before = unchecked[..first_beyond]
+        .iter()
+        .filter(|item| matches!(item, Ok(vcnc::Item::Segment(s)) if s.motion().is_some()))
+        .count();
+    for layout in layouts() {
+        let stream = Pipeline::new(&machine)
+            .layout(layout)
+            .open_text(&text, "OVER.MPF");
+        let (tally, _) = consume(stream);
+        assert_eq!(tally.moves, moves_before, "{layout:?}");
+        let alarm = tally.items.last().unwrap().0.as_ref().unwrap_err();
+        assert_eq!(alarm.code, AlarmCode::Overtravel, "{layout:?}");
+        assert_eq!(alarm.span.unwrap().line, 5, "{layout:?}: N50");
+    }
+}
+
+#[test]
 fn warnings_pass_as_items_and_take_no_time() {
     // An R arc that ends on its start point moves nothing (a warning); the text ends without
     // M30 (a warning).
