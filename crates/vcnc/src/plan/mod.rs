@@ -52,10 +52,12 @@ pub use speed_profile::{PathLimits, SpeedProfile};
 
 use crate::alarm::Alarm;
 use crate::machine::Machine;
-use crate::motion::{Item, PathMode, Segment, SegmentKind, StreamItem, WorkFrame};
+use crate::motion::{Item, Move, PathMode, Segment, SegmentKind, StreamItem, WorkFrame};
 use corner::{Handover, MotionClass};
 use events::EventClock;
-use limits::{arc, line, per_axis_rapid_seconds, ArcPath, AxisLimits, FeedSpeeds};
+use limits::{
+    arc, line, per_axis_rapid_seconds, ArcPath, AxisLimits, Ends, FeedSpeeds, MotionLimits,
+};
 use lookahead::{time_motion, Slot, Window};
 use std::collections::VecDeque;
 
@@ -230,11 +232,13 @@ impl Timeline {
 
     /// The next segment of the stream.
     // One match on the kind decides everything that depends on it: the limits, the class of
-    // the motion for its junctions, the per-axis time of a dog-leg rapid.
+    // the motion for its junctions, the per-axis time of a dog-leg rapid. Each arm enters its
+    // motion itself: arms that joined first would build their limits in one place and copy
+    // them on.
     #[inline(always)]
     pub fn push(&mut self, segment: &Segment) {
         let (axes, config, speeds) = (&self.axes, &self.config, &mut self.speeds);
-        let (motion, (limits, ends), (class, straight), per_axis_seconds) = match &segment.kind {
+        match &segment.kind {
             SegmentKind::Line { motion, feed } => {
                 // The control locks the override at 100 % where the feed is tied to the
                 // spindle (G63 tapping mode, G33 threads).
@@ -244,7 +248,7 @@ impl Timeline {
                     self.feed_override
                 };
                 let limits = line(motion, Some((feed, speeds)), axes, config, feed_override);
-                (motion, limits, (MotionClass::Cutting, true), None)
+                self.enter_motion(motion, limits, (MotionClass::Cutting, true, None));
             }
             SegmentKind::Arc {
                 motion,
@@ -263,21 +267,17 @@ impl Timeline {
                     feed,
                 };
                 let limits = arc(&path, speeds, axes, config, self.feed_override);
-                (motion, limits, (MotionClass::Cutting, false), None)
+                self.enter_motion(motion, limits, (MotionClass::Cutting, false, None));
             }
             SegmentKind::Rapid { motion, per_axis } => {
                 let limits = line(motion, None, axes, config, 1.0);
-                if *per_axis {
+                let kind = if *per_axis {
                     let seconds = per_axis_rapid_seconds(motion, axes);
-                    (
-                        motion,
-                        limits,
-                        (MotionClass::PerAxisRapid, true),
-                        Some(seconds),
-                    )
+                    (MotionClass::PerAxisRapid, true, Some(seconds))
                 } else {
-                    (motion, limits, (MotionClass::Rapid, true), None)
-                }
+                    (MotionClass::Rapid, true, None)
+                };
+                self.enter_motion(motion, limits, kind);
             }
             SegmentKind::AxisLimits {
                 axis,
@@ -289,19 +289,30 @@ impl Timeline {
                 self.axis_factors[axis.index()] = [*velocity, *acceleration, *jerk];
                 self.axes = self.machine_axes.scaled(&self.axis_factors);
                 self.window.push_timeless();
-                return;
             }
             _ => {
                 // The machine stops before an event; the end of the program too.
                 let seconds = self.events.seconds(&segment.kind, &self.config);
                 self.window.push_event(seconds);
-                return;
             }
-        };
+        }
+    }
+
+    /// A motion with its limits enters the window; `kind` is its class for its junctions,
+    /// whether it is straight, and the time of a dog-leg rapid.
+    #[inline(always)]
+    fn enter_motion(
+        &mut self,
+        motion: &Move,
+        (limits, ends): (MotionLimits, Ends),
+        (class, straight, per_axis_seconds): (MotionClass, bool, Option<f64>),
+    ) {
+        let config = &self.config;
         if limits.length > 0.0 {
-            let handover = Handover::new(class, straight, motion, &limits, &ends, config);
+            *self.window.entering_handover() =
+                Handover::new(class, straight, motion, &limits, &ends, config);
             self.window
-                .push_motion(limits, handover, &ends.start, per_axis_seconds, config);
+                .push_motion(limits, &ends.start, per_axis_seconds, config);
         } else {
             self.window.push_timeless();
         }
