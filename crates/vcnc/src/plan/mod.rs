@@ -52,7 +52,7 @@ pub use speed_profile::{PathLimits, SpeedProfile};
 
 use crate::alarm::Alarm;
 use crate::machine::Machine;
-use crate::motion::{Item, Move, PathMode, Segment, SegmentKind, StreamItem, WorkFrame};
+use crate::motion::{Feed, Item, Move, PathMode, Segment, SegmentKind, StreamItem, WorkFrame};
 use corner::{Handover, MotionClass};
 use events::EventClock;
 use limits::{
@@ -217,9 +217,18 @@ impl Timeline {
     }
 
     /// The next item of the stream: a segment, or an alarm.
-    #[inline(always)]
     /// A frame ([`Item::Frame`]) gets no timing: [`Timeline::next_timing`] skips it.
+    #[inline(always)]
     pub fn push_item(&mut self, item: &StreamItem) {
+        // The commonest item, a line, tested first by its own pattern: one comparison of the
+        // kind, where the match below takes the result, the item and the kind apart in turn.
+        if let Ok(Item::Segment(Segment {
+            kind: SegmentKind::Line { motion, feed },
+            ..
+        })) = item
+        {
+            return self.push_line(motion, feed);
+        }
         match item {
             Ok(Item::Segment(segment)) => self.push(segment),
             // A warning, the error: no time, no break in the motion.
@@ -239,17 +248,7 @@ impl Timeline {
     pub fn push(&mut self, segment: &Segment) {
         let (axes, config, speeds) = (&self.axes, &self.config, &mut self.speeds);
         match &segment.kind {
-            SegmentKind::Line { motion, feed } => {
-                // The control locks the override at 100 % where the feed is tied to the
-                // spindle (G63 tapping mode, G33 threads).
-                let feed_override = if motion.path_mode == PathMode::Tapping {
-                    1.0
-                } else {
-                    self.feed_override
-                };
-                let limits = line(motion, Some((feed, speeds)), axes, config, feed_override);
-                self.enter_motion(motion, limits, (MotionClass::Cutting, true, None));
-            }
+            SegmentKind::Line { motion, feed } => self.push_line(motion, feed),
             SegmentKind::Arc {
                 motion,
                 center,
@@ -296,6 +295,21 @@ impl Timeline {
                 self.window.push_event(seconds);
             }
         }
+    }
+
+    /// A straight move at a feed.
+    #[inline(always)]
+    fn push_line(&mut self, motion: &Move, feed: &Feed) {
+        // The control locks the override at 100 % where the feed is tied to the spindle (G63
+        // tapping mode, G33 threads).
+        let feed_override = if motion.path_mode == PathMode::Tapping {
+            1.0
+        } else {
+            self.feed_override
+        };
+        let (axes, config, speeds) = (&self.axes, &self.config, &mut self.speeds);
+        let limits = line(motion, Some((feed, speeds)), axes, config, feed_override);
+        self.enter_motion(motion, limits, (MotionClass::Cutting, true, None));
     }
 
     /// A motion with its limits enters the window; `kind` is its class for its junctions,
