@@ -71,7 +71,7 @@ impl Handover {
         straight: bool,
         motion: &Move,
         limits: &MotionLimits,
-        ends: &Ends,
+        ends: Ends,
         config: &PlannerConfig,
     ) -> Handover {
         // LinuxCNC caps a segment's speed by one cycle over its length when it takes it in

@@ -324,7 +324,7 @@ impl Timeline {
         let config = &self.config;
         if limits.length > 0.0 {
             *self.window.entering_handover() =
-                Handover::new(class, straight, motion, &limits, &ends, config);
+                Handover::new(class, straight, motion, &limits, ends, config);
             self.window
                 .push_motion(limits, &ends.start, per_axis_seconds, config);
         } else {
