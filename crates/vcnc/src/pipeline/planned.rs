@@ -74,8 +74,17 @@ pub(crate) fn for_each_timed<S: BatchSource>(
             }
         };
         let newest = held.len() - 1;
-        for index in first_new..held[newest].items.len() {
-            timeline.push_item(&held[newest].items[index]);
+        let mut next = first_new;
+        // The items go to the timeline straight from the newest batch until timings are ready,
+        // then the timings to the held batches: one lookup of the batch for each run of items.
+        while next < held[newest].items.len() {
+            for item in &held[newest].items[next..] {
+                timeline.push_item(item);
+                next += 1;
+                if timeline.has_timing() {
+                    break;
+                }
+            }
             deal(&mut timeline, &mut held, &mut filling);
         }
         while held.first().is_some_and(Held::is_complete) {

@@ -151,6 +151,12 @@ impl Window {
         self.head = 0;
     }
 
+    /// Whether a final slot is ready.
+    #[inline(always)]
+    pub(crate) fn has_ready(&self) -> bool {
+        self.ready > 0
+    }
+
     /// A final slot, if one is ready.
     #[inline(always)]
     pub(crate) fn pop_ready(&mut self) -> Option<&Slot> {

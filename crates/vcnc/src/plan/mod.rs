@@ -344,6 +344,12 @@ impl Timeline {
         self.window.stop();
     }
 
+    /// Whether [`Timeline::next_timing`] has a timing to give.
+    #[inline(always)]
+    pub fn has_timing(&self) -> bool {
+        self.window.has_ready()
+    }
+
     /// The timing of the oldest item pushed whose timing has not been taken, once it is final.
     // Inlined into the caller's loop, as the push is: a call each would cost more than
     // the common path of either.
