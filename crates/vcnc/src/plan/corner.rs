@@ -236,6 +236,13 @@ pub(crate) fn junction(
     if cos_turn.is_nan() {
         return Junction::STOP;
     }
+    // An exact stop that passes no tangent, where no reversal stops otherwise, stops at every
+    // corner whatever its turn (the tests below would all come to that): the commonest
+    // junction of a SINUMERIK program, which powers on in G60.
+    if prev.exact_stop && !config.exact_stop_passes_tangents && config.reversal_stop_degrees <= 0.0
+    {
+        return Junction::CORNER_STOP;
+    }
     let cos_turn = greater(-1.0, lesser(1.0, cos_turn));
     // LinuxCNC stops where the path nearly turns back (tp.c `tpSetupTangent`: |u + w|^2 below
     // the square of the angle), with no scaled acceleration, exact stop or not.
