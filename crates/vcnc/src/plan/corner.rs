@@ -96,9 +96,7 @@ impl Handover {
             smoothing: motion.smoothing,
         }
     }
-}
 
-impl Handover {
     /// A handover that is never read: the second place of [`Handovers`] before any motion.
     const NONE: Handover = Handover {
         end: [0.0; 3],
@@ -117,7 +115,7 @@ impl Handover {
 /// The handovers of the last motion that entered the look-ahead window and of the motion
 /// entering it, in two places that take turns: the entering motion's is made where it stays,
 /// instead of beside it and copied there once its junction is known (a copy per motion).
-#[derive(Clone, Copy, Debug)]
+#[derive(Debug)]
 pub(crate) struct Handovers {
     places: [Handover; 2],
     /// The place of the entering motion's handover; the other one holds the last motion's.
