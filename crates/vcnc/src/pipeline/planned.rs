@@ -79,7 +79,7 @@ pub(crate) fn for_each_timed<S: BatchSource>(
         // then the timings to the held batches: one lookup of the batch for each run of items.
         while next < held[newest].items.len() {
             for item in &held[newest].items[next..] {
-                timeline.push_item(item);
+                timeline.push_item_line_first(item);
                 next += 1;
                 if timeline.has_timing() {
                     break;

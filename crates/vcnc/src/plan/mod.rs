@@ -216,12 +216,13 @@ impl Timeline {
         }
     }
 
-    /// The next item of the stream: a segment, or an alarm.
-    /// A frame ([`Item::Frame`]) gets no timing: [`Timeline::next_timing`] skips it.
+    /// [`Timeline::push_item`] for a caller whose loop does little else (the command line's
+    /// trace): the commonest item, a line, is tested first by its own pattern, one comparison
+    /// of the kind, where the match takes the result, the item and the kind apart in turn. (In
+    /// a loop that does more, the planner's iterator, the second copy of the line's planning
+    /// costs more than it saves: the loop is no longer inlined into its caller.)
     #[inline(always)]
-    pub fn push_item(&mut self, item: &StreamItem) {
-        // The commonest item, a line, tested first by its own pattern: one comparison of the
-        // kind, where the match below takes the result, the item and the kind apart in turn.
+    pub(crate) fn push_item_line_first(&mut self, item: &StreamItem) {
         if let Ok(Item::Segment(Segment {
             kind: SegmentKind::Line { motion, feed },
             ..
@@ -229,6 +230,13 @@ impl Timeline {
         {
             return self.push_line(motion, feed);
         }
+        self.push_item(item);
+    }
+
+    /// The next item of the stream: a segment, or an alarm.
+    /// A frame ([`Item::Frame`]) gets no timing: [`Timeline::next_timing`] skips it.
+    #[inline(always)]
+    pub fn push_item(&mut self, item: &StreamItem) {
         match item {
             Ok(Item::Segment(segment)) => self.push(segment),
             // A warning, the error: no time, no break in the motion.
