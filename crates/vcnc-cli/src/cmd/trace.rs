@@ -332,6 +332,29 @@ impl Writer {
         alarms: &mut Vec<Alarm>,
     ) {
         for (item, timing) in items.iter().zip(timings) {
+            // The most common record, a line at a feed per minute, is tested first by its own
+            // pattern (one comparison of the kind and one of the feed), and has a copy of the
+            // record function of its own, in which the compiler knows which fields the record
+            // has instead of testing them field by field.
+            if let Ok(Emitted::Segment(
+                segment @ Segment {
+                    kind:
+                        SegmentKind::Line {
+                            motion,
+                            feed: Feed::PerMinute(feed),
+                            ..
+                        },
+                    ..
+                },
+            )) = item
+            {
+                if segment.span.file != self.file {
+                    self.set_file(segment.span.file);
+                }
+                let record = Record::fed(kind!("feed"), motion, *feed, None);
+                self.write::<JSON>(segment, timing, record);
+                continue;
+            }
             let segment = match item {
                 Ok(Emitted::Segment(segment)) => segment,
                 Ok(Emitted::Frame(frame)) => {
@@ -351,21 +374,7 @@ impl Writer {
             if segment.span.file != self.file {
                 self.set_file(segment.span.file);
             }
-            // The most common record, a line at a feed per minute, has a copy of the record
-            // function of its own, in which the compiler knows which fields the record has
-            // instead of testing them field by field.
-            match &segment.kind {
-                SegmentKind::Line {
-                    motion,
-                    feed: Feed::PerMinute(feed),
-                    ..
-                } => self.write::<JSON>(
-                    segment,
-                    timing,
-                    Record::fed(kind!("feed"), motion, *feed, None),
-                ),
-                _ => self.write_other::<JSON>(segment, timing),
-            }
+            self.write_other::<JSON>(segment, timing);
         }
     }
 

@@ -74,8 +74,17 @@ pub(crate) fn for_each_timed<S: BatchSource>(
             }
         };
         let newest = held.len() - 1;
-        for index in first_new..held[newest].items.len() {
-            timeline.push_item(&held[newest].items[index]);
+        let mut next = first_new;
+        // The items go to the timeline straight from the newest batch until timings are ready,
+        // then the timings to the held batches: one lookup of the batch for each run of items.
+        while next < held[newest].items.len() {
+            for item in &held[newest].items[next..] {
+                timeline.push_item_line_first(item);
+                next += 1;
+                if timeline.has_timing() {
+                    break;
+                }
+            }
             deal(&mut timeline, &mut held, &mut filling);
         }
         while held.first().is_some_and(Held::is_complete) {
@@ -99,30 +108,31 @@ pub(crate) fn for_each_timed<S: BatchSource>(
 /// Gives the timings the timeline has made final to the held batches, in order. A frame has
 /// none of its own (the timeline skips it): it takes the start of the item after it, with no
 /// duration.
-// Inlined: it runs for every item pushed.
+// Inlined: it runs for every item pushed. Batch by batch, so that the batch being filled is
+// looked up once for all the timings it takes, not once a timing.
 #[inline(always)]
 fn deal(timeline: &mut Timeline, held: &mut [Held], filling: &mut usize) {
-    while let Some(timing) = timeline.next_timing() {
-        loop {
-            while held.get(*filling).is_some_and(Held::is_complete) {
-                *filling += 1;
+    let Some(mut timing) = timeline.next_timing() else {
+        return;
+    };
+    // Every timing belongs to an item pushed, and every item pushed is held.
+    for batch in held.iter_mut().skip(*filling) {
+        while let Some(next) = batch.items.get(batch.timings.len()) {
+            if let Ok(Emitted::Frame(_)) = next {
+                batch.timings.push(Timing {
+                    dt: 0.0,
+                    feed_unknown: false,
+                    ..timing
+                });
+                continue;
             }
-            // Every timing belongs to an item pushed, and every item pushed is held.
-            let Some(batch) = held.get_mut(*filling) else {
-                break;
-            };
-            let next = batch.items.get(batch.timings.len());
-            let is_frame = matches!(next, Some(Ok(Emitted::Frame(_))));
-            if !is_frame {
-                batch.timings.push(timing);
-                break;
+            batch.timings.push(timing);
+            match timeline.next_timing() {
+                Some(following) => timing = following,
+                None => return,
             }
-            batch.timings.push(Timing {
-                dt: 0.0,
-                feed_unknown: false,
-                ..timing
-            });
         }
+        *filling += 1;
     }
 }
 

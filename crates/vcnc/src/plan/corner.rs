@@ -71,7 +71,7 @@ impl Handover {
         straight: bool,
         motion: &Move,
         limits: &MotionLimits,
-        ends: &Ends,
+        ends: Ends,
         config: &PlannerConfig,
     ) -> Handover {
         // LinuxCNC caps a segment's speed by one cycle over its length when it takes it in
@@ -95,6 +95,70 @@ impl Handover {
                 || matches!(motion.path_mode, PathMode::ExactStop | PathMode::Tapping),
             smoothing: motion.smoothing,
         }
+    }
+
+    /// A handover that is never read: the second place of [`Handovers`] before any motion.
+    const NONE: Handover = Handover {
+        end: [0.0; 3],
+        length: 0.0,
+        cruise: 0.0,
+        turning: 0.0,
+        acceleration: 0.0,
+        bend: None,
+        class: MotionClass::Cutting,
+        straight: true,
+        exact_stop: false,
+        smoothing: None,
+    };
+}
+
+/// The handovers of the last motion that entered the look-ahead window and of the motion
+/// entering it, in two places that take turns: the entering motion's is made where it stays,
+/// instead of beside it and copied there once its junction is known (a copy per motion).
+#[derive(Debug)]
+pub(crate) struct Handovers {
+    places: [Handover; 2],
+    /// The place of the entering motion's handover; the other one holds the last motion's.
+    entering: usize,
+    /// The other place holds the last motion's handover: false at first and after a stop.
+    continuing: bool,
+}
+
+impl Handovers {
+    pub(crate) const fn new() -> Handovers {
+        Handovers {
+            places: [Handover::NONE; 2],
+            entering: 0,
+            continuing: false,
+        }
+    }
+
+    /// The place where the entering motion's handover is made.
+    #[inline(always)]
+    pub(crate) fn entering_mut(&mut self) -> &mut Handover {
+        &mut self.places[self.entering & 1]
+    }
+
+    /// The last motion's handover (None after a stop) and the entering motion's.
+    #[inline(always)]
+    pub(crate) fn pair(&self) -> (Option<&Handover>, &Handover) {
+        let last = &self.places[(self.entering ^ 1) & 1];
+        (
+            self.continuing.then_some(last),
+            &self.places[self.entering & 1],
+        )
+    }
+
+    /// The entering motion has entered: its handover is the last one.
+    #[inline(always)]
+    pub(crate) fn enter(&mut self) {
+        self.entering ^= 1;
+        self.continuing = true;
+    }
+
+    /// The motion comes to rest: the next motion has no junction with the last one.
+    pub(crate) fn stop(&mut self) {
+        self.continuing = false;
     }
 }
 
@@ -169,6 +233,13 @@ pub(crate) fn junction(
     let cos_turn = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
     if cos_turn.is_nan() {
         return Junction::STOP;
+    }
+    // An exact stop that passes no tangent, where no reversal stops otherwise, stops at every
+    // corner whatever its turn (the tests below would all come to that): the commonest
+    // junction of a SINUMERIK program, which powers on in G60.
+    if prev.exact_stop && !config.exact_stop_passes_tangents && config.reversal_stop_degrees <= 0.0
+    {
+        return Junction::CORNER_STOP;
     }
     let cos_turn = greater(-1.0, lesser(1.0, cos_turn));
     // LinuxCNC stops where the path nearly turns back (tp.c `tpSetupTangent`: |u + w|^2 below

@@ -21,7 +21,7 @@
 
 use super::config::{LookAheadRelease, PlannerConfig};
 use super::corner::Junction;
-use super::corner::{junction, Handover};
+use super::corner::{junction, Handover, Handovers};
 use super::limits::MotionLimits;
 use super::speed_profile::{reachable_speed_up_to, PathLimits, SpeedProfile};
 use super::{greater, lesser};
@@ -75,8 +75,9 @@ pub(crate) struct Window {
     ready: usize,
     /// Speed at the start of the first motion in the window (the last one that left ends there).
     start_speed: f64,
-    /// How the last motion that entered ends, for the junction with the next; None after a stop.
-    last: Option<Handover>,
+    /// How the last motion that entered ends, for the junction with the next (none after a
+    /// stop), and how the entering one does.
+    handovers: Handovers,
     /// `PlannerConfig::min_segment_seconds`, for the motion before a stop.
     min_segment_seconds: f64,
     /// `PlannerConfig::last_stop_length_share`, for the motion before a stop.
@@ -98,7 +99,7 @@ impl Window {
             capacity,
             ready: 0,
             start_speed: 0.0,
-            last: None,
+            handovers: Handovers::new(),
             min_segment_seconds: config.min_segment_seconds,
             last_stop_length_share: config.last_stop_length_share,
             release_each: config.look_ahead_release == LookAheadRelease::Each,
@@ -150,6 +151,12 @@ impl Window {
         self.head = 0;
     }
 
+    /// Whether a final slot is ready.
+    #[inline(always)]
+    pub(crate) fn has_ready(&self) -> bool {
+        self.ready > 0
+    }
+
     /// A final slot, if one is ready.
     #[inline(always)]
     pub(crate) fn pop_ready(&mut self) -> Option<&Slot> {
@@ -182,28 +189,34 @@ impl Window {
         self.ready += 1;
     }
 
-    /// Adds a motion of positive length with its limits, its handover to the next motion and
-    /// its start tangent; `per_axis_seconds` is the duration of a rapid with each axis at its
-    /// own rate.
+    /// Where the next motion's handover to the motion after it is made, before
+    /// [`Window::push_motion`] adds the motion.
+    #[inline(always)]
+    pub(crate) fn entering_handover(&mut self) -> &mut Handover {
+        self.handovers.entering_mut()
+    }
+
+    /// Adds a motion of positive length with its limits and its start tangent, its handover
+    /// to the next motion made in [`Window::entering_handover`]; `per_axis_seconds` is the
+    /// duration of a rapid with each axis at its own rate.
     #[inline(always)]
     pub(crate) fn push_motion(
         &mut self,
         mut limits: MotionLimits,
-        handover: Handover,
         start: &[f64; 3],
         per_axis_seconds: Option<f64>,
         config: &PlannerConfig,
     ) {
         let mut max_entry = 0.0;
         let mut lead_in = 0.0;
-        if let Some(prev) = &self.last {
-            let junction = junction(prev, &handover, start, config);
+        if let (Some(prev), handover) = self.handovers.pair() {
+            let junction = junction(prev, handover, start, config);
             if junction.arc_acceleration > 0.0 && junction.arc > 0.0 {
                 let prev = *prev;
                 let arc_cruise = self.push_blend(&prev, &junction, limits.path.jerk, config);
                 limits.length = greater(0.0, limits.length - junction.leg);
                 max_entry = lesser(arc_cruise, limits.cruise);
-                return self.push_planned(limits, handover, max_entry, 0.0, per_axis_seconds);
+                return self.push_planned(limits, max_entry, 0.0, per_axis_seconds);
             }
             let mut prev_cruise = prev.cruise;
             limits.length = greater(0.0, limits.length - junction.leg);
@@ -223,19 +236,18 @@ impl Window {
             }
             max_entry = lesser(lesser(prev_cruise, junction.speed), limits.cruise);
         }
-        self.push_planned(limits, handover, max_entry, lead_in, per_axis_seconds);
+        self.push_planned(limits, max_entry, lead_in, per_axis_seconds);
     }
 
     #[inline(always)]
     fn push_planned(
         &mut self,
         limits: MotionLimits,
-        handover: Handover,
         max_entry: f64,
         lead_in: f64,
         per_axis_seconds: Option<f64>,
     ) {
-        self.last = Some(handover);
+        self.handovers.enter();
         self.live += 1;
         self.push_slot(Slot::Motion(Planned {
             limits,
@@ -332,7 +344,7 @@ impl Window {
             }
         }
         self.plan(self.len);
-        self.last = None;
+        self.handovers.stop();
     }
 
     #[inline(always)]

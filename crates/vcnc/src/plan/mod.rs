@@ -52,10 +52,12 @@ pub use speed_profile::{PathLimits, SpeedProfile};
 
 use crate::alarm::Alarm;
 use crate::machine::Machine;
-use crate::motion::{Item, PathMode, Segment, SegmentKind, StreamItem, WorkFrame};
+use crate::motion::{Feed, Item, Move, PathMode, Segment, SegmentKind, StreamItem, WorkFrame};
 use corner::{Handover, MotionClass};
 use events::EventClock;
-use limits::{arc, line, per_axis_rapid_seconds, ArcPath, AxisLimits, FeedSpeeds};
+use limits::{
+    arc, line, per_axis_rapid_seconds, ArcPath, AxisLimits, Ends, FeedSpeeds, MotionLimits,
+};
 use lookahead::{time_motion, Slot, Window};
 use std::collections::VecDeque;
 
@@ -214,9 +216,26 @@ impl Timeline {
         }
     }
 
-    /// The next item of the stream: a segment, or an alarm.
+    /// [`Timeline::push_item`] for a caller whose loop does little else (the command line's
+    /// trace): the commonest item, a line, is tested first by its own pattern, one comparison
+    /// of the kind, where the match takes the result, the item and the kind apart in turn. (In
+    /// a loop that does more, the planner's iterator, the second copy of the line's planning
+    /// costs more than it saves: the loop is no longer inlined into its caller.)
     #[inline(always)]
+    pub(crate) fn push_item_line_first(&mut self, item: &StreamItem) {
+        if let Ok(Item::Segment(Segment {
+            kind: SegmentKind::Line { motion, feed },
+            ..
+        })) = item
+        {
+            return self.push_line(motion, feed);
+        }
+        self.push_item(item);
+    }
+
+    /// The next item of the stream: a segment, or an alarm.
     /// A frame ([`Item::Frame`]) gets no timing: [`Timeline::next_timing`] skips it.
+    #[inline(always)]
     pub fn push_item(&mut self, item: &StreamItem) {
         match item {
             Ok(Item::Segment(segment)) => self.push(segment),
@@ -230,22 +249,14 @@ impl Timeline {
 
     /// The next segment of the stream.
     // One match on the kind decides everything that depends on it: the limits, the class of
-    // the motion for its junctions, the per-axis time of a dog-leg rapid.
+    // the motion for its junctions, the per-axis time of a dog-leg rapid. Each arm enters its
+    // motion itself: arms that joined first would build their limits in one place and copy
+    // them on.
     #[inline(always)]
     pub fn push(&mut self, segment: &Segment) {
         let (axes, config, speeds) = (&self.axes, &self.config, &mut self.speeds);
-        let (motion, (limits, ends), (class, straight), per_axis_seconds) = match &segment.kind {
-            SegmentKind::Line { motion, feed } => {
-                // The control locks the override at 100 % where the feed is tied to the
-                // spindle (G63 tapping mode, G33 threads).
-                let feed_override = if motion.path_mode == PathMode::Tapping {
-                    1.0
-                } else {
-                    self.feed_override
-                };
-                let limits = line(motion, Some((feed, speeds)), axes, config, feed_override);
-                (motion, limits, (MotionClass::Cutting, true), None)
-            }
+        match &segment.kind {
+            SegmentKind::Line { motion, feed } => self.push_line(motion, feed),
             SegmentKind::Arc {
                 motion,
                 center,
@@ -263,21 +274,17 @@ impl Timeline {
                     feed,
                 };
                 let limits = arc(&path, speeds, axes, config, self.feed_override);
-                (motion, limits, (MotionClass::Cutting, false), None)
+                self.enter_motion(motion, limits, (MotionClass::Cutting, false, None));
             }
             SegmentKind::Rapid { motion, per_axis } => {
                 let limits = line(motion, None, axes, config, 1.0);
-                if *per_axis {
+                let kind = if *per_axis {
                     let seconds = per_axis_rapid_seconds(motion, axes);
-                    (
-                        motion,
-                        limits,
-                        (MotionClass::PerAxisRapid, true),
-                        Some(seconds),
-                    )
+                    (MotionClass::PerAxisRapid, true, Some(seconds))
                 } else {
-                    (motion, limits, (MotionClass::Rapid, true), None)
-                }
+                    (MotionClass::Rapid, true, None)
+                };
+                self.enter_motion(motion, limits, kind);
             }
             SegmentKind::AxisLimits {
                 axis,
@@ -289,19 +296,45 @@ impl Timeline {
                 self.axis_factors[axis.index()] = [*velocity, *acceleration, *jerk];
                 self.axes = self.machine_axes.scaled(&self.axis_factors);
                 self.window.push_timeless();
-                return;
             }
             _ => {
                 // The machine stops before an event; the end of the program too.
                 let seconds = self.events.seconds(&segment.kind, &self.config);
                 self.window.push_event(seconds);
-                return;
             }
+        }
+    }
+
+    /// A straight move at a feed.
+    #[inline(always)]
+    fn push_line(&mut self, motion: &Move, feed: &Feed) {
+        // The control locks the override at 100 % where the feed is tied to the spindle (G63
+        // tapping mode, G33 threads).
+        let feed_override = if motion.path_mode == PathMode::Tapping {
+            1.0
+        } else {
+            self.feed_override
         };
+        let (axes, config, speeds) = (&self.axes, &self.config, &mut self.speeds);
+        let limits = line(motion, Some((feed, speeds)), axes, config, feed_override);
+        self.enter_motion(motion, limits, (MotionClass::Cutting, true, None));
+    }
+
+    /// A motion with its limits enters the window; `kind` is its class for its junctions,
+    /// whether it is straight, and the time of a dog-leg rapid.
+    #[inline(always)]
+    fn enter_motion(
+        &mut self,
+        motion: &Move,
+        (limits, ends): (MotionLimits, Ends),
+        (class, straight, per_axis_seconds): (MotionClass, bool, Option<f64>),
+    ) {
+        let config = &self.config;
         if limits.length > 0.0 {
-            let handover = Handover::new(class, straight, motion, &limits, &ends, config);
+            *self.window.entering_handover() =
+                Handover::new(class, straight, motion, &limits, ends, config);
             self.window
-                .push_motion(limits, handover, &ends.start, per_axis_seconds, config);
+                .push_motion(limits, &ends.start, per_axis_seconds, config);
         } else {
             self.window.push_timeless();
         }
@@ -317,6 +350,12 @@ impl Timeline {
     /// becomes final.
     pub fn finish(&mut self) {
         self.window.stop();
+    }
+
+    /// Whether [`Timeline::next_timing`] has a timing to give.
+    #[inline(always)]
+    pub fn has_timing(&self) -> bool {
+        self.window.has_ready()
     }
 
     /// The timing of the oldest item pushed whose timing has not been taken, once it is final.

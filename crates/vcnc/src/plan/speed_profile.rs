@@ -286,11 +286,15 @@ impl SpeedProfile {
         (entry, cruise, exit): (f64, f64, f64),
         limits: PathLimits,
     ) -> SpeedProfile {
-        // Most segments reach their cruise speed: the ramps to it settle the profile.
-        let (mut up_time, mut down_time) = (
-            ramp_time(entry, cruise, limits),
-            ramp_time(cruise, exit, limits),
-        );
+        // Most segments reach their cruise speed: the ramps to it settle the profile. Between
+        // two stops (SINUMERIK's G60 at every corner) the ramp down mirrors the ramp up, the
+        // same change of speed to the bit.
+        let mut up_time = ramp_time(entry, cruise, limits);
+        let mut down_time = if exit == entry {
+            up_time
+        } else {
+            ramp_time(cruise, exit, limits)
+        };
         let mut rest = length - 0.5 * ((entry + cruise) * up_time + (cruise + exit) * down_time);
         let mut peak = cruise;
         if rest < 0.0 {
