@@ -329,8 +329,12 @@ impl Output {
             span: block.span(),
             sequence: block.sequence(),
         };
+        let failing = self.failed.is_some();
         let (comp, items, held) = self.entry();
         match comp {
+            // The compensator's alarm ends the run with this block: the block's further moves
+            // (a contour's held cuts) meet a compensator left at the element it refused.
+            Some(_) if failing => {}
             Some(comp) => {
                 if let Err(alarm) = comp.push(segment, items, held) {
                     self.failed.get_or_insert(alarm);

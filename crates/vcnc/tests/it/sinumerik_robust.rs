@@ -704,6 +704,10 @@ fn fuzz_findings_of_the_compensator_stop_with_their_alarm() {
             "OFFN=5G41Y1F4\nX10CHF=2\nY12",
             AlarmCode::CutterCompensation,
         ),
+        (
+            "N0X0Y0OFFN=5\nG41 F1X20CHF=3\nY30CHF=3\nX40n",
+            AlarmCode::CutterCompensation,
+        ),
     ] {
         // The 840D's library answers HOLES2 with the input itself: that run stops at the depth.
         let alarms = check_stops(text);
