@@ -8,7 +8,8 @@
 //!
 //! Properties (a broken one is a crash, and libFuzzer keeps the input):
 //! - no panic, and the run ends: at most `MAX_ITEMS` items (the iteration limit bounds the lines
-//!   read, and a line yields a handful of items); libFuzzer's `-timeout` catches a single
+//!   read, a line yields a handful of items, a cycle call at most 2,000,000 moves); libFuzzer's
+//!   `-timeout` catches a single
 //!   `next()` that never returns;
 //! - nothing comes out after the first error alarm;
 //! - every alarm has a span inside the input (in-memory text has no whole-file problems), its
@@ -29,8 +30,9 @@ use vcnc::{Alarm, Axis, FileId, Item, Machine, ProfileName, Segment, SegmentKind
 /// Lines a run may read (loop passes and jumps included) before it stops with the limit alarm.
 const ITERATIONS: u64 = 20_000;
 
-/// Items a run may yield: the iteration limit times a generous number of items per line.
-const MAX_ITEMS: usize = 2_000_000;
+/// Items a run may yield: the iteration limit times a generous number of items per line, and
+/// a cycle call's 2,000,000 moves (its passes together) more than once.
+const MAX_ITEMS: usize = 5_000_000;
 
 fn machines() -> &'static [(ProfileName, Machine)] {
     static MACHINES: OnceLock<Vec<(ProfileName, Machine)>> = OnceLock::new();

@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use vcnc::interp::sinumerik::Sinumerik;
 use vcnc::interp::{DirectoryLibrary, Kernel, LookupError, ProgramLibrary, ProgramText, Run};
-use vcnc::{Alarm, AlarmCode, Axis, FileId, Machine, ProfileName};
+use vcnc::{Alarm, AlarmCode, Axis, FileId, Item, Machine, ProfileName};
 
 /// Lines a run may read before it stops with the limit alarm (the fuzz target's value).
 const ITERATIONS: u64 = 20_000;
@@ -717,4 +717,23 @@ fn fuzz_findings_of_the_compensator_stop_with_their_alarm() {
             text.escape_debug()
         );
     }
+}
+
+/// A fuzz finding (2026-11-29): a hole circle of 8551 holes called with 290 passes made 2.5
+/// million moves from one line; the limit of a cycle call's moves (2,000,000, docs/SINUMERIK.md
+/// 12) holds for its passes together.
+#[test]
+fn a_cycle_calls_passes_share_its_limit_of_moves() {
+    // A pass is a rapid to each hole (the call gives no drilling cycle): 290 x 8551 moves.
+    let machine = Machine::default();
+    let items: Vec<_> =
+        vcnc::interp::sinumerik::run_str("P290 HOLES2(0,0,80,0,1,8551)", &machine).collect();
+    let moves = items
+        .iter()
+        .filter(|item| matches!(item, Ok(Item::Segment(s)) if s.motion().is_some()))
+        .count();
+    let last = items.last().unwrap().as_ref().unwrap_err();
+    assert_eq!(last.code, AlarmCode::MacroLimit, "{last:?}");
+    assert!(last.message.contains("2000000 moves"), "{}", last.message);
+    assert_eq!(moves, 2_000_000);
 }

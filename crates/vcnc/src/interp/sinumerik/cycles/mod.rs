@@ -45,6 +45,8 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::Kernel;
 use crate::source::Span;
 use std::collections::HashSet;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 
 /// The cycles vcnc runs itself.
 const BUILT_IN: [&str; 27] = [
@@ -75,6 +77,9 @@ pub(super) struct Calls {
     waiting: Option<Call>,
     pattern: Option<Pattern>,
     built_in: HashSet<Box<str>>,
+    /// The moves the call being run has made, its passes together ([`MAX_MOVES`]): shared
+    /// with each [`Place`] the cycle makes its moves from.
+    moves: Arc<AtomicU64>,
 }
 
 impl Calls {
@@ -126,6 +131,7 @@ fn run_waiting(front: &mut Sinumerik, kernel: &mut Kernel) -> Result<(), Alarm> 
     };
     // A chamfer or rounding waiting for the next block is made first: the cycle's moves follow.
     front.flush_contour(kernel)?;
+    front.cycles.moves.store(0, Ordering::Relaxed);
     for _ in 0..call.passes {
         run(front, kernel, &call)?;
     }
@@ -277,7 +283,8 @@ fn edge_radius(front: &Sinumerik) -> Option<f64> {
 /// for ever (levels, rings and rows then grow beyond their step; holes and slots alarm).
 pub(super) const MAX_DIVISIONS: usize = 10_000;
 
-/// The most moves one cycle call makes before it stops with an alarm (vcnc's limit).
+/// The most moves one cycle call makes, its passes (`P`) together, before it stops with an
+/// alarm (vcnc's limit).
 const MAX_MOVES: u64 = 2_000_000;
 
 /// The number of equal pieces of at most `step` that `length` divides into: at least 1, at

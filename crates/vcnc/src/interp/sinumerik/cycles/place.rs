@@ -2,7 +2,7 @@
 //! coordinates, and the kernel's rapids, lines, arcs and threads to the cycle's points.
 //!
 //! Never: move an axis outside the plane and its tool axis, or make more than [`MAX_MOVES`]
-//! moves in one call.
+//! moves in one call (its passes together).
 
 use super::super::Sinumerik;
 use super::MAX_MOVES;
@@ -10,6 +10,8 @@ use crate::alarm::{Alarm, AlarmCode};
 use crate::interp::kernel::{Kernel, Origin};
 use crate::machine::AXES;
 use crate::motion::{ArcDirection, PathMode, Plane, SpindleState};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 
 /// Where a cycle works: the plane, the tool's position in program coordinates as the cycle
 /// moves it, and the block its moves belong to.
@@ -25,8 +27,8 @@ pub(super) struct Place {
     pub(super) clockwise: bool,
     /// The path mode of the block (G60 or continuous), restored after a tapping move.
     pub(super) path_mode: PathMode,
-    /// The moves made so far (at most [`MAX_MOVES`]).
-    moves: u64,
+    /// The moves the call has made so far, its earlier passes too (at most [`MAX_MOVES`]).
+    moves: Arc<AtomicU64>,
 }
 
 impl Place {
@@ -45,7 +47,7 @@ impl Place {
             } else {
                 PathMode::Continuous
             },
-            moves: 0,
+            moves: Arc::clone(&front.cycles.moves),
         }
     }
 
@@ -66,8 +68,9 @@ impl Place {
         point: Option<(f64, f64)>,
         height: Option<f64>,
     ) -> Result<[Option<f64>; AXES], Alarm> {
-        self.moves += 1;
-        if self.moves > MAX_MOVES {
+        // The front end runs on one thread: the count is shared, never contended.
+        let moves = self.moves.fetch_add(1, Ordering::Relaxed) + 1;
+        if moves > MAX_MOVES {
             return Err(Alarm::error(
                 AlarmCode::MacroLimit,
                 self.origin.span,
