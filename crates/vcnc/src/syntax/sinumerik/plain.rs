@@ -10,17 +10,25 @@
 //! and the interpreter runs the common ones from it directly; [`PlainWords::to_words`] makes the
 //! words the general reader makes of the line, to the bit (a differential test in `block.rs`).
 //!
-//! Never: raise an alarm (a line that would is given up) or read past the line.
+//! The parser thread reads the common line from the text at hand ([`read_plain_in`]), before it
+//! is cut out, and finds its end on the way, as the ISO reader does: no search for the `\n`
+//! first, and the numbers read from windows (`decimal.rs`). A line it cannot end there goes to
+//! the line reader, and is read the same way ([`read_plain`]): a differential test in
+//! `block.rs` and one over the line sources in `lines.rs` check it.
+//!
+//! Never: raise an alarm (a line that would is given up) or read past the line (from the text
+//! at hand: past its `\n`, but for a number's window, which only looks).
 
 use super::block::{Address, Block, Value, Word};
 use super::expr::{Expr, ExprKind, UnaryOp};
 use super::scan::is_blank;
 use crate::source::{FileId, Span};
 use crate::syntax::decimal::{self, Decimal};
+use crate::syntax::lines::memchr_newline;
 use crate::syntax::Number;
 
 /// A plain line's words, decoded.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default)]
 pub struct PlainWords {
     words: [PlainWord; PlainWords::MAX],
     len: u8,
@@ -61,6 +69,15 @@ impl Default for PlainWord {
             start: 0,
             end: 0,
         }
+    }
+}
+
+/// Equal when they hold the same words: the slots past them keep an earlier line's.
+impl PartialEq for PlainWords {
+    fn eq(&self, other: &PlainWords) -> bool {
+        self.words() == other.words()
+            && self.name == other.name
+            && (self.file, self.line, self.base) == (other.file, other.line, other.base)
     }
 }
 
@@ -153,6 +170,21 @@ impl PlainWords {
     }
 }
 
+/// The longest line read from the text at hand ([`read_plain_in`]): a CAM line is far shorter.
+/// The cut keeps the line inside what the line sources have searched for lone `\r`s ahead of the
+/// reading (lines.rs: 4096 bytes), and its offsets in 16 bits; a longer line is read the usual
+/// way.
+const MAX_AT_HAND: usize = 512;
+
+/// A plain line read from the text at hand.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct AtHand {
+    /// The line's length without its line end (`\n` or `\r\n`).
+    pub(super) length: usize,
+    /// How many bytes of the text at hand follow the line's `\n`.
+    pub(super) after: usize,
+}
+
 /// Reads line `text` (line `line` of `file`, at byte `base`) into `block.plain` if it is a
 /// plain one, with the block number in `block.number`; false, and `block` to be emptied, if not.
 pub(super) fn read_plain(
@@ -162,25 +194,73 @@ pub(super) fn read_plain(
     base: u32,
     block: &mut Block,
 ) -> bool {
+    text.len() <= usize::from(u16::MAX)
+        && read_words::<false>(text, file, line, base, block).is_some()
+}
+
+/// Reads the first line of `unread` (the text at hand from a line's start on, line ends
+/// included) as [`read_plain`] reads the line without its line end, and finds its end on the
+/// way: the line's length and what follows its `\n`. None (and `block` to be emptied) when the
+/// line is not plain, when its `\n` is not at hand or not within [`MAX_AT_HAND`] bytes, when its
+/// words have a `\r` after them elsewhere than before the `\n`, or when a number is too close to the end of the
+/// text at hand for its window: the line is then read the usual way.
+#[inline(always)]
+pub(super) fn read_plain_in(
+    unread: &[u8],
+    file: FileId,
+    line: u32,
+    base: u32,
+    block: &mut Block,
+) -> Option<AtHand> {
+    let text = unread.get(..MAX_AT_HAND).unwrap_or(unread);
+    let rest = read_words::<true>(text, file, line, base, block)?;
+    // The words end at the line end, or at a comment that runs to it.
+    let (length, newline) = match rest {
+        [b'\n', ..] => (text.len() - rest.len(), text.len() - rest.len()),
+        [b'\r', ..] => (text.len() - rest.len(), text.len() - rest.len() + 1),
+        _ => {
+            let newline = text.len() - rest.len() + memchr_newline(rest)?;
+            // What the line sources hand out: the line without the `\r` of a `\r\n`.
+            let length = match text[..newline] {
+                [.., b'\r'] => newline - 1,
+                _ => newline,
+            };
+            (length, newline)
+        }
+    };
+    Some(AtHand {
+        length,
+        after: unread.len() - newline - 1,
+    })
+}
+
+/// The reader of both: the words of `text` into `block` up to the line's end, and the bytes
+/// from there on: nothing or a `;` comment, and when `AT_HAND` (`text` runs on past the line)
+/// a `\n` or `\r\n` as well, or a `;` comment that runs to one. None when the line is not plain.
+#[inline(always)]
+fn read_words<'a, const AT_HAND: bool>(
+    text: &'a [u8],
+    file: FileId,
+    line: u32,
+    base: u32,
+    block: &mut Block,
+) -> Option<&'a [u8]> {
     // The line is read as a shrinking slice, by patterns, not through the scanner's general
     // steps: a long CAM program's parsing is mostly this loop. A word's place in the line is
     // the line's length less the length of what is left.
-    if text.len() > usize::from(u16::MAX) {
-        return false;
-    }
     let at = |rest: &[u8]| text.len() - rest.len();
-    let mut rest = skip_blanks(text);
+    let mut rest = skip_blanks::<AT_HAND>(text);
     match rest {
         [b'N' | b'n', after @ ..] => match block_number(after) {
             Some((Some(number), after_number)) => {
                 block.number = Some(number);
-                rest = after_number;
+                rest = skip_blanks::<AT_HAND>(after_number);
             }
             // `N` and a letter: a name (`NOT`, a label), read as a word.
             Some((None, _)) => {}
-            None => return false,
+            None => return None,
         },
-        [b'/' | b':', ..] => return false,
+        [b'/' | b':', ..] => return None,
         _ => {}
     }
     let plain = block.plain.get_or_insert_with(PlainWords::default);
@@ -189,59 +269,80 @@ pub(super) fn read_plain(
     plain.file = file;
     plain.line = line;
     plain.base = base;
-    rest = skip_blanks(rest);
-    loop {
-        let (letter, after) = match rest {
-            [] | [b';', ..] => {
-                // A line without words (a comment, a number alone) is no block to run.
-                if plain.len == 0 {
-                    block.plain = None;
-                }
-                return true;
-            }
-            [letter, after @ ..] if letter.is_ascii_alphabetic() => (*letter, after),
-            _ => return false,
-        };
+    // Anything but a letter ends the words; what may end them is checked below.
+    while let [letter, after @ ..] = rest {
+        if !letter.is_ascii_alphabetic() {
+            break;
+        }
         let start = at(rest);
-        let end = match after {
+        let after_word = match after {
             // `CR=..`, or `F=FEED1`: a letter as a name.
             [b, ..] if b.is_ascii_alphabetic() || *b == b'_' || *b == b'=' => {
-                named(text, start, plain)
+                named::<AT_HAND>(text, start, plain)?
             }
-            _ => letter_constant(letter, after, start, plain).map(at),
-        };
-        let Some(end) = end else {
-            return false;
+            _ => letter_constant::<AT_HAND>(*letter, after, start, plain)?,
         };
         // What follows a word: blanks, then the end, a comment or the next word's letter,
         // which must not be an operator going on with the word's value (`CR=5 DIV 2`).
-        rest = skip_blanks(&text[end..]);
-        match rest {
-            [] | [b';', ..] => {}
+        rest = skip_blanks::<AT_HAND>(after_word);
+        if let [b, n, ..] = rest {
             // Every operator is a name whose second byte is a letter or `_`: a letter before a
             // digit, a sign or a point starts a word (most next words are axes and feeds).
-            [b, n, ..]
-                if (n.is_ascii_alphabetic() || *n == b'_')
-                    && matches!(
-                        b.to_ascii_uppercase(),
-                        b'O' | b'X' | b'A' | b'B' | b'D' | b'M' | b'N'
-                    ) =>
+            if (n.is_ascii_alphabetic() || *n == b'_')
+                && matches!(
+                    b.to_ascii_uppercase(),
+                    b'O' | b'X' | b'A' | b'B' | b'D' | b'M' | b'N'
+                )
             {
                 let from = at(rest);
                 if is_operator(&text[from..name_end(text, from)]) {
-                    return false;
+                    return None;
                 }
             }
-            [b, ..] if b.is_ascii_alphabetic() => {}
-            _ => return false,
         }
+    }
+    match rest {
+        [] if !AT_HAND => {}
+        [b';', ..] => {}
+        // Read from the text at hand, blanks leave out `\n` and `\r`: a `\r` is the line end's
+        // (lone ones are made `\n`s before, lines.rs `normalize`), or the line is the line
+        // reader's.
+        [b'\n', ..] | [b'\r', b'\n', ..] if AT_HAND => {}
+        _ => return None,
+    }
+    // A line without words (a comment, a number alone) is no block to run.
+    if plain.len == 0 {
+        block.plain = None;
+    }
+    Some(rest)
+}
+
+/// True for the bytes that separate words (scan.rs), but for `\n` and `\r` when `AT_HAND`:
+/// then they end the line.
+#[inline(always)]
+fn is_blank_in<const AT_HAND: bool>(byte: u8) -> bool {
+    is_blank(byte) && !(AT_HAND && matches!(byte, b'\n' | b'\r'))
+}
+
+/// `bytes` from its first byte that is not a blank (see [`is_blank_in`]).
+#[inline(always)]
+fn skip_blanks<const AT_HAND: bool>(bytes: &[u8]) -> &[u8] {
+    // One space is what usually stands between two words: stepping over it first spares the
+    // common case the loop.
+    let bytes = match bytes {
+        [b' ', rest @ ..] => rest,
+        _ => bytes,
+    };
+    match bytes {
+        [first, ..] if is_blank_in::<AT_HAND>(*first) => skip_blank_run::<AT_HAND>(bytes),
+        _ => bytes,
     }
 }
 
-/// `bytes` from its first byte that is not a blank.
-fn skip_blanks(mut bytes: &[u8]) -> &[u8] {
+/// `bytes` from its first byte that is not a blank, for any run of blanks.
+fn skip_blank_run<const AT_HAND: bool>(mut bytes: &[u8]) -> &[u8] {
     while let [first, rest @ ..] = bytes {
-        if !is_blank(*first) {
+        if !is_blank_in::<AT_HAND>(*first) {
             break;
         }
         bytes = rest;
@@ -249,25 +350,31 @@ fn skip_blanks(mut bytes: &[u8]) -> &[u8] {
     bytes
 }
 
+/// The most digits of a block number read here: 999,999,999 fits in u32 whatever the digits,
+/// so they need no checked arithmetic. A longer one (leading zeros, or too large: an alarm) is
+/// the general reader's.
+const MAX_NUMBER_DIGITS: usize = 9;
+
 /// The digits of a block number after `N`: the number (None when no digit follows: a name) and
-/// the bytes after it; None for what the general reader must see: `N` with `=`, a number too
-/// large.
+/// the bytes after it; None for what the general reader must see: `N` with `=`, more than
+/// [`MAX_NUMBER_DIGITS`] digits.
+#[inline(always)]
 fn block_number(bytes: &[u8]) -> Option<(Option<u32>, &[u8])> {
     let mut number = 0u32;
     let mut rest = bytes;
     while let [digit @ b'0'..=b'9', after @ ..] = rest {
+        // Wrapping: a number of more digits than fit is refused below.
         number = number
-            .checked_mul(10)?
-            .checked_add(u32::from(digit - b'0'))?;
+            .wrapping_mul(10)
+            .wrapping_add(u32::from(digit - b'0'));
         rest = after;
     }
-    if rest.len() == bytes.len() {
-        return Some((None, bytes));
+    match bytes.len() - rest.len() {
+        0 => Some((None, bytes)),
+        digits if digits > MAX_NUMBER_DIGITS => None,
+        _ if rest.first() == Some(&b'=') => None,
+        _ => Some((Some(number), rest)),
     }
-    if rest.first() == Some(&b'=') {
-        return None;
-    }
-    Some((Some(number), rest))
 }
 
 /// The end of the letters, digits and `_` from `at`.
@@ -292,7 +399,8 @@ fn is_operator(name: &[u8]) -> bool {
 /// A letter and a constant written against it (`X-1.5`, `G1`, `Y.5`), `after` the bytes after
 /// the letter, not a numeric extension (`R10=`, `X1=`: then the word's end is no plain one and
 /// the line is given up); the word kept in `plain`, the bytes after it.
-fn letter_constant<'a>(
+#[inline(always)]
+fn letter_constant<'a, const AT_HAND: bool>(
     letter: u8,
     after: &'a [u8],
     start: usize,
@@ -303,7 +411,7 @@ fn letter_constant<'a>(
         [b'+', rest @ ..] => (false, rest),
         _ => (false, after),
     };
-    let (decimal, rest) = unsigned_decimal(unsigned)?;
+    let (decimal, rest) = unsigned_decimal::<AT_HAND>(unsigned)?;
     let number = decimal.number(negative);
     // The word's end: the letter's place, the letter, and what was read after it.
     let end = start + 1 + after.len() - rest.len();
@@ -317,9 +425,15 @@ fn letter_constant<'a>(
 
 /// The decimal constant at the start of `bytes` (digits, or a point and digits), as the ISO
 /// reader's short path reads it: the decimal and the bytes after it. None for anything else,
-/// and for what the general reader must read: an `EX` exponent, more than 15 digits.
-fn unsigned_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
-    let (decimal, rest) = decimal::unsigned_decimal(bytes)?;
+/// and for what the general reader must read: an `EX` exponent, more than 15 digits. Read from
+/// windows when `AT_HAND` (None as well when `bytes` is shorter than a window).
+#[inline(always)]
+fn unsigned_decimal<const AT_HAND: bool>(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
+    let (decimal, rest) = if AT_HAND {
+        decimal::windowed_decimal(bytes)?
+    } else {
+        decimal::unsigned_decimal(bytes)?
+    };
     match rest {
         [b'E' | b'e', b'X' | b'x', ..] => None,
         _ => Some((decimal, rest)),
@@ -327,9 +441,13 @@ fn unsigned_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
 }
 
 /// `CR=` or `F=` and a number, a negated number or (after `F=`) a variable's name (`CR=-11.7`,
-/// `F=FEED1`); the word kept in `plain`, the position after it. Any other name is the general
+/// `F=FEED1`); the word kept in `plain`, the bytes after it. Any other name is the general
 /// reader's.
-fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
+fn named<'a, const AT_HAND: bool>(
+    text: &'a [u8],
+    start: usize,
+    plain: &mut PlainWords,
+) -> Option<&'a [u8]> {
     let equals = name_end(text, start + 1);
     // `==` compares; a blank before `=` and the forms with `(` or `[` are the general reader's.
     if text.get(equals) != Some(&b'=') || text.get(equals + 1) == Some(&b'=') {
@@ -343,7 +461,7 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
     let from = equals + 1;
     match text.get(from) {
         Some(b'-') => {
-            let (decimal, rest) = unsigned_decimal(&text[from + 1..])?;
+            let (decimal, rest) = unsigned_decimal::<AT_HAND>(&text[from + 1..])?;
             let value = decimal.number(false).value;
             let end = text.len() - rest.len();
             let kind = if radius {
@@ -352,7 +470,7 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
                 PlainKind::Feed(value, true)
             };
             plain.push(kind, start, end)?;
-            Some(end)
+            Some(rest)
         }
         Some(b) if b.is_ascii_alphabetic() || *b == b'_' => {
             // An R parameter's name ends at its digits (`R1X2`), and NOT and B_NOT are
@@ -365,15 +483,17 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
                 return None;
             }
             // A call or indices follow the name (`(` after blanks, `[` against it).
-            if skip_blanks(&text[end..]).first() == Some(&b'(') || text.get(end) == Some(&b'[') {
+            let after = &text[end..];
+            if skip_blanks::<AT_HAND>(after).first() == Some(&b'(') || after.first() == Some(&b'[')
+            {
                 return None;
             }
             plain.name = Some(Address::upper(variable));
             plain.push(PlainKind::FeedName, start, end)?;
-            Some(end)
+            Some(after)
         }
         _ => {
-            let (decimal, rest) = unsigned_decimal(&text[from..])?;
+            let (decimal, rest) = unsigned_decimal::<AT_HAND>(&text[from..])?;
             let value = decimal.number(false).value;
             let end = text.len() - rest.len();
             let kind = if radius {
@@ -382,7 +502,7 @@ fn named(text: &[u8], start: usize, plain: &mut PlainWords) -> Option<usize> {
                 PlainKind::Feed(value, false)
             };
             plain.push(kind, start, end)?;
-            Some(end)
+            Some(rest)
         }
     }
 }
