@@ -91,6 +91,9 @@ impl LineParser for SinumerikParser {
         }
     }
 
+    // Inlined into the parser thread's loop: a call cost every line its registers saved and
+    // restored.
+    #[inline(always)]
     fn read_line<L: LineSource>(
         &mut self,
         lines: &mut L,

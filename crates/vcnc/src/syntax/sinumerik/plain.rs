@@ -21,7 +21,6 @@
 
 use super::block::{Address, Block, Value, Word};
 use super::expr::{Expr, ExprKind, UnaryOp};
-use super::scan::is_blank;
 use crate::source::{FileId, Span};
 use crate::syntax::decimal::{self, Decimal};
 use crate::syntax::lines::memchr_newline;
@@ -32,8 +31,14 @@ use crate::syntax::Number;
 pub struct PlainWords {
     words: [PlainWord; PlainWords::MAX],
     len: u8,
-    /// The variable's name of an `F=NAME` word, upper case.
+    /// The variable's name of the last `F=NAME` word read, upper case: kept from line to line,
+    /// so that a program's lines with the same feed do not make its name again.
     name: Option<Address>,
+    /// This line has an `F=NAME` word (its name is `name`).
+    has_name: bool,
+    /// The bytes of `name` as written, when it has eight or fewer, as one number (zero past
+    /// its end; see [`short_name_key`]); zero for none.
+    name_key: u64,
     file: FileId,
     line: u32,
     base: u32,
@@ -76,7 +81,7 @@ impl Default for PlainWord {
 impl PartialEq for PlainWords {
     fn eq(&self, other: &PlainWords) -> bool {
         self.words() == other.words()
-            && self.name == other.name
+            && self.feed_name() == other.feed_name()
             && (self.file, self.line, self.base) == (other.file, other.line, other.base)
     }
 }
@@ -92,7 +97,7 @@ impl PlainWords {
 
     /// The variable's name of the `F=NAME` word, upper case.
     pub fn feed_name(&self) -> Option<&str> {
-        self.name.as_deref()
+        self.name.as_deref().filter(|_| self.has_name)
     }
 
     /// Where `word` was written.
@@ -124,7 +129,7 @@ impl PlainWords {
                     Value::Expression(self.number(start + 2, end, value, negated)),
                 ),
                 PlainKind::FeedName => {
-                    let name = self.name.as_deref().unwrap_or_default();
+                    let name = self.feed_name().unwrap_or_default();
                     let expr = Expr {
                         kind: ExprKind::Name(name.into()),
                         span: self.span_of(start + 2, end),
@@ -160,10 +165,12 @@ impl PlainWords {
 
     fn push(&mut self, kind: PlainKind, start: usize, end: usize) -> Option<()> {
         let slot = self.words.get_mut(usize::from(self.len))?;
+        // The readers give up a line longer than u16::MAX bytes: no offset is cut.
+        debug_assert!(start <= end && end <= usize::from(u16::MAX));
         *slot = PlainWord {
             kind,
-            start: u16::try_from(start).ok()?,
-            end: u16::try_from(end).ok()?,
+            start: start as u16,
+            end: end as u16,
         };
         self.len += 1;
         Some(())
@@ -265,7 +272,7 @@ fn read_words<'a, const AT_HAND: bool>(
     }
     let plain = block.plain.get_or_insert_with(PlainWords::default);
     plain.len = 0;
-    plain.name = None;
+    plain.has_name = false;
     plain.file = file;
     plain.line = line;
     plain.base = base;
@@ -277,29 +284,13 @@ fn read_words<'a, const AT_HAND: bool>(
         let start = at(rest);
         let after_word = match after {
             // `CR=..`, or `F=FEED1`: a letter as a name.
-            [b, ..] if b.is_ascii_alphabetic() || *b == b'_' || *b == b'=' => {
-                named::<AT_HAND>(text, start, plain)?
-            }
+            [b, ..] if is(*b, NAME_START) || *b == b'=' => named::<AT_HAND>(text, start, plain)?,
             _ => letter_constant::<AT_HAND>(*letter, after, start, plain)?,
         };
-        // What follows a word: blanks, then the end, a comment or the next word's letter,
-        // which must not be an operator going on with the word's value (`CR=5 DIV 2`).
+        // What follows a word: blanks, then the end, a comment or the next word's letter. An
+        // operator going on with the word's value (`CR=5 DIV 2`) is a name of two letters or
+        // more, which [`named`] gives up as it is neither `CR` nor `F`.
         rest = skip_blanks::<AT_HAND>(after_word);
-        if let [b, n, ..] = rest {
-            // Every operator is a name whose second byte is a letter or `_`: a letter before a
-            // digit, a sign or a point starts a word (most next words are axes and feeds).
-            if (n.is_ascii_alphabetic() || *n == b'_')
-                && matches!(
-                    b.to_ascii_uppercase(),
-                    b'O' | b'X' | b'A' | b'B' | b'D' | b'M' | b'N'
-                )
-            {
-                let from = at(rest);
-                if is_operator(&text[from..name_end(text, from)]) {
-                    return None;
-                }
-            }
-        }
     }
     match rest {
         [] if !AT_HAND => {}
@@ -317,11 +308,63 @@ fn read_words<'a, const AT_HAND: bool>(
     Some(rest)
 }
 
-/// True for the bytes that separate words (scan.rs), but for `\n` and `\r` when `AT_HAND`:
-/// then they end the line.
+/// What the reader asks of a byte, a bit a question, answered by one load from [`CLASSES`].
+type Class = u8;
+
+/// A byte that separates words (scan.rs `is_blank`).
+const BLANK: Class = 1;
+
+/// A [`BLANK`] that is no line end (`\n`, `\r`): the blanks of the text at hand.
+const BLANK_AT_HAND: Class = 2;
+
+/// A letter or `_`: what a name starts with.
+const NAME_START: Class = 4;
+
+/// A letter some operator starts with ([`is_operator`]).
+const OPERATOR_START: Class = 8;
+
+/// The classes of every byte.
+const CLASSES: [Class; 256] = classes();
+
+const fn classes() -> [Class; 256] {
+    let mut table = [0; 256];
+    let mut index = 0;
+    while index < table.len() {
+        let byte = index as u8;
+        let mut class = 0;
+        // scan.rs `is_blank`, which is no const fn (a test checks that they agree).
+        if byte == b' ' || byte == b'&' || byte < 0x20 || byte == 0x7f {
+            class |= BLANK;
+            if byte != b'\n' && byte != b'\r' {
+                class |= BLANK_AT_HAND;
+            }
+        }
+        if byte.is_ascii_alphabetic() || byte == b'_' {
+            class |= NAME_START;
+        }
+        if matches!(
+            byte.to_ascii_uppercase(),
+            b'O' | b'X' | b'A' | b'B' | b'D' | b'M' | b'N'
+        ) {
+            class |= OPERATOR_START;
+        }
+        table[index] = class;
+        index += 1;
+    }
+    table
+}
+
+/// True when `byte` is of class `class`.
+#[inline(always)]
+fn is(byte: u8, class: Class) -> bool {
+    CLASSES[usize::from(byte)] & class != 0
+}
+
+/// True for the bytes that separate words, but for `\n` and `\r` when `AT_HAND`: then they
+/// end the line.
 #[inline(always)]
 fn is_blank_in<const AT_HAND: bool>(byte: u8) -> bool {
-    is_blank(byte) && !(AT_HAND && matches!(byte, b'\n' | b'\r'))
+    is(byte, if AT_HAND { BLANK_AT_HAND } else { BLANK })
 }
 
 /// `bytes` from its first byte that is not a blank (see [`is_blank_in`]).
@@ -360,6 +403,15 @@ const MAX_NUMBER_DIGITS: usize = 9;
 /// [`MAX_NUMBER_DIGITS`] digits.
 #[inline(always)]
 fn block_number(bytes: &[u8]) -> Option<(Option<u32>, &[u8])> {
+    // Nearly always eight bytes follow `N` (the text at hand runs on): read them at once.
+    if let Some((number, digits)) = bytes.first_chunk::<8>().and_then(|e| leading_digits(*e)) {
+        let rest = &bytes[digits..];
+        return match rest {
+            _ if digits == 0 => Some((None, bytes)),
+            [b'=', ..] => None,
+            _ => Some((Some(number), rest)),
+        };
+    }
     let mut number = 0u32;
     let mut rest = bytes;
     while let [digit @ b'0'..=b'9', after @ ..] = rest {
@@ -377,6 +429,35 @@ fn block_number(bytes: &[u8]) -> Option<(Option<u32>, &[u8])> {
     }
 }
 
+/// The value of the digits at the start of `bytes` and how many there are, all eight bytes read
+/// at once; None when all eight are digits (the number may go on).
+#[inline(always)]
+fn leading_digits(bytes: [u8; 8]) -> Option<(u32, usize)> {
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    const HIGHS: u64 = 0x8080_8080_8080_8080;
+    // The first byte is the lowest. A digit less `0` is its value; any other byte has its high
+    // bit set after subtracting `0` (below `0`: it wraps) or after adding 0x46 (above `9`: it
+    // passes 0x7f). Digits neither borrow nor carry, so no byte before the first other one
+    // is touched by one.
+    let word = u64::from_le_bytes(bytes);
+    let values = word.wrapping_sub(u64::from(b'0') * ONES);
+    let others = (values | word.wrapping_add(0x46 * ONES)) & HIGHS;
+    let digits = (others.trailing_zeros() / 8) as usize;
+    if digits == 0 || digits == 8 {
+        return (digits == 0).then_some((0, 0));
+    }
+    // The digits moved to the top bytes, zeros before them: the value of the eight bytes as
+    // digits, the lowest byte first. Pairs of bytes make two-digit numbers, pairs of those
+    // four-digit ones, then the eight-digit one, each step one multiplication that adds the
+    // higher part of each pair, scaled, to the lower.
+    let top = values << (64 - 8 * digits);
+    let pairs = (top.wrapping_mul(1 + (10 << 8)) >> 8) & 0x00FF_00FF_00FF_00FF;
+    let fours = (pairs.wrapping_mul(1 + (100 << 16)) >> 16) & 0x0000_FFFF_0000_FFFF;
+    let seven = fours.wrapping_mul(1 + (10_000 << 32)) >> 32;
+    // At most seven digits: below 10^7, which fits.
+    Some((seven as u32, digits))
+}
+
 /// The end of the letters, digits and `_` from `at`.
 fn name_end(text: &[u8], mut at: usize) -> usize {
     while text
@@ -388,12 +469,28 @@ fn name_end(text: &[u8], mut at: usize) -> usize {
     at
 }
 
+/// The first `length` bytes of `bytes`, a name, as one number with zeros after them, when the
+/// name has at most eight bytes and eight are at hand. No byte of a name is zero: two names
+/// have the same key when they are written the same.
+#[inline(always)]
+fn short_name_key(bytes: &[u8], length: usize) -> Option<u64> {
+    let eight = u64::from_le_bytes(*bytes.first_chunk::<8>()?);
+    match length {
+        1..=7 => Some(eight & (u64::MAX >> (64 - 8 * length))),
+        8 => Some(eight),
+        _ => None,
+    }
+}
+
 /// The names that are operators between two values.
 fn is_operator(name: &[u8]) -> bool {
     const OPERATORS: [&[u8]; 10] = [
         b"OR", b"XOR", b"AND", b"B_OR", b"B_XOR", b"B_AND", b"DIV", b"MOD", b"NOT", b"B_NOT",
     ];
-    (2..=5).contains(&name.len()) && OPERATORS.iter().any(|op| name.eq_ignore_ascii_case(op))
+    // Most names start with a letter no operator starts with (`FEED1`): one test for those.
+    name.first().is_some_and(|first| is(*first, OPERATOR_START))
+        && (2..=5).contains(&name.len())
+        && OPERATORS.iter().any(|op| name.eq_ignore_ascii_case(op))
 }
 
 /// A letter and a constant written against it (`X-1.5`, `G1`, `Y.5`), `after` the bytes after
@@ -479,7 +576,7 @@ fn named<'a, const AT_HAND: bool>(
                 b.eq_ignore_ascii_case(&b'R') && text.get(from + 1).is_some_and(u8::is_ascii_digit);
             let end = name_end(text, from + 1);
             let variable = &text[from..end];
-            if radius || r_parameter || is_operator(variable) || plain.name.is_some() {
+            if radius || r_parameter || is_operator(variable) || plain.has_name {
                 return None;
             }
             // A call or indices follow the name (`(` after blanks, `[` against it).
@@ -488,7 +585,13 @@ fn named<'a, const AT_HAND: bool>(
             {
                 return None;
             }
-            plain.name = Some(Address::upper(variable));
+            // Written as the last line's name, the name is made once for both.
+            let key = short_name_key(&text[from..], variable.len()).unwrap_or(0);
+            if key == 0 || key != plain.name_key {
+                plain.name = Some(Address::upper(variable));
+                plain.name_key = key;
+            }
+            plain.has_name = true;
             plain.push(PlainKind::FeedName, start, end)?;
             Some(after)
         }
@@ -503,6 +606,90 @@ fn named<'a, const AT_HAND: bool>(
             };
             plain.push(kind, start, end)?;
             Some(rest)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::sinumerik::scan::is_blank;
+
+    #[test]
+    fn the_byte_classes_are_the_scanners_and_the_operators() {
+        for byte in 0..=u8::MAX {
+            assert_eq!(is(byte, BLANK), is_blank(byte), "{byte:#x}");
+            let line_end = matches!(byte, b'\n' | b'\r');
+            assert_eq!(is(byte, BLANK_AT_HAND), is_blank(byte) && !line_end);
+            assert_eq!(
+                is(byte, NAME_START),
+                byte.is_ascii_alphabetic() || byte == b'_'
+            );
+        }
+        // Every operator starts with a byte of the class, and its second byte is a name's: after
+        // a word, it is read as a name, and given up.
+        for operator in [
+            "OR", "XOR", "AND", "B_OR", "B_XOR", "B_AND", "DIV", "MOD", "NOT", "B_NOT",
+        ] {
+            for name in [operator.to_string(), operator.to_lowercase()] {
+                let bytes = name.as_bytes();
+                assert!(
+                    is(bytes[0], OPERATOR_START) && is(bytes[1], NAME_START),
+                    "{name}"
+                );
+                assert!(is_operator(bytes), "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_feed_name_read_line_after_line_is_each_lines_own() {
+        let mut block = Block::default();
+        let next = "\nN20 G1 X10.5 Y-2.25 Z0.125 F=FEED2 ; long enough for the numbers' windows";
+        for (line, name) in [
+            ("N10 G1 X1 F=FEED1", Some("FEED1")),
+            ("N10 G1 X1 F=FEED1", Some("FEED1")),
+            ("N10 G1 X1 F=feed1", Some("FEED1")),
+            ("N10 G1 X1 F=FEED10", Some("FEED10")),
+            ("N10 G1 X1", None),
+            ("N10 G1 X1 F=FEED1", Some("FEED1")),
+            (
+                "N10 G1 X1 F=A_FEED_OF_MORE_THAN_8",
+                Some("A_FEED_OF_MORE_THAN_8"),
+            ),
+            (
+                "N10 G1 X1 F=A_FEED_OF_MORE_THAN_9",
+                Some("A_FEED_OF_MORE_THAN_9"),
+            ),
+            ("N10 G1 X1 F=FEED_TWO", Some("FEED_TWO")),
+            ("N10 G1 X1 F=FEED_TWO", Some("FEED_TWO")),
+            ("N10 G1 X1 F=F", Some("F")),
+        ] {
+            // From the text at hand, where the key is made, and from the line alone.
+            let unread = format!("{line}{next}");
+            assert!(read_plain_in(unread.as_bytes(), FileId(0), 1, 0, &mut block).is_some());
+            let at_hand = block.plain.as_ref().and_then(PlainWords::feed_name);
+            assert_eq!(at_hand, name, "{line}");
+            assert!(read_plain(line.as_bytes(), FileId(0), 1, 0, &mut block));
+            let alone = block.plain.as_ref().and_then(PlainWords::feed_name);
+            assert_eq!(alone, name, "{line}");
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn eight_bytes_at_once_give_the_digits_one_by_one_give(
+            bytes in proptest::array::uniform8(proptest::prop_oneof![
+                proptest::sample::select(b"0123456789/:.-Nn ".to_vec()),
+                proptest::num::u8::ANY,
+            ]),
+        ) {
+            let digits = bytes.iter().take_while(|b| b.is_ascii_digit()).count();
+            let value = bytes[..digits]
+                .iter()
+                .fold(0u32, |n, d| n * 10 + u32::from(d - b'0'));
+            let expected = (digits < 8).then_some((value, digits));
+            proptest::prop_assert_eq!(leading_digits(bytes), expected, "{:?}", bytes);
         }
     }
 }
