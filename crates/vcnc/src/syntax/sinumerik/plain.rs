@@ -278,14 +278,17 @@ fn read_words<'a, const AT_HAND: bool>(
     plain.base = base;
     // Anything but a letter ends the words; what may end them is checked below.
     while let [letter, after @ ..] = rest {
-        if !letter.is_ascii_alphabetic() {
+        // An ASCII letter and its capital differ in bit 5 alone: one mask tests for a letter
+        // and gives the capital.
+        let capital = letter & !0x20;
+        if !capital.is_ascii_uppercase() {
             break;
         }
         let start = at(rest);
         let after_word = match after {
             // `CR=..`, or `F=FEED1`: a letter as a name.
             [b, ..] if is(*b, NAME_START) || *b == b'=' => named::<AT_HAND>(text, start, plain)?,
-            _ => letter_constant::<AT_HAND>(*letter, after, start, plain)?,
+            _ => letter_constant::<AT_HAND>(capital, after, start, plain)?,
         };
         // What follows a word: blanks, then the end, a comment or the next word's letter. An
         // operator going on with the word's value (`CR=5 DIV 2`) is a name of two letters or
@@ -493,8 +496,8 @@ fn is_operator(name: &[u8]) -> bool {
         && OPERATORS.iter().any(|op| name.eq_ignore_ascii_case(op))
 }
 
-/// A letter and a constant written against it (`X-1.5`, `G1`, `Y.5`), `after` the bytes after
-/// the letter, not a numeric extension (`R10=`, `X1=`: then the word's end is no plain one and
+/// A letter (`letter`, upper case) and a constant written against it (`X-1.5`, `G1`, `Y.5`),
+/// `after` the bytes after the letter, not a numeric extension (`R10=`, `X1=`: then the word's end is no plain one and
 /// the line is given up); the word kept in `plain`, the bytes after it.
 #[inline(always)]
 fn letter_constant<'a, const AT_HAND: bool>(
@@ -512,11 +515,7 @@ fn letter_constant<'a, const AT_HAND: bool>(
     let number = decimal.number(negative);
     // The word's end: the letter's place, the letter, and what was read after it.
     let end = start + 1 + after.len() - rest.len();
-    plain.push(
-        PlainKind::Letter(letter.to_ascii_uppercase(), number),
-        start,
-        end,
-    )?;
+    plain.push(PlainKind::Letter(letter, number), start, end)?;
     Some(rest)
 }
 
@@ -545,17 +544,15 @@ fn named<'a, const AT_HAND: bool>(
     start: usize,
     plain: &mut PlainWords,
 ) -> Option<&'a [u8]> {
-    let equals = name_end(text, start + 1);
-    // `==` compares; a blank before `=` and the forms with `(` or `[` are the general reader's.
-    if text.get(equals) != Some(&b'=') || text.get(equals + 1) == Some(&b'=') {
-        return None;
-    }
-    let name = &text[start..equals];
-    let radius = name.eq_ignore_ascii_case(b"CR");
-    if !radius && !name.eq_ignore_ascii_case(b"F") {
-        return None;
-    }
-    let from = equals + 1;
+    // `CR=` or `F=`, not `==` (which compares); a blank before `=`, any other name and the
+    // forms with `(` or `[` are the general reader's.
+    let (radius, from) = match &text[start..] {
+        [b'C' | b'c', b'R' | b'r', b'=', after @ ..] if after.first() != Some(&b'=') => {
+            (true, start + 3)
+        }
+        [b'F' | b'f', b'=', after @ ..] if after.first() != Some(&b'=') => (false, start + 2),
+        _ => return None,
+    };
     match text.get(from) {
         Some(b'-') => {
             let (decimal, rest) = unsigned_decimal::<AT_HAND>(&text[from + 1..])?;
