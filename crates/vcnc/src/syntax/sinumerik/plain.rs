@@ -326,6 +326,9 @@ const NAME_START: Class = 4;
 /// A letter some operator starts with ([`is_operator`]).
 const OPERATOR_START: Class = 8;
 
+/// A letter, a digit or `_`: what a name goes on with.
+const NAME: Class = 16;
+
 /// The classes of every byte.
 const CLASSES: [Class; 256] = classes();
 
@@ -343,7 +346,10 @@ const fn classes() -> [Class; 256] {
             }
         }
         if byte.is_ascii_alphabetic() || byte == b'_' {
-            class |= NAME_START;
+            class |= NAME_START | NAME;
+        }
+        if byte.is_ascii_digit() {
+            class |= NAME;
         }
         if matches!(
             byte.to_ascii_uppercase(),
@@ -463,10 +469,7 @@ fn leading_digits(bytes: [u8; 8]) -> Option<(u32, usize)> {
 
 /// The end of the letters, digits and `_` from `at`.
 fn name_end(text: &[u8], mut at: usize) -> usize {
-    while text
-        .get(at)
-        .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
-    {
+    while text.get(at).is_some_and(|b| is(*b, NAME)) {
         at += 1;
     }
     at
@@ -486,6 +489,7 @@ fn short_name_key(bytes: &[u8], length: usize) -> Option<u64> {
 }
 
 /// The names that are operators between two values.
+#[inline(always)]
 fn is_operator(name: &[u8]) -> bool {
     const OPERATORS: [&[u8]; 10] = [
         b"OR", b"XOR", b"AND", b"B_OR", b"B_XOR", b"B_AND", b"DIV", b"MOD", b"NOT", b"B_NOT",
@@ -497,8 +501,8 @@ fn is_operator(name: &[u8]) -> bool {
 }
 
 /// A letter (`letter`, upper case) and a constant written against it (`X-1.5`, `G1`, `Y.5`),
-/// `after` the bytes after the letter, not a numeric extension (`R10=`, `X1=`: then the word's end is no plain one and
-/// the line is given up); the word kept in `plain`, the bytes after it.
+/// `after` the bytes after the letter, not a numeric extension (`R10=`, `X1=`: then the word's
+/// end is no plain one and the line is given up); the word kept in `plain`, the bytes after it.
 #[inline(always)]
 fn letter_constant<'a, const AT_HAND: bool>(
     letter: u8,
@@ -622,6 +626,7 @@ mod tests {
                 is(byte, NAME_START),
                 byte.is_ascii_alphabetic() || byte == b'_'
             );
+            assert_eq!(is(byte, NAME), byte.is_ascii_alphanumeric() || byte == b'_');
         }
         // Every operator starts with a byte of the class, and its second byte is a name's: after
         // a word, it is read as a name, and given up.
