@@ -27,6 +27,10 @@ pub struct ParsedLine {
     pub block: Box<Block>,
 }
 
+/// The length up to which a line's text is copied as a block of that fixed size (most lines of
+/// a CAM program are shorter), and the room each line's text is made with.
+const SHORT_LINE: usize = 64;
+
 /// Reads the lines of a SINUMERIK program file into [`ParsedLine`]s.
 #[derive(Clone, Copy, Debug)]
 pub struct SinumerikParser {
@@ -67,7 +71,15 @@ impl SinumerikParser {
         out.number = number;
         out.base = base;
         out.text.clear();
-        out.text.extend_from_slice(&unread.text[..line.length]);
+        // A short line is copied as a block of fixed size and cut to its length: a copy the
+        // compiler makes in a few moves, where one of the line's length called memcpy.
+        match unread.text.first_chunk::<SHORT_LINE>() {
+            Some(block) if line.length <= SHORT_LINE => {
+                out.text.extend_from_slice(block);
+                out.text.truncate(line.length);
+            }
+            _ => out.text.extend_from_slice(&unread.text[..line.length]),
+        }
         Some(line.after)
     }
 }
@@ -81,7 +93,7 @@ impl LineParser for SinumerikParser {
 
     fn empty_line(&self) -> ParsedLine {
         ParsedLine {
-            text: Vec::with_capacity(48),
+            text: Vec::with_capacity(SHORT_LINE),
             block: Box::new(Block {
                 // A CAM line has up to about eight words.
                 words: Vec::with_capacity(8),
@@ -176,9 +188,16 @@ mod tests {
             N20 G2 X51.438 Y26.151 CR=-11.700 F=FEED2 ; arc \r\r\n\n \r\n\
             N30 G1\rX1\nN40 X1 ; c\nDEF REAL A=1\nN50 G1 X1&Y2\t\x0bZ3\n"
             .to_vec();
+        // Lines about as long as the block a short line is copied in.
+        for length in [63, 64, 65] {
+            let line = format!("N80 G1 X1 ;{}\n", "c".repeat(length - 11));
+            assert_eq!(line.len(), length + 1);
+            text.extend_from_slice(line.as_bytes());
+        }
         text.extend_from_slice(format!("N60 X1 ;{}\nN70 G1 X1", "c".repeat(600)).as_bytes());
         let sources = lines_by_every_source(&text);
-        assert_eq!(sources[0].len(), 13);
+        assert_eq!(sources[0].len(), 16);
+        assert_eq!(sources[0][12].text.len(), 64);
         for other in &sources[1..] {
             assert_eq!(&sources[0], other);
         }
