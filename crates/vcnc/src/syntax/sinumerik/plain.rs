@@ -525,18 +525,17 @@ fn letter_constant<'a, const AT_HAND: bool>(
 
 /// The decimal constant at the start of `bytes` (digits, or a point and digits), as the ISO
 /// reader's short path reads it: the decimal and the bytes after it. None for anything else,
-/// and for what the general reader must read: an `EX` exponent, more than 15 digits. Read from
-/// windows when `AT_HAND` (None as well when `bytes` is shorter than a window).
+/// and for more than 15 digits, which the general reader must read. Read from windows when
+/// `AT_HAND` (None as well when `bytes` is shorter than a window). An `EX` exponent after the
+/// digits (`1.5EX3`) is the general reader's too, and needs no test here: its `E` is read next
+/// as a word's letter followed by a name's byte, and [`named`] gives up any name but `CR` and
+/// `F`.
 #[inline(always)]
 fn unsigned_decimal<const AT_HAND: bool>(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
-    let (decimal, rest) = if AT_HAND {
-        decimal::windowed_decimal(bytes)?
+    if AT_HAND {
+        decimal::windowed_decimal(bytes)
     } else {
-        decimal::unsigned_decimal(bytes)?
-    };
-    match rest {
-        [b'E' | b'e', b'X' | b'x', ..] => None,
-        _ => Some((decimal, rest)),
+        decimal::unsigned_decimal(bytes)
     }
 }
 
