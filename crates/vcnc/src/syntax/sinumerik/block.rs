@@ -658,6 +658,7 @@ mod tests {
             "N10 G1 X1\n",
             "N10 G1 X1\r",
             &format!("N10 G1\rX1\n{next}"),
+            &format!("N10 G1 X1 ; c\rc\n{next}"),
             &long,
         ] {
             let mut block = Block::default();

@@ -203,6 +203,21 @@ mod tests {
         }
     }
 
+    #[test]
+    fn a_lone_carriage_return_in_a_comment_far_into_a_text_ends_its_line() {
+        // Lines that only the line reader reads, far past what the text in memory searched for
+        // lone `\r`s at first; then a comment with one, not yet searched when it is at hand.
+        let mut text = "DEF REAL A\n".repeat(8_000).into_bytes();
+        text.extend_from_slice(
+            b"N10 G1 X1 ; c\rc\nN20 G1 X2 Y3 Z4 F=FEED1 ; long enough for windows\n",
+        );
+        let sources = lines_by_every_source(&text);
+        assert_eq!(sources[0][8_000].text, b"N10 G1 X1 ; c");
+        for other in &sources[1..] {
+            assert_eq!(&sources[0], other);
+        }
+    }
+
     proptest::proptest! {
         #[test]
         fn any_text_reads_the_same_from_the_text_at_hand_and_line_by_line(

@@ -208,8 +208,8 @@ pub(super) fn read_plain(
 /// Reads the first line of `unread` (the text at hand from a line's start on, line ends
 /// included) as [`read_plain`] reads the line without its line end, and finds its end on the
 /// way: the line's length and what follows its `\n`. None (and `block` to be emptied) when the
-/// line is not plain, when its `\n` is not at hand or not within [`MAX_AT_HAND`] bytes, when its
-/// words have a `\r` after them elsewhere than before the `\n`, or when a number is too close to the end of the
+/// line is not plain, when its `\n` is not at hand or not within [`MAX_AT_HAND`] bytes, when it
+/// has a `\r` elsewhere than before its `\n`, or when a number is too close to the end of the
 /// text at hand for its window: the line is then read the usual way.
 #[inline(always)]
 pub(super) fn read_plain_in(
@@ -226,12 +226,18 @@ pub(super) fn read_plain_in(
         [b'\n', ..] => (text.len() - rest.len(), text.len() - rest.len()),
         [b'\r', ..] => (text.len() - rest.len(), text.len() - rest.len() + 1),
         _ => {
-            let newline = text.len() - rest.len() + memchr_newline(rest)?;
+            let comment = text.len() - rest.len();
+            let newline = comment + memchr_newline(rest)?;
             // What the line sources hand out: the line without the `\r` of a `\r\n`.
             let length = match text[..newline] {
                 [.., b'\r'] => newline - 1,
                 _ => newline,
             };
+            // Another `\r` in the comment is a lone one, which ends the line (lines.rs
+            // `normalize`): the text in memory may not have been searched for it yet this far.
+            if text[comment..length].contains(&b'\r') {
+                return None;
+            }
             (length, newline)
         }
     };
