@@ -225,26 +225,30 @@ pub(super) fn read_plain_in(
     let (length, newline) = match rest {
         [b'\n', ..] => (text.len() - rest.len(), text.len() - rest.len()),
         [b'\r', ..] => (text.len() - rest.len(), text.len() - rest.len() + 1),
-        _ => {
-            let comment = text.len() - rest.len();
-            let newline = comment + memchr_newline(rest)?;
-            // What the line sources hand out: the line without the `\r` of a `\r\n`.
-            let length = match text[..newline] {
-                [.., b'\r'] => newline - 1,
-                _ => newline,
-            };
-            // Another `\r` in the comment is a lone one, which ends the line (lines.rs
-            // `normalize`): the text in memory may not have been searched for it yet this far.
-            if text[comment..length].contains(&b'\r') {
-                return None;
-            }
-            (length, newline)
-        }
+        _ => comment_end(text, text.len() - rest.len())?,
     };
     Some(AtHand {
         length,
         after: unread.len() - newline - 1,
     })
+}
+
+/// The length of a line whose words end at a `;` comment at `comment` in `text`, and the place
+/// of its `\n`; None when the `\n` is not in `text`.
+#[cold]
+fn comment_end(text: &[u8], comment: usize) -> Option<(usize, usize)> {
+    let newline = comment + memchr_newline(&text[comment..])?;
+    // What the line sources hand out: the line without the `\r` of a `\r\n`.
+    let length = match text[..newline] {
+        [.., b'\r'] => newline - 1,
+        _ => newline,
+    };
+    // Another `\r` in the comment is a lone one, which ends the line (lines.rs `normalize`):
+    // the text in memory may not have been searched for it yet this far.
+    if text[comment..length].contains(&b'\r') {
+        return None;
+    }
+    Some((length, newline))
 }
 
 /// The reader of both: the words of `text` into `block` up to the line's end, and the bytes
