@@ -26,13 +26,44 @@ pub fn normalize(bytes: &mut [u8], starts_file: bool) {
         bytes[..3].fill(b' ');
     }
     let mut from = 0;
-    while let Some(i) = find_byte(&bytes[from..], b'\r') {
+    while let Some(i) = find_carriage_return(&bytes[from..]) {
         let at = from + i;
         if bytes.get(at + 1) != Some(&b'\n') {
             bytes[at] = b'\n';
         }
         from = at + 1;
     }
+}
+
+/// The first `\r` in `bytes`. A text with `\n` line ends has none: it is searched 32 bytes at a
+/// step, four words tested at once for a byte equal to `\r` ([`find_byte`]'s test, without a
+/// branch per word), and the step that has one searched again for where it is. Every buffer a
+/// reader reads is searched: this is about two thirds of [`find_byte`]'s instructions.
+fn find_carriage_return(bytes: &[u8]) -> Option<usize> {
+    let mut steps = bytes.chunks_exact(32);
+    let mut base = 0;
+    for step in steps.by_ref() {
+        let found = step
+            .chunks_exact(8)
+            .map(|word| has_byte(word, b'\r'))
+            .fold(0, |found, word| found | word);
+        if found != 0 {
+            return find_byte(step, b'\r').map(|i| base + i);
+        }
+        base += 32;
+    }
+    find_byte(steps.remainder(), b'\r').map(|i| base + i)
+}
+
+/// Nonzero when the eight bytes `word` hold `byte` (the has-zero-byte test after an XOR), with
+/// the high bit of the first such byte set.
+#[inline(always)]
+fn has_byte(word: &[u8], byte: u8) -> u64 {
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    const HIGHS: u64 = 0x8080_8080_8080_8080;
+    let word = u64::from_le_bytes(word.try_into().expect("chunks_exact gives 8 bytes"))
+        ^ (ONES * u64::from(byte));
+    word.wrapping_sub(ONES) & !word & HIGHS
 }
 
 /// True when [`normalize`] would change `bytes`.
@@ -434,15 +465,10 @@ pub(crate) fn memchr_newline(bytes: &[u8]) -> Option<usize> {
 /// the XOR, and the classic has-zero-byte test finds it without a branch per byte.
 #[inline(always)]
 fn find_byte(bytes: &[u8], byte: u8) -> Option<usize> {
-    const ONES: u64 = 0x0101_0101_0101_0101;
-    const HIGHS: u64 = 0x8080_8080_8080_8080;
-    let pattern: u64 = ONES * u64::from(byte);
     let mut chunks = bytes.chunks_exact(8);
     let mut base = 0;
     for chunk in chunks.by_ref() {
-        let word =
-            u64::from_le_bytes(chunk.try_into().expect("chunks_exact gives 8 bytes")) ^ pattern;
-        let found = word.wrapping_sub(ONES) & !word & HIGHS;
+        let found = has_byte(chunk, byte);
         if found != 0 {
             return Some(base + (found.trailing_zeros() / 8) as usize);
         }
@@ -583,6 +609,21 @@ pub(crate) mod tests {
                 let expected = lines.next_line().unwrap().map(|l| (l.offset, l.number));
                 assert_eq!(Some(line), expected);
             }
+        }
+    }
+
+    #[test]
+    fn lone_carriage_returns_are_found_across_the_pieces_searched_at_once() {
+        for at in [0, 1, 1022, 1023, 1024, 1025, 2047, 2048, 2999] {
+            let mut bytes = vec![b'x'; 3000];
+            bytes[at] = b'\r';
+            bytes[2500] = b'\r';
+            bytes[2501] = b'\n';
+            let mut expected = bytes.clone();
+            // At the end too: nothing follows it.
+            expected[at] = b'\n';
+            normalize(&mut bytes, false);
+            assert_eq!(bytes, expected, "{at}");
         }
     }
 

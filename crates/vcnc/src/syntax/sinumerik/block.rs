@@ -11,7 +11,7 @@
 
 use super::control::{self, Place};
 use super::expr::{self, Expr};
-use super::plain::{self, PlainWords};
+use super::plain::{self, AtHand, PlainWords};
 use super::scan::{unexpected, Scanner};
 use super::statement::{Name, Spanned, Statement};
 use crate::alarm::{Alarm, AlarmCode};
@@ -224,12 +224,7 @@ pub fn parse_block_into(text: &[u8], file: FileId, line: u32, base: u32, block: 
 /// decoded in `block.plain` (its `words` then empty): what a program's lines are read with, for
 /// the interpreter to run the common ones without making their words.
 pub fn parse_line_into(text: &[u8], file: FileId, line: u32, base: u32, block: &mut Block) {
-    block.skip = None;
-    block.number = None;
-    block.label = None;
-    block.words.clear();
-    block.statement = None;
-    block.alarm = None;
+    clear(block);
     // Most lines of a long program are plain ones (plain.rs); any other is read the general
     // way from its start.
     if plain::read_plain(text, file, line, base, block) {
@@ -238,6 +233,34 @@ pub fn parse_line_into(text: &[u8], file: FileId, line: u32, base: u32, block: &
     block.plain = None;
     block.number = None;
     read_general(text, file, line, base, block);
+}
+
+/// Reads the first line of `unread`, the text at hand from the start of line `line` of `file`
+/// (at byte `base`) on, into `block` as [`parse_line_into`] reads a plain line, if it is one
+/// (plain.rs [`plain::read_plain_in`]): where the line ends. None, and `block` to be read
+/// into again, for any other line.
+#[inline(always)]
+pub(super) fn parse_plain_line_in(
+    unread: &[u8],
+    file: FileId,
+    line: u32,
+    base: u32,
+    block: &mut Block,
+) -> Option<AtHand> {
+    clear(block);
+    plain::read_plain_in(unread, file, line, base, block)
+}
+
+/// Empties `block` but for its plain words, which the reader of a plain line overwrites, and
+/// its words' room.
+#[inline(always)]
+fn clear(block: &mut Block) {
+    block.skip = None;
+    block.number = None;
+    block.label = None;
+    block.words.clear();
+    block.statement = None;
+    block.alarm = None;
 }
 
 /// Reads the block on `text` into the empty `block` the general way.
@@ -557,6 +580,37 @@ mod tests {
         (general, fast)
     }
 
+    /// `text` read from the text at hand, ended by `line_end` and followed by another line, as
+    /// the parser thread reads it: the block and the line's length; None when the line is left
+    /// to the line reader.
+    fn at_hand(text: &[u8], line_end: &[u8]) -> Option<(Block, usize)> {
+        let next = b"N20 G1 X10.5 Y-2.25 Z0.125 F=FEED2 ; long enough for the numbers' windows";
+        let unread = [text, line_end, next].concat();
+        let mut block = Block::default();
+        parse_line_into(b"N1 G0 X1 CR=2 F=A", FileId(3), 7, 100, &mut block);
+        let end = parse_plain_line_in(&unread, FileId(3), 7, 100, &mut block)?;
+        assert_eq!(end.after, next.len(), "{}", text.escape_ascii());
+        Some((block, end.length))
+    }
+
+    /// The line `text` reads from the text at hand, ended by `\n` or `\r\n`, as the line reader
+    /// reads it, or is left to the line reader only when that does not take it for a plain line.
+    fn assert_at_hand_reads_as_the_line(text: &[u8]) {
+        let mut line = Block::default();
+        parse_line_into(text, FileId(3), 7, 100, &mut line);
+        let plain = plain::read_plain(text, FileId(3), 7, 100, &mut Block::default());
+        for line_end in [&b"\n"[..], b"\r\n"] {
+            match at_hand(text, line_end) {
+                Some((block, length)) => {
+                    assert!(plain, "{}", text.escape_ascii());
+                    assert_eq!(block, line, "{}", text.escape_ascii());
+                    assert_eq!(length, text.len(), "{}", text.escape_ascii());
+                }
+                None => assert!(!plain, "{}", text.escape_ascii()),
+            }
+        }
+    }
+
     #[test]
     fn the_short_path_reads_cam_lines_as_the_general_way_does() {
         for line in [
@@ -575,6 +629,16 @@ mod tests {
                 line.escape_ascii()
             );
         }
+        for line in [
+            &b"N170 G1 X54.808 Y30.491 Z-1.288 F=FEED1"[..],
+            b"N160 G2 X51.438 Y26.151 CR=-11.700 F=FEED2 ; arc",
+            b"",
+            b"   ; comment only",
+            b"N999999999 G1 X1",
+        ] {
+            assert!(at_hand(line, b"\n").is_some(), "{}", line.escape_ascii());
+            assert_at_hand_reads_as_the_line(line);
+        }
         let mut block = Block::default();
         let line = b"N170 G1 X54.808 Y30.491 Z-1.288 F=FEED1";
         assert!(plain::read_plain(line, FileId(0), 1, 0, &mut block));
@@ -582,6 +646,43 @@ mod tests {
         assert_eq!(
             block.plain.as_ref().and_then(|p| p.feed_name()),
             Some("FEED1")
+        );
+    }
+
+    #[test]
+    fn a_line_at_hand_is_left_to_the_line_reader_where_its_end_or_a_window_is_not_at_hand() {
+        let next = "N20 G1 X10.5 Y-2.25 Z0.125 F=FEED2 ; long enough for the numbers' windows\n";
+        let long = format!("N10 G1 X1 ;{}\n{next}", "c".repeat(600));
+        for unread in [
+            "N10 G1 X1",
+            "N10 G1 X1\n",
+            "N10 G1 X1\r",
+            &format!("N10 G1\rX1\n{next}"),
+            &format!("N10 G1 X1 ; c\rc\n{next}"),
+            &long,
+        ] {
+            let mut block = Block::default();
+            let end = parse_plain_line_in(unread.as_bytes(), FileId(0), 1, 0, &mut block);
+            assert_eq!(end, None, "{unread:?}");
+        }
+        // The long line is a plain one, read the usual way.
+        let line = long.lines().next().unwrap_or_default().as_bytes();
+        assert!(plain::read_plain(
+            line,
+            FileId(0),
+            1,
+            0,
+            &mut Block::default()
+        ));
+        // A comment runs to the `\n`; the `\r` before it is the line end's.
+        let unread = format!("N10 G1 X1 ; c\r\n{next}");
+        let end = parse_plain_line_in(unread.as_bytes(), FileId(0), 1, 0, &mut Block::default());
+        assert_eq!(
+            end,
+            Some(AtHand {
+                length: 13,
+                after: next.len()
+            })
         );
     }
 
@@ -599,7 +700,8 @@ mod tests {
                     "$P", "$P=1", "(", "[", "1EX3", "X1EX3", "X1EX", "X1.5EX-2", "EX",
                     "X99999999999999999999", "'H1F'", "\"s\"", "F='H1F'", "F=\"s\"", "X.", "X.5.",
                     "_A=1", "A_=1", "AB1=2", "ENDLABEL:", "X1e5", "\u{e9}", "F=$A", "F=_A",
-                    "F=-3", "F=3.5", "CR=A", "Cr=2", "F=b_2",
+                    "F=-3", "F=3.5", "CR=A", "Cr=2", "F=b_2", "N999999999", "N0000000012",
+                    "N4294967295", "N12345678901", "\u{b}", "\u{7f}", "X1.23456789012345",
                 ]),
                 0..8,
             ),
@@ -612,6 +714,7 @@ mod tests {
             }
             let (general, fast) = both_ways(line.as_bytes());
             proptest::prop_assert_eq!(format!("{:?}", general), format!("{:?}", fast), "{}", line);
+            assert_at_hand_reads_as_the_line(line.as_bytes());
         }
     }
 }

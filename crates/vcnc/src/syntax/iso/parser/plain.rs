@@ -15,7 +15,7 @@
 
 use super::super::LineBlocks;
 use crate::source::{FileId, Span};
-use crate::syntax::decimal::{unsigned_decimal, Decimal, MAX_DIGITS};
+use crate::syntax::decimal::{unsigned_decimal, windowed_decimal, WINDOW};
 use crate::syntax::lines::{Line, Unread};
 use crate::syntax::{Number, Word};
 
@@ -177,7 +177,7 @@ fn read_plain_words<const WINDOWED: bool>(
 }
 
 /// The common case of the general reader's number: `digits [. digits]` (or `. digits`) with at
-/// most [`MAX_DIGITS`] digits and nothing after it that could continue the number (a blank
+/// most [`MAX_DIGITS`](crate::syntax::decimal::MAX_DIGITS) digits and nothing after it that could continue the number (a blank
 /// followed by more digits, a second point). Returns the number and the bytes it took; `None`
 /// sends the caller to the general path, which gives the same value (checked by the tests).
 #[inline(always)]
@@ -250,79 +250,12 @@ fn signed_number<const WINDOWED: bool>(bytes: &[u8]) -> Option<(Number, &[u8])> 
     Some((decimal.number(negative), rest))
 }
 
-/// [`unsigned_decimal`] where `bytes` runs on far enough after the number: its digits are read
-/// from one window of [`WINDOW`] bytes, the whole digits from its first [`RUN`], the fraction's
-/// from the [`RUN`] after the point, with no end test per digit (the compiler unrolls the loop of
-/// [`digit_run`]) and none for the point or the fraction. `None` as well when `bytes` is shorter
-/// than the window.
-#[inline(always)]
-fn windowed_decimal(bytes: &[u8]) -> Option<(Decimal, &[u8])> {
-    let window = bytes.first_chunk::<WINDOW>()?;
-    let (whole, whole_digits) = digit_run(0, first_run(window)?);
-    // `whole_digits` is at most RUN: the point's place and the fraction's run are in the window
-    // (the compiler sees it, and drops the tests).
-    let (decimal, length) = match window.get(whole_digits..) {
-        Some([b'.', fraction @ ..]) => {
-            let (mantissa, fraction_digits) = digit_run(whole, first_run(fraction)?);
-            let decimal = Decimal {
-                mantissa,
-                fraction_digits,
-                decimal_point: true,
-            };
-            (decimal, whole_digits + 1 + fraction_digits)
-        }
-        _ => {
-            let decimal = Decimal {
-                mantissa: whole,
-                fraction_digits: 0,
-                decimal_point: false,
-            };
-            (decimal, whole_digits)
-        }
-    };
-    let digits = whole_digits + decimal.fraction_digits;
-    if digits == 0 || digits > MAX_DIGITS {
-        return None;
-    }
-    // The number takes at most MAX_DIGITS digits and a point, RUN bytes: the minimum changes
-    // nothing, and tells the compiler that the RUN + 1 bytes after them in the window follow
-    // the number (no tests for the end of the text at the blank and the next letter).
-    Some((decimal, bytes.get(length.min(RUN)..).unwrap_or_default()))
-}
-
-/// The first [`RUN`] bytes of `bytes`, if it has as many.
-#[inline(always)]
-fn first_run(bytes: &[u8]) -> Option<&[u8; RUN]> {
-    bytes.first_chunk::<RUN>()
-}
-
-/// The bytes [`windowed_decimal`] reads: a run of digits, a point, and a run of digits.
-const WINDOW: usize = 2 * RUN + 1;
-
-/// The bytes [`digit_run`] reads: one more than [`MAX_DIGITS`], so that a run that fills them
-/// is refused.
-const RUN: usize = MAX_DIGITS + 1;
-
-/// The digits at the start of `bytes` appended to `mantissa`, and how many there are (`RUN`
-/// when all are digits: the run may go on, and the number is too long).
-#[inline(always)]
-fn digit_run(mut mantissa: u64, bytes: &[u8; RUN]) -> (u64, usize) {
-    for (count, &byte) in bytes.iter().enumerate() {
-        // Widened before the subtraction, the digit needs no second widening to be added.
-        let digit = u64::from(byte).wrapping_sub(u64::from(b'0'));
-        if digit > 9 {
-            return (mantissa, count);
-        }
-        // Wrapping: a number of more than MAX_DIGITS digits is refused by the caller.
-        mantissa = mantissa.wrapping_mul(10).wrapping_add(digit);
-    }
-    (mantissa, RUN)
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::{parse_any_line, parse_line, Format, Reader, SyntaxOptions};
     use super::*;
+    use crate::syntax::decimal::tests::assert_windowed_agrees;
+    use crate::syntax::decimal::MAX_DIGITS;
     use crate::syntax::Block;
 
     /// A number read by the general digit reader.
@@ -456,56 +389,6 @@ mod tests {
                 assert_eq!(length, text.len());
             }
         }
-    }
-
-    /// The windowed reader reads what the byte-by-byte one reads, or leaves it when `bytes` is
-    /// shorter than its window.
-    fn assert_windowed_agrees(bytes: &[u8]) {
-        let by_byte = unsigned_decimal(bytes).map(|(decimal, rest)| (decimal, rest.len()));
-        match windowed_decimal(bytes).map(|(decimal, rest)| (decimal, rest.len())) {
-            Some(windowed) => assert_eq!(Some(windowed), by_byte, "{bytes:?}"),
-            None => assert!(
-                by_byte.is_none() || bytes.len() < WINDOW,
-                "{bytes:?}: windowed refused {by_byte:?}"
-            ),
-        }
-    }
-
-    #[test]
-    fn the_windowed_and_the_byte_by_byte_readers_agree() {
-        for text in [
-            "0",
-            "1.",
-            ".5",
-            "54.808",
-            "-1",
-            ".",
-            "",
-            "1.2.3",
-            "1 2",
-            "999999999999999",
-            "9999999999999999",
-            "99999999.9999999",
-            "99999999.99999999",
-            "1.00000000000001",
-            "1.000000000000001",
-            "000000000000001",
-            "0000000000000001",
-            ".000000000000001",
-            "123456789012345678901234567890.5",
-        ] {
-            // Every length of text after the number, from none to more than the windows need,
-            // with what may follow a number: a blank, a letter, a line end, a point.
-            for after in [" ", "X", "\n", "."] {
-                for length in 0..=2 * WINDOW {
-                    let bytes = format!("{text}{}", after.repeat(length));
-                    assert_windowed_agrees(bytes.as_bytes());
-                }
-            }
-        }
-        // A number with text enough after it is read by the windows.
-        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\nG01 X54.808 Y30.491\n").is_some());
-        assert!(windowed_decimal(b"54.808 Y30.491 Z-1.288\n").is_none());
     }
 
     #[test]
