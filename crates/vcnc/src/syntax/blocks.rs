@@ -178,7 +178,12 @@ impl LineParser for IsoParser {
 }
 
 /// Batches in circulation between the parser thread and the interpreter.
-const POOL: usize = 4;
+const POOL: usize = 8;
+
+/// Read batches go back to the parser thread this many at a time: the parser, ahead, then wakes
+/// once for several batches, not once a batch (every wake-up a switch of threads on two busy
+/// cores).
+const RETURNED_TOGETHER: usize = POOL / 2;
 
 /// What the parser thread sends: a batch of parsed lines, or the error that stopped it.
 type Batch<T> = io::Result<Vec<T>>;
@@ -190,6 +195,8 @@ pub struct BackgroundParser<P: LineParser = IsoParser> {
     recycle: SyncSender<Vec<P::Line>>,
     batch: Vec<P::Line>,
     index: usize,
+    /// Read batches waiting to go back together ([`RETURNED_TOGETHER`]).
+    returned: Vec<Vec<P::Line>>,
     /// The parser thread came to the end of the text.
     ended: bool,
     thread: Option<JoinHandle<()>>,
@@ -270,6 +277,7 @@ impl<P: LineParser> BackgroundParser<P> {
             recycle,
             batch: Vec::new(),
             index: 0,
+            returned: Vec::with_capacity(RETURNED_TOGETHER),
             ended: false,
             thread: Some(thread),
         }
@@ -293,7 +301,13 @@ impl<P: LineParser> BlockSource for BackgroundParser<P> {
             Ok(Ok(batch)) => {
                 let done = std::mem::replace(&mut self.batch, batch);
                 if done.capacity() > 0 {
-                    let _ = self.recycle.try_send(done);
+                    self.returned.push(done);
+                }
+                if self.returned.len() >= RETURNED_TOGETHER {
+                    for done in self.returned.drain(..) {
+                        // The channel holds the whole pool: there is always room.
+                        let _ = self.recycle.try_send(done);
+                    }
                 }
                 self.index = 0;
                 Ok(!self.batch.is_empty())
