@@ -719,6 +719,26 @@ fn fuzz_findings_of_the_compensator_stop_with_their_alarm() {
     }
 }
 
+/// A fuzz finding (2026-11-29): an ISO section (G291) whose GOTO loops for ever made its moves
+/// within the G291 block, all held in memory until the section ended (24 GB, then the kernel's
+/// OOM killer); the section now stops with V086 past 100,000 moves.
+#[test]
+fn an_iso_section_that_loops_stops_at_its_limit_of_moves() {
+    let machine = Machine::default();
+    let text = "N10 G1 X0 Y0 F100\nN20 G291\nN30 G1 X1\nN40 X0\nN50 GOTO 30\n";
+    let items: Vec<_> = vcnc::interp::sinumerik::run_str(text, &machine).collect();
+    let moves = items
+        .iter()
+        .filter(|item| matches!(item, Ok(Item::Segment(s)) if s.motion().is_some()))
+        .count();
+    let last = items.last().unwrap().as_ref().unwrap_err();
+    assert_eq!(last.code, AlarmCode::MacroLimit, "{last:?}");
+    assert!(last.message.contains("100000 moves"), "{}", last.message);
+    assert_eq!(last.span.unwrap().line, 2, "at the G291 block");
+    // The moves before the limit come out, as the control would have made them.
+    assert_eq!(moves, 100_000);
+}
+
 /// A fuzz finding (2026-11-29): a hole circle of 8551 holes called with 290 passes made 2.5
 /// million moves from one line; the limit of a cycle call's moves (2,000,000, docs/SINUMERIK.md
 /// 12) holds for its passes together.

@@ -16,6 +16,20 @@ use crate::interp::{Interpreter, Options};
 use crate::motion::{ArcDirection, Item, SegmentKind};
 use crate::syntax::lines::TextLines;
 
+/// The most moves one ISO section makes (vcnc's limit): the section runs within one block
+/// of the SINUMERIK program, its moves held until it ends (about 850 bytes a move), so a loop
+/// of ISO blocks that ran long would hold them all.
+const MAX_MOVES: u64 = 100_000;
+
+fn too_many_moves(span: crate::source::Span) -> Alarm {
+    Alarm::error(
+        AlarmCode::MacroLimit,
+        span,
+        format!("the ISO section after G291 makes more than {MAX_MOVES} moves"),
+    )
+    .with_help("check the section's loops and jumps (GOTO, WHILE): one runs far too long; or end the section with G290 sooner")
+}
+
 /// True when the line holds the word G290 (not G2900, not in a comment).
 fn has_g290(line: &[u8]) -> bool {
     let code = line
@@ -67,7 +81,10 @@ pub(super) fn run(
     }
     let file = program.file;
     let machine = kernel.state().setup.machine().clone();
-    let mut iso = Interpreter::new(TextLines::new(&text), file, &machine, Options::default());
+    // The section's loops count against the program's limit of jumps.
+    let mut options = Options::default();
+    options.limits.jumps = front.settings.iteration_limit;
+    let mut iso = Interpreter::new(TextLines::new(&text), file, &machine, options);
     // The ISO blocks start from the state the SINUMERIK blocks left.
     let modal = &mut iso.core.exec.modal;
     modal.plane = front.modal.plane;
@@ -89,7 +106,15 @@ pub(super) fn run(
     };
     std::mem::swap(&mut iso.core.exec.kernel, kernel.state_mut());
     let mut result = Ok(());
+    let mut moves = 0u64;
     for item in iso.by_ref() {
+        if matches!(&item, Ok(Item::Segment(s)) if s.motion().is_some()) {
+            moves += 1;
+            if moves > MAX_MOVES {
+                result = Err(too_many_moves(front.last_span));
+                break;
+            }
+        }
         match item {
             Ok(Item::Segment(segment)) if matches!(segment.kind, SegmentKind::End { .. }) => break,
             Ok(Item::Warning(alarm)) if alarm.code == AlarmCode::MissingProgramEnd => {}
