@@ -719,19 +719,28 @@ fn fuzz_findings_of_the_compensator_stop_with_their_alarm() {
     }
 }
 
+/// The moves `text` makes on the default machine (840D) and the error that stops it.
+fn moves_and_stop(text: &str) -> (usize, Alarm) {
+    let items: Vec<_> = vcnc::interp::sinumerik::run_str(text, &Machine::default()).collect();
+    let moves = items
+        .iter()
+        .filter(|item| matches!(item, Ok(Item::Segment(s)) if s.motion().is_some()))
+        .count();
+    let last = items
+        .last()
+        .expect("an item")
+        .clone()
+        .expect_err("an error ends the run");
+    (moves, last)
+}
+
 /// A fuzz finding (2026-11-29): an ISO section (G291) whose GOTO loops for ever made its moves
 /// within the G291 block, all held in memory until the section ended (24 GB, then the kernel's
 /// OOM killer); the section now stops with V086 past 100,000 moves.
 #[test]
 fn an_iso_section_that_loops_stops_at_its_limit_of_moves() {
-    let machine = Machine::default();
     let text = "N10 G1 X0 Y0 F100\nN20 G291\nN30 G1 X1\nN40 X0\nN50 GOTO 30\n";
-    let items: Vec<_> = vcnc::interp::sinumerik::run_str(text, &machine).collect();
-    let moves = items
-        .iter()
-        .filter(|item| matches!(item, Ok(Item::Segment(s)) if s.motion().is_some()))
-        .count();
-    let last = items.last().unwrap().as_ref().unwrap_err();
+    let (moves, last) = moves_and_stop(text);
     assert_eq!(last.code, AlarmCode::MacroLimit, "{last:?}");
     assert!(last.message.contains("100000 moves"), "{}", last.message);
     assert_eq!(last.span.unwrap().line, 2, "at the G291 block");
@@ -745,14 +754,7 @@ fn an_iso_section_that_loops_stops_at_its_limit_of_moves() {
 #[test]
 fn a_cycle_calls_passes_share_its_limit_of_moves() {
     // A pass is a rapid to each hole (the call gives no drilling cycle): 290 x 8551 moves.
-    let machine = Machine::default();
-    let items: Vec<_> =
-        vcnc::interp::sinumerik::run_str("P290 HOLES2(0,0,80,0,1,8551)", &machine).collect();
-    let moves = items
-        .iter()
-        .filter(|item| matches!(item, Ok(Item::Segment(s)) if s.motion().is_some()))
-        .count();
-    let last = items.last().unwrap().as_ref().unwrap_err();
+    let (moves, last) = moves_and_stop("P290 HOLES2(0,0,80,0,1,8551)");
     assert_eq!(last.code, AlarmCode::MacroLimit, "{last:?}");
     assert!(last.message.contains("2000000 moves"), "{}", last.message);
     assert_eq!(moves, 2_000_000);
