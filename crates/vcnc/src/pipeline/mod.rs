@@ -47,12 +47,14 @@
 //! assert_eq!(finished.blocks_executed, 4);
 //! ```
 
+mod balance;
 mod planned;
 mod program;
 mod store;
 mod threads;
 mod waiting;
 
+pub use balance::Threads;
 pub use program::{OpenError, ProgramFiles};
 pub use store::PersistentStore;
 pub use threads::{BatchSource, Finished, Stream};
@@ -101,10 +103,12 @@ pub enum Stopping {
     AfterTheBatch,
 }
 
-/// The threads of a run: where the program is parsed, how the consumer waits, where the
-/// interpreter stops at an overtravel.
+/// The threads of a run: where the program is parsed, where it is interpreted, how the
+/// consumer waits, where the interpreter stops at an overtravel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Layout {
+    /// Where the interpreter runs.
+    pub threads: Threads,
     /// Where the program is parsed.
     pub parsing: Parsing,
     /// How the consumer waits for a batch.
@@ -119,6 +123,7 @@ impl Layout {
     /// is heavy ([`Parsing::AheadWhenHeavy`]), in line on one.
     pub fn for_busy_consumer() -> Layout {
         Layout {
+            threads: Threads::Balanced,
             parsing: match cores() {
                 ..=1 => Parsing::InLine,
                 2 => Parsing::AheadWhenHeavy,
@@ -133,6 +138,7 @@ impl Layout {
     /// a parser thread, and the consumer sleeps while it waits.
     pub fn for_idle_consumer() -> Layout {
         Layout {
+            threads: Threads::Balanced,
             parsing: Parsing::Ahead,
             waiting: Waiting::Sleep,
             stopping: Stopping::AfterTheBatch,

@@ -10,6 +10,7 @@
 //! Never: leave the interpreter's thread running once the [`Stream`] is dropped (a consumer
 //! that stops reading, `vcnc trace | head`, must end it), or print.
 
+use super::balance::{Balance, Busy, Telling};
 use super::planned;
 use super::program::ProgramFiles;
 use super::store::{PersistentStore, Saver};
@@ -23,10 +24,11 @@ use crate::syntax::blocks::BlockSource;
 use crate::syntax::iso::LineBlocks;
 use std::collections::VecDeque;
 use std::io;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::Arc;
 use std::thread::JoinHandle;
+use std::time::Instant;
 
 /// Segments per batch taken from the interpreter: small, so that the pool stays in the caches.
 pub(crate) const BATCH: usize = 256;
@@ -37,19 +39,48 @@ pub(crate) const BATCH: usize = 256;
 /// look-ahead and the interpreter, often the slower thread, must not wait for a buffer.
 pub(crate) const POOL: usize = 8;
 
-/// A program being interpreted on a thread of its own: its items one at a time (an
-/// iterator), or a batch at a time in the buffers the interpreter filled.
+/// A program being interpreted, on a thread of its own or between the consumer's batches: its
+/// items one at a time (an iterator), or a batch at a time in the buffers the interpreter
+/// filled.
 pub struct Stream {
     /// The current batch; its front is the next item.
     items: VecDeque<Item>,
-    /// None once the interpreter thread has ended (or is told to, on drop).
-    batches: Option<Receiver<Vec<Item>>>,
+    interpreter: Interpreting,
     recycle: SyncSender<Vec<Item>>,
     waiter: Waiter,
+    balance: Balance,
     blocks: Arc<AtomicU64>,
-    thread: Option<JoinHandle<Option<io::Error>>>,
     files: ProgramFiles,
     machine: Machine,
+}
+
+/// Where the interpreter is.
+enum Interpreting {
+    /// On a thread of its own, sending its batches; `hand_back` asks it to come back to the
+    /// consumer's thread after the batch it is making (`asked`: it was asked).
+    Apart {
+        batches: Receiver<Vec<Item>>,
+        hand_back: Arc<AtomicBool>,
+        asked: bool,
+        /// The thread's working time.
+        busy: Arc<Busy>,
+        thread: JoinHandle<Handed>,
+    },
+    /// On the consumer's thread, with the pool's empty buffers.
+    Here {
+        fill: Box<dyn Fill>,
+        recycled: Receiver<Vec<Item>>,
+    },
+    /// Ended (or told to), with the first failed save of the persistent variables.
+    Ended(Option<io::Error>),
+}
+
+/// What the interpreter's thread gives back when it ends.
+enum Handed {
+    /// The stream ended, or the consumer went: the first failed save.
+    Ended(Option<io::Error>),
+    /// Asked to come back, the interpreter and the pool's empty buffers.
+    Back(Box<dyn Fill>, Receiver<Vec<Item>>),
 }
 
 /// How the interpreter's thread ended ([`Stream::finish`]).
@@ -152,48 +183,36 @@ impl Stream {
     /// Starts `run`'s interpreter on a thread of its own, as `layout` says.
     pub(crate) fn spawn<S: BatchSource>(started: Started<S>, layout: Layout) -> Stream {
         let Started {
-            source: mut interpreter,
+            source,
             store,
             files,
             machine,
         } = started;
-        let (sender, batches) = sync_channel::<Vec<Item>>(POOL);
         let (recycle, recycled) = sync_channel::<Vec<Item>>(POOL);
         for _ in 0..POOL {
             let _ = recycle.try_send(Vec::with_capacity(BATCH + 64));
         }
         let blocks = Arc::new(AtomicU64::new(0));
-        let counter = Arc::clone(&blocks);
+        let saver = Saver::new(&source, store);
         let mut travel = TravelCheck::new(&machine);
-        let stopping = layout.stopping;
-        let thread = std::thread::spawn(move || {
-            let mut saver = Saver::new(&interpreter, store);
-            let pool = Pool {
-                sender,
-                recycled,
-                counter,
-            };
-            // Each way of stopping has a copy of the loop of its own, so that the batch check,
-            // the common one, is compiled as if it were the only one.
-            match stopping {
-                Stopping::AtTheBlock => pool.serve(&mut interpreter, &mut saver, |i, batch| {
-                    i.next_batch_checked(batch, BATCH, &mut travel)
-                }),
-                Stopping::AfterTheBatch => pool.serve(&mut interpreter, &mut saver, |i, batch| {
-                    let more = i.next_batch(batch, BATCH);
-                    travel.check_batch(batch) && more
-                }),
-            }
-            saver.save(&interpreter);
-            saver.into_error()
-        });
+        // Each way of stopping has a copy of the loop of its own, so that the batch check, the
+        // common one, is compiled as if it were the only one.
+        let fill: Box<dyn Fill> = match layout.stopping {
+            Stopping::AtTheBlock => Filling::boxed(source, saver, &blocks, move |i, batch| {
+                i.next_batch_checked(batch, BATCH, &mut travel)
+            }),
+            Stopping::AfterTheBatch => Filling::boxed(source, saver, &blocks, move |i, batch| {
+                let more = i.next_batch(batch, BATCH);
+                travel.check_batch(batch) && more
+            }),
+        };
         Stream {
             items: VecDeque::new(),
-            batches: Some(batches),
+            interpreter: apart(fill, recycled),
             recycle,
             waiter: Waiter::new(layout.waiting),
+            balance: Balance::new(layout.threads),
             blocks,
-            thread: Some(thread),
             files,
             machine,
         }
@@ -206,13 +225,91 @@ impl Stream {
         if !self.items.is_empty() {
             return Some(Vec::from(std::mem::take(&mut self.items)));
         }
-        match self.waiter.receive(self.batches.as_ref()?) {
-            Ok(batch) => Some(batch),
-            Err(_) => {
-                self.batches = None;
-                None
+        self.receive()
+    }
+
+    /// The interpreter's next batch, from its thread or made here.
+    fn receive(&mut self) -> Option<Vec<Item>> {
+        loop {
+            match &mut self.interpreter {
+                Interpreting::Apart {
+                    batches,
+                    hand_back,
+                    asked,
+                    busy,
+                    ..
+                } => match self.waiter.receive(batches) {
+                    Ok(batch) => {
+                        if !*asked && self.balance.apart(busy) {
+                            hand_back.store(true, Ordering::Relaxed);
+                            *asked = true;
+                        }
+                        return Some(batch);
+                    }
+                    // The thread ended, or came back as asked.
+                    Err(_) => self.join(),
+                },
+                Interpreting::Here { fill, recycled } => {
+                    let mut batch = recycled
+                        .try_recv()
+                        .unwrap_or_else(|_| Vec::with_capacity(BATCH + 64));
+                    batch.clear();
+                    let start = Instant::now();
+                    let mut more = true;
+                    while more && batch.is_empty() {
+                        more = fill.fill(&mut batch);
+                    }
+                    let took = start.elapsed();
+                    if !more {
+                        self.end_here();
+                    } else if self.balance.here(took) {
+                        self.go_apart();
+                    }
+                    if !batch.is_empty() {
+                        return Some(batch);
+                    }
+                }
+                Interpreting::Ended(_) => return None,
             }
         }
+    }
+
+    /// Waits for the interpreter's thread, which ended or came back.
+    fn join(&mut self) {
+        let interpreter = std::mem::replace(&mut self.interpreter, Interpreting::Ended(None));
+        let Interpreting::Apart { thread, .. } = interpreter else {
+            self.interpreter = interpreter;
+            return;
+        };
+        self.interpreter = match thread.join() {
+            Ok(Handed::Back(fill, recycled)) => {
+                self.balance.changed();
+                Interpreting::Here { fill, recycled }
+            }
+            Ok(Handed::Ended(error)) => Interpreting::Ended(error),
+            Err(_) => Interpreting::Ended(None),
+        };
+    }
+
+    /// Ends the interpreter running on this thread: its last save.
+    fn end_here(&mut self) {
+        let interpreter = std::mem::replace(&mut self.interpreter, Interpreting::Ended(None));
+        self.interpreter = match interpreter {
+            Interpreting::Here { fill, .. } => Interpreting::Ended(fill.end()),
+            other => other,
+        };
+    }
+
+    /// Gives the interpreter running on this thread a thread of its own again.
+    fn go_apart(&mut self) {
+        let interpreter = std::mem::replace(&mut self.interpreter, Interpreting::Ended(None));
+        self.interpreter = match interpreter {
+            Interpreting::Here { fill, recycled } => {
+                self.balance.changed();
+                apart(fill, recycled)
+            }
+            other => other,
+        };
     }
 
     /// Gives a batch's buffer back to the interpreter.
@@ -258,15 +355,42 @@ impl Stream {
         }
     }
 
-    /// Tells the interpreter's thread to end and waits for it.
+    /// Tells the interpreter to end, waits for its thread, and gives its first failed save.
     fn stop(&mut self) -> Option<io::Error> {
-        // Without its receiver the thread's next send fails, and without the recycling sender
-        // its wait for an empty buffer does: either way it ends, saving the variables. (Keeping
-        // the sender alive here left a thread that had filled the whole pool waiting for ever.)
-        self.batches = None;
-        let (orphan, _) = sync_channel(0);
-        drop(std::mem::replace(&mut self.recycle, orphan));
-        self.thread.take()?.join().ok().flatten()
+        if let Interpreting::Apart { batches, .. } = &mut self.interpreter {
+            // Without its receiver the thread's next send fails, and without the recycling
+            // sender its wait for an empty buffer does: either way it ends, saving the
+            // variables. (Keeping the sender alive here left a thread that had filled the whole
+            // pool waiting for ever.)
+            let (_, orphan) = sync_channel(0);
+            drop(std::mem::replace(batches, orphan));
+            let (orphan, _) = sync_channel(0);
+            drop(std::mem::replace(&mut self.recycle, orphan));
+            self.join();
+        }
+        self.end_here();
+        match std::mem::replace(&mut self.interpreter, Interpreting::Ended(None)) {
+            Interpreting::Ended(error) => error,
+            _ => None,
+        }
+    }
+}
+
+/// Starts `fill` on a thread of its own, with the pool's empty buffers.
+fn apart(fill: Box<dyn Fill>, recycled: Receiver<Vec<Item>>) -> Interpreting {
+    let (sender, batches) = sync_channel::<Vec<Item>>(POOL);
+    let hand_back = Arc::new(AtomicBool::new(false));
+    let busy = Arc::new(Busy::default());
+    let thread = {
+        let (hand_back, busy) = (Arc::clone(&hand_back), Arc::clone(&busy));
+        std::thread::spawn(move || serve(fill, recycled, &sender, &hand_back, &busy))
+    };
+    Interpreting::Apart {
+        batches,
+        hand_back,
+        asked: false,
+        busy,
+        thread,
     }
 }
 
@@ -278,17 +402,10 @@ impl Iterator for Stream {
             if let Some(item) = self.items.pop_front() {
                 return Some(item);
             }
-            let batch = self.waiter.receive(self.batches.as_ref()?);
+            let batch = self.receive()?;
             // The emptied buffer goes back; converting between Vec and VecDeque moves nothing.
-            let empty = Vec::from(std::mem::take(&mut self.items));
+            let empty = Vec::from(std::mem::replace(&mut self.items, VecDeque::from(batch)));
             let _ = self.recycle.try_send(empty);
-            match batch {
-                Ok(batch) => self.items = VecDeque::from(batch),
-                Err(_) => {
-                    self.batches = None;
-                    return None;
-                }
-            }
         }
     }
 }
@@ -309,44 +426,91 @@ impl planned::BatchSource for Stream {
     }
 }
 
-/// The interpreter's side of the pool of batch buffers.
-struct Pool {
-    sender: SyncSender<Vec<Item>>,
-    recycled: Receiver<Vec<Item>>,
-    counter: Arc<AtomicU64>,
+/// The interpreter's side of a run, wherever it runs: it fills a batch and checks its travel,
+/// counts the blocks, and saves the persistent variables when due.
+trait Fill: Send {
+    /// Fills `batch` (empty); false when nothing more will come.
+    fn fill(&mut self, batch: &mut Vec<Item>) -> bool;
+
+    /// The interpreter has ended, or is told to: the last save, and the first that failed.
+    fn end(self: Box<Self>) -> Option<io::Error>;
 }
 
-impl Pool {
-    /// Fills the buffers that come back with `fill` (the interpreter's next batch, travel
-    /// checked; false when nothing more will come) and sends them, until the stream ends or the
-    /// consumer is gone.
-    fn serve<S: BatchSource>(
-        self,
-        interpreter: &mut S,
-        saver: &mut Saver,
-        mut fill: impl FnMut(&mut S, &mut Vec<Item>) -> bool,
-    ) {
-        // A batch can come back empty (a macro loop that does not move): its buffer is kept
-        // for the next one, so the pool never runs dry.
-        let mut spare = None;
-        while let Some(mut batch) = spare.take().or_else(|| self.recycled.recv().ok()) {
-            batch.clear();
-            let more = fill(interpreter, &mut batch);
-            self.counter
-                .store(interpreter.blocks_executed(), Ordering::Release);
-            if saver.due() {
-                saver.save(interpreter);
-            }
-            if batch.is_empty() {
-                spare = Some(batch);
-            } else if self.sender.send(batch).is_err() {
-                break;
-            }
-            if !more {
-                break;
-            }
+/// A [`Fill`] of a source `S` whose batch is made and checked by `F`.
+struct Filling<S, F> {
+    source: S,
+    saver: Saver,
+    counter: Arc<AtomicU64>,
+    make: F,
+}
+
+impl<S, F> Filling<S, F>
+where
+    S: BatchSource,
+    F: FnMut(&mut S, &mut Vec<Item>) -> bool + Send + 'static,
+{
+    fn boxed(source: S, saver: Saver, counter: &Arc<AtomicU64>, make: F) -> Box<dyn Fill> {
+        Box::new(Filling {
+            source,
+            saver,
+            counter: Arc::clone(counter),
+            make,
+        })
+    }
+}
+
+impl<S, F> Fill for Filling<S, F>
+where
+    S: BatchSource,
+    F: FnMut(&mut S, &mut Vec<Item>) -> bool + Send,
+{
+    fn fill(&mut self, batch: &mut Vec<Item>) -> bool {
+        let more = (self.make)(&mut self.source, batch);
+        self.counter
+            .store(self.source.blocks_executed(), Ordering::Release);
+        if self.saver.due() {
+            self.saver.save(&self.source);
+        }
+        more
+    }
+
+    fn end(mut self: Box<Self>) -> Option<io::Error> {
+        self.saver.save(&self.source);
+        self.saver.into_error()
+    }
+}
+
+/// The interpreter's thread: fills the buffers that come back and sends them, until the stream
+/// ends, the consumer is gone, or `hand_back` asks it back to the consumer's thread. Tells its
+/// CPU time in `busy` now and then.
+fn serve(
+    mut fill: Box<dyn Fill>,
+    recycled: Receiver<Vec<Item>>,
+    sender: &SyncSender<Vec<Item>>,
+    hand_back: &AtomicBool,
+    busy: &Busy,
+) -> Handed {
+    // A batch can come back empty (a macro loop that does not move): its buffer is kept for
+    // the next one, so the pool never runs dry.
+    let mut spare = None;
+    let mut telling = Telling::new(busy);
+    while let Some(mut batch) = spare.take().or_else(|| recycled.recv().ok()) {
+        batch.clear();
+        let more = fill.fill(&mut batch);
+        telling.batch_made(busy);
+        if batch.is_empty() {
+            spare = Some(batch);
+        } else if sender.send(batch).is_err() {
+            break;
+        }
+        if !more {
+            break;
+        }
+        if spare.is_none() && hand_back.load(Ordering::Relaxed) {
+            return Handed::Back(fill, recycled);
         }
     }
+    Handed::Ended(fill.end())
 }
 
 #[cfg(test)]
@@ -377,6 +541,7 @@ mod tests {
         let interpreter = Interpreter::from_blocks(blocks, FileId(0), &machine, Options::default());
         let files = ProgramFiles::new("long.nc".into(), LoadedFiles::default());
         let layout = Layout {
+            threads: super::super::Threads::Two,
             parsing: Parsing::Ahead,
             waiting: Waiting::Adaptive,
             stopping: Stopping::AtTheBlock,
@@ -400,5 +565,69 @@ mod tests {
             dropped.recv_timeout(Duration::from_secs(10)).is_ok(),
             "dropping the stream waited for ever on the interpreter thread"
         );
+    }
+
+    /// A loop of `moves` feed moves, which the interpreter makes one pass at a time.
+    fn macro_loop(moves: u32) -> String {
+        format!(
+            "G21 G90 G94 F1000\n#1=0\nWHILE[#1LT{moves}]DO1\nG1 X[#1 MOD 100] Y[#1 MOD 37]\n\
+             #1=#1+1\nEND1\nM30\n"
+        )
+    }
+
+    fn layout(threads: super::super::Threads) -> Layout {
+        Layout {
+            threads,
+            parsing: Parsing::InLine,
+            waiting: Waiting::Sleep,
+            stopping: Stopping::AfterTheBatch,
+        }
+    }
+
+    #[test]
+    fn the_interpreter_comes_to_a_waiting_consumer_and_goes_back_to_a_busy_one() {
+        use super::super::{Pipeline, Threads};
+        let machine = Machine::default();
+        let text = macro_loop(300_000);
+        let mut two = Pipeline::new(&machine)
+            .layout(layout(Threads::Two))
+            .open_text(&text, "loop.nc");
+        let two_items: Vec<_> = two.by_ref().collect();
+        let two_blocks = two.finish().blocks_executed;
+        let mut stream = Pipeline::new(&machine)
+            .layout(layout(Threads::Balanced))
+            .open_text(&text, "loop.nc");
+        let mut balanced = Vec::new();
+        while let Some(batch) = stream.next_batch() {
+            balanced.extend(batch.iter().cloned());
+            stream.recycle(batch);
+            if stream.balance.changes() == 1 {
+                // Busy now: about as long a batch as the interpreter takes for it.
+                std::thread::sleep(Duration::from_millis(2));
+            }
+        }
+        let changes = stream.balance.changes();
+        let finished = stream.finish();
+        assert_eq!(balanced, two_items, "the same stream on one thread and two");
+        assert_eq!(finished.blocks_executed, two_blocks);
+        // To the consumer's thread while it waits, back to its own when the consumer works.
+        assert!(changes >= 2, "{changes} changes of layout");
+    }
+
+    #[test]
+    fn a_stream_dropped_while_its_interpreter_runs_on_the_consumers_thread_ends() {
+        use super::super::{Pipeline, Threads};
+        let machine = Machine::default();
+        let mut stream = Pipeline::new(&machine)
+            .layout(layout(Threads::Balanced))
+            .open_text(macro_loop(1_000_000), "loop.nc");
+        while stream.balance.changes() == 0 {
+            let batch = stream.next_batch().expect("a long program");
+            stream.recycle(batch);
+        }
+        assert!(matches!(stream.interpreter, Interpreting::Here { .. }));
+        assert!(stream.next().is_some());
+        let finished = stream.finish();
+        assert!(finished.blocks_executed < 3 * 1_000_000);
     }
 }

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use vcnc::checks::TravelLimits;
 use vcnc::interp::{DirectoryLibrary, PersistentVariables};
-use vcnc::pipeline::{Item, Layout, Parsing, Pipeline, Stopping, Stream, Waiting};
+use vcnc::pipeline::{Item, Layout, Parsing, Pipeline, Stopping, Stream, Threads, Waiting};
 use vcnc::plan::{PlanOptions, Planner, Timing};
 use vcnc::syntax::blocks::BlockSource;
 use vcnc::syntax::iso::LineBlocks;
@@ -40,14 +40,17 @@ impl Tally {
 /// Every layout of the threads.
 fn layouts() -> Vec<Layout> {
     let mut layouts = Vec::new();
-    for parsing in [Parsing::Ahead, Parsing::InLine] {
-        for waiting in [Waiting::Adaptive, Waiting::Sleep] {
-            for stopping in [Stopping::AtTheBlock, Stopping::AfterTheBatch] {
-                layouts.push(Layout {
-                    parsing,
-                    waiting,
-                    stopping,
-                });
+    for threads in [Threads::Two, Threads::Balanced] {
+        for parsing in [Parsing::Ahead, Parsing::InLine] {
+            for waiting in [Waiting::Adaptive, Waiting::Sleep] {
+                for stopping in [Stopping::AtTheBlock, Stopping::AfterTheBatch] {
+                    layouts.push(Layout {
+                        threads,
+                        parsing,
+                        waiting,
+                        stopping,
+                    });
+                }
             }
         }
     }
@@ -303,6 +306,7 @@ fn the_items_one_at_a_time_are_the_batches_items() {
     let text = cam_program(5000);
     let expected: Vec<Item> = interpret_str(&text, &machine, Options::default()).collect();
     let layout = Layout {
+        threads: Threads::Balanced,
         parsing: Parsing::Ahead,
         waiting: Waiting::Sleep,
         stopping: Stopping::AfterTheBatch,
