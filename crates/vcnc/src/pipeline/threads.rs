@@ -287,6 +287,9 @@ impl Stream {
                 Interpreting::Here { fill, recycled }
             }
             Ok(Handed::Ended(error)) => Interpreting::Ended(error),
+            // The interpreter's panic is the consumer's, as it would be on one thread: a stream
+            // that only ended would read as a program that ended.
+            Err(panic) if !std::thread::panicking() => std::panic::resume_unwind(panic),
             Err(_) => Interpreting::Ended(None),
         };
     }
@@ -629,5 +632,55 @@ mod tests {
         assert!(stream.next().is_some());
         let finished = stream.finish();
         assert!(finished.blocks_executed < 3 * 1_000_000);
+    }
+
+    /// Nine batches of a warning each, then a panic.
+    struct Panicking(u32);
+
+    impl BatchSource for Panicking {
+        fn next_batch(&mut self, out: &mut Vec<Item>, _at_least: usize) -> bool {
+            self.0 += 1;
+            assert!(self.0 < 10, "an interpreter's bug");
+            out.push(Ok(crate::motion::Item::Warning(
+                crate::alarm::Alarm::warning(
+                    crate::alarm::AlarmCode::NotSupportedYet,
+                    crate::source::Span::default(),
+                    "a warning",
+                ),
+            )));
+            true
+        }
+
+        fn next_batch_checked<C: ReleasedCheck>(
+            &mut self,
+            out: &mut Vec<Item>,
+            at_least: usize,
+            _check: &mut C,
+        ) -> bool {
+            self.next_batch(out, at_least)
+        }
+
+        fn blocks_executed(&self) -> u64 {
+            u64::from(self.0)
+        }
+    }
+
+    #[test]
+    fn a_panic_of_the_interpreter_is_the_consumers_on_either_thread() {
+        for threads in [super::super::Threads::Two, super::super::Threads::Balanced] {
+            let started = Started {
+                source: Panicking(0),
+                store: None,
+                files: ProgramFiles::new("bug.nc".into(), LoadedFiles::default()),
+                machine: Machine::default(),
+            };
+            let stream = Stream::spawn(started, layout(threads));
+            let consumed =
+                std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| stream.count()));
+            assert!(
+                consumed.is_err(),
+                "{threads:?}: the stream ended as if the program had"
+            );
+        }
     }
 }
