@@ -15,7 +15,7 @@
 //! batches while the interpreter has a thread of its own.
 
 use cpu_time::{ProcessTime, ThreadTime};
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 /// Where the interpreter runs.
@@ -57,25 +57,32 @@ const BACK_TO_TWO: (u32, u32) = (3, 5);
 const TELL_EVERY: Duration = Duration::from_millis(1);
 
 /// The CPU time of the interpreter's thread, as it last told it.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(crate) struct Busy {
+    /// Nanoseconds; [`Busy::NOT_TOLD`] before the first time.
     nanos: AtomicU64,
-    told: AtomicBool,
 }
 
 impl Busy {
+    const NOT_TOLD: u64 = u64::MAX;
+
+    pub(crate) fn new() -> Busy {
+        Busy {
+            nanos: AtomicU64::new(Busy::NOT_TOLD),
+        }
+    }
+
     /// Tells the CPU time of the calling thread, the interpreter's.
     pub(crate) fn tell(&self) {
         if let Ok(time) = ThreadTime::try_now() {
-            let nanos = u64::try_from(time.as_duration().as_nanos()).unwrap_or(u64::MAX);
+            let nanos = u64::try_from(time.as_duration().as_nanos()).unwrap_or(u64::MAX - 1);
             self.nanos.store(nanos, Ordering::Relaxed);
-            self.told.store(true, Ordering::Relaxed);
         }
     }
 
     fn time(&self) -> Option<Duration> {
-        let told = self.told.load(Ordering::Relaxed);
-        told.then(|| Duration::from_nanos(self.nanos.load(Ordering::Relaxed)))
+        let nanos = self.nanos.load(Ordering::Relaxed);
+        (nanos != Busy::NOT_TOLD).then(|| Duration::from_nanos(nanos))
     }
 }
 
@@ -406,7 +413,7 @@ mod tests {
     #[test]
     fn two_threads_stay_two() {
         let mut balance = Balance::new(Threads::Two);
-        let busy = Busy::default();
+        let busy = Busy::new();
         busy.tell();
         for _ in 0..1000 {
             assert!(!balance.apart(&busy));
@@ -415,7 +422,7 @@ mod tests {
 
     #[test]
     fn a_thread_tells_its_cpu_time() {
-        let busy = Busy::default();
+        let busy = Busy::new();
         assert_eq!(busy.time(), None);
         let start = Instant::now();
         while start.elapsed() < ms(5) {}

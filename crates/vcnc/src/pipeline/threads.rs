@@ -57,11 +57,10 @@ pub struct Stream {
 /// Where the interpreter is.
 enum Interpreting {
     /// On a thread of its own, sending its batches; `hand_back` asks it to come back to the
-    /// consumer's thread after the batch it is making (`asked`: it was asked).
+    /// consumer's thread after the batch it is making.
     Apart {
         batches: Receiver<Vec<Item>>,
         hand_back: Arc<AtomicBool>,
-        asked: bool,
         /// The thread's working time.
         busy: Arc<Busy>,
         thread: JoinHandle<Handed>,
@@ -235,14 +234,12 @@ impl Stream {
                 Interpreting::Apart {
                     batches,
                     hand_back,
-                    asked,
                     busy,
                     ..
                 } => match self.waiter.receive(batches) {
                     Ok(batch) => {
-                        if !*asked && self.balance.apart(busy) {
+                        if !hand_back.load(Ordering::Relaxed) && self.balance.apart(busy) {
                             hand_back.store(true, Ordering::Relaxed);
-                            *asked = true;
                         }
                         return Some(batch);
                     }
@@ -383,7 +380,7 @@ impl Stream {
 fn apart(fill: Box<dyn Fill>, recycled: Receiver<Vec<Item>>) -> Interpreting {
     let (sender, batches) = sync_channel::<Vec<Item>>(POOL);
     let hand_back = Arc::new(AtomicBool::new(false));
-    let busy = Arc::new(Busy::default());
+    let busy = Arc::new(Busy::new());
     let thread = {
         let (hand_back, busy) = (Arc::clone(&hand_back), Arc::clone(&busy));
         std::thread::spawn(move || serve(fill, recycled, &sender, &hand_back, &busy))
@@ -391,7 +388,6 @@ fn apart(fill: Box<dyn Fill>, recycled: Receiver<Vec<Item>>) -> Interpreting {
     Interpreting::Apart {
         batches,
         hand_back,
-        asked: false,
         busy,
         thread,
     }
